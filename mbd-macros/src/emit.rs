@@ -1,0 +1,328 @@
+//! Stage 4: symbolic equations → Rust.
+//!
+//! Each generated function is straight-line code over one set of outputs. Nodes of the graph
+//! used more than once are bound once (`let v12 = ...;`) in topological order — common
+//! subexpressions across all outputs of the function are computed once — and nodes used once
+//! are written in place. `sin φ` and `cos φ` of one angle become one `sin_cos` call.
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+
+use proc_macro2::{Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::Ident;
+
+use crate::formulation::Formulation;
+use crate::model::{Model, Scalar};
+use crate::sym::{Func, Graph, Id, Node, Var};
+
+/// Operation counts of one emitted function (see `mbd_runtime::OpCount`).
+#[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
+pub struct Ops {
+    pub add: u32,
+    pub mul: u32,
+    pub div: u32,
+    pub call: u32,
+}
+
+/// Where an output goes: an lvalue expression such as `phi[3]` or `d[2][5]`.
+pub struct Output {
+    pub target: TokenStream,
+    pub node: Id,
+}
+
+/// Emits straight-line code for a set of outputs of one graph.
+pub struct Emitter<'a> {
+    pub graph: &'a Graph,
+    pub scalar: Scalar,
+    pub params: Vec<Ident>,
+    /// Names of the coordinates, for readable bindings of sin/cos of body angles.
+    pub coordinate_names: Vec<String>,
+}
+
+struct Plan {
+    /// Nodes bound with `let`, with their binding names.
+    bound: BTreeMap<Id, Ident>,
+    /// sin/cos pairs of one argument: argument → (sin node, cos node).
+    pairs: HashMap<Id, (Id, Id)>,
+}
+
+impl Emitter<'_> {
+    fn real(&self) -> TokenStream {
+        match self.scalar {
+            Scalar::F32 => quote!(f32),
+            Scalar::F64 => quote!(f64),
+        }
+    }
+
+    /// A literal of the scalar type. Non-finite constants are rejected before emission.
+    pub fn literal(&self, v: f64) -> TokenStream {
+        let lit = match self.scalar {
+            Scalar::F32 => Literal::f32_suffixed(v.abs() as f32),
+            Scalar::F64 => Literal::f64_suffixed(v.abs()),
+        };
+        if v.is_sign_negative() && v != 0.0 {
+            quote!((-#lit))
+        } else {
+            quote!(#lit)
+        }
+    }
+
+    /// Counts how often each node is read by the code that will be emitted.
+    fn plan(&self, outputs: &[Output]) -> Plan {
+        let g = self.graph;
+        let mut uses: HashMap<Id, u32> = HashMap::new();
+        let mut visited = HashSet::new();
+        let mut stack: Vec<Id> = outputs.iter().map(|o| o.node).collect();
+        for o in outputs {
+            *uses.entry(o.node).or_default() += 1;
+        }
+        let mut sines: HashMap<Id, Id> = HashMap::new();
+        let mut cosines: HashMap<Id, Id> = HashMap::new();
+        while let Some(id) = stack.pop() {
+            if !visited.insert(id) {
+                continue;
+            }
+            let reads: Vec<Id> = match g.node(id) {
+                // `a + (−b)` is written `a - b`: the negation is never materialized.
+                Node::Add(a, b) => [a, b].iter().map(|&c| if let Node::Neg(x) = g.node(c) { x } else { c }).collect(),
+                // x² and x³ are written as products and read their base more than once.
+                Node::PowI(a, n) if (2..=3).contains(&n.abs()) => vec![a; 2],
+                Node::Call(Func::Sin, a) => {
+                    sines.insert(a, id);
+                    vec![a]
+                }
+                Node::Call(Func::Cos, a) => {
+                    cosines.insert(a, id);
+                    vec![a]
+                }
+                _ => g.children(id).into_iter().flatten().collect(),
+            };
+            for c in reads {
+                *uses.entry(c).or_default() += 1;
+                stack.push(c);
+            }
+        }
+        let pairs: HashMap<Id, (Id, Id)> =
+            sines.iter().filter_map(|(a, &s)| cosines.get(a).map(|&c| (*a, (s, c)))).collect();
+        let mut bound = BTreeMap::new();
+        for (&id, &n) in &uses {
+            let leaf = matches!(g.node(id), Node::Const(_) | Node::Var(_));
+            if leaf || !visited.contains(&id) {
+                continue;
+            }
+            if n >= 2 {
+                bound.insert(id, format_ident!("v{}", id));
+            }
+        }
+        for (&arg, &(s, c)) in &pairs {
+            let (sn, cn) = self.trig_names(arg, s, c);
+            bound.insert(s, sn);
+            bound.insert(c, cn);
+        }
+        Plan { bound, pairs }
+    }
+
+    /// Readable names for sin/cos of a body angle (`s_crank`, `c_crank`).
+    fn trig_names(&self, arg: Id, s: Id, c: Id) -> (Ident, Ident) {
+        if let Node::Var(Var::Q(i)) = self.graph.node(arg) {
+            if let Some(name) = self.coordinate_names.get(i as usize) {
+                if let Some(body) = name.strip_suffix(".phi") {
+                    return (format_ident!("s_{}", body), format_ident!("c_{}", body));
+                }
+            }
+        }
+        (format_ident!("s{}", s), format_ident!("c{}", c))
+    }
+
+    fn var(&self, v: Var) -> TokenStream {
+        match v {
+            Var::Q(i) => {
+                let i = Literal::usize_unsuffixed(i as usize);
+                quote!(q[#i])
+            }
+            Var::Qd(i) => {
+                let i = Literal::usize_unsuffixed(i as usize);
+                quote!(qd[#i])
+            }
+            Var::T => quote!(t),
+            Var::Param(k) => {
+                let p = &self.params[k as usize];
+                quote!(self.#p)
+            }
+        }
+    }
+
+    /// The expression computing `id`: its binding if bound, else written in place.
+    fn expr(&self, id: Id, plan: &Plan, ops: &mut Ops) -> TokenStream {
+        if let Some(name) = plan.bound.get(&id) {
+            return quote!(#name);
+        }
+        self.definition(id, plan, ops)
+    }
+
+    /// The right-hand side of a node, reading its children.
+    fn definition(&self, id: Id, plan: &Plan, ops: &mut Ops) -> TokenStream {
+        let g = self.graph;
+        let real = self.real();
+        let call = |name: &str| {
+            let f = format_ident!("{}", name);
+            quote!(<#real as ::mbd::Real>::#f)
+        };
+        match g.node(id) {
+            Node::Const(bits) => self.literal(f64::from_bits(bits)),
+            Node::Var(v) => self.var(v),
+            Node::Add(a, b) => {
+                ops.add += 1;
+                match (g.node(a), g.node(b)) {
+                    (Node::Neg(x), _) => {
+                        let (b, x) = (self.expr(b, plan, ops), self.expr(x, plan, ops));
+                        quote!((#b - #x))
+                    }
+                    (_, Node::Neg(y)) => {
+                        let (a, y) = (self.expr(a, plan, ops), self.expr(y, plan, ops));
+                        quote!((#a - #y))
+                    }
+                    _ => {
+                        let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                        quote!((#a + #b))
+                    }
+                }
+            }
+            Node::Mul(a, b) => {
+                ops.mul += 1;
+                let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                quote!((#a * #b))
+            }
+            Node::Div(a, b) => {
+                ops.div += 1;
+                let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                quote!((#a / #b))
+            }
+            Node::Neg(a) => {
+                let a = self.expr(a, plan, ops);
+                quote!((-#a))
+            }
+            Node::PowI(a, n) => {
+                let base = self.expr(a, plan, ops);
+                let one = self.literal(1.0);
+                match n {
+                    2 => {
+                        ops.mul += 1;
+                        quote!((#base * #base))
+                    }
+                    3 => {
+                        ops.mul += 2;
+                        quote!((#base * #base * #base))
+                    }
+                    -1 => {
+                        ops.div += 1;
+                        quote!((#one / #base))
+                    }
+                    -2 => {
+                        ops.mul += 1;
+                        ops.div += 1;
+                        quote!((#one / (#base * #base)))
+                    }
+                    -3 => {
+                        ops.mul += 2;
+                        ops.div += 1;
+                        quote!((#one / (#base * #base * #base)))
+                    }
+                    n => {
+                        ops.call += 1;
+                        let f = call("powi");
+                        let n = Literal::i32_unsuffixed(n);
+                        quote!(#f(#base, #n))
+                    }
+                }
+            }
+            Node::Pow(a, b) => {
+                ops.call += 1;
+                let f = call("powf");
+                let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                quote!(#f(#a, #b))
+            }
+            Node::Call(func, a) => {
+                ops.call += 1;
+                let f = call(func.name());
+                let a = self.expr(a, plan, ops);
+                quote!(#f(#a))
+            }
+            Node::Atan2(y, x) => {
+                ops.call += 1;
+                let f = call("atan2");
+                let (y, x) = (self.expr(y, plan, ops), self.expr(x, plan, ops));
+                quote!(#f(#y, #x))
+            }
+        }
+    }
+
+    /// Straight-line statements computing every output, and their operation count.
+    pub fn body(&self, outputs: &[Output]) -> (TokenStream, Ops) {
+        let plan = self.plan(outputs);
+        let real = self.real();
+        let mut ops = Ops::default();
+        let mut stmts = Vec::new();
+        let mut done_pairs = HashSet::new();
+        // Ascending id is a topological order: children are created before their parents.
+        for (&id, name) in &plan.bound {
+            let pair = match self.graph.node(id) {
+                Node::Call(Func::Sin | Func::Cos, a) => plan.pairs.get(&a).map(|p| (a, *p)),
+                _ => None,
+            };
+            match pair {
+                Some((arg, (s, c))) => {
+                    if done_pairs.insert(arg) {
+                        ops.call += 1;
+                        let a = self.expr(arg, &plan, &mut ops);
+                        let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
+                        stmts.push(quote!(let (#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
+                    }
+                }
+                None => {
+                    let def = self.definition(id, &plan, &mut ops);
+                    stmts.push(quote!(let #name: #real = #def;));
+                }
+            }
+        }
+        for o in outputs {
+            let target = &o.target;
+            let value = self.expr(o.node, &plan, &mut ops);
+            stmts.push(quote!(#target = #value;));
+        }
+        (quote!(#(#stmts)*), ops)
+    }
+}
+
+/// Rejects constants that are not finite (e.g. `ln(0)` folded at compile time): they would
+/// make every evaluation NaN or infinite.
+pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
+    let jac = f.jacobian.iter().map(|e| &e.2);
+    let roots = f.phi.iter().chain(jac).chain(&f.nu).chain(&f.gamma).chain(&f.q0).chain(&f.qd0);
+    for &r in roots {
+        let mut stack = vec![r];
+        let mut seen = HashSet::new();
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            if let Some(v) = f.graph.as_const(id) {
+                if !v.is_finite() {
+                    return Err(syn::Error::new(span, format!("an expression of this mechanism evaluates to {v} for every state (a constant such as ln(0) or 1/0)")));
+                }
+            }
+            stack.extend(f.graph.children(id).into_iter().flatten());
+        }
+    }
+    Ok(())
+}
+
+/// The emitter of a model's formulation.
+pub fn emitter<'a>(model: &Model, f: &'a Formulation) -> Emitter<'a> {
+    Emitter {
+        graph: &f.graph,
+        scalar: model.scalar,
+        params: model.params.iter().map(|p| p.name.clone()).collect(),
+        coordinate_names: model.coordinate_names(),
+    }
+}

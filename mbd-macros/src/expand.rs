@@ -1,0 +1,269 @@
+//! The chain parse → model → formulation → emit, and the code that ties the emitted functions
+//! into the mechanism's type and its `mbd::Mechanism` / `mbd::Kinematics` implementations.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use crate::emit::{self, Emitter, Ops, Output};
+use crate::formulation::{formulate, Formulation};
+use crate::json::model_json;
+use crate::model::{Model, Partial, Scalar};
+use crate::parse::MechanismDef;
+
+/// Expands a `mechanism!` invocation. Never fails: mistakes become `compile_error!`s next to a
+/// stub of the mechanism's type, so code that uses the type does not add follow-up errors.
+pub fn expand(input: TokenStream) -> TokenStream {
+    let def: MechanismDef = match syn::parse2(input) {
+        Ok(d) => d,
+        Err(e) => return e.to_compile_error(),
+    };
+    match def.validate().and_then(|m| generate(&m)) {
+        Ok(ts) => ts,
+        Err(e) => {
+            let errors = e.to_compile_error();
+            let stub = stub(&def.partial());
+            quote!(#errors #stub)
+        }
+    }
+}
+
+fn real(s: Scalar) -> TokenStream {
+    match s {
+        Scalar::F32 => quote!(f32),
+        Scalar::F64 => quote!(f64),
+    }
+}
+
+/// The type of a mechanism whose description has mistakes: its name and parameters, `Default`,
+/// and nothing that could raise errors of its own.
+fn stub(p: &Partial) -> TokenStream {
+    let Partial { attrs, vis, name, scalar, params } = p;
+    let real = real(*scalar);
+    quote! {
+        #(#attrs)*
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #vis struct #name { #(pub #params: #real,)* }
+    }
+}
+
+fn usize_lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+fn op_count(name: &str, ops: Ops) -> TokenStream {
+    let Ops { add, mul, div, call } = ops;
+    quote!(::mbd::OpCount { function: #name, add: #add, mul: #mul, div: #div, call: #call })
+}
+
+/// Outputs `out[i] = nodes[i]`.
+fn vector_outputs(out: &str, nodes: &[u32]) -> Vec<Output> {
+    let out = format_ident!("{}", out);
+    nodes
+        .iter()
+        .enumerate()
+        .map(|(i, &node)| {
+            let i = usize_lit(i);
+            Output { target: quote!(#out[#i]), node }
+        })
+        .collect()
+}
+
+/// Outputs `d[r][c] = Φ_q[r][c]` for the structural non-zeros.
+fn jacobian_outputs(f: &Formulation) -> Vec<Output> {
+    f.jacobian
+        .iter()
+        .map(|&(r, c, node)| {
+            let (r, c) = (usize_lit(r), usize_lit(c));
+            Output { target: quote!(d[#r][#c]), node }
+        })
+        .collect()
+}
+
+/// Generates the mechanism's type and trait implementations.
+pub fn generate(m: &Model) -> syn::Result<TokenStream> {
+    let f = formulate(m);
+    emit::check_finite(&f, m.name.span())?;
+    let e: Emitter = emit::emitter(m, &f);
+    let real = real(m.scalar);
+    let name = &m.name;
+    let vis = &m.vis;
+    let attrs = &m.attrs;
+    let (nb, nq, nc, nnz) = (m.bodies.len(), f.nq, f.nc, f.jacobian.len());
+    let (nb_l, nq_l, nc_l, nnz_l) = (usize_lit(nb), usize_lit(nq), usize_lit(nc), usize_lit(nnz));
+    let np = usize_lit(m.params.len());
+    let dof = nq as i32 - nc as i32;
+    let zero = e.literal(0.0);
+
+    let params: Vec<_> = m.params.iter().map(|p| &p.name).collect();
+    let defaults: Vec<_> = m.params.iter().map(|p| e.literal(p.default)).collect();
+    let param_docs: Vec<String> = m.params.iter().map(|p| format!("Parameter `{}` (default {}).", p.name, p.default)).collect();
+    let param_idx: Vec<Literal> = (0..m.params.len()).map(usize_lit).collect();
+
+    // The functions, each with its own common-subexpression elimination.
+    let (phi_body, phi_ops) = e.body(&vector_outputs("phi", &f.phi));
+    let (jac_body, jac_ops) = e.body(&jacobian_outputs(&f));
+    let (nu_body, nu_ops) = e.body(&vector_outputs("nu", &f.nu));
+    let (gamma_body, gamma_ops) = e.body(&vector_outputs("gamma", &f.gamma));
+    let mut pos = vector_outputs("phi", &f.phi);
+    pos.extend(jacobian_outputs(&f));
+    let (pos_body, pos_ops) = e.body(&pos);
+    let mut full = pos;
+    full.extend(vector_outputs("nu", &f.nu));
+    full.extend(vector_outputs("gamma", &f.gamma));
+    let (full_body, full_ops) = e.body(&full);
+    let values: Vec<Output> = f
+        .jacobian
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(out[#k]), node }
+        })
+        .collect();
+    let (values_body, values_ops) = e.body(&values);
+    let (q0_body, _) = e.body(&vector_outputs("q", &f.q0));
+    let (qd0_body, _) = e.body(&vector_outputs("qd", &f.qd0));
+
+    let op_counts = [
+        op_count("constraints", phi_ops),
+        op_count("jacobian", jac_ops),
+        op_count("jacobian_values", values_ops),
+        op_count("velocity_rhs", nu_ops),
+        op_count("gamma", gamma_ops),
+        op_count("position_eval", pos_ops),
+        op_count("full_eval", full_ops),
+    ];
+
+    let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
+    let coordinate_names = m.coordinate_names();
+    let row_names = m.row_names();
+    let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
+    let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+    let pattern_tokens = pattern.iter().map(|&(r, c)| {
+        let (r, c) = (r as u16, c as u16);
+        quote!((#r, #c))
+    });
+    let phi_t_zero = f.phi_t_is_zero();
+    let json = model_json(m, &pattern);
+    let name_str = name.to_string();
+
+    let summary = format!(
+        " {nb} bodies, {nq} coordinates, {nc} constraint rows ({dof} degrees of freedom); \
+         Φ_q has {nnz} structural non-zeros of {}.",
+        nq * nc
+    );
+    let zero_nu = if phi_t_zero { quote!(*nu = [#zero; #nc_l];) } else { nu_body };
+
+    Ok(quote! {
+        #(#attrs)*
+        ///
+        #[doc = #summary]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #vis struct #name {
+            #( #[doc = #param_docs] pub #params: #real, )*
+        }
+
+        impl ::core::default::Default for #name {
+            fn default() -> Self {
+                Self { #( #params: #defaults, )* }
+            }
+        }
+
+        #[allow(unused_variables, unused_parens, clippy::all)]
+        impl #name {
+            /// Number of moving bodies.
+            pub const N_BODIES: usize = #nb_l;
+            /// Number of generalized coordinates (3 per body).
+            pub const NQ: usize = #nq_l;
+            /// Number of constraint rows (joints, drivers and user constraints).
+            pub const NC: usize = #nc_l;
+            /// Degrees of freedom: `NQ − NC`.
+            pub const DOF: i32 = #dof;
+            /// Number of structurally non-zero entries of Φ_q.
+            pub const NNZ: usize = #nnz_l;
+            /// Number of runtime parameters.
+            pub const NP: usize = #np;
+
+            /// Parameter values in declaration order (see `PARAM_NAMES`).
+            pub fn params(&self) -> [#real; #np] {
+                [#( self.#params, )*]
+            }
+
+            /// A mechanism with the given parameter values, in declaration order.
+            pub fn from_params(p: [#real; #np]) -> Self {
+                Self { #( #params: p[#param_idx], )* }
+            }
+
+            /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
+            #[inline]
+            pub fn jacobian_values(&self, q: &[#real; #nq_l], t: #real, out: &mut [#real; #nnz_l]) {
+                #values_body
+            }
+        }
+
+        impl ::mbd::Mechanism for #name {
+            const NAME: &'static str = #name_str;
+            const BODY_NAMES: &'static [&'static str] = &[#(#body_names),*];
+            const COORDINATE_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
+            const CONSTRAINT_NAMES: &'static [&'static str] = &[#(#row_names),*];
+            const PARAM_NAMES: &'static [&'static str] = &[#(#param_names),*];
+            const DOF: i32 = #dof;
+            const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[#(#pattern_tokens),*];
+            const PHI_T_IS_ZERO: bool = #phi_t_zero;
+            const OP_COUNTS: &'static [::mbd::OpCount] = &[#(#op_counts),*];
+            const MODEL_JSON: &'static str = #json;
+        }
+
+        #[allow(unused_variables, unused_parens, clippy::all)]
+        impl ::mbd::Kinematics<#real, #nq_l, #nc_l> for #name {
+            #[inline]
+            fn initial_positions(&self) -> [#real; #nq_l] {
+                let mut q = [#zero; #nq_l];
+                #q0_body
+                q
+            }
+            #[inline]
+            fn initial_velocities(&self) -> [#real; #nq_l] {
+                let mut qd = [#zero; #nq_l];
+                #qd0_body
+                qd
+            }
+            #[inline]
+            fn constraints(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l]) {
+                #phi_body
+            }
+            #[inline]
+            fn jacobian(&self, q: &[#real; #nq_l], t: #real, d: &mut [[#real; #nq_l]; #nc_l]) {
+                *d = [[#zero; #nq_l]; #nc_l];
+                #jac_body
+            }
+            #[inline]
+            fn velocity_rhs(&self, q: &[#real; #nq_l], t: #real, nu: &mut [#real; #nc_l]) {
+                #zero_nu
+            }
+            #[inline]
+            fn gamma(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, gamma: &mut [#real; #nc_l]) {
+                #gamma_body
+            }
+            #[inline]
+            fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nq_l]; #nc_l]) {
+                *d = [[#zero; #nq_l]; #nc_l];
+                #pos_body
+            }
+            #[inline]
+            fn full_eval(
+                &self,
+                q: &[#real; #nq_l],
+                qd: &[#real; #nq_l],
+                t: #real,
+                phi: &mut [#real; #nc_l],
+                d: &mut [[#real; #nq_l]; #nc_l],
+                nu: &mut [#real; #nc_l],
+                gamma: &mut [#real; #nc_l],
+            ) {
+                *d = [[#zero; #nq_l]; #nc_l];
+                #full_body
+            }
+        }
+    })
+}

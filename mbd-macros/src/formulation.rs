@@ -1,0 +1,290 @@
+//! Stage 3: validated model → symbolic equations in planar body coordinates (docs/formulation.md).
+//!
+//! Body k owns `q[3k..3k+3] = (x, y, φ)`. This stage writes Φ(q, t) row by row into one shared
+//! [`Graph`] and derives from it, exactly: the sparse Jacobian Φ_q, Φ_t, ν = −Φ_t and
+//! γ = −𝒟(𝒟Φ) with 𝒟f = f_q q̇ + f_t (a directional derivative taken twice; no Hessian is formed).
+
+use std::collections::{BTreeSet, HashMap};
+
+use crate::model::{BodyRef, ConstraintKind, Coord, Loc, MBin, MExpr, Model};
+use crate::sym::{Func, Graph, Id, Node, Var};
+
+/// The symbolic equations of one mechanism.
+pub struct Formulation {
+    pub graph: Graph,
+    pub nq: usize,
+    pub nc: usize,
+    /// Φ, one node per row.
+    pub phi: Vec<Id>,
+    /// Structurally non-zero entries of Φ_q as (row, column, node), row-major.
+    pub jacobian: Vec<(usize, usize, Id)>,
+    /// ν = −Φ_t, one node per row.
+    pub nu: Vec<Id>,
+    /// γ, one node per row.
+    pub gamma: Vec<Id>,
+    /// Initial guesses of q and q̇ (functions of the parameters).
+    pub q0: Vec<Id>,
+    pub qd0: Vec<Id>,
+}
+
+impl Formulation {
+    /// Whether Φ does not depend on t (then ν = 0 and solvers skip it).
+    pub fn phi_t_is_zero(&self) -> bool {
+        self.nu.iter().all(|&n| self.graph.is_zero(n))
+    }
+}
+
+/// Builds symbolic expressions of a model into a graph.
+struct Builder<'m> {
+    g: Graph,
+    model: &'m Model,
+}
+
+impl Builder<'_> {
+    fn expr(&mut self, e: &MExpr) -> Id {
+        match e {
+            MExpr::Num(v) => self.g.num(*v),
+            MExpr::Pi => self.g.num(std::f64::consts::PI),
+            MExpr::T => self.g.var(Var::T),
+            MExpr::Param(k) => self.g.var(Var::Param(*k as u16)),
+            MExpr::Coord(b, c) => self.coord(*b, *c),
+            MExpr::Neg(a) => {
+                let a = self.expr(a);
+                self.g.neg(a)
+            }
+            MExpr::Bin(op, a, b) => {
+                let a = self.expr(a);
+                let b = self.expr(b);
+                match op {
+                    MBin::Add => self.g.add(a, b),
+                    MBin::Sub => self.g.sub(a, b),
+                    MBin::Mul => self.g.mul(a, b),
+                    MBin::Div => self.g.div(a, b),
+                    MBin::Pow => self.g.pow(a, b),
+                }
+            }
+            MExpr::Call(f, a) => {
+                let a = self.expr(a);
+                self.g.call(*f, a)
+            }
+            MExpr::Atan2(y, x) => {
+                let y = self.expr(y);
+                let x = self.expr(x);
+                self.g.atan2(y, x)
+            }
+        }
+    }
+
+    /// A body coordinate: a variable, or 0 on ground.
+    fn coord(&mut self, b: BodyRef, c: Coord) -> Id {
+        match b {
+            BodyRef::Ground => self.g.num(0.0),
+            BodyRef::Body(k) => self.g.var(Var::Q((3 * k + c.index()) as u16)),
+        }
+    }
+
+    /// (sin φ, cos φ) of a body.
+    fn sin_cos(&mut self, b: BodyRef) -> (Id, Id) {
+        let phi = self.coord(b, Coord::Phi);
+        (self.g.call(Func::Sin, phi), self.g.call(Func::Cos, phi))
+    }
+
+    /// A(φ) v' for a body-fixed vector v'.
+    fn rotate(&mut self, b: BodyRef, v: [Id; 2]) -> [Id; 2] {
+        let (s, c) = self.sin_cos(b);
+        let cx = self.g.mul(c, v[0]);
+        let sy = self.g.mul(s, v[1]);
+        let sx = self.g.mul(s, v[0]);
+        let cy = self.g.mul(c, v[1]);
+        [self.g.sub(cx, sy), self.g.add(sx, cy)]
+    }
+
+    /// r^P = r + A(φ) s'^P.
+    fn point(&mut self, loc: &Loc) -> [Id; 2] {
+        let local = [self.expr(&loc.point[0]), self.expr(&loc.point[1])];
+        let rot = self.rotate(loc.body, local);
+        let x = self.coord(loc.body, Coord::X);
+        let y = self.coord(loc.body, Coord::Y);
+        [self.g.add(x, rot[0]), self.g.add(y, rot[1])]
+    }
+
+    /// The global unit vector A(φ) v'/|v'|.
+    fn unit(&mut self, b: BodyRef, v: &[MExpr; 2]) -> [Id; 2] {
+        let v = [self.expr(&v[0]), self.expr(&v[1])];
+        let x2 = self.g.powi(v[0], 2);
+        let y2 = self.g.powi(v[1], 2);
+        let n2 = self.g.add(x2, y2);
+        let norm = self.g.call(Func::Sqrt, n2);
+        let u = [self.g.div(v[0], norm), self.g.div(v[1], norm)];
+        self.rotate(b, u)
+    }
+
+    fn perp(&mut self, v: [Id; 2]) -> [Id; 2] {
+        [self.g.neg(v[1]), v[0]]
+    }
+
+    fn dot(&mut self, a: [Id; 2], b: [Id; 2]) -> Id {
+        let x = self.g.mul(a[0], b[0]);
+        let y = self.g.mul(a[1], b[1]);
+        self.g.add(x, y)
+    }
+
+    fn diff2(&mut self, a: [Id; 2], b: [Id; 2]) -> [Id; 2] {
+        [self.g.sub(a[0], b[0]), self.g.sub(a[1], b[1])]
+    }
+
+    /// ½ (dᵀd − L²)
+    fn half_sq_distance(&mut self, i: &Loc, j: &Loc, length: Id) -> Id {
+        let pi = self.point(i);
+        let pj = self.point(j);
+        let d = self.diff2(pj, pi);
+        let dd = self.dot(d, d);
+        let l2 = self.g.powi(length, 2);
+        let r = self.g.sub(dd, l2);
+        let half = self.g.num(0.5);
+        self.g.mul(half, r)
+    }
+
+    /// The rows of one constraint (docs/formulation.md).
+    fn rows(&mut self, kind: &ConstraintKind) -> Vec<Id> {
+        match kind {
+            ConstraintKind::Revolute { i, j } => {
+                let pi = self.point(i);
+                let pj = self.point(j);
+                self.diff2(pi, pj).to_vec()
+            }
+            ConstraintKind::Translational { i, axis_i, j, axis_j } => {
+                let pi = self.point(i);
+                let pj = self.point(j);
+                let ui = self.unit(i.body, axis_i);
+                let ni = self.perp(ui);
+                let uj = self.unit(j.body, axis_j);
+                let d = self.diff2(pj, pi);
+                vec![self.dot(ni, d), self.dot(ni, uj)]
+            }
+            ConstraintKind::RevoluteRevolute { i, j, length } => {
+                let l = self.expr(length);
+                vec![self.half_sq_distance(i, j, l)]
+            }
+            ConstraintKind::RevoluteTranslational { i, j, axis_j, distance } => {
+                let pi = self.point(i);
+                let pj = self.point(j);
+                let uj = self.unit(j.body, axis_j);
+                let nj = self.perp(uj);
+                let d = self.diff2(pi, pj);
+                let n = self.dot(nj, d);
+                let l = self.expr(distance);
+                vec![self.g.sub(n, l)]
+            }
+            ConstraintKind::Rigid { i, j, angle } => {
+                let pi = self.point(i);
+                let pj = self.point(j);
+                let mut rows = self.diff2(pi, pj).to_vec();
+                let fi = self.coord(i.body, Coord::Phi);
+                let fj = self.coord(j.body, Coord::Phi);
+                let rel = self.g.sub(fj, fi);
+                let a = self.expr(angle);
+                rows.push(self.g.sub(rel, a));
+                rows
+            }
+            ConstraintKind::Fix { body, coord, value: f } | ConstraintKind::Drive { body, coord, f } => {
+                let q = self.coord(BodyRef::Body(*body), *coord);
+                let f = self.expr(f);
+                vec![self.g.sub(q, f)]
+            }
+            ConstraintKind::DriveAngle { i, j, f } => {
+                let fi = self.coord(*i, Coord::Phi);
+                let fj = self.coord(*j, Coord::Phi);
+                let rel = self.g.sub(fj, fi);
+                let f = self.expr(f);
+                vec![self.g.sub(rel, f)]
+            }
+            ConstraintKind::DriveDistance { i, j, f } => {
+                let f = self.expr(f);
+                vec![self.half_sq_distance(i, j, f)]
+            }
+            ConstraintKind::User { expr } => vec![self.expr(expr)],
+        }
+    }
+}
+
+/// Derives the symbolic equations of a model.
+pub fn formulate(model: &Model) -> Formulation {
+    let mut b = Builder { g: Graph::new(), model };
+    let nq = model.n_coordinates();
+    let mut phi = Vec::new();
+    for c in &b.model.constraints {
+        let rows = b.rows(&c.kind);
+        phi.extend(rows);
+    }
+    let mut q0 = Vec::with_capacity(nq);
+    let mut qd0 = Vec::with_capacity(nq);
+    for body in &b.model.bodies {
+        for k in 0..3 {
+            q0.push(b.expr(&body.q0[k]));
+            qd0.push(b.expr(&body.qd0[k]));
+        }
+    }
+    let mut g = b.g;
+
+    // Φ_q: differentiate each row only by the coordinates it contains; every other entry is a
+    // structural zero.
+    let mut jacobian = Vec::new();
+    for (r, &row) in phi.iter().enumerate() {
+        let mut cols = BTreeSet::new();
+        collect_q(&g, row, &mut cols);
+        let mut memo = HashMap::new();
+        for c in cols {
+            memo.clear();
+            let d = g.diff(row, Var::Q(c), &mut memo);
+            if !g.is_zero(d) {
+                jacobian.push((r, c as usize, d));
+            }
+        }
+    }
+
+    // ν = −Φ_t
+    let mut memo_t = HashMap::new();
+    let nu: Vec<Id> = phi
+        .iter()
+        .map(|&row| {
+            let d = g.diff(row, Var::T, &mut memo_t);
+            g.neg(d)
+        })
+        .collect();
+
+    // γ = −𝒟(𝒟Φ), 𝒟 the total time derivative with q̈ = 0: one seed, one memo for all rows.
+    let qd: Vec<Id> = (0..nq).map(|i| g.var(Var::Qd(i as u16))).collect();
+    let one = g.num(1.0);
+    let seed = |v: Var| match v {
+        Var::Q(i) => Some(qd[i as usize]),
+        Var::T => Some(one),
+        Var::Qd(_) | Var::Param(_) => None,
+    };
+    let mut memo = HashMap::new();
+    let first: Vec<Id> = phi.iter().map(|&row| g.directional(row, &seed, &mut memo)).collect();
+    let gamma: Vec<Id> = first
+        .iter()
+        .map(|&d1| {
+            let d2 = g.directional(d1, &seed, &mut memo);
+            g.neg(d2)
+        })
+        .collect();
+
+    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0 }
+}
+
+/// The coordinates a node depends on.
+fn collect_q(g: &Graph, root: Id, out: &mut BTreeSet<u16>) {
+    let mut seen = std::collections::HashSet::new();
+    let mut stack = vec![root];
+    while let Some(id) = stack.pop() {
+        if !seen.insert(id) {
+            continue;
+        }
+        if let Node::Var(Var::Q(i)) = g.node(id) {
+            out.insert(i);
+        }
+        stack.extend(g.children(id).into_iter().flatten());
+    }
+}

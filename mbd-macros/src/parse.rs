@@ -1,0 +1,561 @@
+//! Stage 1: tokens → syntax tree. Only the grammar is checked here; every name is resolved and
+//! every rule of mechanics is checked by `model`. Every node keeps the span of its tokens so later
+//! stages can point at them.
+//!
+//! ```text
+//! mechanism   := attr* vis? Ident '{' item* '}'
+//! item        := 'scalar' Ident ';'
+//!              | 'params' '{' (Ident ':' expr),* '}'
+//!              | 'body' Ident '{' (Ident ':' value),* '}'
+//!              | 'point' Ident '.' Ident '=' vec ';'
+//!              | 'vector' Ident '.' Ident '=' vec ';'
+//!              | JOINT (Ident ':')? attach '~' attach options? ';'
+//!              | 'fix' Ident '.' Ident ('=' expr)? ';'
+//!              | 'drive' (Ident ':')? target '=' expr ';'
+//!              | 'constraint' (Ident ':')? expr '=' expr ';'
+//! attach      := Ident ('.' Ident | vec) ('along' (Ident '.' Ident | vec))?
+//! target      := Ident '.' Ident | 'angle' '(' Ident ',' Ident ')' | 'distance' '(' point ',' point ')'
+//! options     := '{' (Ident ':' expr),* '}'
+//! vec         := '[' expr,* ']'
+//! expr        := sum; sum := product (('+'|'-') product)*; product := unary (('*'|'/') unary)*
+//! unary       := '-' unary | power; power := atom ('^' unary)?
+//! atom        := number | Ident | Ident '.' Ident | Ident '(' expr,* ')' | '(' expr ')'
+//! ```
+
+use proc_macro2::Span;
+use syn::ext::IdentExt;
+use syn::parse::{Parse, ParseStream};
+use syn::{bracketed, braced, parenthesized, Attribute, Ident, Token, Visibility};
+
+/// The whole `mechanism! { ... }` input.
+pub struct MechanismDef {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub items: Vec<Item>,
+}
+
+/// One statement inside the mechanism's braces.
+pub enum Item {
+    Scalar(Ident),
+    Params(Vec<(Ident, Expr)>),
+    Body(BodyDef),
+    Point(NamedVector),
+    Vector(NamedVector),
+    Joint(JointDef),
+    Fix(FixDef),
+    Drive(DriveDef),
+    Constraint(ConstraintDef),
+}
+
+pub struct BodyDef {
+    pub name: Ident,
+    pub fields: Vec<Field>,
+}
+
+/// `name: value` inside a body or an option block.
+pub struct Field {
+    pub name: Ident,
+    pub value: Value,
+}
+
+/// A field's value: an expression, or a bracketed list of them.
+pub enum Value {
+    Expr(Expr),
+    List(VecLit),
+}
+
+impl Value {
+    pub fn span(&self) -> Span {
+        match self {
+            Value::Expr(e) => e.span,
+            Value::List(v) => v.span,
+        }
+    }
+}
+
+/// `[e1, e2, ...]`
+pub struct VecLit {
+    pub items: Vec<Expr>,
+    pub span: Span,
+}
+
+/// `point body.name = [ξ, η];` or `vector body.name = [x, y];`
+pub struct NamedVector {
+    pub body: Ident,
+    pub name: Ident,
+    pub value: VecLit,
+}
+
+/// A point on a body, by name (`crank.B`) or written in place (`crank[0.05, 0.0]`).
+pub enum PointRef {
+    Named(Ident),
+    Inline(VecLit),
+}
+
+/// One side of a joint: a body, a point on it and, for sliding joints, an axis.
+pub struct Attach {
+    pub body: Ident,
+    pub point: PointRef,
+    pub along: Option<Along>,
+}
+
+/// The axis after `along`: a named vector of the same body or a vector written in place.
+pub struct Along {
+    pub keyword: Ident,
+    pub axis: AxisRef,
+}
+
+pub enum AxisRef {
+    Named(Ident, Ident),
+    Inline(VecLit),
+}
+
+pub struct JointDef {
+    pub kind: Ident,
+    pub label: Option<Ident>,
+    pub i: Attach,
+    pub j: Attach,
+    pub options: Vec<Field>,
+}
+
+pub struct FixDef {
+    pub keyword: Ident,
+    pub label: Option<Ident>,
+    pub body: Ident,
+    pub coordinate: Ident,
+    pub value: Option<Expr>,
+}
+
+pub enum DriveTarget {
+    Coordinate { body: Ident, coordinate: Ident },
+    Angle { keyword: Ident, i: Ident, j: Ident },
+    Distance { keyword: Ident, i: (Ident, PointRef), j: (Ident, PointRef) },
+}
+
+pub struct DriveDef {
+    pub keyword: Ident,
+    pub label: Option<Ident>,
+    pub target: DriveTarget,
+    pub f: Expr,
+}
+
+pub struct ConstraintDef {
+    pub keyword: Ident,
+    pub label: Option<Ident>,
+    pub lhs: Expr,
+    pub rhs: Expr,
+}
+
+/// An expression as written.
+#[derive(Clone)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone)]
+pub enum ExprKind {
+    Num(f64),
+    /// A parameter, `t` or `PI`.
+    Ident(Ident),
+    /// `body.coordinate`
+    Coord(Ident, Ident),
+    Neg(Box<Expr>),
+    Bin(BinOp, Box<Expr>, Box<Expr>),
+    Call(Ident, Vec<Expr>),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+}
+
+/// Joint kinds with two attachments: the keywords of the `JOINT` rule.
+pub const JOINT_KINDS: &[&str] = &["revolute", "translational", "revolute_revolute", "revolute_translational", "rigid"];
+
+impl Parse for MechanismDef {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis: Visibility = input.parse()?;
+        let name: Ident = input.parse()?;
+        let content;
+        braced!(content in input);
+        let mut items = Vec::new();
+        while !content.is_empty() {
+            items.push(content.parse()?);
+        }
+        if !input.is_empty() {
+            return Err(input.error("unexpected tokens after the mechanism's closing brace"));
+        }
+        Ok(MechanismDef { attrs, vis, name, items })
+    }
+}
+
+/// An optional `label:` before a statement's body.
+fn label(input: ParseStream) -> syn::Result<Option<Ident>> {
+    if input.peek(Ident) && input.peek2(Token![:]) && !input.peek2(Token![::]) {
+        let l: Ident = input.parse()?;
+        input.parse::<Token![:]>()?;
+        Ok(Some(l))
+    } else {
+        Ok(None)
+    }
+}
+
+impl Parse for Item {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let kw: Ident = input.call(Ident::parse_any).map_err(|e| {
+            syn::Error::new(
+                e.span(),
+                "expected a statement: `scalar`, `params`, `body`, `point`, `vector`, a joint \
+                 (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`), \
+                 `fix`, `drive` or `constraint`",
+            )
+        })?;
+        let item = match kw.to_string().as_str() {
+            "scalar" => {
+                let ty: Ident = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Scalar(ty)
+            }
+            "params" => {
+                let content;
+                braced!(content in input);
+                let mut params = Vec::new();
+                while !content.is_empty() {
+                    let name: Ident = content.parse()?;
+                    content.parse::<Token![:]>()?;
+                    let value: Expr = content.parse()?;
+                    params.push((name, value));
+                    if !content.is_empty() {
+                        content.parse::<Token![,]>()?;
+                    }
+                }
+                eat_optional_semi(input)?;
+                Item::Params(params)
+            }
+            "body" => {
+                let name: Ident = input.parse()?;
+                let fields = parse_fields(input)?;
+                eat_optional_semi(input)?;
+                Item::Body(BodyDef { name, fields })
+            }
+            "point" | "vector" => {
+                let body: Ident = input.call(Ident::parse_any)?;
+                input.parse::<Token![.]>()?;
+                let name: Ident = input.parse()?;
+                input.parse::<Token![=]>()?;
+                let value: VecLit = input.parse()?;
+                input.parse::<Token![;]>()?;
+                let nv = NamedVector { body, name, value };
+                if kw == "point" {
+                    Item::Point(nv)
+                } else {
+                    Item::Vector(nv)
+                }
+            }
+            "fix" => {
+                let label = label(input)?;
+                let body: Ident = input.call(Ident::parse_any)?;
+                input.parse::<Token![.]>()?;
+                let coordinate: Ident = input.parse()?;
+                let value = if input.peek(Token![=]) {
+                    input.parse::<Token![=]>()?;
+                    Some(input.parse()?)
+                } else {
+                    None
+                };
+                input.parse::<Token![;]>()?;
+                Item::Fix(FixDef { keyword: kw, label, body, coordinate, value })
+            }
+            "drive" => {
+                let label = label(input)?;
+                let target = parse_drive_target(input)?;
+                input.parse::<Token![=]>()?;
+                let f: Expr = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Drive(DriveDef { keyword: kw, label, target, f })
+            }
+            "constraint" => {
+                let label = label(input)?;
+                let lhs: Expr = input.parse()?;
+                input.parse::<Token![=]>()?;
+                let rhs: Expr = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Constraint(ConstraintDef { keyword: kw, label, lhs, rhs })
+            }
+            k if JOINT_KINDS.contains(&k) => {
+                let label = label(input)?;
+                let i: Attach = input.parse()?;
+                input.parse::<Token![~]>()?;
+                let j: Attach = input.parse()?;
+                let options = if input.peek(syn::token::Brace) { parse_fields(input)? } else { Vec::new() };
+                input.parse::<Token![;]>()?;
+                Item::Joint(JointDef { kind: kw, label, i, j, options })
+            }
+            other => {
+                let hint = closest(other, &["scalar", "params", "body", "point", "vector", "fix", "drive", "constraint"], JOINT_KINDS);
+                return Err(syn::Error::new(kw.span(), format!("unknown statement `{other}`{hint}")));
+            }
+        };
+        Ok(item)
+    }
+}
+
+/// " (did you mean `x`?)" when a known word is one or two edits away.
+pub fn closest(word: &str, a: &[&str], b: &[&str]) -> String {
+    a.iter()
+        .chain(b)
+        .map(|c| (edit_distance(word, c), *c))
+        .filter(|(d, _)| *d <= 2)
+        .min()
+        .map(|(_, c)| format!(" (did you mean `{c}`?)"))
+        .unwrap_or_default()
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1];
+        for (j, cb) in b.iter().enumerate() {
+            cur.push((prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1));
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+fn eat_optional_semi(input: ParseStream) -> syn::Result<()> {
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+    }
+    Ok(())
+}
+
+fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
+    let content;
+    braced!(content in input);
+    let mut fields = Vec::new();
+    while !content.is_empty() {
+        let name: Ident = content.call(Ident::parse_any)?;
+        content.parse::<Token![:]>()?;
+        let value = if content.peek(syn::token::Bracket) { Value::List(content.parse()?) } else { Value::Expr(content.parse()?) };
+        fields.push(Field { name, value });
+        if !content.is_empty() {
+            content.parse::<Token![,]>()?;
+        }
+    }
+    Ok(fields)
+}
+
+fn parse_point_ref(input: ParseStream) -> syn::Result<PointRef> {
+    if input.peek(Token![.]) {
+        input.parse::<Token![.]>()?;
+        Ok(PointRef::Named(input.parse()?))
+    } else if input.peek(syn::token::Bracket) {
+        Ok(PointRef::Inline(input.parse()?))
+    } else {
+        Err(input.error("expected a point on the body: `.name` of a declared point or `[ξ, η]` in body coordinates (m)"))
+    }
+}
+
+fn parse_drive_target(input: ParseStream) -> syn::Result<DriveTarget> {
+    let head: Ident = input.call(Ident::parse_any)?;
+    if input.peek(syn::token::Paren) && (head == "angle" || head == "distance") {
+        let content;
+        parenthesized!(content in input);
+        let target = if head == "angle" {
+            let i: Ident = content.call(Ident::parse_any)?;
+            content.parse::<Token![,]>()?;
+            let j: Ident = content.call(Ident::parse_any)?;
+            DriveTarget::Angle { keyword: head, i, j }
+        } else {
+            let bi: Ident = content.call(Ident::parse_any)?;
+            let pi = parse_point_ref(&content)?;
+            content.parse::<Token![,]>()?;
+            let bj: Ident = content.call(Ident::parse_any)?;
+            let pj = parse_point_ref(&content)?;
+            DriveTarget::Distance { keyword: head, i: (bi, pi), j: (bj, pj) }
+        };
+        if !content.is_empty() {
+            return Err(content.error("unexpected tokens: a relative driver takes two arguments"));
+        }
+        Ok(target)
+    } else {
+        input.parse::<Token![.]>().map_err(|e| {
+            syn::Error::new(
+                e.span(),
+                "expected what to drive: `body.x`, `body.y`, `body.phi`, `angle(body_i, body_j)` or `distance(body_i.P, body_j.Q)`",
+            )
+        })?;
+        let coordinate: Ident = input.parse()?;
+        Ok(DriveTarget::Coordinate { body: head, coordinate })
+    }
+}
+
+impl Parse for Attach {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let body: Ident = input.call(Ident::parse_any)?;
+        let point = parse_point_ref(input)?;
+        let along = if input.peek(Ident) && input.fork().parse::<Ident>().map(|i| i == "along").unwrap_or(false) {
+            let keyword: Ident = input.parse()?;
+            let axis = if input.peek(syn::token::Bracket) {
+                AxisRef::Inline(input.parse()?)
+            } else {
+                let b: Ident = input.call(Ident::parse_any)?;
+                input.parse::<Token![.]>()?;
+                AxisRef::Named(b, input.parse()?)
+            };
+            Some(Along { keyword, axis })
+        } else {
+            None
+        };
+        Ok(Attach { body, point, along })
+    }
+}
+
+impl Parse for VecLit {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let content;
+        let bracket = bracketed!(content in input);
+        let mut items = Vec::new();
+        while !content.is_empty() {
+            items.push(content.parse()?);
+            if !content.is_empty() {
+                content.parse::<Token![,]>()?;
+            }
+        }
+        Ok(VecLit { items, span: bracket.span.join() })
+    }
+}
+
+impl Parse for Expr {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        parse_sum(input)
+    }
+}
+
+fn join(a: Span, b: Span) -> Span {
+    a.join(b).unwrap_or(a)
+}
+
+fn bin(op: BinOp, l: Expr, r: Expr) -> Expr {
+    let span = join(l.span, r.span);
+    Expr { kind: ExprKind::Bin(op, Box::new(l), Box::new(r)), span }
+}
+
+fn parse_sum(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_product(input)?;
+    loop {
+        let op = if input.peek(Token![+]) {
+            input.parse::<Token![+]>()?;
+            BinOp::Add
+        } else if input.peek(Token![-]) {
+            input.parse::<Token![-]>()?;
+            BinOp::Sub
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_product(input)?;
+        lhs = bin(op, lhs, rhs);
+    }
+}
+
+fn parse_product(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_unary(input)?;
+    loop {
+        let op = if input.peek(Token![*]) && !input.peek(Token![*=]) {
+            input.parse::<Token![*]>()?;
+            BinOp::Mul
+        } else if input.peek(Token![/]) {
+            input.parse::<Token![/]>()?;
+            BinOp::Div
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_unary(input)?;
+        lhs = bin(op, lhs, rhs);
+    }
+}
+
+fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(Token![-]) {
+        let minus: Token![-] = input.parse()?;
+        let inner = parse_unary(input)?;
+        let span = join(minus.span, inner.span);
+        return Ok(Expr { kind: ExprKind::Neg(Box::new(inner)), span });
+    }
+    let base = parse_atom(input)?;
+    if input.peek(Token![^]) {
+        input.parse::<Token![^]>()?;
+        // right-associative and binding tighter than unary minus on its left: -a^b = -(a^b)
+        let exp = parse_unary(input)?;
+        return Ok(bin(BinOp::Pow, base, exp));
+    }
+    Ok(base)
+}
+
+fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(syn::LitFloat) {
+        let lit: syn::LitFloat = input.parse()?;
+        if !lit.suffix().is_empty() {
+            return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
+        }
+        return Ok(Expr { kind: ExprKind::Num(lit.base10_parse()?), span: lit.span() });
+    }
+    if input.peek(syn::LitInt) {
+        let lit: syn::LitInt = input.parse()?;
+        if !lit.suffix().is_empty() {
+            return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
+        }
+        return Ok(Expr { kind: ExprKind::Num(lit.base10_parse::<f64>()?), span: lit.span() });
+    }
+    if input.peek(syn::token::Paren) {
+        let content;
+        let paren = parenthesized!(content in input);
+        let mut inner: Expr = content.parse()?;
+        if !content.is_empty() {
+            return Err(content.error("expected `)`: an operator (+ - * / ^) is missing"));
+        }
+        inner.span = paren.span.join();
+        return Ok(inner);
+    }
+    if input.peek(Ident::peek_any) {
+        let id: Ident = input.call(Ident::parse_any)?;
+        if input.peek(Token![.]) && !input.peek(Token![..]) {
+            input.parse::<Token![.]>()?;
+            let coord: Ident = input.call(Ident::parse_any)?;
+            let span = join(id.span(), coord.span());
+            return Ok(Expr { kind: ExprKind::Coord(id, coord), span });
+        }
+        if input.peek(syn::token::Paren) {
+            let content;
+            let paren = parenthesized!(content in input);
+            let mut args = Vec::new();
+            while !content.is_empty() {
+                args.push(content.parse()?);
+                if !content.is_empty() {
+                    content.parse::<Token![,]>()?;
+                }
+            }
+            let span = join(id.span(), paren.span.join());
+            return Ok(Expr { kind: ExprKind::Call(id, args), span });
+        }
+        let span = id.span();
+        return Ok(Expr { kind: ExprKind::Ident(id), span });
+    }
+    if input.is_empty() {
+        return Err(input.error("expected an expression"));
+    }
+    let tt: proc_macro2::TokenTree = input.parse()?;
+    Err(syn::Error::new(
+        tt.span(),
+        format!("expected a number, a parameter, `t`, `PI`, a coordinate like `crank.phi` or a function call, found `{tt}`"),
+    ))
+}
