@@ -267,3 +267,36 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         }
     })
 }
+
+#[cfg(test)]
+mod snapshot {
+    use std::path::PathBuf;
+
+    /// The expansion of `examples/expand/slider_crank.rs`, formatted, equals the committed
+    /// `slider_crank.expanded.rs` (regenerate with `MBD_BLESS=1`).
+    #[test]
+    fn snapshot() {
+        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/expand");
+        let source = std::fs::read_to_string(dir.join("slider_crank.rs")).expect("read the snapshot's input");
+        let file = syn::parse_file(&source).expect("the snapshot's input parses");
+        let tokens = file
+            .items
+            .iter()
+            .find_map(|item| match item {
+                syn::Item::Macro(m) if m.mac.path.is_ident("mechanism") => Some(m.mac.tokens.clone()),
+                _ => None,
+            })
+            .expect("the snapshot's input holds a mechanism! invocation");
+        let expanded = super::expand(tokens);
+        let formatted = prettyplease::unparse(&syn::parse2(expanded).expect("the expansion is valid Rust"));
+        let text = format!(
+            "// Generated from slider_crank.rs by `MBD_BLESS=1 cargo test -p mbd-macros snapshot`. Do not edit.\n{formatted}"
+        );
+        let path = dir.join("slider_crank.expanded.rs");
+        if std::env::var_os("MBD_BLESS").is_some() {
+            std::fs::write(&path, &text).expect("write the snapshot");
+        }
+        let committed = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(committed == text, "{} is out of date: rerun with MBD_BLESS=1 and review the diff", path.display());
+    }
+}

@@ -185,6 +185,11 @@ impl Graph {
                 }
             }
         }
+        // x + x = 2·x
+        if a == b {
+            let two = self.num(2.0);
+            return self.mul(two, a);
+        }
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
         self.intern(Node::Add(a, b))
     }

@@ -1,0 +1,9 @@
+use mbd::prelude::*;
+
+mechanism! {
+    Pendulum {
+        body bob { mass: 1.0, inertia: 0.1 }
+        revolute ground[0.0, 0.0] ~ bob[0.0, 0.5 * t];
+    }
+}
+fn main() {}
