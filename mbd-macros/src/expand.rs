@@ -121,6 +121,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         })
         .collect();
     let (values_body, values_ops) = e.body(&values);
+    let mut full_values = vector_outputs("phi", &f.phi);
+    full_values.extend(values.iter().map(|o| Output { target: o.target.clone(), node: o.node }));
+    full_values.extend(vector_outputs("nu", &f.nu));
+    full_values.extend(vector_outputs("gamma", &f.gamma));
+    let (full_values_body, full_values_ops) = e.body(&full_values);
     let (q0_body, _) = e.body(&vector_outputs("q", &f.q0));
     let (qd0_body, _) = e.body(&vector_outputs("qd", &f.qd0));
 
@@ -132,6 +137,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("gamma", gamma_ops),
         op_count("position_eval", pos_ops),
         op_count("full_eval", full_ops),
+        op_count("full_eval_values", full_values_ops),
     ];
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
@@ -198,6 +204,23 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             #[inline]
             pub fn jacobian_values(&self, q: &[#real; #nq_l], t: #real, out: &mut [#real; #nnz_l]) {
                 #values_body
+            }
+
+            /// Φ, the structural non-zeros of Φ_q (in the order of `JACOBIAN_PATTERN`), ν and γ in
+            /// one evaluation: the sparse twin of `Kinematics::full_eval`.
+            #[inline]
+            #[allow(clippy::too_many_arguments)]
+            pub fn full_eval_values(
+                &self,
+                q: &[#real; #nq_l],
+                qd: &[#real; #nq_l],
+                t: #real,
+                phi: &mut [#real; #nc_l],
+                out: &mut [#real; #nnz_l],
+                nu: &mut [#real; #nc_l],
+                gamma: &mut [#real; #nc_l],
+            ) {
+                #full_values_body
             }
         }
 

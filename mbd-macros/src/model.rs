@@ -18,8 +18,9 @@ impl Errors {
     pub fn push(&mut self, span: Span, msg: impl std::fmt::Display) {
         self.0.push(syn::Error::new(span, msg));
     }
-    pub fn add(&mut self, e: syn::Error) {
-        self.0.push(e);
+    /// An error underlining a whole expression.
+    pub fn at_expr(&mut self, e: &Expr, msg: impl std::fmt::Display) {
+        self.0.push(e.error(msg));
     }
     pub fn into_result(self) -> Result<(), syn::Error> {
         let mut it = self.0.into_iter();
@@ -176,7 +177,6 @@ impl Scope {
 pub struct Param {
     pub name: Ident,
     pub default: f64,
-    pub default_expr: MExpr,
 }
 
 pub struct Body {
@@ -268,9 +268,6 @@ impl Model {
     pub fn n_coordinates(&self) -> usize {
         3 * self.bodies.len()
     }
-    pub fn n_constraints(&self) -> usize {
-        self.constraints.iter().map(|c| c.kind.row_names().len()).sum()
-    }
     /// Constraint row names, `"revolute crank~rod: x"`.
     pub fn row_names(&self) -> Vec<String> {
         self.constraints
@@ -355,7 +352,7 @@ impl Resolver<'_> {
             }
             ExprKind::Coord(b, c) => {
                 if scope != Scope::State {
-                    self.errors.push(e.span, format!("coordinate `{b}.{c}` is not allowed here: {}", scope.describe()));
+                    self.errors.at_expr(e, format!("coordinate `{b}.{c}` is not allowed here: {}", scope.describe()));
                     return None;
                 }
                 let body = self.body(b)?;
@@ -393,7 +390,7 @@ impl Resolver<'_> {
                     }
                 };
                 if args.len() != arity {
-                    self.errors.push(e.span, format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()));
+                    self.errors.at_expr(e, format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()));
                     return None;
                 }
                 let resolved: Vec<Option<MExpr>> = args.iter().map(|a| self.expr(a, scope)).collect();
@@ -469,10 +466,10 @@ impl Resolver<'_> {
 
 /// Checks a number that must be positive when it is a constant (a parameter's value is checked
 /// at run time by the solver that needs it).
-fn check_positive(errors: &mut Errors, e: &MExpr, span: Span, what: &str) {
+fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
     if let Some(v) = e.constant_value() {
         if !(v > 0.0) {
-            errors.push(span, format!("{what} must be positive, found {v}"));
+            errors.at_expr(written, format!("{what} must be positive, found {v}"));
         }
     }
 }
@@ -538,13 +535,18 @@ impl MechanismDef {
                             ok = false;
                             continue;
                         }
-                        let Some(default_expr) = r.expr(value, Scope::Constant) else {
+                        let Some(default) = r.expr(value, Scope::Constant) else {
                             ok = false;
                             continue;
                         };
-                        let default = default_expr.constant_value().unwrap_or(f64::NAN);
+                        let default = default.constant_value().unwrap_or(f64::NAN);
+                        if !default.is_finite() {
+                            r.errors.at_expr(value, format!("the default of `{name}` evaluates to {default}"));
+                            ok = false;
+                            continue;
+                        }
                         r.params.insert(name.to_string(), params.len());
-                        params.push(Param { name: name.clone(), default, default_expr });
+                        params.push(Param { name: name.clone(), default });
                     }
                 }
                 Item::Body(b) => {
@@ -591,7 +593,7 @@ impl MechanismDef {
                     }
                     Some(Value::Expr(e)) => {
                         let m = r.expr(e, Scope::Params)?;
-                        check_positive(r.errors, &m, e.span, &format!("the {name} of body `{}`", b.name));
+                        check_positive(r.errors, &m, e, &format!("the {name} of body `{}`", b.name));
                         Some(m)
                     }
                 }
@@ -867,7 +869,7 @@ impl MechanismDef {
                 Value::Expr(e) => match r.expr(e, Scope::Params) {
                     Some(m) => {
                         if key == "length" {
-                            check_positive(r.errors, &m, e.span, "the length of a revolute-revolute link");
+                            check_positive(r.errors, &m, e, "the length of a revolute-revolute link");
                         }
                         options.insert(key, m);
                     }

@@ -65,15 +65,6 @@ pub enum Value {
     List(VecLit),
 }
 
-impl Value {
-    pub fn span(&self) -> Span {
-        match self {
-            Value::Expr(e) => e.span,
-            Value::List(v) => v.span,
-        }
-    }
-}
-
 /// `[e1, e2, ...]`
 pub struct VecLit {
     pub items: Vec<Expr>,
@@ -129,8 +120,8 @@ pub struct FixDef {
 
 pub enum DriveTarget {
     Coordinate { body: Ident, coordinate: Ident },
-    Angle { keyword: Ident, i: Ident, j: Ident },
-    Distance { keyword: Ident, i: (Ident, PointRef), j: (Ident, PointRef) },
+    Angle { i: Ident, j: Ident },
+    Distance { i: (Ident, PointRef), j: (Ident, PointRef) },
 }
 
 pub struct DriveDef {
@@ -147,11 +138,26 @@ pub struct ConstraintDef {
     pub rhs: Expr,
 }
 
-/// An expression as written.
+/// An expression as written, with the spans of its first and last tokens (so errors can
+/// underline all of it on stable Rust, where spans cannot be joined).
 #[derive(Clone)]
 pub struct Expr {
     pub kind: ExprKind,
     pub span: Span,
+    pub end: Span,
+}
+
+impl Expr {
+    fn new(kind: ExprKind, span: Span, end: Span) -> Self {
+        Expr { kind, span, end }
+    }
+
+    /// An error underlining the whole expression.
+    pub fn error(&self, msg: impl std::fmt::Display) -> syn::Error {
+        let first = quote::quote_spanned!(self.span=> a);
+        let last = quote::quote_spanned!(self.end=> b);
+        syn::Error::new_spanned(quote::quote!(#first #last), msg)
+    }
 }
 
 #[derive(Clone)]
@@ -374,14 +380,14 @@ fn parse_drive_target(input: ParseStream) -> syn::Result<DriveTarget> {
             let i: Ident = content.call(Ident::parse_any)?;
             content.parse::<Token![,]>()?;
             let j: Ident = content.call(Ident::parse_any)?;
-            DriveTarget::Angle { keyword: head, i, j }
+            DriveTarget::Angle { i, j }
         } else {
             let bi: Ident = content.call(Ident::parse_any)?;
             let pi = parse_point_ref(&content)?;
             content.parse::<Token![,]>()?;
             let bj: Ident = content.call(Ident::parse_any)?;
             let pj = parse_point_ref(&content)?;
-            DriveTarget::Distance { keyword: head, i: (bi, pi), j: (bj, pj) }
+            DriveTarget::Distance { i: (bi, pi), j: (bj, pj) }
         };
         if !content.is_empty() {
             return Err(content.error("unexpected tokens: a relative driver takes two arguments"));
@@ -441,13 +447,9 @@ impl Parse for Expr {
     }
 }
 
-fn join(a: Span, b: Span) -> Span {
-    a.join(b).unwrap_or(a)
-}
-
 fn bin(op: BinOp, l: Expr, r: Expr) -> Expr {
-    let span = join(l.span, r.span);
-    Expr { kind: ExprKind::Bin(op, Box::new(l), Box::new(r)), span }
+    let (span, end) = (l.span, r.end);
+    Expr::new(ExprKind::Bin(op, Box::new(l), Box::new(r)), span, end)
 }
 
 fn parse_sum(input: ParseStream) -> syn::Result<Expr> {
@@ -488,8 +490,8 @@ fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
     if input.peek(Token![-]) {
         let minus: Token![-] = input.parse()?;
         let inner = parse_unary(input)?;
-        let span = join(minus.span, inner.span);
-        return Ok(Expr { kind: ExprKind::Neg(Box::new(inner)), span });
+        let end = inner.end;
+        return Ok(Expr::new(ExprKind::Neg(Box::new(inner)), minus.span, end));
     }
     let base = parse_atom(input)?;
     if input.peek(Token![^]) {
@@ -507,14 +509,14 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
         if !lit.suffix().is_empty() {
             return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
         }
-        return Ok(Expr { kind: ExprKind::Num(lit.base10_parse()?), span: lit.span() });
+        return Ok(Expr::new(ExprKind::Num(lit.base10_parse()?), lit.span(), lit.span()));
     }
     if input.peek(syn::LitInt) {
         let lit: syn::LitInt = input.parse()?;
         if !lit.suffix().is_empty() {
             return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
         }
-        return Ok(Expr { kind: ExprKind::Num(lit.base10_parse::<f64>()?), span: lit.span() });
+        return Ok(Expr::new(ExprKind::Num(lit.base10_parse::<f64>()?), lit.span(), lit.span()));
     }
     if input.peek(syn::token::Paren) {
         let content;
@@ -523,7 +525,8 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
         if !content.is_empty() {
             return Err(content.error("expected `)`: an operator (+ - * / ^) is missing"));
         }
-        inner.span = paren.span.join();
+        inner.span = paren.span.open();
+        inner.end = paren.span.close();
         return Ok(inner);
     }
     if input.peek(Ident::peek_any) {
@@ -531,8 +534,8 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
         if input.peek(Token![.]) && !input.peek(Token![..]) {
             input.parse::<Token![.]>()?;
             let coord: Ident = input.call(Ident::parse_any)?;
-            let span = join(id.span(), coord.span());
-            return Ok(Expr { kind: ExprKind::Coord(id, coord), span });
+            let (span, end) = (id.span(), coord.span());
+            return Ok(Expr::new(ExprKind::Coord(id, coord), span, end));
         }
         if input.peek(syn::token::Paren) {
             let content;
@@ -544,11 +547,11 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
                     content.parse::<Token![,]>()?;
                 }
             }
-            let span = join(id.span(), paren.span.join());
-            return Ok(Expr { kind: ExprKind::Call(id, args), span });
+            let (span, end) = (id.span(), paren.span.close());
+            return Ok(Expr::new(ExprKind::Call(id, args), span, end));
         }
         let span = id.span();
-        return Ok(Expr { kind: ExprKind::Ident(id), span });
+        return Ok(Expr::new(ExprKind::Ident(id), span, span));
     }
     if input.is_empty() {
         return Err(input.error("expected an expression"));

@@ -121,11 +121,6 @@ impl Graph {
         self.nodes[id as usize]
     }
 
-    /// Number of nodes ever created.
-    pub fn len(&self) -> usize {
-        self.nodes.len()
-    }
-
     fn intern(&mut self, node: Node) -> Id {
         if let Some(&id) = self.index.get(&node) {
             return id;
@@ -509,12 +504,14 @@ impl Graph {
     }
 
     /// Evaluates a node for given variable values.
+    #[cfg(test)]
     pub fn eval(&self, root: Id, value: &dyn Fn(Var) -> f64) -> f64 {
         let mut memo: HashMap<Id, f64> = HashMap::new();
         self.eval_memo(root, value, &mut memo)
     }
 
     /// Evaluates several nodes sharing one cache.
+    #[cfg(test)]
     pub fn eval_memo(&self, root: Id, value: &dyn Fn(Var) -> f64, memo: &mut HashMap<Id, f64>) -> f64 {
         let mut stack = vec![(root, false)];
         while let Some((id, children_done)) = stack.pop() {
@@ -544,24 +541,6 @@ impl Graph {
             memo.insert(id, x);
         }
         memo[&root]
-    }
-
-    /// Whether `root` depends on any variable for which `pred` holds.
-    pub fn depends_on(&self, root: Id, pred: &dyn Fn(Var) -> bool) -> bool {
-        let mut seen = std::collections::HashSet::new();
-        let mut stack = vec![root];
-        while let Some(id) = stack.pop() {
-            if !seen.insert(id) {
-                continue;
-            }
-            if let Node::Var(v) = self.node(id) {
-                if pred(v) {
-                    return true;
-                }
-            }
-            stack.extend(self.children(id).into_iter().flatten());
-        }
-        false
     }
 }
 
