@@ -1,1 +1,69 @@
-fn main() {}
+//! Every generated function of the slider-crank and of a 16-link driven chain, the fused
+//! evaluations, and kinematic-analysis steps: `cargo bench --bench kinematics`.
+//!
+//! States are fixed, consistent configurations; inputs go through `black_box` so nothing is
+//! folded at compile time.
+use criterion::{criterion_group, criterion_main, Criterion};
+use mbd::{KinematicSolver, Kinematics};
+use std::hint::black_box;
+
+#[allow(dead_code)]
+#[path = "../examples/slider_crank.rs"]
+mod slider_crank;
+mod chain16 {
+    include!("chain16.rs");
+}
+use chain16::Chain16;
+use slider_crank::SliderCrank;
+
+macro_rules! bench_mechanism {
+    ($c:expr, $label:literal, $m:expr, $ty:ty) => {{
+        const NQ: usize = <$ty>::NQ;
+        const NC: usize = <$ty>::NC;
+        const NNZ: usize = <$ty>::NNZ;
+        let m = $m;
+        let solver = KinematicSolver::default();
+        let t0 = 0.37;
+        let mut q = m.initial_positions();
+        solver.assemble(&m, &mut q, t0).expect("the benchmark mechanism assembles");
+        let mut qd = [0.0; NQ];
+        solver.solve_velocity(&m, &q, t0, &mut qd).expect("velocity solve");
+        let mut g = $c.benchmark_group($label);
+        let (mut phi, mut d, mut nu, mut gamma, mut values) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC], [0.0; NNZ]);
+        g.bench_function("constraints", |b| b.iter(|| m.constraints(black_box(&q), black_box(t0), &mut phi)));
+        g.bench_function("jacobian (dense)", |b| b.iter(|| m.jacobian(black_box(&q), black_box(t0), &mut d)));
+        g.bench_function("jacobian_values (sparse)", |b| b.iter(|| m.jacobian_values(black_box(&q), black_box(t0), &mut values)));
+        g.bench_function("velocity_rhs", |b| b.iter(|| m.velocity_rhs(black_box(&q), black_box(t0), &mut nu)));
+        g.bench_function("gamma", |b| b.iter(|| m.gamma(black_box(&q), black_box(&qd), black_box(t0), &mut gamma)));
+        g.bench_function("three calls: constraints + jacobian_values + gamma", |b| {
+            b.iter(|| {
+                m.constraints(black_box(&q), black_box(t0), &mut phi);
+                m.jacobian_values(black_box(&q), black_box(t0), &mut values);
+                m.gamma(black_box(&q), black_box(&qd), black_box(t0), &mut gamma);
+            })
+        });
+        g.bench_function("full_eval_values (fused Φ, Φ_q, ν, γ)", |b| {
+            b.iter(|| m.full_eval_values(black_box(&q), black_box(&qd), black_box(t0), &mut phi, &mut values, &mut nu, &mut gamma))
+        });
+        g.bench_function("full_eval (fused, dense Φ_q)", |b| {
+            b.iter(|| m.full_eval(black_box(&q), black_box(&qd), black_box(t0), &mut phi, &mut d, &mut nu, &mut gamma))
+        });
+        // One step of a kinematic sweep: Newton from the previous position at t + 1 ms.
+        g.bench_function("position solve, t → t + 1 ms", |b| {
+            b.iter(|| {
+                let mut qn = q;
+                solver.solve_position(&m, &mut qn, black_box(t0 + 1e-3)).expect("converges");
+                qn
+            })
+        });
+        g.finish();
+    }};
+}
+
+fn benches(c: &mut Criterion) {
+    bench_mechanism!(c, "slider_crank", SliderCrank::default(), SliderCrank);
+    bench_mechanism!(c, "chain16", Chain16::default(), Chain16);
+}
+
+criterion_group!(kinematics, benches);
+criterion_main!(kinematics);

@@ -1,0 +1,163 @@
+//! Why a kinematic analysis failed, in the mechanism's own words: every error names the
+//! constraint row and/or coordinate involved (from [`Mechanism::CONSTRAINT_NAMES`] and
+//! [`Mechanism::COORDINATE_NAMES`]) and the time at which it happened.
+//!
+//! [`Mechanism::CONSTRAINT_NAMES`]: crate::Mechanism::CONSTRAINT_NAMES
+//! [`Mechanism::COORDINATE_NAMES`]: crate::Mechanism::COORDINATE_NAMES
+
+use core::fmt;
+
+/// Which quantity held a NaN or an infinity (see [`KinematicError::NonFinite`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NonFiniteQuantity {
+    /// The time t given to the solver (s).
+    Time,
+    /// A coordinate of q: given to the solver, or predicted from the previous point of a sweep
+    /// (m or rad). The row is a coordinate name.
+    Coordinate,
+    /// A velocity of q̇: given to the solver, or computed by it (m/s or rad/s). The row is a
+    /// coordinate name.
+    Velocity,
+    /// A computed acceleration of q̈ (m/s² or rad/s²). The row is a coordinate name.
+    Acceleration,
+    /// A constraint value Φ evaluated by the mechanism. The row is a constraint name.
+    Constraint,
+    /// An entry of the Jacobian Φ_q evaluated by the mechanism. The row is a constraint name.
+    Jacobian,
+    /// The velocity right-hand side ν = −Φ_t. The row is a constraint name.
+    VelocityRhs,
+    /// The acceleration right-hand side γ. The row is a constraint name.
+    Gamma,
+    /// A Newton correction Δq (overflow of a nearly singular solve). The row is a coordinate name.
+    Step,
+}
+
+impl fmt::Display for NonFiniteQuantity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            NonFiniteQuantity::Time => "time t",
+            NonFiniteQuantity::Coordinate => "coordinate",
+            NonFiniteQuantity::Velocity => "velocity",
+            NonFiniteQuantity::Acceleration => "acceleration",
+            NonFiniteQuantity::Constraint => "constraint Φ",
+            NonFiniteQuantity::Jacobian => "Jacobian Φ_q, row",
+            NonFiniteQuantity::VelocityRhs => "velocity right-hand side ν = −Φ_t, row",
+            NonFiniteQuantity::Gamma => "acceleration right-hand side γ, row",
+            NonFiniteQuantity::Step => "Newton step Δq, coordinate",
+        })
+    }
+}
+
+/// A failed kinematic analysis. Times are in s; residuals in the units of the constraint row
+/// (m, rad, or m² for distance rows).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum KinematicError {
+    /// Newton–Raphson on Φ(q, t) = 0 did not reach ‖Φ‖∞ ≤ tolerance within the allowed
+    /// iterations (a guess too far from a solution, a tolerance below what the scalar type can
+    /// resolve, or no solution: a mechanism that cannot assemble at t).
+    NotConverged {
+        /// Time of the failed solve (s).
+        t: f64,
+        /// Newton iterations performed.
+        iterations: u32,
+        /// The constraint row with the largest |Φ| after the last iteration.
+        worst_row: &'static str,
+        /// That |Φ|: ‖Φ‖∞ after the last iteration.
+        residual: f64,
+    },
+    /// The square Jacobian D = Φ_q has no acceptable pivot for a coordinate: at this
+    /// configuration the constraints do not determine that coordinate independently of the
+    /// ones eliminated before it (a lock-up or toggle position, a missing driver, or redundant
+    /// constraints).
+    SingularJacobian {
+        /// Time of the failed solve (s).
+        t: f64,
+        /// The coordinate whose column of D had no acceptable pivot.
+        coordinate: &'static str,
+        /// The constraint row that held the best (largest) candidate pivot for it.
+        constraint: &'static str,
+    },
+    /// During assembly (minimum-norm Newton, DOF ≥ 0) a constraint row of D = Φ_q is a linear
+    /// combination of the rows before it: redundant constraints, or a singular configuration.
+    DependentConstraint {
+        /// Time of the failed solve (s).
+        t: f64,
+        /// The first constraint row found to depend on the rows before it.
+        constraint: &'static str,
+    },
+    /// A square kinematic analysis (position, velocity, acceleration) needs exactly as many
+    /// constraint rows, drivers included, as coordinates: degrees of freedom DOF = 0.
+    NotDriven {
+        /// Coordinates minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
+        dof: i32,
+    },
+    /// Assembly needs at most as many constraint rows as coordinates (DOF ≥ 0).
+    Overconstrained {
+        /// Coordinates minus constraint rows (< 0).
+        dof: i32,
+    },
+    /// A NaN or an infinity in the input or in an evaluated quantity: the solver stops instead
+    /// of iterating on it.
+    NonFinite {
+        /// Time of the failed solve (s); itself NaN or infinite for [`NonFiniteQuantity::Time`].
+        t: f64,
+        /// What held the value.
+        quantity: NonFiniteQuantity,
+        /// The constraint row or coordinate name (see [`NonFiniteQuantity`]); `"t"` for the time.
+        row: &'static str,
+    },
+}
+
+impl fmt::Display for KinematicError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            KinematicError::NotConverged { t, iterations, worst_row, residual } => write!(
+                f,
+                "position solve did not converge at t = {t} s after {iterations} iterations: \
+                 worst constraint '{worst_row}' |Φ| = {residual:.1e}"
+            ),
+            KinematicError::SingularJacobian { t, coordinate, constraint } => write!(
+                f,
+                "singular constraint Jacobian at t = {t} s: no usable pivot for coordinate \
+                 '{coordinate}' (best candidate: constraint '{constraint}'); the mechanism is at a \
+                 lock-up or toggle position, or its constraints and drivers do not determine \
+                 '{coordinate}'"
+            ),
+            KinematicError::DependentConstraint { t, constraint } => write!(
+                f,
+                "constraint '{constraint}' depends linearly on the constraints before it at t = {t} s: \
+                 redundant constraints, or a singular configuration"
+            ),
+            KinematicError::NotDriven { dof } if dof > 0 => write!(
+                f,
+                "kinematic analysis needs as many constraints (drivers included) as coordinates, \
+                 but the mechanism has {dof} degree(s) of freedom left: add {dof} driver(s)"
+            ),
+            KinematicError::NotDriven { dof } => write!(
+                f,
+                "kinematic analysis needs as many constraints (drivers included) as coordinates, \
+                 but the mechanism has {} more constraint row(s) than coordinates (DOF = {dof}): \
+                 remove redundant constraints",
+                dof.unsigned_abs()
+            ),
+            KinematicError::Overconstrained { dof } => write!(
+                f,
+                "assembly needs at most as many constraint rows as coordinates, but DOF = {dof}: \
+                 remove {} redundant constraint row(s)",
+                dof.unsigned_abs()
+            ),
+            KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, .. } => {
+                write!(f, "non-finite time t = {t} s given to the kinematic solver")
+            }
+            KinematicError::NonFinite { t, quantity, row } => {
+                write!(f, "non-finite value (NaN or ±∞) in {quantity} '{row}' at t = {t} s")
+            }
+        }
+    }
+}
+
+/// `core::error::Error` is the trait `std::error::Error` re-exports, so this implements
+/// `std::error::Error` with the `std` feature and still builds without it.
+impl core::error::Error for KinematicError {}

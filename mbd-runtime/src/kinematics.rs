@@ -1,0 +1,611 @@
+//! Kinematic analysis of a driven mechanism (DOF = 0): at each time t, solve
+//!
+//! ```text
+//! Φ(q, t) = 0        position      (Newton–Raphson: D Δq = −Φ, q ← q + Δq)
+//! D q̇ = ν            velocity      (ν = −Φ_t)
+//! D q̈ = γ            acceleration  (γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt)
+//! ```
+//!
+//! with D = Φ_q, all three sharing one LU factorization of D at the converged q. Coordinates are
+//! in m and rad, velocities in m/s and rad/s, accelerations in m/s² and rad/s², times in s.
+//! Assembly ([`KinematicSolver::assemble`]) also handles DOF > 0 with minimum-norm Newton steps.
+//!
+//! Nothing here allocates: work space is fixed-size arrays on the stack, sized by the
+//! mechanism's `NQ` and `NC` (about (NQ·NC + NC² + 4·NQ + 4·NC) scalars for the largest call).
+
+use crate::error::{KinematicError, NonFiniteQuantity};
+use crate::linalg::{self, LinalgError, Permutation};
+use crate::{Kinematics, Mechanism, Real};
+
+/// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
+/// coordinate in f64. Too small for f32 (whose ulp at 1 m is 1.2e-7): set about 1e-5 there.
+pub const DEFAULT_TOLERANCE: f64 = 1e-10;
+/// Default [`KinematicOptions::max_iterations`]: Newton converges quadratically, so from a
+/// reasonable guess 3–6 iterations suffice; 25 leaves room for rough guesses.
+pub const DEFAULT_MAX_ITERATIONS: u32 = 25;
+/// Default [`KinematicOptions::pivot_tolerance`]: a pivot below 1e-12 of its column's largest
+/// original entry means the column is dependent to about four orders above f64 rounding.
+pub const DEFAULT_PIVOT_TOLERANCE: f64 = 1e-12;
+/// Default [`KinematicOptions::predictor`]: on.
+pub const DEFAULT_PREDICTOR: bool = true;
+
+/// Name used when a mechanism's name lists are shorter than its sizes (a broken
+/// implementation): errors still carry a name instead of panicking.
+const UNNAMED: &str = "<unnamed>";
+
+/// Settings of the kinematic solver. Build from [`Default`] and the `with_*` methods:
+///
+/// ```
+/// # use mbd_runtime::KinematicOptions;
+/// let options = KinematicOptions::default().with_tolerance(1e-6).with_max_iterations(10);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct KinematicOptions {
+    /// Convergence test of the position solve: ‖Φ(q, t)‖∞ ≤ `tolerance`, in the units of the
+    /// constraint rows (m for point coincidence, rad or dimensionless for angles, m² for
+    /// distance rows ½(dᵀd − L²)). Default [`DEFAULT_TOLERANCE`].
+    pub tolerance: f64,
+    /// Newton iterations allowed per position solve before [`KinematicError::NotConverged`].
+    /// Default [`DEFAULT_MAX_ITERATIONS`].
+    pub max_iterations: u32,
+    /// Relative pivot tolerance τ of the LU factorization: a pivot is accepted when
+    /// |pivot| > τ · (largest |entry| of its column of D), see [`crate::linalg`]. Values below
+    /// the scalar type's machine epsilon are raised to it (pivots that small are rounding
+    /// noise). Default [`DEFAULT_PIVOT_TOLERANCE`].
+    pub pivot_tolerance: f64,
+    /// In [`KinematicSolver::sweep`], start each position solve from the first-order
+    /// prediction q + q̇ (t − t_previous) instead of the previous q; if Newton fails from the
+    /// prediction, the point is retried once from the previous q. Default [`DEFAULT_PREDICTOR`].
+    pub predictor: bool,
+}
+
+impl Default for KinematicOptions {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl KinematicOptions {
+    /// The defaults ([`DEFAULT_TOLERANCE`], [`DEFAULT_MAX_ITERATIONS`],
+    /// [`DEFAULT_PIVOT_TOLERANCE`], [`DEFAULT_PREDICTOR`]), usable in `const` context.
+    pub const fn new() -> Self {
+        Self {
+            tolerance: DEFAULT_TOLERANCE,
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            pivot_tolerance: DEFAULT_PIVOT_TOLERANCE,
+            predictor: DEFAULT_PREDICTOR,
+        }
+    }
+
+    /// Sets [`tolerance`](Self::tolerance) (max-norm of Φ, units of the constraint rows).
+    pub const fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Sets [`max_iterations`](Self::max_iterations).
+    pub const fn with_max_iterations(mut self, max_iterations: u32) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Sets [`pivot_tolerance`](Self::pivot_tolerance) (relative, dimensionless).
+    pub const fn with_pivot_tolerance(mut self, pivot_tolerance: f64) -> Self {
+        self.pivot_tolerance = pivot_tolerance;
+        self
+    }
+
+    /// Sets [`predictor`](Self::predictor).
+    pub const fn with_predictor(mut self, predictor: bool) -> Self {
+        self.predictor = predictor;
+        self
+    }
+}
+
+/// How a position solve ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Convergence {
+    /// Newton iterations performed (0 when the starting q already satisfied the tolerance).
+    pub iterations: u32,
+    /// ‖Φ(q, t)‖∞ at the returned q, in the units of the constraint rows.
+    pub residual: f64,
+}
+
+/// Position, velocity and acceleration of a mechanism at one time: the result of
+/// [`KinematicSolver::analyze`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct KinematicState<T, const NQ: usize> {
+    /// Time (s).
+    pub t: T,
+    /// Coordinates q with Φ(q, t) = 0 (m, rad).
+    pub q: [T; NQ],
+    /// Velocities q̇ with D q̇ = ν (m/s, rad/s).
+    pub qd: [T; NQ],
+    /// Accelerations q̈ with D q̈ = γ (m/s², rad/s²).
+    pub qdd: [T; NQ],
+    /// How the position solve converged.
+    pub convergence: Convergence,
+}
+
+/// Kinematic analysis of mechanisms generated by `mechanism!` (any `M: Kinematics<T, NQ, NC>`).
+///
+/// Position, velocity, acceleration and sweeps need a driven mechanism, NQ = NC (DOF = 0);
+/// [`assemble`](Self::assemble) accepts NC ≤ NQ. The solver holds only its options: one solver
+/// serves any number of mechanisms and scalar types.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct KinematicSolver {
+    /// Tolerances and limits.
+    pub options: KinematicOptions,
+}
+
+/// How a Newton iteration computes its step from D and −Φ.
+#[derive(Clone, Copy)]
+enum StepRule {
+    /// D Δq = −Φ with D square (LU with partial pivoting).
+    Square,
+    /// Δq = −Dᵀ (D Dᵀ)⁻¹ Φ for NC ≤ NQ.
+    MinimumNorm,
+}
+
+/// `names[index]`, or [`UNNAMED`] if the list is too short.
+fn name(names: &'static [&'static str], index: usize) -> &'static str {
+    names.get(index).copied().unwrap_or(UNNAMED)
+}
+
+/// Index of the first NaN or infinity in `values`.
+fn first_non_finite<T: Real>(values: &[T]) -> Option<usize> {
+    values.iter().position(|v| !v.is_finite())
+}
+
+/// (max |v_i|, i) of finite values, the first index among equals; (0, 0) when empty.
+fn max_abs<T: Real>(values: &[T]) -> (T, usize) {
+    values.iter().enumerate().fold((T::ZERO, 0), |(best, at), (i, v)| {
+        let magnitude = v.abs();
+        if magnitude > best {
+            (magnitude, i)
+        } else {
+            (best, at)
+        }
+    })
+}
+
+/// Coordinates minus constraint rows.
+fn degrees_of_freedom(nq: usize, nc: usize) -> i32 {
+    nq as i32 - nc as i32
+}
+
+/// NotDriven unless NQ = NC.
+fn require_driven<const NQ: usize, const NC: usize>() -> Result<(), KinematicError> {
+    match degrees_of_freedom(NQ, NC) {
+        0 => Ok(()),
+        dof => Err(KinematicError::NotDriven { dof }),
+    }
+}
+
+/// The error for a failed factorization or solve of the square Jacobian D at time `t`.
+fn jacobian_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
+    match error {
+        LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
+            t,
+            coordinate: name(M::COORDINATE_NAMES, column),
+            constraint: name(M::CONSTRAINT_NAMES, candidate_row),
+        },
+        LinalgError::NonFinite { row, .. } => {
+            KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, row) }
+        }
+        LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
+            KinematicError::NotDriven { dof: degrees_of_freedom(columns, rows) }
+        }
+    }
+}
+
+/// The error for a failed minimum-norm step Δq = −Dᵀ (D Dᵀ)⁻¹ Φ at time `t`: a singular Gram
+/// matrix at step k means constraint row k depends on the rows before it.
+fn minimum_norm_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
+    match error {
+        LinalgError::Singular { column, .. } => {
+            KinematicError::DependentConstraint { t, constraint: name(M::CONSTRAINT_NAMES, column) }
+        }
+        LinalgError::NonFinite { row, .. } => {
+            KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, row) }
+        }
+        LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
+            KinematicError::Overconstrained { dof: degrees_of_freedom(columns, rows) }
+        }
+    }
+}
+
+/// NonFinite for the first non-finite entry of `values`, named from `names`.
+fn check_finite<T: Real>(
+    values: &[T],
+    t: T,
+    quantity: NonFiniteQuantity,
+    names: &'static [&'static str],
+) -> Result<(), KinematicError> {
+    match first_non_finite(values) {
+        Some(index) => Err(KinematicError::NonFinite { t: t.to_f64(), quantity, row: name(names, index) }),
+        None => Ok(()),
+    }
+}
+
+/// NonFinite if t is NaN or infinite.
+fn check_time<T: Real>(t: T) -> Result<(), KinematicError> {
+    if t.is_finite() {
+        Ok(())
+    } else {
+        Err(KinematicError::NonFinite { t: t.to_f64(), quantity: NonFiniteQuantity::Time, row: "t" })
+    }
+}
+
+impl KinematicSolver {
+    /// A solver with the given options.
+    pub const fn new(options: KinematicOptions) -> Self {
+        Self { options }
+    }
+
+    /// The relative pivot tolerance in T, raised to T's machine epsilon.
+    fn pivot_tolerance<T: Real>(&self) -> T {
+        T::from_f64(self.options.pivot_tolerance).max(T::EPSILON)
+    }
+
+    /// Position solve: Newton–Raphson on Φ(q, t) = 0 for a driven mechanism (NQ = NC),
+    ///
+    /// ```text
+    /// D(q_k, t) Δq = −Φ(q_k, t),   q_{k+1} = q_k + Δq,
+    /// ```
+    ///
+    /// from the q given, until ‖Φ‖∞ ≤ [`KinematicOptions::tolerance`]. Each iteration costs one
+    /// [`Kinematics::position_eval`] and one LU factorization. On success `q` holds the
+    /// solution (m, rad); on error it holds the last iterate.
+    ///
+    /// # Errors
+    /// [`KinematicError::NotDriven`] if NQ ≠ NC; [`KinematicError::NonFinite`] for a NaN or
+    /// infinite t, q, Φ, D or step; [`KinematicError::SingularJacobian`];
+    /// [`KinematicError::NotConverged`].
+    pub fn solve_position<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &mut [T; NQ],
+        t: T,
+    ) -> Result<Convergence, KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        require_driven::<NQ, NC>()?;
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        self.newton(m, q, t, &mut jacobian, StepRule::Square)
+    }
+
+    /// Assembly: brings a rough guess `q` onto the constraint manifold Φ(q, t) = 0 for any
+    /// NC ≤ NQ (DOF ≥ 0), with undamped Newton steps of minimum norm,
+    ///
+    /// ```text
+    /// Δq = −Dᵀ (D Dᵀ)⁻¹ Φ(q_k, t),   q_{k+1} = q_k + Δq,
+    /// ```
+    ///
+    /// which, among all corrections that zero the linearized constraints, moves q the least: the
+    /// free coordinates stay as close to the guess as the constraints allow. For NQ = NC this is
+    /// [`solve_position`](Self::solve_position) (the same step, computed without squaring D's
+    /// condition number). The guess must lie in the basin of attraction of the wanted assembly
+    /// mode: Newton converges to the nearest branch, not to a chosen one.
+    ///
+    /// # Errors
+    /// [`KinematicError::Overconstrained`] if NC > NQ; [`KinematicError::DependentConstraint`]
+    /// if D loses row rank (DOF > 0) or [`KinematicError::SingularJacobian`] (DOF = 0);
+    /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
+    pub fn assemble<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &mut [T; NQ],
+        t: T,
+    ) -> Result<Convergence, KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        let dof = degrees_of_freedom(NQ, NC);
+        if dof < 0 {
+            return Err(KinematicError::Overconstrained { dof });
+        }
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        let rule = if dof == 0 { StepRule::Square } else { StepRule::MinimumNorm };
+        self.newton(m, q, t, &mut jacobian, rule)
+    }
+
+    /// Velocity solve for a driven mechanism (NQ = NC): D(q, t) q̇ = ν(q, t), ν = −Φ_t, written
+    /// to `qd` (m/s, rad/s). `q` must already satisfy Φ(q, t) = 0 (it is not checked). ν is not
+    /// evaluated when [`Mechanism::PHI_T_IS_ZERO`]. `qd` is unspecified on error.
+    ///
+    /// # Errors
+    /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, D, ν or q̇;
+    /// [`KinematicError::SingularJacobian`].
+    pub fn solve_velocity<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        t: T,
+        qd: &mut [T; NQ],
+    ) -> Result<(), KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        require_driven::<NQ, NC>()?;
+        check_time(t)?;
+        check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        m.jacobian(q, t, &mut jacobian);
+        let permutation = self.factor::<T, M, NQ, NC>(&mut jacobian, t)?;
+        velocity_from_factors(m, q, t, &jacobian, &permutation, qd)
+    }
+
+    /// Acceleration solve for a driven mechanism (NQ = NC): D(q, t) q̈ = γ(q, q̇, t), written to
+    /// `qdd` (m/s², rad/s²). `q` and `qd` must already satisfy Φ = 0 and D q̇ = ν (not checked).
+    /// `qdd` is unspecified on error.
+    ///
+    /// # Errors
+    /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, q̇, D, γ or q̈;
+    /// [`KinematicError::SingularJacobian`].
+    pub fn solve_acceleration<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        qd: &[T; NQ],
+        t: T,
+        qdd: &mut [T; NQ],
+    ) -> Result<(), KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        require_driven::<NQ, NC>()?;
+        check_time(t)?;
+        check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
+        check_finite(qd, t, NonFiniteQuantity::Velocity, M::COORDINATE_NAMES)?;
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        m.jacobian(q, t, &mut jacobian);
+        let permutation = self.factor::<T, M, NQ, NC>(&mut jacobian, t)?;
+        acceleration_from_factors(m, q, qd, t, &jacobian, &permutation, qdd)
+    }
+
+    /// Complete kinematic analysis at time t from the guess `q`: position (Newton, as
+    /// [`solve_position`](Self::solve_position)), then velocity D q̇ = ν and acceleration
+    /// D q̈ = γ with a single LU factorization of D at the converged q.
+    ///
+    /// The last Newton evaluation is the one at the converged q, so its D is reused as is: the
+    /// whole analysis costs the Newton iterations plus one [`Kinematics::velocity_rhs`], one
+    /// [`Kinematics::gamma`] and one factorization. ([`Kinematics::full_eval`] cannot save
+    /// work here: γ needs q̇, which needs D and ν at the converged q first.)
+    ///
+    /// # Errors
+    /// Those of [`solve_position`](Self::solve_position), [`solve_velocity`](Self::solve_velocity)
+    /// and [`solve_acceleration`](Self::solve_acceleration).
+    pub fn analyze<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        t: T,
+    ) -> Result<KinematicState<T, NQ>, KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        require_driven::<NQ, NC>()?;
+        let mut state = KinematicState {
+            t,
+            q: *q,
+            qd: [T::ZERO; NQ],
+            qdd: [T::ZERO; NQ],
+            convergence: Convergence { iterations: 0, residual: 0.0 },
+        };
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        state.convergence = self.analyze_in_place(m, &mut state.q, t, &mut jacobian, &mut state.qd, &mut state.qdd)?;
+        Ok(state)
+    }
+
+    /// Kinematic sweep of a driven mechanism (NQ = NC) over `times` (s): for each t in turn,
+    ///
+    /// 1. start from the previous solution q — or, with [`KinematicOptions::predictor`], from
+    ///    its first-order prediction q + q̇ (t − t_previous), which cuts Newton iterations when
+    ///    the steps are small against the motion (if Newton fails from the prediction, the
+    ///    point is retried once from the previous q);
+    /// 2. solve the position, velocity and acceleration as [`analyze`](Self::analyze) does;
+    /// 3. call `f(t, q, q̇, q̈)`.
+    ///
+    /// The first point starts from the `q` given, which should be consistent (see
+    /// [`assemble`](Self::assemble)) or close to it. On return `q` holds the last solution that
+    /// was reached: the last point on success, the last good point before an error (the failed
+    /// point's iterate is discarded), so a caller can inspect it or resume. Nothing is
+    /// allocated; `times` may be any iterator, in any order.
+    ///
+    /// # Errors
+    /// The first error of any point (each carries its t); the sweep stops there.
+    pub fn sweep<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &mut [T; NQ],
+        times: impl IntoIterator<Item = T>,
+        mut f: impl FnMut(T, &[T; NQ], &[T; NQ], &[T; NQ]),
+    ) -> Result<(), KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        require_driven::<NQ, NC>()?;
+        let mut jacobian = [[T::ZERO; NQ]; NC];
+        let mut qd = [T::ZERO; NQ];
+        let mut qdd = [T::ZERO; NQ];
+        let mut previous_time: Option<T> = None;
+        for t in times {
+            let mut trial = *q;
+            let predicted = match previous_time {
+                Some(t_previous) if self.options.predictor => {
+                    let dt = t - t_previous;
+                    for (coordinate, &velocity) in trial.iter_mut().zip(qd.iter()) {
+                        *coordinate += velocity * dt;
+                    }
+                    true
+                }
+                _ => false,
+            };
+            let mut result = self.analyze_in_place(m, &mut trial, t, &mut jacobian, &mut qd, &mut qdd);
+            if predicted && result.is_err() {
+                trial = *q;
+                result = self.analyze_in_place(m, &mut trial, t, &mut jacobian, &mut qd, &mut qdd);
+            }
+            result?;
+            *q = trial;
+            f(t, q, &qd, &qdd);
+            previous_time = Some(t);
+        }
+        Ok(())
+    }
+
+    /// Position, velocity and acceleration at t into `q`, `qd`, `qdd` (NQ = NC, checked by the
+    /// callers), with `jacobian` as work space.
+    fn analyze_in_place<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &mut [T; NQ],
+        t: T,
+        jacobian: &mut [[T; NQ]; NC],
+        qd: &mut [T; NQ],
+        qdd: &mut [T; NQ],
+    ) -> Result<Convergence, KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        let convergence = self.newton(m, q, t, jacobian, StepRule::Square)?;
+        // `newton` returns D evaluated at the converged q, not yet factored.
+        let permutation = self.factor::<T, M, NQ, NC>(jacobian, t)?;
+        velocity_from_factors(m, q, t, jacobian, &permutation, qd)?;
+        acceleration_from_factors(m, q, qd, t, jacobian, &permutation, qdd)?;
+        Ok(convergence)
+    }
+
+    /// LU of the square Jacobian, with failures named after the mechanism's rows and columns.
+    fn factor<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        jacobian: &mut [[T; NQ]; NC],
+        t: T,
+    ) -> Result<Permutation<NC>, KinematicError>
+    where
+        T: Real,
+        M: Mechanism,
+    {
+        linalg::lu_factor(jacobian, self.pivot_tolerance::<T>()).map_err(|e| jacobian_error::<M>(e, t.to_f64()))
+    }
+
+    /// Newton iteration on Φ(q, t) = 0 with the given step rule. On success `jacobian` holds
+    /// D(q, t) at the returned q (unfactored): the convergence test comes after each
+    /// evaluation, so the last evaluation is at the solution.
+    fn newton<T, M, const NQ: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &mut [T; NQ],
+        t: T,
+        jacobian: &mut [[T; NQ]; NC],
+        rule: StepRule,
+    ) -> Result<Convergence, KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NC>,
+    {
+        check_time(t)?;
+        check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
+        let time = t.to_f64();
+        let tolerance = T::from_f64(self.options.tolerance);
+        let pivot_tolerance = self.pivot_tolerance::<T>();
+        let mut residual = [T::ZERO; NC];
+        let mut negative_residual = [T::ZERO; NC];
+        let mut step = [T::ZERO; NQ];
+        let mut iterations = 0;
+        loop {
+            m.position_eval(q, t, &mut residual, jacobian);
+            check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
+            let (norm, worst) = max_abs(&residual);
+            if norm <= tolerance {
+                return Ok(Convergence { iterations, residual: norm.to_f64() });
+            }
+            if iterations >= self.options.max_iterations {
+                return Err(KinematicError::NotConverged {
+                    t: time,
+                    iterations,
+                    worst_row: name(M::CONSTRAINT_NAMES, worst),
+                    residual: norm.to_f64(),
+                });
+            }
+            for (negated, &value) in negative_residual.iter_mut().zip(residual.iter()) {
+                *negated = -value;
+            }
+            match rule {
+                StepRule::Square => {
+                    let permutation =
+                        linalg::lu_factor(jacobian, pivot_tolerance).map_err(|e| jacobian_error::<M>(e, time))?;
+                    linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step)
+                        .map_err(|e| jacobian_error::<M>(e, time))?;
+                }
+                StepRule::MinimumNorm => {
+                    linalg::minimum_norm_solve(jacobian, &negative_residual, pivot_tolerance, &mut step)
+                        .map_err(|e| minimum_norm_error::<M>(e, time))?;
+                }
+            }
+            check_finite(&step, t, NonFiniteQuantity::Step, M::COORDINATE_NAMES)?;
+            for (coordinate, &correction) in q.iter_mut().zip(step.iter()) {
+                *coordinate += correction;
+            }
+            iterations += 1;
+        }
+    }
+}
+
+/// q̇ = D⁻¹ ν from the factors of D (NQ = NC).
+fn velocity_from_factors<T, M, const NQ: usize, const NC: usize>(
+    m: &M,
+    q: &[T; NQ],
+    t: T,
+    factors: &[[T; NQ]; NC],
+    permutation: &Permutation<NC>,
+    qd: &mut [T; NQ],
+) -> Result<(), KinematicError>
+where
+    T: Real,
+    M: Kinematics<T, NQ, NC>,
+{
+    let mut nu = [T::ZERO; NC];
+    if !M::PHI_T_IS_ZERO {
+        m.velocity_rhs(q, t, &mut nu);
+        check_finite(&nu, t, NonFiniteQuantity::VelocityRhs, M::CONSTRAINT_NAMES)?;
+    }
+    linalg::lu_solve(factors, permutation, &nu, qd).map_err(|e| jacobian_error::<M>(e, t.to_f64()))?;
+    check_finite(qd, t, NonFiniteQuantity::Velocity, M::COORDINATE_NAMES)
+}
+
+/// q̈ = D⁻¹ γ(q, q̇, t) from the factors of D (NQ = NC).
+fn acceleration_from_factors<T, M, const NQ: usize, const NC: usize>(
+    m: &M,
+    q: &[T; NQ],
+    qd: &[T; NQ],
+    t: T,
+    factors: &[[T; NQ]; NC],
+    permutation: &Permutation<NC>,
+    qdd: &mut [T; NQ],
+) -> Result<(), KinematicError>
+where
+    T: Real,
+    M: Kinematics<T, NQ, NC>,
+{
+    let mut gamma = [T::ZERO; NC];
+    m.gamma(q, qd, t, &mut gamma);
+    check_finite(&gamma, t, NonFiniteQuantity::Gamma, M::CONSTRAINT_NAMES)?;
+    linalg::lu_solve(factors, permutation, &gamma, qdd).map_err(|e| jacobian_error::<M>(e, t.to_f64()))?;
+    check_finite(qdd, t, NonFiniteQuantity::Acceleration, M::COORDINATE_NAMES)
+}
+
+#[cfg(test)]
+mod tests;

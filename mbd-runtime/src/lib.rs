@@ -1,0 +1,22 @@
+//! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
+//!
+//! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
+//! No solver allocates: work space is fixed-size arrays sized by the mechanism's const generics.
+#![cfg_attr(not(feature = "std"), no_std)]
+#![warn(missing_docs)]
+
+mod error;
+mod kinematics;
+pub mod linalg;
+mod mechanism;
+mod planar;
+mod real;
+
+pub use error::{KinematicError, NonFiniteQuantity};
+pub use kinematics::{
+    Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE,
+    DEFAULT_PREDICTOR, DEFAULT_TOLERANCE,
+};
+pub use mechanism::{Kinematics, Mechanism, OpCount};
+pub use planar::{point_acceleration, point_position, point_velocity};
+pub use real::Real;

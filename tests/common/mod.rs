@@ -1,0 +1,34 @@
+//! Shared by the integration tests: the examples' mechanisms and a reproducible generator.
+#![allow(dead_code)]
+
+#[path = "../../examples/double_a_arm.rs"]
+pub mod double_a_arm;
+#[path = "../../examples/filmstrip.rs"]
+pub mod filmstrip;
+#[path = "../../examples/four_bar.rs"]
+pub mod four_bar;
+#[path = "../../examples/macpherson.rs"]
+pub mod macpherson;
+#[path = "../../examples/slider_crank.rs"]
+pub mod slider_crank;
+#[path = "../../examples/variable_pendulum.rs"]
+pub mod variable_pendulum;
+#[path = "../../examples/web_cutter.rs"]
+pub mod web_cutter;
+
+/// xorshift64*: deterministic, so a failing state can be reproduced.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let u = (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * u
+    }
+}
