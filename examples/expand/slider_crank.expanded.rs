@@ -58,7 +58,7 @@ impl SliderCrank {
         let v29: f64 = (v24 * c_rod);
         let v32: f64 = (-(v24 * s_rod));
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v68: f64 = (-c_slider);
+        let v72: f64 = (-c_slider);
         out[0] = (-1f64);
         out[1] = v13;
         out[2] = (-1f64);
@@ -78,10 +78,97 @@ impl SliderCrank {
         out[16] = v29;
         out[17] = (-1f64);
         out[18] = s_slider;
-        out[19] = v68;
+        out[19] = v72;
         out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        out[21] = v68;
+        out[21] = v72;
         out[22] = 1f64;
+    }
+    /// Φ, the structural non-zeros of Φ_q (in the order of `JACOBIAN_PATTERN`), ν and γ in
+    /// one evaluation: the sparse twin of `Kinematics::full_eval`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn full_eval_values(
+        &self,
+        q: &[f64; 9],
+        qd: &[f64; 9],
+        t: f64,
+        phi: &mut [f64; 9],
+        out: &mut [f64; 23],
+        nu: &mut [f64; 9],
+        gamma: &mut [f64; 9],
+    ) {
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v13: f64 = (-v12);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let v32: f64 = (-v31);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v72: f64 = (-c_slider);
+        let v119: f64 = (s_slider * qd[8]);
+        let v126: f64 = (c_slider * qd[8]);
+        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
+        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
+        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
+        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
+        let v151: f64 = (qd[6] * v126);
+        let v152: f64 = (qd[8] * v119);
+        let v158: f64 = (qd[7] * v119);
+        phi[0] = (-(q[0] - v10));
+        phi[1] = (-(q[1] - v12));
+        phi[2] = ((v10 + q[0]) - (q[3] - v29));
+        phi[3] = ((v12 + q[1]) - (q[4] - v31));
+        phi[4] = ((v29 + q[3]) - q[6]);
+        phi[5] = ((v31 + q[4]) - q[7]);
+        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+        phi[7] = (-s_slider);
+        phi[8] = (q[2] - (self.omega * t));
+        out[0] = (-1f64);
+        out[1] = v13;
+        out[2] = (-1f64);
+        out[3] = v10;
+        out[4] = 1f64;
+        out[5] = v13;
+        out[6] = (-1f64);
+        out[7] = v32;
+        out[8] = 1f64;
+        out[9] = v10;
+        out[10] = (-1f64);
+        out[11] = v29;
+        out[12] = 1f64;
+        out[13] = v32;
+        out[14] = (-1f64);
+        out[15] = 1f64;
+        out[16] = v29;
+        out[17] = (-1f64);
+        out[18] = s_slider;
+        out[19] = v72;
+        out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        out[21] = v72;
+        out[22] = 1f64;
+        nu[0] = 0f64;
+        nu[1] = 0f64;
+        nu[2] = 0f64;
+        nu[3] = 0f64;
+        nu[4] = 0f64;
+        nu[5] = 0f64;
+        nu[6] = 0f64;
+        nu[7] = 0f64;
+        nu[8] = self.omega;
+        gamma[0] = v134;
+        gamma[1] = v138;
+        gamma[2] = (v134 + v141);
+        gamma[3] = (v138 + v147);
+        gamma[4] = v141;
+        gamma[5] = v147;
+        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
+            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+        gamma[7] = (-v152);
+        gamma[8] = 0f64;
     }
 }
 impl ::mbd::Mechanism for SliderCrank {
@@ -187,8 +274,87 @@ impl ::mbd::Mechanism for SliderCrank {
             div: 2u32,
             call: 3u32,
         },
+        ::mbd::OpCount {
+            function: "full_eval_values",
+            add: 22u32,
+            mul: 29u32,
+            div: 2u32,
+            call: 3u32,
+        },
+        ::mbd::OpCount {
+            function: "forces",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "forces_q",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "forces_qd",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "potential_energy",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
     ];
-    const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
+    const EFFECTS: &'static [&'static str] = &[];
+    const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
+}
+#[allow(unused_variables, unused_parens, clippy::all)]
+impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
+    #[inline]
+    fn mass_diagonal(&self) -> [f64; 9] {
+        let mut m = [0f64; 9];
+        m[0] = 1f64;
+        m[1] = 1f64;
+        m[2] = 0.002f64;
+        m[3] = 2f64;
+        m[4] = 2f64;
+        m[5] = 0.015f64;
+        m[6] = 0.5f64;
+        m[7] = 0.5f64;
+        m[8] = 0.001f64;
+        m
+    }
+    #[inline]
+    fn forces(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, h: &mut [f64; 9]) {
+        h[0] = 0f64;
+        h[1] = 0f64;
+        h[2] = 0f64;
+        h[3] = 0f64;
+        h[4] = 0f64;
+        h[5] = 0f64;
+        h[6] = 0f64;
+        h[7] = 0f64;
+        h[8] = 0f64;
+    }
+    #[inline]
+    fn forces_q(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+        *dh = [[0f64; 9]; 9];
+    }
+    #[inline]
+    fn forces_qd(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+        *dh = [[0f64; 9]; 9];
+    }
+    #[inline]
+    fn potential_energy(&self, q: &[f64; 9], t: f64) -> f64 {
+        let mut energy = [0f64; 1];
+        energy[0] = 0f64;
+        energy[0]
+    }
 }
 #[allow(unused_variables, unused_parens, clippy::all)]
 impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
@@ -253,7 +419,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v29: f64 = (v24 * c_rod);
         let v32: f64 = (-(v24 * s_rod));
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v68: f64 = (-c_slider);
+        let v72: f64 = (-c_slider);
         d[0][0] = (-1f64);
         d[0][2] = v13;
         d[1][1] = (-1f64);
@@ -273,9 +439,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v68;
+        d[6][7] = v72;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v68;
+        d[7][8] = v72;
         d[8][2] = 1f64;
     }
     #[inline]
@@ -297,24 +463,24 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v24: f64 = (self.l / 2f64);
         let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v115: f64 = (s_slider * qd[8]);
-        let v122: f64 = (c_slider * qd[8]);
-        let v130: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v134: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v137: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v143: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v147: f64 = (qd[6] * v122);
-        let v148: f64 = (qd[8] * v115);
-        let v154: f64 = (qd[7] * v115);
-        gamma[0] = v130;
-        gamma[1] = v134;
-        gamma[2] = (v130 + v137);
-        gamma[3] = (v134 + v143);
-        gamma[4] = v137;
-        gamma[5] = v143;
-        gamma[6] = (-((v147 + (v147 - (q[6] * v148)))
-            + (v154 + (v154 + (q[7] * (qd[8] * v122))))));
-        gamma[7] = (-v148);
+        let v119: f64 = (s_slider * qd[8]);
+        let v126: f64 = (c_slider * qd[8]);
+        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
+        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
+        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
+        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
+        let v151: f64 = (qd[6] * v126);
+        let v152: f64 = (qd[8] * v119);
+        let v158: f64 = (qd[7] * v119);
+        gamma[0] = v134;
+        gamma[1] = v138;
+        gamma[2] = (v134 + v141);
+        gamma[3] = (v138 + v147);
+        gamma[4] = v141;
+        gamma[5] = v147;
+        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
+            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+        gamma[7] = (-v152);
         gamma[8] = 0f64;
     }
     #[inline]
@@ -337,7 +503,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v31: f64 = (v24 * s_rod);
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v68: f64 = (-c_slider);
+        let v72: f64 = (-c_slider);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -366,9 +532,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v68;
+        d[6][7] = v72;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v68;
+        d[7][8] = v72;
         d[8][2] = 1f64;
     }
     #[inline]
@@ -394,16 +560,16 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v31: f64 = (v24 * s_rod);
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v68: f64 = (-c_slider);
-        let v115: f64 = (s_slider * qd[8]);
-        let v122: f64 = (c_slider * qd[8]);
-        let v130: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v134: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v137: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v143: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v147: f64 = (qd[6] * v122);
-        let v148: f64 = (qd[8] * v115);
-        let v154: f64 = (qd[7] * v115);
+        let v72: f64 = (-c_slider);
+        let v119: f64 = (s_slider * qd[8]);
+        let v126: f64 = (c_slider * qd[8]);
+        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
+        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
+        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
+        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
+        let v151: f64 = (qd[6] * v126);
+        let v152: f64 = (qd[8] * v119);
+        let v158: f64 = (qd[7] * v119);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -432,9 +598,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v68;
+        d[6][7] = v72;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v68;
+        d[7][8] = v72;
         d[8][2] = 1f64;
         nu[0] = 0f64;
         nu[1] = 0f64;
@@ -445,15 +611,15 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         nu[6] = 0f64;
         nu[7] = 0f64;
         nu[8] = self.omega;
-        gamma[0] = v130;
-        gamma[1] = v134;
-        gamma[2] = (v130 + v137);
-        gamma[3] = (v134 + v143);
-        gamma[4] = v137;
-        gamma[5] = v143;
-        gamma[6] = (-((v147 + (v147 - (q[6] * v148)))
-            + (v154 + (v154 + (q[7] * (qd[8] * v122))))));
-        gamma[7] = (-v148);
+        gamma[0] = v134;
+        gamma[1] = v138;
+        gamma[2] = (v134 + v141);
+        gamma[3] = (v138 + v147);
+        gamma[4] = v141;
+        gamma[5] = v147;
+        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
+            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+        gamma[7] = (-v152);
         gamma[8] = 0f64;
     }
 }

@@ -79,6 +79,18 @@ fn jacobian_outputs(f: &Formulation) -> Vec<Output> {
         .collect()
 }
 
+/// Outputs `name[r][c] = node` for sparse matrix entries.
+fn matrix_outputs(name: &str, entries: &[(usize, usize, u32)]) -> Vec<Output> {
+    let name = format_ident!("{}", name);
+    entries
+        .iter()
+        .map(|&(r, c, node)| {
+            let (r, c) = (usize_lit(r), usize_lit(c));
+            Output { target: quote!(#name[#r][#c]), node }
+        })
+        .collect()
+}
+
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let f = formulate(m);
@@ -127,6 +139,20 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     full_values.extend(vector_outputs("gamma", &f.gamma));
     let (full_values_body, full_values_ops) = e.body(&full_values);
     let (q0_body, _) = e.body(&vector_outputs("q", &f.q0));
+    let (mass_body, _) = e.body(&vector_outputs("m", &f.mass));
+    let (h_body, h_ops) = e.body(&vector_outputs("h", &f.h));
+    let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
+    let (h_qd_body, h_qd_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
+    let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
+    let mut effects: Vec<&str> = Vec::new();
+    if m.gravity.is_some() {
+        effects.push("gravity");
+    }
+    for element in &m.forces {
+        if !effects.contains(&element.effect()) {
+            effects.push(element.effect());
+        }
+    }
     let (qd0_body, _) = e.body(&vector_outputs("qd", &f.qd0));
 
     let op_counts = [
@@ -138,6 +164,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("position_eval", pos_ops),
         op_count("full_eval", full_ops),
         op_count("full_eval_values", full_values_ops),
+        op_count("forces", h_ops),
+        op_count("forces_q", h_q_ops),
+        op_count("forces_qd", h_qd_ops),
+        op_count("potential_energy", v_ops),
     ];
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
@@ -234,7 +264,38 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[#(#pattern_tokens),*];
             const PHI_T_IS_ZERO: bool = #phi_t_zero;
             const OP_COUNTS: &'static [::mbd::OpCount] = &[#(#op_counts),*];
+            const EFFECTS: &'static [&'static str] = &[#(#effects),*];
             const MODEL_JSON: &'static str = #json;
+        }
+
+        #[allow(unused_variables, unused_parens, clippy::all)]
+        impl ::mbd::Dynamics<#real, #nq_l, #nc_l> for #name {
+            #[inline]
+            fn mass_diagonal(&self) -> [#real; #nq_l] {
+                let mut m = [#zero; #nq_l];
+                #mass_body
+                m
+            }
+            #[inline]
+            fn forces(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, h: &mut [#real; #nq_l]) {
+                #h_body
+            }
+            #[inline]
+            fn forces_q(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, dh: &mut [[#real; #nq_l]; #nq_l]) {
+                *dh = [[#zero; #nq_l]; #nq_l];
+                #h_q_body
+            }
+            #[inline]
+            fn forces_qd(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, dh: &mut [[#real; #nq_l]; #nq_l]) {
+                *dh = [[#zero; #nq_l]; #nq_l];
+                #h_qd_body
+            }
+            #[inline]
+            fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
+                let mut energy = [#zero; 1];
+                #v_body
+                energy[0]
+            }
         }
 
         #[allow(unused_variables, unused_parens, clippy::all)]

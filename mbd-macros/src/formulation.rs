@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use crate::model::{BodyRef, ConstraintKind, Coord, Loc, MBin, MExpr, Model};
+use crate::model::{BodyRef, ConstraintKind, Coord, ForceKind, Loc, MBin, MExpr, Model};
 use crate::sym::{Func, Graph, Id, Node, Var};
 
 /// The symbolic equations of one mechanism.
@@ -25,6 +25,15 @@ pub struct Formulation {
     /// Initial guesses of q and q̇ (functions of the parameters).
     pub q0: Vec<Id>,
     pub qd0: Vec<Id>,
+    /// Diagonal of the mass matrix: (m, m, J) per body.
+    pub mass: Vec<Id>,
+    /// h(q, q̇, t), one node per coordinate.
+    pub h: Vec<Id>,
+    /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
+    pub h_q: Vec<(usize, usize, Id)>,
+    pub h_qd: Vec<(usize, usize, Id)>,
+    /// Potential energy of gravity and springs, V(q).
+    pub potential: Id,
 }
 
 impl Formulation {
@@ -48,6 +57,10 @@ impl Builder<'_> {
             MExpr::T => self.g.var(Var::T),
             MExpr::Param(k) => self.g.var(Var::Param(*k as u16)),
             MExpr::Coord(b, c) => self.coord(*b, *c),
+            MExpr::Vel(b, c) => match b {
+                BodyRef::Ground => self.g.num(0.0),
+                BodyRef::Body(k) => self.g.var(Var::Qd((3 * k + c.index()) as u16)),
+            },
             MExpr::Neg(a) => {
                 let a = self.expr(a);
                 self.g.neg(a)
@@ -145,6 +158,159 @@ impl Builder<'_> {
         self.g.mul(half, r)
     }
 
+    /// ∂f/∂q_k for every coordinate k that f depends on.
+    fn gradient(&mut self, f: Id) -> Vec<(usize, Id)> {
+        let mut cols = BTreeSet::new();
+        collect_vars(&self.g, f, &mut cols, |v| if let Var::Q(i) = v { Some(i) } else { None });
+        let mut memo = HashMap::new();
+        cols.into_iter()
+            .map(|c| {
+                memo.clear();
+                (c as usize, self.g.diff(f, Var::Q(c), &mut memo))
+            })
+            .collect()
+    }
+
+    /// ḟ = f_q q̇ for a function of q only.
+    fn rate(&mut self, f: Id) -> Id {
+        let qd: Vec<Id> = (0..self.model.n_coordinates()).map(|i| self.g.var(Var::Qd(i as u16))).collect();
+        let seed = |v: Var| match v {
+            Var::Q(i) => Some(qd[i as usize]),
+            _ => None,
+        };
+        self.g.directional(f, &seed, &mut HashMap::new())
+    }
+
+    /// h += −f ∂s/∂q: the generalized force of a force f that does work −f δs.
+    fn add_along(&mut self, h: &mut [Id], s: Id, f: Id) {
+        for (k, ds) in self.gradient(s) {
+            let w = self.g.mul(f, ds);
+            h[k] = self.g.sub(h[k], w);
+        }
+    }
+
+    /// k (x − x0) + c ẋ + extra, each term only when declared.
+    fn law(&mut self, x: Id, xdot: Id, k: &Option<MExpr>, x0: &MExpr, c: &Option<MExpr>, extra: &Option<MExpr>) -> (Id, Option<(Id, Id)>) {
+        let mut f = self.g.num(0.0);
+        let mut spring = None;
+        if let Some(k) = k {
+            let k = self.expr(k);
+            let x0 = self.expr(x0);
+            let stretch = self.g.sub(x, x0);
+            let fk = self.g.mul(k, stretch);
+            f = self.g.add(f, fk);
+            spring = Some((k, stretch));
+        }
+        if let Some(c) = c {
+            let c = self.expr(c);
+            let fc = self.g.mul(c, xdot);
+            f = self.g.add(f, fc);
+        }
+        if let Some(e) = extra {
+            let e = self.expr(e);
+            f = self.g.add(f, e);
+        }
+        (f, spring)
+    }
+
+    /// ½ k s² added to the potential energy.
+    fn add_spring_energy(&mut self, v: Id, spring: Option<(Id, Id)>) -> Id {
+        match spring {
+            None => v,
+            Some((k, s)) => {
+                let s2 = self.g.powi(s, 2);
+                let ks2 = self.g.mul(k, s2);
+                let half = self.g.num(0.5);
+                let e = self.g.mul(half, ks2);
+                self.g.add(v, e)
+            }
+        }
+    }
+
+    /// The generalized forces h and the potential energy V of gravity and every force element.
+    fn forces(&mut self) -> (Vec<Id>, Id) {
+        let model = self.model;
+        let zero = self.g.num(0.0);
+        let mut h = vec![zero; model.n_coordinates()];
+        let mut v = zero;
+        if let Some(g) = &model.gravity {
+            let g = [self.expr(&g[0]), self.expr(&g[1])];
+            for (k, body) in model.bodies.iter().enumerate() {
+                let m = self.expr(&body.mass);
+                for a in 0..2 {
+                    let w = self.g.mul(m, g[a]);
+                    h[3 * k + a] = self.g.add(h[3 * k + a], w);
+                    // V = −m gᵀ r
+                    let r = self.g.var(Var::Q((3 * k + a) as u16));
+                    let e = self.g.mul(w, r);
+                    v = self.g.sub(v, e);
+                }
+            }
+        }
+        for element in &model.forces {
+            match &element.kind {
+                ForceKind::PointToPoint { i, j, k, length, c, force } => {
+                    let pi = self.point(i);
+                    let pj = self.point(j);
+                    let d = self.diff2(pj, pi);
+                    let dd = self.dot(d, d);
+                    let l = self.g.call(Func::Sqrt, dd);
+                    let ldot = self.rate(l);
+                    let (f, spring) = self.law(l, ldot, k, length, c, force);
+                    self.add_along(&mut h, l, f);
+                    v = self.add_spring_energy(v, spring);
+                }
+                ForceKind::Rotational { i, j, k, angle, c, torque } => {
+                    let fi = self.coord(*i, Coord::Phi);
+                    let fj = self.coord(*j, Coord::Phi);
+                    let theta = self.g.sub(fj, fi);
+                    let thetadot = self.rate(theta);
+                    let (tau, spring) = self.law(theta, thetadot, k, angle, c, torque);
+                    self.add_along(&mut h, theta, tau);
+                    v = self.add_spring_energy(v, spring);
+                }
+                ForceKind::Applied { at, force, local } => {
+                    let mut f = [self.expr(&force[0]), self.expr(&force[1])];
+                    if *local {
+                        f = self.rotate(at.body, f);
+                    }
+                    let p = self.point(at);
+                    // h_k += Fᵀ ∂r_P/∂q_k
+                    for a in 0..2 {
+                        for (k, dp) in self.gradient(p[a]) {
+                            let w = self.g.mul(f[a], dp);
+                            h[k] = self.g.add(h[k], w);
+                        }
+                    }
+                }
+                ForceKind::Torque { body, torque } => {
+                    let tau = self.expr(torque);
+                    let k = 3 * body + 2;
+                    h[k] = self.g.add(h[k], tau);
+                }
+                ForceKind::RevoluteViscous { i, j, c } => {
+                    let fi = self.coord(*i, Coord::Phi);
+                    let fj = self.coord(*j, Coord::Phi);
+                    let theta = self.g.sub(fj, fi);
+                    let thetadot = self.rate(theta);
+                    let (tau, _) = self.law(theta, thetadot, &None, &MExpr::Num(0.0), &Some(c.clone()), &None);
+                    self.add_along(&mut h, theta, tau);
+                }
+                ForceKind::TranslationalViscous { i, axis_i, j, c } => {
+                    let pi = self.point(i);
+                    let pj = self.point(j);
+                    let ui = self.unit(i.body, axis_i);
+                    let d = self.diff2(pj, pi);
+                    let s = self.dot(ui, d);
+                    let sdot = self.rate(s);
+                    let (f, _) = self.law(s, sdot, &None, &MExpr::Num(0.0), &Some(c.clone()), &None);
+                    self.add_along(&mut h, s, f);
+                }
+            }
+        }
+        (h, v)
+    }
+
     /// The rows of one constraint (docs/formulation.md).
     fn rows(&mut self, kind: &ConstraintKind) -> Vec<Id> {
         match kind {
@@ -219,29 +385,24 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let mut q0 = Vec::with_capacity(nq);
     let mut qd0 = Vec::with_capacity(nq);
+    let mut mass = Vec::with_capacity(nq);
     for body in &b.model.bodies {
         for k in 0..3 {
             q0.push(b.expr(&body.q0[k]));
             qd0.push(b.expr(&body.qd0[k]));
         }
+        let m = b.expr(&body.mass);
+        let j = b.expr(&body.inertia);
+        mass.extend([m, m, j]);
     }
+    let (h, potential) = b.forces();
     let mut g = b.g;
+    let h_q = sparse_derivative(&mut g, &h, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
+    let h_qd = sparse_derivative(&mut g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
 
     // Φ_q: differentiate each row only by the coordinates it contains; every other entry is a
     // structural zero.
-    let mut jacobian = Vec::new();
-    for (r, &row) in phi.iter().enumerate() {
-        let mut cols = BTreeSet::new();
-        collect_q(&g, row, &mut cols);
-        let mut memo = HashMap::new();
-        for c in cols {
-            memo.clear();
-            let d = g.diff(row, Var::Q(c), &mut memo);
-            if !g.is_zero(d) {
-                jacobian.push((r, c as usize, d));
-            }
-        }
-    }
+    let jacobian = sparse_derivative(&mut g, &phi, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
 
     // ν = −Φ_t
     let mut memo_t = HashMap::new();
@@ -271,19 +432,44 @@ pub fn formulate(model: &Model) -> Formulation {
         })
         .collect();
 
-    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0 }
+    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential }
 }
 
-/// The coordinates a node depends on.
-fn collect_q(g: &Graph, root: Id, out: &mut BTreeSet<u16>) {
+/// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.
+fn sparse_derivative(
+    g: &mut Graph,
+    rows: &[Id],
+    pick: impl Fn(Var) -> Option<u16> + Copy,
+    var: impl Fn(u16) -> Var,
+) -> Vec<(usize, usize, Id)> {
+    let mut out = Vec::new();
+    for (r, &row) in rows.iter().enumerate() {
+        let mut cols = BTreeSet::new();
+        collect_vars(g, row, &mut cols, pick);
+        let mut memo = HashMap::new();
+        for c in cols {
+            memo.clear();
+            let d = g.diff(row, var(c), &mut memo);
+            if !g.is_zero(d) {
+                out.push((r, c as usize, d));
+            }
+        }
+    }
+    out
+}
+
+/// The indices of the variables selected by `pick` that a node depends on.
+fn collect_vars(g: &Graph, root: Id, out: &mut BTreeSet<u16>, pick: impl Fn(Var) -> Option<u16>) {
     let mut seen = std::collections::HashSet::new();
     let mut stack = vec![root];
     while let Some(id) = stack.pop() {
         if !seen.insert(id) {
             continue;
         }
-        if let Node::Var(Var::Q(i)) = g.node(id) {
-            out.insert(i);
+        if let Node::Var(v) = g.node(id) {
+            if let Some(i) = pick(v) {
+                out.insert(i);
+            }
         }
         stack.extend(g.children(id).into_iter().flatten());
     }

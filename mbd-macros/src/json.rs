@@ -4,7 +4,7 @@
 
 use serde_json::{json, Value};
 
-use crate::model::{BodyRef, ConstraintKind, Loc, MBin, MExpr, Model};
+use crate::model::{BodyRef, ConstraintKind, ForceKind, Loc, MBin, MExpr, Model};
 
 fn expr(m: &Model, e: &MExpr) -> Value {
     match e {
@@ -13,6 +13,7 @@ fn expr(m: &Model, e: &MExpr) -> Value {
         MExpr::T => json!(["t"]),
         MExpr::Param(k) => json!(["param", m.params[*k].name.to_string()]),
         MExpr::Coord(b, c) => json!(["coord", m.body_name(*b), c.name()]),
+        MExpr::Vel(b, c) => json!(["vel", m.body_name(*b), c.name()]),
         MExpr::Neg(a) => json!(["neg", expr(m, a)]),
         MExpr::Bin(op, a, b) => {
             let op = match op {
@@ -74,6 +75,35 @@ fn constraint(m: &Model, name: &str, k: &ConstraintKind) -> Value {
     }
 }
 
+fn opt(m: &Model, e: &Option<MExpr>) -> Value {
+    e.as_ref().map_or(Value::Null, |e| expr(m, e))
+}
+
+fn force(m: &Model, name: &str, k: &ForceKind) -> Value {
+    match k {
+        ForceKind::PointToPoint { i, j, k, length, c, force } => json!({
+            "kind": "point_to_point", "name": name, "i": loc(m, i), "j": loc(m, j),
+            "k": opt(m, k), "length": expr(m, length), "c": opt(m, c), "force": opt(m, force)
+        }),
+        ForceKind::Rotational { i, j, k, angle, c, torque } => json!({
+            "kind": "rotational", "name": name, "i": m.body_name(*i), "j": m.body_name(*j),
+            "k": opt(m, k), "angle": expr(m, angle), "c": opt(m, c), "torque": opt(m, torque)
+        }),
+        ForceKind::Applied { at, force, local } => {
+            json!({"kind": if *local { "local_force" } else { "force" }, "name": name, "at": loc(m, at), "force": pair(m, force)})
+        }
+        ForceKind::Torque { body, torque } => {
+            json!({"kind": "torque", "name": name, "body": m.body_name(BodyRef::Body(*body)), "torque": expr(m, torque)})
+        }
+        ForceKind::RevoluteViscous { i, j, c } => {
+            json!({"kind": "revolute_viscous", "name": name, "i": m.body_name(*i), "j": m.body_name(*j), "c": expr(m, c)})
+        }
+        ForceKind::TranslationalViscous { i, axis_i, j, c } => {
+            json!({"kind": "translational_viscous", "name": name, "i": loc_axis(m, i, axis_i), "j": loc(m, j), "c": expr(m, c)})
+        }
+    }
+}
+
 /// The model JSON text.
 pub fn model_json(m: &Model, jacobian_pattern: &[(usize, usize)]) -> String {
     let locals = |list: &[crate::model::Local]| -> Vec<Value> {
@@ -96,6 +126,8 @@ pub fn model_json(m: &Model, jacobian_pattern: &[(usize, usize)]) -> String {
         "constraint_rows": m.row_names(),
         "jacobian_pattern": jacobian_pattern.iter().map(|&(r, c)| json!([r, c])).collect::<Vec<_>>(),
         "constraints": m.constraints.iter().map(|c| constraint(m, &c.name, &c.kind)).collect::<Vec<_>>(),
+        "gravity": m.gravity.as_ref().map_or(Value::Null, |g| pair(m, g)),
+        "forces": m.forces.iter().map(|f| force(m, &f.name, &f.kind)).collect::<Vec<_>>(),
     });
     v.to_string()
 }

@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::Span;
 use syn::{Attribute, Ident, Visibility};
 
-use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
+use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Field, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::Func;
 
 /// The errors of one expansion, combined into one at the end.
@@ -88,6 +88,14 @@ impl Coord {
             _ => None,
         }
     }
+    fn from_velocity_ident(id: &Ident) -> Option<Coord> {
+        match id.to_string().as_str() {
+            "vx" => Some(Coord::X),
+            "vy" => Some(Coord::Y),
+            "omega" => Some(Coord::Phi),
+            _ => None,
+        }
+    }
 }
 
 /// A resolved expression.
@@ -98,6 +106,8 @@ pub enum MExpr {
     T,
     Param(usize),
     Coord(BodyRef, Coord),
+    /// A body velocity ẋ, ẏ or φ̇ (force expressions only).
+    Vel(BodyRef, Coord),
     Neg(Box<MExpr>),
     Bin(MBin, Box<MExpr>, Box<MExpr>),
     Call(Func, Box<MExpr>),
@@ -119,7 +129,7 @@ impl MExpr {
         Some(match self {
             MExpr::Num(v) => *v,
             MExpr::Pi => std::f64::consts::PI,
-            MExpr::T | MExpr::Param(_) | MExpr::Coord(..) => return None,
+            MExpr::T | MExpr::Param(_) | MExpr::Coord(..) | MExpr::Vel(..) => return None,
             MExpr::Neg(a) => -a.constant_value()?,
             MExpr::Bin(op, a, b) => {
                 let (a, b) = (a.constant_value()?, b.constant_value()?);
@@ -161,6 +171,8 @@ enum Scope {
     Time,
     /// Also coordinates: user constraints.
     State,
+    /// Also velocities: forces.
+    Force,
 }
 
 impl Scope {
@@ -169,7 +181,8 @@ impl Scope {
             Scope::Constant => "a parameter default is a constant: numbers, `PI` and functions of them",
             Scope::Params => "geometry, masses and initial values may use numbers, `PI` and parameters, not `t` or coordinates",
             Scope::Time => "a driver is a function of `t` and parameters, not of coordinates",
-            Scope::State => "",
+            Scope::State => "a constraint is a function of coordinates, `t` and parameters, not of velocities",
+            Scope::Force => "",
         }
     }
 }
@@ -239,6 +252,43 @@ impl ConstraintKind {
     }
 }
 
+/// A force element (Nikravesh ch. 4): what it adds to h(q, q̇, t) and to the potential energy.
+#[derive(Clone, Debug)]
+pub enum ForceKind {
+    /// Point-to-point spring–damper–actuator: tension f = k (l − length) + c l̇ + force.
+    PointToPoint { i: Loc, j: Loc, k: Option<MExpr>, length: MExpr, c: Option<MExpr>, force: Option<MExpr> },
+    /// Rotational spring–damper–actuator on θ = φ_j − φ_i: τ = k (θ − angle) + c θ̇ + torque,
+    /// resisting θ.
+    Rotational { i: BodyRef, j: BodyRef, k: Option<MExpr>, angle: MExpr, c: Option<MExpr>, torque: Option<MExpr> },
+    /// A force at a point, components in the global frame or, `local`, in the body's frame.
+    Applied { at: Loc, force: [MExpr; 2], local: bool },
+    /// A torque on a body (N·m, counter-clockwise positive).
+    Torque { body: usize, torque: MExpr },
+    /// Viscous friction in a revolute joint: torque c (φ̇_j − φ̇_i) resisting relative rotation.
+    RevoluteViscous { i: BodyRef, j: BodyRef, c: MExpr },
+    /// Viscous friction in a translational joint: force c ṡ resisting sliding, s = u_iᵀ(r_Pj − r_Pi).
+    TranslationalViscous { i: Loc, axis_i: [MExpr; 2], j: Loc, c: MExpr },
+}
+
+pub struct ForceElement {
+    /// `"spring crank~rod"`, or the user's label.
+    pub name: String,
+    pub kind: ForceKind,
+}
+
+impl ForceElement {
+    /// The effect this element adds (for `Mechanism::EFFECTS`).
+    pub fn effect(&self) -> &'static str {
+        match &self.kind {
+            ForceKind::PointToPoint { .. } => "point-to-point spring-damper-actuator",
+            ForceKind::Rotational { .. } => "rotational spring-damper-actuator",
+            ForceKind::Applied { .. } => "applied force",
+            ForceKind::Torque { .. } => "applied torque",
+            ForceKind::RevoluteViscous { .. } | ForceKind::TranslationalViscous { .. } => "viscous joint friction",
+        }
+    }
+}
+
 pub struct Constraint {
     /// `"revolute crank~rod"`, or the user's label.
     pub name: String,
@@ -256,6 +306,9 @@ pub struct Model {
     pub points: Vec<Local>,
     pub vectors: Vec<Local>,
     pub constraints: Vec<Constraint>,
+    /// Gravitational acceleration (m/s²), if declared.
+    pub gravity: Option<[MExpr; 2]>,
+    pub forces: Vec<ForceElement>,
 }
 
 impl Model {
@@ -351,16 +404,28 @@ impl Resolver<'_> {
                 }
             }
             ExprKind::Coord(b, c) => {
-                if scope != Scope::State {
-                    self.errors.at_expr(e, format!("coordinate `{b}.{c}` is not allowed here: {}", scope.describe()));
+                let position = Coord::from_ident(c);
+                let velocity = Coord::from_velocity_ident(c);
+                if position.is_none() && velocity.is_none() {
+                    self.errors.push(c.span(), format!("unknown coordinate `{c}`: a body has `x`, `y`, `phi` and, in forces, velocities `vx`, `vy`, `omega`"));
+                    return None;
+                }
+                let allowed = match (position, scope) {
+                    (Some(_), Scope::State | Scope::Force) => true,
+                    (None, Scope::Force) => true,
+                    _ => false,
+                };
+                if !allowed {
+                    let what = if position.is_some() { "coordinate" } else { "velocity" };
+                    self.errors.at_expr(e, format!("{what} `{b}.{c}` is not allowed here: {}", scope.describe()));
                     return None;
                 }
                 let body = self.body(b)?;
-                let Some(coord) = Coord::from_ident(c) else {
-                    self.errors.push(c.span(), format!("unknown coordinate `{c}`: a body has `x`, `y` and `phi`"));
-                    return None;
-                };
-                MExpr::Coord(body, coord)
+                match (position, velocity) {
+                    (Some(coord), _) => MExpr::Coord(body, coord),
+                    (None, Some(coord)) => MExpr::Vel(body, coord),
+                    (None, None) => return None,
+                }
             }
             ExprKind::Neg(a) => MExpr::Neg(Box::new(self.expr(a, scope)?)),
             ExprKind::Bin(op, a, b) => {
@@ -658,11 +723,12 @@ impl MechanismDef {
             BodyRef::Body(k) => bodies[k].name.to_string(),
         };
         let mut constraints = Vec::new();
+        let mut forces = Vec::new();
         let mut names: HashMap<String, Span> = HashMap::new();
         let mut driven: HashMap<(usize, Coord), Span> = HashMap::new();
         let mut driven_angles: HashSet<(BodyRef, BodyRef)> = HashSet::new();
         for (index, item) in self.items.iter().enumerate() {
-            let built: Option<(Option<&Ident>, String, Span, ConstraintKind)> = match item {
+            let built: Option<(Option<&Ident>, String, Span, ConstraintKind, Option<ForceKind>)> = match item {
                 Item::Joint(j) => self.joint(&mut r, j, &body_name),
                 Item::Fix(f) => {
                     let body = r.body(&f.body);
@@ -686,7 +752,7 @@ impl MechanismDef {
                                 };
                                 value.map(|value| {
                                     let name = format!("fix {}.{}", f.body, coord.name());
-                                    (f.label.as_ref(), name, f.keyword.span(), ConstraintKind::Fix { body: k, coord, value })
+                                    (f.label.as_ref(), name, f.keyword.span(), ConstraintKind::Fix { body: k, coord, value }, None)
                                 })
                             }
                         }
@@ -712,7 +778,7 @@ impl MechanismDef {
                                         r.errors.push(coordinate.span(), format!("`{body}.{}` is already fixed or driven", coord.name()));
                                         None
                                     } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive {body}.{}", coord.name()), d.keyword.span(), ConstraintKind::Drive { body: k, coord, f }))
+                                        f.map(|f| (d.label.as_ref(), format!("drive {body}.{}", coord.name()), d.keyword.span(), ConstraintKind::Drive { body: k, coord, f }, None))
                                     }
                                 }
                                 _ => None,
@@ -731,7 +797,7 @@ impl MechanismDef {
                                         r.errors.push(i.span(), format!("the angle between `{i}` and `{j}` is already driven"));
                                         None
                                     } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), ConstraintKind::DriveAngle { i: bi, j: bj, f }))
+                                        f.map(|f| (d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), ConstraintKind::DriveAngle { i: bi, j: bj, f }, None))
                                     }
                                 }
                                 _ => None,
@@ -747,7 +813,7 @@ impl MechanismDef {
                                 }
                                 (Some(li), Some(lj), Some(f)) => {
                                     let name = format!("drive distance {}~{}", i.0, j.0);
-                                    Some((d.label.as_ref(), name, d.keyword.span(), ConstraintKind::DriveDistance { i: li, j: lj, f }))
+                                    Some((d.label.as_ref(), name, d.keyword.span(), ConstraintKind::DriveDistance { i: li, j: lj, f }, None))
                                 }
                                 _ => None,
                             }
@@ -763,7 +829,79 @@ impl MechanismDef {
                                 Some(v) if v == 0.0 => l,
                                 _ => MExpr::Bin(MBin::Sub, Box::new(l), Box::new(rh)),
                             };
-                            Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), ConstraintKind::User { expr }))
+                            Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), ConstraintKind::User { expr }, None))
+                        }
+                        _ => None,
+                    }
+                }
+                _ => continue,
+            };
+            let Some((label, default_name, span, kind, friction)) = built else {
+                ok = false;
+                continue;
+            };
+            let (name, span) = match label {
+                Some(l) => (l.to_string(), l.span()),
+                None => (default_name, span),
+            };
+            if names.insert(name.clone(), span).is_some() {
+                let msg = if label.is_some() {
+                    format!("duplicate name `{name}`")
+                } else {
+                    format!("a second `{name}`: give one of them a name, e.g. `{} name: ...`", name.split(' ').next().unwrap_or(""))
+                };
+                r.errors.push(span, msg);
+                ok = false;
+                continue;
+            }
+            if let Some(kind) = friction {
+                forces.push(ForceElement { name: format!("{name} viscous friction"), kind });
+            }
+            constraints.push(Constraint { name, kind });
+        }
+
+        // Force elements (Nikravesh ch. 4).
+        let mut gravity = None;
+        for item in &self.items {
+            let built: Option<(Option<&Ident>, String, Span, ForceKind)> = match item {
+                Item::Gravity(kw, v) => {
+                    if gravity.is_some() {
+                        r.errors.push(kw.span(), "gravity is declared twice");
+                        ok = false;
+                    }
+                    gravity = r.list::<2>(v, Scope::Params, "gravity `[gx, gy]` (m/s²)");
+                    if gravity.is_none() {
+                        ok = false;
+                    }
+                    continue;
+                }
+                Item::PointForce(f) => self.point_force(&mut r, f, &body_name),
+                Item::RotationalForce(f) => self.rotational_force(&mut r, f),
+                Item::Force(f) => {
+                    let at = r.loc(&f.body, &f.point);
+                    let value = r.list::<2>(&f.value, Scope::Force, "a force `[fx, fy]` (N)");
+                    match (at, value) {
+                        (Some(at), _) if at.body == BodyRef::Ground => {
+                            r.errors.push(f.body.span(), "a force on the ground does nothing: apply it to a moving body");
+                            None
+                        }
+                        (Some(at), Some(force)) => {
+                            let local = f.kind == "local_force";
+                            Some((f.label.as_ref(), format!("{} on {}", f.kind, f.body), f.kind.span(), ForceKind::Applied { at, force, local }))
+                        }
+                        _ => None,
+                    }
+                }
+                Item::Torque(tq) => {
+                    let body = r.body(&tq.body);
+                    let torque = r.expr(&tq.value, Scope::Force);
+                    match (body, torque) {
+                        (Some(BodyRef::Ground), _) => {
+                            r.errors.push(tq.body.span(), "a torque on the ground does nothing: apply it to a moving body");
+                            None
+                        }
+                        (Some(BodyRef::Body(k)), Some(torque)) => {
+                            Some((tq.label.as_ref(), format!("torque on {}", tq.body), tq.keyword.span(), ForceKind::Torque { body: k, torque }))
                         }
                         _ => None,
                     }
@@ -788,7 +926,7 @@ impl MechanismDef {
                 ok = false;
                 continue;
             }
-            constraints.push(Constraint { name, kind });
+            forces.push(ForceElement { name, kind });
         }
 
         if bodies.is_empty() {
@@ -808,6 +946,8 @@ impl MechanismDef {
             points,
             vectors,
             constraints,
+            gravity,
+            forces,
         })
     }
 
@@ -817,7 +957,7 @@ impl MechanismDef {
         r: &mut Resolver,
         j: &'a parse::JointDef,
         body_name: &dyn Fn(BodyRef) -> String,
-    ) -> Option<(Option<&'a Ident>, String, Span, ConstraintKind)> {
+    ) -> Option<(Option<&'a Ident>, String, Span, ConstraintKind, Option<ForceKind>)> {
         let kind = j.kind.to_string();
         let li = r.loc(&j.i.body, &j.i.point);
         let lj = r.loc(&j.j.body, &j.j.point);
@@ -828,8 +968,8 @@ impl MechanismDef {
         }
         // Which sides take an axis, and which options the kind knows.
         let (axis_i_needed, axis_j_needed, known_options): (bool, bool, &[&str]) = match kind.as_str() {
-            "revolute" => (false, false, &[]),
-            "translational" => (true, true, &[]),
+            "revolute" => (false, false, &["viscous"]),
+            "translational" => (true, true, &["viscous"]),
             "revolute_revolute" => (false, false, &["length"]),
             "revolute_translational" => (false, true, &["distance"]),
             "rigid" => (false, false, &["angle"]),
@@ -882,6 +1022,10 @@ impl MechanismDef {
             return None;
         }
         let zero = || MExpr::Num(0.0);
+        let friction = options.remove("viscous").map(|c| match &axis_i {
+            Some(axis_i) => ForceKind::TranslationalViscous { i: li.clone(), axis_i: axis_i.clone(), j: lj.clone(), c },
+            None => ForceKind::RevoluteViscous { i: li.body, j: lj.body, c },
+        });
         let ck = match kind.as_str() {
             "revolute" => ConstraintKind::Revolute { i: li.clone(), j: lj.clone() },
             "translational" => ConstraintKind::Translational { i: li.clone(), axis_i: axis_i?, j: lj.clone(), axis_j: axis_j? },
@@ -902,6 +1046,119 @@ impl MechanismDef {
             _ => unreachable!(),
         };
         let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
-        Some((j.label.as_ref(), name, j.kind.span(), ck))
+        Some((j.label.as_ref(), name, j.kind.span(), ck, friction))
+    }
+
+    /// The options of a force element: each known name at most once, each a number-valued
+    /// expression of the given scope.
+    fn force_options(&self, r: &mut Resolver, kind: &Ident, fields: &[Field], known: &[(&str, Scope)]) -> Option<HashMap<String, MExpr>> {
+        let mut out = HashMap::new();
+        let mut bad = false;
+        for f in fields {
+            let key = f.name.to_string();
+            let Some(&(_, scope)) = known.iter().find(|(n, _)| *n == key) else {
+                let list: Vec<&str> = known.iter().map(|(n, _)| *n).collect();
+                r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} (it takes: {})", list.join(", ")));
+                bad = true;
+                continue;
+            };
+            match &f.value {
+                Value::List(v) => {
+                    r.errors.push(v.span, format!("`{key}` is a number, not a list"));
+                    bad = true;
+                }
+                Value::Expr(e) => match r.expr(e, scope) {
+                    Some(m) => {
+                        if out.insert(key.clone(), m).is_some() {
+                            r.errors.push(f.name.span(), format!("duplicate option `{key}`"));
+                            bad = true;
+                        }
+                    }
+                    None => bad = true,
+                },
+            }
+        }
+        (!bad).then_some(out)
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn point_force<'a>(
+        &self,
+        r: &mut Resolver,
+        f: &'a parse::JointDef,
+        body_name: &dyn Fn(BodyRef) -> String,
+    ) -> Option<(Option<&'a Ident>, String, Span, ForceKind)> {
+        let kind = f.kind.to_string();
+        let li = r.loc(&f.i.body, &f.i.point);
+        let lj = r.loc(&f.j.body, &f.j.point);
+        for side in [&f.i, &f.j] {
+            if let Some(a) = &side.along {
+                r.errors.push(a.keyword.span(), format!("a {kind} acts along the line between its points: it takes no axis"));
+                return None;
+            }
+        }
+        let known = [("k", Scope::Params), ("length", Scope::Params), ("c", Scope::Params), ("force", Scope::Force)];
+        let mut o = self.force_options(r, &f.kind, &f.options, &known)?;
+        let (li, lj) = (li?, lj?);
+        if li.body == lj.body {
+            r.errors.push(f.j.body.span(), format!("a {kind} of body `{}` to itself does nothing: it connects two different bodies", f.j.body));
+            return None;
+        }
+        let required = match kind.as_str() {
+            "spring" => ("k", "a spring needs its stiffness: `{ k: 2.0e3, length: 0.3 }` (N/m, m)"),
+            "damper" => ("c", "a damper needs its damping coefficient: `{ c: 50.0 }` (N·s/m)"),
+            _ => ("force", "an actuator needs its force: `{ force: 100.0 * sin(t) }` (N, tension positive)"),
+        };
+        if !o.contains_key(required.0) {
+            r.errors.push(f.kind.span(), required.1);
+            return None;
+        }
+        if o.contains_key("k") && !o.contains_key("length") {
+            r.errors.push(f.kind.span(), "a spring needs its free length: `length: 0.3` (m)");
+            return None;
+        }
+        let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
+        let kind = ForceKind::PointToPoint {
+            i: li,
+            j: lj,
+            k: o.remove("k"),
+            length: o.remove("length").unwrap_or(MExpr::Num(0.0)),
+            c: o.remove("c"),
+            force: o.remove("force"),
+        };
+        Some((f.label.as_ref(), name, f.kind.span(), kind))
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn rotational_force<'a>(&self, r: &mut Resolver, f: &'a parse::RotationalDef) -> Option<(Option<&'a Ident>, String, Span, ForceKind)> {
+        let kind = f.kind.to_string();
+        let bi = r.body(&f.i);
+        let bj = r.body(&f.j);
+        let known = [("k", Scope::Params), ("angle", Scope::Params), ("c", Scope::Params), ("torque", Scope::Force)];
+        let mut o = self.force_options(r, &f.kind, &f.options, &known)?;
+        let (bi, bj) = (bi?, bj?);
+        if bi == bj {
+            r.errors.push(f.j.span(), format!("a {kind} of body `{}` to itself does nothing: it connects two different bodies", f.j));
+            return None;
+        }
+        let required = match kind.as_str() {
+            "rotational_spring" => ("k", "a rotational spring needs its stiffness: `{ k: 50.0 }` (N·m/rad)"),
+            "rotational_damper" => ("c", "a rotational damper needs its damping coefficient: `{ c: 0.5 }` (N·m·s/rad)"),
+            _ => ("torque", "a torque actuator needs its torque: `{ torque: 2.0 * sin(t) }` (N·m)"),
+        };
+        if !o.contains_key(required.0) {
+            r.errors.push(f.kind.span(), required.1);
+            return None;
+        }
+        let name = format!("{kind} {}~{}", f.i, f.j);
+        let kind = ForceKind::Rotational {
+            i: bi,
+            j: bj,
+            k: o.remove("k"),
+            angle: o.remove("angle").unwrap_or(MExpr::Num(0.0)),
+            c: o.remove("c"),
+            torque: o.remove("torque"),
+        };
+        Some((f.label.as_ref(), name, f.kind.span(), kind))
     }
 }

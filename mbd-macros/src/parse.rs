@@ -46,6 +46,37 @@ pub enum Item {
     Fix(FixDef),
     Drive(DriveDef),
     Constraint(ConstraintDef),
+    Gravity(Ident, VecLit),
+    /// `spring`, `damper`, `actuator` between two points (same shape as a joint).
+    PointForce(JointDef),
+    /// `rotational_spring`, `rotational_damper`, `torque_actuator` between two bodies.
+    RotationalForce(RotationalDef),
+    /// `force` (global components) or `local_force` (body components) at a point.
+    Force(ForceDef),
+    Torque(TorqueDef),
+}
+
+pub struct RotationalDef {
+    pub kind: Ident,
+    pub label: Option<Ident>,
+    pub i: Ident,
+    pub j: Ident,
+    pub options: Vec<Field>,
+}
+
+pub struct ForceDef {
+    pub kind: Ident,
+    pub label: Option<Ident>,
+    pub body: Ident,
+    pub point: PointRef,
+    pub value: VecLit,
+}
+
+pub struct TorqueDef {
+    pub keyword: Ident,
+    pub label: Option<Ident>,
+    pub body: Ident,
+    pub value: Expr,
 }
 
 pub struct BodyDef {
@@ -184,6 +215,19 @@ pub enum BinOp {
 /// Joint kinds with two attachments: the keywords of the `JOINT` rule.
 pub const JOINT_KINDS: &[&str] = &["revolute", "translational", "revolute_revolute", "revolute_translational", "rigid"];
 
+/// Force elements between two points: the keywords of the point-to-point force rule.
+pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator"];
+
+/// Force elements between two bodies' angles.
+pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_damper", "torque_actuator"];
+
+/// Every statement keyword, for "did you mean" hints.
+pub const STATEMENTS: &[&str] = &[
+    "scalar", "params", "body", "point", "vector", "fix", "drive", "constraint", "gravity", "force", "local_force", "torque",
+    "revolute", "translational", "revolute_revolute", "revolute_translational", "rigid", "spring", "damper", "actuator",
+    "rotational_spring", "rotational_damper", "torque_actuator",
+];
+
 impl Parse for MechanismDef {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let attrs = input.call(Attribute::parse_outer)?;
@@ -220,7 +264,8 @@ impl Parse for Item {
                 e.span(),
                 "expected a statement: `scalar`, `params`, `body`, `point`, `vector`, a joint \
                  (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`), \
-                 `fix`, `drive` or `constraint`",
+                 `fix`, `drive`, `constraint`, `gravity` or a force element (`spring`, `damper`, `actuator`, \
+                 `rotational_spring`, `rotational_damper`, `torque_actuator`, `force`, `local_force`, `torque`)",
             )
         })?;
         let item = match kw.to_string().as_str() {
@@ -295,17 +340,53 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::Constraint(ConstraintDef { keyword: kw, label, lhs, rhs })
             }
-            k if JOINT_KINDS.contains(&k) => {
+            "gravity" => {
+                let value: VecLit = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Gravity(kw, value)
+            }
+            "force" | "local_force" => {
+                let label = label(input)?;
+                let body: Ident = input.call(Ident::parse_any)?;
+                let point = parse_point_ref(input)?;
+                input.parse::<Token![=]>()?;
+                let value: VecLit = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Force(ForceDef { kind: kw, label, body, point, value })
+            }
+            "torque" => {
+                let label = label(input)?;
+                let body: Ident = input.call(Ident::parse_any)?;
+                input.parse::<Token![=]>()?;
+                let value: Expr = input.parse()?;
+                input.parse::<Token![;]>()?;
+                Item::Torque(TorqueDef { keyword: kw, label, body, value })
+            }
+            k if ROTATIONAL_FORCE_KINDS.contains(&k) => {
+                let label = label(input)?;
+                let i: Ident = input.call(Ident::parse_any)?;
+                input.parse::<Token![~]>()?;
+                let j: Ident = input.call(Ident::parse_any)?;
+                let options = parse_fields(input)?;
+                input.parse::<Token![;]>()?;
+                Item::RotationalForce(RotationalDef { kind: kw, label, i, j, options })
+            }
+            k if JOINT_KINDS.contains(&k) || POINT_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Attach = input.parse()?;
                 input.parse::<Token![~]>()?;
                 let j: Attach = input.parse()?;
                 let options = if input.peek(syn::token::Brace) { parse_fields(input)? } else { Vec::new() };
                 input.parse::<Token![;]>()?;
-                Item::Joint(JointDef { kind: kw, label, i, j, options })
+                let def = JointDef { kind: kw, label, i, j, options };
+                if POINT_FORCE_KINDS.contains(&k) {
+                    Item::PointForce(def)
+                } else {
+                    Item::Joint(def)
+                }
             }
             other => {
-                let hint = closest(other, &["scalar", "params", "body", "point", "vector", "fix", "drive", "constraint"], JOINT_KINDS);
+                let hint = closest(other, STATEMENTS, &[]);
                 return Err(syn::Error::new(kw.span(), format!("unknown statement `{other}`{hint}")));
             }
         };

@@ -174,9 +174,14 @@ impl Graph {
         if let Some(c1) = self.as_const(a).or(self.as_const(b)) {
             let other = if self.as_const(a).is_some() { b } else { a };
             if let Node::Add(p, r) = self.node(other) {
-                if let Some(c2) = self.as_const(p) {
+                let (c2, rest) = match (self.as_const(p), self.as_const(r)) {
+                    (Some(c2), _) => (Some(c2), r),
+                    (_, Some(c2)) => (Some(c2), p),
+                    _ => (None, r),
+                };
+                if let Some(c2) = c2 {
                     let c = self.num(c1 + c2);
-                    return self.add(c, r);
+                    return self.add(c, rest);
                 }
             }
         }
@@ -243,9 +248,14 @@ impl Graph {
         if let Some(c1) = self.as_const(a).or(self.as_const(b)) {
             let other = if self.as_const(a).is_some() { b } else { a };
             if let Node::Mul(p, r) = self.node(other) {
-                if let Some(c2) = self.as_const(p) {
+                let (c2, rest) = match (self.as_const(p), self.as_const(r)) {
+                    (Some(c2), _) => (Some(c2), r),
+                    (_, Some(c2)) => (Some(c2), p),
+                    _ => (None, r),
+                };
+                if let Some(c2) = c2 {
                     let c = self.num(c1 * c2);
-                    return self.mul(c, r);
+                    return self.mul(c, rest);
                 }
             }
         }

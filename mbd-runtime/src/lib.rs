@@ -17,6 +17,6 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_TOLERANCE,
 };
-pub use mechanism::{Kinematics, Mechanism, OpCount};
+pub use mechanism::{Dynamics, Kinematics, Mechanism, OpCount};
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
