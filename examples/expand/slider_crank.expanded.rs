@@ -310,6 +310,48 @@ impl ::mbd::Mechanism for SliderCrank {
             call: 0u32,
         },
     ];
+    const JOINTS: &'static [::mbd::JointInfo] = &[
+        ::mbd::JointInfo {
+            name: "revolute ground~crank",
+            kind: "revolute",
+            first_row: 0u16,
+            rows: 2u16,
+            body_i: ::core::option::Option::None,
+            body_j: ::core::option::Option::Some(0u16),
+        },
+        ::mbd::JointInfo {
+            name: "revolute crank~rod",
+            kind: "revolute",
+            first_row: 2u16,
+            rows: 2u16,
+            body_i: ::core::option::Option::Some(0u16),
+            body_j: ::core::option::Option::Some(1u16),
+        },
+        ::mbd::JointInfo {
+            name: "revolute rod~slider",
+            kind: "revolute",
+            first_row: 4u16,
+            rows: 2u16,
+            body_i: ::core::option::Option::Some(1u16),
+            body_j: ::core::option::Option::Some(2u16),
+        },
+        ::mbd::JointInfo {
+            name: "translational slider~ground",
+            kind: "translational",
+            first_row: 6u16,
+            rows: 2u16,
+            body_i: ::core::option::Option::Some(2u16),
+            body_j: ::core::option::Option::None,
+        },
+        ::mbd::JointInfo {
+            name: "drive crank.phi",
+            kind: "drive",
+            first_row: 8u16,
+            rows: 1u16,
+            body_i: ::core::option::Option::Some(0u16),
+            body_j: ::core::option::Option::None,
+        },
+    ];
     const EFFECTS: &'static [&'static str] = &[];
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }

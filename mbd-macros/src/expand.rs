@@ -144,6 +144,23 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_qd_body, h_qd_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
     let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
+    let mut joints = Vec::new();
+    let mut first_row = 0u16;
+    for c in &m.constraints {
+        let rows = c.kind.row_names().len() as u16;
+        let (kind, bi, bj) = c.kind.kind_and_bodies();
+        let body = |b: Option<crate::model::BodyRef>| match b {
+            Some(crate::model::BodyRef::Body(k)) => {
+                let k = k as u16;
+                quote!(::core::option::Option::Some(#k))
+            }
+            _ => quote!(::core::option::Option::None),
+        };
+        let (bi, bj) = (body(bi), body(bj));
+        let name = &c.name;
+        joints.push(quote!(::mbd::JointInfo { name: #name, kind: #kind, first_row: #first_row, rows: #rows, body_i: #bi, body_j: #bj }));
+        first_row += rows;
+    }
     let mut effects: Vec<&str> = Vec::new();
     if m.gravity.is_some() {
         effects.push("gravity");
@@ -264,6 +281,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[#(#pattern_tokens),*];
             const PHI_T_IS_ZERO: bool = #phi_t_zero;
             const OP_COUNTS: &'static [::mbd::OpCount] = &[#(#op_counts),*];
+            const JOINTS: &'static [::mbd::JointInfo] = &[#(#joints),*];
             const EFFECTS: &'static [&'static str] = &[#(#effects),*];
             const MODEL_JSON: &'static str = #json;
         }

@@ -232,6 +232,22 @@ pub enum ConstraintKind {
 }
 
 impl ConstraintKind {
+    /// The kind's name (as in the model JSON) and the bodies it connects.
+    pub fn kind_and_bodies(&self) -> (&'static str, Option<BodyRef>, Option<BodyRef>) {
+        match self {
+            ConstraintKind::Revolute { i, j } => ("revolute", Some(i.body), Some(j.body)),
+            ConstraintKind::Translational { i, j, .. } => ("translational", Some(i.body), Some(j.body)),
+            ConstraintKind::RevoluteRevolute { i, j, .. } => ("revolute_revolute", Some(i.body), Some(j.body)),
+            ConstraintKind::RevoluteTranslational { i, j, .. } => ("revolute_translational", Some(i.body), Some(j.body)),
+            ConstraintKind::Rigid { i, j, .. } => ("rigid", Some(i.body), Some(j.body)),
+            ConstraintKind::Fix { body, .. } => ("fix", Some(BodyRef::Body(*body)), None),
+            ConstraintKind::Drive { body, .. } => ("drive", Some(BodyRef::Body(*body)), None),
+            ConstraintKind::DriveAngle { i, j, .. } => ("drive_angle", Some(*i), Some(*j)),
+            ConstraintKind::DriveDistance { i, j, .. } => ("drive_distance", Some(i.body), Some(j.body)),
+            ConstraintKind::User { .. } => ("constraint", None, None),
+        }
+    }
+
     /// Names of the rows this constraint adds, in order.
     pub fn row_names(&self) -> &'static [&'static str] {
         match self {

@@ -151,12 +151,12 @@ enum StepRule {
 }
 
 /// `names[index]`, or [`UNNAMED`] if the list is too short.
-fn name(names: &'static [&'static str], index: usize) -> &'static str {
+pub(crate) fn name(names: &'static [&'static str], index: usize) -> &'static str {
     names.get(index).copied().unwrap_or(UNNAMED)
 }
 
 /// Index of the first NaN or infinity in `values`.
-fn first_non_finite<T: Real>(values: &[T]) -> Option<usize> {
+pub(crate) fn first_non_finite<T: Real>(values: &[T]) -> Option<usize> {
     values.iter().position(|v| !v.is_finite())
 }
 
@@ -178,7 +178,7 @@ fn degrees_of_freedom(nq: usize, nc: usize) -> i32 {
 }
 
 /// NotDriven unless NQ = NC.
-fn require_driven<const NQ: usize, const NC: usize>() -> Result<(), KinematicError> {
+pub(crate) fn require_driven<const NQ: usize, const NC: usize>() -> Result<(), KinematicError> {
     match degrees_of_freedom(NQ, NC) {
         0 => Ok(()),
         dof => Err(KinematicError::NotDriven { dof }),

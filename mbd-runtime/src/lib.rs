@@ -6,6 +6,7 @@
 #![warn(missing_docs)]
 
 mod error;
+mod inverse;
 mod kinematics;
 pub mod linalg;
 mod mechanism;
@@ -17,6 +18,7 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_TOLERANCE,
 };
-pub use mechanism::{Dynamics, Kinematics, Mechanism, OpCount};
+pub use mechanism::{Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
+pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;

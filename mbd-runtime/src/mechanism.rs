@@ -30,6 +30,27 @@ impl OpCount {
     }
 }
 
+/// One joint, driver or user constraint of a mechanism: its name, its rows of Φ and the bodies it
+/// connects — what reaction forces are reported by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JointInfo {
+    /// `"revolute crank~rod"`, `"drive crank.phi"`, or the name the user gave it.
+    pub name: &'static str,
+    /// `"revolute"`, `"translational"`, `"revolute_revolute"`, `"revolute_translational"`,
+    /// `"rigid"`, `"fix"`, `"drive"`, `"drive_angle"`, `"drive_distance"` or `"constraint"`.
+    pub kind: &'static str,
+    /// Its first row in Φ.
+    pub first_row: u16,
+    /// How many rows of Φ it has.
+    pub rows: u16,
+    /// The first body it connects (index among the moving bodies; `None` for ground or, for a
+    /// user constraint, for no particular body).
+    pub body_i: Option<u16>,
+    /// The second body it connects (`None` for ground, for a driver of one body's coordinate and
+    /// for a user constraint).
+    pub body_j: Option<u16>,
+}
+
 /// What every generated mechanism says about itself: sizes, names, sparsity, model description.
 ///
 /// Everything here is a compile-time constant of the mechanism; nothing depends on the scalar
@@ -54,6 +75,8 @@ pub trait Mechanism {
     const PHI_T_IS_ZERO: bool;
     /// Operation counts of each generated function.
     const OP_COUNTS: &'static [OpCount];
+    /// Its joints, drivers and user constraints in the order of their rows in Φ.
+    const JOINTS: &'static [JointInfo] = &[];
     /// The physical effects the mechanism declares (`"gravity"`, `"point-to-point
     /// spring-damper-actuator"`, ...): everything else generates no code and costs nothing.
     const EFFECTS: &'static [&'static str] = &[];
