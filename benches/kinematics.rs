@@ -60,7 +60,18 @@ macro_rules! bench_mechanism {
     }};
 }
 
+/// Operation counts of each generated function (after common-subexpression elimination): the
+/// floor under its time, printed beside the measurements.
+fn print_op_counts<M: mbd::Mechanism>() {
+    println!("{} — operations per call (add, mul, div, calls):", M::NAME);
+    for o in M::OP_COUNTS {
+        println!("  {:<18} {:>4} {:>4} {:>4} {:>4}   total {}", o.function, o.add, o.mul, o.div, o.call, o.total());
+    }
+}
+
 fn benches(c: &mut Criterion) {
+    print_op_counts::<SliderCrank>();
+    print_op_counts::<Chain16>();
     bench_mechanism!(c, "slider_crank", SliderCrank::default(), SliderCrank);
     bench_mechanism!(c, "chain16", Chain16::default(), Chain16);
 }
