@@ -13,6 +13,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::Rng;
+
+/// The benchmarks' 16-link chain: checked by the oracle too, and its samples file feeds the
+/// CasADi C code generation of the side-by-side benchmark (`mbd-bench`).
+mod chain16 {
+    include!("../benches/chain16.rs");
+}
 use mbd::{KinematicSolver, Kinematics};
 use serde_json::{json, Value};
 
@@ -100,6 +106,7 @@ fn casadi_oracle() {
         samples!(common::web_cutter::WebCutter, 15),
         samples!(common::double_a_arm::DoubleAArm, 16),
         samples!(common::macpherson::MacPherson, 17),
+        samples!(chain16::Chain16, 18),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
     let (ok, text) = oracle(&py, "mbd_oracle.compare", &args);

@@ -1,0 +1,78 @@
+//! CasADi-generated C functions of the benchmark mechanisms, callable from Rust, so criterion can
+//! time them beside mbd's generated functions in the same run on the same machine.
+//!
+//! Each function has CasADi's standard C interface: `f(arg, res, iw, w, mem)` with the work-space
+//! sizes reported by `f_work`. [`CasadiFunction`] queries those sizes once and owns the work
+//! space, so a call allocates nothing.
+
+use std::os::raw::c_int;
+
+type CasadiInt = i64;
+type Eval = unsafe extern "C" fn(*const *const f64, *const *mut f64, *mut CasadiInt, *mut f64, c_int) -> c_int;
+type Work = unsafe extern "C" fn(*mut CasadiInt, *mut CasadiInt, *mut CasadiInt, *mut CasadiInt) -> c_int;
+
+/// One CasADi-generated function with its work space.
+pub struct CasadiFunction {
+    eval: Eval,
+    arg: Vec<*const f64>,
+    res: Vec<*mut f64>,
+    iw: Vec<CasadiInt>,
+    w: Vec<f64>,
+}
+
+impl CasadiFunction {
+    fn new(eval: Eval, work: Work) -> Self {
+        let (mut sz_arg, mut sz_res, mut sz_iw, mut sz_w) = (0, 0, 0, 0);
+        // SAFETY: the generated `_work` function only writes the four sizes.
+        let status = unsafe { work(&mut sz_arg, &mut sz_res, &mut sz_iw, &mut sz_w) };
+        assert_eq!(status, 0, "CasADi work-size query failed");
+        CasadiFunction {
+            eval,
+            arg: vec![std::ptr::null(); sz_arg as usize],
+            res: vec![std::ptr::null_mut(); sz_res as usize],
+            iw: vec![0; sz_iw as usize],
+            w: vec![0.0; sz_w as usize],
+        }
+    }
+
+    /// Evaluates with the given inputs (dense vectors in CasADi's input order) into `out`.
+    ///
+    /// The caller passes inputs and an output of the sizes the function was generated for.
+    pub fn call(&mut self, inputs: &[&[f64]], out: &mut [f64]) {
+        for (slot, input) in self.arg.iter_mut().zip(inputs) {
+            *slot = input.as_ptr();
+        }
+        self.res[0] = out.as_mut_ptr();
+        // SAFETY: argument and result pointers point at buffers of the generated sizes, and the
+        // work arrays have the sizes the function reported.
+        let status = unsafe { (self.eval)(self.arg.as_ptr(), self.res.as_ptr(), self.iw.as_mut_ptr(), self.w.as_mut_ptr(), 0) };
+        debug_assert_eq!(status, 0);
+    }
+}
+
+macro_rules! casadi_functions {
+    ($($module:ident: $($name:ident = $f:ident / $w:ident),*;)*) => {
+        extern "C" {
+            $($(fn $f(arg: *const *const f64, res: *const *mut f64, iw: *mut CasadiInt, w: *mut f64, mem: c_int) -> c_int;
+                fn $w(a: *mut CasadiInt, r: *mut CasadiInt, iw: *mut CasadiInt, w: *mut CasadiInt) -> c_int;)*)*
+        }
+        $(
+            /// The CasADi-generated functions of one mechanism: `phi(q, t, p)`, `jac(q, t, p)` (the
+            /// Jacobian's structural non-zeros, column-major) and `gamma(q, qd, t, p)`.
+            pub mod $module {
+                $(
+                    /// A CasADi-generated function (see the crate documentation).
+                    pub fn $name() -> super::CasadiFunction {
+                        super::CasadiFunction::new(super::$f, super::$w)
+                    }
+                )*
+            }
+        )*
+    };
+}
+
+casadi_functions! {
+    slider_crank: phi = slider_crank_phi / slider_crank_phi_work, jac = slider_crank_jac / slider_crank_jac_work,
+        gamma = slider_crank_gamma / slider_crank_gamma_work;
+    chain16: phi = chain16_phi / chain16_phi_work, jac = chain16_jac / chain16_jac_work, gamma = chain16_gamma / chain16_gamma_work;
+}
