@@ -46,6 +46,11 @@ impl SliderCrank {
             l: p[2],
         }
     }
+    /// Work space for solvers that factor the (NQ + NC)-square saddle-point matrix
+    /// [[K, Φ_qᵀ], [Φ_q, 0]] (static equilibrium).
+    pub fn kkt_workspace() -> ::mbd::KktWorkspace<f64, 18> {
+        ::mbd::KktWorkspace::new()
+    }
     /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
     #[inline]
     pub fn jacobian_values(&self, q: &[f64; 9], t: f64, out: &mut [f64; 23]) {
@@ -309,6 +314,13 @@ impl ::mbd::Mechanism for SliderCrank {
             div: 0u32,
             call: 0u32,
         },
+        ::mbd::OpCount {
+            function: "constraint_force_q",
+            add: 8u32,
+            mul: 18u32,
+            div: 2u32,
+            call: 3u32,
+        },
     ];
     const JOINTS: &'static [::mbd::JointInfo] = &[
         ::mbd::JointInfo {
@@ -354,6 +366,40 @@ impl ::mbd::Mechanism for SliderCrank {
     ];
     const EFFECTS: &'static [&'static str] = &[];
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
+}
+#[allow(unused_variables, unused_parens, clippy::all)]
+impl ::mbd::ConstraintForces<f64, 9, 9> for SliderCrank {
+    #[inline]
+    fn constraint_force_q(
+        &self,
+        q: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+        k: &mut [[f64; 9]; 9],
+    ) {
+        *k = [[0f64; 9]; 9];
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v203: f64 = (s_slider * lambda[6]);
+        let v205: f64 = (c_slider * lambda[6]);
+        k[2][2] = (-((v12 * lambda[3])
+            + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
+        k[5][5] = (-((v31 * lambda[5])
+            + ((v29 * lambda[4]) + ((v31 * lambda[3]) + (v29 * lambda[2])))));
+        k[6][8] = v205;
+        k[7][8] = v203;
+        k[8][6] = v205;
+        k[8][7] = v203;
+        k[8][8] = ((s_slider * lambda[7])
+            + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
+    }
 }
 #[allow(unused_variables, unused_parens, clippy::all)]
 impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {

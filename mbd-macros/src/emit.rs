@@ -145,6 +145,10 @@ impl Emitter<'_> {
                 quote!(qd[#i])
             }
             Var::T => quote!(t),
+            Var::Lambda(i) => {
+                let i = Literal::usize_unsuffixed(i as usize);
+                quote!(lambda[#i])
+            }
             Var::Param(k) => {
                 let p = &self.params[k as usize];
                 quote!(self.#p)
@@ -298,7 +302,7 @@ impl Emitter<'_> {
 /// make every evaluation NaN or infinite.
 pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
     let jac = f.jacobian.iter().map(|e| &e.2);
-    let h_q = f.h_q.iter().chain(&f.h_qd).map(|e| &e.2);
+    let h_q = f.h_q.iter().chain(&f.h_qd).chain(&f.constraint_force_q).map(|e| &e.2);
     let roots = f.phi.iter().chain(jac).chain(&f.nu).chain(&f.gamma).chain(&f.q0).chain(&f.qd0);
     let roots = roots.chain(&f.mass).chain(&f.h).chain(h_q).chain(std::iter::once(&f.potential));
     for &r in roots {

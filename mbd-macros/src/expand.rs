@@ -144,6 +144,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_qd_body, h_qd_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
     let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
+    let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
+    let nz_l = usize_lit(nq + nc);
     let mut joints = Vec::new();
     let mut first_row = 0u16;
     for c in &m.constraints {
@@ -185,6 +187,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("forces_q", h_q_ops),
         op_count("forces_qd", h_qd_ops),
         op_count("potential_energy", v_ops),
+        op_count("constraint_force_q", cfq_ops),
     ];
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
@@ -247,6 +250,12 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 Self { #( #params: p[#param_idx], )* }
             }
 
+            /// Work space for solvers that factor the (NQ + NC)-square saddle-point matrix
+            /// [[K, Φ_qᵀ], [Φ_q, 0]] (static equilibrium).
+            pub fn kkt_workspace() -> ::mbd::KktWorkspace<#real, #nz_l> {
+                ::mbd::KktWorkspace::new()
+            }
+
             /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
             #[inline]
             pub fn jacobian_values(&self, q: &[#real; #nq_l], t: #real, out: &mut [#real; #nnz_l]) {
@@ -284,6 +293,15 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const JOINTS: &'static [::mbd::JointInfo] = &[#(#joints),*];
             const EFFECTS: &'static [&'static str] = &[#(#effects),*];
             const MODEL_JSON: &'static str = #json;
+        }
+
+        #[allow(unused_variables, unused_parens, clippy::all)]
+        impl ::mbd::ConstraintForces<#real, #nq_l, #nc_l> for #name {
+            #[inline]
+            fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nq_l]; #nq_l]) {
+                *k = [[#zero; #nq_l]; #nq_l];
+                #cfq_body
+            }
         }
 
         #[allow(unused_variables, unused_parens, clippy::all)]

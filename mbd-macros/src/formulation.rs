@@ -34,6 +34,9 @@ pub struct Formulation {
     pub h_qd: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
+    /// Structural non-zeros of ∂(Φ_qᵀλ)/∂q (the constraints' geometric stiffness), with λ as
+    /// variables.
+    pub constraint_force_q: Vec<(usize, usize, Id)>,
 }
 
 impl Formulation {
@@ -420,7 +423,7 @@ pub fn formulate(model: &Model) -> Formulation {
     let seed = |v: Var| match v {
         Var::Q(i) => Some(qd[i as usize]),
         Var::T => Some(one),
-        Var::Qd(_) | Var::Param(_) => None,
+        Var::Qd(_) | Var::Param(_) | Var::Lambda(_) => None,
     };
     let mut memo = HashMap::new();
     let first: Vec<Id> = phi.iter().map(|&row| g.directional(row, &seed, &mut memo)).collect();
@@ -432,7 +435,17 @@ pub fn formulate(model: &Model) -> Formulation {
         })
         .collect();
 
-    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential }
+    // (Φ_qᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q.
+    let zero = g.num(0.0);
+    let mut constraint_force = vec![zero; nq];
+    for &(r, c, d) in &jacobian {
+        let l = g.var(Var::Lambda(r as u16));
+        let term = g.mul(l, d);
+        constraint_force[c] = g.add(constraint_force[c], term);
+    }
+    let constraint_force_q = sparse_derivative(&mut g, &constraint_force, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
+
+    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, constraint_force_q }
 }
 
 /// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.

@@ -22,6 +22,8 @@ pub enum Var {
     T,
     /// Runtime parameter number `i`.
     Param(u16),
+    /// Lagrange multiplier `λ[i]` of constraint row `i`.
+    Lambda(u16),
 }
 
 /// Elementary functions of one argument.
@@ -674,7 +676,7 @@ mod tests {
                 Var::Q(i) => p[i as usize],
                 Var::Qd(i) => v[i as usize],
                 Var::T => p[3],
-                Var::Param(_) => 0.0,
+                Var::Param(_) | Var::Lambda(_) => 0.0,
             };
             let chain: f64 = (0..3).map(|i| g.eval(partials[i], &value) * v[i]).sum::<f64>() + g.eval(partials[3], &value);
             let direct = g.eval(total, &value);

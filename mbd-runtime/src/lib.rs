@@ -12,13 +12,18 @@ pub mod linalg;
 mod mechanism;
 mod planar;
 mod real;
+mod statics;
 
 pub use error::{KinematicError, NonFiniteQuantity};
 pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_TOLERANCE,
 };
-pub use mechanism::{Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
+pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
+pub use statics::{
+    KktWorkspace, StaticError, StaticOptions, StaticSolver, DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_PIVOT_TOLERANCE,
+    DEFAULT_STATIC_TOLERANCE,
+};
