@@ -88,3 +88,18 @@ fn macpherson_strut_sweeps_its_travel() {
     assert!(r.motion_ratio > 0.5 && r.motion_ratio <= 1.0, "{r:?}");
     assert!(r.strut_max - r.strut_min > 0.1, "{r:?}");
 }
+
+/// The power balance P_drive + P_gas + P_gravity = dT/dt holds at every sample; over a revolution
+/// at constant speed T and V return to their start, and their rates are smooth and periodic, so
+/// the midpoint mean of dT/dt and of gravity's power vanishes to rounding: the mean drive power
+/// must cancel the mean gas power to 1e-9 relative.
+#[test]
+fn engine_drive_power_balances_gas_work() {
+    let r = slider_crank_inverse::run(false).expect("inverse dynamics runs");
+    assert_eq!(r.samples, 360);
+    assert!((r.drive_power + r.gas_power).abs() <= 1e-9 * r.gas_power.abs(), "{r:?}");
+    assert!(r.gas_power > 100.0, "{r:?}");
+    // The drive brakes during expansion: the torque on the crank is then negative, and the
+    // bearing carries about the peak gas force.
+    assert!(r.torque_min < -50.0 && r.bearing_max > 1500.0, "{r:?}");
+}

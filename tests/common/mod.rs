@@ -11,6 +11,8 @@ pub mod four_bar;
 pub mod macpherson;
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
+#[path = "../../examples/slider_crank_inverse.rs"]
+pub mod slider_crank_inverse;
 #[path = "../../examples/variable_pendulum.rs"]
 pub mod variable_pendulum;
 #[path = "../../examples/web_cutter.rs"]
