@@ -545,6 +545,25 @@ impl Resolver<'_> {
     }
 }
 
+/// The name of a joint, driver, constraint or force element — its label, or its default name —
+/// if no other statement has it yet; otherwise an error on the label or the statement's keyword.
+fn claim_name(names: &mut HashMap<String, Span>, errors: &mut Errors, label: Option<&Ident>, default_name: String, span: Span) -> Option<String> {
+    let (name, span) = match label {
+        Some(l) => (l.to_string(), l.span()),
+        None => (default_name, span),
+    };
+    if names.insert(name.clone(), span).is_none() {
+        return Some(name);
+    }
+    let msg = if label.is_some() {
+        format!("duplicate name `{name}`")
+    } else {
+        format!("a second `{name}`: give one of them a name, e.g. `{} name: ...`", name.split(' ').next().unwrap_or(""))
+    };
+    errors.push(span, msg);
+    None
+}
+
 /// Checks a number that must be positive when it is a constant (a parameter's value is checked
 /// at run time by the solver that needs it).
 fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
@@ -856,20 +875,10 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
-            let (name, span) = match label {
-                Some(l) => (l.to_string(), l.span()),
-                None => (default_name, span),
-            };
-            if names.insert(name.clone(), span).is_some() {
-                let msg = if label.is_some() {
-                    format!("duplicate name `{name}`")
-                } else {
-                    format!("a second `{name}`: give one of them a name, e.g. `{} name: ...`", name.split(' ').next().unwrap_or(""))
-                };
-                r.errors.push(span, msg);
+            let Some(name) = claim_name(&mut names, r.errors, label, default_name, span) else {
                 ok = false;
                 continue;
-            }
+            };
             if let Some(kind) = friction {
                 forces.push(ForceElement { name: format!("{name} viscous friction"), kind });
             }
@@ -928,20 +937,10 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
-            let (name, span) = match label {
-                Some(l) => (l.to_string(), l.span()),
-                None => (default_name, span),
-            };
-            if names.insert(name.clone(), span).is_some() {
-                let msg = if label.is_some() {
-                    format!("duplicate name `{name}`")
-                } else {
-                    format!("a second `{name}`: give one of them a name, e.g. `{} name: ...`", name.split(' ').next().unwrap_or(""))
-                };
-                r.errors.push(span, msg);
+            let Some(name) = claim_name(&mut names, r.errors, label, default_name, span) else {
                 ok = false;
                 continue;
-            }
+            };
             forces.push(ForceElement { name, kind });
         }
 
