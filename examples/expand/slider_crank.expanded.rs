@@ -51,6 +51,12 @@ impl SliderCrank {
     pub fn kkt_workspace() -> ::mbd::KktWorkspace<f64, 18> {
         ::mbd::KktWorkspace::new()
     }
+    /// A generalized-α integrator with work space for this mechanism's NQ + NC unknowns.
+    pub fn generalized_alpha(
+        options: ::mbd::GeneralizedAlphaOptions<f64>,
+    ) -> ::mbd::GeneralizedAlpha<f64, 18> {
+        ::mbd::GeneralizedAlpha::new(options)
+    }
     /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
     #[inline]
     pub fn jacobian_values(&self, q: &[f64; 9], t: f64, out: &mut [f64; 23]) {
@@ -63,7 +69,7 @@ impl SliderCrank {
         let v29: f64 = (v24 * c_rod);
         let v32: f64 = (-(v24 * s_rod));
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v72: f64 = (-c_slider);
+        let v81: f64 = (-c_slider);
         out[0] = (-1f64);
         out[1] = v13;
         out[2] = (-1f64);
@@ -83,9 +89,9 @@ impl SliderCrank {
         out[16] = v29;
         out[17] = (-1f64);
         out[18] = s_slider;
-        out[19] = v72;
+        out[19] = v81;
         out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        out[21] = v72;
+        out[21] = v81;
         out[22] = 1f64;
     }
     /// Φ, the structural non-zeros of Φ_q (in the order of `JACOBIAN_PATTERN`), ν and γ in
@@ -113,7 +119,7 @@ impl SliderCrank {
         let v31: f64 = (v24 * s_rod);
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v72: f64 = (-c_slider);
+        let v81: f64 = (-c_slider);
         let v119: f64 = (s_slider * qd[8]);
         let v126: f64 = (c_slider * qd[8]);
         let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
@@ -151,9 +157,9 @@ impl SliderCrank {
         out[16] = v29;
         out[17] = (-1f64);
         out[18] = s_slider;
-        out[19] = v72;
+        out[19] = v81;
         out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        out[21] = v72;
+        out[21] = v81;
         out[22] = 1f64;
         nu[0] = 0f64;
         nu[1] = 0f64;
@@ -321,6 +327,20 @@ impl ::mbd::Mechanism for SliderCrank {
             div: 2u32,
             call: 3u32,
         },
+        ::mbd::OpCount {
+            function: "nonconservative_power",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "accelerations (evaluation, before the solve)",
+            add: 22u32,
+            mul: 29u32,
+            div: 2u32,
+            call: 3u32,
+        },
     ];
     const JOINTS: &'static [::mbd::JointInfo] = &[
         ::mbd::JointInfo {
@@ -443,6 +463,623 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
         energy[0] = 0f64;
         energy[0]
     }
+    #[inline]
+    fn nonconservative_power(&self, q: &[f64; 9], qd: &[f64; 9], t: f64) -> f64 {
+        let mut power = [0f64; 1];
+        power[0] = 0f64;
+        power[0]
+    }
+}
+#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+impl SliderCrank {
+    /// LDLᵀ of S = Φ_q M⁻¹ Φ_qᵀ over its compile-time pattern; `Err(row)` for a dependent row.
+    #[inline(always)]
+    fn schur_factor(
+        jv: &[f64; 23],
+        minv: &[f64; 9],
+        tol: f64,
+        allow_redundant: bool,
+        l: &mut [f64; 18],
+        dinv: &mut [f64; 9],
+    ) -> ::core::result::Result<(), usize> {
+        let mut d = [0f64; 9];
+        let skk: f64 = (jv[21] * jv[21] * minv[8]);
+        let dk: f64 = skk;
+        if dk > tol * skk {
+            d[0] = dk;
+            dinv[0] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[0] = 0f64;
+            dinv[0] = 0f64;
+        } else {
+            return ::core::result::Result::Err(7);
+        }
+        l[0] = ((jv[21] * jv[20] * minv[8])) * dinv[0];
+        let skk: f64 = (jv[18] * jv[18] * minv[6] + jv[19] * jv[19] * minv[7]
+            + jv[20] * jv[20] * minv[8]);
+        let dk: f64 = skk - l[0] * l[0] * d[0];
+        if dk > tol * skk {
+            d[1] = dk;
+            dinv[1] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[1] = 0f64;
+            dinv[1] = 0f64;
+        } else {
+            return ::core::result::Result::Err(6);
+        }
+        l[1] = ((jv[18] * jv[14] * minv[6])) * dinv[1];
+        l[2] = ((jv[19] * jv[17] * minv[7])) * dinv[1];
+        let skk: f64 = (jv[12] * jv[12] * minv[3] + jv[13] * jv[13] * minv[5]
+            + jv[14] * jv[14] * minv[6]);
+        let dk: f64 = skk - l[1] * l[1] * d[1];
+        if dk > tol * skk {
+            d[2] = dk;
+            dinv[2] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[2] = 0f64;
+            dinv[2] = 0f64;
+        } else {
+            return ::core::result::Result::Err(4);
+        }
+        l[3] = ((jv[16] * jv[13] * minv[5]) - l[2] * l[1] * d[1]) * dinv[2];
+        l[4] = ((jv[12] * jv[6] * minv[3] + jv[13] * jv[7] * minv[5])) * dinv[2];
+        l[5] = ((jv[13] * jv[11] * minv[5])) * dinv[2];
+        let skk: f64 = (jv[15] * jv[15] * minv[4] + jv[16] * jv[16] * minv[5]
+            + jv[17] * jv[17] * minv[7]);
+        let dk: f64 = skk - l[2] * l[2] * d[1] - l[3] * l[3] * d[2];
+        if dk > tol * skk {
+            d[3] = dk;
+            dinv[3] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[3] = 0f64;
+            dinv[3] = 0f64;
+        } else {
+            return ::core::result::Result::Err(5);
+        }
+        l[6] = ((jv[16] * jv[7] * minv[5]) - l[4] * l[3] * d[2]) * dinv[3];
+        l[7] = ((jv[15] * jv[10] * minv[4] + jv[16] * jv[11] * minv[5])
+            - l[5] * l[3] * d[2]) * dinv[3];
+        let skk: f64 = (jv[0] * jv[0] * minv[0] + jv[1] * jv[1] * minv[2]);
+        let dk: f64 = skk;
+        if dk > tol * skk {
+            d[4] = dk;
+            dinv[4] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[4] = 0f64;
+            dinv[4] = 0f64;
+        } else {
+            return ::core::result::Result::Err(0);
+        }
+        l[8] = ((jv[3] * jv[1] * minv[2])) * dinv[4];
+        l[9] = ((jv[4] * jv[0] * minv[0] + jv[5] * jv[1] * minv[2])) * dinv[4];
+        l[10] = ((jv[9] * jv[1] * minv[2])) * dinv[4];
+        l[11] = ((jv[22] * jv[1] * minv[2])) * dinv[4];
+        let skk: f64 = (jv[2] * jv[2] * minv[1] + jv[3] * jv[3] * minv[2]);
+        let dk: f64 = skk - l[8] * l[8] * d[4];
+        if dk > tol * skk {
+            d[5] = dk;
+            dinv[5] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[5] = 0f64;
+            dinv[5] = 0f64;
+        } else {
+            return ::core::result::Result::Err(1);
+        }
+        l[12] = ((jv[5] * jv[3] * minv[2]) - l[9] * l[8] * d[4]) * dinv[5];
+        l[13] = ((jv[8] * jv[2] * minv[1] + jv[9] * jv[3] * minv[2])
+            - l[10] * l[8] * d[4]) * dinv[5];
+        l[14] = ((jv[22] * jv[3] * minv[2]) - l[11] * l[8] * d[4]) * dinv[5];
+        let skk: f64 = (jv[4] * jv[4] * minv[0] + jv[5] * jv[5] * minv[2]
+            + jv[6] * jv[6] * minv[3] + jv[7] * jv[7] * minv[5]);
+        let dk: f64 = skk - l[4] * l[4] * d[2] - l[6] * l[6] * d[3] - l[9] * l[9] * d[4]
+            - l[12] * l[12] * d[5];
+        if dk > tol * skk {
+            d[6] = dk;
+            dinv[6] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[6] = 0f64;
+            dinv[6] = 0f64;
+        } else {
+            return ::core::result::Result::Err(2);
+        }
+        l[15] = ((jv[9] * jv[5] * minv[2] + jv[11] * jv[7] * minv[5])
+            - l[5] * l[4] * d[2] - l[7] * l[6] * d[3] - l[10] * l[9] * d[4]
+            - l[13] * l[12] * d[5]) * dinv[6];
+        l[16] = ((jv[22] * jv[5] * minv[2]) - l[11] * l[9] * d[4] - l[14] * l[12] * d[5])
+            * dinv[6];
+        let skk: f64 = (jv[8] * jv[8] * minv[1] + jv[9] * jv[9] * minv[2]
+            + jv[10] * jv[10] * minv[4] + jv[11] * jv[11] * minv[5]);
+        let dk: f64 = skk - l[5] * l[5] * d[2] - l[7] * l[7] * d[3]
+            - l[10] * l[10] * d[4] - l[13] * l[13] * d[5] - l[15] * l[15] * d[6];
+        if dk > tol * skk {
+            d[7] = dk;
+            dinv[7] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[7] = 0f64;
+            dinv[7] = 0f64;
+        } else {
+            return ::core::result::Result::Err(3);
+        }
+        l[17] = ((jv[22] * jv[9] * minv[2]) - l[11] * l[10] * d[4] - l[14] * l[13] * d[5]
+            - l[16] * l[15] * d[6]) * dinv[7];
+        let skk: f64 = (jv[22] * jv[22] * minv[2]);
+        let dk: f64 = skk - l[11] * l[11] * d[4] - l[14] * l[14] * d[5]
+            - l[16] * l[16] * d[6] - l[17] * l[17] * d[7];
+        if dk > tol * skk {
+            d[8] = dk;
+            dinv[8] = <f64 as ::mbd::Real>::ONE / dk;
+        } else if allow_redundant {
+            d[8] = 0f64;
+            dinv[8] = 0f64;
+        } else {
+            return ::core::result::Result::Err(8);
+        }
+        ::core::result::Result::Ok(())
+    }
+    /// b ← S⁻¹ b with the factors of `schur_factor`.
+    #[inline(always)]
+    fn schur_solve(l: &[f64; 18], dinv: &[f64; 9], b: &mut [f64; 9]) {
+        b[6] = b[6] - l[0] * b[7];
+        b[4] = b[4] - l[1] * b[6];
+        b[5] = b[5] - l[2] * b[6] - l[3] * b[4];
+        b[1] = b[1] - l[8] * b[0];
+        b[2] = b[2] - l[4] * b[4] - l[6] * b[5] - l[9] * b[0] - l[12] * b[1];
+        b[3] = b[3] - l[5] * b[4] - l[7] * b[5] - l[10] * b[0] - l[13] * b[1]
+            - l[15] * b[2];
+        b[8] = b[8] - l[11] * b[0] - l[14] * b[1] - l[16] * b[2] - l[17] * b[3];
+        b[7] *= dinv[0];
+        b[6] *= dinv[1];
+        b[4] *= dinv[2];
+        b[5] *= dinv[3];
+        b[0] *= dinv[4];
+        b[1] *= dinv[5];
+        b[2] *= dinv[6];
+        b[3] *= dinv[7];
+        b[8] *= dinv[8];
+        b[3] = b[3] - l[17] * b[8];
+        b[2] = b[2] - l[15] * b[3] - l[16] * b[8];
+        b[1] = b[1] - l[12] * b[2] - l[13] * b[3] - l[14] * b[8];
+        b[0] = b[0] - l[8] * b[1] - l[9] * b[2] - l[10] * b[3] - l[11] * b[8];
+        b[5] = b[5] - l[6] * b[2] - l[7] * b[3];
+        b[4] = b[4] - l[3] * b[5] - l[4] * b[2] - l[5] * b[3];
+        b[6] = b[6] - l[1] * b[4] - l[2] * b[5];
+        b[7] = b[7] - l[0] * b[6];
+    }
+}
+#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
+    #[inline]
+    fn accelerations(
+        &self,
+        q: &[f64; 9],
+        qd: &[f64; 9],
+        t: f64,
+        options: &::mbd::DynamicsOptions<f64>,
+        qdd: &mut [f64; 9],
+        lambda: &mut [f64; 9],
+    ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
+        let mut jv = [0f64; 23];
+        let mut phi = [0f64; 9];
+        let mut nu = [0f64; 9];
+        let mut gamma = [0f64; 9];
+        let mut h = [0f64; 9];
+        let mut m = [0f64; 9];
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v13: f64 = (-v12);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let v32: f64 = (-v31);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v81: f64 = (-c_slider);
+        let v119: f64 = (s_slider * qd[8]);
+        let v126: f64 = (c_slider * qd[8]);
+        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
+        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
+        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
+        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
+        let v151: f64 = (qd[6] * v126);
+        let v152: f64 = (qd[8] * v119);
+        let v158: f64 = (qd[7] * v119);
+        jv[0] = (-1f64);
+        jv[1] = v13;
+        jv[2] = (-1f64);
+        jv[3] = v10;
+        jv[4] = 1f64;
+        jv[5] = v13;
+        jv[6] = (-1f64);
+        jv[7] = v32;
+        jv[8] = 1f64;
+        jv[9] = v10;
+        jv[10] = (-1f64);
+        jv[11] = v29;
+        jv[12] = 1f64;
+        jv[13] = v32;
+        jv[14] = (-1f64);
+        jv[15] = 1f64;
+        jv[16] = v29;
+        jv[17] = (-1f64);
+        jv[18] = s_slider;
+        jv[19] = v81;
+        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        jv[21] = v81;
+        jv[22] = 1f64;
+        phi[0] = (-(q[0] - v10));
+        phi[1] = (-(q[1] - v12));
+        phi[2] = ((v10 + q[0]) - (q[3] - v29));
+        phi[3] = ((v12 + q[1]) - (q[4] - v31));
+        phi[4] = ((v29 + q[3]) - q[6]);
+        phi[5] = ((v31 + q[4]) - q[7]);
+        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+        phi[7] = (-s_slider);
+        phi[8] = (q[2] - (self.omega * t));
+        nu[0] = 0f64;
+        nu[1] = 0f64;
+        nu[2] = 0f64;
+        nu[3] = 0f64;
+        nu[4] = 0f64;
+        nu[5] = 0f64;
+        nu[6] = 0f64;
+        nu[7] = 0f64;
+        nu[8] = self.omega;
+        gamma[0] = v134;
+        gamma[1] = v138;
+        gamma[2] = (v134 + v141);
+        gamma[3] = (v138 + v147);
+        gamma[4] = v141;
+        gamma[5] = v147;
+        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
+            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+        gamma[7] = (-v152);
+        gamma[8] = 0f64;
+        h[0] = 0f64;
+        h[1] = 0f64;
+        h[2] = 0f64;
+        h[3] = 0f64;
+        h[4] = 0f64;
+        h[5] = 0f64;
+        h[6] = 0f64;
+        h[7] = 0f64;
+        h[8] = 0f64;
+        m[0] = 1f64;
+        m[1] = 1f64;
+        m[2] = 0.002f64;
+        m[3] = 2f64;
+        m[4] = 2f64;
+        m[5] = 0.015f64;
+        m[6] = 0.5f64;
+        m[7] = 0.5f64;
+        m[8] = 0.001f64;
+        let mut minv = [0f64; 9];
+        minv[0] = 1f64 / m[0];
+        minv[1] = minv[0];
+        minv[2] = 1f64 / m[2];
+        minv[3] = 1f64 / m[3];
+        minv[4] = minv[3];
+        minv[5] = 1f64 / m[5];
+        minv[6] = 1f64 / m[6];
+        minv[7] = minv[6];
+        minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if let ::core::result::Result::Err(row) = Self::schur_factor(
+            &jv,
+            &minv,
+            options.pivot_tolerance,
+            options.allow_redundant,
+            &mut l,
+            &mut dinv,
+        ) {
+            let finite = q
+                .iter()
+                .chain(jv.iter())
+                .chain(m.iter())
+                .all(|v| v.is_finite());
+            return ::core::result::Result::Err(
+                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+            );
+        }
+        qdd[0] = h[0] * minv[0];
+        qdd[1] = h[1] * minv[1];
+        qdd[2] = h[2] * minv[2];
+        qdd[3] = h[3] * minv[3];
+        qdd[4] = h[4] * minv[4];
+        qdd[5] = h[5] * minv[5];
+        qdd[6] = h[6] * minv[6];
+        qdd[7] = h[7] * minv[7];
+        qdd[8] = h[8] * minv[8];
+        let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
+        let beta2 = options.baumgarte_beta * options.baumgarte_beta;
+        lambda[0] = gamma[0] - (jv[0] * qdd[0] + jv[1] * qdd[2])
+            - two_alpha * ((jv[0] * qd[0] + jv[1] * qd[2]) - nu[0]) - beta2 * phi[0];
+        lambda[1] = gamma[1] - (jv[2] * qdd[1] + jv[3] * qdd[2])
+            - two_alpha * ((jv[2] * qd[1] + jv[3] * qd[2]) - nu[1]) - beta2 * phi[1];
+        lambda[2] = gamma[2]
+            - (jv[4] * qdd[0] + jv[5] * qdd[2] + jv[6] * qdd[3] + jv[7] * qdd[5])
+            - two_alpha
+                * ((jv[4] * qd[0] + jv[5] * qd[2] + jv[6] * qd[3] + jv[7] * qd[5])
+                    - nu[2]) - beta2 * phi[2];
+        lambda[3] = gamma[3]
+            - (jv[8] * qdd[1] + jv[9] * qdd[2] + jv[10] * qdd[4] + jv[11] * qdd[5])
+            - two_alpha
+                * ((jv[8] * qd[1] + jv[9] * qd[2] + jv[10] * qd[4] + jv[11] * qd[5])
+                    - nu[3]) - beta2 * phi[3];
+        lambda[4] = gamma[4] - (jv[12] * qdd[3] + jv[13] * qdd[5] + jv[14] * qdd[6])
+            - two_alpha * ((jv[12] * qd[3] + jv[13] * qd[5] + jv[14] * qd[6]) - nu[4])
+            - beta2 * phi[4];
+        lambda[5] = gamma[5] - (jv[15] * qdd[4] + jv[16] * qdd[5] + jv[17] * qdd[7])
+            - two_alpha * ((jv[15] * qd[4] + jv[16] * qd[5] + jv[17] * qd[7]) - nu[5])
+            - beta2 * phi[5];
+        lambda[6] = gamma[6] - (jv[18] * qdd[6] + jv[19] * qdd[7] + jv[20] * qdd[8])
+            - two_alpha * ((jv[18] * qd[6] + jv[19] * qd[7] + jv[20] * qd[8]) - nu[6])
+            - beta2 * phi[6];
+        lambda[7] = gamma[7] - (jv[21] * qdd[8]) - two_alpha * ((jv[21] * qd[8]) - nu[7])
+            - beta2 * phi[7];
+        lambda[8] = gamma[8] - (jv[22] * qdd[2]) - two_alpha * ((jv[22] * qd[2]) - nu[8])
+            - beta2 * phi[8];
+        Self::schur_solve(&l, &dinv, lambda);
+        qdd[0] += minv[0] * (jv[0] * lambda[0] + jv[4] * lambda[2]);
+        qdd[1] += minv[1] * (jv[2] * lambda[1] + jv[8] * lambda[3]);
+        qdd[2]
+            += minv[2]
+                * (jv[1] * lambda[0] + jv[3] * lambda[1] + jv[5] * lambda[2]
+                    + jv[9] * lambda[3] + jv[22] * lambda[8]);
+        qdd[3] += minv[3] * (jv[6] * lambda[2] + jv[12] * lambda[4]);
+        qdd[4] += minv[4] * (jv[10] * lambda[3] + jv[15] * lambda[5]);
+        qdd[5]
+            += minv[5]
+                * (jv[7] * lambda[2] + jv[11] * lambda[3] + jv[13] * lambda[4]
+                    + jv[16] * lambda[5]);
+        qdd[6] += minv[6] * (jv[14] * lambda[4] + jv[18] * lambda[6]);
+        qdd[7] += minv[7] * (jv[17] * lambda[5] + jv[19] * lambda[6]);
+        qdd[8] += minv[8] * (jv[20] * lambda[6] + jv[21] * lambda[7]);
+        ::core::result::Result::Ok(())
+    }
+    #[inline]
+    fn project_positions_step(
+        &self,
+        q: &mut [f64; 9],
+        t: f64,
+        options: &::mbd::DynamicsOptions<f64>,
+    ) -> ::core::result::Result<f64, ::mbd::DynamicsError> {
+        let mut jv = [0f64; 23];
+        let mut phi = [0f64; 9];
+        let mut m = [0f64; 9];
+        {
+            let q: &[f64; 9] = q;
+            let v5: f64 = (self.r / 2f64);
+            let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+            let v10: f64 = (v5 * c_crank);
+            let v12: f64 = (v5 * s_crank);
+            let v13: f64 = (-v12);
+            let v24: f64 = (self.l / 2f64);
+            let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+            let v29: f64 = (v24 * c_rod);
+            let v31: f64 = (v24 * s_rod);
+            let v32: f64 = (-v31);
+            let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+            let v81: f64 = (-c_slider);
+            phi[0] = (-(q[0] - v10));
+            phi[1] = (-(q[1] - v12));
+            phi[2] = ((v10 + q[0]) - (q[3] - v29));
+            phi[3] = ((v12 + q[1]) - (q[4] - v31));
+            phi[4] = ((v29 + q[3]) - q[6]);
+            phi[5] = ((v31 + q[4]) - q[7]);
+            phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+            phi[7] = (-s_slider);
+            phi[8] = (q[2] - (self.omega * t));
+            jv[0] = (-1f64);
+            jv[1] = v13;
+            jv[2] = (-1f64);
+            jv[3] = v10;
+            jv[4] = 1f64;
+            jv[5] = v13;
+            jv[6] = (-1f64);
+            jv[7] = v32;
+            jv[8] = 1f64;
+            jv[9] = v10;
+            jv[10] = (-1f64);
+            jv[11] = v29;
+            jv[12] = 1f64;
+            jv[13] = v32;
+            jv[14] = (-1f64);
+            jv[15] = 1f64;
+            jv[16] = v29;
+            jv[17] = (-1f64);
+            jv[18] = s_slider;
+            jv[19] = v81;
+            jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+            jv[21] = v81;
+            jv[22] = 1f64;
+            m[0] = 1f64;
+            m[1] = 1f64;
+            m[2] = 0.002f64;
+            m[3] = 2f64;
+            m[4] = 2f64;
+            m[5] = 0.015f64;
+            m[6] = 0.5f64;
+            m[7] = 0.5f64;
+            m[8] = 0.001f64;
+        }
+        let mut minv = [0f64; 9];
+        minv[0] = 1f64 / m[0];
+        minv[1] = minv[0];
+        minv[2] = 1f64 / m[2];
+        minv[3] = 1f64 / m[3];
+        minv[4] = minv[3];
+        minv[5] = 1f64 / m[5];
+        minv[6] = 1f64 / m[6];
+        minv[7] = minv[6];
+        minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if let ::core::result::Result::Err(row) = Self::schur_factor(
+            &jv,
+            &minv,
+            options.pivot_tolerance,
+            options.allow_redundant,
+            &mut l,
+            &mut dinv,
+        ) {
+            let finite = q
+                .iter()
+                .chain(jv.iter())
+                .chain(m.iter())
+                .all(|v| v.is_finite());
+            return ::core::result::Result::Err(
+                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+            );
+        }
+        let mut b = phi;
+        let mut worst = 0f64;
+        for v in b.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*v));
+        }
+        Self::schur_solve(&l, &dinv, &mut b);
+        q[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
+        q[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
+        q[2]
+            -= minv[2]
+                * (jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
+                    + jv[22] * b[8]);
+        q[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
+        q[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
+        q[5] -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
+        q[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
+        q[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
+        q[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
+        ::core::result::Result::Ok(worst)
+    }
+    #[inline]
+    fn project_velocities(
+        &self,
+        q: &[f64; 9],
+        qd: &mut [f64; 9],
+        t: f64,
+        options: &::mbd::DynamicsOptions<f64>,
+    ) -> ::core::result::Result<f64, ::mbd::DynamicsError> {
+        let mut jv = [0f64; 23];
+        let mut nu = [0f64; 9];
+        let mut m = [0f64; 9];
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v13: f64 = (-(v5 * s_crank));
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v32: f64 = (-(v24 * s_rod));
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v81: f64 = (-c_slider);
+        jv[0] = (-1f64);
+        jv[1] = v13;
+        jv[2] = (-1f64);
+        jv[3] = v10;
+        jv[4] = 1f64;
+        jv[5] = v13;
+        jv[6] = (-1f64);
+        jv[7] = v32;
+        jv[8] = 1f64;
+        jv[9] = v10;
+        jv[10] = (-1f64);
+        jv[11] = v29;
+        jv[12] = 1f64;
+        jv[13] = v32;
+        jv[14] = (-1f64);
+        jv[15] = 1f64;
+        jv[16] = v29;
+        jv[17] = (-1f64);
+        jv[18] = s_slider;
+        jv[19] = v81;
+        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        jv[21] = v81;
+        jv[22] = 1f64;
+        nu[0] = 0f64;
+        nu[1] = 0f64;
+        nu[2] = 0f64;
+        nu[3] = 0f64;
+        nu[4] = 0f64;
+        nu[5] = 0f64;
+        nu[6] = 0f64;
+        nu[7] = 0f64;
+        nu[8] = self.omega;
+        m[0] = 1f64;
+        m[1] = 1f64;
+        m[2] = 0.002f64;
+        m[3] = 2f64;
+        m[4] = 2f64;
+        m[5] = 0.015f64;
+        m[6] = 0.5f64;
+        m[7] = 0.5f64;
+        m[8] = 0.001f64;
+        let mut minv = [0f64; 9];
+        minv[0] = 1f64 / m[0];
+        minv[1] = minv[0];
+        minv[2] = 1f64 / m[2];
+        minv[3] = 1f64 / m[3];
+        minv[4] = minv[3];
+        minv[5] = 1f64 / m[5];
+        minv[6] = 1f64 / m[6];
+        minv[7] = minv[6];
+        minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if let ::core::result::Result::Err(row) = Self::schur_factor(
+            &jv,
+            &minv,
+            options.pivot_tolerance,
+            options.allow_redundant,
+            &mut l,
+            &mut dinv,
+        ) {
+            let finite = q
+                .iter()
+                .chain(jv.iter())
+                .chain(m.iter())
+                .all(|v| v.is_finite());
+            return ::core::result::Result::Err(
+                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+            );
+        }
+        let mut b = [0f64; 9];
+        {
+            let qd: &[f64; 9] = qd;
+            b[0] = (jv[0] * qd[0] + jv[1] * qd[2]) - nu[0];
+            b[1] = (jv[2] * qd[1] + jv[3] * qd[2]) - nu[1];
+            b[2] = (jv[4] * qd[0] + jv[5] * qd[2] + jv[6] * qd[3] + jv[7] * qd[5])
+                - nu[2];
+            b[3] = (jv[8] * qd[1] + jv[9] * qd[2] + jv[10] * qd[4] + jv[11] * qd[5])
+                - nu[3];
+            b[4] = (jv[12] * qd[3] + jv[13] * qd[5] + jv[14] * qd[6]) - nu[4];
+            b[5] = (jv[15] * qd[4] + jv[16] * qd[5] + jv[17] * qd[7]) - nu[5];
+            b[6] = (jv[18] * qd[6] + jv[19] * qd[7] + jv[20] * qd[8]) - nu[6];
+            b[7] = (jv[21] * qd[8]) - nu[7];
+            b[8] = (jv[22] * qd[2]) - nu[8];
+        }
+        let mut worst = 0f64;
+        for v in b.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*v));
+        }
+        Self::schur_solve(&l, &dinv, &mut b);
+        qd[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
+        qd[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
+        qd[2]
+            -= minv[2]
+                * (jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
+                    + jv[22] * b[8]);
+        qd[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
+        qd[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
+        qd[5]
+            -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
+        qd[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
+        qd[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
+        qd[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
+        ::core::result::Result::Ok(worst)
+    }
 }
 #[allow(unused_variables, unused_parens, clippy::all)]
 impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
@@ -507,7 +1144,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v29: f64 = (v24 * c_rod);
         let v32: f64 = (-(v24 * s_rod));
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v72: f64 = (-c_slider);
+        let v81: f64 = (-c_slider);
         d[0][0] = (-1f64);
         d[0][2] = v13;
         d[1][1] = (-1f64);
@@ -527,9 +1164,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v72;
+        d[6][7] = v81;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v72;
+        d[7][8] = v81;
         d[8][2] = 1f64;
     }
     #[inline]
@@ -591,7 +1228,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v31: f64 = (v24 * s_rod);
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v72: f64 = (-c_slider);
+        let v81: f64 = (-c_slider);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -620,9 +1257,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v72;
+        d[6][7] = v81;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v72;
+        d[7][8] = v81;
         d[8][2] = 1f64;
     }
     #[inline]
@@ -648,7 +1285,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v31: f64 = (v24 * s_rod);
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v72: f64 = (-c_slider);
+        let v81: f64 = (-c_slider);
         let v119: f64 = (s_slider * qd[8]);
         let v126: f64 = (c_slider * qd[8]);
         let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
@@ -686,9 +1323,9 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         d[5][5] = v29;
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
-        d[6][7] = v72;
+        d[6][7] = v81;
         d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
-        d[7][8] = v72;
+        d[7][8] = v81;
         d[8][2] = 1f64;
         nu[0] = 0f64;
         nu[1] = 0f64;

@@ -9,6 +9,7 @@ use crate::formulation::{formulate, Formulation};
 use crate::json::model_json;
 use crate::model::{Model, Partial, Scalar};
 use crate::parse::MechanismDef;
+use crate::schur::Schur;
 
 /// Expands a `mechanism!` invocation. Never fails: mistakes become `compile_error!`s next to a
 /// stub of the mechanism's type, so code that uses the type does not add follow-up errors.
@@ -123,15 +124,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     full.extend(vector_outputs("nu", &f.nu));
     full.extend(vector_outputs("gamma", &f.gamma));
     let (full_body, full_ops) = e.body(&full);
-    let values: Vec<Output> = f
-        .jacobian
-        .iter()
-        .enumerate()
-        .map(|(k, &(_, _, node))| {
-            let k = usize_lit(k);
-            Output { target: quote!(out[#k]), node }
-        })
-        .collect();
+    let values = jacobian_values_outputs(&f, "out");
     let (values_body, values_ops) = e.body(&values);
     let mut full_values = vector_outputs("phi", &f.phi);
     full_values.extend(values.iter().map(|o| Output { target: o.target.clone(), node: o.node }));
@@ -145,6 +138,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (h_qd_body, h_qd_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
     let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
+    let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
+    let forward = forward_dynamics(m, &f, &e);
     let nz_l = usize_lit(nq + nc);
     let mut joints = Vec::new();
     let mut first_row = 0u16;
@@ -188,7 +183,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("forces_qd", h_qd_ops),
         op_count("potential_energy", v_ops),
         op_count("constraint_force_q", cfq_ops),
+        op_count("nonconservative_power", power_ops),
+        op_count("accelerations (evaluation, before the solve)", forward.eval_ops),
     ];
+    let ForwardCode { helpers, impl_block, .. } = forward;
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
     let coordinate_names = m.coordinate_names();
@@ -254,6 +252,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             /// [[K, Φ_qᵀ], [Φ_q, 0]] (static equilibrium).
             pub fn kkt_workspace() -> ::mbd::KktWorkspace<#real, #nz_l> {
                 ::mbd::KktWorkspace::new()
+            }
+
+            /// A generalized-α integrator with work space for this mechanism's NQ + NC unknowns.
+            pub fn generalized_alpha(options: ::mbd::GeneralizedAlphaOptions<#real>) -> ::mbd::GeneralizedAlpha<#real, #nz_l> {
+                ::mbd::GeneralizedAlpha::new(options)
             }
 
             /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
@@ -332,7 +335,20 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #v_body
                 energy[0]
             }
+            #[inline]
+            fn nonconservative_power(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real) -> #real {
+                let mut power = [#zero; 1];
+                #power_body
+                power[0]
+            }
         }
+
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        impl #name {
+            #helpers
+        }
+
+        #impl_block
 
         #[allow(unused_variables, unused_parens, clippy::all)]
         impl ::mbd::Kinematics<#real, #nq_l, #nc_l> for #name {
@@ -386,6 +402,254 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
     })
+}
+
+/// The generated forward dynamics: private helpers (the LDLᵀ of S and its solve) and the
+/// `ForwardDynamics` implementation.
+struct ForwardCode {
+    helpers: TokenStream,
+    impl_block: TokenStream,
+    eval_ops: Ops,
+}
+
+fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
+    let real = real(m.scalar);
+    let name = &m.name;
+    let zero = e.literal(0.0);
+    let one = e.literal(1.0);
+    let (nq, nc, nnz) = (f.nq, f.nc, f.jacobian.len());
+    let (nq_l, nc_l, nnz_l) = (usize_lit(nq), usize_lit(nc), usize_lit(nnz));
+    let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+    let schur = Schur::plan(nc, &pattern);
+    let nl_l = usize_lit(schur.nl());
+    let factor = schur.factor(&real, &zero);
+    let solve = schur.solve();
+    let jv_outputs: Vec<Output> = f
+        .jacobian
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(jv[#k]), node }
+        })
+        .collect();
+    let phi_t_zero = f.phi_t_is_zero();
+
+    // q̈ = M⁻¹ h (+ M⁻¹ Φ_qᵀ λ later), M⁻¹ once per distinct mass expression.
+    let mut minv = Vec::new();
+    for (i, &node) in f.mass.iter().enumerate() {
+        let il = usize_lit(i);
+        match f.mass[..i].iter().position(|&n| n == node) {
+            Some(j) => {
+                let jl = usize_lit(j);
+                minv.push(quote!(minv[#il] = minv[#jl];));
+            }
+            None => minv.push(quote!(minv[#il] = #one / m[#il];)),
+        }
+    }
+    // (Φ_q x)_r for a vector x, straight-line over the pattern.
+    let row_times = |x: &TokenStream| -> Vec<TokenStream> {
+        (0..nc)
+            .map(|r| {
+                let terms: Vec<TokenStream> = pattern
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, &(row, _))| row == r)
+                    .map(|(k, &(_, c))| {
+                        let (k, c) = (usize_lit(k), usize_lit(c));
+                        quote!(jv[#k] * #x[#c])
+                    })
+                    .collect();
+                if terms.is_empty() {
+                    zero.clone()
+                } else {
+                    quote!((#(#terms)+*))
+                }
+            })
+            .collect()
+    };
+    // x[c] += minv[c] (Φ_qᵀ y)_c, straight-line over the pattern.
+    let add_transpose = |x: &TokenStream, y: &TokenStream, sign: TokenStream| -> Vec<TokenStream> {
+        (0..nq)
+            .filter_map(|c| {
+                let terms: Vec<TokenStream> = pattern
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, &(_, col))| col == c)
+                    .map(|(k, &(r, _))| {
+                        let (k, r) = (usize_lit(k), usize_lit(r));
+                        quote!(jv[#k] * #y[#r])
+                    })
+                    .collect();
+                let cl = usize_lit(c);
+                (!terms.is_empty()).then(|| quote!(#x[#cl] #sign minv[#cl] * (#(#terms)+*);))
+            })
+            .collect()
+    };
+    let rows: Vec<Literal> = (0..nc).map(usize_lit).collect();
+    let cols: Vec<Literal> = (0..nq).map(usize_lit).collect();
+
+    // accelerations: one fused evaluation of Φ, Φ_q's non-zeros, ν, γ, h and M.
+    let mut outputs = jv_outputs;
+    outputs.extend(vector_outputs("phi", &f.phi));
+    if !phi_t_zero {
+        outputs.extend(vector_outputs("nu", &f.nu));
+    }
+    outputs.extend(vector_outputs("gamma", &f.gamma));
+    outputs.extend(vector_outputs("h", &f.h));
+    outputs.extend(vector_outputs("m", &f.mass));
+    let (eval_body, eval_ops) = e.body(&outputs);
+    let dq = row_times(&quote!(qdd));
+    let dqd = row_times(&quote!(qd));
+    let lambda_qdd = add_transpose(&quote!(qdd), &quote!(lambda), quote!(+=));
+
+    let mut positions = vector_outputs("phi", &f.phi);
+    positions.extend(jacobian_values_outputs(f, "jv"));
+    positions.extend(vector_outputs("m", &f.mass));
+    let (positions_body, _) = e.body(&positions);
+    let q_step = add_transpose(&quote!(q), &quote!(b), quote!(-=));
+
+    let mut velocities = jacobian_values_outputs(f, "jv");
+    if !phi_t_zero {
+        velocities.extend(vector_outputs("nu", &f.nu));
+    }
+    velocities.extend(vector_outputs("m", &f.mass));
+    let (velocities_body, _) = e.body(&velocities);
+    let qd_step = add_transpose(&quote!(qd), &quote!(b), quote!(-=));
+
+    let fail = quote! {
+        let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|v| v.is_finite());
+        return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, finite));
+    };
+    let factor_call = quote! {
+        let mut minv = [#zero; #nq_l];
+        #(#minv)*
+        let mut l = [#zero; #nl_l];
+        let mut dinv = [#zero; #nc_l];
+        if let ::core::result::Result::Err(row) =
+            Self::schur_factor(&jv, &minv, options.pivot_tolerance, options.allow_redundant, &mut l, &mut dinv)
+        {
+            #fail
+        }
+    };
+    let max_abs = quote! {
+        let mut worst = #zero;
+        for v in b.iter() {
+            worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*v));
+        }
+    };
+
+    let helpers = quote! {
+        /// LDLᵀ of S = Φ_q M⁻¹ Φ_qᵀ over its compile-time pattern; `Err(row)` for a dependent row.
+        #[inline(always)]
+        fn schur_factor(
+            jv: &[#real; #nnz_l],
+            minv: &[#real; #nq_l],
+            tol: #real,
+            allow_redundant: bool,
+            l: &mut [#real; #nl_l],
+            dinv: &mut [#real; #nc_l],
+        ) -> ::core::result::Result<(), usize> {
+            #factor
+        }
+
+        /// b ← S⁻¹ b with the factors of `schur_factor`.
+        #[inline(always)]
+        fn schur_solve(l: &[#real; #nl_l], dinv: &[#real; #nc_l], b: &mut [#real; #nc_l]) {
+            #solve
+        }
+    };
+    let impl_block = quote! {
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        impl ::mbd::ForwardDynamics<#real, #nq_l, #nc_l> for #name {
+            #[inline]
+            fn accelerations(
+                &self,
+                q: &[#real; #nq_l],
+                qd: &[#real; #nq_l],
+                t: #real,
+                options: &::mbd::DynamicsOptions<#real>,
+                qdd: &mut [#real; #nq_l],
+                lambda: &mut [#real; #nc_l],
+            ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
+                let mut jv = [#zero; #nnz_l];
+                let mut phi = [#zero; #nc_l];
+                let mut nu = [#zero; #nc_l];
+                let mut gamma = [#zero; #nc_l];
+                let mut h = [#zero; #nq_l];
+                let mut m = [#zero; #nq_l];
+                #eval_body
+                #factor_call
+                #( qdd[#cols] = h[#cols] * minv[#cols]; )*
+                let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
+                let beta2 = options.baumgarte_beta * options.baumgarte_beta;
+                #( lambda[#rows] = gamma[#rows] - #dq - two_alpha * (#dqd - nu[#rows]) - beta2 * phi[#rows]; )*
+                Self::schur_solve(&l, &dinv, lambda);
+                #(#lambda_qdd)*
+                ::core::result::Result::Ok(())
+            }
+
+            #[inline]
+            fn project_positions_step(
+                &self,
+                q: &mut [#real; #nq_l],
+                t: #real,
+                options: &::mbd::DynamicsOptions<#real>,
+            ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                let mut jv = [#zero; #nnz_l];
+                let mut phi = [#zero; #nc_l];
+                let mut m = [#zero; #nq_l];
+                {
+                    let q: &[#real; #nq_l] = q;
+                    #positions_body
+                }
+                #factor_call
+                let mut b = phi;
+                #max_abs
+                Self::schur_solve(&l, &dinv, &mut b);
+                #(#q_step)*
+                ::core::result::Result::Ok(worst)
+            }
+
+            #[inline]
+            fn project_velocities(
+                &self,
+                q: &[#real; #nq_l],
+                qd: &mut [#real; #nq_l],
+                t: #real,
+                options: &::mbd::DynamicsOptions<#real>,
+            ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                let mut jv = [#zero; #nnz_l];
+                let mut nu = [#zero; #nc_l];
+                let mut m = [#zero; #nq_l];
+                #velocities_body
+                #factor_call
+                let mut b = [#zero; #nc_l];
+                {
+                    let qd: &[#real; #nq_l] = qd;
+                    #( b[#rows] = #dqd - nu[#rows]; )*
+                }
+                #max_abs
+                Self::schur_solve(&l, &dinv, &mut b);
+                #(#qd_step)*
+                ::core::result::Result::Ok(worst)
+            }
+        }
+    };
+    ForwardCode { helpers, impl_block, eval_ops }
+}
+
+/// Outputs `name[k] = Φ_q`'s k-th structural non-zero.
+fn jacobian_values_outputs(f: &Formulation, name: &str) -> Vec<Output> {
+    let name = format_ident!("{}", name);
+    f.jacobian
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(#name[#k]), node }
+        })
+        .collect()
 }
 
 #[cfg(test)]

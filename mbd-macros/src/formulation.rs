@@ -34,6 +34,9 @@ pub struct Formulation {
     pub h_qd: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
+    /// Power of the non-conservative forces, q̇ᵀh + dV/dt: what dampers, actuators, applied
+    /// forces and friction put in (J/s). Then d(T + V)/dt = this + λᵀ Φ_q q̇.
+    pub power: Id,
     /// Structural non-zeros of ∂(Φ_qᵀλ)/∂q (the constraints' geometric stiffness), with λ as
     /// variables.
     pub constraint_force_q: Vec<(usize, usize, Id)>,
@@ -399,6 +402,16 @@ pub fn formulate(model: &Model) -> Formulation {
         mass.extend([m, m, j]);
     }
     let (h, potential) = b.forces();
+    // dV/dt = V_q q̇ + V_t
+    let v_rate = b.rate(potential);
+    let mut memo_v = HashMap::new();
+    let v_t = b.g.diff(potential, Var::T, &mut memo_v);
+    let mut power = b.g.add(v_rate, v_t);
+    for (i, &hi) in h.iter().enumerate() {
+        let qd = b.g.var(Var::Qd(i as u16));
+        let p = b.g.mul(qd, hi);
+        power = b.g.add(power, p);
+    }
     let mut g = b.g;
     let h_q = sparse_derivative(&mut g, &h, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
     let h_qd = sparse_derivative(&mut g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
@@ -445,7 +458,7 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let constraint_force_q = sparse_derivative(&mut g, &constraint_force, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
 
-    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, constraint_force_q }
+    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, power, constraint_force_q }
 }
 
 /// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.

@@ -3,7 +3,7 @@
 //! Data flows one way through plain-Rust stages, each unit-tested without a compiler in the loop:
 //! [`parse`] (tokens → syntax tree with spans) → [`model`] (names resolved, rules checked, every
 //! mistake reported at once) → [`formulation`] (symbolic Φ, Φ_q, ν, γ in planar body coordinates,
-//! on the [`sym`] expression graph) → [`emit`] (straight-line Rust) → [`expand`] (the mechanism's
+//! on the [`sym`] expression graph) → [`emit`] (straight-line Rust; [`schur`] the sparse solve of the equations of motion) → [`expand`] (the mechanism's
 //! type and trait implementations; [`json`] its model description).
 
 mod emit;
@@ -12,6 +12,7 @@ mod formulation;
 mod json;
 mod model;
 mod parse;
+mod schur;
 mod sym;
 
 use proc_macro::TokenStream;
