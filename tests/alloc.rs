@@ -1,6 +1,7 @@
 //! A counting global allocator shows that a 10 000-point kinematic sweep of the slider-crank
-//! makes no heap allocation after set-up. This binary holds this one test only, so no other
-//! test's thread allocates while it counts.
+//! and 10 000 steps of each integrator (with projection, work tracking and an output every
+//! step) make no heap allocation after set-up. This binary holds this one test only, so no
+//! other test's thread allocates while it counts.
 mod common;
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -50,4 +51,56 @@ fn kinematic_sweep_does_not_allocate() {
     assert_eq!(points, 10_000, "every point was visited");
     assert!(checksum.is_finite());
     assert_eq!(after - before, 0, "heap allocations during the sweep");
+
+    integrators_do_not_allocate();
+}
+
+mbd::mechanism! {
+    /// A damped free four-bar under gravity.
+    pub FreeFourBar {
+        gravity [0.0, -9.81];
+        body crank   { mass: 0.5, inertia: 5.0e-4, at: [0.05, 0.0, 0.0] }
+        body coupler { mass: 1.2, inertia: 9.0e-3, at: [0.18, 0.12, 0.97] }
+        body rocker  { mass: 1.0, inertia: 5.2e-3, at: [0.28, 0.12, 1.70] }
+        revolute ground[0.0, 0.0] ~ crank[-0.05, 0.0];
+        revolute crank[0.05, 0.0] ~ coupler[-0.15, 0.0];
+        revolute coupler[0.15, 0.0] ~ rocker[0.125, 0.0];
+        revolute rocker[-0.125, 0.0] ~ ground[0.3, 0.0];
+        spring ground[0.0, 0.3] ~ coupler[0.0, 0.0] { k: 60.0, length: 0.1, c: 0.3 };
+    }
+}
+
+fn integrators_do_not_allocate() {
+    use mbd::prelude::*;
+    let m = FreeFourBar::default();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut q, 0.0).expect("assembles");
+    let mut times = [0.0; 10_000];
+    for (k, t) in times.iter_mut().enumerate() {
+        *t = (k + 1) as f64 * 1e-3;
+    }
+    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
+    let partitioned = SimulationOptions { correction: Correction::partitioning(), ..options };
+    let mut rk4 = Rk4::new(1e-3);
+    let mut dopri = Dopri5::new(Dopri5Options { max_step: 1e-3, ..Dopri5Options::default() });
+    let mut alpha = FreeFourBar::generalized_alpha(GeneralizedAlphaOptions::default());
+    let mut samples = 0u64;
+    let mut energy = 0.0;
+
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut steps = 0;
+    let mut collect = |s: &Sample<f64, 9, 8>| {
+        samples += 1;
+        energy += s.energy.balance();
+    };
+    steps += simulate(&m, &mut rk4, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("RK4").steps;
+    steps += simulate(&m, &mut dopri, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("DOPRI5").steps;
+    steps += simulate(&m, &mut alpha, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("generalized-α").steps;
+    steps += simulate(&m, &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 9], &times, &partitioned, &mut collect).expect("partitioning").steps;
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+
+    assert!(steps >= 40_000, "{steps} steps");
+    assert_eq!(samples, 40_000, "every output was delivered");
+    assert!(energy.is_finite());
+    assert_eq!(after - before, 0, "heap allocations during 10 000 steps of each integrator");
 }
