@@ -1,8 +1,11 @@
-//! The CasADi oracle: every example's generated Φ, Φ_q, ν and γ, evaluated at 200 random states
-//! (q, q̇, t and parameters within ±10 % of their defaults), are handed to an independent
-//! CasADi rebuild of the model (`tests/oracle/`, Python) that compares them entry by entry. Then
-//! the oracle must reject a deliberately wrong Jacobian entry and a wrong γ, naming where, and
-//! mbd's kinematic sweeps must match CasADi's reference trajectories (`tests/oracle/reference/`).
+//! The CasADi oracle: every example's generated Φ, Φ_q, ν and γ, and its dynamics — the mass
+//! diagonal M, the forces h(q, q̇, t), ∂h/∂q, ∂h/∂q̇ and the potential energy V — evaluated at 200
+//! random states (q, q̇, t and parameters within ±10 % of their defaults), are handed to an
+//! independent CasADi rebuild of the model (`tests/oracle/`, Python) that compares them entry by
+//! entry. `EveryForce` below declares every kind of force element so that every path of h is
+//! checked. Then the oracle must reject a deliberately wrong Jacobian entry, γ entry, h entry and
+//! ∂h/∂q̇ entry, naming where, and mbd's kinematic sweeps must match CasADi's reference
+//! trajectories (`tests/oracle/reference/`).
 //!
 //! The Python environment (pinned CasADi and NumPy) is created on first use by
 //! `tests/oracle/ensure_env.sh` under `target/oracle-venv`. A missing Python or CasADi is a
@@ -19,8 +22,48 @@ use common::Rng;
 mod chain16 {
     include!("../benches/chain16.rs");
 }
-use mbd::{KinematicSolver, Kinematics};
+use mbd::{Dynamics, KinematicSolver, Kinematics};
 use serde_json::{json, Value};
+
+mbd::mechanism! {
+    /// Every kind of force element the DSL has, with non-trivial parameters, so that the oracle
+    /// checks every path of h, ∂h/∂q, ∂h/∂q̇ and V: gravity; point-to-point spring, damper and
+    /// actuator, alone and combined, with ground on either side; rotational spring, damper and
+    /// torque actuator, alone and combined, with ground on either side; forces at points in global
+    /// and in body components (state-, velocity- and time-dependent); torques; viscous friction in
+    /// revolute and translational joints (with an axis that is not a unit vector). Three bodies and
+    /// six constraint rows: three degrees of freedom.
+    pub EveryForce {
+        params { k: 350.0, l0: 0.45, c: 4.0, kr: 25.0, g: 9.81, f0: 12.0, mu: 0.08, ax: 1.0, ml: 0.7 }
+        gravity [0.4, -g];
+        body arm    { mass: 1.2, inertia: 0.08, at: [0.3, 0.1, 0.2] }
+        body slider { mass: 2.5, inertia: 0.2, at: [0.8, -0.2, -0.4], velocity: [0.1, 0.0, 0.3] }
+        body link   { mass: ml, inertia: ml * 0.04, at: [1.2, 0.3, 0.5] }
+        point link.tip = [0.25, -0.05];
+        revolute ground[0.0, 0.0] ~ arm[-0.3, 0.0] { viscous: mu };
+        translational arm[0.2, 0.05] along [ax, 0.5] ~ slider[0.0, 0.1] along [2.0, 1.0] { viscous: 0.7 };
+        revolute slider[0.3, 0.0] ~ link[-0.2, 0.05] { viscous: 0.02 };
+        spring full: arm[0.1, 0.05] ~ slider[0.2, -0.1] { k: k, length: l0, c: c, force: f0 * sin(2.0 * t) + arm.vx };
+        spring ground[1.0, 1.0] ~ link.tip { k: 2.0 * k, length: 0.3 };
+        spring link[-0.1, 0.0] ~ ground[-0.5, 0.8] { k: 80.0, length: l0 / 2.0, c: 1.5 };
+        damper ground[1.0, -1.0] ~ slider[0.0, 0.1] { c: 2.0 * c };
+        damper arm[0.0, -0.1] ~ link[0.0, 0.0] { c: 0.9 };
+        actuator ground[0.0, 1.0] ~ arm[0.0, 0.0] { force: 10.0 * arm.vx + slider.y * link.omega };
+        actuator link.tip ~ slider[0.1, 0.1] { force: f0 * cos(t) };
+        rotational_spring arm ~ slider { k: kr, angle: 0.2, c: 0.4, torque: 1.0 + link.phi };
+        rotational_spring link ~ ground { k: 5.0, angle: -0.3 };
+        rotational_spring ground ~ slider { k: 2.0 * kr };
+        rotational_damper ground ~ arm { c: 0.3 };
+        rotational_damper slider ~ link { c: 0.15 };
+        torque_actuator link ~ arm { torque: 2.0 * cos(3.0 * t) * slider.omega };
+        force slider[0.1, 0.0] = [1.0, -2.0 * t];
+        force link.tip = [arm.x * slider.vy, f0 * exp(-t)];
+        local_force arm[0.0, 0.1] = [3.0, slider.omega];
+        local_force link[0.1, -0.2] = [-f0 * link.phi, sqrt(1.0 + arm.vy^2)];
+        torque slider = 0.5 * cos(t);
+        torque link = -c * link.omega + atan2(arm.y, arm.x);
+    }
+}
 
 const SAMPLES: usize = 200;
 
@@ -56,9 +99,12 @@ fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
 }
 
 /// Evaluates a mechanism's generated functions at random states and writes the samples file.
+/// Kinematics: "phi", "jacobian" (structural non-zeros in `JACOBIAN_PATTERN` order), "nu",
+/// "gamma". Dynamics: "mass" (the diagonal of M), "h", "h_q" and "h_qd" (dense NQ×NQ, row r =
+/// h_r), "potential".
 fn write_samples<M, const NQ: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
-    M: Kinematics<f64, NQ, NC>,
+    M: Dynamics<f64, NQ, NC>,
 {
     let mut rng = Rng::new(seed);
     let mut samples = Vec::with_capacity(SAMPLES);
@@ -76,10 +122,18 @@ where
         m.jacobian(&q, t, &mut d);
         m.velocity_rhs(&q, t, &mut nu);
         m.gamma(&q, &qd, t, &mut gamma);
+        let (mut h, mut h_q, mut h_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
+        m.forces(&q, &qd, t, &mut h);
+        m.forces_q(&q, &qd, t, &mut h_q);
+        m.forces_qd(&q, &qd, t, &mut h_qd);
+        let potential = m.potential_energy(&q, t);
         let jacobian: Vec<f64> = M::JACOBIAN_PATTERN.iter().map(|&(r, c)| d[r as usize][c as usize]).collect();
         let named: serde_json::Map<String, Value> = M::PARAM_NAMES.iter().zip(&params).map(|(n, v)| (n.to_string(), json!(v))).collect();
+        let dense = |a: &[[f64; NQ]; NQ]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
         samples.push(json!({"params": named, "t": t, "q": q.to_vec(), "qd": qd.to_vec(), "phi": phi.to_vec(),
-                            "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec()}));
+                            "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec(),
+                            "mass": m.mass_diagonal().to_vec(), "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
+                            "potential": potential}));
     }
     let model: Value = serde_json::from_str(M::MODEL_JSON).expect("MODEL_JSON is valid JSON");
     let dir = repo().join("target/oracle/samples");
@@ -107,15 +161,18 @@ fn casadi_oracle() {
         samples!(common::double_a_arm::DoubleAArm, 16),
         samples!(common::macpherson::MacPherson, 17),
         samples!(chain16::Chain16, 18),
+        samples!(common::slider_crank_inverse::Engine, 19),
+        samples!(EveryForce, 20),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
     let (ok, text) = oracle(&py, "mbd_oracle.compare", &args);
     println!("{text}");
     assert!(ok, "the CasADi oracle rejected generated functions:\n{text}");
 
-    // The oracle can fail: it must reject a perturbed Jacobian entry and a perturbed γ entry and
-    // name the mechanism, the function, the row and the column.
-    let (ok, text) = oracle(&py, "mbd_oracle.selftest", &[files[0].as_path()]);
+    // The oracle can fail: it must reject a perturbed Jacobian entry, γ entry, h entry and ∂h/∂q̇
+    // entry and name the mechanism, the function, the row and the column.
+    let every_force = files.last().expect("EveryForce is checked");
+    let (ok, text) = oracle(&py, "mbd_oracle.selftest", &[files[0].as_path(), every_force.as_path()]);
     println!("{text}");
     assert!(ok, "the oracle's self-test failed: it accepted a wrong value or did not say where:\n{text}");
 }

@@ -1,14 +1,28 @@
 """Shows the oracle can fail: wrong values must be rejected, with the mechanism, function, row
 and column named.
 
-Usage: python -m mbd_oracle.selftest SAMPLES.json
+Usage: python -m mbd_oracle.selftest SAMPLES.json [SAMPLES.json ...]
+
+For each file: a Jacobian entry and a γ entry off by a relative 1e-9, a dropped structural
+non-zero of the Jacobian; and, when the samples hold the dynamics, the largest h entry and the
+largest ∂h/∂q̇ entry of a sample off by a relative 1e-9 and an ∂h/∂q̇ entry zeroed at every
+sample (a structural non-zero mbd would have lost). Every one must be rejected, naming where.
+Forward dynamics: the oracle's own q̈ and λ, written into the samples, must pass, and the largest
+q̈ entry of the best-conditioned sample off by a relative 1e-8 must be rejected (this exercises the comparison until
+mbd writes its own "qdd" and "lambda"; the comparison's resolution is 2e-12·cond(K)·||[q̈; λ]||∞,
+which for the checked mechanisms, cond(K) ~ 1e1–1e3 and |λ| up to ~10 |q̈|, lies between 1e-11
+and 1e-8 of the largest q̈).
 """
 
 import copy
 import json
 import sys
 
+import numpy as np
+
 from .compare import compare_model
+from .dynamics import Dynamics
+from .model import Model
 
 
 def expect_rejection(data, what, needles):
@@ -25,18 +39,88 @@ def expect_rejection(data, what, needles):
     return True
 
 
+def largest(matrix):
+    """(row, column) of the entry of largest magnitude."""
+    a = np.abs(np.asarray(matrix, dtype=float))
+    return tuple(int(i) for i in np.unravel_index(np.argmax(a), a.shape))
+
+
+def dynamics_selftest(data):
+    """The dynamics perturbations; True when every one is rejected and named."""
+    model = data["model"]
+    name, cols = model["name"], model["coordinates"]
+    ok = True
+    # 4. The largest h entry of sample 7 off by a relative 1e-9. (The largest, because the floor is
+    #    relative to ||h||_inf: a relative 1e-9 of an entry a million times smaller than the largest
+    #    is below rounding of the largest terms, and not a claim the oracle makes.)
+    bad = copy.deepcopy(data)
+    s = bad["samples"][7]
+    (r,) = largest(s["h"])
+    s["h"][r] = s["h"][r] * (1 + 1e-9) if s["h"][r] != 0 else 1e-9
+    ok &= expect_rejection(bad, f"an h entry off by 1e-9 (relative) at [{cols[r]}]", [name, "h[", cols[r], "sample 7"])
+
+    # 5. The largest ∂h/∂q̇ entry of sample 9 off by a relative 1e-9.
+    bad = copy.deepcopy(data)
+    s = bad["samples"][9]
+    r, c = largest(s["h_qd"])
+    s["h_qd"][r][c] = s["h_qd"][r][c] * (1 + 1e-9) if s["h_qd"][r][c] != 0 else 1e-9
+    ok &= expect_rejection(bad, f"an h_qd entry off by 1e-9 (relative) at [{cols[r]}][{cols[c]}]",
+                           [name, "h_qd", cols[r], cols[c], "sample 9"])
+
+    # 6. A structural non-zero of ∂h/∂q̇ lost: that entry 0.0 at every sample.
+    if any(any(v != 0 for row in s["h_qd"] for v in row) for s in data["samples"]):
+        bad = copy.deepcopy(data)
+        r, c = largest(data["samples"][9]["h_qd"])
+        for s in bad["samples"]:
+            s["h_qd"][r][c] = 0.0
+        ok &= expect_rejection(bad, f"a lost structural non-zero of h_qd at [{cols[r]}][{cols[c]}]",
+                               [name, "h_qd", "structural zero", cols[r], cols[c]])
+    return ok
+
+
+def forward_selftest(data, alpha=5.0, beta=7.0):
+    """The forward-dynamics comparison: the oracle's own solution passes, a perturbed one fails."""
+    model = data["model"]
+    name, cols = model["name"], model["coordinates"]
+    dyn = Dynamics(Model(model))
+    good = copy.deepcopy(data)
+    conds = []
+    for s in good["samples"]:
+        qdd, lam, cond = dyn.forward(s["q"], s["qd"], s["t"], dyn.model.params_vector(s["params"]), alpha, beta)
+        s.update({"qdd": list(qdd), "lambda": list(lam), "alpha": alpha, "beta": beta})
+        conds.append(cond)
+    failures = compare_model(good, out=lambda *_: None)
+    if failures:
+        print(f"selftest: the oracle REJECTED its own forward dynamics:\n" + "\n".join(failures[:10]))
+        return False
+    # The best-conditioned sample: the resolution there is what the comparison can claim.
+    k = int(np.argmin(conds))
+    bad = copy.deepcopy(good)
+    s = bad["samples"][k]
+    (r,) = largest(s["qdd"])
+    s["qdd"][r] *= 1 + 1e-8
+    return expect_rejection(bad, f"a qdd entry off by 1e-8 (relative) at [{cols[r]}]", [name, "qdd", cols[r], f"sample {k}"])
+
+
 def main(argv):
-    if len(argv) != 1:
+    if not argv:
         print(__doc__)
         return 2
-    with open(argv[0]) as f:
-        data = json.load(f)
+    ok = True
+    for path in argv:
+        with open(path) as f:
+            ok &= selftest(json.load(f))
+    return 0 if ok else 1
+
+
+def selftest(data):
+    """All perturbations of one samples file; True when every one is rejected and named."""
     model = data["model"]
     name, rows, cols = model["name"], model["constraint_rows"], model["coordinates"]
     ok = compare_model(copy.deepcopy(data), out=lambda *_: None) == []
     if not ok:
-        print("selftest: the unperturbed samples do not pass; nothing to show")
-        return 1
+        print(f"selftest: the unperturbed samples of {name} do not pass; nothing to show")
+        return False
 
     # 1. One Jacobian entry off by a relative 1e-9.
     bad = copy.deepcopy(data)
@@ -60,7 +144,11 @@ def main(argv):
     for s in bad["samples"]:
         s["jacobian"].pop(0)
     ok &= expect_rejection(bad, f"a missing structural non-zero at [{rows[r]}][{cols[c]}]", [name, "structural zero", rows[r], cols[c]])
-    return 0 if ok else 1
+
+    if all("h" in s for s in data["samples"]):
+        ok &= dynamics_selftest(data)
+    ok &= forward_selftest(data)
+    return ok
 
 
 if __name__ == "__main__":
