@@ -22,7 +22,7 @@ use common::Rng;
 mod chain16 {
     include!("../benches/chain16.rs");
 }
-use mbd::{Dynamics, KinematicSolver, Kinematics};
+use mbd::{KinematicSolver, Kinematics};
 use serde_json::{json, Value};
 
 mbd::mechanism! {
@@ -104,8 +104,9 @@ fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
 /// h_r), "potential".
 fn write_samples<M, const NQ: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
-    M: Dynamics<f64, NQ, NC>,
+    M: mbd::ForwardDynamics<f64, NQ, NC>,
 {
+    let mut forward = 0;
     let mut rng = Rng::new(seed);
     let mut samples = Vec::with_capacity(SAMPLES);
     for _ in 0..SAMPLES {
@@ -130,11 +131,26 @@ where
         let jacobian: Vec<f64> = M::JACOBIAN_PATTERN.iter().map(|&(r, c)| d[r as usize][c as usize]).collect();
         let named: serde_json::Map<String, Value> = M::PARAM_NAMES.iter().zip(&params).map(|(n, v)| (n.to_string(), json!(v))).collect();
         let dense = |a: &[[f64; NQ]; NQ]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
-        samples.push(json!({"params": named, "t": t, "q": q.to_vec(), "qd": qd.to_vec(), "phi": phi.to_vec(),
+        let mut sample = json!({"params": named, "t": t, "q": q.to_vec(), "qd": qd.to_vec(), "phi": phi.to_vec(),
                             "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec(),
                             "mass": m.mass_diagonal().to_vec(), "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
-                            "potential": potential}));
+                            "potential": potential});
+        // Forward dynamics through the generated sparse Schur-complement solve, with random
+        // Baumgarte gains; a random state can sit at a singular configuration, where the solve
+        // rightly fails — those samples carry no q̈.
+        let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
+        let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
+        if m.accelerations(&q, &qd, t, &mbd::DynamicsOptions::baumgarte(alpha, beta), &mut qdd, &mut lambda).is_ok() {
+            forward += 1;
+            let fields = sample.as_object_mut().expect("a sample is an object");
+            fields.insert("qdd".into(), json!(qdd.to_vec()));
+            fields.insert("lambda".into(), json!(lambda.to_vec()));
+            fields.insert("alpha".into(), json!(alpha));
+            fields.insert("beta".into(), json!(beta));
+        }
+        samples.push(sample);
     }
+    assert!(forward >= SAMPLES * 9 / 10, "{}: forward dynamics failed at {} of {SAMPLES} random states", M::NAME, SAMPLES - forward);
     let model: Value = serde_json::from_str(M::MODEL_JSON).expect("MODEL_JSON is valid JSON");
     let dir = repo().join("target/oracle/samples");
     std::fs::create_dir_all(&dir).expect("create target/oracle/samples");
