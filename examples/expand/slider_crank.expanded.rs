@@ -464,6 +464,15 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
         energy[0]
     }
     #[inline]
+    fn friction_forces(
+        &self,
+        q: &[f64; 9],
+        qd: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+        h: &mut [f64; 9],
+    ) {}
+    #[inline]
     fn nonconservative_power(&self, q: &[f64; 9], qd: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
         power[0] = 0f64;
@@ -783,6 +792,8 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
             );
         }
+        let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
+        let beta2 = options.baumgarte_beta * options.baumgarte_beta;
         qdd[0] = h[0] * minv[0];
         qdd[1] = h[1] * minv[1];
         qdd[2] = h[2] * minv[2];
@@ -792,8 +803,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
         qdd[6] = h[6] * minv[6];
         qdd[7] = h[7] * minv[7];
         qdd[8] = h[8] * minv[8];
-        let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
-        let beta2 = options.baumgarte_beta * options.baumgarte_beta;
         lambda[0] = gamma[0] - (jv[0] * qdd[0] + jv[1] * qdd[2])
             - two_alpha * ((jv[0] * qd[0] + jv[1] * qd[2]) - nu[0]) - beta2 * phi[0];
         lambda[1] = gamma[1] - (jv[2] * qdd[1] + jv[3] * qdd[2])

@@ -304,7 +304,7 @@ pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
     let jac = f.jacobian.iter().map(|e| &e.2);
     let h_q = f.h_q.iter().chain(&f.h_qd).chain(&f.constraint_force_q).map(|e| &e.2);
     let roots = f.phi.iter().chain(jac).chain(&f.nu).chain(&f.gamma).chain(&f.q0).chain(&f.qd0);
-    let roots = roots.chain(&f.mass).chain(&f.h).chain(h_q).chain(std::iter::once(&f.potential));
+    let roots = roots.chain(&f.mass).chain(&f.h).chain(&f.friction).chain(h_q).chain(std::iter::once(&f.potential));
     for &r in roots {
         let mut stack = vec![r];
         let mut seen = HashSet::new();

@@ -140,6 +140,18 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
     let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
     let forward = forward_dynamics(m, &f, &e);
+    let friction = friction_outputs(&f);
+    let friction_fn = if friction.is_empty() {
+        quote!()
+    } else {
+        let (body, _) = e.body(&friction);
+        let indices: Vec<Literal> = f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
+        quote! {
+            let mut hf = [#zero; #nq_l];
+            #body
+            #( h[#indices] += hf[#indices]; )*
+        }
+    };
     let nz_l = usize_lit(nq + nc);
     let mut joints = Vec::new();
     let mut first_row = 0u16;
@@ -336,6 +348,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 energy[0]
             }
             #[inline]
+            fn friction_forces(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nq_l]) {
+                #friction_fn
+            }
+            #[inline]
             fn nonconservative_power(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real) -> #real {
                 let mut power = [#zero; 1];
                 #power_body
@@ -517,6 +533,53 @@ fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
     let (velocities_body, _) = e.body(&velocities);
     let qd_step = add_transpose(&quote!(qd), &quote!(b), quote!(-=));
 
+    // Without Coulomb friction one solve; with it, fixed-point iteration on the normal loads λ
+    // (the factorization of S does not depend on h, so each iteration is one more solve).
+    let one_solve = quote! {
+        #( qdd[#cols] = h[#cols] * minv[#cols]; )*
+        #( lambda[#rows] = gamma[#rows] - #dq - two_alpha * (#dqd - nu[#rows]) - beta2 * phi[#rows]; )*
+        Self::schur_solve(&l, &dinv, lambda);
+        #(#lambda_qdd)*
+    };
+    let friction = friction_outputs(f);
+    let solve_for_lambda = if friction.is_empty() {
+        quote! {
+            #one_solve
+            ::core::result::Result::Ok(())
+        }
+    } else {
+        let (friction_body, _) = e.body(&friction);
+        quote! {
+            let applied = h;
+            let mut iteration = 0u32;
+            loop {
+                let previous = *lambda;
+                let mut hf = [#zero; #nq_l];
+                {
+                    let lambda: &[#real; #nc_l] = lambda;
+                    #friction_body
+                }
+                #( h[#cols] = applied[#cols] + hf[#cols]; )*
+                #one_solve
+                let mut change = #zero;
+                let mut size = <#real as ::mbd::Real>::ONE;
+                for (new, old) in lambda.iter().zip(previous.iter()) {
+                    change = <#real as ::mbd::Real>::max(change, <#real as ::mbd::Real>::abs(*new - *old));
+                    size = <#real as ::mbd::Real>::max(size, <#real as ::mbd::Real>::abs(*new));
+                }
+                if change <= options.friction_tolerance * size {
+                    return ::core::result::Result::Ok(());
+                }
+                iteration += 1;
+                if iteration >= options.friction_iterations || !(change == change) {
+                    return ::core::result::Result::Err(::mbd::DynamicsError::FrictionNotConverged {
+                        t: <#real as ::mbd::Real>::to_f64(t),
+                        change: <#real as ::mbd::Real>::to_f64(change),
+                    });
+                }
+            }
+        }
+    };
     let fail = quote! {
         let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|v| v.is_finite());
         return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, finite));
@@ -580,13 +643,9 @@ fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
                 let mut m = [#zero; #nq_l];
                 #eval_body
                 #factor_call
-                #( qdd[#cols] = h[#cols] * minv[#cols]; )*
                 let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
                 let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-                #( lambda[#rows] = gamma[#rows] - #dq - two_alpha * (#dqd - nu[#rows]) - beta2 * phi[#rows]; )*
-                Self::schur_solve(&l, &dinv, lambda);
-                #(#lambda_qdd)*
-                ::core::result::Result::Ok(())
+                #solve_for_lambda
             }
 
             #[inline]
@@ -637,6 +696,19 @@ fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
         }
     };
     ForwardCode { helpers, impl_block, eval_ops }
+}
+
+/// Outputs `hf[i] = friction force on coordinate i` for the coordinates friction acts on.
+fn friction_outputs(f: &Formulation) -> Vec<Output> {
+    f.friction
+        .iter()
+        .enumerate()
+        .filter(|(_, &node)| !f.graph.is_zero(node))
+        .map(|(i, &node)| {
+            let i = usize_lit(i);
+            Output { target: quote!(hf[#i]), node }
+        })
+        .collect()
 }
 
 /// Outputs `name[k] = Φ_q`'s k-th structural non-zero.

@@ -34,6 +34,9 @@ pub struct Formulation {
     pub h_qd: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
+    /// Coulomb friction forces, one node per coordinate, functions of q, q̇ and the multipliers λ
+    /// (the joints' normal loads); kept out of h, which does not depend on λ.
+    pub friction: Vec<Id>,
     /// Power of the non-conservative forces, q̇ᵀh + dV/dt: what dampers, actuators, applied
     /// forces and friction put in (J/s). Then d(T + V)/dt = this + λᵀ Φ_q q̇.
     pub power: Id,
@@ -234,10 +237,11 @@ impl Builder<'_> {
     }
 
     /// The generalized forces h and the potential energy V of gravity and every force element.
-    fn forces(&mut self) -> (Vec<Id>, Id) {
+    fn forces(&mut self) -> (Vec<Id>, Vec<Id>, Id) {
         let model = self.model;
         let zero = self.g.num(0.0);
         let mut h = vec![zero; model.n_coordinates()];
+        let mut friction = vec![zero; model.n_coordinates()];
         let mut v = zero;
         if let Some(g) = &model.gravity {
             let g = [self.expr(&g[0]), self.expr(&g[1])];
@@ -312,9 +316,67 @@ impl Builder<'_> {
                     let (f, _) = self.law(s, sdot, &None, &MExpr::Num(0.0), &Some(c.clone()), &None);
                     self.add_along(&mut h, s, f);
                 }
+                ForceKind::RevoluteCoulomb { i, j, mu, radius, slip, row } => {
+                    let fi = self.coord(*i, Coord::Phi);
+                    let fj = self.coord(*j, Coord::Phi);
+                    let theta = self.g.sub(fj, fi);
+                    let omega = self.rate(theta);
+                    let (lx, ly) = (self.g.var(Var::Lambda(*row as u16)), self.g.var(Var::Lambda(*row as u16 + 1)));
+                    let (lx2, ly2) = (self.g.powi(lx, 2), self.g.powi(ly, 2));
+                    let load2 = self.g.add(lx2, ly2);
+                    let load = self.g.call(Func::Sqrt, load2);
+                    let radius = self.expr(radius);
+                    let arm = self.g.mul(radius, load);
+                    let tau = self.coulomb(mu, slip, arm, omega);
+                    self.add_along(&mut friction, theta, tau);
+                }
+                ForceKind::TranslationalCoulomb { i, axis_i, j, mu, slip, bearing, row } => {
+                    let pi = self.point(i);
+                    let pj = self.point(j);
+                    let ui = self.unit(i.body, axis_i);
+                    let d = self.diff2(pj, pi);
+                    let s = self.dot(ui, d);
+                    let sdot = self.rate(s);
+                    let ln = self.g.var(Var::Lambda(*row as u16));
+                    let load = match bearing {
+                        None => self.abs(ln),
+                        Some(w) => {
+                            let la = self.g.var(Var::Lambda(*row as u16 + 1));
+                            let w = self.expr(w);
+                            let half = self.g.num(0.5);
+                            let f = self.g.mul(half, ln);
+                            let m = self.g.div(la, w);
+                            let (p1, p2) = (self.g.add(f, m), self.g.sub(f, m));
+                            let (a1, a2) = (self.abs(p1), self.abs(p2));
+                            self.g.add(a1, a2)
+                        }
+                    };
+                    let f = self.coulomb(mu, slip, load, sdot);
+                    self.add_along(&mut friction, s, f);
+                }
             }
         }
-        (h, v)
+        (h, friction, v)
+    }
+
+    /// |x| as √(x²): a value only (nothing differentiates by λ).
+    fn abs(&mut self, x: Id) -> Id {
+        let x2 = self.g.powi(x, 2);
+        self.g.call(Func::Sqrt, x2)
+    }
+
+    /// Regularized Coulomb law μ N v / √(v² + v_s²): ±μN beyond the slip velocity v_s, linear
+    /// (a stiff viscous law) through v = 0, smooth for the integrators.
+    fn coulomb(&mut self, mu: &MExpr, slip: &MExpr, load: Id, v: Id) -> Id {
+        let mu = self.expr(mu);
+        let vs = self.expr(slip);
+        let v2 = self.g.powi(v, 2);
+        let vs2 = self.g.powi(vs, 2);
+        let r2 = self.g.add(v2, vs2);
+        let r = self.g.call(Func::Sqrt, r2);
+        let ratio = self.g.div(v, r);
+        let mn = self.g.mul(mu, load);
+        self.g.mul(mn, ratio)
     }
 
     /// The rows of one constraint (docs/formulation.md).
@@ -401,7 +463,7 @@ pub fn formulate(model: &Model) -> Formulation {
         let j = b.expr(&body.inertia);
         mass.extend([m, m, j]);
     }
-    let (h, potential) = b.forces();
+    let (h, friction, potential) = b.forces();
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
     let mut memo_v = HashMap::new();
@@ -458,7 +520,7 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let constraint_force_q = sparse_derivative(&mut g, &constraint_force, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
 
-    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, power, constraint_force_q }
+    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, power, friction, constraint_force_q }
 }
 
 /// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.

@@ -101,6 +101,14 @@ fn force(m: &Model, name: &str, k: &ForceKind) -> Value {
         ForceKind::TranslationalViscous { i, axis_i, j, c } => {
             json!({"kind": "translational_viscous", "name": name, "i": loc_axis(m, i, axis_i), "j": loc(m, j), "c": expr(m, c)})
         }
+        ForceKind::RevoluteCoulomb { i, j, mu, radius, slip, row } => json!({
+            "kind": "revolute_coulomb", "name": name, "i": m.body_name(*i), "j": m.body_name(*j),
+            "mu": expr(m, mu), "radius": expr(m, radius), "slip_velocity": expr(m, slip), "row": row
+        }),
+        ForceKind::TranslationalCoulomb { i, axis_i, j, mu, slip, bearing, row } => json!({
+            "kind": "translational_coulomb", "name": name, "i": loc_axis(m, i, axis_i), "j": loc(m, j),
+            "mu": expr(m, mu), "slip_velocity": expr(m, slip), "bearing": bearing.as_ref().map(|w| expr(m, w)), "row": row
+        }),
     }
 }
 

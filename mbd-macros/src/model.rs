@@ -284,6 +284,13 @@ pub enum ForceKind {
     RevoluteViscous { i: BodyRef, j: BodyRef, c: MExpr },
     /// Viscous friction in a translational joint: force c ṡ resisting sliding, s = u_iᵀ(r_Pj − r_Pi).
     TranslationalViscous { i: Loc, axis_i: [MExpr; 2], j: Loc, c: MExpr },
+    /// Coulomb friction in a revolute joint (Nikravesh 4.5.3): torque μ R N ω/√(ω² + v_s²)
+    /// resisting ω = φ̇_j − φ̇_i, N = |(λ_x, λ_y)| the pin force of the joint's rows `row`, `row + 1`.
+    RevoluteCoulomb { i: BodyRef, j: BodyRef, mu: MExpr, radius: MExpr, slip: MExpr, row: usize },
+    /// Coulomb friction in a translational joint: force μ N ṡ/√(ṡ² + v_s²) resisting sliding,
+    /// N = |λ_normal|, or with a bearing length w the load of two pads w apart,
+    /// |λ_n/2 + λ_a/w| + |λ_n/2 − λ_a/w| (λ_a the reaction moment of the angle row).
+    TranslationalCoulomb { i: Loc, axis_i: [MExpr; 2], j: Loc, mu: MExpr, slip: MExpr, bearing: Option<MExpr>, row: usize },
 }
 
 pub struct ForceElement {
@@ -301,6 +308,7 @@ impl ForceElement {
             ForceKind::Applied { .. } => "applied force",
             ForceKind::Torque { .. } => "applied torque",
             ForceKind::RevoluteViscous { .. } | ForceKind::TranslationalViscous { .. } => "viscous joint friction",
+            ForceKind::RevoluteCoulomb { .. } | ForceKind::TranslationalCoulomb { .. } => "Coulomb joint friction",
         }
     }
 }
@@ -763,7 +771,8 @@ impl MechanismDef {
         let mut driven: HashMap<(usize, Coord), Span> = HashMap::new();
         let mut driven_angles: HashSet<(BodyRef, BodyRef)> = HashSet::new();
         for (index, item) in self.items.iter().enumerate() {
-            let built: Option<(Option<&Ident>, String, Span, ConstraintKind, Option<ForceKind>)> = match item {
+            let first_row: usize = constraints.iter().map(|c: &Constraint| c.kind.row_names().len()).sum();
+            let built: Option<(Option<&Ident>, String, Span, ConstraintKind, Vec<ForceKind>)> = match item {
                 Item::Joint(j) => self.joint(&mut r, j, &body_name),
                 Item::Fix(f) => {
                     let body = r.body(&f.body);
@@ -787,7 +796,7 @@ impl MechanismDef {
                                 };
                                 value.map(|value| {
                                     let name = format!("fix {}.{}", f.body, coord.name());
-                                    (f.label.as_ref(), name, f.keyword.span(), ConstraintKind::Fix { body: k, coord, value }, None)
+                                    (f.label.as_ref(), name, f.keyword.span(), ConstraintKind::Fix { body: k, coord, value }, Vec::new())
                                 })
                             }
                         }
@@ -813,7 +822,7 @@ impl MechanismDef {
                                         r.errors.push(coordinate.span(), format!("`{body}.{}` is already fixed or driven", coord.name()));
                                         None
                                     } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive {body}.{}", coord.name()), d.keyword.span(), ConstraintKind::Drive { body: k, coord, f }, None))
+                                        f.map(|f| (d.label.as_ref(), format!("drive {body}.{}", coord.name()), d.keyword.span(), ConstraintKind::Drive { body: k, coord, f }, Vec::new()))
                                     }
                                 }
                                 _ => None,
@@ -832,7 +841,7 @@ impl MechanismDef {
                                         r.errors.push(i.span(), format!("the angle between `{i}` and `{j}` is already driven"));
                                         None
                                     } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), ConstraintKind::DriveAngle { i: bi, j: bj, f }, None))
+                                        f.map(|f| (d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), ConstraintKind::DriveAngle { i: bi, j: bj, f }, Vec::new()))
                                     }
                                 }
                                 _ => None,
@@ -848,7 +857,7 @@ impl MechanismDef {
                                 }
                                 (Some(li), Some(lj), Some(f)) => {
                                     let name = format!("drive distance {}~{}", i.0, j.0);
-                                    Some((d.label.as_ref(), name, d.keyword.span(), ConstraintKind::DriveDistance { i: li, j: lj, f }, None))
+                                    Some((d.label.as_ref(), name, d.keyword.span(), ConstraintKind::DriveDistance { i: li, j: lj, f }, Vec::new()))
                                 }
                                 _ => None,
                             }
@@ -864,7 +873,7 @@ impl MechanismDef {
                                 Some(v) if v == 0.0 => l,
                                 _ => MExpr::Bin(MBin::Sub, Box::new(l), Box::new(rh)),
                             };
-                            Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), ConstraintKind::User { expr }, None))
+                            Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), ConstraintKind::User { expr }, Vec::new()))
                         }
                         _ => None,
                     }
@@ -879,8 +888,15 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
-            if let Some(kind) = friction {
-                forces.push(ForceElement { name: format!("{name} viscous friction"), kind });
+            for mut kind in friction {
+                let what = match &mut kind {
+                    ForceKind::RevoluteCoulomb { row, .. } | ForceKind::TranslationalCoulomb { row, .. } => {
+                        *row = first_row;
+                        "Coulomb friction"
+                    }
+                    _ => "viscous friction",
+                };
+                forces.push(ForceElement { name: format!("{name} {what}"), kind });
             }
             constraints.push(Constraint { name, kind });
         }
@@ -972,7 +988,7 @@ impl MechanismDef {
         r: &mut Resolver,
         j: &'a parse::JointDef,
         body_name: &dyn Fn(BodyRef) -> String,
-    ) -> Option<(Option<&'a Ident>, String, Span, ConstraintKind, Option<ForceKind>)> {
+    ) -> Option<(Option<&'a Ident>, String, Span, ConstraintKind, Vec<ForceKind>)> {
         let kind = j.kind.to_string();
         let li = r.loc(&j.i.body, &j.i.point);
         let lj = r.loc(&j.j.body, &j.j.point);
@@ -983,8 +999,8 @@ impl MechanismDef {
         }
         // Which sides take an axis, and which options the kind knows.
         let (axis_i_needed, axis_j_needed, known_options): (bool, bool, &[&str]) = match kind.as_str() {
-            "revolute" => (false, false, &["viscous"]),
-            "translational" => (true, true, &["viscous"]),
+            "revolute" => (false, false, &["viscous", "coulomb", "radius", "slip_velocity"]),
+            "translational" => (true, true, &["viscous", "coulomb", "slip_velocity", "bearing"]),
             "revolute_revolute" => (false, false, &["length"]),
             "revolute_translational" => (false, true, &["distance"]),
             "rigid" => (false, false, &["angle"]),
@@ -1023,8 +1039,12 @@ impl MechanismDef {
                 }
                 Value::Expr(e) => match r.expr(e, Scope::Params) {
                     Some(m) => {
-                        if key == "length" {
-                            check_positive(r.errors, &m, e, "the length of a revolute-revolute link");
+                        match key.as_str() {
+                            "length" => check_positive(r.errors, &m, e, "the length of a revolute-revolute link"),
+                            "radius" => check_positive(r.errors, &m, e, "a pin radius"),
+                            "slip_velocity" => check_positive(r.errors, &m, e, "the slip velocity of Coulomb friction"),
+                            "bearing" => check_positive(r.errors, &m, e, "a bearing length"),
+                            _ => {}
                         }
                         options.insert(key, m);
                     }
@@ -1037,10 +1057,47 @@ impl MechanismDef {
             return None;
         }
         let zero = || MExpr::Num(0.0);
-        let friction = options.remove("viscous").map(|c| match &axis_i {
-            Some(axis_i) => ForceKind::TranslationalViscous { i: li.clone(), axis_i: axis_i.clone(), j: lj.clone(), c },
-            None => ForceKind::RevoluteViscous { i: li.body, j: lj.body, c },
-        });
+        let mut friction: Vec<ForceKind> = options
+            .remove("viscous")
+            .map(|c| match &axis_i {
+                Some(axis_i) => ForceKind::TranslationalViscous { i: li.clone(), axis_i: axis_i.clone(), j: lj.clone(), c },
+                None => ForceKind::RevoluteViscous { i: li.body, j: lj.body, c },
+            })
+            .into_iter()
+            .collect();
+        // Coulomb friction, regularized below the slip velocity (default 1e-3 m/s or rad/s).
+        let slip = options.remove("slip_velocity");
+        let radius = options.remove("radius");
+        let bearing = options.remove("bearing");
+        match options.remove("coulomb") {
+            Some(mu) => {
+                let slip = slip.unwrap_or(MExpr::Num(1e-3));
+                match &axis_i {
+                    Some(axis_i) => friction.push(ForceKind::TranslationalCoulomb {
+                        i: li.clone(),
+                        axis_i: axis_i.clone(),
+                        j: lj.clone(),
+                        mu,
+                        slip,
+                        bearing,
+                        row: 0,
+                    }),
+                    None => match radius {
+                        Some(radius) => friction.push(ForceKind::RevoluteCoulomb { i: li.body, j: lj.body, mu, radius, slip, row: 0 }),
+                        None => {
+                            r.errors.push(j.kind.span(), "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)");
+                            return None;
+                        }
+                    },
+                }
+            }
+            None => {
+                if slip.is_some() || radius.is_some() || bearing.is_some() {
+                    r.errors.push(j.kind.span(), format!("`radius`, `slip_velocity` and `bearing` describe Coulomb friction: give the {kind} joint `coulomb: μ` too"));
+                    return None;
+                }
+            }
+        }
         let ck = match kind.as_str() {
             "revolute" => ConstraintKind::Revolute { i: li.clone(), j: lj.clone() },
             "translational" => ConstraintKind::Translational { i: li.clone(), axis_i: axis_i?, j: lj.clone(), axis_j: axis_j? },

@@ -37,6 +37,11 @@ pub struct DynamicsOptions<T> {
     /// other rows carry its load), which gives the right motion when the redundant constraint
     /// is consistent — e.g. a parallelogram's extra link — but reactions that are one of many.
     pub allow_redundant: bool,
+    /// Coulomb friction only: the loads λ are found by fixed-point iteration, starting from
+    /// the `lambda` passed in, until max |Δλ| ≤ `friction_tolerance` · max(1, |λ|∞). Default 1e-10.
+    pub friction_tolerance: T,
+    /// Coulomb friction only: iterations before [`DynamicsError::FrictionNotConverged`]. Default 50.
+    pub friction_iterations: u32,
 }
 
 impl<T: Real> Default for DynamicsOptions<T> {
@@ -46,6 +51,8 @@ impl<T: Real> Default for DynamicsOptions<T> {
             baumgarte_beta: T::from_f64(DEFAULT_BAUMGARTE),
             pivot_tolerance: T::from_f64(DEFAULT_DYNAMICS_PIVOT_TOLERANCE),
             allow_redundant: false,
+            friction_tolerance: T::from_f64(1e-10),
+            friction_iterations: 50,
         }
     }
 }
@@ -82,6 +89,14 @@ pub enum DynamicsError {
         /// The offending value (kg or kg·m²).
         value: f64,
     },
+    /// The joint loads of Coulomb friction did not settle: friction so large that it changes
+    /// the loads it depends on more than they change it (μ too large, or a wedging geometry).
+    FrictionNotConverged {
+        /// Time of the solve (s).
+        t: f64,
+        /// The last change of max |λ|.
+        change: f64,
+    },
     /// The solve met a NaN or an infinity (in q, q̇, t or an evaluated force).
     NonFinite {
         /// Time of the solve (s).
@@ -112,7 +127,9 @@ impl DynamicsError {
     /// Time of the failed solve (s), when it has one.
     pub fn time(&self) -> Option<f64> {
         match *self {
-            DynamicsError::DependentConstraint { t, .. } | DynamicsError::NonFinite { t, .. } => Some(t),
+            DynamicsError::DependentConstraint { t, .. }
+            | DynamicsError::NonFinite { t, .. }
+            | DynamicsError::FrictionNotConverged { t, .. } => Some(t),
             DynamicsError::NonPositiveMass { .. } => None,
         }
     }
@@ -129,6 +146,9 @@ impl fmt::Display for DynamicsError {
             DynamicsError::NonPositiveMass { body, value } => {
                 write!(f, "body `{body}` has a mass or moment of inertia of {value}: it must be positive")
             }
+            DynamicsError::FrictionNotConverged { t, change } => {
+                write!(f, "at t = {t} s the Coulomb friction loads did not settle (last change of λ: {change})")
+            }
             DynamicsError::NonFinite { t, row } => write!(f, "at t = {t} s a NaN or infinity reached the solve at row `{row}`"),
         }
     }
@@ -140,7 +160,9 @@ impl core::error::Error for DynamicsError {}
 /// exploits the diagonal mass matrix and the compile-time sparsity of S = Φ_q M⁻¹ Φ_qᵀ.
 pub trait ForwardDynamics<T: Real, const NQ: usize, const NC: usize>: Dynamics<T, NQ, NC> {
     /// q̈ and λ of the equations of motion with Baumgarte stabilization (module docs); λ in N
-    /// or N·m per constraint row, with the sign convention M q̈ − Φ_qᵀ λ = h.
+    /// or N·m per constraint row, with the sign convention M q̈ − Φ_qᵀ λ = h. With Coulomb
+    /// friction the `lambda` passed in is the first guess of the joint loads (the previous
+    /// step's λ converges fastest).
     ///
     /// # Errors
     /// [`DynamicsError`] naming the dependent row or the body with a non-positive mass.

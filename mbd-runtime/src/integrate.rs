@@ -220,10 +220,19 @@ impl<'m, M, T: Real> System<'m, M, T> {
         if !self.track_work {
             return Ok([T::ZERO; 2]);
         }
-        let nonconservative = self.mechanism.nonconservative_power(q, qd, t);
-        // λᵀ Φ_q q̇ = q̇ᵀ (M q̈ − h)
+        let mut nonconservative = self.mechanism.nonconservative_power(q, qd, t);
+        // Coulomb friction (absent from the generated power, which is λ-free).
+        let mut friction = [T::ZERO; NQ];
+        self.mechanism.friction_forces(q, qd, t, lambda, &mut friction);
+        for i in 0..NQ {
+            nonconservative += qd[i] * friction[i];
+        }
+        // λᵀ Φ_q q̇ = q̇ᵀ (M q̈ − h − h_friction)
         let mut h = [T::ZERO; NQ];
         self.mechanism.forces(q, qd, t, &mut h);
+        for i in 0..NQ {
+            h[i] += friction[i];
+        }
         let m = self.mechanism.mass_diagonal();
         let mut constraint = T::ZERO;
         for i in 0..NQ {
@@ -353,7 +362,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
         let sixth = h / T::from_f64(6.0);
         let two = T::from_f64(2.0);
         let t_half = from.t + half;
-        let mut lambda = [T::ZERO; NC];
+        // The start's multipliers: the first guess of Coulomb friction loads, if any.
+        let mut lambda = from.lambda;
         // k1 = (q̇0, q̈0)
         let mut q = [T::ZERO; NQ];
         let mut qd2 = [T::ZERO; NQ];
@@ -508,7 +518,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
         kq[0] = from.qd;
         kv[0] = from.qdd;
         kp[0] = from.power;
-        let mut lambda = [T::ZERO; NC];
+        let mut lambda = from.lambda;
         'attempt: loop {
             let mut h = self.next_step.max(o.min_step);
             if h > o.max_step {
@@ -792,6 +802,9 @@ where
             }
             mech.full_eval(&q, &qd, t1, &mut phi, &mut d, &mut nu, &mut gam);
             mech.forces(&q, &qd, t1, &mut force);
+            // Coulomb friction with the iterate's loads (its derivatives are left out of the
+            // iteration matrix: a quasi-Newton step for friction).
+            mech.friction_forces(&q, &qd, t1, &lambda, &mut force);
             // Residuals: r = M q̈ − Φ_qᵀλ − h, Φ/(β'h²).
             let mut worst = (T::ZERO, 0usize);
             for i in 0..NQ {

@@ -106,12 +106,40 @@ where
         }
         LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NQ as i32 - NC as i32 },
     })?;
+    let base = rhs;
     lu_solve_in_place(&dt, &permutation, &mut rhs);
-    for (l, v) in lambda.iter_mut().zip(rhs.iter()) {
-        *l = *v;
+    lambda.copy_from_slice(&rhs);
+    // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
+    // to do for a mechanism without it, whose friction forces are all zero).
+    for _ in 0..INVERSE_FRICTION_ITERATIONS {
+        let mut friction = [T::ZERO; NQ];
+        m.friction_forces(q, qd, t, lambda, &mut friction);
+        if friction.iter().all(|f| *f == T::ZERO) {
+            return Ok(());
+        }
+        let mut rhs: [T; NQ] = core::array::from_fn(|k| base[k] - friction[k]);
+        lu_solve_in_place(&dt, &permutation, &mut rhs);
+        let mut change = T::ZERO;
+        let mut size = T::ONE;
+        for (l, v) in lambda.iter_mut().zip(rhs.iter()) {
+            change = change.max((*l - *v).abs());
+            size = size.max(v.abs());
+            *l = *v;
+        }
+        if change <= T::from_f64(1e-12) * size {
+            return Ok(());
+        }
     }
-    Ok(())
+    Err(KinematicError::NotConverged {
+        t: time,
+        iterations: INVERSE_FRICTION_ITERATIONS,
+        worst_row: name(M::CONSTRAINT_NAMES, 0),
+        residual: f64::NAN,
+    })
 }
+
+/// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].
+const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 
 /// The reaction of joint number `joint` (an index into [`Mechanism::JOINTS`]) from the Jacobian
 /// `d` = Φ_q(q, t) and the multipliers λ at the same state. `None` if there is no such joint.

@@ -133,6 +133,10 @@ pub trait Dynamics<T: Real, const NQ: usize, const NC: usize>: Kinematics<T, NQ,
     fn forces_qd(&self, q: &[T; NQ], qd: &[T; NQ], t: T, dh: &mut [[T; NQ]; NQ]);
     /// Potential energy of gravity and springs V(q) in J (h = −∂V/∂q + non-conservative forces).
     fn potential_energy(&self, q: &[T; NQ], t: T) -> T;
+    /// Adds the Coulomb friction forces of the joints declared with `coulomb: μ` to `h`, for the
+    /// joint reactions given by the multipliers λ (their normal loads). Does nothing for a
+    /// mechanism without Coulomb friction. Not part of [`Dynamics::forces`], which is λ-free.
+    fn friction_forces(&self, q: &[T; NQ], qd: &[T; NQ], t: T, lambda: &[T; NC], h: &mut [T; NQ]);
     /// Power of the non-conservative forces, q̇ᵀh + dV/dt (W): what dampers, actuators, applied
     /// forces and friction put into the mechanism. The energy balance reads
     /// d(T + V)/dt = this + λᵀ Φ_q q̇ (the second term is the power of drivers).
