@@ -5,6 +5,8 @@
 mod double_a_arm;
 #[path = "filmstrip.rs"]
 mod filmstrip;
+#[path = "flywheel_engine.rs"]
+mod flywheel_engine;
 #[path = "four_bar.rs"]
 mod four_bar;
 #[path = "macpherson.rs"]
@@ -13,21 +15,26 @@ mod macpherson;
 mod slider_crank;
 #[path = "slider_crank_inverse.rs"]
 mod slider_crank_inverse;
+#[path = "suspension_dynamics.rs"]
+mod suspension_dynamics;
 #[path = "variable_pendulum.rs"]
 mod variable_pendulum;
 #[path = "web_cutter.rs"]
 mod web_cutter;
 
 fn main() {
-    let runs: [(&str, fn() -> Result<(), mbd::KinematicError>); 8] = [
-        ("slider_crank", || slider_crank::run(true).map(drop)),
-        ("four_bar", || four_bar::run(true).map(drop)),
-        ("variable_pendulum", || variable_pendulum::run(true).map(drop)),
-        ("filmstrip", || filmstrip::run(true).map(drop)),
-        ("web_cutter", || web_cutter::run(true).map(drop)),
-        ("double_a_arm", || double_a_arm::run(true).map(drop)),
-        ("macpherson", || macpherson::run(true).map(drop)),
-        ("slider_crank_inverse", || slider_crank_inverse::run(true).map(drop)),
+    type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
+    let runs: [(&str, Run); 10] = [
+        ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
+        ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
+        ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
+        ("filmstrip", || Ok(filmstrip::run(true).map(drop)?)),
+        ("web_cutter", || Ok(web_cutter::run(true).map(drop)?)),
+        ("double_a_arm", || Ok(double_a_arm::run(true).map(drop)?)),
+        ("macpherson", || Ok(macpherson::run(true).map(drop)?)),
+        ("slider_crank_inverse", || Ok(slider_crank_inverse::run(true).map(drop)?)),
+        ("flywheel_engine", || flywheel_engine::run(true).map(drop)),
+        ("suspension_dynamics", || suspension_dynamics::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -103,3 +103,30 @@ fn engine_drive_power_balances_gas_work() {
     // bearing carries about the peak gas force.
     assert!(r.torque_min < -50.0 && r.bearing_max > 1500.0, "{r:?}");
 }
+
+/// The free engine settles at the design speed the inverse dynamics sized its generator for,
+/// and its speed fluctuation is the one the inverse dynamics predicts (to first order in δ:
+/// δ ≈ 0.05, so a few per cent of δ).
+#[test]
+fn flywheel_engine_runs_at_the_speed_its_inverse_dynamics_predicts() {
+    let r = common::flywheel_engine::run(false).expect("the engine runs");
+    assert!((r.omega_mean - r.omega_design).abs() < 0.01 * r.omega_design, "{r:?}");
+    assert!(r.delta > 0.01 && (r.delta - r.delta_predicted).abs() < 0.05 * r.delta_predicted, "{r:?}");
+}
+
+/// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the
+/// bump's order, settle (c = 1500 N·s/m damps the wheel hop within 0.7 s), and keep the energy
+/// balance to 1e-8 of the ~300 J stored in the springs (DOPRI5 at rtol 1e-9).
+#[test]
+fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
+    let [a, b] = common::suspension_dynamics::run(false).expect("both suspensions run");
+    for r in [a, b] {
+        assert!(r.static_height > 0.27 && r.static_height < 0.30, "{r:?}");
+        assert!(r.static_tyre_load > 2000.0 && r.static_tyre_load < 4000.0, "{r:?}");
+        assert!(r.peak_travel > 0.02 && r.peak_travel < 0.05, "{r:?}");
+        assert!(r.peak_tyre_load > r.static_tyre_load, "{r:?}");
+        assert!(r.residual_motion < 1e-4, "{r:?}");
+        assert!(r.bump_energy > 1.0, "{r:?}");
+        assert!(r.energy_drift < 1e-5, "{r:?}");
+    }
+}

@@ -2,8 +2,6 @@
 //! conservative mechanisms, the energy balance with dampers and drivers, drift correction by
 //! projection and by coordinate partitioning, stiffness (explicit fails with a clear error,
 //! generalized-α stays stable), and inverse dynamics fed back into forward dynamics.
-mod common;
-
 use mbd::prelude::*;
 
 mechanism! {

@@ -5,6 +5,8 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "std")]
+mod csv;
 mod dynamics;
 mod error;
 mod integrate;
@@ -17,6 +19,8 @@ mod planar;
 mod real;
 mod statics;
 
+#[cfg(feature = "std")]
+pub use csv::CsvWriter;
 pub use dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };

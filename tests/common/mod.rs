@@ -5,6 +5,8 @@
 pub mod double_a_arm;
 #[path = "../../examples/filmstrip.rs"]
 pub mod filmstrip;
+#[path = "../../examples/flywheel_engine.rs"]
+pub mod flywheel_engine;
 #[path = "../../examples/four_bar.rs"]
 pub mod four_bar;
 #[path = "../../examples/macpherson.rs"]
@@ -13,6 +15,8 @@ pub mod macpherson;
 pub mod slider_crank;
 #[path = "../../examples/slider_crank_inverse.rs"]
 pub mod slider_crank_inverse;
+#[path = "../../examples/suspension_dynamics.rs"]
+pub mod suspension_dynamics;
 #[path = "../../examples/variable_pendulum.rs"]
 pub mod variable_pendulum;
 #[path = "../../examples/web_cutter.rs"]

@@ -1,0 +1,171 @@
+//! Double A-arm and MacPherson suspensions in motion (Nikravesh, *Planar Multibody Dynamics*,
+//! ch. 8 style): the linkages of `double_a_arm.rs` and `macpherson.rs`, now free, under gravity,
+//! with a coil-over spring-damper to the chassis (= ground, a quarter car on a rig) and a linear
+//! tyre: a vertical force k_t (road(t) − y_contact) − c_t ẏ at the contact patch, with a 30 mm
+//! smooth bump (Gaussian, 30 ms wide) under the wheel at t = 0.5 s.
+//!
+//! Each run: static equilibrium first (Nikravesh 14.2; the tyre then carries the spring preload
+//! plus the unsprung weight), then forward dynamics with DOPRI5 and projection from that rest
+//! state through the bump. Reported: static tyre load and wheel-centre height, peak wheel
+//! travel and tyre load over the bump, how far the wheel still moves after 1.2 s (the damping
+//! at work), the energy the bump puts in, and the energy balance T + V − W_nc − W_c, whose drift measures the integration.
+//!
+//! Run: `cargo run --release --example suspension_dynamics`
+use mbd::prelude::*;
+
+mechanism! {
+    /// Double A-arm suspension, free, with a coil-over and a tyre.
+    pub DoubleAArmRide {
+        params { k_s: 30000.0, free_length: 0.61, c_s: 1500.0, k_t: 200000.0, c_t: 100.0, bump: 0.03, t_bump: 0.5, width: 0.03 }
+        gravity [0.0, -9.81];
+        body lower   { mass: 4.0, inertia: 0.05, at: [0.375, 0.14, 0.0] }
+        body upper   { mass: 2.5, inertia: 0.02, at: [0.41, 0.46, 0.0] }
+        body knuckle { mass: 18.0, inertia: 0.60, at: [0.62, 0.30, 0.0] }
+        point lower.inner = [-0.175, 0.01];
+        point lower.outer = [0.175, -0.01];
+        point lower.spring = [0.1, 0.0];
+        point upper.inner = [-0.11, -0.01];
+        point upper.outer = [0.11, 0.01];
+        point knuckle.lower_ball = [-0.07, -0.17];
+        point knuckle.upper_ball = [-0.10, 0.17];
+        point knuckle.contact = [0.0, -0.30];
+        revolute ground[0.20, 0.15] ~ lower.inner;
+        revolute ground[0.30, 0.45] ~ upper.inner;
+        revolute lower.outer ~ knuckle.lower_ball;
+        revolute upper.outer ~ knuckle.upper_ball;
+        spring coil_over: lower.spring ~ ground[0.45, 0.60] { k: k_s, length: free_length, c: c_s };
+        force tyre: knuckle.contact = [0.0, k_t * (bump * exp(-((t - t_bump) / width) ^ 2) - (knuckle.y - 0.3 * cos(knuckle.phi)))
+                                          - c_t * knuckle.vy];
+    }
+}
+
+mechanism! {
+    /// MacPherson strut suspension, free, with the coil-over on the strut and a tyre.
+    pub MacPhersonRide {
+        params { k_s: 25000.0, free_length: 0.48, c_s: 1500.0, k_t: 200000.0, c_t: 100.0, bump: 0.03, t_bump: 0.5, width: 0.03 }
+        gravity [0.0, -9.81];
+        body lower   { mass: 4.0, inertia: 0.05, at: [0.425, 0.11, 0.0] }
+        body knuckle { mass: 20.0, inertia: 0.65, at: [0.65, 0.30, 0.0] }
+        body rod     { mass: 1.0, inertia: 0.01, at: [0.535, 0.575, 0.0] }
+        point lower.inner = [-0.175, 0.01];
+        point lower.outer = [0.175, -0.01];
+        point knuckle.ball = [-0.05, -0.20];
+        point knuckle.strut = [-0.08, 0.10];
+        point knuckle.contact = [0.0, -0.30];
+        point rod.top = [-0.035, 0.175];
+        point rod.bottom = [0.035, -0.175];
+        vector knuckle.axis = [-0.07, 0.35];
+        vector rod.axis = [-0.07, 0.35];
+        revolute ground[0.25, 0.12] ~ lower.inner;
+        revolute lower.outer ~ knuckle.ball;
+        translational strut: knuckle.strut along knuckle.axis ~ rod.bottom along rod.axis;
+        revolute top_mount: rod.top ~ ground[0.50, 0.75];
+        spring coil_over: knuckle.strut ~ ground[0.50, 0.75] { k: k_s, length: free_length, c: c_s };
+        force tyre: knuckle.contact = [0.0, k_t * (bump * exp(-((t - t_bump) / width) ^ 2) - (knuckle.y - 0.3 * cos(knuckle.phi)))
+                                          - c_t * knuckle.vy];
+    }
+}
+
+/// What a ride engineer reads off one run.
+#[derive(Debug, Clone, Copy)]
+pub struct Report {
+    /// Wheel-centre height at static equilibrium (m).
+    pub static_height: f64,
+    /// Tyre load at static equilibrium (N).
+    pub static_tyre_load: f64,
+    /// Largest upward wheel travel from static over the bump (m).
+    pub peak_travel: f64,
+    /// Largest tyre load over the bump (N).
+    pub peak_tyre_load: f64,
+    /// Largest |y − y_static| of the wheel centre after t = 1.2 s (m).
+    pub residual_motion: f64,
+    /// Largest drift of T + V − W_nc − W_c over the run (J).
+    pub energy_drift: f64,
+    /// Largest net work of the non-conservative forces (road through the tyre, dampers) (J):
+    /// the energy the bump puts in before the dampers take it out again.
+    pub bump_energy: f64,
+    /// Integration steps taken.
+    pub steps: u64,
+}
+
+/// Static equilibrium, then the bump; `knuckle` is the wheel body's index among the bodies.
+fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
+    m: &M,
+    knuckle: usize,
+    tyre_load: impl Fn(&[f64; NQ], &[f64; NQ], f64) -> f64,
+    mut ws: KktWorkspace<f64, N>,
+) -> Result<Report, Box<dyn std::error::Error>>
+where
+    M: ForwardDynamics<f64, NQ, NC> + ConstraintForces<f64, NQ, NC>,
+{
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, &mut q, 0.0)?;
+    let mut lambda = [0.0; NC];
+    StaticSolver::default().solve(m, &mut q, 0.0, &mut lambda, &mut ws)?;
+    let y0 = q[3 * knuckle + 1];
+    let static_tyre_load = tyre_load(&q, &[0.0; NQ], 0.0);
+    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
+    let times: Vec<f64> = (0..=1500).map(|k| k as f64 * 1e-3).collect();
+    let mut r = Report {
+        static_height: y0,
+        static_tyre_load,
+        peak_travel: 0.0,
+        peak_tyre_load: 0.0,
+        residual_motion: 0.0,
+        energy_drift: 0.0,
+        bump_energy: 0.0,
+        steps: 0,
+    };
+    let mut balance0 = None;
+    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, max_step: 2e-3, ..Dopri5Options::default() });
+    let stats = simulate(m, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
+        let p = &s.point;
+        let travel = p.q[3 * knuckle + 1] - y0;
+        r.peak_travel = r.peak_travel.max(travel);
+        r.peak_tyre_load = r.peak_tyre_load.max(tyre_load(&p.q, &p.qd, p.t));
+        if p.t >= 1.2 {
+            r.residual_motion = r.residual_motion.max(travel.abs());
+        }
+        let b = s.energy.balance();
+        let b0 = *balance0.get_or_insert(b);
+        r.energy_drift = r.energy_drift.max((b - b0).abs());
+        r.bump_energy = r.bump_energy.max(s.energy.nonconservative_work);
+    })?;
+    r.steps = stats.steps;
+    Ok(r)
+}
+
+/// The tyre's vertical force for a wheel body at index `k` (same law as in the mechanisms).
+fn tyre(q: &[f64], qd: &[f64], t: f64, k: usize, k_t: f64, c_t: f64, bump: f64, t_bump: f64, width: f64) -> f64 {
+    let road = bump * (-((t - t_bump) / width).powi(2)).exp();
+    let contact = q[3 * k + 1] - 0.3 * q[3 * k + 2].cos();
+    k_t * (road - contact) - c_t * qd[3 * k + 1]
+}
+
+pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
+    let a = DoubleAArmRide::default();
+    let double_a_arm = ride(&a, 2, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 2, a.k_t, a.c_t, a.bump, a.t_bump, a.width), DoubleAArmRide::kkt_workspace())?;
+    let b = MacPhersonRide::default();
+    let macpherson = ride(&b, 1, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 1, b.k_t, b.c_t, b.bump, b.t_bump, b.width), MacPhersonRide::kkt_workspace())?;
+    if print {
+        for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
+            println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);
+            println!(
+                "  30 mm bump at 0.5 s: peak travel {:.1} mm, peak tyre load {:.0} N; after 1.2 s the wheel moves ≤ {:.2e} m",
+                1e3 * r.peak_travel,
+                r.peak_tyre_load,
+                r.residual_motion
+            );
+            println!("  bump energy {:.2} J; energy balance drift {:.1e} J; {} DOPRI5 steps", r.bump_energy, r.energy_drift, r.steps);
+        }
+    }
+    Ok([double_a_arm, macpherson])
+}
+
+#[allow(dead_code)]
+fn main() {
+    if let Err(e) = run(true) {
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
+}
