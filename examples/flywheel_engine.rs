@@ -35,6 +35,7 @@ mechanism! {
     }
 }
 
+#[allow(dead_code)] // read by the tests
 #[derive(Debug, Clone, Copy)]
 pub struct Report {
     /// Generator constant from the inverse dynamics (N·m·s).

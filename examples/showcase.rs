@@ -9,6 +9,8 @@ mod filmstrip;
 mod flywheel_engine;
 #[path = "four_bar.rs"]
 mod four_bar;
+#[path = "free_four_bar.rs"]
+mod free_four_bar;
 #[path = "macpherson.rs"]
 mod macpherson;
 #[path = "slider_crank.rs"]
@@ -24,7 +26,7 @@ mod web_cutter;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 10] = [
+    let runs: [(&str, Run); 11] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -35,6 +37,7 @@ fn main() {
         ("slider_crank_inverse", || Ok(slider_crank_inverse::run(true).map(drop)?)),
         ("flywheel_engine", || flywheel_engine::run(true).map(drop)),
         ("suspension_dynamics", || suspension_dynamics::run(true).map(drop)),
+        ("free_four_bar", || free_four_bar::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -130,3 +130,23 @@ fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
         assert!(r.energy_drift < 1e-5, "{r:?}");
     }
 }
+
+/// The work-precision runs of the free four-bar: errors fall with the step (RK4 by ~16 per
+/// halving, generalized-α by ~4) and with DOPRI5's tolerance, and the energy drift with them.
+#[test]
+fn free_four_bar_errors_fall_at_each_method_s_order() {
+    let runs = common::free_four_bar::run(false).expect("all runs succeed");
+    let of = |method: &str| runs.iter().filter(|r| r.method == method).collect::<Vec<_>>();
+    for pair in of("RK4 (h)").windows(2) {
+        let ratio = pair[0].error / pair[1].error;
+        assert!(ratio > 10.0, "RK4 error ratio {ratio}: {pair:?}");
+    }
+    for pair in of("generalized-α (h)").windows(2) {
+        let ratio = pair[0].error / pair[1].error;
+        assert!(ratio > 2.5, "generalized-α error ratio {ratio}: {pair:?}");
+    }
+    for pair in of("DOPRI5 (rtol)").windows(2) {
+        assert!(pair[1].error < pair[0].error && pair[1].energy_drift < pair[0].energy_drift, "{pair:?}");
+    }
+    assert!(of("DOPRI5 (rtol)").last().unwrap().error < 1e-9);
+}

@@ -9,6 +9,8 @@ pub mod filmstrip;
 pub mod flywheel_engine;
 #[path = "../../examples/four_bar.rs"]
 pub mod four_bar;
+#[path = "../../examples/free_four_bar.rs"]
+pub mod free_four_bar;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[path = "../../examples/slider_crank.rs"]
