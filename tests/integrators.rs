@@ -153,6 +153,9 @@ impl<M> Integrator<f64, M, 9, 8> for DynIntegrator<'_, M> {
     fn interpolate(&self, from: &Point<f64, 9, 8>, to: &Point<f64, 9, 8>, t: f64, q: &mut [f64; 9], qd: &mut [f64; 9]) {
         self.0.interpolate(from, to, t, q, qd)
     }
+    fn restart(&mut self) {
+        self.0.restart()
+    }
 }
 
 /// With dampers and a driver, T + V − W_nc − W_c stays constant (the works integrated with the

@@ -275,6 +275,10 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NC: usize> {
 
     /// q and q̇ at `t` within the last step from `from` to `to` (its dense output).
     fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]);
+
+    /// Forgets what the method carries from step to step (called by [`simulate`] at its start,
+    /// so an integrator can be reused for another run).
+    fn restart(&mut self) {}
 }
 
 /// Cubic Hermite interpolation of y with derivative yd between two points, at θ ∈ [0, 1] of a
@@ -907,6 +911,10 @@ where
     fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]) {
         hermite_state(from, to, t, q, qd);
     }
+
+    fn restart(&mut self) {
+        self.started = false;
+    }
 }
 
 /// What brings the state back onto the constraint manifold after each step.
@@ -1045,6 +1053,7 @@ where
     correct(mechanism, &mut partition, options, t0, &mut q, &mut qd)?;
     let mut from = system.point(t0, q, qd, [T::ZERO; 2])?;
     let mut to = from;
+    integrator.restart();
     let mut stats = Statistics::default();
     let t_end = match times.last() {
         Some(&t) => t,
