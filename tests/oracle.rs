@@ -22,6 +22,14 @@ use common::Rng;
 mod chain16 {
     include!("../benches/chain16.rs");
 }
+/// The forward-dynamics benchmark's mechanisms: checked by the oracle (M, h, q̈, λ), and their
+/// samples files feed the CasADi C code generation of `mbd-bench`'s forward-dynamics comparison.
+mod free_slider_crank {
+    include!("../benches/free_slider_crank.rs");
+}
+mod pendulum_chain16 {
+    include!("../benches/pendulum_chain16.rs");
+}
 use mbd::{KinematicSolver, Kinematics};
 use serde_json::{json, Value};
 
@@ -178,6 +186,8 @@ fn casadi_oracle() {
         samples!(common::macpherson::MacPherson, 17),
         samples!(chain16::Chain16, 18),
         samples!(common::slider_crank_inverse::Engine, 19),
+        samples!(free_slider_crank::FreeSliderCrank, 21),
+        samples!(pendulum_chain16::PendulumChain16, 22),
         samples!(EveryForce, 20),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();

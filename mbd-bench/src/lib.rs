@@ -1,6 +1,17 @@
 //! CasADi-generated C functions of the benchmark mechanisms, callable from Rust, so criterion can
 //! time them beside mbd's generated functions in the same run on the same machine.
 //!
+//! Kinematics (`slider_crank`, `chain16`; `python -m mbd_oracle.codegen SAMPLES.json PREFIX OUT.c`):
+//! `phi(q, t, p)`, `jac(q, t, p)` (the Jacobian's structural non-zeros, column-major) and
+//! `gamma(q, qd, t, p)`.
+//!
+//! Forward dynamics (`free_slider_crank`, `pendulum_chain16`; `python -m mbd_oracle.codegen
+//! --dynamics SAMPLES.json PREFIX OUT.c`): `fd_schur(q, qd, t, p, [α, β])` and
+//! `fd_qr(q, qd, t, p, [α, β])`, both returning [q̈; λ] of M q̈ − Φ_qᵀλ = h, Φ_q q̈ = γ − 2α(Φ_q q̇ − ν)
+//! − β²Φ: the first through the Schur complement Φ_q M⁻¹ Φ_qᵀ factored symbolically by CasADi
+//! (straight-line code), the second through CasADi's sparse numeric QR of the KKT matrix.
+//! The samples files come from `cargo test --test oracle` (`target/oracle/samples/`).
+//!
 //! Each function has CasADi's standard C interface: `f(arg, res, iw, w, mem)` with the work-space
 //! sizes reported by `f_work`. [`CasadiFunction`] queries those sizes once and owns the work
 //! space, so a call allocates nothing.
@@ -57,8 +68,7 @@ macro_rules! casadi_functions {
                 fn $w(a: *mut CasadiInt, r: *mut CasadiInt, iw: *mut CasadiInt, w: *mut CasadiInt) -> c_int;)*)*
         }
         $(
-            /// The CasADi-generated functions of one mechanism: `phi(q, t, p)`, `jac(q, t, p)` (the
-            /// Jacobian's structural non-zeros, column-major) and `gamma(q, qd, t, p)`.
+            /// The CasADi-generated functions of one mechanism (see the crate documentation).
             pub mod $module {
                 $(
                     /// A CasADi-generated function (see the crate documentation).
@@ -75,4 +85,8 @@ casadi_functions! {
     slider_crank: phi = slider_crank_phi / slider_crank_phi_work, jac = slider_crank_jac / slider_crank_jac_work,
         gamma = slider_crank_gamma / slider_crank_gamma_work;
     chain16: phi = chain16_phi / chain16_phi_work, jac = chain16_jac / chain16_jac_work, gamma = chain16_gamma / chain16_gamma_work;
+    free_slider_crank: fd_schur = free_slider_crank_fd_schur / free_slider_crank_fd_schur_work,
+        fd_qr = free_slider_crank_fd_qr / free_slider_crank_fd_qr_work;
+    pendulum_chain16: fd_schur = pendulum_chain16_fd_schur / pendulum_chain16_fd_schur_work,
+        fd_qr = pendulum_chain16_fd_qr / pendulum_chain16_fd_qr_work;
 }
