@@ -13,6 +13,8 @@ mod four_bar;
 mod free_four_bar;
 #[path = "macpherson.rs"]
 mod macpherson;
+#[path = "pumped_pendulum.rs"]
+mod pumped_pendulum;
 #[path = "slider_crank.rs"]
 mod slider_crank;
 #[path = "slider_crank_inverse.rs"]
@@ -26,7 +28,7 @@ mod web_cutter;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 11] = [
+    let runs: [(&str, Run); 12] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -37,6 +39,7 @@ fn main() {
         ("slider_crank_inverse", || Ok(slider_crank_inverse::run(true).map(drop)?)),
         ("flywheel_engine", || flywheel_engine::run(true).map(drop)),
         ("suspension_dynamics", || suspension_dynamics::run(true).map(drop)),
+        ("pumped_pendulum", || pumped_pendulum::run(true).map(drop)),
         ("free_four_bar", || free_four_bar::run(true).map(drop)),
     ];
     let mut failed = 0;

@@ -13,6 +13,8 @@ pub mod four_bar;
 pub mod free_four_bar;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
+#[path = "../../examples/pumped_pendulum.rs"]
+pub mod pumped_pendulum;
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
 #[path = "../../examples/slider_crank_inverse.rs"]
