@@ -473,6 +473,16 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
         h: &mut [f64; 9],
     ) {}
     #[inline]
+    fn friction_derivatives(
+        &self,
+        q: &[f64; 9],
+        qd: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+        d_q: &mut [[f64; 9]; 9],
+        d_qd: &mut [[f64; 9]; 9],
+    ) {}
+    #[inline]
     fn nonconservative_power(&self, q: &[f64; 9], qd: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
         power[0] = 0f64;

@@ -152,6 +152,36 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             #( h[#indices] += hf[#indices]; )*
         }
     };
+    // ∂/∂q and ∂/∂q̇ of the friction forces, added into the caller's dense matrices.
+    let friction_derivatives_fn = if f.friction_q.is_empty() && f.friction_qd.is_empty() {
+        quote!()
+    } else {
+        let mut outputs = Vec::new();
+        for (name, entries) in [("fq", &f.friction_q), ("fqd", &f.friction_qd)] {
+            let name = format_ident!("{}", name);
+            for (k, &(_, _, node)) in entries.iter().enumerate() {
+                let k = usize_lit(k);
+                outputs.push(Output { target: quote!(#name[#k]), node });
+            }
+        }
+        let (body, _) = e.body(&outputs);
+        let (n_q, n_qd) = (usize_lit(f.friction_q.len()), usize_lit(f.friction_qd.len()));
+        let add = |matrix: TokenStream, scratch: TokenStream, entries: &[(usize, usize, u32)]| {
+            let adds = entries.iter().enumerate().map(|(k, &(r, c, _))| {
+                let (k, r, c) = (usize_lit(k), usize_lit(r), usize_lit(c));
+                quote!(#matrix[#r][#c] += #scratch[#k];)
+            });
+            quote!(#(#adds)*)
+        };
+        let (add_q, add_qd) = (add(quote!(d_q), quote!(fq), &f.friction_q), add(quote!(d_qd), quote!(fqd), &f.friction_qd));
+        quote! {
+            let mut fq = [#zero; #n_q];
+            let mut fqd = [#zero; #n_qd];
+            #body
+            #add_q
+            #add_qd
+        }
+    };
     let nz_l = usize_lit(nq + nc);
     let mut joints = Vec::new();
     let mut first_row = 0u16;
@@ -350,6 +380,18 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             #[inline]
             fn friction_forces(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nq_l]) {
                 #friction_fn
+            }
+            #[inline]
+            fn friction_derivatives(
+                &self,
+                q: &[#real; #nq_l],
+                qd: &[#real; #nq_l],
+                t: #real,
+                lambda: &[#real; #nc_l],
+                d_q: &mut [[#real; #nq_l]; #nq_l],
+                d_qd: &mut [[#real; #nq_l]; #nq_l],
+            ) {
+                #friction_derivatives_fn
             }
             #[inline]
             fn nonconservative_power(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real) -> #real {

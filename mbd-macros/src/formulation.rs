@@ -37,6 +37,10 @@ pub struct Formulation {
     /// Coulomb friction forces, one node per coordinate, functions of q, q̇ and the multipliers λ
     /// (the joints' normal loads); kept out of h, which does not depend on λ.
     pub friction: Vec<Id>,
+    /// Structural non-zeros of the friction forces' ∂/∂q and ∂/∂q̇ at given λ (for implicit
+    /// integration; empty without Coulomb friction).
+    pub friction_q: Vec<(usize, usize, Id)>,
+    pub friction_qd: Vec<(usize, usize, Id)>,
     /// Power of the non-conservative forces, q̇ᵀh + dV/dt: what dampers, actuators, applied
     /// forces and friction put in (J/s). Then d(T + V)/dt = this + λᵀ Φ_q q̇.
     pub power: Id,
@@ -477,6 +481,8 @@ pub fn formulate(model: &Model) -> Formulation {
     let mut g = b.g;
     let h_q = sparse_derivative(&mut g, &h, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
     let h_qd = sparse_derivative(&mut g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let friction_q = sparse_derivative(&mut g, &friction, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
+    let friction_qd = sparse_derivative(&mut g, &friction, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
 
     // Φ_q: differentiate each row only by the coordinates it contains; every other entry is a
     // structural zero.
@@ -520,7 +526,27 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let constraint_force_q = sparse_derivative(&mut g, &constraint_force, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
 
-    Formulation { nc: phi.len(), graph: g, nq, phi, jacobian, nu, gamma, q0, qd0, mass, h, h_q, h_qd, potential, power, friction, constraint_force_q }
+    Formulation {
+        nc: phi.len(),
+        graph: g,
+        nq,
+        phi,
+        jacobian,
+        nu,
+        gamma,
+        q0,
+        qd0,
+        mass,
+        h,
+        h_q,
+        h_qd,
+        potential,
+        power,
+        friction,
+        friction_q,
+        friction_qd,
+        constraint_force_q,
+    }
 }
 
 /// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.

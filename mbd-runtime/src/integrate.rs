@@ -125,9 +125,10 @@ pub enum SimulationError {
         t: f64,
         /// Iterations made.
         iterations: u32,
-        /// The row (coordinate or constraint) with the largest residual.
+        /// The constraint with the largest residual; or, when every constraint is met and the
+        /// corrections do not settle, the coordinate with the largest correction.
         worst_row: &'static str,
-        /// That residual.
+        /// That residual or correction (m or rad).
         residual: f64,
     },
     /// An option is out of range (`what` names it and the rule).
@@ -714,8 +715,12 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
 ///
 /// solved for (q̈₊, λ₊) by Newton with the exact iteration matrix
 /// [[M − γ'h ∂h/∂q̇ − β'h² (∂h/∂q + ∂(Φ_qᵀλ)/∂q), −Φ_qᵀ], [Φ_q, 0]] (β' = β(1−α_f)/(1−α_m),
-/// γ' = γ(1−α_f)/(1−α_m); the constraint rows scaled by 1/(β'h²)). N must be NQ + NC; the
-/// generated `Name::generalized_alpha(options)` makes one of the right size.
+/// γ' = γ(1−α_f)/(1−α_m); the constraint rows scaled by 1/(β'h²)). h includes Coulomb friction
+/// at the iterate's λ, and ∂h/∂q, ∂h/∂q̇ its exact derivatives at fixed λ
+/// ([`Dynamics::friction_derivatives`]; friction's slope in λ, at most μ, is left out). Where a
+/// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
+/// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
+/// N must be NQ + NC; the generated `Name::generalized_alpha(options)` makes one of the right size.
 #[derive(Clone, Copy, Debug)]
 pub struct GeneralizedAlpha<T, const N: usize> {
     /// Step size, damping and Newton options.
@@ -798,6 +803,13 @@ where
         let mut force = [T::ZERO; NQ];
         let mut rhs = [T::ZERO; N];
         let mut iteration = 0;
+        // Backtracking (Armijo on ‖r‖₂): the last Newton step's start, direction, fraction θ
+        // taken, the residual it started from and the size of the full correction.
+        let (mut base_qdd, mut base_lambda) = (qdd, lambda);
+        let mut step = [T::ZERO; N];
+        let mut theta = one;
+        let mut norm_before = T::ZERO;
+        let mut correction = T::ZERO;
         loop {
             for i in 0..NQ {
                 a1[i] = (alpha_f * from.qdd[i] + (one - alpha_f) * qdd[i] - alpha_m * a_n[i]) / (one - alpha_m);
@@ -806,8 +818,9 @@ where
             }
             mech.full_eval(&q, &qd, t1, &mut phi, &mut d, &mut nu, &mut gam);
             mech.forces(&q, &qd, t1, &mut force);
-            // Coulomb friction with the iterate's loads (its derivatives are left out of the
-            // iteration matrix: a quasi-Newton step for friction).
+            // Coulomb friction with the iterate's loads (its exact ∂/∂q and ∂/∂q̇ enter the
+            // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
+            // slope ≤ μ).
             mech.friction_forces(&q, &qd, t1, &lambda, &mut force);
             // Residuals: r = M q̈ − Φ_qᵀλ − h, Φ/(β'h²).
             let mut worst = (T::ZERO, 0usize);
@@ -824,16 +837,34 @@ where
                     worst = (p.abs(), r);
                 }
             }
+            // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
+            // Newton steps overshoot and cycle; where the step made the residual grow, take half
+            // of it instead (at most six times, then go on from there).
+            let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
+            if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
+                theta = theta * half;
+                for i in 0..NQ {
+                    qdd[i] = base_qdd[i] + theta * step[i];
+                }
+                for r in 0..NC {
+                    lambda[r] = base_lambda[r] + theta * step[NQ + r];
+                }
+                continue;
+            }
             if iteration >= o.max_iterations {
-                return Err(SimulationError::NotConverged {
-                    t: t1.to_f64(),
-                    iterations: iteration,
-                    worst_row: name(M::CONSTRAINT_NAMES, worst.1),
-                    residual: worst.0.to_f64(),
-                });
+                // Name the violated constraint, or, with every constraint met, the coordinate
+                // whose correction would not settle.
+                let (worst_row, residual) = if worst.0 > o.tolerance {
+                    (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
+                } else {
+                    let k = (0..NQ).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
+                    (name(M::COORDINATE_NAMES, k), (step[k] * beta_p * h * h).abs())
+                };
+                return Err(SimulationError::NotConverged { t: t1.to_f64(), iterations: iteration, worst_row, residual: residual.to_f64() });
             }
             mech.forces_q(&q, &qd, t1, &mut hq);
             mech.forces_qd(&q, &qd, t1, &mut hqd);
+            mech.friction_derivatives(&q, &qd, t1, &lambda, &mut hq, &mut hqd);
             mech.constraint_force_q(&q, t1, &lambda, &mut kc);
             let a = &mut self.matrix;
             for i in 0..NQ {
@@ -863,7 +894,8 @@ where
                 }
             };
             lu_solve_in_place(a, &permutation, &mut rhs);
-            let mut correction = T::ZERO;
+            (base_qdd, base_lambda, step, theta, norm_before) = (qdd, lambda, rhs, one, norm);
+            correction = T::ZERO;
             for i in 0..NQ {
                 qdd[i] += rhs[i];
                 correction = correction.max((rhs[i] * beta_p * h * h).abs());
