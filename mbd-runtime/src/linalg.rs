@@ -174,11 +174,25 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
         let (done, remaining) = a.split_at_mut(k + 1);
         let pivot_row = &done[k];
         let pivot = pivot_row[k];
+        // Mechanism matrices are sparse (Jacobians, KKT matrices): update only where the pivot
+        // row has non-zeros, and only the rows with a non-zero in the pivot column. Exact zeros
+        // skipped change no result; the cost falls from O(n³) towards O(n · fill).
+        let mut columns = [0usize; C];
+        let mut n_columns = 0;
+        for (j, &value) in pivot_row.iter().enumerate().skip(k + 1) {
+            if value != T::ZERO {
+                columns[n_columns] = j;
+                n_columns += 1;
+            }
+        }
         for row in remaining.iter_mut() {
+            if row[k] == T::ZERO {
+                continue;
+            }
             let multiplier = row[k] / pivot;
             row[k] = multiplier;
-            for (entry, &above) in row.iter_mut().zip(pivot_row.iter()).skip(k + 1) {
-                *entry -= multiplier * above;
+            for &j in &columns[..n_columns] {
+                row[j] -= multiplier * pivot_row[j];
             }
         }
     }
