@@ -413,12 +413,17 @@ mod tests {
     fn permutation_reconstructs_the_matrix() {
         const N: usize = 7;
         let mut rng = Prng(12345);
-        for _ in 0..20 {
-            // Plain random matrices: pivoting is exercised on every step.
+        for trial in 0..40 {
+            // Plain random matrices: pivoting is exercised on every step. Then sparse ones (about
+            // 60 % exact zeros off the diagonal, as in Jacobians and KKT matrices), which take
+            // the factorization's zero-skipping paths.
             let mut a = [[0.0; N]; N];
-            for row in a.iter_mut() {
-                for v in row.iter_mut() {
+            for (i, row) in a.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
                     *v = rng.uniform();
+                    if trial >= 20 && i != j && rng.uniform().abs() < 0.6 {
+                        *v = 0.0;
+                    }
                 }
             }
             let mut lu = a;
