@@ -803,7 +803,7 @@ where
         let mut force = [T::ZERO; NQ];
         let mut rhs = [T::ZERO; N];
         let mut iteration = 0;
-        // Backtracking (Armijo on ‖r‖₂): the last Newton step's start, direction, fraction θ
+        // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
         let (mut base_qdd, mut base_lambda) = (qdd, lambda);
         let mut step = [T::ZERO; N];

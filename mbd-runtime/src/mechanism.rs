@@ -139,8 +139,9 @@ pub trait Dynamics<T: Real, const NQ: usize, const NC: usize>: Kinematics<T, NQ,
     fn friction_forces(&self, q: &[T; NQ], qd: &[T; NQ], t: T, lambda: &[T; NC], h: &mut [T; NQ]);
     /// Adds the exact ∂/∂q and ∂/∂q̇ of [`Dynamics::friction_forces`] at fixed λ to `d_q` and
     /// `d_qd` (only their structural non-zeros are touched; nothing without Coulomb friction).
-    /// The regularized law's ∂/∂q̇, μN v_s²/(v² + v_s²)^{3/2} at v = 0, is what makes sticking
-    /// stiff: implicit integrators need it in their iteration matrix.
+    /// The regularized law's slope in the sliding speed v, μN v_s²/(v² + v_s²)^{3/2} (μN/v_s at
+    /// v = 0), is what makes sticking stiff: implicit integrators need it in their iteration
+    /// matrix.
     #[allow(clippy::too_many_arguments)]
     fn friction_derivatives(&self, q: &[T; NQ], qd: &[T; NQ], t: T, lambda: &[T; NC], d_q: &mut [[T; NQ]; NQ], d_qd: &mut [[T; NQ]; NQ]);
     /// Power of the non-conservative forces, q̇ᵀh + dV/dt (W): what dampers, actuators, applied
