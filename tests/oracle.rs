@@ -1,10 +1,12 @@
 //! The CasADi oracle: every example's generated Φ, Φ_q, ν and γ, and its dynamics — the mass
-//! diagonal M, the forces h(q, q̇, t), ∂h/∂q, ∂h/∂q̇ and the potential energy V — evaluated at 200
-//! random states (q, q̇, t and parameters within ±10 % of their defaults), are handed to an
+//! diagonal M, the forces h(q, q̇, t), ∂h/∂q, ∂h/∂q̇, the potential energy V, Coulomb friction
+//! forces at random loads λ with their ∂/∂q and ∂/∂q̇, and the forward dynamics q̈, λ — evaluated
+//! at 200 random states (q, q̇, t and parameters within ±10 % of their defaults), are handed to an
 //! independent CasADi rebuild of the model (`tests/oracle/`, Python) that compares them entry by
 //! entry. `EveryForce` below declares every kind of force element so that every path of h is
-//! checked. Then the oracle must reject a deliberately wrong Jacobian entry, γ entry, h entry and
-//! ∂h/∂q̇ entry, naming where, and mbd's kinematic sweeps must match CasADi's reference
+//! checked, `EveryFriction` every form of Coulomb friction. Then the oracle must reject a
+//! deliberately wrong Jacobian entry, γ entry, h entry, ∂h/∂q̇ entry, friction force, ∂f/∂q̇
+//! entry and q̈ entry, naming where, and mbd's kinematic sweeps must match CasADi's reference
 //! trajectories (`tests/oracle/reference/`).
 //!
 //! The Python environment (pinned CasADi and NumPy) is created on first use by
@@ -32,6 +34,27 @@ mod pendulum_chain16 {
 }
 use mbd::{KinematicSolver, Kinematics};
 use serde_json::{json, Value};
+
+mbd::mechanism! {
+    /// Coulomb friction in every form: a revolute joint (radius and slip velocity from
+    /// parameters), a translational joint with a bearing length (normal force and reaction
+    /// moment both loading it) and one without, on axes that are not unit vectors and at offset
+    /// points, with gravity, a spring and a damper so that the loads vary. Three bodies, six
+    /// constraint rows: three degrees of freedom.
+    pub EveryFriction {
+        params { mu: 0.3, r: 0.02, vs: 0.05, width: 0.2, k: 200.0 }
+        gravity [0.3, -9.81];
+        body arm    { mass: 1.0, inertia: 0.1, at: [0.5, 0.0, 0.1] }
+        body slider { mass: 0.5, inertia: 0.01, at: [0.8, 0.1, 0.1] }
+        body block  { mass: 0.3, inertia: 0.005, at: [0.75, 0.3, 0.1] }
+        revolute ground[0.0, 0.0] ~ arm[-0.5, 0.0] { coulomb: mu, radius: r, slip_velocity: vs };
+        translational arm[0.0, 0.05] along [2.0, 0.1] ~ slider[0.0, 0.0] along [1.0, 0.0]
+            { coulomb: mu, bearing: width, slip_velocity: vs };
+        translational slider[0.05, 0.1] along [0.0, 1.5] ~ block[0.0, -0.1] along [0.0, 1.0]
+            { coulomb: 2.0 * mu, slip_velocity: 2.0 * vs };
+        spring ground[1.0, 1.0] ~ block[0.0, 0.0] { k: k, length: 0.5, c: 3.0 };
+    }
+}
 
 mbd::mechanism! {
     /// Every kind of force element the DSL has, with non-trivial parameters, so that the oracle
@@ -109,7 +132,8 @@ fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
 /// Evaluates a mechanism's generated functions at random states and writes the samples file.
 /// Kinematics: "phi", "jacobian" (structural non-zeros in `JACOBIAN_PATTERN` order), "nu",
 /// "gamma". Dynamics: "mass" (the diagonal of M), "h", "h_q" and "h_qd" (dense NQ×NQ, row r =
-/// h_r), "potential".
+/// h_r), "potential"; Coulomb friction at random loads: "friction_lambda", "friction",
+/// "friction_q", "friction_qd"; forward dynamics: "qdd", "lambda", "alpha", "beta".
 fn write_samples<M, const NQ: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
     M: mbd::ForwardDynamics<f64, NQ, NC>,
@@ -146,9 +170,21 @@ where
         // Forward dynamics through the generated sparse Schur-complement solve, with random
         // Baumgarte gains; a random state can sit at a singular configuration, where the solve
         // rightly fails — those samples carry no q̈.
+        // Coulomb friction at random loads λ (zeros for a mechanism without it).
+        let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
+        let (mut friction, mut friction_q, mut friction_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
+        m.friction_forces(&q, &qd, t, &friction_lambda, &mut friction);
+        m.friction_derivatives(&q, &qd, t, &friction_lambda, &mut friction_q, &mut friction_qd);
+        let fields = sample.as_object_mut().expect("a sample is an object");
+        fields.insert("friction_lambda".into(), json!(friction_lambda.to_vec()));
+        fields.insert("friction".into(), json!(friction.to_vec()));
+        fields.insert("friction_q".into(), json!(dense(&friction_q)));
+        fields.insert("friction_qd".into(), json!(dense(&friction_qd)));
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        if m.accelerations(&q, &qd, t, &mbd::DynamicsOptions::baumgarte(alpha, beta), &mut qdd, &mut lambda).is_ok() {
+        // With Coulomb friction, iterate on λ to 1e-13 (the oracle's tolerance, compare.py).
+        let options = mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
+        if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
             forward += 1;
             let fields = sample.as_object_mut().expect("a sample is an object");
             fields.insert("qdd".into(), json!(qdd.to_vec()));
@@ -188,6 +224,7 @@ fn casadi_oracle() {
         samples!(common::slider_crank_inverse::Engine, 19),
         samples!(free_slider_crank::FreeSliderCrank, 21),
         samples!(pendulum_chain16::PendulumChain16, 22),
+        samples!(EveryFriction, 23),
         samples!(EveryForce, 20),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
@@ -195,10 +232,11 @@ fn casadi_oracle() {
     println!("{text}");
     assert!(ok, "the CasADi oracle rejected generated functions:\n{text}");
 
-    // The oracle can fail: it must reject a perturbed Jacobian entry, γ entry, h entry and ∂h/∂q̇
-    // entry and name the mechanism, the function, the row and the column.
-    let every_force = files.last().expect("EveryForce is checked");
-    let (ok, text) = oracle(&py, "mbd_oracle.selftest", &[files[0].as_path(), every_force.as_path()]);
+    // The oracle can fail: it must reject a perturbed Jacobian entry, γ entry, h entry, ∂h/∂q̇
+    // entry, friction force and ∂f/∂q̇ entry, and name the mechanism, the function, the row and
+    // the column.
+    let every = |name: &str| files.iter().find(|p| p.ends_with(format!("{name}.json"))).expect("checked above").as_path();
+    let (ok, text) = oracle(&py, "mbd_oracle.selftest", &[files[0].as_path(), every("EveryForce"), every("EveryFriction")]);
     println!("{text}");
     assert!(ok, "the oracle's self-test failed: it accepted a wrong value or did not say where:\n{text}");
 }

@@ -9,6 +9,13 @@ does the virtual work δW = Fᵀ δr_P at a point, or τ δθ on an angle, or �
 contributes Q = (∂r_P/∂q)ᵀ F, τ (∂θ/∂q)ᵀ or −f (∂l/∂q)ᵀ, with the partial derivatives taken by
 CasADi. Rates (l̇, θ̇, ṡ) are total time derivatives, l̇ = (∂l/∂q) q̇ + ∂l/∂t, also by CasADi.
 
+Coulomb friction in joints (docs/formulation.md, "Coulomb friction") depends on the joints'
+reactions λ as well; it is rebuilt apart from h, as mbd keeps it apart: given λ (a symbol
+`lam`), a revolute joint's normal load is N = √(λ_x² + λ_y²) of its two rows and its friction
+torque τ = μ R N ω/√(ω² + v_s²) resists θ = φ_j − φ_i; a translational joint's load is |λ_n|, or
+with a bearing length w, |λ_n/2 + λ_a/w| + |λ_n/2 − λ_a/w|, and its force f = μ N ṡ/√(ṡ² + v_s²)
+resists s. The forward-dynamics solve then iterates on λ.
+
 Sign conventions (README.md): a point-to-point element's tension f = k (l − length) + c l̇ +
 force pulls its two points together (it resists l = |r_Pj − r_Pi|); a rotational element's torque
 τ = k (θ − angle) + c θ̇ + torque resists θ = φ_j − φ_i; joint viscous friction c θ̇ (revolute,
@@ -21,6 +28,11 @@ import casadi as ca
 import numpy as np
 
 from .model import Model
+
+
+class NoFixedPoint(Exception):
+    """Newton found no λ = Λ(λ) with Coulomb friction (at a random state there may be none: the
+    friction paradoxes of Painlevé)."""
 
 
 class Dynamics:
@@ -48,8 +60,13 @@ class Dynamics:
                 r = [m.coord(body, "x"), m.coord(body, "y")]
                 contributions.append(self.at_point(f"gravity on {body}", r, [masses[k] * g[0], masses[k] * g[1]],
                                                    -masses[k] * (g[0] * r[0] + g[1] * r[1])))
+        self.lam = ca.SX.sym("lambda", m.nc)
+        friction = []  # (name, Q (NQ SX)) of the Coulomb joints, functions of lam too
         for f in m.json.get("forces", []):
-            contributions.append(self.element(f))
+            if f["kind"].endswith("_coulomb"):
+                friction.append(self.coulomb(f))
+            else:
+                contributions.append(self.element(f))
         self.contributions = contributions
         zero = ca.SX.zeros(nq, 1)
         self.mass = ca.vertcat(*[v for k in range(len(m.bodies)) for v in (masses[k], masses[k], inertias[k])]) if nq else zero
@@ -71,6 +88,23 @@ class Dynamics:
         self.f_magnitudes = ca.Function("magnitudes", args, [self.h_mag, self.h_q_mag, self.h_qd_mag, self.potential_mag], names,
                                         ["h", "h_q", "h_qd", "potential"])
         self.f_kinematics = ca.Function("kinematics", args, [m.phi, m.jac, m.nu, m.gamma], names, ["phi", "jacobian", "nu", "gamma"])
+        # Friction forces at given λ, their ∂/∂q and ∂/∂q̇ (at fixed λ), and the magnitudes
+        # Σ_joints |Q_e| (and of its derivatives) for the tolerances.
+        self.has_friction = bool(friction)
+        self.friction = sum((q for _, q in friction), zero)
+        self.friction_q = ca.jacobian(self.friction, m.q)
+        self.friction_qd = ca.jacobian(self.friction, m.qd)
+        friction_mag = [sum((ca.fabs(q) for _, q in friction), zero),
+                        sum((ca.fabs(ca.jacobian(q, m.q)) for _, q in friction), ca.SX.zeros(nq, nq)),
+                        sum((ca.fabs(ca.jacobian(q, m.qd)) for _, q in friction), ca.SX.zeros(nq, nq))]
+        fargs = args + [self.lam]
+        fnames = names + ["lambda"]
+        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_qd], fnames,
+                                      ["friction", "friction_q", "friction_qd"])
+        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
+                                             ["friction_lambda"])
+        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, friction_mag, fnames,
+                                                 ["friction", "friction_q", "friction_qd"])
 
     # --- derivatives and rates --------------------------------------------------------------
     def grad(self, s):
@@ -132,7 +166,64 @@ class Dynamics:
             return name, -m.expr(f["c"]) * self.rate(s) * self.grad(s), ca.SX(0)
         raise ValueError(f"{self.name}: unknown force element kind {kind!r}")
 
+    def coulomb(self, f):
+        """(name, Q) of a joint's Coulomb friction, a function of q, q̇, t, p and lam."""
+        m = self.model
+        kind, name, row = f["kind"], f["name"], f["row"]
+        mu, slip = m.expr(f["mu"]), m.expr(f["slip_velocity"])
+        if kind == "revolute_coulomb":
+            theta = m.coord(f["j"], "phi") - m.coord(f["i"], "phi")
+            load = ca.sqrt(self.lam[row] ** 2 + self.lam[row + 1] ** 2)
+            omega = self.rate(theta)
+            torque = mu * m.expr(f["radius"]) * load * omega / ca.sqrt(omega**2 + slip**2)
+            return name, -torque * self.grad(theta)
+        if kind == "translational_coulomb":
+            pi, pj = m.point(f["i"]), m.point(f["j"])
+            s = m.dot(m.unit_axis(f["i"]), [pj[0] - pi[0], pj[1] - pi[1]])
+            if f["bearing"] is None:
+                load = ca.fabs(self.lam[row])
+            else:
+                half, moment = self.lam[row] / 2, self.lam[row + 1] / m.expr(f["bearing"])
+                load = ca.fabs(half + moment) + ca.fabs(half - moment)
+            sdot = self.rate(s)
+            force = mu * load * sdot / ca.sqrt(sdot**2 + slip**2)
+            return name, -force * self.grad(s)
+        raise ValueError(f"{self.name}: unknown friction kind {kind!r}")
+
     # --- forward dynamics ----------------------------------------------------------------------
+    def friction_fixed_point(self, kkt, rhs, h, args):
+        """[q̈; λ] with Coulomb friction: λ solves λ = Λ(λ), Λ(λ) the λ part of
+        K⁻¹ [h + f(q, q̇, t, λ); rhs_c]. Not mbd's algorithm (fixed-point iteration): twenty
+        fixed-point steps for a start, then Newton on Λ(λ) − λ with CasADi's ∂f/∂λ, to a step
+        of 1e-14 relative or the rounding floor of the solves."""
+        nq = self.model.nq
+        rhs = rhs.copy()
+
+        def solve(lam):
+            rhs[:nq] = h + np.array(self.f_friction(*args, lam)[0]).reshape(-1)
+            return np.linalg.solve(kkt, rhs)
+
+        x = np.linalg.solve(kkt, rhs)
+        for _ in range(20):
+            x = solve(x[nq:])
+        lam = x[nq:]
+        previous = np.inf
+        for _ in range(50):
+            x = solve(lam)
+            residual = x[nq:] - lam
+            d_f = np.array(self.f_friction_lambda(*args, lam))
+            # ∂Λ/∂λ = the λ rows of K⁻¹ [∂f/∂λ; 0].
+            d_lambda = np.linalg.solve(kkt, np.vstack([d_f, np.zeros((len(lam), len(lam)))]))[nq:]
+            step = np.linalg.solve(np.eye(len(lam)) - d_lambda, residual)
+            lam = lam + step
+            # Converged: a step of 1e-14 relative, or steps that stopped shrinking below 1e-11
+            # (Newton's quadratic convergence has reached the rounding of the solves).
+            size = np.max(np.abs(step)) / max(1.0, float(np.max(np.abs(lam))))
+            if size <= 1e-14 or (size <= 1e-11 and size > 0.5 * previous):
+                return solve(lam)
+            previous = size
+        raise NoFixedPoint(f"{self.name}: Newton found no friction fixed point λ = Λ(λ)")
+
     def forward(self, q, qd, t, p, alpha, beta):
         """Solves the equations of motion with Baumgarte stabilization for (q̈, λ):
 
@@ -154,4 +245,6 @@ class Dynamics:
         kkt[nq:, :nq] = jac
         rhs = np.concatenate([h, gamma - 2.0 * alpha * (jac @ np.asarray(qd, dtype=float) - nu) - beta**2 * phi])
         x = np.linalg.solve(kkt, rhs)
+        if self.has_friction:
+            x = self.friction_fixed_point(kkt, rhs, h, args)
         return x[:nq], x[nq:], float(np.linalg.cond(kkt))
