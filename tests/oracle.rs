@@ -39,7 +39,7 @@ mbd::mechanism! {
     /// Coulomb friction in every form: a revolute joint (radius and slip velocity from
     /// parameters), a translational joint with a bearing length (normal force and reaction
     /// moment both loading it) and one without, on axes that are not unit vectors and at offset
-    /// points, with gravity, a spring and a damper so that the loads vary. Three bodies, six
+    /// points, with gravity and a spring-damper so that the loads vary. Three bodies, six
     /// constraint rows: three degrees of freedom.
     pub EveryFriction {
         params { mu: 0.3, r: 0.02, vs: 0.05, width: 0.2, k: 200.0 }
@@ -167,9 +167,6 @@ where
                             "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec(),
                             "mass": m.mass_diagonal().to_vec(), "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
                             "potential": potential});
-        // Forward dynamics through the generated sparse Schur-complement solve, with random
-        // Baumgarte gains; a random state can sit at a singular configuration, where the solve
-        // rightly fails — those samples carry no q̈.
         // Coulomb friction at random loads λ (zeros for a mechanism without it).
         let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
         let (mut friction, mut friction_q, mut friction_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
@@ -180,9 +177,12 @@ where
         fields.insert("friction".into(), json!(friction.to_vec()));
         fields.insert("friction_q".into(), json!(dense(&friction_q)));
         fields.insert("friction_qd".into(), json!(dense(&friction_qd)));
+        // Forward dynamics through the generated sparse Schur-complement solve, with random
+        // Baumgarte gains; a random state can sit at a singular configuration, where the solve
+        // rightly fails — those samples carry no q̈. With Coulomb friction, the fixed point on λ
+        // is asked for to a change of 1e-13 (compare.py's bound accounts for it).
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        // With Coulomb friction, iterate on λ to 1e-13 (the oracle's tolerance, compare.py).
         let options = mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
         if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
             forward += 1;
