@@ -14,7 +14,7 @@ reactions λ as well; it is rebuilt apart from h, as mbd keeps it apart: given �
 `lam`), a revolute joint's normal load is N = √(λ_x² + λ_y²) of its two rows and its friction
 torque τ = μ R N ω/√(ω² + v_s²) resists θ = φ_j − φ_i; a translational joint's load is |λ_n|, or
 with a bearing length w, |λ_n/2 + λ_a/w| + |λ_n/2 − λ_a/w|, and its force f = μ N ṡ/√(ṡ² + v_s²)
-resists s. The forward-dynamics solve then iterates on λ.
+resists s. The forward-dynamics solve then finds the fixed point in λ by Newton.
 
 Sign conventions (README.md): a point-to-point element's tension f = k (l − length) + c l̇ +
 force pulls its two points together (it resists l = |r_Pj − r_Pi|); a rotational element's torque
