@@ -332,3 +332,56 @@ pub fn emitter<'a>(model: &Model, f: &'a Formulation) -> Emitter<'a> {
         coordinate_names: model.coordinate_names(),
     }
 }
+
+// --- outputs shared by the generated functions -------------------------------------------
+
+pub fn real(s: Scalar) -> TokenStream {
+    match s {
+        Scalar::F32 => quote!(f32),
+        Scalar::F64 => quote!(f64),
+    }
+}
+
+pub fn usize_lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+/// Outputs `out[i] = nodes[i]`.
+pub fn vector_outputs(out: &str, nodes: &[u32]) -> Vec<Output> {
+    let out = format_ident!("{}", out);
+    nodes
+        .iter()
+        .enumerate()
+        .map(|(i, &node)| {
+            let i = usize_lit(i);
+            Output { target: quote!(#out[#i]), node }
+        })
+        .collect()
+}
+
+/// Outputs `hf[i] = friction force on coordinate i` for the coordinates friction acts on.
+pub fn friction_outputs(f: &Formulation) -> Vec<Output> {
+    f.friction
+        .iter()
+        .enumerate()
+        .filter(|(_, &node)| !f.graph.is_zero(node))
+        .map(|(i, &node)| {
+            let i = usize_lit(i);
+            Output { target: quote!(hf[#i]), node }
+        })
+        .collect()
+}
+
+/// Outputs `name[k] = Φ_q`'s k-th structural non-zero.
+pub fn jacobian_values_outputs(f: &Formulation, name: &str) -> Vec<Output> {
+    let name = format_ident!("{}", name);
+    f.jacobian
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(#name[#k]), node }
+        })
+        .collect()
+}
+

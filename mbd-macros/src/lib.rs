@@ -2,13 +2,20 @@
 //!
 //! Data flows one way through plain-Rust stages, each unit-tested without a compiler in the loop:
 //! [`parse`] (tokens → syntax tree with spans) → [`model`] (names resolved, rules checked, every
-//! mistake reported at once) → [`formulation`] (symbolic Φ, Φ_q, ν, γ in planar body coordinates,
-//! on the [`sym`] expression graph) → [`emit`] (straight-line Rust; [`schur`] the sparse solve of the equations of motion) → [`expand`] (the mechanism's
-//! type and trait implementations; [`json`] its model description).
+//! mistake reported at once; each joint, driver and force kind resolved by its own file in
+//! [`elements`] and [`forces`]) → [`formulation`] (symbolic Φ, Φ_q, ν, γ, M, h on the [`sym`]
+//! expression graph, written against the body frames of [`frames`], the seam where a
+//! formulation plugs in) → [`emit`] (straight-line Rust; [`forward`] and [`schur`] the sparse
+//! solve of the equations of motion) → [`expand`] (the mechanism's type and trait
+//! implementations; [`json`] its model description). `ARCHITECTURE.md` is the map.
 
+mod elements;
 mod emit;
 mod expand;
+mod forces;
 mod formulation;
+mod forward;
+mod frames;
 mod json;
 mod model;
 mod parse;

@@ -7,7 +7,9 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::Span;
 use syn::{Attribute, Ident, Visibility};
 
-use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Field, Item, MechanismDef, PointRef, Value, VecLit};
+use crate::elements::{self, drive, drive_angle, drive_distance, fix, user, Constraint, Driven};
+use crate::forces::{applied, point_to_point, rotational, torque, ForceElement};
+use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::Func;
 
 /// The errors of one expansion, combined into one at the end.
@@ -80,7 +82,7 @@ impl Coord {
             Coord::Phi => 2,
         }
     }
-    fn from_ident(id: &Ident) -> Option<Coord> {
+    pub fn from_ident(id: &Ident) -> Option<Coord> {
         match id.to_string().as_str() {
             "x" => Some(Coord::X),
             "y" => Some(Coord::Y),
@@ -162,7 +164,7 @@ impl MExpr {
 
 /// What an expression may refer to, by where it stands.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Scope {
+pub enum Scope {
     /// Numbers, `PI` and functions: parameter defaults.
     Constant,
     /// Also parameters: geometry, masses, initial values.
@@ -216,109 +218,6 @@ pub struct Loc {
     pub point: [MExpr; 2],
 }
 
-/// One joint, driver or user constraint, with the rows it adds to Φ (see docs/formulation.md).
-#[derive(Clone, Debug)]
-pub enum ConstraintKind {
-    Revolute { i: Loc, j: Loc },
-    Translational { i: Loc, axis_i: [MExpr; 2], j: Loc, axis_j: [MExpr; 2] },
-    RevoluteRevolute { i: Loc, j: Loc, length: MExpr },
-    RevoluteTranslational { i: Loc, j: Loc, axis_j: [MExpr; 2], distance: MExpr },
-    Rigid { i: Loc, j: Loc, angle: MExpr },
-    Fix { body: usize, coord: Coord, value: MExpr },
-    Drive { body: usize, coord: Coord, f: MExpr },
-    DriveAngle { i: BodyRef, j: BodyRef, f: MExpr },
-    DriveDistance { i: Loc, j: Loc, f: MExpr },
-    User { expr: MExpr },
-}
-
-impl ConstraintKind {
-    /// The kind's name (as in the model JSON) and the bodies it connects.
-    pub fn kind_and_bodies(&self) -> (&'static str, Option<BodyRef>, Option<BodyRef>) {
-        match self {
-            ConstraintKind::Revolute { i, j } => ("revolute", Some(i.body), Some(j.body)),
-            ConstraintKind::Translational { i, j, .. } => ("translational", Some(i.body), Some(j.body)),
-            ConstraintKind::RevoluteRevolute { i, j, .. } => ("revolute_revolute", Some(i.body), Some(j.body)),
-            ConstraintKind::RevoluteTranslational { i, j, .. } => ("revolute_translational", Some(i.body), Some(j.body)),
-            ConstraintKind::Rigid { i, j, .. } => ("rigid", Some(i.body), Some(j.body)),
-            ConstraintKind::Fix { body, .. } => ("fix", Some(BodyRef::Body(*body)), None),
-            ConstraintKind::Drive { body, .. } => ("drive", Some(BodyRef::Body(*body)), None),
-            ConstraintKind::DriveAngle { i, j, .. } => ("drive_angle", Some(*i), Some(*j)),
-            ConstraintKind::DriveDistance { i, j, .. } => ("drive_distance", Some(i.body), Some(j.body)),
-            ConstraintKind::User { .. } => ("constraint", None, None),
-        }
-    }
-
-    /// Names of the rows this constraint adds, in order.
-    pub fn row_names(&self) -> &'static [&'static str] {
-        match self {
-            ConstraintKind::Revolute { .. } => &["x", "y"],
-            ConstraintKind::Translational { .. } => &["normal", "angle"],
-            ConstraintKind::RevoluteRevolute { .. } => &["length"],
-            ConstraintKind::RevoluteTranslational { .. } => &["distance"],
-            ConstraintKind::Rigid { .. } => &["x", "y", "angle"],
-            ConstraintKind::Fix { coord, .. } | ConstraintKind::Drive { coord, .. } => match coord {
-                Coord::X => &["x"],
-                Coord::Y => &["y"],
-                Coord::Phi => &["phi"],
-            },
-            ConstraintKind::DriveAngle { .. } => &["angle"],
-            ConstraintKind::DriveDistance { .. } => &["distance"],
-            ConstraintKind::User { .. } => &["user"],
-        }
-    }
-}
-
-/// A force element (Nikravesh ch. 4): what it adds to h(q, q̇, t) and to the potential energy.
-#[derive(Clone, Debug)]
-pub enum ForceKind {
-    /// Point-to-point spring–damper–actuator: tension f = k (l − length) + c l̇ + force.
-    PointToPoint { i: Loc, j: Loc, k: Option<MExpr>, length: MExpr, c: Option<MExpr>, force: Option<MExpr> },
-    /// Rotational spring–damper–actuator on θ = φ_j − φ_i: τ = k (θ − angle) + c θ̇ + torque,
-    /// resisting θ.
-    Rotational { i: BodyRef, j: BodyRef, k: Option<MExpr>, angle: MExpr, c: Option<MExpr>, torque: Option<MExpr> },
-    /// A force at a point, components in the global frame or, `local`, in the body's frame.
-    Applied { at: Loc, force: [MExpr; 2], local: bool },
-    /// A torque on a body (N·m, counter-clockwise positive).
-    Torque { body: usize, torque: MExpr },
-    /// Viscous friction in a revolute joint: torque c (φ̇_j − φ̇_i) resisting relative rotation.
-    RevoluteViscous { i: BodyRef, j: BodyRef, c: MExpr },
-    /// Viscous friction in a translational joint: force c ṡ resisting sliding, s = u_iᵀ(r_Pj − r_Pi).
-    TranslationalViscous { i: Loc, axis_i: [MExpr; 2], j: Loc, c: MExpr },
-    /// Coulomb friction in a revolute joint (Nikravesh 4.5.3): torque μ R N ω/√(ω² + v_s²)
-    /// resisting ω = φ̇_j − φ̇_i, N = |(λ_x, λ_y)| the pin force of the joint's rows `row`, `row + 1`.
-    RevoluteCoulomb { i: BodyRef, j: BodyRef, mu: MExpr, radius: MExpr, slip: MExpr, row: usize },
-    /// Coulomb friction in a translational joint: force μ N ṡ/√(ṡ² + v_s²) resisting sliding,
-    /// N = |λ_normal|, or with a bearing length w the load of two pads w apart,
-    /// |λ_n/2 + λ_a/w| + |λ_n/2 − λ_a/w| (λ_a the reaction moment of the angle row).
-    TranslationalCoulomb { i: Loc, axis_i: [MExpr; 2], j: Loc, mu: MExpr, slip: MExpr, bearing: Option<MExpr>, row: usize },
-}
-
-pub struct ForceElement {
-    /// `"spring crank~rod"`, or the user's label.
-    pub name: String,
-    pub kind: ForceKind,
-}
-
-impl ForceElement {
-    /// The effect this element adds (for `Mechanism::EFFECTS`).
-    pub fn effect(&self) -> &'static str {
-        match &self.kind {
-            ForceKind::PointToPoint { .. } => "point-to-point spring-damper-actuator",
-            ForceKind::Rotational { .. } => "rotational spring-damper-actuator",
-            ForceKind::Applied { .. } => "applied force",
-            ForceKind::Torque { .. } => "applied torque",
-            ForceKind::RevoluteViscous { .. } | ForceKind::TranslationalViscous { .. } => "viscous joint friction",
-            ForceKind::RevoluteCoulomb { .. } | ForceKind::TranslationalCoulomb { .. } => "Coulomb joint friction",
-        }
-    }
-}
-
-pub struct Constraint {
-    /// `"revolute crank~rod"`, or the user's label.
-    pub name: String,
-    pub kind: ConstraintKind,
-}
-
 /// A validated mechanism.
 pub struct Model {
     pub attrs: Vec<Attribute>,
@@ -342,16 +241,6 @@ impl Model {
             BodyRef::Body(k) => self.bodies[k].name.to_string(),
         }
     }
-    pub fn n_coordinates(&self) -> usize {
-        3 * self.bodies.len()
-    }
-    /// Constraint row names, `"revolute crank~rod: x"`.
-    pub fn row_names(&self) -> Vec<String> {
-        self.constraints
-            .iter()
-            .flat_map(|c| c.kind.row_names().iter().map(move |r| format!("{}: {}", c.name, r)))
-            .collect()
-    }
     /// Coordinate names, `"crank.phi"`.
     pub fn coordinate_names(&self) -> Vec<String> {
         self.bodies
@@ -371,8 +260,8 @@ pub struct Partial {
     pub params: Vec<Ident>,
 }
 
-struct Resolver<'a> {
-    errors: &'a mut Errors,
+pub struct Resolver<'a> {
+    pub errors: &'a mut Errors,
     params: HashMap<String, usize>,
     bodies: HashMap<String, usize>,
     points: HashMap<(BodyRef, String), [MExpr; 2]>,
@@ -383,7 +272,7 @@ const BODY_FIELDS: &[&str] = &["mass", "inertia", "at", "velocity"];
 const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "ln", "pow"];
 
 impl Resolver<'_> {
-    fn body(&mut self, id: &Ident) -> Option<BodyRef> {
+    pub fn body(&mut self, id: &Ident) -> Option<BodyRef> {
         if id == "ground" {
             return Some(BodyRef::Ground);
         }
@@ -398,7 +287,7 @@ impl Resolver<'_> {
         }
     }
 
-    fn expr(&mut self, e: &Expr, scope: Scope) -> Option<MExpr> {
+    pub fn expr(&mut self, e: &Expr, scope: Scope) -> Option<MExpr> {
         Some(match &e.kind {
             ExprKind::Num(v) => MExpr::Num(*v),
             ExprKind::Ident(id) => {
@@ -495,7 +384,7 @@ impl Resolver<'_> {
     }
 
     /// A bracketed list of exactly `N` expressions.
-    fn list<const N: usize>(&mut self, v: &VecLit, scope: Scope, what: &str) -> Option<[MExpr; N]> {
+    pub fn list<const N: usize>(&mut self, v: &VecLit, scope: Scope, what: &str) -> Option<[MExpr; N]> {
         if v.items.len() != N {
             self.errors.push(v.span, format!("{what} has {N} entries, found {}", v.items.len()));
             return None;
@@ -505,7 +394,7 @@ impl Resolver<'_> {
         items.try_into().ok()
     }
 
-    fn point(&mut self, body: BodyRef, p: &PointRef) -> Option<[MExpr; 2]> {
+    pub fn point(&mut self, body: BodyRef, p: &PointRef) -> Option<[MExpr; 2]> {
         match p {
             PointRef::Inline(v) => self.list::<2>(v, Scope::Params, "a point `[ξ, η]` in body coordinates"),
             PointRef::Named(name) => match self.points.get(&(body, name.to_string())) {
@@ -518,13 +407,13 @@ impl Resolver<'_> {
         }
     }
 
-    fn loc(&mut self, body_id: &Ident, p: &PointRef) -> Option<Loc> {
+    pub fn loc(&mut self, body_id: &Ident, p: &PointRef) -> Option<Loc> {
         let body = self.body(body_id)?;
         let point = self.point(body, p)?;
         Some(Loc { body, point })
     }
 
-    fn axis(&mut self, body: BodyRef, a: &AxisRef) -> Option<[MExpr; 2]> {
+    pub fn axis(&mut self, body: BodyRef, a: &AxisRef) -> Option<[MExpr; 2]> {
         match a {
             AxisRef::Inline(v) => {
                 let axis = self.list::<2>(v, Scope::Params, "an axis `[x, y]` in body coordinates")?;
@@ -574,7 +463,7 @@ fn claim_name(names: &mut HashMap<String, Span>, errors: &mut Errors, label: Opt
 
 /// Checks a number that must be positive when it is a constant (a parameter's value is checked
 /// at run time by the solver that needs it).
-fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
+pub fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
     if let Some(v) = e.constant_value() {
         if !(v > 0.0) {
             errors.at_expr(written, format!("{what} must be positive, found {v}"));
@@ -765,200 +654,9 @@ impl MechanismDef {
             BodyRef::Ground => "ground".to_string(),
             BodyRef::Body(k) => bodies[k].name.to_string(),
         };
-        let mut constraints = Vec::new();
-        let mut forces = Vec::new();
         let mut names: HashMap<String, Span> = HashMap::new();
-        let mut driven: HashMap<(usize, Coord), Span> = HashMap::new();
-        let mut driven_angles: HashSet<(BodyRef, BodyRef)> = HashSet::new();
-        for (index, item) in self.items.iter().enumerate() {
-            let first_row: usize = constraints.iter().map(|c: &Constraint| c.kind.row_names().len()).sum();
-            let built: Option<(Option<&Ident>, String, Span, ConstraintKind, Vec<ForceKind>)> = match item {
-                Item::Joint(j) => self.joint(&mut r, j, &body_name),
-                Item::Fix(f) => {
-                    let body = r.body(&f.body);
-                    let coord = Coord::from_ident(&f.coordinate);
-                    if coord.is_none() {
-                        r.errors.push(f.coordinate.span(), format!("unknown coordinate `{}`: a body has `x`, `y` and `phi`", f.coordinate));
-                    }
-                    match (body, coord) {
-                        (Some(BodyRef::Ground), _) => {
-                            r.errors.push(f.body.span(), "the ground is fixed already");
-                            None
-                        }
-                        (Some(BodyRef::Body(k)), Some(coord)) => {
-                            if let Some(_prev) = driven.insert((k, coord), f.coordinate.span()) {
-                                r.errors.push(f.coordinate.span(), format!("`{}.{}` is already fixed or driven", f.body, coord.name()));
-                                None
-                            } else {
-                                let value = match &f.value {
-                                    Some(e) => r.expr(e, Scope::Params),
-                                    None => model_bodies.iter().find(|b| b.name == f.body).map(|b| b.q0[coord.index()].clone()),
-                                };
-                                value.map(|value| {
-                                    let name = format!("fix {}.{}", f.body, coord.name());
-                                    (f.label.as_ref(), name, f.keyword.span(), ConstraintKind::Fix { body: k, coord, value }, Vec::new())
-                                })
-                            }
-                        }
-                        _ => None,
-                    }
-                }
-                Item::Drive(d) => {
-                    let f = r.expr(&d.f, Scope::Time);
-                    match &d.target {
-                        DriveTarget::Coordinate { body, coordinate } => {
-                            let b = r.body(body);
-                            let coord = Coord::from_ident(coordinate);
-                            if coord.is_none() {
-                                r.errors.push(coordinate.span(), format!("unknown coordinate `{coordinate}`: a body has `x`, `y` and `phi`"));
-                            }
-                            match (b, coord, f) {
-                                (Some(BodyRef::Ground), _, _) => {
-                                    r.errors.push(body.span(), "the ground cannot be driven");
-                                    None
-                                }
-                                (Some(BodyRef::Body(k)), Some(coord), f) => {
-                                    if driven.insert((k, coord), coordinate.span()).is_some() {
-                                        r.errors.push(coordinate.span(), format!("`{body}.{}` is already fixed or driven", coord.name()));
-                                        None
-                                    } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive {body}.{}", coord.name()), d.keyword.span(), ConstraintKind::Drive { body: k, coord, f }, Vec::new()))
-                                    }
-                                }
-                                _ => None,
-                            }
-                        }
-                        DriveTarget::Angle { i, j, .. } => {
-                            let (bi, bj) = (r.body(i), r.body(j));
-                            match (bi, bj, f) {
-                                (Some(bi), Some(bj), _) if bi == bj => {
-                                    r.errors.push(j.span(), format!("a relative angle needs two different bodies, found `{j}` twice"));
-                                    None
-                                }
-                                (Some(bi), Some(bj), f) => {
-                                    let key = if format!("{bi:?}") < format!("{bj:?}") { (bi, bj) } else { (bj, bi) };
-                                    if !driven_angles.insert(key) {
-                                        r.errors.push(i.span(), format!("the angle between `{i}` and `{j}` is already driven"));
-                                        None
-                                    } else {
-                                        f.map(|f| (d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), ConstraintKind::DriveAngle { i: bi, j: bj, f }, Vec::new()))
-                                    }
-                                }
-                                _ => None,
-                            }
-                        }
-                        DriveTarget::Distance { i, j, .. } => {
-                            let li = r.loc(&i.0, &i.1);
-                            let lj = r.loc(&j.0, &j.1);
-                            match (li, lj, f) {
-                                (Some(li), Some(lj), _) if li.body == lj.body => {
-                                    r.errors.push(j.0.span(), "a distance driver needs points on two different bodies");
-                                    None
-                                }
-                                (Some(li), Some(lj), Some(f)) => {
-                                    let name = format!("drive distance {}~{}", i.0, j.0);
-                                    Some((d.label.as_ref(), name, d.keyword.span(), ConstraintKind::DriveDistance { i: li, j: lj, f }, Vec::new()))
-                                }
-                                _ => None,
-                            }
-                        }
-                    }
-                }
-                Item::Constraint(c) => {
-                    let lhs = r.expr(&c.lhs, Scope::State);
-                    let rhs = r.expr(&c.rhs, Scope::State);
-                    match (lhs, rhs) {
-                        (Some(l), Some(rh)) => {
-                            let expr = match rh.constant_value() {
-                                Some(v) if v == 0.0 => l,
-                                _ => MExpr::Bin(MBin::Sub, Box::new(l), Box::new(rh)),
-                            };
-                            Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), ConstraintKind::User { expr }, Vec::new()))
-                        }
-                        _ => None,
-                    }
-                }
-                _ => continue,
-            };
-            let Some((label, default_name, span, kind, friction)) = built else {
-                ok = false;
-                continue;
-            };
-            let Some(name) = claim_name(&mut names, r.errors, label, default_name, span) else {
-                ok = false;
-                continue;
-            };
-            for mut kind in friction {
-                let what = match &mut kind {
-                    ForceKind::RevoluteCoulomb { row, .. } | ForceKind::TranslationalCoulomb { row, .. } => {
-                        *row = first_row;
-                        "Coulomb friction"
-                    }
-                    _ => "viscous friction",
-                };
-                forces.push(ForceElement { name: format!("{name} {what}"), kind });
-            }
-            constraints.push(Constraint { name, kind });
-        }
-
-        // Force elements (Nikravesh ch. 4).
-        let mut gravity = None;
-        for item in &self.items {
-            let built: Option<(Option<&Ident>, String, Span, ForceKind)> = match item {
-                Item::Gravity(kw, v) => {
-                    if gravity.is_some() {
-                        r.errors.push(kw.span(), "gravity is declared twice");
-                        ok = false;
-                    }
-                    gravity = r.list::<2>(v, Scope::Params, "gravity `[gx, gy]` (m/s²)");
-                    if gravity.is_none() {
-                        ok = false;
-                    }
-                    continue;
-                }
-                Item::PointForce(f) => self.point_force(&mut r, f, &body_name),
-                Item::RotationalForce(f) => self.rotational_force(&mut r, f),
-                Item::Force(f) => {
-                    let at = r.loc(&f.body, &f.point);
-                    let value = r.list::<2>(&f.value, Scope::Force, "a force `[fx, fy]` (N)");
-                    match (at, value) {
-                        (Some(at), _) if at.body == BodyRef::Ground => {
-                            r.errors.push(f.body.span(), "a force on the ground does nothing: apply it to a moving body");
-                            None
-                        }
-                        (Some(at), Some(force)) => {
-                            let local = f.kind == "local_force";
-                            Some((f.label.as_ref(), format!("{} on {}", f.kind, f.body), f.kind.span(), ForceKind::Applied { at, force, local }))
-                        }
-                        _ => None,
-                    }
-                }
-                Item::Torque(tq) => {
-                    let body = r.body(&tq.body);
-                    let torque = r.expr(&tq.value, Scope::Force);
-                    match (body, torque) {
-                        (Some(BodyRef::Ground), _) => {
-                            r.errors.push(tq.body.span(), "a torque on the ground does nothing: apply it to a moving body");
-                            None
-                        }
-                        (Some(BodyRef::Body(k)), Some(torque)) => {
-                            Some((tq.label.as_ref(), format!("torque on {}", tq.body), tq.keyword.span(), ForceKind::Torque { body: k, torque }))
-                        }
-                        _ => None,
-                    }
-                }
-                _ => continue,
-            };
-            let Some((label, default_name, span, kind)) = built else {
-                ok = false;
-                continue;
-            };
-            let Some(name) = claim_name(&mut names, r.errors, label, default_name, span) else {
-                ok = false;
-                continue;
-            };
-            forces.push(ForceElement { name, kind });
-        }
+        let (constraints, mut forces) = constraints(&self.items, &mut r, &mut names, &model_bodies, &body_name, &mut ok);
+        let gravity = force_elements(&self.items, &mut r, &mut names, &body_name, &mut forces, &mut ok);
 
         if bodies.is_empty() {
             r.errors.push(self.name.span(), "a mechanism needs at least one body: `body name { mass: ..., inertia: ... }`");
@@ -981,256 +679,91 @@ impl MechanismDef {
             forces,
         })
     }
+}
 
-    #[allow(clippy::type_complexity)]
-    fn joint<'a>(
-        &self,
-        r: &mut Resolver,
-        j: &'a parse::JointDef,
-        body_name: &dyn Fn(BodyRef) -> String,
-    ) -> Option<(Option<&'a Ident>, String, Span, ConstraintKind, Vec<ForceKind>)> {
-        let kind = j.kind.to_string();
-        let li = r.loc(&j.i.body, &j.i.point);
-        let lj = r.loc(&j.j.body, &j.j.point);
-        let (li, lj) = (li?, lj?);
-        if li.body == lj.body {
-            r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
-            return None;
-        }
-        // Which sides take an axis, and which options the kind knows.
-        let (axis_i_needed, axis_j_needed, known_options): (bool, bool, &[&str]) = match kind.as_str() {
-            "revolute" => (false, false, &["viscous", "coulomb", "radius", "slip_velocity"]),
-            "translational" => (true, true, &["viscous", "coulomb", "slip_velocity", "bearing"]),
-            "revolute_revolute" => (false, false, &["length"]),
-            "revolute_translational" => (false, true, &["distance"]),
-            "rigid" => (false, false, &["angle"]),
-            _ => unreachable!("parse only yields known joint kinds"),
-        };
-        let axis = |r: &mut Resolver, side: &parse::Attach, body: BodyRef, needed: bool, which: &str| -> Option<Option<[MExpr; 2]>> {
-            match (&side.along, needed) {
-                (Some(a), true) => r.axis(body, &a.axis).map(Some),
-                (None, true) => {
-                    r.errors.push(side.body.span(), format!("a {kind} joint needs a sliding axis on its {which} body: `{}.P along [x, y]`", side.body));
-                    None
+/// Pass 3: joints, drivers and user constraints in declaration order, each resolved by its
+/// kind's file, with the joint friction their options declare.
+fn constraints(
+    items: &[Item],
+    r: &mut Resolver,
+    names: &mut HashMap<String, Span>,
+    bodies: &[Body],
+    body_name: &dyn Fn(BodyRef) -> String,
+    ok: &mut bool,
+) -> (Vec<Constraint>, Vec<ForceElement>) {
+    let mut constraints = Vec::new();
+    let mut forces = Vec::new();
+    let mut driven = Driven::default();
+    for (index, item) in items.iter().enumerate() {
+        let built = match item {
+            Item::Joint(j) => elements::resolve(r, j, body_name, constraints.len()),
+            Item::Fix(f) => fix::resolve(r, f, &mut driven, bodies),
+            Item::Drive(d) => {
+                let f = r.expr(&d.f, Scope::Time);
+                match &d.target {
+                    DriveTarget::Coordinate { body, coordinate } => drive::resolve(r, d, body, coordinate, f, &mut driven),
+                    DriveTarget::Angle { i, j, .. } => drive_angle::resolve(r, d, i, j, f, &mut driven),
+                    DriveTarget::Distance { i, j, .. } => drive_distance::resolve(r, d, i, j, f),
                 }
-                (Some(a), false) => {
-                    r.errors.push(a.keyword.span(), format!("a {kind} joint takes no axis on its {which} body"));
-                    None
-                }
-                (None, false) => Some(None),
             }
+            Item::Constraint(c) => user::resolve(r, c, index),
+            _ => continue,
         };
-        let axis_i = axis(r, &j.i, li.body, axis_i_needed, "first");
-        let axis_j = axis(r, &j.j, lj.body, axis_j_needed, "second");
-        let mut options: HashMap<String, MExpr> = HashMap::new();
-        let mut bad = false;
-        for f in &j.options {
-            let key = f.name.to_string();
-            if !known_options.contains(&key.as_str()) {
-                let list = if known_options.is_empty() { "none".to_string() } else { known_options.join(", ") };
-                r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
-                bad = true;
+        let Some((label, default_name, span, kind, friction)) = built else {
+            *ok = false;
+            continue;
+        };
+        let Some(name) = claim_name(names, r.errors, label, default_name, span) else {
+            *ok = false;
+            continue;
+        };
+        for (what, kind) in friction {
+            forces.push(ForceElement { name: format!("{name} {what}"), kind });
+        }
+        constraints.push(Constraint { name, kind });
+    }
+    (constraints, forces)
+}
+
+/// Pass 4: gravity and the force elements (Nikravesh ch. 4), each resolved by its kind's file.
+/// Returns gravity, if declared.
+fn force_elements(
+    items: &[Item],
+    r: &mut Resolver,
+    names: &mut HashMap<String, Span>,
+    body_name: &dyn Fn(BodyRef) -> String,
+    forces: &mut Vec<ForceElement>,
+    ok: &mut bool,
+) -> Option<[MExpr; 2]> {
+    let mut gravity = None;
+    for item in items {
+        let built = match item {
+            Item::Gravity(kw, v) => {
+                if gravity.is_some() {
+                    r.errors.push(kw.span(), "gravity is declared twice");
+                    *ok = false;
+                }
+                gravity = r.list::<2>(v, Scope::Params, "gravity `[gx, gy]` (m/s²)");
+                if gravity.is_none() {
+                    *ok = false;
+                }
                 continue;
             }
-            match &f.value {
-                Value::List(v) => {
-                    r.errors.push(v.span, format!("`{key}` is a number, not a list"));
-                    bad = true;
-                }
-                Value::Expr(e) => match r.expr(e, Scope::Params) {
-                    Some(m) => {
-                        match key.as_str() {
-                            "length" => check_positive(r.errors, &m, e, "the length of a revolute-revolute link"),
-                            "radius" => check_positive(r.errors, &m, e, "a pin radius"),
-                            "slip_velocity" => check_positive(r.errors, &m, e, "the slip velocity of Coulomb friction"),
-                            "bearing" => check_positive(r.errors, &m, e, "a bearing length"),
-                            _ => {}
-                        }
-                        options.insert(key, m);
-                    }
-                    None => bad = true,
-                },
-            }
-        }
-        let (axis_i, axis_j) = (axis_i?, axis_j?);
-        if bad {
-            return None;
-        }
-        let zero = || MExpr::Num(0.0);
-        let mut friction: Vec<ForceKind> = options
-            .remove("viscous")
-            .map(|c| match &axis_i {
-                Some(axis_i) => ForceKind::TranslationalViscous { i: li.clone(), axis_i: axis_i.clone(), j: lj.clone(), c },
-                None => ForceKind::RevoluteViscous { i: li.body, j: lj.body, c },
-            })
-            .into_iter()
-            .collect();
-        // Coulomb friction, regularized below the slip velocity (default 1e-3 m/s or rad/s).
-        let slip = options.remove("slip_velocity");
-        let radius = options.remove("radius");
-        let bearing = options.remove("bearing");
-        match options.remove("coulomb") {
-            Some(mu) => {
-                let slip = slip.unwrap_or(MExpr::Num(1e-3));
-                match &axis_i {
-                    Some(axis_i) => friction.push(ForceKind::TranslationalCoulomb {
-                        i: li.clone(),
-                        axis_i: axis_i.clone(),
-                        j: lj.clone(),
-                        mu,
-                        slip,
-                        bearing,
-                        row: 0,
-                    }),
-                    None => match radius {
-                        Some(radius) => friction.push(ForceKind::RevoluteCoulomb { i: li.body, j: lj.body, mu, radius, slip, row: 0 }),
-                        None => {
-                            r.errors.push(j.kind.span(), "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)");
-                            return None;
-                        }
-                    },
-                }
-            }
-            None => {
-                if slip.is_some() || radius.is_some() || bearing.is_some() {
-                    r.errors.push(j.kind.span(), format!("`radius`, `slip_velocity` and `bearing` describe Coulomb friction: give the {kind} joint `coulomb: μ` too"));
-                    return None;
-                }
-            }
-        }
-        let ck = match kind.as_str() {
-            "revolute" => ConstraintKind::Revolute { i: li.clone(), j: lj.clone() },
-            "translational" => ConstraintKind::Translational { i: li.clone(), axis_i: axis_i?, j: lj.clone(), axis_j: axis_j? },
-            "revolute_revolute" => match options.remove("length") {
-                Some(length) => ConstraintKind::RevoluteRevolute { i: li.clone(), j: lj.clone(), length },
-                None => {
-                    r.errors.push(j.kind.span(), "a revolute_revolute link needs its length: `{ length: 0.3 }` (m)");
-                    return None;
-                }
-            },
-            "revolute_translational" => ConstraintKind::RevoluteTranslational {
-                i: li.clone(),
-                j: lj.clone(),
-                axis_j: axis_j?,
-                distance: options.remove("distance").unwrap_or_else(zero),
-            },
-            "rigid" => ConstraintKind::Rigid { i: li.clone(), j: lj.clone(), angle: options.remove("angle").unwrap_or_else(zero) },
-            _ => unreachable!(),
+            Item::PointForce(f) => point_to_point::resolve(r, f, body_name),
+            Item::RotationalForce(f) => rotational::resolve(r, f),
+            Item::Force(f) => applied::resolve(r, f),
+            Item::Torque(tq) => torque::resolve(r, tq),
+            _ => continue,
         };
-        let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
-        Some((j.label.as_ref(), name, j.kind.span(), ck, friction))
+        let Some((label, default_name, span, kind)) = built else {
+            *ok = false;
+            continue;
+        };
+        let Some(name) = claim_name(names, r.errors, label, default_name, span) else {
+            *ok = false;
+            continue;
+        };
+        forces.push(ForceElement { name, kind });
     }
-
-    /// The options of a force element: each known name at most once, each a number-valued
-    /// expression of the given scope.
-    fn force_options(&self, r: &mut Resolver, kind: &Ident, fields: &[Field], known: &[(&str, Scope)]) -> Option<HashMap<String, MExpr>> {
-        let mut out = HashMap::new();
-        let mut bad = false;
-        for f in fields {
-            let key = f.name.to_string();
-            let Some(&(_, scope)) = known.iter().find(|(n, _)| *n == key) else {
-                let list: Vec<&str> = known.iter().map(|(n, _)| *n).collect();
-                r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} (it takes: {})", list.join(", ")));
-                bad = true;
-                continue;
-            };
-            match &f.value {
-                Value::List(v) => {
-                    r.errors.push(v.span, format!("`{key}` is a number, not a list"));
-                    bad = true;
-                }
-                Value::Expr(e) => match r.expr(e, scope) {
-                    Some(m) => {
-                        if out.insert(key.clone(), m).is_some() {
-                            r.errors.push(f.name.span(), format!("duplicate option `{key}`"));
-                            bad = true;
-                        }
-                    }
-                    None => bad = true,
-                },
-            }
-        }
-        (!bad).then_some(out)
-    }
-
-    #[allow(clippy::type_complexity)]
-    fn point_force<'a>(
-        &self,
-        r: &mut Resolver,
-        f: &'a parse::JointDef,
-        body_name: &dyn Fn(BodyRef) -> String,
-    ) -> Option<(Option<&'a Ident>, String, Span, ForceKind)> {
-        let kind = f.kind.to_string();
-        let li = r.loc(&f.i.body, &f.i.point);
-        let lj = r.loc(&f.j.body, &f.j.point);
-        for side in [&f.i, &f.j] {
-            if let Some(a) = &side.along {
-                r.errors.push(a.keyword.span(), format!("a {kind} acts along the line between its points: it takes no axis"));
-                return None;
-            }
-        }
-        let known = [("k", Scope::Params), ("length", Scope::Params), ("c", Scope::Params), ("force", Scope::Force)];
-        let mut o = self.force_options(r, &f.kind, &f.options, &known)?;
-        let (li, lj) = (li?, lj?);
-        if li.body == lj.body {
-            r.errors.push(f.j.body.span(), format!("a {kind} of body `{}` to itself does nothing: it connects two different bodies", f.j.body));
-            return None;
-        }
-        let required = match kind.as_str() {
-            "spring" => ("k", "a spring needs its stiffness: `{ k: 2.0e3, length: 0.3 }` (N/m, m)"),
-            "damper" => ("c", "a damper needs its damping coefficient: `{ c: 50.0 }` (N·s/m)"),
-            _ => ("force", "an actuator needs its force: `{ force: 100.0 * sin(t) }` (N, tension positive)"),
-        };
-        if !o.contains_key(required.0) {
-            r.errors.push(f.kind.span(), required.1);
-            return None;
-        }
-        if o.contains_key("k") && !o.contains_key("length") {
-            r.errors.push(f.kind.span(), "a spring needs its free length: `length: 0.3` (m)");
-            return None;
-        }
-        let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
-        let kind = ForceKind::PointToPoint {
-            i: li,
-            j: lj,
-            k: o.remove("k"),
-            length: o.remove("length").unwrap_or(MExpr::Num(0.0)),
-            c: o.remove("c"),
-            force: o.remove("force"),
-        };
-        Some((f.label.as_ref(), name, f.kind.span(), kind))
-    }
-
-    #[allow(clippy::type_complexity)]
-    fn rotational_force<'a>(&self, r: &mut Resolver, f: &'a parse::RotationalDef) -> Option<(Option<&'a Ident>, String, Span, ForceKind)> {
-        let kind = f.kind.to_string();
-        let bi = r.body(&f.i);
-        let bj = r.body(&f.j);
-        let known = [("k", Scope::Params), ("angle", Scope::Params), ("c", Scope::Params), ("torque", Scope::Force)];
-        let mut o = self.force_options(r, &f.kind, &f.options, &known)?;
-        let (bi, bj) = (bi?, bj?);
-        if bi == bj {
-            r.errors.push(f.j.span(), format!("a {kind} of body `{}` to itself does nothing: it connects two different bodies", f.j));
-            return None;
-        }
-        let required = match kind.as_str() {
-            "rotational_spring" => ("k", "a rotational spring needs its stiffness: `{ k: 50.0 }` (N·m/rad)"),
-            "rotational_damper" => ("c", "a rotational damper needs its damping coefficient: `{ c: 0.5 }` (N·m·s/rad)"),
-            _ => ("torque", "a torque actuator needs its torque: `{ torque: 2.0 * sin(t) }` (N·m)"),
-        };
-        if !o.contains_key(required.0) {
-            r.errors.push(f.kind.span(), required.1);
-            return None;
-        }
-        let name = format!("{kind} {}~{}", f.i, f.j);
-        let kind = ForceKind::Rotational {
-            i: bi,
-            j: bj,
-            k: o.remove("k"),
-            angle: o.remove("angle").unwrap_or(MExpr::Num(0.0)),
-            c: o.remove("c"),
-            torque: o.remove("torque"),
-        };
-        Some((f.label.as_ref(), name, f.kind.span(), kind))
-    }
+    gravity
 }

@@ -212,16 +212,14 @@ pub enum BinOp {
     Pow,
 }
 
-/// Joint kinds with two attachments: the keywords of the `JOINT` rule.
-pub const JOINT_KINDS: &[&str] = &["revolute", "translational", "revolute_revolute", "revolute_translational", "rigid"];
-
 /// Force elements between two points: the keywords of the point-to-point force rule.
 pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator"];
 
 /// Force elements between two bodies' angles.
 pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_damper", "torque_actuator"];
 
-/// Every statement keyword, for "did you mean" hints.
+/// Every statement keyword, for "did you mean" hints (a test checks that every registered joint
+/// kind is here).
 pub const STATEMENTS: &[&str] = &[
     "scalar", "params", "body", "point", "vector", "fix", "drive", "constraint", "gravity", "force", "local_force", "torque",
     "revolute", "translational", "revolute_revolute", "revolute_translational", "rigid", "spring", "damper", "actuator",
@@ -371,7 +369,7 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::RotationalForce(RotationalDef { kind: kw, label, i, j, options })
             }
-            k if JOINT_KINDS.contains(&k) || POINT_FORCE_KINDS.contains(&k) => {
+            k if crate::elements::spec(k).is_some() || POINT_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Attach = input.parse()?;
                 input.parse::<Token![~]>()?;
@@ -642,4 +640,48 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
         tt.span(),
         format!("expected a number, a parameter, `t`, `PI`, a coordinate like `crank.phi` or a function call, found `{tt}`"),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every joint kind registered in `elements::JOINTS` is a statement keyword (for did-you-mean
+    /// hints) and is named in the "expected a statement" message.
+    #[test]
+    fn registered_joints_are_statements() {
+        for spec in crate::elements::JOINTS {
+            assert!(STATEMENTS.contains(&spec.keyword), "{} missing from STATEMENTS", spec.keyword);
+            let err = syn::parse_str::<Item>("123").err().expect("a number is not a statement").to_string();
+            assert!(err.contains(&format!("`{}`", spec.keyword)), "{} missing from: {err}", spec.keyword);
+        }
+    }
+
+    /// A joint statement parses into its attachments, axis and options, keeping the label.
+    #[test]
+    fn a_joint_statement() {
+        let item: Item = syn::parse_str("translational slide: a[0.0, 0.1] along [1.0, 0.0] ~ ground.O along b.u { viscous: 2.0 };").unwrap();
+        let Item::Joint(j) = item else { panic!("not a joint") };
+        assert_eq!(j.kind, "translational");
+        assert_eq!(j.label.as_ref().map(|l| l.to_string()).as_deref(), Some("slide"));
+        assert!(matches!(j.i.point, PointRef::Inline(ref v) if v.items.len() == 2));
+        assert!(matches!(j.j.point, PointRef::Named(ref n) if n == "O"));
+        assert!(matches!(j.j.along, Some(Along { axis: AxisRef::Named(ref b, ref u), .. }) if b == "b" && u == "u"));
+        assert_eq!(j.options.len(), 1);
+    }
+
+    /// `-x^2` is `-(x^2)`: the power binds tighter than unary minus.
+    #[test]
+    fn power_binds_tighter_than_negation() {
+        let e: Expr = syn::parse_str("-x^2").unwrap();
+        let ExprKind::Neg(inner) = e.kind else { panic!("not a negation") };
+        assert!(matches!(inner.kind, ExprKind::Bin(BinOp::Pow, ..)));
+    }
+
+    /// An unknown statement names the closest keyword.
+    #[test]
+    fn unknown_statement_hint() {
+        let err = syn::parse_str::<Item>("revolut a[0.0, 0.0] ~ b[0.0, 0.0];").err().unwrap().to_string();
+        assert!(err.contains("did you mean `revolute`"), "{err}");
+    }
 }

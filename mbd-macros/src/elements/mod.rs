@@ -1,0 +1,179 @@
+//! Joints, drivers and user constraints: one file per kind.
+//!
+//! Each kind is a type implementing [`Joint`]: its validated data (resolved in its own file from
+//! the syntax tree), its rows of Φ with their names (one function, so the count of rows and of
+//! names cannot disagree) written against body frames ([`Builder`]), and its model JSON. The
+//! kinds with the shape `keyword Pi [along ui] ~ Pj [along uj] { options };` are registered in
+//! [`JOINTS`] with the axes and options they take; `fix`, `drive` and `constraint` have their
+//! own statements.
+//!
+//! Adding a joint kind: a file here (its struct, `build`, `rows`, `json`), one entry in
+//! [`JOINTS`], its row definitions in `docs/formulation.md`, and its twin in the oracle
+//! (`tests/oracle/mbd_oracle/model.py`).
+
+use std::collections::HashMap;
+use std::fmt::Debug;
+
+use proc_macro2::Span;
+use serde_json::Value;
+use syn::Ident;
+
+use crate::forces::friction;
+use crate::forces::Force;
+use crate::frames::{Builder, Row};
+use crate::json::Ctx;
+use crate::model::{check_positive, BodyRef, Loc, MExpr, Resolver, Scope};
+use crate::parse::{self, Value as FieldValue};
+
+pub mod drive;
+pub mod drive_angle;
+pub mod drive_distance;
+pub mod fix;
+pub mod revolute;
+pub mod revolute_revolute;
+pub mod revolute_translational;
+pub mod rigid;
+pub mod translational;
+pub mod user;
+
+/// A joint, driver or user constraint: rows of Φ(q, t) between body frames.
+pub trait Joint: Debug {
+    /// The kind's name, as in the DSL, the model JSON and `JointInfo::kind`.
+    fn kind(&self) -> &'static str;
+    /// The bodies it connects (`None`: no particular body, or the second side of a driver).
+    fn bodies(&self) -> (Option<BodyRef>, Option<BodyRef>);
+    /// Its rows of Φ, named.
+    fn rows(&self, b: &mut Builder) -> Vec<Row>;
+    /// Its model JSON object without `"kind"` and `"name"`, which the caller adds.
+    fn json(&self, cx: &Ctx) -> Value;
+}
+
+/// A validated joint, driver or user constraint with its name.
+pub struct Constraint {
+    /// `"revolute crank~rod"`, or the user's label.
+    pub name: String,
+    pub kind: Box<dyn Joint>,
+}
+
+/// What a two-attachment joint statement resolved to, handed to its kind's `build`.
+pub struct Parts {
+    pub i: Loc,
+    pub j: Loc,
+    pub axis_i: Option<[MExpr; 2]>,
+    pub axis_j: Option<[MExpr; 2]>,
+    /// The options the kind declared, resolved (friction options already taken out).
+    pub options: HashMap<String, MExpr>,
+    /// The joint's keyword, for errors about the statement as a whole.
+    pub keyword: Ident,
+}
+
+/// A two-attachment joint kind: its keyword, which sides take an axis, its options and how it is
+/// built from its resolved parts.
+pub struct JointSpec {
+    pub keyword: &'static str,
+    pub axis_i: bool,
+    pub axis_j: bool,
+    /// Option names, each with "what must be positive" when it must be.
+    pub options: &'static [(&'static str, Option<&'static str>)],
+    /// The kind from its parts; `Err((span, message))` for a mistake.
+    pub build: fn(Parts) -> Result<Box<dyn Joint>, (Span, String)>,
+}
+
+/// Every kind with the shape `keyword Pi [along ui] ~ Pj [along uj] { options };`.
+pub const JOINTS: &[JointSpec] = &[
+    revolute::SPEC,
+    translational::SPEC,
+    revolute_revolute::SPEC,
+    revolute_translational::SPEC,
+    rigid::SPEC,
+];
+
+pub fn spec(keyword: &str) -> Option<&'static JointSpec> {
+    JOINTS.iter().find(|s| s.keyword == keyword)
+}
+
+/// A joint statement, resolved and validated: its label, default name, keyword span, kind and
+/// the friction forces its options declare.
+pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<(&'static str, Box<dyn Force>)>);
+
+/// Resolves a two-attachment joint statement: its points, axes and options, then its kind's
+/// `build` and the joint friction its options ask for.
+pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(BodyRef) -> String, joint_index: usize) -> Option<Resolved<'a>> {
+    let kind = j.kind.to_string();
+    let spec = spec(&kind).expect("parse only yields registered joint kinds");
+    let li = r.loc(&j.i.body, &j.i.point);
+    let lj = r.loc(&j.j.body, &j.j.point);
+    let (li, lj) = (li?, lj?);
+    if li.body == lj.body {
+        r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
+        return None;
+    }
+    let axis = |r: &mut Resolver, side: &parse::Attach, body: BodyRef, needed: bool, which: &str| -> Option<Option<[MExpr; 2]>> {
+        match (&side.along, needed) {
+            (Some(a), true) => r.axis(body, &a.axis).map(Some),
+            (None, true) => {
+                r.errors.push(side.body.span(), format!("a {kind} joint needs a sliding axis on its {which} body: `{}.P along [x, y]`", side.body));
+                None
+            }
+            (Some(a), false) => {
+                r.errors.push(a.keyword.span(), format!("a {kind} joint takes no axis on its {which} body"));
+                None
+            }
+            (None, false) => Some(None),
+        }
+    };
+    let axis_i = axis(r, &j.i, li.body, spec.axis_i, "first");
+    let axis_j = axis(r, &j.j, lj.body, spec.axis_j, "second");
+    let mut options: HashMap<String, MExpr> = HashMap::new();
+    let mut bad = false;
+    for f in &j.options {
+        let key = f.name.to_string();
+        let Some(&(_, positive)) = spec.options.iter().find(|(n, _)| *n == key) else {
+            let list = if spec.options.is_empty() { "none".to_string() } else { spec.options.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
+            r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
+            bad = true;
+            continue;
+        };
+        match &f.value {
+            FieldValue::List(v) => {
+                r.errors.push(v.span, format!("`{key}` is a number, not a list"));
+                bad = true;
+            }
+            FieldValue::Expr(e) => match r.expr(e, Scope::Params) {
+                Some(m) => {
+                    if let Some(what) = positive {
+                        check_positive(r.errors, &m, e, what);
+                    }
+                    options.insert(key, m);
+                }
+                None => bad = true,
+            },
+        }
+    }
+    let (axis_i, axis_j) = (axis_i?, axis_j?);
+    if bad {
+        return None;
+    }
+    let friction = match friction::from_joint_options(&mut options, &li, axis_i.as_ref(), &lj, joint_index) {
+        Ok(f) => f,
+        Err(msg) => {
+            r.errors.push(j.kind.span(), msg.replace("{kind}", &kind));
+            return None;
+        }
+    };
+    let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
+    match (spec.build)(Parts { i: li, j: lj, axis_i, axis_j, options, keyword: j.kind.clone() }) {
+        Ok(joint) => Some((j.label.as_ref(), name, j.kind.span(), joint, friction)),
+        Err((span, msg)) => {
+            r.errors.push(span, msg);
+            None
+        }
+    }
+}
+
+/// Coordinates and relative angles already fixed or driven: each may be only once.
+#[derive(Default)]
+pub struct Driven {
+    pub coords: HashMap<(usize, crate::model::Coord), Span>,
+    pub angles: std::collections::HashSet<(BodyRef, BodyRef)>,
+}

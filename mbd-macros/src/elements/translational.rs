@@ -1,0 +1,57 @@
+//! `translational Pi along ui ~ Pj along uj;` — a prismatic joint (Nikravesh 7.3.2): the axes
+//! stay parallel and P_j stays on the line through P_i along u_i.
+//!
+//! Rows `normal`, `angle`: n_iᵀ (r^P_j − r^P_i), n_iᵀ u_j, with u = A u′/|u′| and n_i = perp(u_i).
+//! Options: viscous and Coulomb sliding friction (`forces::friction`).
+
+use serde_json::{json, Value};
+
+use super::{Joint, JointSpec, Parts};
+use crate::frames::{Builder, Row};
+use crate::json::Ctx;
+use crate::model::{BodyRef, Loc, MExpr};
+
+pub const SPEC: JointSpec = JointSpec {
+    keyword: "translational",
+    axis_i: true,
+    axis_j: true,
+    options: &[
+        ("viscous", None),
+        ("coulomb", None),
+        ("slip_velocity", Some("the slip velocity of Coulomb friction")),
+        ("bearing", Some("a bearing length")),
+    ],
+    build: |p: Parts| {
+        let (Some(axis_i), Some(axis_j)) = (p.axis_i, p.axis_j) else { unreachable!("the spec requires both axes") };
+        Ok(Box::new(Translational { i: p.i, axis_i, j: p.j, axis_j }))
+    },
+};
+
+#[derive(Debug)]
+pub struct Translational {
+    pub i: Loc,
+    pub axis_i: [MExpr; 2],
+    pub j: Loc,
+    pub axis_j: [MExpr; 2],
+}
+
+impl Joint for Translational {
+    fn kind(&self) -> &'static str {
+        "translational"
+    }
+    fn bodies(&self) -> (Option<BodyRef>, Option<BodyRef>) {
+        (Some(self.i.body), Some(self.j.body))
+    }
+    fn rows(&self, b: &mut Builder) -> Vec<Row> {
+        let pi = b.point(&self.i);
+        let pj = b.point(&self.j);
+        let ui = b.unit(self.i.body, &self.axis_i);
+        let ni = b.perp(ui);
+        let uj = b.unit(self.j.body, &self.axis_j);
+        let d = b.diff2(pj, pi);
+        vec![Row { name: "normal", value: b.dot(ni, d) }, Row { name: "angle", value: b.dot(ni, uj) }]
+    }
+    fn json(&self, cx: &Ctx) -> Value {
+        json!({"i": cx.loc_axis(&self.i, &self.axis_i), "j": cx.loc_axis(&self.j, &self.axis_j)})
+    }
+}
