@@ -385,3 +385,27 @@ pub fn jacobian_values_outputs(f: &Formulation, name: &str) -> Vec<Output> {
         .collect()
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse::MechanismDef;
+
+    /// A node read by two outputs is bound once with `let`; sin and cos of one angle become one
+    /// `sin_cos` call; the operation count is what the code does.
+    #[test]
+    fn shared_nodes_are_bound_once() {
+        let model = syn::parse_str::<MechanismDef>("P { body a { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ a[-1.0, 0.0]; }")
+            .unwrap()
+            .validate()
+            .unwrap();
+        let f = crate::formulation::formulate(&model);
+        let e = emitter(&model, &f);
+        let (code, ops) = e.body(&vector_outputs("phi", &f.phi));
+        let code = code.to_string();
+        assert_eq!(code.matches("sin_cos").count(), 1, "{code}");
+        assert!(!code.contains(":: sin (") && !code.contains(":: cos ("), "{code}");
+        assert_eq!(ops.call, 1, "one sin_cos");
+        assert!(code.contains("phi [0] =") && code.contains("phi [1] ="), "{code}");
+    }
+}

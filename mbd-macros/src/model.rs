@@ -767,3 +767,62 @@ fn force_elements(
     }
     gravity
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn validate(src: &str) -> syn::Result<Model> {
+        syn::parse_str::<MechanismDef>(src).expect("the test input parses").validate()
+    }
+
+    /// Each statement becomes its kind, named by default after its kind and bodies; joint
+    /// friction options become force elements named after their joint.
+    #[test]
+    fn statements_become_typed_kinds() {
+        let m = validate(
+            "M { body a { mass: 1.0, inertia: 0.1 } body b { mass: 2.0, inertia: 0.2, at: [1.0, 0.0, 0.0] }
+                 revolute ground[0.0, 0.0] ~ a[-0.5, 0.0] { viscous: 0.1 };
+                 translational slide: a[0.5, 0.0] along [1.0, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0] { coulomb: 0.2 };
+                 drive a.phi = t; constraint b.y = 0.0; spring a[0.0, 0.0] ~ b[0.0, 0.0] { k: 10.0, length: 1.0 }; }",
+        )
+        .unwrap();
+        let kinds: Vec<(&str, &str)> = m.constraints.iter().map(|c| (c.kind.kind(), c.name.as_str())).collect();
+        assert_eq!(kinds, [("revolute", "revolute ground~a"), ("translational", "slide"), ("drive", "drive a.phi"), ("constraint", "constraint 5")]);
+        // (an unlabelled constraint is named by its statement's position, the bodies counted)
+        let forces: Vec<(&str, &str)> = m.forces.iter().map(|f| (f.kind.kind(), f.name.as_str())).collect();
+        assert_eq!(
+            forces,
+            [("revolute_viscous", "revolute ground~a viscous friction"), ("translational_coulomb", "slide Coulomb friction"), ("point_to_point", "spring a~b")]
+        );
+        assert_eq!(m.constraints[1].kind.bodies(), (Some(BodyRef::Body(0)), Some(BodyRef::Body(1))));
+    }
+
+    /// Every mistake of one mechanism is reported, each on its own token.
+    #[test]
+    fn all_mistakes_are_collected() {
+        let Err(e) = validate(
+            "M { body a { mass: -1.0, inertia: 0.1 }
+                 revolute ground[0.0, 0.0] ~ crnk[0.0, 0.0];
+                 revolute_revolute a[0.0, 0.0] ~ ground[1.0, 0.0];
+                 translational a[0.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0]; }",
+        ) else {
+            panic!("the mechanism has mistakes")
+        };
+        let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
+        assert_eq!(messages.len(), 4, "{messages:#?}");
+        assert!(messages[0].contains("mass of body `a` must be positive"), "{}", messages[0]);
+        assert!(messages.iter().any(|m| m.contains("unknown body `crnk` (did you mean `a`?)") || m.contains("unknown body `crnk`")));
+        assert!(messages.iter().any(|m| m.contains("needs its length")));
+        assert!(messages.iter().any(|m| m.contains("needs a sliding axis on its first body")));
+    }
+
+    /// An option a kind does not take is named with the list of those it does.
+    #[test]
+    fn unknown_option_lists_the_known_ones() {
+        let Err(e) = validate("M { body a { mass: 1.0, inertia: 0.1 } rigid ground[0.0, 0.0] ~ a[0.0, 0.0] { length: 1.0 }; }") else {
+            panic!("`length` is not an option of rigid")
+        };
+        assert!(e.to_string().contains("unknown option `length` of a rigid joint (it takes: angle)"), "{e}");
+    }
+}
