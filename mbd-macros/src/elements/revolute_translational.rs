@@ -16,7 +16,9 @@ pub const SPEC: JointSpec = JointSpec {
     axis_j: true,
     options: &[("distance", None)],
     build: |mut p: Parts| {
-        let Some(axis_j) = p.axis_j else { unreachable!("the spec requires the second axis") };
+        let Some(axis_j) = p.axis_j else {
+            return Err((p.keyword.span(), "a revolute_translational joint needs an axis on its second body".to_string()));
+        };
         let distance = p.options.remove("distance").unwrap_or(MExpr::Num(0.0));
         Ok(Box::new(RevoluteTranslational { i: p.i, j: p.j, axis_j, distance }))
     },

@@ -22,7 +22,9 @@ pub const SPEC: JointSpec = JointSpec {
         ("bearing", Some("a bearing length")),
     ],
     build: |p: Parts| {
-        let (Some(axis_i), Some(axis_j)) = (p.axis_i, p.axis_j) else { unreachable!("the spec requires both axes") };
+        let (Some(axis_i), Some(axis_j)) = (p.axis_i, p.axis_j) else {
+            return Err((p.keyword.span(), "a translational joint needs an axis on both bodies".to_string()));
+        };
         Ok(Box::new(Translational { i: p.i, axis_i, j: p.j, axis_j }))
     },
 };
