@@ -100,7 +100,10 @@ pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<(&
 /// `build` and the joint friction its options ask for.
 pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(BodyRef) -> String, joint_index: usize) -> Option<Resolved<'a>> {
     let kind = j.kind.to_string();
-    let spec = spec(&kind).expect("parse only yields registered joint kinds");
+    let Some(spec) = spec(&kind) else {
+        r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`"));
+        return None;
+    };
     let li = r.loc(&j.i.body, &j.i.point);
     let lj = r.loc(&j.j.body, &j.j.point);
     let (li, lj) = (li?, lj?);
