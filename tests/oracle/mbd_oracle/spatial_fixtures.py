@@ -225,14 +225,14 @@ def every_joint():
     piv = np.array([0.0, 0.0, 1.0])
     r = piv + np.array([0.3, -0.2, -0.4])
     om = np.array([0.5, 0.3, -0.7])
-    b.body("sph", 1.0, box(1.0, 0.2, 0.3, 0.4), r, att(), rdot=np.cross(om, r - piv), omega=om)
+    b.body("sph", 1.0, box(1.0, 0.4, 0.5, 0.6), r, att(), rdot=np.cross(om, r - piv), omega=om)
     b.joint("spherical", None, b.marker("ground", piv), b.marker("sph", piv))
     # 2. universal: z_i (ground) ⊥ z_j (body) at the same point.
     piv = np.array([1.0, 0.0, 1.0])
     ag, au = unit([0, 1, 0.2]), unit(np.cross([0, 1, 0.2], [0.3, 0.2, 1]))
     r = piv + np.array([0.1, 0.2, -0.5])
     om = 0.8 * ag - 0.6 * au  # a rotation about the two cross axes keeps them perpendicular
-    b.body("uni", 0.8, box(0.8, 0.2, 0.2, 0.6), r, att(), rdot=np.cross(om, r - piv), omega=om)
+    b.body("uni", 0.8, box(0.8, 0.4, 0.4, 0.8), r, att(), rdot=np.cross(om, r - piv), omega=om)
     b.joint("universal", None, b.marker("ground", piv, ag, scale=3.0), b.marker("uni", piv, au, scale=0.4))
     # 3. revolute "hinge", its angle driven: θ = 0.4 + w t.
     piv, ax = np.array([2.0, 0.0, 1.0]), unit([0.2, -0.3, 1.0])
@@ -242,7 +242,7 @@ def every_joint():
     a_rev = att()
     r = piv + np.array([0.3, 0.1, 0.05])
     om = w * ax
-    b.body("rev", 1.3, box(1.3, 0.6, 0.1, 0.1), r, a_rev, rdot=np.cross(om, r - piv), omega=om)
+    b.body("rev", 1.3, box(1.3, 0.8, 0.3, 0.3), r, a_rev, rdot=np.cross(om, r - piv), omega=om)
     b.joint("revolute", "hinge", b.marker("ground", piv, ax, xg, scale=2.0),
             b.marker("rev", piv, ax, quat.rotate(turn, xg), scale=1.0))
     b.add({"kind": "drive_angle", "name": "drive hinge.angle", "joint": "hinge", "f": ["add", N(theta0), ["mul", P("w"), ["t"]]]})
@@ -250,7 +250,7 @@ def every_joint():
     weld = r + np.array([0.2, 0.2, 0.1])
     rr = weld + np.array([0.1, 0.0, 0.2])
     wa, wb = unit([1, 1, 0]), unit([0, 0.2, 1])
-    b.body("rig", 0.5, box(0.5, 0.1, 0.1, 0.3), rr, att(), rdot=b.velocity_of("rev", rr), omega=om)
+    b.body("rig", 0.5, box(0.5, 0.4, 0.4, 0.6), rr, att(), rdot=b.velocity_of("rev", rr), omega=om)
     b.joint("rigid", None, b.marker("rev", weld, wa, wb, scale=1.7), b.marker("rig", weld, wa, wb, scale=0.6))
     # 5. cylindrical "sleeve": angle 0.3 + 0.5 sin t, stroke s0 + 0.2 t.
     piv, ax = np.array([3.0, 0.0, 1.0]), unit([1.0, 0.4, 0.3])
@@ -259,7 +259,7 @@ def every_joint():
     pj = piv + s0 * ax
     r = pj + np.array([0.0, 0.2, 0.1])
     om = 0.5 * ax
-    b.body("cyl", 0.9, box(0.9, 0.3, 0.3, 0.3), r, att(), rdot=0.2 * ax + np.cross(om, r - pj), omega=om)
+    b.body("cyl", 0.9, box(0.9, 0.5, 0.5, 0.5), r, att(), rdot=0.2 * ax + np.cross(om, r - pj), omega=om)
     b.joint("cylindrical", "sleeve", b.marker("ground", piv, ax, xg, scale=0.5),
             b.marker("cyl", pj, ax, quat.rotate(quat.axis_angle(ax, theta0), xg), scale=4.0))
     b.add({"kind": "drive_angle", "name": "drive sleeve.angle", "joint": "sleeve", "f": ["add", N(theta0), ["mul", N(0.5), ["sin", ["t"]]]]})
@@ -269,7 +269,7 @@ def every_joint():
     xg = unit(np.cross(ax, [1, 0, 0]))
     pj = piv + 0.25 * ax
     r = pj + np.array([0.05, -0.1, 0.2])
-    b.body("pri", 1.1, box(1.1, 0.2, 0.4, 0.2), r, att(), rdot=0.3 * w * ax, omega=[0, 0, 0])
+    b.body("pri", 1.1, box(1.1, 0.4, 0.6, 0.4), r, att(), rdot=0.3 * w * ax, omega=[0, 0, 0])
     b.joint("translational", "slide", b.marker("ground", piv, ax, xg, scale=1.0), b.marker("pri", pj, ax, xg, scale=2.5))
     b.add({"kind": "drive_stroke", "name": "drive slide.stroke", "joint": "slide",
            "f": ["add", N(0.25), ["mul", N(0.3), ["sin", ["mul", P("w"), ["t"]]]]]})
@@ -281,7 +281,7 @@ def every_joint():
     om = -0.9 * nrm
     rdot = np.cross(om, r - pj)
     rdot = rdot + (0.1 - rdot[0]) / xg[0] * xg  # the marker point moves along xg (in the plane); ẋ = 0.1
-    b.body("pla", 0.7, box(0.7, 0.3, 0.3, 0.05), r, att(), rdot=rdot, omega=om)
+    b.body("pla", 0.7, box(0.7, 0.6, 0.6, 0.2), r, att(), rdot=rdot, omega=om)
     b.joint("planar", None, b.marker("ground", piv, nrm, xg, scale=2.0),
             b.marker("pla", pj, nrm, quat.rotate(quat.axis_angle(nrm, 1.0), xg), scale=1.0))
     b.add({"kind": "drive", "name": "drive pla.x", "body": "pla", "coordinate": "x", "f": ["add", N(r[0]), ["mul", N(0.1), ["t"]]]})
@@ -299,7 +299,7 @@ def every_joint():
     pdot = 0.5 * quat.mul(np.concatenate([[0.0], om]), a_pol)
     zdot = 0.3 * (pdot[1] * a_pol[0] + a_pol[1] * pdot[0]) - 0.4 * a_pol[3] * pdot[3]
     speed = (zdot - np.cross(om, r - pj)[2]) / ax[2]
-    b.body("pol", 0.6, box(0.6, 0.2, 0.2, 0.2), r, a_pol, rdot=speed * ax + np.cross(om, r - pj), omega=om)
+    b.body("pol", 0.6, box(0.6, 0.5, 0.5, 0.5), r, a_pol, rdot=speed * ax + np.cross(om, r - pj), omega=om)
     b.joint("point_on_line", None, b.marker("ground", piv, ax, xg, scale=0.3), b.marker("pol", pj))
     co = lambda c_: ["coord", "pol", c_]  # noqa: E731
     b.add({"kind": "constraint", "name": "constraint 0",
@@ -314,7 +314,7 @@ def every_joint():
     rdot = np.cross(om, r - pj)
     inplane = unit(np.cross(nrm, [1, 0, 0]))  # in the plane, with a y component
     rdot = rdot + (0.2 - rdot[1]) / inplane[1] * inplane
-    b.body("pop", 0.4, box(0.4, 0.1, 0.2, 0.3), r, att(), rdot=rdot, omega=om)
+    b.body("pop", 0.4, box(0.4, 0.5, 0.6, 0.7), r, att(), rdot=rdot, omega=om)
     b.joint("point_on_plane", None, b.marker("ground", piv, nrm, scale=5.0), b.marker("pop", pj), distance=P("c"))
     b.add({"kind": "drive", "name": "drive pop.y", "body": "pop", "coordinate": "y", "f": ["add", N(r[1]), ["mul", N(0.2), ["t"]]]})
     # 10. distance L to a ground point; the body's z driven: z0 + 0.1 sin t.
@@ -326,7 +326,7 @@ def every_joint():
     rdot = np.cross(om, r - pj)
     perp = unit(np.cross(dirn, [1, 0, 0]))  # moves the point across the rod, with a z component
     rdot = rdot + (0.1 - rdot[2]) / perp[2] * perp
-    b.body("dst", 0.5, box(0.5, 0.1, 0.1, 0.1), r, att(), rdot=rdot, omega=om)
+    b.body("dst", 0.5, box(0.5, 0.5, 0.5, 0.5), r, att(), rdot=rdot, omega=om)
     b.joint("distance", None, b.marker("ground", piv), b.marker("dst", pj), length=P("L"))
     b.add({"kind": "drive", "name": "drive dst.z", "body": "dst", "coordinate": "z", "f": ["add", N(r[2]), ["mul", N(0.1), ["sin", ["t"]]]]})
     return b.model()
