@@ -101,7 +101,7 @@ class Spatial:
         # The velocity map q̇ = B(q) v, per body [[I₃, 0], [0, ½ Lᵀ]].
         blocks = []
         for k in range(nb):
-            b = ca.SX.zeros(7, 6)
+            b = ca.SX(7, 6)  # structural zeros (SX.zeros would be dense zeros, and D's pattern with them)
             b[0:3, 0:3] = ca.SX.eye(3)
             b[3:7, 3:6] = 0.5 * l_matrix(self.q[7 * k + 3:7 * k + 7]).T
             blocks.append(b)
@@ -149,18 +149,18 @@ class Spatial:
                 contributions.append(self.element(f))
         for k, body in enumerate(self.bodies):
             w = self.omega_body(body)
-            q = ca.vertcat(ca.SX.zeros(6 * k + 3, 1), -cross(w, self.inertias[k] @ w), ca.SX.zeros(6 * (nb - k - 1), 1))
+            q = ca.vertcat(ca.SX(6 * k + 3, 1), -cross(w, self.inertias[k] @ w), ca.SX(6 * (nb - k - 1), 1))
             contributions.append((f"gyroscopic {body}", q, ca.SX(0), True))
         self.contributions = contributions
         nv = self.nv
-        zero = ca.SX.zeros(nv, 1)
+        zero = ca.SX(nv, 1)
         self.h = sum((c[1] for c in contributions), zero)
         self.potential = sum((c[2] for c in contributions), ca.SX(0))
         self.h_q = ca.jacobian(self.h, self.q) @ self.B
         self.h_v = ca.jacobian(self.h, self.v)
         mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
-                sum((ca.fabs(ca.jacobian(c[1], self.q) @ self.B) for c in contributions), ca.SX.zeros(nv, nv)),
-                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX.zeros(nv, nv)),
+                sum((ca.fabs(ca.jacobian(c[1], self.q) @ self.B) for c in contributions), ca.SX(nv, nv)),
+                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(nv, nv)),
                 sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
         self.has_friction = bool(friction)
         self.friction_contributions = friction
@@ -168,8 +168,8 @@ class Spatial:
         self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
         self.friction_v = ca.jacobian(self.friction, self.v)
         fmags = [sum((ca.fabs(q) for _, q in friction), zero),
-                 sum((ca.fabs(ca.jacobian(q, self.q) @ self.B) for _, q in friction), ca.SX.zeros(nv, nv)),
-                 sum((ca.fabs(ca.jacobian(q, self.v)) for _, q in friction), ca.SX.zeros(nv, nv))]
+                 sum((ca.fabs(ca.jacobian(q, self.q) @ self.B) for _, q in friction), ca.SX(nv, nv)),
+                 sum((ca.fabs(ca.jacobian(q, self.v)) for _, q in friction), ca.SX(nv, nv))]
 
         args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
         F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
@@ -194,7 +194,6 @@ class Spatial:
                                              ["friction_lambda"])
         self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
                                                  ["friction", "friction_q", "friction_v"])
-        self.f_friction_contributions = ca.Function("friction_contributions", fargs, [q for _, q in friction] or [zero])
 
     # --- expressions -----------------------------------------------------------------------
     def expr(self, e):
@@ -406,7 +405,7 @@ class Spatial:
             return name, self.power(-torque, theta), v, f["c"] is None and f["torque"] is None
         if kind == "bushing":
             delta = self.bushing_components(f["i"], f["j"])
-            q, v = ca.SX.zeros(self.nv, 1), ca.SX(0)
+            q, v = ca.SX(self.nv, 1), ca.SX(0)
             for comp, k_e, c_e, pre in zip(delta, f["k"], f["c"], f["preload"]):
                 k, c, d0 = self.opt(k_e), self.opt(c_e), self.expr(pre)
                 force = k * (comp - d0) + c * self.rate(comp)
