@@ -8,6 +8,15 @@ A sample may also hold the dynamics: "mass" (the diagonal of M), "h", "h_q", "h_
 NQ×NQ, row r = h_r) and "potential"; and a forward-dynamics solution: "qdd", "lambda" with the
 Baumgarte parameters "alpha", "beta" it was computed with; and Coulomb friction at given loads:
 "friction_lambda", "friction", "friction_q", "friction_qd". Each is compared when present.
+
+A SPATIAL model ("dimension": 3, docs/formulation.md "Spatial bodies") is rebuilt by spatial.py
+and compared by the same rules; its samples hold "q" (NQ, unit Euler parameters), "v" (NV),
+"t", the parameters as "p" (values in model["params"] order, or a {name: value} mapping; "params"
+is accepted too), "phi", "jacobian" (the non-zeros of D = Φ_q B in jacobian_pattern order), "nu",
+"gamma", "mass" (dense NV×NV), "h", "h_q" (dense NV×NV, (∂h/∂q) B), "h_v" (dense NV×NV),
+"potential"; optionally "friction_lambda", "friction", "friction_q" ((∂f/∂q) B), "friction_v",
+and "qdd" (v̇, NV), "lambda", "alpha", "beta". Row, coordinate and velocity names must be the
+spec's.
 Exit status 1 if any entry disagrees or a generated structural zero is wrong.
 """
 
@@ -18,6 +27,7 @@ import numpy as np
 
 from .dynamics import Dynamics, NoFixedPoint
 from .model import Model
+from .spatial import Spatial, is_spatial
 
 # Relative tolerance of the comparison.
 RTOL = 1e-12
@@ -92,80 +102,172 @@ def dynamics_floor(want, magnitude):
     return ATOL_SCALE * scale
 
 
-def compare_dynamics(data, model, out, failures, worst):
-    """Compares the samples' "mass", "h", "h_q", "h_qd", "potential" and, where present, "qdd" and
-    "lambda" with the CasADi rebuild; appends to failures and updates worst."""
+
+class PlanarLayout:
+    """Planar samples: q̇ as "qd", ∂h/∂q̇ as "h_qd", M as its diagonal; columns are coordinates."""
+
+    spatial = False
+    velocity = "qd"
+    dynamics = DYNAMICS
+    friction = FRICTION
+
+    def __init__(self, model_json):
+        self.model = Model(model_json)
+        self.columns = model_json["coordinates"]  # of the Jacobian, and of h and its derivatives
+        self._dyn = None
+
+    @property
+    def dyn(self):
+        if self._dyn is None:
+            self._dyn = Dynamics(self.model)
+        return self._dyn
+
+    def args(self, s):
+        return (s["q"], s["qd"], s["t"], self.model.params_vector(s["params"]))
+
+    def structure(self):
+        return {"h_q": self.dyn.h_q, "h_qd": self.dyn.h_qd}
+
+    def dynamics_at(self, args):
+        """(want, magnitude): CasADi's values of self.dynamics and the floors' magnitudes."""
+        dyn, n = self.dyn, self.model.nq
+        mags = dyn.f_magnitudes(*args)
+        want = {"mass": np.array(dyn.f_mass(*args)).reshape(-1), "h": np.array(dyn.f_h(*args)).reshape(-1),
+                "h_q": np.array(dyn.f_h_q(*args)).reshape(n, n), "h_qd": np.array(dyn.f_h_qd(*args)).reshape(n, n),
+                "potential": np.array(dyn.f_potential(*args)).reshape(-1)}
+        magnitude = {"mass": want["mass"], "h": np.array(mags[0]), "h_q": np.array(mags[1]), "h_qd": np.array(mags[2]),
+                     "potential": np.array(mags[3]).reshape(-1)}
+        return want, magnitude
+
+
+class SpatialLayout:
+    """Spatial samples: velocities as "v", ∂h/∂v as "h_v", dense M; columns are velocities."""
+
+    spatial = True
+    velocity = "v"
+    dynamics = ("mass", "h", "h_q", "h_v", "potential")
+    friction = ("friction_lambda", "friction", "friction_q", "friction_v")
+
+    def __init__(self, model_json):
+        self.model = Spatial(model_json)
+        self.dyn = self.model
+        self.columns = model_json.get("velocities", self.model.velocity_names)
+
+    def args(self, s):
+        p = s["p"] if "p" in s else s["params"]
+        return (s["q"], s["v"], s["t"], self.model.params_vector(p))
+
+    def structure(self):
+        return {"h_q": self.model.h_q, "h_v": self.model.h_v}
+
+    def dynamics_at(self, args):
+        m, n = self.model, self.model.nv
+        mags = m.f_magnitudes(*args)
+        want = {"mass": np.array(m.f_mass(*args)).reshape(n, n), "h": np.array(m.f_h(*args)).reshape(-1),
+                "h_q": np.array(m.f_h_q(*args)).reshape(n, n), "h_v": np.array(m.f_h_v(*args)).reshape(n, n),
+                "potential": np.array(m.f_potential(*args)).reshape(-1)}
+        magnitude = {"mass": want["mass"], "h": np.array(mags[0]), "h_q": np.array(mags[1]), "h_v": np.array(mags[2]),
+                     "potential": np.array(mags[3]).reshape(-1)}
+        return want, magnitude
+
+    def names_failures(self, data):
+        """The model JSON's coordinate, velocity and row names against the spec's (the rebuild's)."""
+        mj, m, failures = data["model"], self.model, []
+        for key, want in (("coordinates", m.coordinate_names), ("velocities", m.velocity_names), ("constraint_rows", m.row_names)):
+            got = mj.get(key)
+            if got != want:
+                diff = [f"{k}: {a!r} (spec: {b!r})" for k, (a, b) in enumerate(zip(got or [], want)) if a != b][:5]
+                failures.append(f"{m.name}: model {key} differ from the spec's: {len(got or [])} names, the rebuild has "
+                                f"{len(want)}; " + "; ".join(diff))
+        return failures
+
+    def sample_failures(self, k, s):
+        """Sizes of q and v, and unit Euler parameters (the comparison holds only at |p| = 1)."""
+        m = self.model
+        if len(s["q"]) != m.nq or len(s[self.velocity]) != m.nv:
+            return [f"{m.name}: sample {k} has {len(s['q'])} coordinates and {len(s[self.velocity])} velocities, "
+                    f"the model {m.nq} and {m.nv}"]
+        out = []
+        for b, body in enumerate(m.bodies):
+            norm = float(np.linalg.norm(np.asarray(s["q"][7 * b + 3:7 * b + 7], dtype=float)))
+            if abs(norm - 1.0) > UNIT_TOL:
+                out.append(f"{m.name}: sample {k}: {body}'s Euler parameters have |p| = {norm!r}; samples use unit p "
+                           f"(|p| − 1 within {UNIT_TOL:g})")
+        return out
+
+
+# Samples of spatial models use unit Euler parameters: D, γ, h_q B are independent of how A(p)
+# is written off |p| = 1 only on it. A normalized p is within a few ulps of unit length.
+UNIT_TOL = 1e-14
+
+
+def layout_of(model_json):
+    return SpatialLayout(model_json) if is_spatial(model_json) else PlanarLayout(model_json)
+
+
+def compare_dynamics(data, lay, out, failures, worst):
+    """Compares the samples' dynamics (lay.dynamics: "mass", "h", "h_q", "h_qd" or "h_v",
+    "potential"), Coulomb friction and, where present, "qdd" and "lambda" with the CasADi
+    rebuild; appends to failures and updates worst."""
     samples = data["samples"]
-    has_dynamics = [all(key in s for key in DYNAMICS) for s in samples]
+    dynamics, friction = lay.dynamics, lay.friction
+    has_dynamics = [all(key in s for key in dynamics) for s in samples]
     has_forward = [all(key in s for key in ("qdd", "lambda", "alpha", "beta")) for s in samples]
+    model = lay.model
     name = model.name
     for k, s in enumerate(samples):
-        partial = [key for key in DYNAMICS if key in s] if not has_dynamics[k] else []
+        partial = [key for key in dynamics if key in s] if not has_dynamics[k] else []
         partial += [key for key in ("qdd", "lambda", "alpha", "beta") if key in s] if not has_forward[k] else []
         if partial:
             failures.append(f"{name}: sample {k} holds {partial} but not the rest of its group "
-                            f"({list(DYNAMICS)} or ['qdd', 'lambda', 'alpha', 'beta']): nothing of it is compared")
+                            f"({list(dynamics)} or ['qdd', 'lambda', 'alpha', 'beta']): nothing of it is compared")
     if not any(has_dynamics) and not any(has_forward):
         return
-    cols = data["model"]["coordinates"]
+    cols = lay.columns
     rows = data["model"]["constraint_rows"]
-    dyn = Dynamics(model)
-    nq = model.nq
-    # Structure of ∂h/∂q and ∂h/∂q̇: CasADi's structural non-zeros, and, over the samples, whether
-    # CasADi's value there is ever beyond the floor and whether mbd's is ever non-zero.
+    dyn = lay.dyn
+    n = len(cols)
+    # Structure of ∂h/∂q and ∂h/∂q̇ (∂h/∂v): CasADi's structural non-zeros, and, over the samples,
+    # whether CasADi's value there is ever beyond the floor and whether mbd's is ever non-zero.
     structure = {}
-    for function, expr in (("h_q", dyn.h_q), ("h_qd", dyn.h_qd)):
+    for function, expr in lay.structure().items():
         sp = expr.sparsity()
-        nz = np.zeros((nq, nq), dtype=bool)
+        nz = np.zeros((n, n), dtype=bool)
         for r, c in zip(sp.row(), sp.get_col()):
             nz[r, c] = True
-        structure[function] = {"casadi": nz, "casadi_seen": np.zeros((nq, nq), dtype=bool), "mbd_seen": np.zeros((nq, nq), dtype=bool)}
-    coord_names = {
-        "mass": lambda i: f"mass[{cols[i[0]]}]",
-        "h": lambda i: f"h[{cols[i[0]]}]",
-        "h_q": lambda i: f"h_q[{cols[i[0]]}][{cols[i[1]]}]",
-        "h_qd": lambda i: f"h_qd[{cols[i[0]]}][{cols[i[1]]}]",
-        "potential": lambda i: "potential",
-    }
+        structure[function] = {"casadi": nz, "casadi_seen": np.zeros((n, n), dtype=bool), "mbd_seen": np.zeros((n, n), dtype=bool)}
+
+    def where_of(function, shape):
+        if function == "potential":
+            return lambda i: "potential"
+        if len(shape) == 1:
+            return lambda i: f"{function}[{cols[i[0]]}]"
+        return lambda i: f"{function}[{cols[i[0]]}][{cols[i[1]]}]"
+
     skipped = []
     for k, s in enumerate(samples):
-        p = model.params_vector(s["params"])
-        args = (s["q"], s["qd"], s["t"], p)
+        args = lay.args(s)
         if has_dynamics[k]:
-            mags = dyn.f_magnitudes(*args)
-            want = {
-                "mass": np.array(dyn.f_mass(*args)).reshape(-1),
-                "h": np.array(dyn.f_h(*args)).reshape(-1),
-                "h_q": np.array(dyn.f_h_q(*args)).reshape(nq, nq),
-                "h_qd": np.array(dyn.f_h_qd(*args)).reshape(nq, nq),
-                "potential": np.array(dyn.f_potential(*args)).reshape(-1),
-            }
-            magnitude = {
-                "mass": want["mass"],
-                "h": np.array(mags[0]), "h_q": np.array(mags[1]), "h_qd": np.array(mags[2]),
-                "potential": np.array(mags[3]).reshape(-1),
-            }
-            for function in DYNAMICS:
+            want, magnitude = lay.dynamics_at(args)
+            for function in dynamics:
                 got = np.array(s[function], dtype=float).reshape(want[function].shape) if function != "potential" \
                     else np.array([s[function]], dtype=float)
                 atol = dynamics_floor(want[function], magnitude[function])
-                check_values(failures, worst, name, function, got, want[function], atol, coord_names[function], k)
+                check_values(failures, worst, name, function, got, want[function], atol, where_of(function, want[function].shape), k)
                 if function in structure:
                     st = structure[function]
                     st["casadi_seen"] |= np.abs(want[function]) > atol
                     st["mbd_seen"] |= got != 0.0
-        if all(key in s for key in FRICTION):
+        if all(key in s for key in friction):
             lam = np.array(s["friction_lambda"], dtype=float)
             want = [np.array(v) for v in dyn.f_friction(*args, lam)]
             mags = [np.array(v) for v in dyn.f_friction_magnitudes(*args, lam)]
-            for function, w, mag in zip(FRICTION[1:], want, mags):
-                w = w.reshape(-1) if function == "friction" else w.reshape(nq, nq)
+            for function, w, mag in zip(friction[1:], want, mags):
+                w = w.reshape(-1) if function == "friction" else w.reshape(n, n)
                 got = np.array(s[function], dtype=float).reshape(w.shape)
-                where = (lambda i, f=function: f"{f}[{cols[i[0]]}]") if function == "friction" else \
-                    (lambda i, f=function: f"{f}[{cols[i[0]]}][{cols[i[1]]}]")
-                check_values(failures, worst, name, function, got, w, dynamics_floor(w, mag), where, k)
-        elif any(key in s for key in FRICTION):
-            failures.append(f"{name}: sample {k} holds part of {list(FRICTION)}: nothing of it is compared")
+                check_values(failures, worst, name, function, got, w, dynamics_floor(w, mag), where_of(function, w.shape), k)
+        elif any(key in s for key in friction):
+            failures.append(f"{name}: sample {k} holds part of {list(friction)}: nothing of it is compared")
         if has_forward[k]:
             try:
                 qdd, lam, cond = dyn.forward(*args, s["alpha"], s["beta"])
@@ -196,16 +298,23 @@ def compare_dynamics(data, model, out, failures, worst):
 
 def compare_model(data, out=print):
     """Compares one samples file's data; returns a list of failure messages (empty: passed)."""
-    model = Model(data["model"])
+    lay = layout_of(data["model"])
+    model = lay.model
     name = model.name
     rows = data["model"]["constraint_rows"]
-    cols = data["model"]["coordinates"]
+    cols = lay.columns
     pattern = [tuple(rc) for rc in data["model"]["jacobian_pattern"]]
     pattern_set = set(pattern)
     failures = []
     if len(rows) != model.nc:
         failures.append(f"{name}: mbd has {len(rows)} constraint rows, CasADi's rebuild has {model.nc}")
         return failures
+    if lay.spatial:
+        failures += lay.names_failures(data)
+        for k, s in enumerate(data["samples"]):
+            failures += lay.sample_failures(k, s)
+        if failures:
+            return failures
 
     # Sparsity: CasADi's structural non-zeros against the generated pattern.
     casadi_nz = model.structural_jacobian()
@@ -217,8 +326,7 @@ def compare_model(data, out=print):
     worst = {"phi": 0.0, "nu": 0.0, "jacobian": 0.0, "gamma": 0.0}
     seen_nonzero_in_missing = set()
     for k, s in enumerate(data["samples"]):
-        p = model.params_vector(s["params"])
-        args = (s["q"], s["qd"], s["t"], p)
+        args = lay.args(s)
         ref = {
             "phi": np.array(model.f_phi(*args)).reshape(-1),
             "nu": np.array(model.f_nu(*args)).reshape(-1),
@@ -242,9 +350,10 @@ def compare_model(data, out=print):
         failures.append(f"{name}: jacobian[{rows[r]}][{cols[c]}] is a structural zero in mbd but non-zero in CasADi")
     for r, c in sorted(missing - seen_nonzero_in_missing):
         out(f"note: {name}: jacobian[{rows[r]}][{cols[c]}] is structurally non-zero in CasADi but zero at every sample; mbd omits it")
-    compare_dynamics(data, model, out, failures, worst)
+    compare_dynamics(data, lay, out, failures, worst)
+    columns = f"{model.nv} velocities" if lay.spatial else f"{model.nq} coordinates"
     out(
-        f"{name}: {len(data['samples'])} samples, {model.nc} rows x {model.nq} coordinates, "
+        f"{name}: {len(data['samples'])} samples, {model.nc} rows x {columns}, "
         f"{len(pattern)} Jacobian non-zeros; worst error/bound: "
         + ", ".join(f"{f} {w:.2e}" for f, w in worst.items() if f != "kkt_cond")
         + (f"; largest cond(K) {worst['kkt_cond']:.1e}" if "kkt_cond" in worst else "")

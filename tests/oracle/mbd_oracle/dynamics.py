@@ -35,6 +35,40 @@ class NoFixedPoint(Exception):
     friction paradoxes of Painlevé)."""
 
 
+def solve_friction_fixed_point(name, kkt, rhs, h, args, n, f_friction, f_friction_lambda):
+    """[ẍ; λ] of K [ẍ; λ] = [h + f(args, λ); rhs_c] with Coulomb friction f (n = the size of h,
+    f_friction(*args, λ)[0] = f, f_friction_lambda(*args, λ) = ∂f/∂λ): λ solves λ = Λ(λ), Λ(λ)
+    the λ part of K⁻¹ [h + f(λ); rhs_c]. Not mbd's algorithm (fixed-point iteration): twenty
+    fixed-point steps for a start, then Newton on Λ(λ) − λ with CasADi's ∂f/∂λ, to a step of
+    1e-14 relative or the rounding floor of the solves."""
+    rhs = rhs.copy()
+
+    def solve(lam):
+        rhs[:n] = h + np.array(f_friction(*args, lam)[0]).reshape(-1)
+        return np.linalg.solve(kkt, rhs)
+
+    x = np.linalg.solve(kkt, rhs)
+    for _ in range(20):
+        x = solve(x[n:])
+    lam = x[n:]
+    previous = np.inf
+    for _ in range(50):
+        x = solve(lam)
+        residual = x[n:] - lam
+        d_f = np.array(f_friction_lambda(*args, lam))
+        # ∂Λ/∂λ = the λ rows of K⁻¹ [∂f/∂λ; 0].
+        d_lambda = np.linalg.solve(kkt, np.vstack([d_f, np.zeros((len(lam), len(lam)))]))[n:]
+        step = np.linalg.solve(np.eye(len(lam)) - d_lambda, residual)
+        lam = lam + step
+        # Converged: a step of 1e-14 relative, or steps that stopped shrinking below 1e-11
+        # (Newton's quadratic convergence has reached the rounding of the solves).
+        size = np.max(np.abs(step)) / max(1.0, float(np.max(np.abs(lam))))
+        if size <= 1e-14 or (size <= 1e-11 and size > 0.5 * previous):
+            return solve(lam)
+        previous = size
+    raise NoFixedPoint(f"{name}: Newton found no friction fixed point λ = Λ(λ)")
+
+
 class Dynamics:
     """M, h, ∂h/∂q, ∂h/∂q̇ and V of one mechanism, on top of its kinematic Model.
 
@@ -192,37 +226,8 @@ class Dynamics:
 
     # --- forward dynamics ----------------------------------------------------------------------
     def friction_fixed_point(self, kkt, rhs, h, args):
-        """[q̈; λ] with Coulomb friction: λ solves λ = Λ(λ), Λ(λ) the λ part of
-        K⁻¹ [h + f(q, q̇, t, λ); rhs_c]. Not mbd's algorithm (fixed-point iteration): twenty
-        fixed-point steps for a start, then Newton on Λ(λ) − λ with CasADi's ∂f/∂λ, to a step
-        of 1e-14 relative or the rounding floor of the solves."""
-        nq = self.model.nq
-        rhs = rhs.copy()
-
-        def solve(lam):
-            rhs[:nq] = h + np.array(self.f_friction(*args, lam)[0]).reshape(-1)
-            return np.linalg.solve(kkt, rhs)
-
-        x = np.linalg.solve(kkt, rhs)
-        for _ in range(20):
-            x = solve(x[nq:])
-        lam = x[nq:]
-        previous = np.inf
-        for _ in range(50):
-            x = solve(lam)
-            residual = x[nq:] - lam
-            d_f = np.array(self.f_friction_lambda(*args, lam))
-            # ∂Λ/∂λ = the λ rows of K⁻¹ [∂f/∂λ; 0].
-            d_lambda = np.linalg.solve(kkt, np.vstack([d_f, np.zeros((len(lam), len(lam)))]))[nq:]
-            step = np.linalg.solve(np.eye(len(lam)) - d_lambda, residual)
-            lam = lam + step
-            # Converged: a step of 1e-14 relative, or steps that stopped shrinking below 1e-11
-            # (Newton's quadratic convergence has reached the rounding of the solves).
-            size = np.max(np.abs(step)) / max(1.0, float(np.max(np.abs(lam))))
-            if size <= 1e-14 or (size <= 1e-11 and size > 0.5 * previous):
-                return solve(lam)
-            previous = size
-        raise NoFixedPoint(f"{self.name}: Newton found no friction fixed point λ = Λ(λ)")
+        """[q̈; λ] with Coulomb friction (see solve_friction_fixed_point)."""
+        return solve_friction_fixed_point(self.name, kkt, rhs, h, args, self.model.nq, self.f_friction, self.f_friction_lambda)
 
     def forward(self, q, qd, t, p, alpha, beta):
         """Solves the equations of motion with Baumgarte stabilization for (q̈, λ):

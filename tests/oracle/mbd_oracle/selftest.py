@@ -2,6 +2,13 @@
 and column named.
 
 Usage: python -m mbd_oracle.selftest SAMPLES.json [SAMPLES.json ...]
+       python -m mbd_oracle.selftest --spatial [MODEL.json ...]   (default: the spatial fixtures
+       every_joint, every_force, every_friction of fixtures/spatial/)
+
+With --spatial, each spatial model JSON gets fake "mbd" samples made from the oracle's own
+values at 16 random states (unit Euler parameters) — fine for a self-test, which tests the
+comparison's ability to fail — and the same perturbations below must be rejected, with the
+velocity as the column ("h_v", "friction_v" for "h_qd", "friction_qd").
 
 For each file: a Jacobian entry and a γ entry off by a relative 1e-9, a dropped structural
 non-zero of the Jacobian; and, when the samples hold the dynamics, the largest h entry and the
@@ -22,9 +29,12 @@ import sys
 
 import numpy as np
 
-from .compare import compare_model
-from .dynamics import Dynamics, NoFixedPoint
-from .model import Model
+import os
+
+from . import quat
+from .compare import compare_model, layout_of
+from .dynamics import NoFixedPoint
+from .spatial import Spatial
 
 
 def expect_rejection(data, what, needles):
@@ -50,7 +60,8 @@ def largest(matrix):
 def dynamics_selftest(data):
     """The dynamics perturbations; True when every one is rejected and named."""
     model = data["model"]
-    name, cols = model["name"], model["coordinates"]
+    lay = layout_of(model)
+    name, cols, h_qd = model["name"], lay.columns, lay.dynamics[3]
     ok = True
     # 4. The largest h entry of sample 7 off by a relative 1e-9. (The largest, because the floor is
     #    relative to ||h||_inf: a relative 1e-9 of an entry a million times smaller than the largest
@@ -61,29 +72,30 @@ def dynamics_selftest(data):
     s["h"][r] = s["h"][r] * (1 + 1e-9) if s["h"][r] != 0 else 1e-9
     ok &= expect_rejection(bad, f"an h entry off by 1e-9 (relative) at [{cols[r]}]", [name, "h[", cols[r], "sample 7"])
 
-    # 5. The largest ∂h/∂q̇ entry of sample 9 off by a relative 1e-9.
+    # 5. The largest ∂h/∂q̇ (∂h/∂v) entry of sample 9 off by a relative 1e-9.
     bad = copy.deepcopy(data)
     s = bad["samples"][9]
-    r, c = largest(s["h_qd"])
-    s["h_qd"][r][c] = s["h_qd"][r][c] * (1 + 1e-9) if s["h_qd"][r][c] != 0 else 1e-9
-    ok &= expect_rejection(bad, f"an h_qd entry off by 1e-9 (relative) at [{cols[r]}][{cols[c]}]",
-                           [name, "h_qd", cols[r], cols[c], "sample 9"])
+    r, c = largest(s[h_qd])
+    s[h_qd][r][c] = s[h_qd][r][c] * (1 + 1e-9) if s[h_qd][r][c] != 0 else 1e-9
+    ok &= expect_rejection(bad, f"an {h_qd} entry off by 1e-9 (relative) at [{cols[r]}][{cols[c]}]",
+                           [name, h_qd, cols[r], cols[c], "sample 9"])
 
     # 6. A structural non-zero of ∂h/∂q̇ lost: that entry 0.0 at every sample.
-    if any(any(v != 0 for row in s["h_qd"] for v in row) for s in data["samples"]):
+    if any(any(v != 0 for row in s[h_qd] for v in row) for s in data["samples"]):
         bad = copy.deepcopy(data)
-        r, c = largest(data["samples"][9]["h_qd"])
+        r, c = largest(data["samples"][9][h_qd])
         for s in bad["samples"]:
-            s["h_qd"][r][c] = 0.0
-        ok &= expect_rejection(bad, f"a lost structural non-zero of h_qd at [{cols[r]}][{cols[c]}]",
-                               [name, "h_qd", "structural zero", cols[r], cols[c]])
+            s[h_qd][r][c] = 0.0
+        ok &= expect_rejection(bad, f"a lost structural non-zero of {h_qd} at [{cols[r]}][{cols[c]}]",
+                               [name, h_qd, "structural zero", cols[r], cols[c]])
     return ok
 
 
 def friction_selftest(data):
     """The Coulomb friction perturbations (mechanisms that have it); True when rejected and named."""
     model = data["model"]
-    name, cols = model["name"], model["coordinates"]
+    lay = layout_of(model)
+    name, cols, f_qd = model["name"], lay.columns, lay.friction[3]
     ok = True
     # 7. The largest friction force of sample 11 and the largest ∂f/∂q̇ entry of sample 13 off by a
     #    relative 1e-9 (the largest, for the reason given at 4).
@@ -94,25 +106,25 @@ def friction_selftest(data):
     ok &= expect_rejection(bad, f"a friction entry off by 1e-9 (relative) at [{cols[r]}]", [name, "friction[", cols[r], "sample 11"])
     bad = copy.deepcopy(data)
     s = bad["samples"][13]
-    r, c = largest(s["friction_qd"])
-    s["friction_qd"][r][c] *= 1 + 1e-9
-    ok &= expect_rejection(bad, f"a friction_qd entry off by 1e-9 (relative) at [{cols[r]}][{cols[c]}]",
-                           [name, "friction_qd", cols[r], cols[c], "sample 13"])
+    r, c = largest(s[f_qd])
+    s[f_qd][r][c] *= 1 + 1e-9
+    ok &= expect_rejection(bad, f"a {f_qd} entry off by 1e-9 (relative) at [{cols[r]}][{cols[c]}]",
+                           [name, f_qd, cols[r], cols[c], "sample 13"])
     return ok
 
 
 def forward_selftest(data, alpha=5.0, beta=7.0):
     """The forward-dynamics comparison: the oracle's own solution passes, a perturbed one fails."""
     model = data["model"]
-    name, cols = model["name"], model["coordinates"]
-    dyn = Dynamics(Model(model))
+    lay = layout_of(model)
+    name, cols = model["name"], lay.columns
     good = copy.deepcopy(data)
     conds = []
     for s in good["samples"]:
         for key in ("qdd", "lambda", "alpha", "beta"):
             s.pop(key, None)
         try:
-            qdd, lam, cond = dyn.forward(s["q"], s["qd"], s["t"], dyn.model.params_vector(s["params"]), alpha, beta)
+            qdd, lam, cond = lay.dyn.forward(*lay.args(s), alpha, beta)
         except NoFixedPoint:
             conds.append(np.inf)  # friction without a fixed point at this state: no q̈ to write
             continue
@@ -135,6 +147,15 @@ def main(argv):
     if not argv:
         print(__doc__)
         return 2
+    if argv[0] == "--spatial":
+        paths = argv[1:] or [os.path.join(FIXTURES, f"{n}.json") for n in ("every_joint", "every_force", "every_friction")]
+        ok = True
+        for path in paths:
+            with open(path) as f:
+                data = spatial_samples(json.load(f))
+            print(f"selftest: {data['model']['name']}: {len(data['samples'])} fake samples from the oracle's own values")
+            ok &= selftest(data)
+        return 0 if ok else 1
     ok = True
     for path in argv:
         with open(path) as f:
@@ -142,10 +163,59 @@ def main(argv):
     return 0 if ok else 1
 
 
+FIXTURES = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fixtures", "spatial"))
+
+
+def random_spatial_state(s, rng, q0, spread=0.5, turn=0.5):
+    """A random state near q0: centres within ±spread, attitudes turned by up to `turn` rad about
+    random axes (unit Euler parameters), velocities in ±3, t in [0, 2], parameters ±10 %."""
+    q = np.array(q0, dtype=float)
+    for k in range(len(s.bodies)):
+        q[7 * k:7 * k + 3] += rng.uniform(-spread, spread, 3)
+        p = quat.mul(q[7 * k + 3:7 * k + 7], quat.axis_angle(rng.normal(size=3), rng.uniform(0, turn)))
+        q[7 * k + 3:7 * k + 7] = p / np.linalg.norm(p)
+    v = rng.uniform(-3, 3, s.nv)
+    t = float(rng.uniform(0, 2))
+    p = [d * rng.uniform(0.9, 1.1) for d in s.params_vector({})]
+    return q, v, t, p
+
+
+def spatial_samples(model_json, n=16, seed=5):
+    """Fake "mbd" samples of a spatial model from the oracle's own values (every key of a
+    spatial sample; forward dynamics with random Baumgarte gains where it solves)."""
+    s = Spatial(model_json)
+    rng = np.random.default_rng(seed)
+    q0, _ = s.initial_state()
+    pattern = [tuple(rc) for rc in model_json["jacobian_pattern"]]
+    samples = []
+    for _ in range(n):
+        q, v, t, p = random_spatial_state(s, rng, q0)
+        args = (q, v, t, p)
+        phi, jac, nu, gamma = (np.array(x) for x in s.f_kinematics(*args))
+        nv = s.nv
+        sample = {"q": q.tolist(), "v": v.tolist(), "t": t, "p": p, "phi": phi.reshape(-1).tolist(),
+                  "jacobian": [float(jac[r, c]) for r, c in pattern], "nu": nu.reshape(-1).tolist(),
+                  "gamma": gamma.reshape(-1).tolist(), "mass": np.array(s.f_mass(*args)).reshape(nv, nv).tolist(),
+                  "h": np.array(s.f_h(*args)).reshape(-1).tolist(), "h_q": np.array(s.f_h_q(*args)).reshape(nv, nv).tolist(),
+                  "h_v": np.array(s.f_h_v(*args)).reshape(nv, nv).tolist(), "potential": float(s.f_potential(*args))}
+        lam = rng.uniform(-50, 50, s.nc)
+        fr = [np.array(x) for x in s.f_friction(*args, lam)]
+        sample.update({"friction_lambda": lam.tolist(), "friction": fr[0].reshape(-1).tolist(),
+                       "friction_q": fr[1].reshape(nv, nv).tolist(), "friction_v": fr[2].reshape(nv, nv).tolist()})
+        alpha, beta = float(rng.uniform(0, 10)), float(rng.uniform(0, 10))
+        try:
+            vdot, lam, _ = s.forward(*args, alpha, beta)
+            sample.update({"qdd": vdot.tolist(), "lambda": lam.tolist(), "alpha": alpha, "beta": beta})
+        except NoFixedPoint:
+            pass
+        samples.append(sample)
+    return {"model": model_json, "samples": samples}
+
+
 def selftest(data):
     """All perturbations of one samples file; True when every one is rejected and named."""
     model = data["model"]
-    name, rows, cols = model["name"], model["constraint_rows"], model["coordinates"]
+    name, rows, cols = model["name"], model["constraint_rows"], layout_of(model).columns
     ok = compare_model(copy.deepcopy(data), out=lambda *_: None) == []
     if not ok:
         print(f"selftest: the unperturbed samples of {name} do not pass; nothing to show")
