@@ -144,9 +144,19 @@ fn tyre(q: &[f64], qd: &[f64], t: f64, k: usize, k_t: f64, c_t: f64, bump: f64, 
 
 pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
     let a = DoubleAArmRide::default();
-    let double_a_arm = ride(&a, 2, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 2, a.k_t, a.c_t, a.bump, a.t_bump, a.width), DoubleAArmRide::kkt_workspace())?;
+    let double_a_arm = ride(
+        &a,
+        2,
+        |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 2, a.k_t, a.c_t, a.bump, a.t_bump, a.width),
+        DoubleAArmRide::kkt_workspace(),
+    )?;
     let b = MacPhersonRide::default();
-    let macpherson = ride(&b, 1, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 1, b.k_t, b.c_t, b.bump, b.t_bump, b.width), MacPhersonRide::kkt_workspace())?;
+    let macpherson = ride(
+        &b,
+        1,
+        |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 1, b.k_t, b.c_t, b.bump, b.t_bump, b.width),
+        MacPhersonRide::kkt_workspace(),
+    )?;
     if print {
         for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
             println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);

@@ -183,7 +183,8 @@ where
         // is asked for to a change of 1e-13 (compare.py's bound accounts for it).
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        let options = mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
+        let options =
+            mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
         if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
             forward += 1;
             let fields = sample.as_object_mut().expect("a sample is an object");

@@ -195,7 +195,12 @@ where
                     let k = (0..NQ).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
                     (name(M::COORDINATE_NAMES, k), (step[k] * beta_p * h * h).abs())
                 };
-                return Err(SimulationError::NotConverged { t: t1.to_f64(), iterations: iteration, worst_row, residual: residual.to_f64() });
+                return Err(SimulationError::NotConverged {
+                    t: t1.to_f64(),
+                    iterations: iteration,
+                    worst_row,
+                    residual: residual.to_f64(),
+                });
             }
             mech.forces_q(&q, &qd, t1, &mut hq);
             mech.forces_qd(&q, &qd, t1, &mut hqd);

@@ -180,10 +180,9 @@ impl fmt::Display for SimulationError {
                 write!(f, "at t = {t} s error control needed a step of {step} s, below the minimum")
             }
             SimulationError::TooManySteps { t, steps } => write!(f, "{steps} steps taken, stopped at t = {t} s"),
-            SimulationError::NotConverged { t, iterations, worst_row, residual } => write!(
-                f,
-                "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}"
-            ),
+            SimulationError::NotConverged { t, iterations, worst_row, residual } => {
+                write!(f, "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}")
+            }
             SimulationError::InvalidOptions { what } => write!(f, "invalid option: {what}"),
             SimulationError::TimesNotIncreasing { index } => {
                 write!(f, "output time {index} is before the one before it or before the start")

@@ -197,7 +197,10 @@ fn interpolate_work<T: Real, const NQ: usize, const NC: usize>(from: &Point<T, N
 }
 
 /// A point with its energies.
-fn sample<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(mechanism: &M, p: &Point<T, NQ, NC>) -> Sample<T, NQ, NC> {
+fn sample<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+    mechanism: &M,
+    p: &Point<T, NQ, NC>,
+) -> Sample<T, NQ, NC> {
     let energy = Energy {
         kinetic: kinetic_energy(mechanism, &p.qd),
         potential: mechanism.potential_energy(&p.q, p.t),
@@ -218,9 +221,7 @@ fn correct<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: us
 ) -> Result<(), SimulationError> {
     match options.correction {
         Correction::None => Ok(()),
-        Correction::Projection { tolerance, max_iterations } => {
-            project(mechanism, t, q, qd, &options.dynamics, tolerance, max_iterations)
-        }
+        Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, qd, &options.dynamics, tolerance, max_iterations),
         Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, t, q, qd, tolerance, max_iterations),
     }
 }
