@@ -94,6 +94,8 @@ const D: [f64; 7] = [
 ];
 
 impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> Integrator<T, M, NQ, NC> for Dopri5<T, NQ> {
+    // `!(x > y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
@@ -194,6 +196,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
                 }
                 self.accepted += 1;
                 // The 5th-order weights are the last row of A (b₇ = 0).
+                #[allow(clippy::needless_range_loop)] // k indexes from.work, to.work and each stage's kp[s]
                 for k in 0..2 {
                     let mut w = T::ZERO;
                     for s in 0..6 {

@@ -85,6 +85,8 @@ impl<T: Real, M, const NQ: usize, const NC: usize, const N: usize> Integrator<T,
 where
     M: ForwardDynamics<T, NQ, NC> + ConstraintForces<T, NQ, NC>,
 {
+    // `!(x > y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
@@ -177,7 +179,7 @@ where
             // of it instead (at most six times, then go on from there).
             let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
             if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
-                theta = theta * half;
+                theta *= half;
                 for i in 0..NQ {
                     qdd[i] = base_qdd[i] + theta * step[i];
                 }

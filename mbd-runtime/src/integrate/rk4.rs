@@ -33,6 +33,8 @@ impl<T: Real> Rk4<T> {
 
 impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> Integrator<T, M, NQ, NC> for Rk4<T> {
     #[inline]
+    // `!(x > y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,

@@ -121,6 +121,8 @@ impl<T: Real> Default for SimulationOptions<T> {
 /// # Errors
 /// The first [`SimulationError`] met; the samples before it have been delivered.
 #[allow(clippy::too_many_arguments)]
+// `!(t >= before)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub fn simulate<T, M, I, const NQ: usize, const NC: usize>(
     mechanism: &M,
     integrator: &mut I,
