@@ -15,7 +15,7 @@ use mbd::prelude::*;
 
 #[allow(dead_code)]
 #[path = "slider_crank_inverse.rs"]
-mod slider_crank_inverse;
+pub mod slider_crank_inverse;
 use slider_crank_inverse::Engine;
 
 mechanism! {

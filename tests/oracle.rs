@@ -222,7 +222,7 @@ fn casadi_oracle() {
         samples!(common::double_a_arm::DoubleAArm, 16),
         samples!(common::macpherson::MacPherson, 17),
         samples!(chain16::Chain16, 18),
-        samples!(common::slider_crank_inverse::Engine, 19),
+        samples!(common::flywheel_engine::slider_crank_inverse::Engine, 19),
         samples!(free_slider_crank::FreeSliderCrank, 21),
         samples!(pendulum_chain16::PendulumChain16, 22),
         samples!(EveryFriction, 23),
