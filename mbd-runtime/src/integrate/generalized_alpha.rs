@@ -56,6 +56,8 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
 /// N must be NQ + NC; the generated `Name::generalized_alpha(options)` makes one of the right size.
+///
+/// [`Dynamics::friction_derivatives`]: crate::Dynamics::friction_derivatives
 #[derive(Clone, Copy, Debug)]
 pub struct GeneralizedAlpha<T, const N: usize> {
     /// Step size, damping and Newton options.
