@@ -6,7 +6,10 @@
 //! step (Newton on the dense (NQ + NC)-square iteration matrix; for comparison, not tuned).
 //! States are assembled, consistent configurations; inputs go through `black_box`.
 use criterion::{criterion_group, criterion_main, Criterion};
-use mbd::{Dopri5, DynamicsOptions, Mechanism, ForwardDynamics, GeneralizedAlphaOptions, Integrator, KinematicSolver, Kinematics, Point, Rk4, System};
+use mbd::{
+    Dopri5, DynamicsOptions, ForwardDynamics, GeneralizedAlphaOptions, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4,
+    System,
+};
 use std::hint::black_box;
 
 mod free_slider_crank {

@@ -15,7 +15,7 @@ use mbd::prelude::*;
 
 #[allow(dead_code)]
 #[path = "slider_crank_inverse.rs"]
-mod slider_crank_inverse;
+pub mod slider_crank_inverse;
 use slider_crank_inverse::Engine;
 
 mechanism! {
@@ -103,7 +103,10 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let omega_mean = rev.iter().sum::<f64>() / rev.len() as f64;
     let r = Report { c_load, omega_mean, omega_design: omega0, delta: (hi - lo) / omega_mean, delta_predicted };
     if print {
-        println!("inverse dynamics at {:.0} rpm: mean drive torque {mean_torque:.3} N·m → generator c = {c_load:.5} N·m·s", omega0 * 30.0 / PI);
+        println!(
+            "inverse dynamics at {:.0} rpm: mean drive torque {mean_torque:.3} N·m → generator c = {c_load:.5} N·m·s",
+            omega0 * 30.0 / PI
+        );
         println!(
             "free run, last revolution: mean speed {:.1} rpm (design {:.1}); speed fluctuation δ = {:.4} (predicted {:.4}); {} DOPRI5 steps",
             omega_mean * 30.0 / PI,

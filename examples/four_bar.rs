@@ -81,7 +81,15 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.min_transmission_angle = r.min_transmission_angle.min(mu);
         r.samples += 1;
         if print && r.samples % 6 == 1 {
-            println!("{:>8.1} {:>12.4} {:>12.6} {:>12.6} {:>14.2} {:>10.2e}", (m.omega * t).to_degrees(), q[8].to_degrees(), p[0], p[1], mu, err);
+            println!(
+                "{:>8.1} {:>12.4} {:>12.6} {:>12.6} {:>14.2} {:>10.2e}",
+                (m.omega * t).to_degrees(),
+                q[8].to_degrees(),
+                p[0],
+                p[1],
+                mu,
+                err
+            );
         }
     })?;
     r.rocker_swing = hi - lo;

@@ -38,7 +38,11 @@ pub struct Run {
 
 const T_END: f64 = 2.0;
 
-fn one<I: Integrator<f64, FreeFourBar, 9, 8>>(m: &FreeFourBar, q: &[f64; 9], integrator: &mut I) -> Result<(u64, f64, f64, f64), SimulationError> {
+fn one<I: Integrator<f64, FreeFourBar, 9, 8>>(
+    m: &FreeFourBar,
+    q: &[f64; 9],
+    integrator: &mut I,
+) -> Result<(u64, f64, f64, f64), SimulationError> {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let times: Vec<f64> = (1..=20).map(|k| k as f64 * T_END / 20.0).collect();
     let e0 = m.potential_energy(q, 0.0);
@@ -66,7 +70,11 @@ pub fn run(print: bool) -> Result<Vec<Run>, Box<dyn std::error::Error>> {
         record("RK4 (h)", h, one(&m, &q, &mut Rk4::new(h))?);
     }
     for rtol in [1e-4, 1e-6, 1e-8, 1e-10] {
-        record("DOPRI5 (rtol)", rtol, one(&m, &q, &mut Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() }))?);
+        record(
+            "DOPRI5 (rtol)",
+            rtol,
+            one(&m, &q, &mut Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() }))?,
+        );
     }
     for h in [4e-3, 2e-3, 1e-3] {
         let options = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
@@ -76,7 +84,15 @@ pub fn run(print: bool) -> Result<Vec<Run>, Box<dyn std::error::Error>> {
         println!("free four-bar, 2 s from rest; error of the rocker angle at 2 s against DOPRI5 at rtol 1e-12");
         println!("{:<20} {:>9} {:>7} {:>11} {:>11} {:>13}", "method", "setting", "steps", "time (µs)", "error (rad)", "|ΔE| (J)");
         for r in &runs {
-            println!("{:<20} {:>9.0e} {:>7} {:>11.1} {:>11.2e} {:>13.2e}", r.method, r.setting, r.steps, r.seconds * 1e6, r.error, r.energy_drift);
+            println!(
+                "{:<20} {:>9.0e} {:>7} {:>11.1} {:>11.2e} {:>13.2e}",
+                r.method,
+                r.setting,
+                r.steps,
+                r.seconds * 1e6,
+                r.error,
+                r.energy_drift
+            );
         }
     }
     Ok(runs)

@@ -101,7 +101,13 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
         r.samples += 1;
         if print && r.samples % 4 == 1 {
-            println!("{:>12.1} {:>12.4} {:>14.3} {:>12.2}", (q[4] - m.wheel_y) * 1e3, camber, (contact[0] - contact0[0]) * 1e3, strut * 1e3);
+            println!(
+                "{:>12.1} {:>12.4} {:>14.3} {:>12.2}",
+                (q[4] - m.wheel_y) * 1e3,
+                camber,
+                (contact[0] - contact0[0]) * 1e3,
+                strut * 1e3
+            );
         }
     })?;
     if print {

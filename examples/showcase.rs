@@ -17,14 +17,15 @@ mod macpherson;
 mod pumped_pendulum;
 #[path = "slider_crank.rs"]
 mod slider_crank;
-#[path = "slider_crank_inverse.rs"]
-mod slider_crank_inverse;
 #[path = "suspension_dynamics.rs"]
 mod suspension_dynamics;
 #[path = "variable_pendulum.rs"]
 mod variable_pendulum;
 #[path = "web_cutter.rs"]
 mod web_cutter;
+
+// Part of flywheel_engine, which builds on it (a second `mod` would compile it twice).
+use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;

@@ -65,7 +65,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     solver.assemble(&m, &mut q, 0.0)?;
     let n = 72;
     let period = 2.0 * PI / m.omega;
-    let mut report = Report { samples: 0, position_error: 0.0, velocity_error: 0.0, acceleration_error: 0.0, max_residual: 0.0, stroke: 0.0 };
+    let mut report =
+        Report { samples: 0, position_error: 0.0, velocity_error: 0.0, acceleration_error: 0.0, max_residual: 0.0, stroke: 0.0 };
     let (mut xmin, mut xmax) = (f64::INFINITY, f64::NEG_INFINITY);
     if print {
         println!("Slider-crank, r = {} m, l = {} m, ω = {:.4} rad/s", m.r, m.l, m.omega);

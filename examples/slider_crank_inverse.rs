@@ -51,7 +51,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     solver.assemble(&m, &mut q, 0.0)?;
     let period = 2.0 * PI / m.omega;
     let n = 360;
-    let mut r = Report { samples: 0, torque_max: f64::NEG_INFINITY, torque_min: f64::INFINITY, drive_power: 0.0, gas_power: 0.0, bearing_max: 0.0 };
+    let mut r =
+        Report { samples: 0, torque_max: f64::NEG_INFINITY, torque_min: f64::INFINITY, drive_power: 0.0, gas_power: 0.0, bearing_max: 0.0 };
     let mut failure = None;
     if print {
         println!("Slider-crank engine at {:.0} rpm, gas force peak {} N", m.omega * 60.0 / (2.0 * PI), m.f0);

@@ -135,18 +135,37 @@ where
     Ok(r)
 }
 
-/// The tyre's vertical force for a wheel body at index `k` (same law as in the mechanisms).
-fn tyre(q: &[f64], qd: &[f64], t: f64, k: usize, k_t: f64, c_t: f64, bump: f64, t_bump: f64, width: f64) -> f64 {
-    let road = bump * (-((t - t_bump) / width).powi(2)).exp();
-    let contact = q[3 * k + 1] - 0.3 * q[3 * k + 2].cos();
-    k_t * (road - contact) - c_t * qd[3 * k + 1]
+/// The tyre and the road of both mechanisms (their parameters of the same names).
+#[derive(Debug, Clone, Copy)]
+struct Tyre {
+    /// Vertical stiffness (N/m).
+    k_t: f64,
+    /// Vertical damping (N·s/m).
+    c_t: f64,
+    /// Height of the bump (m).
+    bump: f64,
+    /// Time the bump is under the wheel (s).
+    t_bump: f64,
+    /// Width of the Gaussian bump (s).
+    width: f64,
+}
+
+impl Tyre {
+    /// The tyre's vertical force for a wheel body at index `k` (same law as in the mechanisms).
+    fn force(&self, q: &[f64], qd: &[f64], t: f64, k: usize) -> f64 {
+        let road = self.bump * (-((t - self.t_bump) / self.width).powi(2)).exp();
+        let contact = q[3 * k + 1] - 0.3 * q[3 * k + 2].cos();
+        self.k_t * (road - contact) - self.c_t * qd[3 * k + 1]
+    }
 }
 
 pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
     let a = DoubleAArmRide::default();
-    let double_a_arm = ride(&a, 2, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 2, a.k_t, a.c_t, a.bump, a.t_bump, a.width), DoubleAArmRide::kkt_workspace())?;
+    let tyre = Tyre { k_t: a.k_t, c_t: a.c_t, bump: a.bump, t_bump: a.t_bump, width: a.width };
+    let double_a_arm = ride(&a, 2, |q: &[f64; 9], qd: &[f64; 9], t| tyre.force(q, qd, t, 2), DoubleAArmRide::kkt_workspace())?;
     let b = MacPhersonRide::default();
-    let macpherson = ride(&b, 1, |q: &[f64; 9], qd: &[f64; 9], t| tyre(q, qd, t, 1, b.k_t, b.c_t, b.bump, b.t_bump, b.width), MacPhersonRide::kkt_workspace())?;
+    let tyre = Tyre { k_t: b.k_t, c_t: b.c_t, bump: b.bump, t_bump: b.t_bump, width: b.width };
+    let macpherson = ride(&b, 1, |q: &[f64; 9], qd: &[f64; 9], t| tyre.force(q, qd, t, 1), MacPhersonRide::kkt_workspace())?;
     if print {
         for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
             println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);

@@ -68,7 +68,10 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let mut r = Report { samples: 0, position_error: 0.0, velocity_error: 0.0, acceleration_error: 0.0, max_coriolis: 0.0 };
     if print {
         println!("Variable-length pendulum: L = {} + {} sin 2ωt m, θ = {} sin ωt rad, ω = {:.4} rad/s", m.l0, m.dl, m.theta0, m.omega);
-        println!("{:>6} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10}", "t (s)", "x (m)", "y (m)", "vx (m/s)", "vy (m/s)", "ax (m/s²)", "ay (m/s²)", "Coriolis");
+        println!(
+            "{:>6} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10}",
+            "t (s)", "x (m)", "y (m)", "vx (m/s)", "vy (m/s)", "ax (m/s²)", "ay (m/s²)", "Coriolis"
+        );
     }
     let times = (0..=80).map(|k| 2.0 * k as f64 / 80.0);
     solver.sweep(&m, &mut q, times, |t, q, qd, qdd| {
@@ -79,7 +82,10 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.max_coriolis = r.max_coriolis.max(cor.abs());
         r.samples += 1;
         if print && r.samples % 8 == 1 {
-            println!("{:>6.3} {:>9.5} {:>9.5} {:>10.5} {:>10.5} {:>10.4} {:>10.4} {:>10.4}", t, q[3], q[4], qd[3], qd[4], qdd[3], qdd[4], cor);
+            println!(
+                "{:>6.3} {:>9.5} {:>9.5} {:>10.5} {:>10.5} {:>10.4} {:>10.4} {:>10.4}",
+                t, q[3], q[4], qd[3], qd[4], qdd[3], qdd[4], cor
+            );
         }
     })?;
     if print {

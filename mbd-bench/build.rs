@@ -6,10 +6,5 @@ fn main() {
     for f in files {
         println!("cargo:rerun-if-changed={f}");
     }
-    cc::Build::new()
-        .files(files)
-        .opt_level(3)
-        .flag_if_supported("-march=native")
-        .warnings(false)
-        .compile("casadi_generated");
+    cc::Build::new().files(files).opt_level(3).flag_if_supported("-march=native").warnings(false).compile("casadi_generated");
 }

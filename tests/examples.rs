@@ -95,7 +95,7 @@ fn macpherson_strut_sweeps_its_travel() {
 /// must cancel the mean gas power to 1e-9 relative.
 #[test]
 fn engine_drive_power_balances_gas_work() {
-    let r = slider_crank_inverse::run(false).expect("inverse dynamics runs");
+    let r = flywheel_engine::slider_crank_inverse::run(false).expect("inverse dynamics runs");
     assert_eq!(r.samples, 360);
     assert!((r.drive_power + r.gas_power).abs() <= 1e-9 * r.gas_power.abs(), "{r:?}");
     assert!(r.gas_power > 100.0, "{r:?}");

@@ -93,7 +93,6 @@ fn pin_friction_torque_is_mu_r_times_the_pin_force() {
     let fx = 1.5 * qdd[0];
     let fy = 1.5 * qdd[1] + 1.5 * 9.81;
     assert!(((fx * fx + fy * fy).sqrt() - pin).abs() < 1e-9);
-
 }
 
 #[test]

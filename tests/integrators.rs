@@ -126,7 +126,9 @@ fn conservative_mechanisms_conserve_energy() {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
     let mut rk4 = Rk4::new(1e-3);
-    for (name, bound, integrator) in [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 8>), ("RK4", 1e-6, &mut rk4)] {
+    for (name, bound, integrator) in
+        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 8>), ("RK4", 1e-6, &mut rk4)]
+    {
         let mut energies = Vec::new();
         let mut swing = (f64::INFINITY, f64::NEG_INFINITY);
         simulate(&m, &mut DynIntegrator(integrator), 0.0, &q, &[0.0; 9], &times, &options, |s| {
@@ -147,7 +149,13 @@ fn conservative_mechanisms_conserve_energy() {
 struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 8>);
 
 impl<M> Integrator<f64, M, 9, 8> for DynIntegrator<'_, M> {
-    fn step(&mut self, s: &System<'_, M, f64>, from: &Point<f64, 9, 8>, t_max: f64, to: &mut Point<f64, 9, 8>) -> Result<(), SimulationError> {
+    fn step(
+        &mut self,
+        s: &System<'_, M, f64>,
+        from: &Point<f64, 9, 8>,
+        t_max: f64,
+        to: &mut Point<f64, 9, 8>,
+    ) -> Result<(), SimulationError> {
         self.0.step(s, from, t_max, to)
     }
     fn interpolate(&self, from: &Point<f64, 9, 8>, to: &Point<f64, 9, 8>, t: f64, q: &mut [f64; 9], qd: &mut [f64; 9]) {
@@ -227,7 +235,8 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
         SimulationError::NonFinite { coordinate, .. } => assert!(coordinate.starts_with("block."), "{coordinate}"),
         other => panic!("expected a non-finite error, got {other:?}"),
     }
-    let mut alpha = StiffBlock::generalized_alpha(GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
+    let mut alpha =
+        StiffBlock::generalized_alpha(GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
     let mut last = [0.0; 3];
     simulate(&m, &mut alpha, 0.0, &q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
     eprintln!("stiff block: RK4 {err}; generalized-α x(2 s) = {}", last[0]);

@@ -183,7 +183,8 @@ where
         // is asked for to a change of 1e-13 (compare.py's bound accounts for it).
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        let options = mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
+        let options =
+            mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
         if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
             forward += 1;
             let fields = sample.as_object_mut().expect("a sample is an object");
@@ -221,7 +222,7 @@ fn casadi_oracle() {
         samples!(common::double_a_arm::DoubleAArm, 16),
         samples!(common::macpherson::MacPherson, 17),
         samples!(chain16::Chain16, 18),
-        samples!(common::slider_crank_inverse::Engine, 19),
+        samples!(common::flywheel_engine::slider_crank_inverse::Engine, 19),
         samples!(free_slider_crank::FreeSliderCrank, 21),
         samples!(pendulum_chain16::PendulumChain16, 22),
         samples!(EveryFriction, 23),

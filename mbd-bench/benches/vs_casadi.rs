@@ -145,7 +145,15 @@ macro_rules! compare_dynamics {
         for (name, f) in [("RK4 step: CasADi Schur", &mut schur), ("RK4 step: CasADi KKT", &mut qr)] {
             g.bench_function(name, |b| {
                 b.iter(|| {
-                    rk4_step(f, &params, &gains, 1e-3, (p.t, black_box(&p.q), black_box(&p.qd), &p.qdd), &mut out, (&mut q1, &mut qd1, &mut qdd1))
+                    rk4_step(
+                        f,
+                        &params,
+                        &gains,
+                        1e-3,
+                        (p.t, black_box(&p.q), black_box(&p.qd), &p.qdd),
+                        &mut out,
+                        (&mut q1, &mut qd1, &mut qdd1),
+                    )
                 })
             });
         }

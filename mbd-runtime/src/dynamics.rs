@@ -113,7 +113,7 @@ impl DynamicsError {
     #[doc(hidden)]
     pub fn from_pivot<M: Mechanism, T: Real>(t: T, row: usize, mass: &[T], inputs_finite: bool) -> Self {
         for (i, &m) in mass.iter().enumerate() {
-            if !(m > T::ZERO) || !m.is_finite() {
+            if !(m.is_finite() && m > T::ZERO) {
                 return DynamicsError::NonPositiveMass { body: M::BODY_NAMES.get(i / 3).copied().unwrap_or("?"), value: m.to_f64() };
             }
         }

@@ -73,7 +73,9 @@ where
 {
     require_driven::<NQ, NC>()?;
     let time = t.to_f64();
-    for (values, quantity) in [(q, NonFiniteQuantity::Coordinate), (qd, NonFiniteQuantity::Velocity), (qdd, NonFiniteQuantity::Acceleration)] {
+    for (values, quantity) in
+        [(q, NonFiniteQuantity::Coordinate), (qd, NonFiniteQuantity::Velocity), (qdd, NonFiniteQuantity::Acceleration)]
+    {
         if let Some(i) = first_non_finite(values) {
             return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::COORDINATE_NAMES, i) });
         }

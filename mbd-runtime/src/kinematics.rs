@@ -206,9 +206,7 @@ fn jacobian_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
 /// matrix at step k means constraint row k depends on the rows before it.
 fn minimum_norm_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
     match error {
-        LinalgError::Singular { column, .. } => {
-            KinematicError::DependentConstraint { t, constraint: name(M::CONSTRAINT_NAMES, column) }
-        }
+        LinalgError::Singular { column, .. } => KinematicError::DependentConstraint { t, constraint: name(M::CONSTRAINT_NAMES, column) },
         LinalgError::NonFinite { row, .. } => {
             KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, row) }
         }
@@ -219,12 +217,7 @@ fn minimum_norm_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicErro
 }
 
 /// NonFinite for the first non-finite entry of `values`, named from `names`.
-fn check_finite<T: Real>(
-    values: &[T],
-    t: T,
-    quantity: NonFiniteQuantity,
-    names: &'static [&'static str],
-) -> Result<(), KinematicError> {
+fn check_finite<T: Real>(values: &[T], t: T, quantity: NonFiniteQuantity, names: &'static [&'static str]) -> Result<(), KinematicError> {
     match first_non_finite(values) {
         Some(index) => Err(KinematicError::NonFinite { t: t.to_f64(), quantity, row: name(names, index) }),
         None => Ok(()),
@@ -297,12 +290,7 @@ impl KinematicSolver {
     /// [`KinematicError::Overconstrained`] if NC > NQ; [`KinematicError::DependentConstraint`]
     /// if D loses row rank (DOF > 0) or [`KinematicError::SingularJacobian`] (DOF = 0);
     /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
-    pub fn assemble<T, M, const NQ: usize, const NC: usize>(
-        &self,
-        m: &M,
-        q: &mut [T; NQ],
-        t: T,
-    ) -> Result<Convergence, KinematicError>
+    pub fn assemble<T, M, const NQ: usize, const NC: usize>(&self, m: &M, q: &mut [T; NQ], t: T) -> Result<Convergence, KinematicError>
     where
         T: Real,
         M: Kinematics<T, NQ, NC>,
@@ -384,24 +372,14 @@ impl KinematicSolver {
     /// # Errors
     /// Those of [`solve_position`](Self::solve_position), [`solve_velocity`](Self::solve_velocity)
     /// and [`solve_acceleration`](Self::solve_acceleration).
-    pub fn analyze<T, M, const NQ: usize, const NC: usize>(
-        &self,
-        m: &M,
-        q: &[T; NQ],
-        t: T,
-    ) -> Result<KinematicState<T, NQ>, KinematicError>
+    pub fn analyze<T, M, const NQ: usize, const NC: usize>(&self, m: &M, q: &[T; NQ], t: T) -> Result<KinematicState<T, NQ>, KinematicError>
     where
         T: Real,
         M: Kinematics<T, NQ, NC>,
     {
         require_driven::<NQ, NC>()?;
-        let mut state = KinematicState {
-            t,
-            q: *q,
-            qd: [T::ZERO; NQ],
-            qdd: [T::ZERO; NQ],
-            convergence: Convergence { iterations: 0, residual: 0.0 },
-        };
+        let mut state =
+            KinematicState { t, q: *q, qd: [T::ZERO; NQ], qdd: [T::ZERO; NQ], convergence: Convergence { iterations: 0, residual: 0.0 } };
         let mut jacobian = [[T::ZERO; NQ]; NC];
         state.convergence = self.analyze_in_place(m, &mut state.q, t, &mut jacobian, &mut state.qd, &mut state.qdd)?;
         Ok(state)
@@ -489,11 +467,7 @@ impl KinematicSolver {
     }
 
     /// LU of the square Jacobian, with failures named after the mechanism's rows and columns.
-    fn factor<T, M, const NQ: usize, const NC: usize>(
-        &self,
-        jacobian: &mut [[T; NQ]; NC],
-        t: T,
-    ) -> Result<Permutation<NC>, KinematicError>
+    fn factor<T, M, const NQ: usize, const NC: usize>(&self, jacobian: &mut [[T; NQ]; NC], t: T) -> Result<Permutation<NC>, KinematicError>
     where
         T: Real,
         M: Mechanism,
@@ -545,10 +519,8 @@ impl KinematicSolver {
             }
             match rule {
                 StepRule::Square => {
-                    let permutation =
-                        linalg::lu_factor(jacobian, pivot_tolerance).map_err(|e| jacobian_error::<M>(e, time))?;
-                    linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step)
-                        .map_err(|e| jacobian_error::<M>(e, time))?;
+                    let permutation = linalg::lu_factor(jacobian, pivot_tolerance).map_err(|e| jacobian_error::<M>(e, time))?;
+                    linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step).map_err(|e| jacobian_error::<M>(e, time))?;
                 }
                 StepRule::MinimumNorm => {
                     linalg::minimum_norm_solve(jacobian, &negative_residual, pivot_tolerance, &mut step)

@@ -21,21 +21,19 @@ mod statics;
 
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
-pub use dynamics::{
-    kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
-};
+pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
 pub use error::{KinematicError, NonFiniteQuantity};
-pub use kinematics::{
-    Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE,
-    DEFAULT_PREDICTOR, DEFAULT_TOLERANCE,
-};
-pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
 pub use integrate::{
     project, simulate, Correction, Dopri5, Dopri5Options, Energy, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4,
     Sample, SimulationError, SimulationOptions, Statistics, System,
 };
-pub use partition::Partition;
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
+pub use kinematics::{
+    Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
+    DEFAULT_TOLERANCE,
+};
+pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
+pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
 pub use statics::{

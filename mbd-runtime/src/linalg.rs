@@ -65,20 +65,18 @@ pub enum LinalgError {
 impl fmt::Display for LinalgError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            LinalgError::Singular { column, candidate_row } => write!(
-                f,
-                "singular matrix: no acceptable pivot in column {column} (best candidate in row {candidate_row})"
-            ),
+            LinalgError::Singular { column, candidate_row } => {
+                write!(f, "singular matrix: no acceptable pivot in column {column} (best candidate in row {candidate_row})")
+            }
             LinalgError::NonFinite { row, column } => {
                 write!(f, "non-finite matrix entry (NaN or ±∞) at row {row}, column {column}")
             }
             LinalgError::NotSquare { rows, columns } => {
                 write!(f, "LU factorization needs a square matrix, got {rows} × {columns}")
             }
-            LinalgError::Overdetermined { rows, columns } => write!(
-                f,
-                "overdetermined system: {rows} equations for {columns} unknowns (redundant equations are not supported)"
-            ),
+            LinalgError::Overdetermined { rows, columns } => {
+                write!(f, "overdetermined system: {rows} equations for {columns} unknowns (redundant equations are not supported)")
+            }
         }
     }
 }
@@ -201,12 +199,7 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
 
 /// Forward then back substitution with factors from [`lu_factor`]. Callers guarantee `R == C`
 /// (every index below is then in bounds).
-fn substitute<T: Real, const R: usize, const C: usize>(
-    lu: &[[T; C]; R],
-    permutation: &Permutation<R>,
-    rhs: &[T; R],
-    x: &mut [T; C],
-) {
+fn substitute<T: Real, const R: usize, const C: usize>(lu: &[[T; C]; R], permutation: &Permutation<R>, rhs: &[T; R], x: &mut [T; C]) {
     // L y = P b (L unit lower-triangular); y is stored in x.
     for i in 0..R {
         let mut sum = rhs[permutation.original_rows[i]];
@@ -514,10 +507,7 @@ mod tests {
         assert_eq!(lu_factor(&mut rectangular, PIVOT_TOLERANCE), Err(LinalgError::NotSquare { rows: 2, columns: 3 }));
         let d = [[1.0], [2.0]];
         let mut dq = [0.0];
-        assert_eq!(
-            minimum_norm_solve(&d, &[1.0, 2.0], PIVOT_TOLERANCE, &mut dq),
-            Err(LinalgError::Overdetermined { rows: 2, columns: 1 })
-        );
+        assert_eq!(minimum_norm_solve(&d, &[1.0, 2.0], PIVOT_TOLERANCE, &mut dq), Err(LinalgError::Overdetermined { rows: 2, columns: 1 }));
     }
 
     /// D Δq = r holds, Δq lies in the row space of D (Δq = Dᵀ λ), and it is shorter than

@@ -105,16 +105,7 @@ pub trait Kinematics<T: Real, const NQ: usize, const NC: usize>: Mechanism {
     fn position_eval(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NQ]; NC]);
     /// Φ, D, ν and γ in one evaluation (shared subexpressions computed once).
     #[allow(clippy::too_many_arguments)]
-    fn full_eval(
-        &self,
-        q: &[T; NQ],
-        qd: &[T; NQ],
-        t: T,
-        phi: &mut [T; NC],
-        d: &mut [[T; NQ]; NC],
-        nu: &mut [T; NC],
-        gamma: &mut [T; NC],
-    );
+    fn full_eval(&self, q: &[T; NQ], qd: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NQ]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]);
 }
 
 /// Mass matrix and forces of a mechanism in planar body coordinates, for `NQ` coordinates and

@@ -47,6 +47,8 @@ impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
 
     /// Chooses the dependent coordinates by full pivoting on `d`; `Err(row)` names a row with
     /// no acceptable pivot left (dependent constraints).
+    // `!(x > y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn choose<T: Real>(&mut self, d: &[[T; NQ]; NC]) -> Result<(), usize> {
         let mut a = *d;
         let mut rows: [usize; NC] = core::array::from_fn(|i| i);

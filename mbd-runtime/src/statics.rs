@@ -229,7 +229,9 @@ impl StaticSolver {
             let permutation = lu_factor(&mut ws.matrix, T::from_f64(self.options.pivot_tolerance)).map_err(|e| match e {
                 LinalgError::Singular { column, .. } => StaticError::Singular { t: time, row: row_name::<M>(column, NQ) },
                 LinalgError::NonFinite { row, .. } => StaticError::NonFinite { t: time, row: row_name::<M>(row, NQ) },
-                LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => StaticError::WorkspaceSize { expected: NQ + NC, found: N },
+                LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => {
+                    StaticError::WorkspaceSize { expected: NQ + NC, found: N }
+                }
             })?;
             lu_solve_in_place(&ws.matrix, &permutation, &mut ws.rhs);
             for (a, v) in q.iter_mut().enumerate() {

@@ -177,16 +177,7 @@ impl<T: Real> Kinematics<T, NQ, NC> for SliderCrank<T> {
         ];
     }
 
-    fn full_eval(
-        &self,
-        q: &[T; NQ],
-        qd: &[T; NQ],
-        t: T,
-        phi: &mut [T; NC],
-        d: &mut [[T; NQ]; NC],
-        nu: &mut [T; NC],
-        gamma: &mut [T; NC],
-    ) {
+    fn full_eval(&self, q: &[T; NQ], qd: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NQ]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
         self.gamma(q, qd, t, gamma);
@@ -367,8 +358,7 @@ impl<T: Real> Mechanism for Crank<T> {
     const NAME: &'static str = "Crank";
     const BODY_NAMES: &'static [&'static str] = &["crank"];
     const COORDINATE_NAMES: &'static [&'static str] = &["crank.x", "crank.y", "crank.phi"];
-    const CONSTRAINT_NAMES: &'static [&'static str] =
-        &["revolute ground~crank: x", "revolute ground~crank: y", "drive crank.phi: phi"];
+    const CONSTRAINT_NAMES: &'static [&'static str] = &["revolute ground~crank: x", "revolute ground~crank: y", "drive crank.phi: phi"];
     const PARAM_NAMES: &'static [&'static str] = &["r", "omega"];
     const DOF: i32 = 0;
     const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[(0, 0), (0, 2), (1, 1), (1, 2), (2, 2)];
@@ -408,16 +398,7 @@ impl<T: Real> Kinematics<T, 3, 3> for Crank<T> {
         let (o, z) = (T::ONE, T::ZERO);
         *d = [[-o, z, -a * s], [z, -o, a * c], [z, z, o]];
     }
-    fn full_eval(
-        &self,
-        q: &[T; 3],
-        qd: &[T; 3],
-        t: T,
-        phi: &mut [T; 3],
-        d: &mut [[T; 3]; 3],
-        nu: &mut [T; 3],
-        gamma: &mut [T; 3],
-    ) {
+    fn full_eval(&self, q: &[T; 3], qd: &[T; 3], t: T, phi: &mut [T; 3], d: &mut [[T; 3]; 3], nu: &mut [T; 3], gamma: &mut [T; 3]) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
         self.gamma(q, qd, t, gamma);
@@ -654,8 +635,7 @@ fn converges_from_a_rough_guess() {
     let solver = KinematicSolver::default();
     for assemble in [false, true] {
         let mut q = guess;
-        let convergence = if assemble { solver.assemble(&m, &mut q, t) } else { solver.solve_position(&m, &mut q, t) }
-            .expect("converges");
+        let convergence = if assemble { solver.assemble(&m, &mut q, t) } else { solver.solve_position(&m, &mut q, t) }.expect("converges");
         assert!(convergence.iterations >= 3 && convergence.iterations <= 8, "{convergence:?}");
         assert!(convergence.residual <= DEFAULT_TOLERANCE);
         assert!(max_abs_difference(&q, &exact) < POSITION_TOLERANCE, "{q:?}");
@@ -790,10 +770,7 @@ fn dependent_constraint_is_named_during_assembly() {
     let solver = KinematicSolver::default();
     let exact = exact_q(0.1);
     let mut q: [f64; NQ] = core::array::from_fn(|i| exact[i] + 0.01);
-    assert_eq!(
-        solver.assemble(&m, &mut q, 0.1),
-        Err(KinematicError::DependentConstraint { t: 0.1, constraint: "fix slider.y: y" })
-    );
+    assert_eq!(solver.assemble(&m, &mut q, 0.1), Err(KinematicError::DependentConstraint { t: 0.1, constraint: "fix slider.y: y" }));
 }
 
 /// A sweep stops at the first failing point and leaves q at the last good one.
@@ -828,10 +805,7 @@ fn predictor_failure_is_retried_from_the_previous_solution() {
     for (x, v) in predicted.iter_mut().zip(qd.iter()) {
         *x += v * 0.5;
     }
-    assert!(matches!(
-        solver.solve_position(&m, &mut predicted, 0.5),
-        Err(KinematicError::NotConverged { iterations: 0, .. })
-    ));
+    assert!(matches!(solver.solve_position(&m, &mut predicted, 0.5), Err(KinematicError::NotConverged { iterations: 0, .. })));
 }
 
 /// f32 on the single crank: position, velocity and acceleration against the closed form, with
@@ -900,10 +874,7 @@ fn options_defaults_and_builders() {
     assert_eq!(options.pivot_tolerance, DEFAULT_PIVOT_TOLERANCE);
     assert_eq!(options.predictor, DEFAULT_PREDICTOR);
     let changed = options.with_tolerance(1e-6).with_max_iterations(3).with_pivot_tolerance(1e-9).with_predictor(false);
-    assert_eq!(
-        (changed.tolerance, changed.max_iterations, changed.pivot_tolerance, changed.predictor),
-        (1e-6, 3, 1e-9, false)
-    );
+    assert_eq!((changed.tolerance, changed.max_iterations, changed.pivot_tolerance, changed.predictor), (1e-6, 3, 1e-9, false));
     assert_eq!(KinematicSolver::default().options, options);
 }
 
@@ -913,8 +884,7 @@ fn options_defaults_and_builders() {
 fn error_messages() {
     extern crate std;
     use std::string::ToString;
-    let not_converged =
-        KinematicError::NotConverged { t: 0.25, iterations: 25, worst_row: "revolute crank~rod: y", residual: 3.1e-3 };
+    let not_converged = KinematicError::NotConverged { t: 0.25, iterations: 25, worst_row: "revolute crank~rod: y", residual: 3.1e-3 };
     assert_eq!(
         not_converged.to_string(),
         "position solve did not converge at t = 0.25 s after 25 iterations: worst constraint 'revolute crank~rod: y' |Φ| = 3.1e-3"

@@ -1,0 +1,229 @@
+//! The driver: [`simulate`] integrates with any [`Integrator`] to a list of output times,
+//! corrects drift after each step ([`Correction`]: the mass-weighted [`project`]ion, or
+//! coordinate partitioning, Nikravesh 13.6.2), interpolates each output with the step's dense
+//! output and hands its [`Sample`] (state, q̈, λ and energies) to a callback; its
+//! [`SimulationOptions`] and [`Statistics`].
+//!
+//! The initial state is corrected first (initial-condition correction, Nikravesh 14.3).
+
+use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
+use crate::dynamics::kinetic_energy;
+use crate::kinematics::name;
+use crate::partition::Partition;
+use crate::{DynamicsOptions, ForwardDynamics, Real};
+
+/// What brings the state back onto the constraint manifold after each step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Correction<T> {
+    /// Nothing (Baumgarte stabilization, if set, still acts through the accelerations).
+    None,
+    /// Mass-weighted projection (Newton on Φ = 0 with steps −M⁻¹Φ_qᵀS⁻¹Φ, then the exact
+    /// velocity projection), to ‖Φ‖∞ ≤ `tolerance`.
+    Projection {
+        /// On ‖Φ‖∞ (m, rad).
+        tolerance: T,
+        /// Newton steps before failing.
+        max_iterations: u32,
+    },
+    /// Coordinate partitioning (Nikravesh 13.6.2): the integrated independent coordinates are
+    /// kept; the dependent ones are solved from Φ = 0 and Φ_q q̇ = ν. The partition is chosen
+    /// by full pivoting on Φ_q at the start and again whenever its pivots degrade.
+    Partitioning {
+        /// On ‖Φ‖∞ (m, rad).
+        tolerance: T,
+        /// Newton steps before failing.
+        max_iterations: u32,
+    },
+}
+
+impl<T: Real> Correction<T> {
+    /// Projection to 1e-10 in at most 10 Newton steps.
+    pub fn projection() -> Self {
+        Correction::Projection { tolerance: T::from_f64(1e-10), max_iterations: 10 }
+    }
+    /// Coordinate partitioning to 1e-10 in at most 10 Newton steps.
+    pub fn partitioning() -> Self {
+        Correction::Partitioning { tolerance: T::from_f64(1e-10), max_iterations: 10 }
+    }
+}
+
+/// Projects q onto Φ(q, t) = 0 and q̇ onto Φ_q q̇ = ν in the metric of M.
+///
+/// # Errors
+/// [`SimulationError::NotConverged`] if ‖Φ‖∞ stays above `tolerance`; dynamics errors of the solve.
+pub fn project<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+    mechanism: &M,
+    t: T,
+    q: &mut [T; NQ],
+    qd: &mut [T; NQ],
+    options: &DynamicsOptions<T>,
+    tolerance: T,
+    max_iterations: u32,
+) -> Result<(), SimulationError> {
+    let mut iterations = 0;
+    loop {
+        let residual = mechanism.project_positions_step(q, t, options)?;
+        if residual <= tolerance {
+            // The step just taken was below tolerance too: keep it (it only helps).
+            break;
+        }
+        iterations += 1;
+        if iterations > max_iterations {
+            let mut phi = [T::ZERO; NC];
+            mechanism.constraints(q, t, &mut phi);
+            let worst = phi.iter().enumerate().fold((0, T::ZERO), |w, (i, v)| if v.abs() > w.1 { (i, v.abs()) } else { w });
+            return Err(SimulationError::NotConverged {
+                t: t.to_f64(),
+                iterations,
+                worst_row: name(M::CONSTRAINT_NAMES, worst.0),
+                residual: worst.1.to_f64(),
+            });
+        }
+    }
+    mechanism.project_velocities(q, qd, t, options)?;
+    Ok(())
+}
+
+/// Statistics of a [`simulate`] run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Statistics {
+    /// Steps taken (accepted).
+    pub steps: u64,
+    /// Samples handed to the callback.
+    pub samples: u64,
+}
+
+/// Options of [`simulate`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimulationOptions<T> {
+    /// Baumgarte α, β and the pivot rule of the forward-dynamics solve.
+    pub dynamics: DynamicsOptions<T>,
+    /// Drift correction after each step. Default none.
+    pub correction: Correction<T>,
+    /// Accumulate work for the energy balance. Default off.
+    pub track_work: bool,
+    /// Step budget. Default 100 million.
+    pub max_steps: u64,
+}
+
+impl<T: Real> Default for SimulationOptions<T> {
+    fn default() -> Self {
+        Self { dynamics: DynamicsOptions::default(), correction: Correction::None, track_work: false, max_steps: 100_000_000 }
+    }
+}
+
+/// Integrates from `initial` (t, q, q̇) and calls `output` at each of `times` (non-decreasing,
+/// not before the initial time) with the interpolated state, its q̈ and λ, and its energies.
+///
+/// The initial state is corrected first when a [`Correction`] is set (initial-condition
+/// correction, Nikravesh 14.3). Nothing allocates: storage for the samples is the caller's.
+///
+/// # Errors
+/// The first [`SimulationError`] met; the samples before it have been delivered.
+#[allow(clippy::too_many_arguments)]
+// `!(t >= before)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub fn simulate<T, M, I, const NQ: usize, const NC: usize>(
+    mechanism: &M,
+    integrator: &mut I,
+    t0: T,
+    q0: &[T; NQ],
+    qd0: &[T; NQ],
+    times: &[T],
+    options: &SimulationOptions<T>,
+    mut output: impl FnMut(&Sample<T, NQ, NC>),
+) -> Result<Statistics, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NC>,
+    I: Integrator<T, M, NQ, NC>,
+{
+    for (i, &t) in times.iter().enumerate() {
+        let before = if i == 0 { t0 } else { times[i - 1] };
+        if !(t >= before) {
+            return Err(SimulationError::TimesNotIncreasing { index: i });
+        }
+    }
+    let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
+    let (mut q, mut qd) = (*q0, *qd0);
+    let mut partition = Partition::<NQ, NC>::new();
+    correct(mechanism, &mut partition, options, t0, &mut q, &mut qd)?;
+    let mut from = system.point(t0, q, qd, [T::ZERO; 2])?;
+    let mut to = from;
+    integrator.restart();
+    let mut stats = Statistics::default();
+    let t_end = match times.last() {
+        Some(&t) => t,
+        None => return Ok(stats),
+    };
+    let mut next = 0;
+    while next < times.len() && times[next] <= from.t {
+        output(&sample(mechanism, &from));
+        stats.samples += 1;
+        next += 1;
+    }
+    while next < times.len() {
+        if stats.steps >= options.max_steps {
+            return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
+        }
+        integrator.step(&system, &from, t_end, &mut to)?;
+        stats.steps += 1;
+        // The integrator's own end point, for its dense output; `to` becomes the corrected one.
+        let end = to;
+        if !matches!(options.correction, Correction::None) {
+            let (mut q, mut qd) = (to.q, to.qd);
+            correct(mechanism, &mut partition, options, to.t, &mut q, &mut qd)?;
+            to = system.point(to.t, q, qd, to.work)?;
+        }
+        while next < times.len() && times[next] <= end.t {
+            if times[next] == end.t {
+                output(&sample(mechanism, &to));
+            } else {
+                let (mut q, mut qd) = ([T::ZERO; NQ], [T::ZERO; NQ]);
+                integrator.interpolate(&from, &end, times[next], &mut q, &mut qd);
+                let work = interpolate_work(&from, &end, times[next]);
+                output(&sample(mechanism, &system.point(times[next], q, qd, work)?));
+            }
+            stats.samples += 1;
+            next += 1;
+        }
+        from = to;
+    }
+    Ok(stats)
+}
+
+fn interpolate_work<T: Real, const NQ: usize, const NC: usize>(from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T) -> [T; 2] {
+    let h = to.t - from.t;
+    let theta = if h > T::ZERO { (t - from.t) / h } else { T::ONE };
+    core::array::from_fn(|k| hermite(from.work[k], from.power[k], to.work[k], to.power[k], h, theta))
+}
+
+/// A point with its energies.
+fn sample<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+    mechanism: &M,
+    p: &Point<T, NQ, NC>,
+) -> Sample<T, NQ, NC> {
+    let energy = Energy {
+        kinetic: kinetic_energy(mechanism, &p.qd),
+        potential: mechanism.potential_energy(&p.q, p.t),
+        nonconservative_work: p.work[0],
+        constraint_work: p.work[1],
+    };
+    Sample { point: *p, energy }
+}
+
+/// Applies the drift correction of `options` to (q, q̇) at t.
+fn correct<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+    mechanism: &M,
+    partition: &mut Partition<NQ, NC>,
+    options: &SimulationOptions<T>,
+    t: T,
+    q: &mut [T; NQ],
+    qd: &mut [T; NQ],
+) -> Result<(), SimulationError> {
+    match options.correction {
+        Correction::None => Ok(()),
+        Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, qd, &options.dynamics, tolerance, max_iterations),
+        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, t, q, qd, tolerance, max_iterations),
+    }
+}
