@@ -45,7 +45,8 @@ fn ensure_env() -> PathBuf {
 
 /// Runs `python -m <args>` in `tests/oracle`; returns (success, stdout + stderr).
 fn oracle(args: &[&str]) -> (bool, String) {
-    let out = Command::new(python()).arg("-m").args(args).current_dir(repo().join("tests/oracle")).output().expect("the oracle's Python runs");
+    let out =
+        Command::new(python()).arg("-m").args(args).current_dir(repo().join("tests/oracle")).output().expect("the oracle's Python runs");
     (out.status.success(), format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
 }
 

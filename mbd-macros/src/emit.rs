@@ -102,8 +102,7 @@ impl Emitter<'_> {
                 stack.push(c);
             }
         }
-        let pairs: HashMap<Id, (Id, Id)> =
-            sines.iter().filter_map(|(a, &s)| cosines.get(a).map(|&c| (*a, (s, c)))).collect();
+        let pairs: HashMap<Id, (Id, Id)> = sines.iter().filter_map(|(a, &s)| cosines.get(a).map(|&c| (*a, (s, c)))).collect();
         let mut bound = BTreeMap::new();
         for (&id, &n) in &uses {
             let leaf = matches!(g.node(id), Node::Const(_) | Node::Var(_));
@@ -314,7 +313,10 @@ pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
             }
             if let Some(v) = f.graph.as_const(id) {
                 if !v.is_finite() {
-                    return Err(syn::Error::new(span, format!("an expression of this mechanism evaluates to {v} for every state (a constant such as ln(0) or 1/0)")));
+                    return Err(syn::Error::new(
+                        span,
+                        format!("an expression of this mechanism evaluates to {v} for every state (a constant such as ln(0) or 1/0)"),
+                    ));
                 }
             }
             stack.extend(f.graph.children(id).into_iter().flatten());
@@ -384,7 +386,6 @@ pub fn jacobian_values_outputs(f: &Formulation, name: &str) -> Vec<Output> {
         })
         .collect()
 }
-
 
 #[cfg(test)]
 mod tests {

@@ -5,8 +5,8 @@ use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::emit::{self, friction_outputs, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output};
-use crate::forward::{forward_dynamics, ForwardCode};
 use crate::formulation::{formulate, Formulation};
+use crate::forward::{forward_dynamics, ForwardCode};
 use crate::json::model_json;
 use crate::model::{Model, Partial};
 use crate::parse::MechanismDef;
@@ -121,7 +121,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         quote!()
     } else {
         let (body, _) = e.body(&friction);
-        let indices: Vec<Literal> = f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
+        let indices: Vec<Literal> =
+            f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
         quote! {
             let mut hf = [#zero; #nq_l];
             #body
@@ -461,9 +462,8 @@ mod snapshot {
             .expect("the snapshot's input holds a mechanism! invocation");
         let expanded = super::expand(tokens);
         let formatted = prettyplease::unparse(&syn::parse2(expanded).expect("the expansion is valid Rust"));
-        let text = format!(
-            "// Generated from slider_crank.rs by `MBD_BLESS=1 cargo test -p mbd-macros snapshot`. Do not edit.\n{formatted}"
-        );
+        let text =
+            format!("// Generated from slider_crank.rs by `MBD_BLESS=1 cargo test -p mbd-macros snapshot`. Do not edit.\n{formatted}");
         let path = dir.join("slider_crank.expanded.rs");
         if std::env::var_os("MBD_BLESS").is_some() {
             std::fs::write(&path, &text).expect("write the snapshot");

@@ -18,7 +18,6 @@ pub struct ForwardCode {
     pub eval_ops: Ops,
 }
 
-
 pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
     let real = real(m.scalar);
     let name = &m.name;
@@ -288,4 +287,3 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     };
     ForwardCode { helpers, impl_block, eval_ops }
 }
-

@@ -243,10 +243,7 @@ impl Model {
     }
     /// Coordinate names, `"crank.phi"`.
     pub fn coordinate_names(&self) -> Vec<String> {
-        self.bodies
-            .iter()
-            .flat_map(|b| ["x", "y", "phi"].into_iter().map(move |c| format!("{}.{}", b.name, c)))
-            .collect()
+        self.bodies.iter().flat_map(|b| ["x", "y", "phi"].into_iter().map(move |c| format!("{}.{}", b.name, c))).collect()
     }
 }
 
@@ -281,7 +278,8 @@ impl Resolver<'_> {
             None => {
                 let names: Vec<&str> = self.bodies.keys().map(|s| s.as_str()).collect();
                 let hint = parse::closest(&id.to_string(), &names, &["ground"]);
-                self.errors.push(id.span(), format!("unknown body `{id}`{hint}: declare it with `body {id} {{ mass: ..., inertia: ... }}`"));
+                self.errors
+                    .push(id.span(), format!("unknown body `{id}`{hint}: declare it with `body {id} {{ mass: ..., inertia: ... }}`"));
                 None
             }
         }
@@ -320,7 +318,10 @@ impl Resolver<'_> {
                 let position = Coord::from_ident(c);
                 let velocity = Coord::from_velocity_ident(c);
                 if position.is_none() && velocity.is_none() {
-                    self.errors.push(c.span(), format!("unknown coordinate `{c}`: a body has `x`, `y`, `phi` and, in forces, velocities `vx`, `vy`, `omega`"));
+                    self.errors.push(
+                        c.span(),
+                        format!("unknown coordinate `{c}`: a body has `x`, `y`, `phi` and, in forces, velocities `vx`, `vy`, `omega`"),
+                    );
                     return None;
                 }
                 let allowed = match (position, scope) {
@@ -362,13 +363,16 @@ impl Resolver<'_> {
                         let hint = parse::closest(&name, FUNCTIONS, &[]);
                         self.errors.push(
                             f.span(),
-                            format!("unknown function `{name}`{hint}: available are sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, pow"),
+                            format!(
+                                "unknown function `{name}`{hint}: available are sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, pow"
+                            ),
                         );
                         return None;
                     }
                 };
                 if args.len() != arity {
-                    self.errors.at_expr(e, format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()));
+                    self.errors
+                        .at_expr(e, format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()));
                     return None;
                 }
                 let resolved: Vec<Option<MExpr>> = args.iter().map(|a| self.expr(a, scope)).collect();
@@ -400,7 +404,8 @@ impl Resolver<'_> {
             PointRef::Named(name) => match self.points.get(&(body, name.to_string())) {
                 Some(p) => Some(p.clone()),
                 None => {
-                    self.errors.push(name.span(), format!("unknown point `{name}` on this body: declare it with `point body.{name} = [ξ, η];`"));
+                    self.errors
+                        .push(name.span(), format!("unknown point `{name}` on this body: declare it with `point body.{name} = [ξ, η];`"));
                     None
                 }
             },
@@ -444,7 +449,13 @@ impl Resolver<'_> {
 
 /// The name of a joint, driver, constraint or force element — its label, or its default name —
 /// if no other statement has it yet; otherwise an error on the label or the statement's keyword.
-fn claim_name(names: &mut HashMap<String, Span>, errors: &mut Errors, label: Option<&Ident>, default_name: String, span: Span) -> Option<String> {
+fn claim_name(
+    names: &mut HashMap<String, Span>,
+    errors: &mut Errors,
+    label: Option<&Ident>,
+    default_name: String,
+    span: Span,
+) -> Option<String> {
     let (name, span) = match label {
         Some(l) => (l.to_string(), l.span()),
         None => (default_name, span),
@@ -788,12 +799,19 @@ mod tests {
         )
         .unwrap();
         let kinds: Vec<(&str, &str)> = m.constraints.iter().map(|c| (c.kind.kind(), c.name.as_str())).collect();
-        assert_eq!(kinds, [("revolute", "revolute ground~a"), ("translational", "slide"), ("drive", "drive a.phi"), ("constraint", "constraint 5")]);
+        assert_eq!(
+            kinds,
+            [("revolute", "revolute ground~a"), ("translational", "slide"), ("drive", "drive a.phi"), ("constraint", "constraint 5")]
+        );
         // (an unlabelled constraint is named by its statement's position, the bodies counted)
         let forces: Vec<(&str, &str)> = m.forces.iter().map(|f| (f.kind.kind(), f.name.as_str())).collect();
         assert_eq!(
             forces,
-            [("revolute_viscous", "revolute ground~a viscous friction"), ("translational_coulomb", "slide Coulomb friction"), ("point_to_point", "spring a~b")]
+            [
+                ("revolute_viscous", "revolute ground~a viscous friction"),
+                ("translational_coulomb", "slide Coulomb friction"),
+                ("point_to_point", "spring a~b")
+            ]
         );
         assert_eq!(m.constraints[1].kind.bodies(), (Some(BodyRef::Body(0)), Some(BodyRef::Body(1))));
     }

@@ -25,7 +25,7 @@
 use proc_macro2::Span;
 use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
-use syn::{bracketed, braced, parenthesized, Attribute, Ident, Token, Visibility};
+use syn::{braced, bracketed, parenthesized, Attribute, Ident, Token, Visibility};
 
 /// The whole `mechanism! { ... }` input.
 pub struct MechanismDef {
@@ -221,9 +221,29 @@ pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_d
 /// Every statement keyword, for "did you mean" hints (a test checks that every registered joint
 /// kind is here).
 pub const STATEMENTS: &[&str] = &[
-    "scalar", "params", "body", "point", "vector", "fix", "drive", "constraint", "gravity", "force", "local_force", "torque",
-    "revolute", "translational", "revolute_revolute", "revolute_translational", "rigid", "spring", "damper", "actuator",
-    "rotational_spring", "rotational_damper", "torque_actuator",
+    "scalar",
+    "params",
+    "body",
+    "point",
+    "vector",
+    "fix",
+    "drive",
+    "constraint",
+    "gravity",
+    "force",
+    "local_force",
+    "torque",
+    "revolute",
+    "translational",
+    "revolute_revolute",
+    "revolute_translational",
+    "rigid",
+    "spring",
+    "damper",
+    "actuator",
+    "rotational_spring",
+    "rotational_damper",
+    "torque_actuator",
 ];
 
 impl Parse for MechanismDef {
@@ -660,7 +680,8 @@ mod tests {
     /// A joint statement parses into its attachments, axis and options, keeping the label.
     #[test]
     fn a_joint_statement() {
-        let item: Item = syn::parse_str("translational slide: a[0.0, 0.1] along [1.0, 0.0] ~ ground.O along b.u { viscous: 2.0 };").unwrap();
+        let item: Item =
+            syn::parse_str("translational slide: a[0.0, 0.1] along [1.0, 0.0] ~ ground.O along b.u { viscous: 2.0 };").unwrap();
         let Item::Joint(j) = item else { panic!("not a joint") };
         assert_eq!(j.kind, "translational");
         assert_eq!(j.label.as_ref().map(|l| l.to_string()).as_deref(), Some("slide"));

@@ -195,7 +195,6 @@ impl Schur {
         }
         quote!(#(#stmts)*)
     }
-
 }
 
 /// Minimum-degree ordering of a graph given by adjacency sets (exact elimination-graph degrees;

@@ -363,12 +363,7 @@ impl Graph {
     /// `seed(v)` (an existing node id, or `None` for 0). With `seed = [v ↦ 1]` this is the partial
     /// derivative ∂root/∂v; with `seed(q_i) = q̇_i`, `seed(t) = 1` it is the total time
     /// derivative with q̈ = 0. `memo` caches results per node for this seed only.
-    pub fn directional(
-        &mut self,
-        root: Id,
-        seed: &dyn Fn(Var) -> Option<Id>,
-        memo: &mut HashMap<Id, Id>,
-    ) -> Id {
+    pub fn directional(&mut self, root: Id, seed: &dyn Fn(Var) -> Option<Id>, memo: &mut HashMap<Id, Id>) -> Id {
         if let Some(&d) = memo.get(&root) {
             return d;
         }
@@ -399,9 +394,7 @@ impl Graph {
         match self.node(id) {
             Node::Const(_) | Node::Var(_) => [None, None],
             Node::Neg(a) | Node::PowI(a, _) | Node::Call(_, a) => [Some(a), None],
-            Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Pow(a, b) | Node::Atan2(a, b) => {
-                [Some(a), Some(b)]
-            }
+            Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Pow(a, b) | Node::Atan2(a, b) => [Some(a), Some(b)],
         }
     }
 
@@ -638,11 +631,7 @@ mod tests {
                 b[k] -= h;
                 let fd = (g.eval(f, &env(&a)) - g.eval(f, &env(&b))) / (2.0 * h);
                 let exact = g.eval(dk, &env(&p));
-                assert!(
-                    (fd - exact).abs() <= 1e-7 * exact.abs().max(1.0),
-                    "d/d{:?}: exact {exact}, central difference {fd}",
-                    vars[k]
-                );
+                assert!((fd - exact).abs() <= 1e-7 * exact.abs().max(1.0), "d/d{:?}: exact {exact}, central difference {fd}", vars[k]);
             }
         }
     }

@@ -19,7 +19,14 @@ pub struct Drive {
     pub f: MExpr,
 }
 
-pub fn resolve<'a>(r: &mut Resolver, d: &'a DriveDef, body: &Ident, coordinate: &Ident, f: Option<MExpr>, driven: &mut Driven) -> Option<Resolved<'a>> {
+pub fn resolve<'a>(
+    r: &mut Resolver,
+    d: &'a DriveDef,
+    body: &Ident,
+    coordinate: &Ident,
+    f: Option<MExpr>,
+    driven: &mut Driven,
+) -> Option<Resolved<'a>> {
     let b = r.body(body);
     let coord = Coord::from_ident(coordinate);
     if coord.is_none() {

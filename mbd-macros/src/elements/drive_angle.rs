@@ -32,7 +32,13 @@ pub fn resolve<'a>(r: &mut Resolver, d: &'a DriveDef, i: &Ident, j: &Ident, f: O
                 return None;
             }
             let f = f?;
-            Some((d.label.as_ref(), format!("drive angle {i}~{j}"), d.keyword.span(), Box::new(DriveAngle { i: bi, j: bj, f }) as Box<dyn Joint>, Vec::new()))
+            Some((
+                d.label.as_ref(),
+                format!("drive angle {i}~{j}"),
+                d.keyword.span(),
+                Box::new(DriveAngle { i: bi, j: bj, f }) as Box<dyn Joint>,
+                Vec::new(),
+            ))
         }
         _ => None,
     }

@@ -18,7 +18,13 @@ pub struct DriveDistance {
     pub f: MExpr,
 }
 
-pub fn resolve<'a>(r: &mut Resolver, d: &'a DriveDef, i: &(Ident, PointRef), j: &(Ident, PointRef), f: Option<MExpr>) -> Option<Resolved<'a>> {
+pub fn resolve<'a>(
+    r: &mut Resolver,
+    d: &'a DriveDef,
+    i: &(Ident, PointRef),
+    j: &(Ident, PointRef),
+    f: Option<MExpr>,
+) -> Option<Resolved<'a>> {
     let li = r.loc(&i.0, &i.1);
     let lj = r.loc(&j.0, &j.1);
     match (li, lj, f) {

@@ -80,13 +80,7 @@ pub struct JointSpec {
 }
 
 /// Every kind with the shape `keyword Pi [along ui] ~ Pj [along uj] { options };`.
-pub const JOINTS: &[JointSpec] = &[
-    revolute::SPEC,
-    translational::SPEC,
-    revolute_revolute::SPEC,
-    revolute_translational::SPEC,
-    rigid::SPEC,
-];
+pub const JOINTS: &[JointSpec] = &[revolute::SPEC, translational::SPEC, revolute_revolute::SPEC, revolute_translational::SPEC, rigid::SPEC];
 
 pub fn spec(keyword: &str) -> Option<&'static JointSpec> {
     JOINTS.iter().find(|s| s.keyword == keyword)
@@ -98,7 +92,12 @@ pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<(&
 
 /// Resolves a two-attachment joint statement: its points, axes and options, then its kind's
 /// `build` and the joint friction its options ask for.
-pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(BodyRef) -> String, joint_index: usize) -> Option<Resolved<'a>> {
+pub fn resolve<'a>(
+    r: &mut Resolver,
+    j: &'a parse::JointDef,
+    body_name: &dyn Fn(BodyRef) -> String,
+    joint_index: usize,
+) -> Option<Resolved<'a>> {
     let kind = j.kind.to_string();
     let Some(spec) = spec(&kind) else {
         r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`"));
@@ -115,7 +114,10 @@ pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(
         match (&side.along, needed) {
             (Some(a), true) => r.axis(body, &a.axis).map(Some),
             (None, true) => {
-                r.errors.push(side.body.span(), format!("a {kind} joint needs a sliding axis on its {which} body: `{}.P along [x, y]`", side.body));
+                r.errors.push(
+                    side.body.span(),
+                    format!("a {kind} joint needs a sliding axis on its {which} body: `{}.P along [x, y]`", side.body),
+                );
                 None
             }
             (Some(a), false) => {
@@ -132,7 +134,11 @@ pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(
     for f in &j.options {
         let key = f.name.to_string();
         let Some(&(_, positive)) = spec.options.iter().find(|(n, _)| *n == key) else {
-            let list = if spec.options.is_empty() { "none".to_string() } else { spec.options.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
+            let list = if spec.options.is_empty() {
+                "none".to_string()
+            } else {
+                spec.options.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+            };
             r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
             bad = true;
             continue;

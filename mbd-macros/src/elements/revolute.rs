@@ -13,7 +13,12 @@ pub const SPEC: JointSpec = JointSpec {
     keyword: "revolute",
     axis_i: false,
     axis_j: false,
-    options: &[("viscous", None), ("coulomb", None), ("radius", Some("a pin radius")), ("slip_velocity", Some("the slip velocity of Coulomb friction"))],
+    options: &[
+        ("viscous", None),
+        ("coulomb", None),
+        ("radius", Some("a pin radius")),
+        ("slip_velocity", Some("the slip velocity of Coulomb friction")),
+    ],
     build: |p: Parts| Ok(Box::new(Revolute { i: p.i, j: p.j })),
 };
 

@@ -43,15 +43,23 @@ pub fn from_joint_options(
         Some(mu) => {
             let slip = slip.unwrap_or(MExpr::Num(1e-3));
             let element: Box<dyn Force> = match (axis_i, radius) {
-                (Some(axis_i), _) => Box::new(TranslationalCoulomb { i: i.clone(), axis_i: axis_i.clone(), j: j.clone(), mu, slip, bearing, joint }),
+                (Some(axis_i), _) => {
+                    Box::new(TranslationalCoulomb { i: i.clone(), axis_i: axis_i.clone(), j: j.clone(), mu, slip, bearing, joint })
+                }
                 (None, Some(radius)) => Box::new(RevoluteCoulomb { i: i.body, j: j.body, mu, radius, slip, joint }),
-                (None, None) => return Err("Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)".to_string()),
+                (None, None) => {
+                    return Err(
+                        "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)".to_string()
+                    )
+                }
             };
             out.push(("Coulomb friction", element));
         }
         None => {
             if slip.is_some() || radius.is_some() || bearing.is_some() {
-                return Err("`radius`, `slip_velocity` and `bearing` describe Coulomb friction: give the {kind} joint `coulomb: μ` too".to_string());
+                return Err(
+                    "`radius`, `slip_velocity` and `bearing` describe Coulomb friction: give the {kind} joint `coulomb: μ` too".to_string()
+                );
             }
         }
     }

@@ -52,7 +52,15 @@ pub struct ForceElement {
 impl Builder<'_> {
     /// k (x − x0) + c ẋ + extra, each term only when declared; also (k, x − x0) when there is a
     /// spring, for its energy.
-    pub fn law(&mut self, x: Id, xdot: Id, k: &Option<MExpr>, x0: &MExpr, c: &Option<MExpr>, extra: &Option<MExpr>) -> (Id, Option<(Id, Id)>) {
+    pub fn law(
+        &mut self,
+        x: Id,
+        xdot: Id,
+        k: &Option<MExpr>,
+        x0: &MExpr,
+        c: &Option<MExpr>,
+        extra: &Option<MExpr>,
+    ) -> (Id, Option<(Id, Id)>) {
         let mut f = self.g.num(0.0);
         let mut spring = None;
         if let Some(k) = k {
