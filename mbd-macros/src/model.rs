@@ -324,11 +324,7 @@ impl Resolver<'_> {
                     );
                     return None;
                 }
-                let allowed = match (position, scope) {
-                    (Some(_), Scope::State | Scope::Force) => true,
-                    (None, Scope::Force) => true,
-                    _ => false,
-                };
+                let allowed = matches!((position, scope), (Some(_), Scope::State | Scope::Force) | (None, Scope::Force));
                 if !allowed {
                     let what = if position.is_some() { "coordinate" } else { "velocity" };
                     self.errors.at_expr(e, format!("{what} `{b}.{c}` is not allowed here: {}", scope.describe()));
@@ -476,6 +472,7 @@ fn claim_name(
 /// at run time by the solver that needs it).
 pub fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
     if let Some(v) = e.constant_value() {
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN is not positive either
         if !(v > 0.0) {
             errors.at_expr(written, format!("{what} must be positive, found {v}"));
         }

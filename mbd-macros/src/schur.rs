@@ -19,6 +19,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+/// The terms of one entry of S: (index into jv of D_ic, index into jv of D_jc, c).
+type Terms = Vec<(usize, usize, usize)>;
+
 /// The compile-time plan of the sparse LDLᵀ of S.
 pub struct Schur {
     nc: usize,
@@ -26,7 +29,7 @@ pub struct Schur {
     order: Vec<usize>,
     /// Structural non-zeros of S as (i, j, terms) with i ≥ j in row indices of Φ; terms are
     /// (index into jv of D_ic, index into jv of D_jc, c).
-    s: BTreeMap<(usize, usize), Vec<(usize, usize, usize)>>,
+    s: BTreeMap<(usize, usize), Terms>,
     /// Structural non-zeros of L below the diagonal as (row position, column position), mapped
     /// to their index in the `l` array. Positions are in elimination order.
     l: BTreeMap<(usize, usize), usize>,
@@ -44,7 +47,7 @@ impl Schur {
         for (k, &(r, c)) in pattern.iter().enumerate() {
             columns.entry(c).or_default().push((r, k));
         }
-        let mut s: BTreeMap<(usize, usize), Vec<(usize, usize, usize)>> = BTreeMap::new();
+        let mut s: BTreeMap<(usize, usize), Terms> = BTreeMap::new();
         for (&c, entries) in &columns {
             for &(ri, ki) in entries {
                 for &(rj, kj) in entries {

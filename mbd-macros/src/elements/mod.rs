@@ -67,6 +67,9 @@ pub struct Parts {
     pub keyword: Ident,
 }
 
+/// A user's mistake: where, and what to say.
+pub type Mistake = (Span, String);
+
 /// A two-attachment joint kind: its keyword, which sides take an axis, its options and how it is
 /// built from its resolved parts.
 pub struct JointSpec {
@@ -76,7 +79,7 @@ pub struct JointSpec {
     /// Option names, each with "what must be positive" when it must be.
     pub options: &'static [(&'static str, Option<&'static str>)],
     /// The kind from its parts; `Err((span, message))` for a mistake.
-    pub build: fn(Parts) -> Result<Box<dyn Joint>, (Span, String)>,
+    pub build: fn(Parts) -> Result<Box<dyn Joint>, Mistake>,
 }
 
 /// Every kind with the shape `keyword Pi [along ui] ~ Pj [along uj] { options };`.
@@ -88,7 +91,10 @@ pub fn spec(keyword: &str) -> Option<&'static JointSpec> {
 
 /// A joint statement, resolved and validated: its label, default name, keyword span, kind and
 /// the friction forces its options declare.
-pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<(&'static str, Box<dyn Force>)>);
+pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<Named>);
+
+/// A force element with the word that names it after its joint (`"viscous friction"`).
+pub type Named = (&'static str, Box<dyn Force>);
 
 /// Resolves a two-attachment joint statement: its points, axes and options, then its kind's
 /// `build` and the joint friction its options ask for.

@@ -21,7 +21,7 @@ pub fn resolve<'a>(r: &mut Resolver, c: &'a ConstraintDef, index: usize) -> Opti
     let rhs = r.expr(&c.rhs, Scope::State);
     let (l, rh) = (lhs?, rhs?);
     let expr = match rh.constant_value() {
-        Some(v) if v == 0.0 => l,
+        Some(0.0) => l,
         _ => MExpr::Bin(MBin::Sub, Box::new(l), Box::new(rh)),
     };
     Some((c.label.as_ref(), format!("constraint {index}"), c.keyword.span(), Box::new(User { expr }) as Box<dyn Joint>, Vec::new()))

@@ -14,6 +14,7 @@ use std::collections::HashMap;
 use serde_json::{json, Value};
 
 use super::{Force, Generalized};
+use crate::elements::Named;
 use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr};
@@ -27,8 +28,8 @@ pub fn from_joint_options(
     axis_i: Option<&[MExpr; 2]>,
     j: &Loc,
     joint: usize,
-) -> Result<Vec<(&'static str, Box<dyn Force>)>, String> {
-    let mut out: Vec<(&'static str, Box<dyn Force>)> = Vec::new();
+) -> Result<Vec<Named>, String> {
+    let mut out: Vec<Named> = Vec::new();
     if let Some(c) = options.remove("viscous") {
         let element: Box<dyn Force> = match axis_i {
             Some(axis_i) => Box::new(TranslationalViscous { i: i.clone(), axis_i: axis_i.clone(), j: j.clone(), c }),
