@@ -11,6 +11,7 @@ pub struct SliderCrank {
     ///Parameter `l` (default 0.3).
     pub l: f64,
 }
+#[allow(clippy::approx_constant)]
 impl ::core::default::Default for SliderCrank {
     fn default() -> Self {
         Self {

@@ -238,6 +238,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             #( #[doc = #param_docs] pub #params: #real, )*
         }
 
+        // The defaults are the user's expressions evaluated (`2.0 * PI` → 6.283185307179586), not
+        // hand-typed approximations of a constant.
+        #[allow(clippy::approx_constant)]
         impl ::core::default::Default for #name {
             fn default() -> Self {
                 Self { #( #params: #defaults, )* }
