@@ -13,11 +13,13 @@
 //! `tests/oracle/ensure_env.sh` under `target/oracle-venv`. A missing Python or CasADi is a
 //! failure of this test, never a skip.
 mod common;
+mod oracle_env;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::Rng;
+use oracle_env::{python, repo};
 
 /// The benchmarks' 16-link chain: checked by the oracle too, and its samples file feeds the
 /// CasADi C code generation of the side-by-side benchmark (`mbd-bench`).
@@ -97,24 +99,6 @@ mbd::mechanism! {
 }
 
 const SAMPLES: usize = 200;
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The oracle's Python interpreter, installing the pinned environment on first use.
-fn python() -> PathBuf {
-    let out = Command::new("bash").arg(repo().join("tests/oracle/ensure_env.sh")).output().expect("bash runs");
-    assert!(
-        out.status.success(),
-        "the CasADi oracle's Python environment could not be set up (Python 3 with venv and pip is required):\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let last = stdout.lines().rev().find(|l| !l.trim().is_empty()).expect("ensure_env.sh prints the interpreter's path");
-    PathBuf::from(last.trim())
-}
 
 /// Runs the oracle's Python module `module` with `args`; returns (success, stdout + stderr).
 fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {

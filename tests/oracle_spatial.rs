@@ -15,33 +15,11 @@
 //! The Python environment (pinned CasADi and NumPy) comes from `tests/oracle/ensure_env.sh`, as
 //! for `tests/oracle.rs`. A missing Python or CasADi, or a non-zero exit, fails this test: it
 //! never skips.
-use std::path::PathBuf;
+mod oracle_env;
+
 use std::process::Command;
-use std::sync::OnceLock;
 
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The oracle's Python interpreter, installing the pinned environment on first use (once: the
-/// tests of this file run in parallel and must not both create the environment).
-fn python() -> PathBuf {
-    static PYTHON: OnceLock<PathBuf> = OnceLock::new();
-    PYTHON.get_or_init(ensure_env).clone()
-}
-
-fn ensure_env() -> PathBuf {
-    let out = Command::new("bash").arg(repo().join("tests/oracle/ensure_env.sh")).output().expect("bash runs");
-    assert!(
-        out.status.success(),
-        "the CasADi oracle's Python environment could not be set up (Python 3 with venv and pip is required):\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let last = stdout.lines().rev().find(|l| !l.trim().is_empty()).expect("ensure_env.sh prints the interpreter's path");
-    PathBuf::from(last.trim())
-}
+use oracle_env::{python, repo};
 
 /// Runs `python -m <args>` in `tests/oracle`; returns (success, stdout + stderr).
 fn oracle(args: &[&str]) -> (bool, String) {

@@ -10,6 +10,37 @@ import math
 import casadi as ca
 
 
+_BINARY = {"add": lambda x, y: x + y, "sub": lambda x, y: x - y, "mul": lambda x, y: x * y,
+           "div": lambda x, y: x / y, "pow": lambda x, y: x ** y, "atan2": ca.atan2}
+_UNARY = {"neg": lambda x: -x, "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "asin": ca.asin,
+          "acos": ca.acos, "atan": ca.atan, "sqrt": ca.sqrt, "exp": ca.exp, "ln": ca.log}
+
+
+def expression(model, e):
+    """An expression tree (docs/formulation.md) as CasADi SX, for a planar or spatial rebuild:
+    `model` supplies t, p, param_names, name, and coord(body, c) / velocity(body, c) in its own
+    coordinate names."""
+    op = e[0]
+    if op == "num":
+        return ca.SX(e[1])
+    if op == "pi":
+        return ca.SX(math.pi)
+    if op == "t":
+        return model.t
+    if op == "param":
+        return model.p[model.param_names.index(e[1])]
+    if op == "coord":
+        return model.coord(e[1], e[2])
+    if op == "vel":
+        return model.velocity(e[1], e[2])
+    a = [expression(model, x) for x in e[1:]]
+    if op in _BINARY:
+        return _BINARY[op](a[0], a[1])
+    if op in _UNARY:
+        return _UNARY[op](a[0])
+    raise ValueError(f"{model.name}: unknown expression node {op!r}")
+
+
 class Model:
     """The symbolic equations of one mechanism.
 
@@ -51,29 +82,7 @@ class Model:
     # --- expressions -----------------------------------------------------------------------
     def expr(self, e):
         """An expression tree (docs/formulation.md) as CasADi SX."""
-        op = e[0]
-        if op == "num":
-            return ca.SX(e[1])
-        if op == "pi":
-            return ca.SX(math.pi)
-        if op == "t":
-            return self.t
-        if op == "param":
-            return self.p[self.param_names.index(e[1])]
-        if op == "coord":
-            return self.coord(e[1], e[2])
-        if op == "vel":
-            return self.velocity(e[1], e[2])
-        a = [self.expr(x) for x in e[1:]]
-        binary = {"add": lambda x, y: x + y, "sub": lambda x, y: x - y, "mul": lambda x, y: x * y,
-                  "div": lambda x, y: x / y, "pow": lambda x, y: x ** y, "atan2": ca.atan2}
-        unary = {"neg": lambda x: -x, "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "asin": ca.asin,
-                 "acos": ca.acos, "atan": ca.atan, "sqrt": ca.sqrt, "exp": ca.exp, "ln": ca.log}
-        if op in binary:
-            return binary[op](a[0], a[1])
-        if op in unary:
-            return unary[op](a[0])
-        raise ValueError(f"unknown expression node {op!r}")
+        return expression(self, e)
 
     # --- kinematics of body-fixed points and vectors ---------------------------------------------
     COORDS = {"x": 0, "y": 1, "phi": 2}

@@ -21,12 +21,11 @@ frame), t, p (the parameters, model order) and lam (one per constraint row).
 Every CasADi Function takes (q, v, t, p) (and lam where it says so).
 """
 
-import math
-
 import casadi as ca
 import numpy as np
 
 from .dynamics import solve_friction_fixed_point
+from .model import expression
 
 COORDS = ("x", "y", "z", "e0", "e1", "e2", "e3")
 VELS = ("vx", "vy", "vz", "wx", "wy", "wz")
@@ -198,29 +197,7 @@ class Spatial:
     # --- expressions -----------------------------------------------------------------------
     def expr(self, e):
         """An expression tree (docs/formulation.md) as CasADi SX; coord/vel use spatial names."""
-        op = e[0]
-        if op == "num":
-            return ca.SX(e[1])
-        if op == "pi":
-            return ca.SX(math.pi)
-        if op == "t":
-            return self.t
-        if op == "param":
-            return self.p[self.param_names.index(e[1])]
-        if op == "coord":
-            return self.coord(e[1], e[2])
-        if op == "vel":
-            return self.velocity(e[1], e[2])
-        a = [self.expr(x) for x in e[1:]]
-        binary = {"add": lambda x, y: x + y, "sub": lambda x, y: x - y, "mul": lambda x, y: x * y,
-                  "div": lambda x, y: x / y, "pow": lambda x, y: x ** y, "atan2": ca.atan2}
-        unary = {"neg": lambda x: -x, "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "asin": ca.asin,
-                 "acos": ca.acos, "atan": ca.atan, "sqrt": ca.sqrt, "exp": ca.exp, "ln": ca.log}
-        if op in binary:
-            return binary[op](a[0], a[1])
-        if op in unary:
-            return unary[op](a[0])
-        raise ValueError(f"{self.name}: unknown expression node {op!r}")
+        return expression(self, e)
 
     def opt(self, e):
         """An optional expression (null: 0)."""
