@@ -42,6 +42,9 @@ pub trait Force: Debug {
     fn json(&self, cx: &Ctx) -> Value;
 }
 
+/// A resolved force statement: label, default name, keyword span, element.
+pub type Resolved<'a> = (Option<&'a syn::Ident>, String, proc_macro2::Span, Box<dyn Force>);
+
 /// A validated force element with its name.
 pub struct ForceElement {
     /// `"spring crank~rod"`, or the user's label.

@@ -2,11 +2,9 @@
 //! spring-damper-actuator (Nikravesh 4.2.1): tension f = k (l − length) + c l̇ + force along the
 //! line between the points, pulling them together; Q = −f (∂l̇/∂v)ᵀ, V = ½ k (l − length)².
 
-use proc_macro2::Span;
 use serde_json::{json, Value};
-use syn::Ident;
 
-use super::{Force, Generalized};
+use super::{Force, Generalized, Resolved};
 use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr, Resolver, Scope};
@@ -22,9 +20,6 @@ pub struct PointToPoint {
     pub c: Option<MExpr>,
     pub force: Option<MExpr>,
 }
-
-/// A resolved force statement: label, default name, keyword span, element.
-pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Force>);
 
 pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
     let kind = f.kind.to_string();

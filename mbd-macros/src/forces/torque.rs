@@ -3,8 +3,7 @@
 
 use serde_json::{json, Value};
 
-use super::point_to_point::Resolved;
-use super::{Force, Generalized};
+use super::{Force, Generalized, Resolved};
 use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr, Resolver, Scope};
