@@ -70,6 +70,9 @@ fn matrix_outputs(name: &str, entries: &[(usize, usize, u32)]) -> Vec<Output> {
 
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
+    if m.space == crate::model::Space::Spatial {
+        return Err(syn::Error::new(m.name.span(), "spatial mechanisms are validated and formulated, but their code is not generated yet"));
+    }
     let f = formulate(m);
     emit::check_finite(&f, m.name.span())?;
     let e: Emitter = emit::emitter(m, &f);

@@ -1,20 +1,25 @@
-//! Stage 3: validated model → symbolic equations in planar body coordinates (docs/formulation.md).
+//! Stage 3: validated model → symbolic equations (docs/formulation.md), in the model's
+//! formulation (`frames::Coordinates`: planar or spatial body coordinates).
 //!
-//! Body k owns `q[3k..3k+3] = (x, y, φ)`. This stage writes Φ(q, t) row by row into one shared
-//! [`Graph`] and derives from it, exactly: the sparse Jacobian Φ_q, Φ_t, ν = −Φ_t and
-//! γ = −𝒟(𝒟Φ) with 𝒟f = f_q q̇ + f_t (a directional derivative taken twice; no Hessian is formed).
+//! This stage writes Φ(q, t) row by row into one shared [`Graph`] and derives from it, exactly
+//! and in velocity space (q̇ = B(q) v; B = I in the plane): the sparse D = Φ_q B, Φ_t,
+//! ν = −Φ_t and γ = −𝒟(𝒟Φ) with 𝒟f = f_q B v + f_t (a directional derivative taken twice; no
+//! Hessian is formed); M; h and its derivatives (∂h/∂q) B and ∂h/∂v.
 
 use std::collections::{BTreeSet, HashMap};
 
 use crate::forces::{gravity, Generalized};
-use crate::frames::{collect_vars, Builder};
-use crate::model::Model;
+use crate::frames::{collect_vars, Builder, Coordinates};
+use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
 /// The symbolic equations of one mechanism.
+#[allow(dead_code)] // TEMPORARY: `nv` and `mass_coupling` are read by the spatial emission, next
 pub struct Formulation {
     pub graph: Graph,
     pub nq: usize,
+    /// Velocities (NV = NQ for planar bodies, 6 per body in space).
+    pub nv: usize,
     pub nc: usize,
     /// Constraint row names, `"revolute crank~rod: x"`, in the order of Φ.
     pub row_names: Vec<String>,
@@ -22,17 +27,21 @@ pub struct Formulation {
     pub first_rows: Vec<usize>,
     /// Φ, one node per row.
     pub phi: Vec<Id>,
-    /// Structurally non-zero entries of Φ_q as (row, column, node), row-major.
+    /// Structurally non-zero entries of D = Φ_q B as (row, velocity, node), row-major.
     pub jacobian: Vec<(usize, usize, Id)>,
     /// ν = −Φ_t, one node per row.
     pub nu: Vec<Id>,
     /// γ, one node per row.
     pub gamma: Vec<Id>,
-    /// Initial guesses of q and q̇ (functions of the parameters).
+    /// Initial guesses of q and v (functions of the parameters).
     pub q0: Vec<Id>,
     pub qd0: Vec<Id>,
-    /// Diagonal of the mass matrix: (m, m, J) per body.
+    /// Diagonal of the mass matrix: (m, m, J) per planar body, (m, m, m, J′xx, J′yy, J′zz) per
+    /// spatial body.
     pub mass: Vec<Id>,
+    /// M's off-diagonal structural non-zeros (products of inertia) as (row, column, node), both
+    /// triangles; empty in the plane.
+    pub mass_coupling: Vec<(usize, usize, Id)>,
     /// h(q, q̇, t), one node per coordinate.
     pub h: Vec<Id>,
     /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
@@ -65,7 +74,7 @@ impl Formulation {
 /// Derives the symbolic equations of a model.
 pub fn formulate(model: &Model) -> Formulation {
     let mut b = Builder::new(model);
-    let nq = b.nq();
+    let (nq, nv) = (b.nq(), b.nv());
     let mut phi = Vec::new();
     let mut row_names = Vec::new();
     for c in &model.constraints {
@@ -76,19 +85,47 @@ pub fn formulate(model: &Model) -> Formulation {
         }
     }
     let mut q0 = Vec::with_capacity(nq);
-    let mut qd0 = Vec::with_capacity(nq);
-    let mut mass = Vec::with_capacity(nq);
-    for body in &model.bodies {
-        for k in 0..3 {
-            q0.push(b.expr(&body.q0[k]));
-            qd0.push(b.expr(&body.qd0[k]));
+    let mut qd0 = Vec::with_capacity(nv);
+    let mut mass = Vec::with_capacity(nv);
+    let mut mass_coupling = Vec::new();
+    for (k, body) in model.bodies.iter().enumerate() {
+        if model.space == crate::model::Space::Planar {
+            for c in 0..3 {
+                q0.push(b.expr(&body.q0[c]));
+                qd0.push(b.expr(&body.v0[c]));
+            }
+        } else {
+            q0.extend(body.q0.iter().map(|e| b.expr(e)));
+            qd0.extend(body.v0.iter().map(|e| b.expr(e)));
         }
         let m = b.expr(&body.mass);
-        let j = b.expr(&body.inertia);
-        mass.extend([m, m, j]);
+        match &body.inertia {
+            Inertia::Planar(j) => {
+                let j = b.expr(j);
+                mass.extend([m, m, j]);
+            }
+            Inertia::Tensor(t) => {
+                mass.extend([m, m, m]);
+                let base = 6 * k + 3;
+                for (r, row) in t.iter().enumerate() {
+                    mass.push(b.expr(&row[r]));
+                }
+                for (r, row) in t.iter().enumerate() {
+                    for (c, entry) in row.iter().enumerate() {
+                        let e = b.expr(entry);
+                        if r != c && !b.g.is_zero(e) {
+                            mass_coupling.push((base + r, base + c, e));
+                        }
+                    }
+                }
+            }
+        }
     }
     let zero = b.g.num(0.0);
-    let mut out = Generalized { h: vec![zero; nq], friction: vec![zero; nq], potential: zero };
+    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero };
+    if b.coordinates == Coordinates::SpatialBody {
+        gyroscopic(&mut b, &mut out.h);
+    }
     if let Some(g) = &model.gravity {
         gravity::apply(&mut b, g, &mut out);
     }
@@ -107,17 +144,17 @@ pub fn formulate(model: &Model) -> Formulation {
         power = b.g.add(power, p);
     }
     let first_rows = std::mem::take(&mut b.first_rows);
-    let mut g = b.g;
-    let h_q = sparse_derivative(&mut g, &h, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
-    let h_qd = sparse_derivative(&mut g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
-    let friction_q = sparse_derivative(&mut g, &friction, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
-    let friction_qd = sparse_derivative(&mut g, &friction, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let h_q = tangent(&mut b, &h);
+    let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let friction_q = tangent(&mut b, &friction);
+    let friction_qd = sparse_derivative(&mut b.g, &friction, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
 
-    // Φ_q: differentiate each row only by the coordinates it contains; every other entry is a
-    // structural zero.
-    let jacobian = sparse_derivative(&mut g, &phi, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
+    // D = Φ_q B: differentiate each row only by the coordinates it contains; every other entry
+    // is a structural zero.
+    let jacobian = tangent(&mut b, &phi);
 
     // ν = −Φ_t
+    let g = &mut b.g;
     let mut memo_t = HashMap::new();
     let nu: Vec<Id> = phi
         .iter()
@@ -127,11 +164,13 @@ pub fn formulate(model: &Model) -> Formulation {
         })
         .collect();
 
-    // γ = −𝒟(𝒟Φ), 𝒟 the total time derivative with q̈ = 0: one seed, one memo for all rows.
-    let qd: Vec<Id> = (0..nq).map(|i| g.var(Var::Qd(i as u16))).collect();
+    // γ = −𝒟(𝒟Φ), 𝒟 the total time derivative with v̇ = 0 along q̇ = B(q) v (the rates' nodes
+    // read q and v): one seed, one memo for all rows.
+    let rates = b.coordinate_rates();
+    let g = &mut b.g;
     let one = g.num(1.0);
     let seed = |v: Var| match v {
-        Var::Q(i) => Some(qd[i as usize]),
+        Var::Q(i) => Some(rates[i as usize]),
         Var::T => Some(one),
         Var::Qd(_) | Var::Param(_) | Var::Lambda(_) => None,
     };
@@ -145,22 +184,23 @@ pub fn formulate(model: &Model) -> Formulation {
         })
         .collect();
 
-    // (Φ_qᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q.
-    let zero = g.num(0.0);
-    let mut constraint_force = vec![zero; nq];
+    // (Dᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q along B.
+    let zero = b.g.num(0.0);
+    let mut constraint_force = vec![zero; nv];
     for &(r, c, d) in &jacobian {
-        let l = g.var(Var::Lambda(r as u16));
-        let term = g.mul(l, d);
-        constraint_force[c] = g.add(constraint_force[c], term);
+        let l = b.g.var(Var::Lambda(r as u16));
+        let term = b.g.mul(l, d);
+        constraint_force[c] = b.g.add(constraint_force[c], term);
     }
-    let constraint_force_q = sparse_derivative(&mut g, &constraint_force, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q);
+    let constraint_force_q = tangent(&mut b, &constraint_force);
 
     Formulation {
         nc: phi.len(),
         row_names,
         first_rows,
-        graph: g,
+        graph: b.g,
         nq,
+        nv,
         phi,
         jacobian,
         nu,
@@ -168,6 +208,7 @@ pub fn formulate(model: &Model) -> Formulation {
         q0,
         qd0,
         mass,
+        mass_coupling,
         h,
         h_q,
         h_qd,
@@ -177,6 +218,33 @@ pub fn formulate(model: &Model) -> Formulation {
         friction_q,
         friction_qd,
         constraint_force_q,
+    }
+}
+
+/// The structural non-zeros of (∂rows/∂q) B, the derivative along the velocity map: plain
+/// ∂/∂q in the plane.
+fn tangent(b: &mut Builder, rows: &[Id]) -> Vec<(usize, usize, Id)> {
+    match b.coordinates {
+        Coordinates::PlanarBody => sparse_derivative(&mut b.g, rows, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q),
+        Coordinates::SpatialBody => {
+            rows.iter().enumerate().flat_map(|(r, &row)| b.gradient(row).into_iter().map(move |(c, d)| (r, c, d))).collect::<Vec<_>>()
+        }
+    }
+}
+
+/// The gyroscopic term of each spatial body, −ω′ × J′ω′, into h's ω′ rows (Newton–Euler).
+fn gyroscopic(b: &mut Builder, h: &mut [Id]) {
+    for (k, body) in b.model.bodies.iter().enumerate() {
+        let Inertia::Tensor(t) = &body.inertia else { continue };
+        let w = b.angular_velocity(crate::model::BodyRef::Body(k));
+        let jw: [Id; 3] = std::array::from_fn(|r| {
+            let row = [0, 1, 2].map(|c| b.expr(&t[r][c]));
+            b.dot(&row, &w)
+        });
+        let wjw = b.cross(w, jw);
+        for a in 0..3 {
+            h[6 * k + 3 + a] = b.g.sub(h[6 * k + 3 + a], wjw[a]);
+        }
     }
 }
 
@@ -265,5 +333,109 @@ mod tests {
         let (_, f) = formulated(PENDULUM);
         let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
         assert_eq!(pattern, [(0, 0), (0, 2), (1, 1), (1, 2), (2, 2)]);
+    }
+
+    const SPATIAL: &str = "S { spatial; params { k: 30.0 } gravity [0.0, 0.0, -9.81];
+        body a { mass: 1.0, inertia: [0.1, 0.2, 0.3], at: [0.1, 0.2, 0.3], angles: [0.3, 0.2, 0.1] }
+        body b { mass: 2.0, inertia: [0.2, 0.25, 0.1, 0.01, 0.0, 0.02], at: [0.5, 0.1, 0.2], velocity: [0.1, 0.0, 0.0] }
+        revolute hinge: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ a[0.1, 0.0, 0.0] along [0.0, 0.3, 1.0] { viscous: 0.2 };
+        universal a[0.2, 0.1, 0.0] along [1.0, 0.0, 0.0] ~ b[0.0, 0.0, 0.1] along [0.0, 1.0, 0.0];
+        cylindrical a[0.0, 0.0, 0.0] along [0.0, 1.0, 0.0] ~ b[0.0, 0.0, 0.0] along [0.0, 1.0, 0.1];
+        translational slide: a[0.0, 0.1, 0.0] along [1.0, 0.0, 0.0] reference [0.0, 1.0, 1.0] ~ b[0.1, 0.0, 0.0] along [1.0, 0.2, 0.0];
+        planar ground[0.0, 0.0, 1.0] along [0.0, 0.0, 1.0] ~ b[0.0, 0.2, 0.0] along [0.0, 1.0, 1.0];
+        rigid a[0.0, 0.0, 0.0] ~ b[0.1, 0.1, 0.1];
+        point_on_line ground[0.0, 0.0, 0.0] along [1.0, 1.0, 0.0] ~ b[0.0, 0.0, 0.2];
+        point_on_plane a[0.1, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ b[0.0, 0.0, 0.0] { distance: 0.1 };
+        distance ground[0.0, 1.0, 0.0] ~ a[0.0, 0.0, 0.3] { length: 0.8 };
+        drive hinge.angle = 0.5 * t + 0.2 * t^2; drive slide.stroke = sin(t); drive b.z = 0.1 * t;
+        constraint a.x * b.e1 = 0.1 * t;
+        spring a[0.0, 0.0, 0.0] ~ b[0.1, 0.0, 0.0] { k: k, length: 0.2, c: 1.0 };
+        bushing a[0.0, 0.1, 0.0] ~ b[0.0, 0.0, 0.0] { k: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], c: [0.1, 0.2, 0.3, 0.4, 0.5, 0.6] };
+        rotational_spring hinge { k: 3.0, angle: 0.1, c: 0.2, torque: 0.1 * b.wz };
+        torque a = [0.1, 0.2 * a.wx, 0.3]; local_torque b = [0.0, 0.1, t];
+        force b[0.0, 0.1, 0.0] = [1.0, 0.0, b.vz]; local_force a[0.1, 0.0, 0.0] = [0.0, 2.0, 0.0]; }";
+
+    /// q̇ = B(q) v per spatial body: ṙ = v_r, ṗ = ½ Lᵀ(p) ω′.
+    fn spatial_rates(q: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut out = Vec::new();
+        for k in 0..q.len() / 7 {
+            let (p, w) = (&q[7 * k + 3..7 * k + 7], &v[6 * k + 3..6 * k + 6]);
+            out.extend_from_slice(&v[6 * k..6 * k + 3]);
+            let lt = [[-p[1], -p[2], -p[3]], [p[0], -p[3], p[2]], [p[3], p[0], -p[1]], [-p[2], p[1], p[0]]];
+            out.extend(lt.iter().map(|row| 0.5 * (row[0] * w[0] + row[1] * w[1] + row[2] * w[2])));
+        }
+        out
+    }
+
+    /// Every spatial kind at once, at a state off the constraints (random-ish unit p): D v, γ,
+    /// (∂h/∂q) B and ∂h/∂v against central differences along the straight line q + ε B(q) v,
+    /// on which d/dε f = f_q B v exactly (so the difference's error is O(ε²) ≈ 1e-10 here).
+    #[test]
+    fn spatial_derivatives_follow_the_velocity_map() {
+        let (model, f) = formulated(SPATIAL);
+        assert_eq!((f.nq, f.nv), (14, 12));
+        assert_eq!(model.forces.iter().map(|e| e.kind.kind()).collect::<Vec<_>>()[0], "revolute_viscous");
+        let unit = |p: [f64; 4]| {
+            let n = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+            p.map(|x| x / n)
+        };
+        let (pa, pb) = (unit([0.9, 0.2, -0.3, 0.1]), unit([0.5, -0.4, 0.6, 0.3]));
+        let q: Vec<f64> = [0.1, 0.2, 0.3].into_iter().chain(pa).chain([0.5, 0.1, 0.2]).chain(pb).collect();
+        let v = [0.3, -0.2, 0.1, 0.7, -0.5, 0.4, -0.1, 0.2, 0.3, -0.6, 0.8, 0.2];
+        let t = 0.4;
+        let ev = |node: Id, q: &[f64], v: &[f64], t: f64| eval(&f, node, q, v, t);
+        let qdot = spatial_rates(&q, &v);
+        let at = |e: f64| -> Vec<f64> { q.iter().zip(&qdot).map(|(x, d)| x + e * d).collect() };
+        let eps = 1e-5;
+        let (qp, qm) = (at(eps), at(-eps));
+        // Φ̇ = D v − ν
+        let phidot = |q: &[f64], t: f64| -> Vec<f64> {
+            let mut out: Vec<f64> = f.nu.iter().map(|&n| -ev(n, q, &v, t)).collect();
+            for &(r, c, d) in &f.jacobian {
+                out[r] += ev(d, q, &v, t) * v[c];
+            }
+            out
+        };
+        let exact = phidot(&q, t);
+        for (r, &want) in exact.iter().enumerate() {
+            let fd = (ev(f.phi[r], &qp, &v, t + eps) - ev(f.phi[r], &qm, &v, t - eps)) / (2.0 * eps);
+            assert!((fd - want).abs() < 1e-8, "{}: D v − ν = {want} but dΦ/dt = {fd}", f.row_names[r]);
+        }
+        let (fp, fm) = (phidot(&qp, t + eps), phidot(&qm, t - eps));
+        for r in 0..f.nc {
+            let fd = (fp[r] - fm[r]) / (2.0 * eps);
+            let gamma = ev(f.gamma[r], &q, &v, t);
+            assert!((fd + gamma).abs() < 1e-7 * (1.0 + gamma.abs()), "{}: γ = {gamma} but −d(Dv − ν)/dt = {}", f.row_names[r], -fd);
+        }
+        for (i, &h) in f.h.iter().enumerate() {
+            let fd = (ev(h, &qp, &v, t) - ev(h, &qm, &v, t)) / (2.0 * eps);
+            let exact: f64 = f.h_q.iter().filter(|e| e.0 == i).map(|&(_, c, d)| ev(d, &q, &v, t) * v[c]).sum();
+            assert!((fd - exact).abs() < 1e-7 * (1.0 + fd.abs()), "h[{i}]: (h_q B) v = {exact} but dh/dε = {fd}");
+            let vp: Vec<f64> = v.iter().map(|x| x * (1.0 + eps)).collect();
+            let vm: Vec<f64> = v.iter().map(|x| x * (1.0 - eps)).collect();
+            let fd_v = (ev(h, &q, &vp, t) - ev(h, &q, &vm, t)) / (2.0 * eps);
+            let exact_v: f64 = f.h_qd.iter().filter(|e| e.0 == i).map(|&(_, c, d)| ev(d, &q, &v, t) * v[c]).sum();
+            assert!((fd_v - exact_v).abs() < 1e-7 * (1.0 + fd_v.abs()), "h[{i}]: h_v v = {exact_v} but dh/dε = {fd_v}");
+        }
+    }
+
+    /// A torque-free spinning body: h is the gyroscopic term −ω′ × J′ω′ alone, M is diag(m I, J′)
+    /// with J′'s products of inertia off the diagonal.
+    #[test]
+    fn gyroscopic_term_and_inertia_tensor() {
+        let (_, f) = formulated("T { spatial; body b { mass: 2.0, inertia: [1.0, 2.0, 3.0, 0.5, 0.0, 0.0] } }");
+        let w = [0.3, -0.7, 1.1];
+        let v = [0.0, 0.0, 0.0, w[0], w[1], w[2]];
+        let q = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+        let jw = [1.0 * w[0] + 0.5 * w[1], 0.5 * w[0] + 2.0 * w[1], 3.0 * w[2]];
+        let gyro = [-(w[1] * jw[2] - w[2] * jw[1]), -(w[2] * jw[0] - w[0] * jw[2]), -(w[0] * jw[1] - w[1] * jw[0])];
+        for (a, want) in gyro.into_iter().enumerate() {
+            let h = eval(&f, f.h[3 + a], &q, &v, 0.0);
+            assert!((h - want).abs() < 1e-15, "h[{}] = {h}, −ω′×J′ω′ = {want}", 3 + a);
+        }
+        let mass: Vec<f64> = f.mass.iter().map(|&n| eval(&f, n, &q, &v, 0.0)).collect();
+        assert_eq!(mass, [2.0, 2.0, 2.0, 1.0, 2.0, 3.0]);
+        let coupling: Vec<(usize, usize, f64)> = f.mass_coupling.iter().map(|&(r, c, n)| (r, c, eval(&f, n, &q, &v, 0.0))).collect();
+        assert_eq!(coupling, [(3, 4, 0.5), (4, 3, 0.5)]);
     }
 }

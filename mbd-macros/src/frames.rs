@@ -12,7 +12,7 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use crate::model::{BodyRef, Coord, Loc, MBin, MExpr, Model};
+use crate::model::{BodyRef, Coord, Loc, MBin, MExpr, Model, Space, Vel};
 use crate::sym::{Func, Graph, Id, Node, Var};
 
 /// How body frames depend on the generalized coordinates.
@@ -21,20 +21,34 @@ pub enum Coordinates {
     /// Planar body coordinates (Nikravesh ch. 7): body k owns q[3k..3k+3] = (x, y, φ), the
     /// origin of its frame (its centre of mass) and its angle; B = I, so v = q̇.
     PlanarBody,
+    /// Spatial body coordinates (docs/formulation.md, "Spatial bodies"): body k owns
+    /// q[7k..7k+7] = (r, p), its centre of mass and Euler parameters, and v[6k..6k+6] = (ṙ, ω′)
+    /// with ω′ in the body frame; q̇ = B(q) v with ṗ = ½ Lᵀ(p) ω′.
+    SpatialBody,
 }
 
 impl Coordinates {
+    /// The formulation of a model's space (the only one there is for each, so far).
+    pub fn of(space: Space) -> Self {
+        match space {
+            Space::Planar => Coordinates::PlanarBody,
+            Space::Spatial => Coordinates::SpatialBody,
+        }
+    }
+
     /// Coordinates per moving body.
     pub fn per_body(self) -> usize {
         match self {
             Coordinates::PlanarBody => 3,
+            Coordinates::SpatialBody => 7,
         }
     }
 
-    /// Whether q̇ = v (B = I): then virtual-power gradients are plain gradients in q.
-    pub fn velocity_is_rate(self) -> bool {
+    /// Velocities per moving body.
+    pub fn velocities_per_body(self) -> usize {
         match self {
-            Coordinates::PlanarBody => true,
+            Coordinates::PlanarBody => 3,
+            Coordinates::SpatialBody => 6,
         }
     }
 }
@@ -58,11 +72,15 @@ pub struct Builder<'m> {
 
 impl<'m> Builder<'m> {
     pub fn new(model: &'m Model) -> Self {
-        Builder { g: Graph::new(), model, coordinates: Coordinates::PlanarBody, first_rows: Vec::new() }
+        Builder { g: Graph::new(), model, coordinates: Coordinates::of(model.space), first_rows: Vec::new() }
     }
 
     pub fn nq(&self) -> usize {
         self.coordinates.per_body() * self.model.bodies.len()
+    }
+
+    pub fn nv(&self) -> usize {
+        self.coordinates.velocities_per_body() * self.model.bodies.len()
     }
 
     pub fn expr(&mut self, e: &MExpr) -> Id {
@@ -100,25 +118,22 @@ impl<'m> Builder<'m> {
         }
     }
 
-    pub fn exprs<const N: usize>(&mut self, e: &[MExpr; N]) -> [Id; N] {
-        std::array::from_fn(|k| self.expr(&e[k]))
-    }
-
     // --- the seam: frames in terms of q ------------------------------------------------------
 
-    /// A frame quantity of a body — x, y of its origin or its angle φ — or 0 on ground.
+    /// A frame quantity of a body — its origin's x, y (z), its angle φ or an Euler parameter —
+    /// or its value on ground (0; e0 = 1).
     pub fn coord(&mut self, b: BodyRef, c: Coord) -> Id {
-        match (b, self.coordinates) {
-            (BodyRef::Ground, _) => self.g.num(0.0),
-            (BodyRef::Body(k), Coordinates::PlanarBody) => self.g.var(Var::Q((3 * k + c.index()) as u16)),
+        match b {
+            BodyRef::Ground => self.g.num(if c == Coord::E0 { 1.0 } else { 0.0 }),
+            BodyRef::Body(k) => self.g.var(Var::Q((self.coordinates.per_body() * k + c.index()) as u16)),
         }
     }
 
-    /// The rate of a frame quantity (ẋ, ẏ, φ̇), or 0 on ground.
-    pub fn velocity(&mut self, b: BodyRef, c: Coord) -> Id {
-        match (b, self.coordinates) {
-            (BodyRef::Ground, _) => self.g.num(0.0),
-            (BodyRef::Body(k), Coordinates::PlanarBody) => self.g.var(Var::Qd((3 * k + c.index()) as u16)),
+    /// A velocity of a body (ẋ, ẏ, φ̇; or ẋ, ẏ, ż, ω′), or 0 on ground.
+    pub fn velocity(&mut self, b: BodyRef, c: Vel) -> Id {
+        match b {
+            BodyRef::Ground => self.g.num(0.0),
+            BodyRef::Body(k) => self.g.var(Var::Qd((self.coordinates.velocities_per_body() * k + c.index()) as u16)),
         }
     }
 
@@ -126,7 +141,31 @@ impl<'m> Builder<'m> {
     pub fn coordinate_rates(&mut self) -> Vec<Id> {
         match self.coordinates {
             Coordinates::PlanarBody => (0..self.nq()).map(|i| self.g.var(Var::Qd(i as u16))).collect(),
+            Coordinates::SpatialBody => {
+                let mut rates = Vec::with_capacity(self.nq());
+                for k in 0..self.model.bodies.len() {
+                    let b = BodyRef::Body(k);
+                    for c in [Vel::Vx, Vel::Vy, Vel::Vz] {
+                        rates.push(self.velocity(b, c));
+                    }
+                    let w = [Vel::Wx, Vel::Wy, Vel::Wz].map(|c| self.velocity(b, c));
+                    let lt = self.l_transpose(b);
+                    let half = self.g.num(0.5);
+                    for row in lt {
+                        let d = self.dot(&row, &w);
+                        rates.push(self.g.mul(half, d));
+                    }
+                }
+                rates
+            }
         }
+    }
+
+    /// Lᵀ(p) (4×3) of a spatial body, with ṗ = ½ Lᵀ ω′ (docs/formulation.md).
+    fn l_transpose(&mut self, b: BodyRef) -> [[Id; 3]; 4] {
+        let [e0, e1, e2, e3] = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
+        let [n1, n2, n3] = [e1, e2, e3].map(|e| self.g.neg(e));
+        [[n1, n2, n3], [e0, n3, e2], [e3, e0, n1], [n2, e1, e0]]
     }
 
     /// A body's angle φ (planar).
@@ -160,7 +199,7 @@ impl<'m> Builder<'m> {
     }
 
     /// The global unit vector A(φ) v′/|v′|.
-    pub fn unit(&mut self, b: BodyRef, v: &[MExpr; 2]) -> [Id; 2] {
+    pub fn unit(&mut self, b: BodyRef, v: &[MExpr]) -> [Id; 2] {
         let v = [self.expr(&v[0]), self.expr(&v[1])];
         let x2 = self.g.powi(v[0], 2);
         let y2 = self.g.powi(v[1], 2);
@@ -177,10 +216,11 @@ impl<'m> Builder<'m> {
         [self.g.neg(v[1]), v[0]]
     }
 
-    pub fn dot(&mut self, a: [Id; 2], b: [Id; 2]) -> Id {
-        let x = self.g.mul(a[0], b[0]);
-        let y = self.g.mul(a[1], b[1]);
-        self.g.add(x, y)
+    /// aᵀb, for vectors of any length.
+    pub fn dot(&mut self, a: &[Id], b: &[Id]) -> Id {
+        let mut terms = a.iter().zip(b).map(|(&x, &y)| self.g.mul(x, y)).collect::<Vec<_>>().into_iter();
+        let first = terms.next().unwrap_or_else(|| self.g.num(0.0));
+        terms.fold(first, |acc, t| self.g.add(acc, t))
     }
 
     /// a − b.
@@ -193,7 +233,7 @@ impl<'m> Builder<'m> {
         let pi = self.point(i);
         let pj = self.point(j);
         let d = self.diff2(pj, pi);
-        let dd = self.dot(d, d);
+        let dd = self.dot(&d, &d);
         let l2 = self.g.powi(length, 2);
         let r = self.g.sub(dd, l2);
         let half = self.g.num(0.5);
@@ -201,12 +241,12 @@ impl<'m> Builder<'m> {
     }
 
     /// u_iᵀ (r^P_j − r^P_i): the slide of P_j along the unit axis of body i through P_i.
-    pub fn slide(&mut self, i: &Loc, axis_i: &[MExpr; 2], j: &Loc) -> Id {
+    pub fn slide(&mut self, i: &Loc, axis_i: &[MExpr], j: &Loc) -> Id {
         let pi = self.point(i);
         let pj = self.point(j);
         let ui = self.unit(i.body, axis_i);
         let d = self.diff2(pj, pi);
-        self.dot(ui, d)
+        self.dot(&ui, &d)
     }
 
     /// φ_j − φ_i.
@@ -233,16 +273,49 @@ impl<'m> Builder<'m> {
     /// ∂ṡ/∂v_k for every velocity k that ṡ depends on, s a function of q and t: the direction in
     /// which a force working on s acts (Jourdain). With B = I it is ∂s/∂q_k.
     pub fn gradient(&mut self, s: Id) -> Vec<(usize, Id)> {
-        debug_assert!(self.coordinates.velocity_is_rate(), "only B = I formulations exist yet");
         let mut cols = BTreeSet::new();
         collect_vars(&self.g, s, &mut cols, |v| if let Var::Q(i) = v { Some(i) } else { None });
         let mut memo = HashMap::new();
-        cols.into_iter()
+        let partials: Vec<(usize, Id)> = cols
+            .into_iter()
             .map(|c| {
                 memo.clear();
                 (c as usize, self.g.diff(s, Var::Q(c), &mut memo))
             })
-            .collect()
+            .collect();
+        match self.coordinates {
+            Coordinates::PlanarBody => partials,
+            Coordinates::SpatialBody => self.through_velocity_map(partials),
+        }
+    }
+
+    /// (∂s/∂q) B as sparse (velocity, node) pairs, from the sparse ∂s/∂q: a body's position
+    /// partials carry over; its Euler-parameter partials combine as (∂s/∂p) ½ Lᵀ(p) into ω′.
+    fn through_velocity_map(&mut self, partials: Vec<(usize, Id)>) -> Vec<(usize, Id)> {
+        let (nq, nv) = (self.coordinates.per_body(), self.coordinates.velocities_per_body());
+        let mut out: std::collections::BTreeMap<usize, Id> = std::collections::BTreeMap::new();
+        let half = self.g.num(0.5);
+        for (i, d) in partials {
+            let (k, c) = (i / nq, i % nq);
+            let mut add = |b: &mut Self, col: usize, term: Id| {
+                let sum = match out.get(&col) {
+                    Some(&acc) => b.g.add(acc, term),
+                    None => term,
+                };
+                out.insert(col, sum);
+            };
+            if c < 3 {
+                add(self, nv * k + c, d);
+            } else {
+                let row = self.l_transpose(BodyRef::Body(k))[c - 3];
+                let hd = self.g.mul(half, d);
+                for (m, l) in row.into_iter().enumerate() {
+                    let term = self.g.mul(hd, l);
+                    add(self, nv * k + 3 + m, term);
+                }
+            }
+        }
+        out.into_iter().filter(|&(_, d)| !self.g.is_zero(d)).collect()
     }
 
     /// ṡ = s_q q̇ for a function of q only, q̇ = B(q) v.
@@ -285,17 +358,146 @@ impl Builder<'_> {
     /// h[k] += w where v[k] is component `a` of the velocity of body `body`'s origin (its centre
     /// of mass): where a force at the centre works.
     pub fn add_to_origin_velocity(&mut self, h: &mut [Id], body: usize, a: usize, w: Id) {
-        let k = match self.coordinates {
-            Coordinates::PlanarBody => 3 * body + a,
-        };
+        let k = self.coordinates.velocities_per_body() * body + a;
         h[k] = self.g.add(h[k], w);
     }
 
-    /// h[k] += τ where v[k] is body `body`'s angular velocity: where a torque on it works.
+    /// h[k] += τ where v[k] is body `body`'s (planar) angular velocity: where a torque works.
     pub fn add_to_angular_velocity(&mut self, h: &mut [Id], body: usize, tau: Id) {
-        let k = match self.coordinates {
-            Coordinates::PlanarBody => 3 * body + 2,
-        };
+        let k = 3 * body + 2;
         h[k] = self.g.add(h[k], tau);
+    }
+
+    /// h[6 body + 3 + a] += T′_a: a torque with body-frame components T′ (spatial), where ω′
+    /// works.
+    pub fn add_to_body_angular_velocity(&mut self, h: &mut [Id], body: usize, torque: [Id; 3]) {
+        for (a, t) in torque.into_iter().enumerate() {
+            let k = 6 * body + 3 + a;
+            h[k] = self.g.add(h[k], t);
+        }
+    }
+
+    // --- any dimension: what forces need in the plane and in space ------------------------------
+
+    /// The global position of a body point, 2 or 3 components.
+    pub fn point_n(&mut self, loc: &Loc) -> Vec<Id> {
+        match self.coordinates {
+            Coordinates::PlanarBody => self.point(loc).to_vec(),
+            Coordinates::SpatialBody => self.point3(loc).to_vec(),
+        }
+    }
+
+    /// A body-frame vector in global components, 2 or 3 of them.
+    pub fn rotate_n(&mut self, b: BodyRef, v: Vec<Id>) -> Vec<Id> {
+        match self.coordinates {
+            Coordinates::PlanarBody => self.rotate(b, [v[0], v[1]]).to_vec(),
+            Coordinates::SpatialBody => self.rotate3(b, [v[0], v[1], v[2]]).to_vec(),
+        }
+    }
+
+    /// a − b, any length.
+    pub fn diff_n(&mut self, a: &[Id], b: &[Id]) -> Vec<Id> {
+        a.iter().zip(b).map(|(&x, &y)| self.g.sub(x, y)).collect()
+    }
+
+    /// A body's position coordinates (x, y[, z]): where gravity does work.
+    pub fn origin(&mut self, b: BodyRef) -> Vec<Id> {
+        let cs: &[Coord] = match self.coordinates {
+            Coordinates::PlanarBody => &[Coord::X, Coord::Y],
+            Coordinates::SpatialBody => &[Coord::X, Coord::Y, Coord::Z],
+        };
+        cs.iter().map(|&c| self.coord(b, c)).collect()
+    }
+
+    // --- space: rotations, points and marker frames (Euler parameters) --------------------------
+
+    /// A(p) = (2 e0² − 1) I + 2 (e eᵀ + e0 ẽ) of a spatial body; I on ground.
+    pub fn rotation(&mut self, b: BodyRef) -> [[Id; 3]; 3] {
+        if b == BodyRef::Ground {
+            let (zero, one) = (self.g.num(0.0), self.g.num(1.0));
+            return [[one, zero, zero], [zero, one, zero], [zero, zero, one]];
+        }
+        let [e0, e1, e2, e3] = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
+        let e = [e1, e2, e3];
+        let two = self.g.num(2.0);
+        let one = self.g.num(1.0);
+        let e00 = self.g.powi(e0, 2);
+        let two_e00 = self.g.mul(two, e00);
+        let diag = self.g.sub(two_e00, one);
+        // ẽ: rows (0, −e3, e2), (e3, 0, −e1), (−e2, e1, 0)
+        let zero = self.g.num(0.0);
+        let (n1, n2, n3) = (self.g.neg(e1), self.g.neg(e2), self.g.neg(e3));
+        let tilde = [[zero, n3, e2], [e3, zero, n1], [n2, e1, zero]];
+        std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                let ee = self.g.mul(e[r], e[c]);
+                let et = self.g.mul(e0, tilde[r][c]);
+                let sum = self.g.add(ee, et);
+                let twice = self.g.mul(two, sum);
+                if r == c {
+                    self.g.add(diag, twice)
+                } else {
+                    twice
+                }
+            })
+        })
+    }
+
+    /// A v′ for a body-frame 3-vector.
+    pub fn rotate3(&mut self, b: BodyRef, v: [Id; 3]) -> [Id; 3] {
+        let a = self.rotation(b);
+        std::array::from_fn(|r| self.dot(&a[r], &v))
+    }
+
+    /// Aᵀ v: a global 3-vector in body components.
+    pub fn unrotate3(&mut self, b: BodyRef, v: [Id; 3]) -> [Id; 3] {
+        let a = self.rotation(b);
+        std::array::from_fn(|c| {
+            let col = [a[0][c], a[1][c], a[2][c]];
+            self.dot(&col, &v)
+        })
+    }
+
+    /// r^P = r + A s′ in space.
+    pub fn point3(&mut self, loc: &Loc) -> [Id; 3] {
+        let local = [0, 1, 2].map(|k| self.expr(&loc.point[k]));
+        let rot = self.rotate3(loc.body, local);
+        let origin = self.origin(loc.body);
+        std::array::from_fn(|k| self.g.add(origin[k], rot[k]))
+    }
+
+    /// The unit triad (x, y, z) of a marker, global components: z′ = a′/|a′|, x′ the reference
+    /// b′ made orthogonal to z′ (Gram–Schmidt) and normalized, y′ = z′ × x′, each turned by A.
+    pub fn triad(&mut self, body: BodyRef, axis: &[MExpr], reference: &[MExpr]) -> [[Id; 3]; 3] {
+        let a = [0, 1, 2].map(|k| self.expr(&axis[k]));
+        let r = [0, 1, 2].map(|k| self.expr(&reference[k]));
+        let z = self.normalized(a);
+        let rz = self.dot(&r, &z);
+        let along: [Id; 3] = std::array::from_fn(|k| self.g.mul(rz, z[k]));
+        let ortho: [Id; 3] = std::array::from_fn(|k| self.g.sub(r[k], along[k]));
+        let x = self.normalized(ortho);
+        let y = self.cross(z, x);
+        [x, y, z].map(|v| self.rotate3(body, v))
+    }
+
+    fn normalized(&mut self, v: [Id; 3]) -> [Id; 3] {
+        let n2 = self.dot(&v, &v);
+        let n = self.g.call(Func::Sqrt, n2);
+        v.map(|c| self.g.div(c, n))
+    }
+
+    /// a × b.
+    pub fn cross(&mut self, a: [Id; 3], b: [Id; 3]) -> [Id; 3] {
+        std::array::from_fn(|k| {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let p = self.g.mul(a[i], b[j]);
+            let q = self.g.mul(a[j], b[i]);
+            self.g.sub(p, q)
+        })
+    }
+
+    /// A spatial body's angular velocity ω′ (body frame).
+    pub fn angular_velocity(&mut self, b: BodyRef) -> [Id; 3] {
+        [Vel::Wx, Vel::Wy, Vel::Wz].map(|c| self.velocity(b, c))
     }
 }

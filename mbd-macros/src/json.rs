@@ -5,7 +5,7 @@
 
 use serde_json::{json, Value};
 
-use crate::model::{BodyRef, Loc, MBin, MExpr, Model};
+use crate::model::{BodyRef, Inertia, Loc, MBin, MExpr, Model, Space};
 
 /// What a kind's JSON needs: the model (names) and the first row of each constraint.
 pub struct Ctx<'a> {
@@ -22,7 +22,12 @@ impl Ctx<'_> {
             MExpr::T => json!(["t"]),
             MExpr::Param(k) => json!(["param", m.params[*k].name.to_string()]),
             MExpr::Coord(b, c) => json!(["coord", m.body_name(*b), c.name()]),
-            MExpr::Vel(b, c) => json!(["vel", m.body_name(*b), c.name()]),
+            // planar velocities are named by their coordinate (the oracle's schema), spatial
+            // ones by themselves (`wx`)
+            MExpr::Vel(b, c) => {
+                let name = if m.space == Space::Planar { m.space.coordinates()[c.index()].name() } else { c.name() };
+                json!(["vel", m.body_name(*b), name])
+            }
             MExpr::Neg(a) => json!(["neg", self.expr(a)]),
             MExpr::Bin(op, a, b) => {
                 let op = match op {
@@ -43,8 +48,9 @@ impl Ctx<'_> {
         e.as_ref().map_or(Value::Null, |e| self.expr(e))
     }
 
-    pub fn pair(&self, v: &[MExpr; 2]) -> Value {
-        json!([self.expr(&v[0]), self.expr(&v[1])])
+    /// A point's or vector's components (or any list of expressions).
+    pub fn list(&self, v: &[MExpr]) -> Value {
+        Value::Array(v.iter().map(|e| self.expr(e)).collect())
     }
 
     pub fn body(&self, b: BodyRef) -> String {
@@ -52,11 +58,11 @@ impl Ctx<'_> {
     }
 
     pub fn loc(&self, l: &Loc) -> Value {
-        json!({"body": self.body(l.body), "point": self.pair(&l.point)})
+        json!({"body": self.body(l.body), "point": self.list(&l.point)})
     }
 
-    pub fn loc_axis(&self, l: &Loc, axis: &[MExpr; 2]) -> Value {
-        json!({"body": self.body(l.body), "point": self.pair(&l.point), "axis": self.pair(axis)})
+    pub fn loc_axis(&self, l: &Loc, axis: &[MExpr]) -> Value {
+        json!({"body": self.body(l.body), "point": self.list(&l.point), "axis": self.list(axis)})
     }
 }
 
@@ -73,27 +79,37 @@ fn tagged(mut object: Value, kind: &str, name: &str) -> Value {
 pub fn model_json(m: &Model, row_names: &[String], first_rows: &[usize], jacobian_pattern: &[(usize, usize)]) -> String {
     let cx = Ctx { model: m, first_rows };
     let locals = |list: &[crate::model::Local]| -> Vec<Value> {
-        list.iter().map(|l| json!({"body": m.body_name(l.body), "name": l.name, "local": cx.pair(&l.local)})).collect()
+        list.iter().map(|l| json!({"body": m.body_name(l.body), "name": l.name, "local": cx.list(&l.local)})).collect()
     };
-    let v = json!({
+    let body = |b: &crate::model::Body| match &b.inertia {
+        Inertia::Planar(j) => json!({
+            "name": b.name.to_string(), "mass": cx.expr(&b.mass), "inertia": cx.expr(j),
+            "q0": cx.list(&b.q0), "qd0": cx.list(&b.v0),
+        }),
+        Inertia::Tensor(rows) => json!({
+            "name": b.name.to_string(), "mass": cx.expr(&b.mass), "inertia": rows.iter().map(|r| cx.list(r)).collect::<Vec<_>>(),
+            "q0": cx.list(&b.q0), "v0": cx.list(&b.v0),
+        }),
+    };
+    let mut v = json!({
         "name": m.name.to_string(),
         "scalar": m.scalar.name(),
         "params": m.params.iter().map(|p| json!({"name": p.name.to_string(), "default": p.default})).collect::<Vec<_>>(),
-        "bodies": m.bodies.iter().map(|b| json!({
-            "name": b.name.to_string(),
-            "mass": cx.expr(&b.mass),
-            "inertia": cx.expr(&b.inertia),
-            "q0": b.q0.iter().map(|e| cx.expr(e)).collect::<Vec<_>>(),
-            "qd0": b.qd0.iter().map(|e| cx.expr(e)).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
+        "bodies": m.bodies.iter().map(body).collect::<Vec<_>>(),
         "points": locals(&m.points),
         "vectors": locals(&m.vectors),
         "coordinates": m.coordinate_names(),
         "constraint_rows": row_names,
         "jacobian_pattern": jacobian_pattern.iter().map(|&(r, c)| json!([r, c])).collect::<Vec<_>>(),
         "constraints": m.constraints.iter().map(|c| tagged(c.kind.json(&cx), c.kind.kind(), &c.name)).collect::<Vec<_>>(),
-        "gravity": m.gravity.as_ref().map_or(Value::Null, |g| cx.pair(g)),
+        "gravity": m.gravity.as_ref().map_or(Value::Null, |g| cx.list(g)),
         "forces": m.forces.iter().map(|f| tagged(f.kind.json(&cx), f.kind.kind(), &f.name)).collect::<Vec<_>>(),
     });
+    if m.space == Space::Spatial {
+        if let Value::Object(map) = &mut v {
+            map.insert("dimension".to_string(), json!(3));
+            map.insert("velocities".to_string(), json!(m.velocity_names()));
+        }
+    }
     v.to_string()
 }

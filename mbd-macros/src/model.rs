@@ -7,8 +7,9 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::Span;
 use syn::{Attribute, Ident, Visibility};
 
+use crate::elements::spatial::{self, Marker};
 use crate::elements::{self, drive, drive_angle, drive_distance, fix, user, Constraint, Driven};
-use crate::forces::{applied, point_to_point, rotational, torque, ForceElement};
+use crate::forces::{applied, bushing, point_to_point, rotational, torque, ForceElement};
 use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::Func;
 
@@ -59,12 +60,56 @@ pub enum BodyRef {
     Body(usize),
 }
 
-/// A body coordinate: x, y (m) or φ (rad).
+/// Where a mechanism lives: the plane (body coordinates x, y, φ) or space (`spatial;`: x, y, z
+/// and Euler parameters e0 … e3, velocities ṙ and the body-frame angular velocity ω′).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Space {
+    Planar,
+    Spatial,
+}
+
+impl Space {
+    /// Components of a point or vector.
+    pub fn dim(self) -> usize {
+        match self {
+            Space::Planar => 2,
+            Space::Spatial => 3,
+        }
+    }
+    /// A body's coordinates, in the order of q.
+    pub fn coordinates(self) -> &'static [Coord] {
+        match self {
+            Space::Planar => &[Coord::X, Coord::Y, Coord::Phi],
+            Space::Spatial => &[Coord::X, Coord::Y, Coord::Z, Coord::E0, Coord::E1, Coord::E2, Coord::E3],
+        }
+    }
+    /// A body's velocities, in the order of v.
+    pub fn velocities(self) -> &'static [Vel] {
+        match self {
+            Space::Planar => &[Vel::Vx, Vel::Vy, Vel::Omega],
+            Space::Spatial => &[Vel::Vx, Vel::Vy, Vel::Vz, Vel::Wx, Vel::Wy, Vel::Wz],
+        }
+    }
+    /// "`x`, `y`, `phi`": a body's coordinates, for messages.
+    pub fn coordinate_list(self) -> String {
+        self.coordinates().iter().map(|c| format!("`{}`", c.name())).collect::<Vec<_>>().join(", ")
+    }
+    fn velocity_list(self) -> String {
+        self.velocities().iter().map(|c| format!("`{}`", c.name())).collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// A body coordinate: x, y, z (m), φ (rad, planar) or an Euler parameter (spatial).
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
 pub enum Coord {
     X,
     Y,
     Phi,
+    Z,
+    E0,
+    E1,
+    E2,
+    E3,
 }
 
 impl Coord {
@@ -73,30 +118,67 @@ impl Coord {
             Coord::X => "x",
             Coord::Y => "y",
             Coord::Phi => "phi",
+            Coord::Z => "z",
+            Coord::E0 => "e0",
+            Coord::E1 => "e1",
+            Coord::E2 => "e2",
+            Coord::E3 => "e3",
         }
     }
+    /// Its index among its body's coordinates (in its space).
     pub fn index(self) -> usize {
         match self {
             Coord::X => 0,
             Coord::Y => 1,
-            Coord::Phi => 2,
+            Coord::Phi | Coord::Z => 2,
+            Coord::E0 => 3,
+            Coord::E1 => 4,
+            Coord::E2 => 5,
+            Coord::E3 => 6,
         }
     }
-    pub fn from_ident(id: &Ident) -> Option<Coord> {
-        match id.to_string().as_str() {
-            "x" => Some(Coord::X),
-            "y" => Some(Coord::Y),
-            "phi" => Some(Coord::Phi),
-            _ => None,
+    pub fn from_ident(space: Space, id: &Ident) -> Option<Coord> {
+        space.coordinates().iter().copied().find(|c| id == c.name())
+    }
+}
+
+/// A body velocity: ẋ, ẏ, ż (m/s), φ̇ (rad/s, planar) or ω′ (rad/s, body frame, spatial).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Vel {
+    Vx,
+    Vy,
+    Omega,
+    Vz,
+    Wx,
+    Wy,
+    Wz,
+}
+
+impl Vel {
+    pub fn name(self) -> &'static str {
+        match self {
+            Vel::Vx => "vx",
+            Vel::Vy => "vy",
+            Vel::Omega => "omega",
+            Vel::Vz => "vz",
+            Vel::Wx => "wx",
+            Vel::Wy => "wy",
+            Vel::Wz => "wz",
         }
     }
-    fn from_velocity_ident(id: &Ident) -> Option<Coord> {
-        match id.to_string().as_str() {
-            "vx" => Some(Coord::X),
-            "vy" => Some(Coord::Y),
-            "omega" => Some(Coord::Phi),
-            _ => None,
+    /// Its index among its body's velocities (in its space).
+    pub fn index(self) -> usize {
+        match self {
+            Vel::Vx => 0,
+            Vel::Vy => 1,
+            Vel::Omega | Vel::Vz => 2,
+            Vel::Wx => 3,
+            Vel::Wy => 4,
+            Vel::Wz => 5,
         }
+    }
+    fn from_ident(space: Space, id: &Ident) -> Option<Vel> {
+        space.velocities().iter().copied().find(|c| id == c.name())
     }
 }
 
@@ -108,8 +190,8 @@ pub enum MExpr {
     T,
     Param(usize),
     Coord(BodyRef, Coord),
-    /// A body velocity ẋ, ẏ or φ̇ (force expressions only).
-    Vel(BodyRef, Coord),
+    /// A body velocity (force expressions only).
+    Vel(BodyRef, Vel),
     Neg(Box<MExpr>),
     Bin(MBin, Box<MExpr>, Box<MExpr>),
     Call(Func, Box<MExpr>),
@@ -128,13 +210,24 @@ pub enum MBin {
 impl MExpr {
     /// The value of an expression made of numbers, `PI` and functions only.
     pub fn constant_value(&self) -> Option<f64> {
+        self.value_with(&|_| None)
+    }
+
+    /// The value of an expression of numbers, `PI`, functions and parameters at the parameters'
+    /// default values.
+    pub fn default_value(&self, defaults: &[f64]) -> Option<f64> {
+        self.value_with(&|k| defaults.get(k).copied())
+    }
+
+    fn value_with(&self, param: &dyn Fn(usize) -> Option<f64>) -> Option<f64> {
         Some(match self {
             MExpr::Num(v) => *v,
             MExpr::Pi => std::f64::consts::PI,
-            MExpr::T | MExpr::Param(_) | MExpr::Coord(..) | MExpr::Vel(..) => return None,
-            MExpr::Neg(a) => -a.constant_value()?,
+            MExpr::Param(k) => return param(*k),
+            MExpr::T | MExpr::Coord(..) | MExpr::Vel(..) => return None,
+            MExpr::Neg(a) => -a.value_with(param)?,
             MExpr::Bin(op, a, b) => {
-                let (a, b) = (a.constant_value()?, b.constant_value()?);
+                let (a, b) = (a.value_with(param)?, b.value_with(param)?);
                 match op {
                     MBin::Add => a + b,
                     MBin::Sub => a - b,
@@ -144,7 +237,7 @@ impl MExpr {
                 }
             }
             MExpr::Call(f, a) => {
-                let a = a.constant_value()?;
+                let a = a.value_with(param)?;
                 match f {
                     Func::Sin => a.sin(),
                     Func::Cos => a.cos(),
@@ -157,7 +250,7 @@ impl MExpr {
                     Func::Ln => a.ln(),
                 }
             }
-            MExpr::Atan2(y, x) => y.constant_value()?.atan2(x.constant_value()?),
+            MExpr::Atan2(y, x) => y.value_with(param)?.atan2(x.value_with(param)?),
         })
     }
 }
@@ -197,25 +290,35 @@ pub struct Param {
 pub struct Body {
     pub name: Ident,
     pub mass: MExpr,
-    pub inertia: MExpr,
-    /// Initial guess of (x, y, φ).
-    pub q0: [MExpr; 3],
-    /// Initial velocities (ẋ, ẏ, φ̇).
-    pub qd0: [MExpr; 3],
+    pub inertia: Inertia,
+    /// Initial guess of the coordinates: (x, y, φ), or (x, y, z, e0, e1, e2, e3).
+    pub q0: Vec<MExpr>,
+    /// Initial velocities: (ẋ, ẏ, φ̇), or (ẋ, ẏ, ż, ω′x, ω′y, ω′z).
+    pub v0: Vec<MExpr>,
 }
+
+/// A body's inertia about its centre of mass: J (planar) or the symmetric tensor J′ in body axes
+/// (spatial; `J′_xy = −∫ x y dm`), rows of three.
+pub enum Inertia {
+    Planar(MExpr),
+    Tensor([[MExpr; 3]; 3]),
+}
+
+/// The components of a point or vector (2 in the plane, 3 in space).
+pub type Components = Vec<MExpr>;
 
 /// A named point or vector, local to its body.
 pub struct Local {
     pub body: BodyRef,
     pub name: String,
-    pub local: [MExpr; 2],
+    pub local: Components,
 }
 
 /// A point on a body, by its body-fixed coordinates.
 #[derive(Clone, Debug)]
 pub struct Loc {
     pub body: BodyRef,
-    pub point: [MExpr; 2],
+    pub point: Components,
 }
 
 /// A validated mechanism.
@@ -224,13 +327,14 @@ pub struct Model {
     pub vis: Visibility,
     pub name: Ident,
     pub scalar: Scalar,
+    pub space: Space,
     pub params: Vec<Param>,
     pub bodies: Vec<Body>,
     pub points: Vec<Local>,
     pub vectors: Vec<Local>,
     pub constraints: Vec<Constraint>,
     /// Gravitational acceleration (m/s²), if declared.
-    pub gravity: Option<[MExpr; 2]>,
+    pub gravity: Option<Components>,
     pub forces: Vec<ForceElement>,
 }
 
@@ -243,7 +347,13 @@ impl Model {
     }
     /// Coordinate names, `"crank.phi"`.
     pub fn coordinate_names(&self) -> Vec<String> {
-        self.bodies.iter().flat_map(|b| ["x", "y", "phi"].into_iter().map(move |c| format!("{}.{}", b.name, c))).collect()
+        let cs = self.space.coordinates();
+        self.bodies.iter().flat_map(|b| cs.iter().map(move |c| format!("{}.{}", b.name, c.name()))).collect()
+    }
+    /// Velocity names, `"crank.omega"`, `"top.wz"`.
+    pub fn velocity_names(&self) -> Vec<String> {
+        let vs = self.space.velocities();
+        self.bodies.iter().flat_map(|b| vs.iter().map(move |c| format!("{}.{}", b.name, c.name()))).collect()
     }
 }
 
@@ -259,16 +369,25 @@ pub struct Partial {
 
 pub struct Resolver<'a> {
     pub errors: &'a mut Errors,
+    pub space: Space,
     params: HashMap<String, usize>,
+    /// The parameters' default values, by index (for marker defaults).
+    pub defaults: Vec<f64>,
     bodies: HashMap<String, usize>,
-    points: HashMap<(BodyRef, String), [MExpr; 2]>,
-    vectors: HashMap<(BodyRef, String), [MExpr; 2]>,
+    points: HashMap<(BodyRef, String), Components>,
+    vectors: HashMap<(BodyRef, String), Components>,
 }
 
 const BODY_FIELDS: &[&str] = &["mass", "inertia", "at", "velocity"];
+const SPATIAL_BODY_FIELDS: &[&str] = &["mass", "inertia", "at", "quaternion", "axis_angle", "angles", "velocity", "omega"];
 const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "ln", "pow"];
 
 impl Resolver<'_> {
+    /// Whether a name is `ground` or a declared body (nothing reported).
+    pub fn is_body(&self, id: &Ident) -> bool {
+        id == "ground" || self.bodies.contains_key(&id.to_string())
+    }
+
     pub fn body(&mut self, id: &Ident) -> Option<BodyRef> {
         if id == "ground" {
             return Some(BodyRef::Ground);
@@ -315,12 +434,16 @@ impl Resolver<'_> {
                 }
             }
             ExprKind::Coord(b, c) => {
-                let position = Coord::from_ident(c);
-                let velocity = Coord::from_velocity_ident(c);
+                let position = Coord::from_ident(self.space, c);
+                let velocity = Vel::from_ident(self.space, c);
                 if position.is_none() && velocity.is_none() {
                     self.errors.push(
                         c.span(),
-                        format!("unknown coordinate `{c}`: a body has `x`, `y`, `phi` and, in forces, velocities `vx`, `vy`, `omega`"),
+                        format!(
+                            "unknown coordinate `{c}`: a body has {} and, in forces, velocities {}",
+                            self.space.coordinate_list(),
+                            self.space.velocity_list()
+                        ),
                     );
                     return None;
                 }
@@ -383,25 +506,31 @@ impl Resolver<'_> {
         })
     }
 
-    /// A bracketed list of exactly `N` expressions.
-    pub fn list<const N: usize>(&mut self, v: &VecLit, scope: Scope, what: &str) -> Option<[MExpr; N]> {
-        if v.items.len() != N {
-            self.errors.push(v.span, format!("{what} has {N} entries, found {}", v.items.len()));
+    /// A list of as many components as the space has (2 or 3), each of the given scope.
+    pub fn components(&mut self, v: &VecLit, scope: Scope, what: &str) -> Option<Components> {
+        let n = self.space.dim();
+        if v.items.len() != n {
+            self.errors.push(v.span, format!("{what} has {n} entries, found {}", v.items.len()));
             return None;
         }
         let items: Vec<Option<MExpr>> = v.items.iter().map(|e| self.expr(e, scope)).collect();
-        let items: Vec<MExpr> = items.into_iter().collect::<Option<_>>()?;
-        items.try_into().ok()
+        items.into_iter().collect()
     }
 
-    pub fn point(&mut self, body: BodyRef, p: &PointRef) -> Option<[MExpr; 2]> {
+    /// "`[ξ, η]`" or "`[ξ, η, ζ]`".
+    pub fn shape(&self, names: [&str; 3]) -> String {
+        format!("[{}]", names[..self.space.dim()].join(", "))
+    }
+
+    pub fn point(&mut self, body: BodyRef, p: &PointRef) -> Option<Components> {
+        let shape = self.shape(["ξ", "η", "ζ"]);
         match p {
-            PointRef::Inline(v) => self.list::<2>(v, Scope::Params, "a point `[ξ, η]` in body coordinates"),
+            PointRef::Inline(v) => self.components(v, Scope::Params, &format!("a point `{shape}` in body coordinates")),
             PointRef::Named(name) => match self.points.get(&(body, name.to_string())) {
                 Some(p) => Some(p.clone()),
                 None => {
                     self.errors
-                        .push(name.span(), format!("unknown point `{name}` on this body: declare it with `point body.{name} = [ξ, η];`"));
+                        .push(name.span(), format!("unknown point `{name}` on this body: declare it with `point body.{name} = {shape};`"));
                     None
                 }
             },
@@ -414,15 +543,15 @@ impl Resolver<'_> {
         Some(Loc { body, point })
     }
 
-    pub fn axis(&mut self, body: BodyRef, a: &AxisRef) -> Option<[MExpr; 2]> {
+    pub fn axis(&mut self, body: BodyRef, a: &AxisRef) -> Option<Components> {
         match a {
             AxisRef::Inline(v) => {
-                let axis = self.list::<2>(v, Scope::Params, "an axis `[x, y]` in body coordinates")?;
-                if let (Some(x), Some(y)) = (axis[0].constant_value(), axis[1].constant_value()) {
-                    if x == 0.0 && y == 0.0 {
-                        self.errors.push(v.span, "an axis must not be the zero vector");
-                        return None;
-                    }
+                let shape = self.shape(["x", "y", "z"]);
+                let axis = self.components(v, Scope::Params, &format!("an axis `{shape}` in body coordinates"))?;
+                let values: Option<Vec<f64>> = axis.iter().map(|c| c.constant_value()).collect();
+                if values.is_some_and(|v| v.iter().all(|&c| c == 0.0)) {
+                    self.errors.push(v.span, "an axis must not be the zero vector");
+                    return None;
                 }
                 Some(axis)
             }
@@ -434,7 +563,8 @@ impl Resolver<'_> {
                 match self.vectors.get(&(body, name.to_string())) {
                     Some(v) => Some(v.clone()),
                     None => {
-                        self.errors.push(name.span(), format!("unknown vector `{name}`: declare it with `vector {b}.{name} = [x, y];`"));
+                        let shape = self.shape(["x", "y", "z"]);
+                        self.errors.push(name.span(), format!("unknown vector `{name}`: declare it with `vector {b}.{name} = {shape};`"));
                         None
                     }
                 }
@@ -506,7 +636,24 @@ impl MechanismDef {
 
     fn build(&self, errors: &mut Errors) -> Option<Model> {
         let mut scalar = None::<(Scalar, Span)>;
-        let mut r = Resolver { errors, params: HashMap::new(), bodies: HashMap::new(), points: HashMap::new(), vectors: HashMap::new() };
+        let mut space = Space::Planar;
+        for item in &self.items {
+            if let Item::Spatial(kw) = item {
+                if space == Space::Spatial {
+                    errors.push(kw.span(), "`spatial;` is stated twice");
+                }
+                space = Space::Spatial;
+            }
+        }
+        let mut r = Resolver {
+            errors,
+            space,
+            params: HashMap::new(),
+            defaults: Vec::new(),
+            bodies: HashMap::new(),
+            points: HashMap::new(),
+            vectors: HashMap::new(),
+        };
         let mut params = Vec::new();
         let mut bodies = Vec::new();
         let mut ok = true;
@@ -551,6 +698,7 @@ impl MechanismDef {
                             continue;
                         }
                         r.params.insert(name.to_string(), params.len());
+                        r.defaults.push(default);
                         params.push(Param { name: name.clone(), default });
                     }
                 }
@@ -574,54 +722,9 @@ impl MechanismDef {
 
         let mut model_bodies = Vec::new();
         for b in &bodies {
-            let mut fields: HashMap<String, &Value> = HashMap::new();
-            for f in &b.fields {
-                let key = f.name.to_string();
-                if !BODY_FIELDS.contains(&key.as_str()) {
-                    let hint = parse::closest(&key, BODY_FIELDS, &[]);
-                    r.errors.push(f.name.span(), format!("unknown body field `{key}`{hint}: a body has `mass`, `inertia`, `at: [x, y, phi]` and `velocity: [vx, vy, omega]`"));
-                    ok = false;
-                } else if fields.insert(key.clone(), &f.value).is_some() {
-                    r.errors.push(f.name.span(), format!("duplicate field `{key}`"));
-                    ok = false;
-                }
-            }
-            let scalar_field = |r: &mut Resolver, name: &str, unit: &str| -> Option<MExpr> {
-                match fields.get(name) {
-                    None => {
-                        r.errors.push(b.name.span(), format!("body `{}` has no `{name}`: give it in {unit}, e.g. `{name}: 1.0`", b.name));
-                        None
-                    }
-                    Some(Value::List(v)) => {
-                        r.errors.push(v.span, format!("`{name}` is a number ({unit}), not a list"));
-                        None
-                    }
-                    Some(Value::Expr(e)) => {
-                        let m = r.expr(e, Scope::Params)?;
-                        check_positive(r.errors, &m, e, &format!("the {name} of body `{}`", b.name));
-                        Some(m)
-                    }
-                }
-            };
-            let mass = scalar_field(&mut r, "mass", "kg");
-            let inertia = scalar_field(&mut r, "inertia", "kg·m² about the centre of mass");
-            let vec3 = |r: &mut Resolver, name: &str, what: &str| -> Option<[MExpr; 3]> {
-                match fields.get(name) {
-                    None => Some([MExpr::Num(0.0), MExpr::Num(0.0), MExpr::Num(0.0)]),
-                    Some(Value::Expr(e)) => {
-                        r.errors.push(e.span, format!("`{name}` is a list `[{what}]`"));
-                        None
-                    }
-                    Some(Value::List(v)) => r.list::<3>(v, Scope::Params, &format!("`{name}: [{what}]`")),
-                }
-            };
-            let q0 = vec3(&mut r, "at", "x, y, phi");
-            let qd0 = vec3(&mut r, "velocity", "vx, vy, omega");
-            match (mass, inertia, q0, qd0) {
-                (Some(mass), Some(inertia), Some(q0), Some(qd0)) => {
-                    model_bodies.push(Body { name: b.name.clone(), mass, inertia, q0, qd0 });
-                }
-                _ => ok = false,
+            match resolve_body(&mut r, b) {
+                Some(body) => model_bodies.push(body),
+                None => ok = false,
             }
         }
 
@@ -638,8 +741,12 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
-            let what = if is_point { "a point `[ξ, η]` in body coordinates (m)" } else { "a vector `[x, y]` in body coordinates" };
-            let Some(local) = r.list::<2>(&nv.value, Scope::Params, what) else {
+            let what = if is_point {
+                format!("a point `{}` in body coordinates (m)", r.shape(["ξ", "η", "ζ"]))
+            } else {
+                format!("a vector `{}` in body coordinates", r.shape(["x", "y", "z"]))
+            };
+            let Some(local) = r.components(&nv.value, Scope::Params, &what) else {
                 ok = false;
                 continue;
             };
@@ -663,8 +770,8 @@ impl MechanismDef {
             BodyRef::Body(k) => bodies[k].name.to_string(),
         };
         let mut names: HashMap<String, Span> = HashMap::new();
-        let (constraints, mut forces) = constraints(&self.items, &mut r, &mut names, &model_bodies, &body_name, &mut ok);
-        let gravity = force_elements(&self.items, &mut r, &mut names, &body_name, &mut forces, &mut ok);
+        let (constraints, mut forces, joints) = constraints(&self.items, &mut r, &mut names, &model_bodies, &body_name, &mut ok);
+        let gravity = force_elements(&self.items, &mut r, &mut names, &body_name, &joints, &mut forces, &mut ok);
 
         if bodies.is_empty() {
             r.errors.push(self.name.span(), "a mechanism needs at least one body: `body name { mass: ..., inertia: ... }`");
@@ -678,6 +785,7 @@ impl MechanismDef {
             vis: self.vis.clone(),
             name: self.name.clone(),
             scalar: scalar.map(|(s, _)| s).unwrap_or(Scalar::F64),
+            space,
             params,
             bodies: model_bodies,
             points,
@@ -689,8 +797,12 @@ impl MechanismDef {
     }
 }
 
+/// A spatial joint by its name: its kind and markers (what its drivers and force elements use).
+pub type SpatialJoints = HashMap<String, (&'static str, Marker, Marker)>;
+
 /// Pass 3: joints, drivers and user constraints in declaration order, each resolved by its
-/// kind's file, with the joint friction their options declare.
+/// kind's file, with the joint friction their options declare. In space, joints are resolved
+/// first, so a driver may name a joint declared after it; they are also returned by name.
 fn constraints(
     items: &[Item],
     r: &mut Resolver,
@@ -698,17 +810,41 @@ fn constraints(
     bodies: &[Body],
     body_name: &dyn Fn(BodyRef) -> String,
     ok: &mut bool,
-) -> (Vec<Constraint>, Vec<ForceElement>) {
+) -> (Vec<Constraint>, Vec<ForceElement>, SpatialJoints) {
     let mut constraints = Vec::new();
     let mut forces = Vec::new();
     let mut driven = Driven::default();
+    let mut spatial_joints = HashMap::new();
+    let mut joints = SpatialJoints::new();
+    if r.space == Space::Spatial {
+        for (index, item) in items.iter().enumerate() {
+            if let Item::Joint(j) = item {
+                let resolved = spatial::resolve(r, j, body_name);
+                if let Some((label, default_name, _, kind, _)) = &resolved {
+                    if let Some([mi, mj]) = kind.markers() {
+                        let name = label.map_or_else(|| default_name.clone(), |l| l.to_string());
+                        joints.insert(name, (kind.kind(), mi.clone(), mj.clone()));
+                    }
+                }
+                spatial_joints.insert(index, resolved);
+            }
+        }
+    }
     for (index, item) in items.iter().enumerate() {
         let built = match item {
+            Item::Joint(_) if r.space == Space::Spatial => spatial_joints.remove(&index).flatten(),
             Item::Joint(j) => elements::resolve(r, j, body_name, constraints.len()),
             Item::Fix(f) => fix::resolve(r, f, &mut driven, bodies),
             Item::Drive(d) => {
                 let f = r.expr(&d.f, Scope::Time);
                 match &d.target {
+                    DriveTarget::Coordinate { body, coordinate } if r.space == Space::Spatial && !r.is_body(body) => {
+                        spatial::drive_joint(r, d, body, coordinate, f, &joints, &mut driven)
+                    }
+                    DriveTarget::Angle { .. } | DriveTarget::Distance { .. } if r.space == Space::Spatial => {
+                        r.errors.push(d.keyword.span(), "`angle(..)` and `distance(..)` drivers are planar: in space drive a joint, `drive hinge.angle = f;` or `drive slider.stroke = f;`");
+                        None
+                    }
                     DriveTarget::Coordinate { body, coordinate } => drive::resolve(r, d, body, coordinate, f, &mut driven),
                     DriveTarget::Angle { i, j, .. } => drive_angle::resolve(r, d, i, j, f, &mut driven),
                     DriveTarget::Distance { i, j, .. } => drive_distance::resolve(r, d, i, j, f),
@@ -730,7 +866,7 @@ fn constraints(
         }
         constraints.push(Constraint { name, kind });
     }
-    (constraints, forces)
+    (constraints, forces, joints)
 }
 
 /// Pass 4: gravity and the force elements (Nikravesh ch. 4), each resolved by its kind's file.
@@ -740,9 +876,10 @@ fn force_elements(
     r: &mut Resolver,
     names: &mut HashMap<String, Span>,
     body_name: &dyn Fn(BodyRef) -> String,
+    joints: &SpatialJoints,
     forces: &mut Vec<ForceElement>,
     ok: &mut bool,
-) -> Option<[MExpr; 2]> {
+) -> Option<Components> {
     let mut gravity = None;
     for item in items {
         let built = match item {
@@ -751,14 +888,16 @@ fn force_elements(
                     r.errors.push(kw.span(), "gravity is declared twice");
                     *ok = false;
                 }
-                gravity = r.list::<2>(v, Scope::Params, "gravity `[gx, gy]` (m/s²)");
+                let shape = r.shape(["gx", "gy", "gz"]);
+                gravity = r.components(v, Scope::Params, &format!("gravity `{shape}` (m/s²)"));
                 if gravity.is_none() {
                     *ok = false;
                 }
                 continue;
             }
+            Item::PointForce(f) if f.kind == "bushing" => bushing::resolve(r, f, body_name),
             Item::PointForce(f) => point_to_point::resolve(r, f, body_name),
-            Item::RotationalForce(f) => rotational::resolve(r, f),
+            Item::RotationalForce(f) => rotational::resolve(r, f, joints),
             Item::Force(f) => applied::resolve(r, f),
             Item::Torque(tq) => torque::resolve(r, tq),
             _ => continue,
@@ -774,6 +913,196 @@ fn force_elements(
         forces.push(ForceElement { name, kind });
     }
     gravity
+}
+
+/// A body statement's fields by name; `false` when one is unknown or given twice (each reported).
+fn body_fields<'b>(r: &mut Resolver, b: &'b parse::BodyDef, known: &[&str], help: &str) -> (HashMap<String, &'b Value>, bool) {
+    let mut fields: HashMap<String, &Value> = HashMap::new();
+    let mut ok = true;
+    for f in &b.fields {
+        let key = f.name.to_string();
+        if !known.contains(&key.as_str()) {
+            let hint = parse::closest(&key, known, &[]);
+            r.errors.push(f.name.span(), format!("unknown body field `{key}`{hint}: {help}"));
+            ok = false;
+        } else if fields.insert(key.clone(), &f.value).is_some() {
+            r.errors.push(f.name.span(), format!("duplicate field `{key}`"));
+            ok = false;
+        }
+    }
+    (fields, ok)
+}
+
+/// A required positive number field of a body (mass, planar inertia).
+fn positive_field(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String, &Value>, name: &str, unit: &str) -> Option<MExpr> {
+    match fields.get(name) {
+        None => {
+            r.errors.push(b.name.span(), format!("body `{}` has no `{name}`: give it in {unit}, e.g. `{name}: 1.0`", b.name));
+            None
+        }
+        Some(Value::List(v)) => {
+            r.errors.push(v.span, format!("`{name}` is a number ({unit}), not a list"));
+            None
+        }
+        Some(Value::Expr(e)) => {
+            let m = r.expr(e, Scope::Params)?;
+            check_positive(r.errors, &m, e, &format!("the {name} of body `{}`", b.name));
+            Some(m)
+        }
+    }
+}
+
+/// An optional list field of a body with one of the allowed lengths (zeros when absent).
+fn list_field(r: &mut Resolver, fields: &HashMap<String, &Value>, name: &str, what: &str, lengths: &[usize]) -> Option<Option<Vec<MExpr>>> {
+    match fields.get(name) {
+        None => Some(None),
+        Some(Value::Expr(e)) => {
+            r.errors.push(e.span, format!("`{name}` is a list `[{what}]`"));
+            None
+        }
+        Some(Value::List(v)) => {
+            if !lengths.contains(&v.items.len()) {
+                r.errors.push(v.span, format!("`{name}: [{what}]` has {} entries, found {}", lengths[0], v.items.len()));
+                return None;
+            }
+            let items: Vec<Option<MExpr>> = v.items.iter().map(|e| r.expr(e, Scope::Params)).collect();
+            items.into_iter().collect::<Option<Vec<_>>>().map(Some)
+        }
+    }
+}
+
+fn zeros(n: usize) -> Vec<MExpr> {
+    vec![MExpr::Num(0.0); n]
+}
+
+/// A body statement, planar or spatial.
+fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
+    match r.space {
+        Space::Planar => {
+            let help = "a body has `mass`, `inertia`, `at: [x, y, phi]` and `velocity: [vx, vy, omega]`";
+            let (fields, ok) = body_fields(r, b, BODY_FIELDS, help);
+            let mass = positive_field(r, b, &fields, "mass", "kg");
+            let inertia = positive_field(r, b, &fields, "inertia", "kg·m² about the centre of mass");
+            let q0 = list_field(r, &fields, "at", "x, y, phi", &[3]);
+            let v0 = list_field(r, &fields, "velocity", "vx, vy, omega", &[3]);
+            if !ok {
+                return None;
+            }
+            Some(Body {
+                name: b.name.clone(),
+                mass: mass?,
+                inertia: Inertia::Planar(inertia?),
+                q0: q0?.unwrap_or_else(|| zeros(3)),
+                v0: v0?.unwrap_or_else(|| zeros(3)),
+            })
+        }
+        Space::Spatial => spatial_body(r, b),
+    }
+}
+
+/// A spatial body: mass, inertia tensor, initial pose (position and one of quaternion,
+/// axis-angle or z-y-x angles) and twist (velocity, body-frame angular velocity).
+fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
+    let help = "a spatial body has `mass`, `inertia: [Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, `at: [x, y, z]`, \
+                one of `quaternion: [e0, e1, e2, e3]`, `axis_angle: [ax, ay, az, angle]`, `angles: [yaw, pitch, roll]`, \
+                `velocity: [vx, vy, vz]` and `omega: [wx, wy, wz]` (body frame)";
+    let (fields, ok) = body_fields(r, b, SPATIAL_BODY_FIELDS, help);
+    let mass = positive_field(r, b, &fields, "mass", "kg");
+    let inertia = match fields.get("inertia") {
+        None => {
+            r.errors.push(b.name.span(), format!("body `{}` has no `inertia`: give `inertia: [Jxx, Jyy, Jzz]` (kg·m², body axes)", b.name));
+            None
+        }
+        Some(Value::Expr(e)) => {
+            r.errors.push(e.span, "a spatial body's `inertia` is a list: `[Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]` (kg·m²)");
+            None
+        }
+        Some(Value::List(v)) => inertia_tensor(r, b, v),
+    };
+    let at = list_field(r, &fields, "at", "x, y, z", &[3]);
+    let rotation = orientation(r, b, &fields);
+    let velocity = list_field(r, &fields, "velocity", "vx, vy, vz", &[3]);
+    let omega = list_field(r, &fields, "omega", "wx, wy, wz", &[3]);
+    if !ok {
+        return None;
+    }
+    let mut q0 = at?.unwrap_or_else(|| zeros(3));
+    q0.extend(rotation?);
+    let mut v0 = velocity?.unwrap_or_else(|| zeros(3));
+    v0.extend(omega?.unwrap_or_else(|| zeros(3)));
+    Some(Body { name: b.name.clone(), mass: mass?, inertia: Inertia::Tensor(inertia?), q0, v0 })
+}
+
+/// `[Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]` as the symmetric tensor; constant
+/// diagonal entries must be positive.
+fn inertia_tensor(r: &mut Resolver, b: &parse::BodyDef, v: &parse::VecLit) -> Option<[[MExpr; 3]; 3]> {
+    if v.items.len() != 3 && v.items.len() != 6 {
+        r.errors.push(
+            v.span,
+            format!("`inertia` has 3 entries `[Jxx, Jyy, Jzz]` or 6 `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, found {}", v.items.len()),
+        );
+        return None;
+    }
+    let items: Vec<Option<MExpr>> = v.items.iter().map(|e| r.expr(e, Scope::Params)).collect();
+    let items: Vec<MExpr> = items.into_iter().collect::<Option<_>>()?;
+    for (k, axis) in ["Jxx", "Jyy", "Jzz"].iter().enumerate() {
+        check_positive(r.errors, &items[k], &v.items[k], &format!("the moment of inertia {axis} of body `{}`", b.name));
+    }
+    let off = |k: usize| items.get(k).cloned().unwrap_or(MExpr::Num(0.0));
+    let (xy, xz, yz) = (off(3), off(4), off(5));
+    Some([[items[0].clone(), xy.clone(), xz.clone()], [xy, items[1].clone(), yz.clone()], [xz, yz, items[2].clone()]])
+}
+
+fn bin(op: MBin, a: MExpr, b: MExpr) -> MExpr {
+    MExpr::Bin(op, Box::new(a), Box::new(b))
+}
+
+fn call(f: Func, a: MExpr) -> MExpr {
+    MExpr::Call(f, Box::new(a))
+}
+
+/// The initial Euler parameters (e0, e1, e2, e3) of a spatial body from at most one of
+/// `quaternion` (normalized here), `axis_angle` (a unit turn about the normalized axis) or
+/// `angles` (yaw ψ about z, then pitch θ about the new y, then roll φ about the new x:
+/// A = R_z(ψ) R_y(θ) R_x(φ)); the identity when none is given.
+fn orientation(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String, &Value>) -> Option<Vec<MExpr>> {
+    let given: Vec<&str> = ["quaternion", "axis_angle", "angles"].into_iter().filter(|k| fields.contains_key(*k)).collect();
+    if given.len() > 1 {
+        r.errors.push(b.name.span(), format!("body `{}` gives its orientation twice (`{}`): keep one", b.name, given.join("`, `")));
+        return None;
+    }
+    let norm = |v: &[MExpr]| {
+        let sum = v.iter().map(|c| bin(MBin::Pow, c.clone(), MExpr::Num(2.0))).reduce(|a, c| bin(MBin::Add, a, c));
+        call(Func::Sqrt, sum.unwrap_or(MExpr::Num(0.0)))
+    };
+    let half = |a: &MExpr| bin(MBin::Mul, MExpr::Num(0.5), a.clone());
+    Some(match given.first() {
+        None => vec![MExpr::Num(1.0), MExpr::Num(0.0), MExpr::Num(0.0), MExpr::Num(0.0)],
+        Some(&"quaternion") => {
+            let p = list_field(r, fields, "quaternion", "e0, e1, e2, e3", &[4])??;
+            let n = norm(&p);
+            p.into_iter().map(|e| bin(MBin::Div, e, n.clone())).collect()
+        }
+        Some(&"axis_angle") => {
+            let v = list_field(r, fields, "axis_angle", "ax, ay, az, angle", &[4])??;
+            let n = norm(&v[..3]);
+            let s = call(Func::Sin, half(&v[3]));
+            let mut p = vec![call(Func::Cos, half(&v[3]))];
+            p.extend(v[..3].iter().map(|a| bin(MBin::Mul, s.clone(), bin(MBin::Div, a.clone(), n.clone()))));
+            p
+        }
+        Some(_) => {
+            let v = list_field(r, fields, "angles", "yaw, pitch, roll", &[3])??;
+            let [(sy, cy), (sp, cp), (sr, cr)] = [0, 1, 2].map(|k| (call(Func::Sin, half(&v[k])), call(Func::Cos, half(&v[k]))));
+            let prod = |a: &MExpr, b: &MExpr, c: &MExpr| bin(MBin::Mul, bin(MBin::Mul, a.clone(), b.clone()), c.clone());
+            vec![
+                bin(MBin::Add, prod(&cr, &cp, &cy), prod(&sr, &sp, &sy)),
+                bin(MBin::Sub, prod(&sr, &cp, &cy), prod(&cr, &sp, &sy)),
+                bin(MBin::Add, prod(&cr, &sp, &cy), prod(&sr, &cp, &sy)),
+                bin(MBin::Sub, prod(&cr, &cp, &sy), prod(&sr, &sp, &cy)),
+            ]
+        }
+    })
 }
 
 #[cfg(test)]
@@ -839,5 +1168,42 @@ mod tests {
             panic!("`length` is not an option of rigid")
         };
         assert!(e.to_string().contains("unknown option `length` of a rigid joint (it takes: angle)"), "{e}");
+    }
+
+    /// A spatial body's orientation from z-y-x angles is the unit quaternion of
+    /// R_z(ψ) R_y(θ) R_x(φ); a marker without a reference gets the coordinate axis least along
+    /// its axis; drivers name joints declared after them.
+    #[test]
+    fn spatial_bodies_markers_and_drivers() {
+        let m = validate(
+            "S { spatial; params { a: 0.0 }
+                 body b { mass: 1.0, inertia: [1.0, 2.0, 3.0], angles: [0.3, 0.0, 0.0], omega: [0.0, 0.0, 2.0] }
+                 drive hinge.angle = t;
+                 revolute hinge: ground[0.0, 0.0, 0.0] along [a, 0.2, 1.0] ~ b[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0]; }",
+        )
+        .unwrap();
+        let p: Vec<f64> = m.bodies[0].q0[3..].iter().map(|e| e.constant_value().unwrap()).collect();
+        // a yaw of 0.3 rad about z: p = (cos 0.15, 0, 0, sin 0.15)
+        let want = [0.15f64.cos(), 0.0, 0.0, 0.15f64.sin()];
+        assert!(p.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15), "{p:?}");
+        assert_eq!(m.constraints.iter().map(|c| c.name.as_str()).collect::<Vec<_>>(), ["drive hinge.angle", "hinge"]);
+        let [mi, _] = m.constraints[1].kind.markers().unwrap();
+        let reference: Vec<f64> = mi.reference.iter().map(|e| e.constant_value().unwrap()).collect();
+        assert_eq!(reference, [1.0, 0.0, 0.0], "|a_x| = 0 at the default of `a`: the x-axis");
+    }
+
+    /// Planar and spatial kinds are not mixed up: each is refused in the other space by name.
+    #[test]
+    fn spatial_and_planar_kinds_stay_apart() {
+        let Err(e) = validate("M { body a { mass: 1.0, inertia: 0.1 } spherical ground[0.0, 0.0] ~ a[0.0, 0.0]; }") else {
+            panic!("a spherical joint is spatial")
+        };
+        assert!(e.to_string().contains("unknown joint kind `spherical` in the plane"), "{e}");
+        let Err(e) = validate("S { spatial; body a { mass: 1.0, inertia: [1.0, 1.0, 1.0] } revolute_revolute ground[0.0, 0.0, 0.0] ~ a[0.0, 0.0, 0.0] { length: 1.0 }; }") else {
+            panic!("revolute_revolute is planar")
+        };
+        assert!(e.to_string().contains("in space (it is a planar joint)"), "{e}");
+        let Err(e) = validate("S { spatial; body a { mass: 1.0, inertia: 0.1 } }") else { panic!("a spatial inertia is a tensor") };
+        assert!(e.to_string().contains("a spatial body's `inertia` is a list"), "{e}");
     }
 }

@@ -4,16 +4,18 @@
 //!
 //! ```text
 //! mechanism   := attr* vis? Ident '{' item* '}'
-//! item        := 'scalar' Ident ';'
+//! item        := 'scalar' Ident ';' | 'spatial' ';'
 //!              | 'params' '{' (Ident ':' expr),* '}'
 //!              | 'body' Ident '{' (Ident ':' value),* '}'
 //!              | 'point' Ident '.' Ident '=' vec ';'
 //!              | 'vector' Ident '.' Ident '=' vec ';'
 //!              | JOINT (Ident ':')? attach '~' attach options? ';'
+//!              | ROTATIONAL (Ident ':')? Ident ('~' Ident)? options ';'
 //!              | 'fix' Ident '.' Ident ('=' expr)? ';'
 //!              | 'drive' (Ident ':')? target '=' expr ';'
 //!              | 'constraint' (Ident ':')? expr '=' expr ';'
-//! attach      := Ident ('.' Ident | vec) ('along' (Ident '.' Ident | vec))?
+//! attach      := Ident ('.' Ident | vec) ('along' axis ('reference' axis)?)?
+//! axis        := Ident '.' Ident | vec
 //! target      := Ident '.' Ident | 'angle' '(' Ident ',' Ident ')' | 'distance' '(' point ',' point ')'
 //! options     := '{' (Ident ':' expr),* '}'
 //! vec         := '[' expr,* ']'
@@ -38,6 +40,8 @@ pub struct MechanismDef {
 /// One statement inside the mechanism's braces.
 pub enum Item {
     Scalar(Ident),
+    /// `spatial;`: the mechanism lives in 3D.
+    Spatial(Ident),
     Params(Vec<(Ident, Expr)>),
     Body(BodyDef),
     Point(NamedVector),
@@ -49,7 +53,8 @@ pub enum Item {
     Gravity(Ident, VecLit),
     /// `spring`, `damper`, `actuator` between two points (same shape as a joint).
     PointForce(JointDef),
-    /// `rotational_spring`, `rotational_damper`, `torque_actuator` between two bodies.
+    /// `rotational_spring`, `rotational_damper`, `torque_actuator` between two bodies (planar)
+    /// or on a joint (spatial).
     RotationalForce(RotationalDef),
     /// `force` (global components) or `local_force` (body components) at a point.
     Force(ForceDef),
@@ -60,7 +65,8 @@ pub struct RotationalDef {
     pub kind: Ident,
     pub label: Option<Ident>,
     pub i: Ident,
-    pub j: Ident,
+    /// The second body (planar); absent where `i` names a joint (spatial).
+    pub j: Option<Ident>,
     pub options: Vec<Field>,
 }
 
@@ -76,7 +82,8 @@ pub struct TorqueDef {
     pub keyword: Ident,
     pub label: Option<Ident>,
     pub body: Ident,
-    pub value: Expr,
+    /// A number (planar) or a list of three components (spatial).
+    pub value: Value,
 }
 
 pub struct BodyDef {
@@ -122,10 +129,12 @@ pub struct Attach {
     pub along: Option<Along>,
 }
 
-/// The axis after `along`: a named vector of the same body or a vector written in place.
+/// The axis after `along`: a named vector of the same body or a vector written in place; in
+/// space, optionally the reference direction of the marker's x-axis after `reference`.
 pub struct Along {
     pub keyword: Ident,
     pub axis: AxisRef,
+    pub reference: Option<AxisRef>,
 }
 
 pub enum AxisRef {
@@ -212,8 +221,9 @@ pub enum BinOp {
     Pow,
 }
 
-/// Force elements between two points: the keywords of the point-to-point force rule.
-pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator"];
+/// Force elements between two points (and, `bushing`, between two markers): the keywords of the
+/// two-attachment force rule.
+pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator", "bushing"];
 
 /// Force elements between two bodies' angles.
 pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_damper", "torque_actuator"];
@@ -222,6 +232,7 @@ pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_d
 /// kind is here).
 pub const STATEMENTS: &[&str] = &[
     "scalar",
+    "spatial",
     "params",
     "body",
     "point",
@@ -233,11 +244,20 @@ pub const STATEMENTS: &[&str] = &[
     "force",
     "local_force",
     "torque",
+    "local_torque",
     "revolute",
     "translational",
     "revolute_revolute",
     "revolute_translational",
     "rigid",
+    "spherical",
+    "universal",
+    "cylindrical",
+    "planar",
+    "point_on_line",
+    "point_on_plane",
+    "distance",
+    "bushing",
     "spring",
     "damper",
     "actuator",
@@ -281,9 +301,11 @@ impl Parse for Item {
             syn::Error::new(
                 e.span(),
                 "expected a statement: `scalar`, `params`, `body`, `point`, `vector`, a joint \
-                 (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`), \
-                 `fix`, `drive`, `constraint`, `gravity` or a force element (`spring`, `damper`, `actuator`, \
-                 `rotational_spring`, `rotational_damper`, `torque_actuator`, `force`, `local_force`, `torque`)",
+                 (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`; \
+                 in space also `spherical`, `universal`, `cylindrical`, `planar`, `point_on_line`, `point_on_plane`, \
+                 `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial` or a force element (`spring`, `damper`, \
+                 `actuator`, `bushing`, `rotational_spring`, `rotational_damper`, `torque_actuator`, `force`, `local_force`, \
+                 `torque`, `local_torque`)",
             )
         })?;
         let item = match kw.to_string().as_str() {
@@ -291,6 +313,10 @@ impl Parse for Item {
                 let ty: Ident = input.parse()?;
                 input.parse::<Token![;]>()?;
                 Item::Scalar(ty)
+            }
+            "spatial" => {
+                input.parse::<Token![;]>()?;
+                Item::Spatial(kw)
             }
             "params" => {
                 let content;
@@ -372,24 +398,28 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::Force(ForceDef { kind: kw, label, body, point, value })
             }
-            "torque" => {
+            "torque" | "local_torque" => {
                 let label = label(input)?;
                 let body: Ident = input.call(Ident::parse_any)?;
                 input.parse::<Token![=]>()?;
-                let value: Expr = input.parse()?;
+                let value = if input.peek(syn::token::Bracket) { Value::List(input.parse()?) } else { Value::Expr(input.parse()?) };
                 input.parse::<Token![;]>()?;
                 Item::Torque(TorqueDef { keyword: kw, label, body, value })
             }
             k if ROTATIONAL_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Ident = input.call(Ident::parse_any)?;
-                input.parse::<Token![~]>()?;
-                let j: Ident = input.call(Ident::parse_any)?;
+                let j = if input.peek(Token![~]) {
+                    input.parse::<Token![~]>()?;
+                    Some(input.call(Ident::parse_any)?)
+                } else {
+                    None
+                };
                 let options = parse_fields(input)?;
                 input.parse::<Token![;]>()?;
                 Item::RotationalForce(RotationalDef { kind: kw, label, i, j, options })
             }
-            k if crate::elements::spec(k).is_some() || POINT_FORCE_KINDS.contains(&k) => {
+            k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Attach = input.parse()?;
                 input.parse::<Token![~]>()?;
@@ -496,7 +526,8 @@ fn parse_drive_target(input: ParseStream) -> syn::Result<DriveTarget> {
         input.parse::<Token![.]>().map_err(|e| {
             syn::Error::new(
                 e.span(),
-                "expected what to drive: `body.x`, `body.y`, `body.phi`, `angle(body_i, body_j)` or `distance(body_i.P, body_j.Q)`",
+                "expected what to drive: `body.x`, `body.y`, `body.phi`, `angle(body_i, body_j)` or `distance(body_i.P, body_j.Q)`; \
+                 in space `body.x`, `body.y`, `body.z`, `joint.angle` or `joint.stroke`",
             )
         })?;
         let coordinate: Ident = input.parse()?;
@@ -510,18 +541,30 @@ impl Parse for Attach {
         let point = parse_point_ref(input)?;
         let along = if input.peek(Ident) && input.fork().parse::<Ident>().map(|i| i == "along").unwrap_or(false) {
             let keyword: Ident = input.parse()?;
-            let axis = if input.peek(syn::token::Bracket) {
-                AxisRef::Inline(input.parse()?)
+            let axis = input.parse()?;
+            let reference = if input.peek(Ident) && input.fork().parse::<Ident>().map(|i| i == "reference").unwrap_or(false) {
+                input.parse::<Ident>()?;
+                Some(input.parse()?)
             } else {
-                let b: Ident = input.call(Ident::parse_any)?;
-                input.parse::<Token![.]>()?;
-                AxisRef::Named(b, input.parse()?)
+                None
             };
-            Some(Along { keyword, axis })
+            Some(Along { keyword, axis, reference })
         } else {
             None
         };
         Ok(Attach { body, point, along })
+    }
+}
+
+impl Parse for AxisRef {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        if input.peek(syn::token::Bracket) {
+            Ok(AxisRef::Inline(input.parse()?))
+        } else {
+            let b: Ident = input.call(Ident::parse_any)?;
+            input.parse::<Token![.]>()?;
+            Ok(AxisRef::Named(b, input.parse()?))
+        }
     }
 }
 
@@ -670,10 +713,11 @@ mod tests {
     /// hints) and is named in the "expected a statement" message.
     #[test]
     fn registered_joints_are_statements() {
-        for spec in crate::elements::JOINTS {
-            assert!(STATEMENTS.contains(&spec.keyword), "{} missing from STATEMENTS", spec.keyword);
+        let keywords = crate::elements::JOINTS.iter().map(|s| s.keyword).chain(crate::elements::spatial::JOINTS.iter().map(|s| s.keyword));
+        for keyword in keywords {
+            assert!(STATEMENTS.contains(&keyword), "{keyword} missing from STATEMENTS");
             let err = syn::parse_str::<Item>("123").err().expect("a number is not a statement").to_string();
-            assert!(err.contains(&format!("`{}`", spec.keyword)), "{} missing from: {err}", spec.keyword);
+            assert!(err.contains(&format!("`{keyword}`")), "{keyword} missing from: {err}");
         }
     }
 

@@ -28,9 +28,15 @@ pub fn resolve<'a>(
     driven: &mut Driven,
 ) -> Option<Resolved<'a>> {
     let b = r.body(body);
-    let coord = Coord::from_ident(coordinate);
+    let coord = Coord::from_ident(r.space, coordinate).filter(|c| !matches!(c, Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3));
     if coord.is_none() {
-        r.errors.push(coordinate.span(), format!("unknown coordinate `{coordinate}`: a body has `x`, `y` and `phi`"));
+        let msg = match r.space {
+            crate::model::Space::Planar => format!("unknown coordinate `{coordinate}`: a body has `x`, `y` and `phi`"),
+            crate::model::Space::Spatial => format!(
+                "`{coordinate}` cannot be driven: a spatial body's `x`, `y` or `z` can; drive its orientation through a joint (`drive hinge.angle = f;`)"
+            ),
+        };
+        r.errors.push(coordinate.span(), msg);
     }
     match (b, coord, f) {
         (Some(BodyRef::Ground), _, _) => {

@@ -20,7 +20,14 @@ pub struct Fix {
 
 pub fn resolve<'a>(r: &mut Resolver, f: &'a FixDef, driven: &mut Driven, bodies: &[Body]) -> Option<Resolved<'a>> {
     let body = r.body(&f.body);
-    let coord = Coord::from_ident(&f.coordinate);
+    if r.space == crate::model::Space::Spatial {
+        r.errors.push(
+            f.keyword.span(),
+            "`fix` is planar: in space, drive the coordinate (`drive body.x = 0.1;`) or hold the body with a `rigid` joint",
+        );
+        return None;
+    }
+    let coord = Coord::from_ident(r.space, &f.coordinate);
     if coord.is_none() {
         r.errors.push(f.coordinate.span(), format!("unknown coordinate `{}`: a body has `x`, `y` and `phi`", f.coordinate));
     }

@@ -22,7 +22,7 @@ use crate::forces::friction;
 use crate::forces::Force;
 use crate::frames::{Builder, Row};
 use crate::json::Ctx;
-use crate::model::{check_positive, BodyRef, Loc, MExpr, Resolver, Scope};
+use crate::model::{check_positive, BodyRef, Components, Loc, MExpr, Resolver, Scope};
 use crate::parse::{self, Value as FieldValue};
 
 pub mod drive;
@@ -33,6 +33,7 @@ pub mod revolute;
 pub mod revolute_revolute;
 pub mod revolute_translational;
 pub mod rigid;
+pub mod spatial;
 pub mod translational;
 pub mod user;
 
@@ -46,6 +47,11 @@ pub trait Joint: Debug {
     fn rows(&self, b: &mut Builder) -> Vec<Row>;
     /// Its model JSON object without `"kind"` and `"name"`, which the caller adds.
     fn json(&self, cx: &Ctx) -> Value;
+    /// A spatial joint's two markers with their triads, for what refers to the joint by name
+    /// (its drivers, rotational springs, friction); `None` for every other kind.
+    fn markers(&self) -> Option<[&spatial::Marker; 2]> {
+        None
+    }
 }
 
 /// A validated joint, driver or user constraint with its name.
@@ -59,8 +65,8 @@ pub struct Constraint {
 pub struct Parts {
     pub i: Loc,
     pub j: Loc,
-    pub axis_i: Option<[MExpr; 2]>,
-    pub axis_j: Option<[MExpr; 2]>,
+    pub axis_i: Option<Components>,
+    pub axis_j: Option<Components>,
     /// The options the kind declared, resolved (friction options already taken out).
     pub options: HashMap<String, MExpr>,
     /// The joint's keyword, for errors about the statement as a whole.
@@ -89,6 +95,11 @@ pub fn spec(keyword: &str) -> Option<&'static JointSpec> {
     JOINTS.iter().find(|s| s.keyword == keyword)
 }
 
+/// Whether a keyword names a two-attachment joint, planar or spatial.
+pub fn is_joint_keyword(keyword: &str) -> bool {
+    spec(keyword).is_some() || spatial::spec(keyword).is_some()
+}
+
 /// A joint statement, resolved and validated: its label, default name, keyword span, kind and
 /// the friction forces its options declare.
 pub type Resolved<'a> = (Option<&'a Ident>, String, Span, Box<dyn Joint>, Vec<Named>);
@@ -106,7 +117,9 @@ pub fn resolve<'a>(
 ) -> Option<Resolved<'a>> {
     let kind = j.kind.to_string();
     let Some(spec) = spec(&kind) else {
-        r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`"));
+        let spatial = spatial::spec(&kind).is_some();
+        let why = if spatial { " in the plane (it is a spatial joint: state `spatial;`)" } else { "" };
+        r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`{why}"));
         return None;
     };
     let li = r.loc(&j.i.body, &j.i.point);
@@ -116,7 +129,7 @@ pub fn resolve<'a>(
         r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
         return None;
     }
-    let axis = |r: &mut Resolver, side: &parse::Attach, body: BodyRef, needed: bool, which: &str| -> Option<Option<[MExpr; 2]>> {
+    let axis = |r: &mut Resolver, side: &parse::Attach, body: BodyRef, needed: bool, which: &str| -> Option<Option<Components>> {
         match (&side.along, needed) {
             (Some(a), true) => r.axis(body, &a.axis).map(Some),
             (None, true) => {
@@ -191,4 +204,6 @@ pub fn resolve<'a>(
 pub struct Driven {
     pub coords: HashMap<(usize, crate::model::Coord), Span>,
     pub angles: std::collections::HashSet<(BodyRef, BodyRef)>,
+    /// Spatial joints' angles and strokes, `"hinge.angle"`.
+    pub joints: std::collections::HashSet<String>,
 }

@@ -28,7 +28,7 @@ pub const SPEC: JointSpec = JointSpec {
 pub struct RevoluteTranslational {
     pub i: Loc,
     pub j: Loc,
-    pub axis_j: [MExpr; 2],
+    pub axis_j: crate::model::Components,
     pub distance: MExpr,
 }
 
@@ -45,7 +45,7 @@ impl Joint for RevoluteTranslational {
         let uj = b.unit(self.j.body, &self.axis_j);
         let nj = b.perp(uj);
         let d = b.diff2(pi, pj);
-        let n = b.dot(nj, d);
+        let n = b.dot(&nj, &d);
         let l = b.expr(&self.distance);
         vec![Row { name: "distance", value: b.g.sub(n, l) }]
     }

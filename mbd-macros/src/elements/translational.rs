@@ -9,7 +9,7 @@ use serde_json::{json, Value};
 use super::{Joint, JointSpec, Parts};
 use crate::frames::{Builder, Row};
 use crate::json::Ctx;
-use crate::model::{BodyRef, Loc, MExpr};
+use crate::model::{BodyRef, Components, Loc};
 
 pub const SPEC: JointSpec = JointSpec {
     keyword: "translational",
@@ -32,9 +32,9 @@ pub const SPEC: JointSpec = JointSpec {
 #[derive(Debug)]
 pub struct Translational {
     pub i: Loc,
-    pub axis_i: [MExpr; 2],
+    pub axis_i: Components,
     pub j: Loc,
-    pub axis_j: [MExpr; 2],
+    pub axis_j: Components,
 }
 
 impl Joint for Translational {
@@ -51,7 +51,7 @@ impl Joint for Translational {
         let ni = b.perp(ui);
         let uj = b.unit(self.j.body, &self.axis_j);
         let d = b.diff2(pj, pi);
-        vec![Row { name: "normal", value: b.dot(ni, d) }, Row { name: "angle", value: b.dot(ni, uj) }]
+        vec![Row { name: "normal", value: b.dot(&ni, &d) }, Row { name: "angle", value: b.dot(&ni, &uj) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc_axis(&self.i, &self.axis_i), "j": cx.loc_axis(&self.j, &self.axis_j)})

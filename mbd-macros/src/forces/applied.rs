@@ -1,4 +1,4 @@
-//! `force body.P = [fx, fy];` and `local_force body.P = [fx, fy];` — a force at a point, in
+//! `force body.P = [fx, fy];` and `local_force body.P = [fx, fy];` (three components in space) — a force at a point, in
 //! global or body components (N), any expression of q, v, t and parameters:
 //! Q = (∂ṙ^P/∂v)ᵀ F, F = A F′ for body components.
 
@@ -7,19 +7,20 @@ use serde_json::{json, Value};
 use super::{Force, Generalized, Resolved};
 use crate::frames::Builder;
 use crate::json::Ctx;
-use crate::model::{BodyRef, Loc, MExpr, Resolver, Scope};
+use crate::model::{BodyRef, Components, Loc, Resolver, Scope};
 use crate::parse::ForceDef;
 
 #[derive(Debug)]
 pub struct Applied {
     pub at: Loc,
-    pub force: [MExpr; 2],
+    pub force: Components,
     pub local: bool,
 }
 
 pub fn resolve<'a>(r: &mut Resolver, f: &'a ForceDef) -> Option<Resolved<'a>> {
     let at = r.loc(&f.body, &f.point);
-    let value = r.list::<2>(&f.value, Scope::Force, "a force `[fx, fy]` (N)");
+    let shape = r.shape(["fx", "fy", "fz"]);
+    let value = r.components(&f.value, Scope::Force, &format!("a force `{shape}` (N)"));
     match (at, value) {
         (Some(at), _) if at.body == BodyRef::Ground => {
             r.errors.push(f.body.span(), "a force on the ground does nothing: apply it to a moving body");
@@ -45,13 +46,13 @@ impl Force for Applied {
         }
     }
     fn apply(&self, b: &mut Builder, out: &mut Generalized) {
-        let mut f = b.exprs(&self.force);
+        let mut f: Vec<_> = self.force.iter().map(|e| b.expr(e)).collect();
         if self.local {
-            f = b.rotate(self.at.body, f);
+            f = b.rotate_n(self.at.body, f);
         }
-        let p = b.point(&self.at);
+        let p = b.point_n(&self.at);
         // h_k += Fᵀ ∂ṙ_P/∂v_k
-        for a in 0..2 {
+        for a in 0..p.len() {
             for (k, dp) in b.gradient(p[a]) {
                 let w = b.g.mul(f[a], dp);
                 out.h[k] = b.g.add(out.h[k], w);
@@ -59,6 +60,6 @@ impl Force for Applied {
         }
     }
     fn json(&self, cx: &Ctx) -> Value {
-        json!({"at": cx.loc(&self.at), "force": cx.pair(&self.force)})
+        json!({"at": cx.loc(&self.at), "force": cx.list(&self.force)})
     }
 }

@@ -14,10 +14,11 @@ use std::collections::HashMap;
 use serde_json::{json, Value};
 
 use super::{Force, Generalized};
+use crate::elements::spatial::Marker;
 use crate::elements::Named;
 use crate::frames::Builder;
 use crate::json::Ctx;
-use crate::model::{BodyRef, Loc, MExpr};
+use crate::model::{BodyRef, Components, Loc, MExpr};
 
 /// The friction forces a joint's options declare (taking those options out), each with the word
 /// that names it (`"viscous friction"`). `Err` holds a message in which `{kind}` stands for the
@@ -25,7 +26,7 @@ use crate::model::{BodyRef, Loc, MExpr};
 pub fn from_joint_options(
     options: &mut HashMap<String, MExpr>,
     i: &Loc,
-    axis_i: Option<&[MExpr; 2]>,
+    axis_i: Option<&Components>,
     j: &Loc,
     joint: usize,
 ) -> Result<Vec<Named>, String> {
@@ -97,7 +98,7 @@ impl Force for RevoluteViscous {
 #[derive(Debug)]
 pub struct TranslationalViscous {
     pub i: Loc,
-    pub axis_i: [MExpr; 2],
+    pub axis_i: Components,
     pub j: Loc,
     pub c: MExpr,
 }
@@ -166,7 +167,7 @@ impl Force for RevoluteCoulomb {
 #[derive(Debug)]
 pub struct TranslationalCoulomb {
     pub i: Loc,
-    pub axis_i: [MExpr; 2],
+    pub axis_i: Components,
     pub j: Loc,
     pub mu: MExpr,
     pub slip: MExpr,
@@ -208,5 +209,40 @@ impl Force for TranslationalCoulomb {
             "slip_velocity": cx.expr(&self.slip), "bearing": self.bearing.as_ref().map(|w| cx.expr(w)),
             "row": cx.first_rows[self.joint]
         })
+    }
+}
+
+/// Viscous friction in a spatial joint (docs/formulation.md): torque c θ̇_J resisting the turn of
+/// a revolute joint, or force c ṡ_J resisting the slide of a translational one, θ_J and s_J
+/// from the joint's markers.
+#[derive(Debug)]
+pub struct SpatialViscous {
+    /// The joint's name, its markers, the coefficient and whether it resists sliding.
+    pub joint: String,
+    pub i: Marker,
+    pub j: Marker,
+    pub c: MExpr,
+    pub sliding: bool,
+}
+
+impl Force for SpatialViscous {
+    fn effect(&self) -> &'static str {
+        "viscous joint friction"
+    }
+    fn kind(&self) -> &'static str {
+        if self.sliding {
+            "translational_viscous"
+        } else {
+            "revolute_viscous"
+        }
+    }
+    fn apply(&self, b: &mut Builder, out: &mut Generalized) {
+        let s = if self.sliding { b.joint_stroke(&self.i, &self.j) } else { b.joint_angle(&self.i, &self.j) };
+        let sdot = b.rate(s);
+        let (f, _) = b.law(s, sdot, &None, &MExpr::Num(0.0), &Some(self.c.clone()), &None);
+        b.add_along(&mut out.h, s, f);
+    }
+    fn json(&self, cx: &Ctx) -> Value {
+        json!({"joint": self.joint, "c": cx.expr(&self.c)})
     }
 }

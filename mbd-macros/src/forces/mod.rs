@@ -16,6 +16,7 @@ use crate::model::MExpr;
 use crate::sym::{Func, Id};
 
 pub mod applied;
+pub mod bushing;
 pub mod friction;
 pub mod gravity;
 pub mod point_to_point;

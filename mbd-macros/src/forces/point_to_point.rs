@@ -71,10 +71,10 @@ impl Force for PointToPoint {
         "point_to_point"
     }
     fn apply(&self, b: &mut Builder, out: &mut Generalized) {
-        let pi = b.point(&self.i);
-        let pj = b.point(&self.j);
-        let d = b.diff2(pj, pi);
-        let dd = b.dot(d, d);
+        let pi = b.point_n(&self.i);
+        let pj = b.point_n(&self.j);
+        let d = b.diff_n(&pj, &pi);
+        let dd = b.dot(&d, &d);
         let l = b.g.call(Func::Sqrt, dd);
         let ldot = b.rate(l);
         let (f, spring) = b.law(l, ldot, &self.k, &self.length, &self.c, &self.force);
