@@ -817,9 +817,16 @@ fn constraints(
     let mut spatial_joints = HashMap::new();
     let mut joints = SpatialJoints::new();
     if r.space == Space::Spatial {
+        // the index each joint will have among the constraints (exact when every statement
+        // resolves; otherwise the mechanism is refused anyway)
+        let mut joint_index = 0;
         for (index, item) in items.iter().enumerate() {
+            if matches!(item, Item::Fix(_) | Item::Drive(_) | Item::Constraint(_)) {
+                joint_index += 1;
+            }
             if let Item::Joint(j) = item {
-                let resolved = spatial::resolve(r, j, body_name);
+                let resolved = spatial::resolve(r, j, body_name, joint_index);
+                joint_index += 1;
                 if let Some((label, default_name, _, kind, _)) = &resolved {
                     if let Some([mi, mj]) = kind.markers() {
                         let name = label.map_or_else(|| default_name.clone(), |l| l.to_string());

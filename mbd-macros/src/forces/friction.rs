@@ -246,3 +246,59 @@ impl Force for SpatialViscous {
         json!({"joint": self.joint, "c": cx.expr(&self.c)})
     }
 }
+
+/// Coulomb friction in a spatial joint (docs/formulation.md): a revolute joint's torque
+/// μ R N θ̇/√(θ̇² + v_s²), N = |(λ_x, λ_y, λ_z)| its pin force; a translational joint's force
+/// μ N ṡ/√(ṡ² + v_s²), N = |(λ_offset_x, λ_offset_y)|; each resisting θ_J or s_J, in the
+/// λ-dependent friction forces.
+#[derive(Debug)]
+pub struct SpatialCoulomb {
+    /// The joint's name, its index among the constraints, its markers.
+    pub joint: String,
+    pub index: usize,
+    pub i: Marker,
+    pub j: Marker,
+    pub mu: MExpr,
+    /// The pin radius of a revolute joint; `None` for a translational one.
+    pub radius: Option<MExpr>,
+    pub slip: MExpr,
+}
+
+impl Force for SpatialCoulomb {
+    fn effect(&self) -> &'static str {
+        "Coulomb joint friction"
+    }
+    fn kind(&self) -> &'static str {
+        if self.radius.is_some() {
+            "revolute_coulomb"
+        } else {
+            "translational_coulomb"
+        }
+    }
+    fn apply(&self, b: &mut Builder, out: &mut Generalized) {
+        let (s, rows) = match self.radius {
+            Some(_) => (b.joint_angle(&self.i, &self.j), 0..3),
+            None => (b.joint_stroke(&self.i, &self.j), 2..4),
+        };
+        let sdot = b.rate(s);
+        let mut load2 = b.g.num(0.0);
+        for row in rows {
+            let l = b.lambda(self.index, row);
+            let l2 = b.g.powi(l, 2);
+            load2 = b.g.add(load2, l2);
+        }
+        let mut load = b.g.call(crate::sym::Func::Sqrt, load2);
+        if let Some(radius) = &self.radius {
+            let radius = b.expr(radius);
+            load = b.g.mul(radius, load);
+        }
+        let f = b.coulomb(&self.mu, &self.slip, load, sdot);
+        b.add_along(&mut out.friction, s, f);
+    }
+    fn json(&self, cx: &Ctx) -> Value {
+        json!({
+            "joint": self.joint, "mu": cx.expr(&self.mu), "radius": self.radius.as_ref().map(|r| cx.expr(r)),
+            "slip_velocity": cx.expr(&self.slip), "row": cx.first_rows[self.index]
+        })
+    }
+}

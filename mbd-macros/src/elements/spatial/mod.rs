@@ -166,7 +166,12 @@ pub fn marker(r: &mut Resolver, side: &parse::Attach, axis: Axis, kind: &str, wh
 
 /// Resolves a spatial two-marker joint statement: markers, options, its kind's `build` and the
 /// joint friction its options ask for.
-pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
+pub fn resolve<'a>(
+    r: &mut Resolver,
+    j: &'a parse::JointDef,
+    body_name: &dyn Fn(BodyRef) -> String,
+    joint_index: usize,
+) -> Option<Resolved<'a>> {
     let kind = j.kind.to_string();
     let Some(spec) = spec(&kind) else {
         let planar = super::spec(&kind).is_some();
@@ -184,7 +189,9 @@ pub fn resolve<'a>(r: &mut Resolver, j: &'a parse::JointDef, body_name: &dyn Fn(
     let mut options = joint_options(r, &kind, spec.options, &j.options)?;
     let name = format!("{kind} {}~{}", body_name(mi.loc.body), body_name(mj.loc.body));
     let joint_name = j.label.as_ref().map_or_else(|| name.clone(), |l| l.to_string());
-    let friction = friction_options(&mut options, &kind, &joint_name, &mi, &mj).map_err(|msg| r.errors.push(j.kind.span(), msg)).ok()?;
+    let friction = friction_options(&mut options, &kind, (&joint_name, joint_index), &mi, &mj)
+        .map_err(|msg| r.errors.push(j.kind.span(), msg))
+        .ok()?;
     match (spec.build)(Parts { i: mi, j: mj, options, keyword: j.kind.clone() }) {
         Ok(joint) => Some((j.label.as_ref(), name, j.kind.span(), joint, friction)),
         Err((span, msg)) => {
@@ -230,17 +237,42 @@ pub fn joint_options(
     (!bad).then_some(options)
 }
 
-/// The friction options of a spatial joint (`viscous: c`; Coulomb friction in space is not
-/// built yet and is refused by name).
-fn friction_options(options: &mut HashMap<String, MExpr>, kind: &str, joint: &str, i: &Marker, j: &Marker) -> Result<Vec<Named>, String> {
+/// The friction options of a spatial revolute or translational joint: `viscous: c` and
+/// `coulomb: μ` (with `radius: R` for a revolute joint, `slip_velocity: v_s`), the joint given
+/// by its name and its index among the constraints.
+fn friction_options(
+    options: &mut HashMap<String, MExpr>,
+    kind: &str,
+    (name, index): (&str, usize),
+    i: &Marker,
+    j: &Marker,
+) -> Result<Vec<Named>, String> {
     let mut out: Vec<Named> = Vec::new();
+    let sliding = kind == "translational";
     if let Some(c) = options.remove("viscous") {
-        let sliding = kind == "translational";
-        let element = friction::SpatialViscous { joint: joint.to_string(), i: i.clone(), j: j.clone(), c, sliding };
+        let element = friction::SpatialViscous { joint: name.to_string(), i: i.clone(), j: j.clone(), c, sliding };
         out.push(("viscous friction", Box::new(element)));
     }
-    if options.contains_key("coulomb") {
-        return Err(format!("Coulomb friction in a spatial {kind} joint is not available yet: use `viscous: c`"));
+    let (slip, radius) = (options.remove("slip_velocity"), options.remove("radius"));
+    match options.remove("coulomb") {
+        Some(mu) => {
+            let radius = match (sliding, radius) {
+                (true, _) => None,
+                (false, Some(r)) => Some(r),
+                (false, None) => {
+                    return Err(
+                        "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)".to_string()
+                    )
+                }
+            };
+            let slip = slip.unwrap_or(MExpr::Num(1e-3));
+            let element = friction::SpatialCoulomb { joint: name.to_string(), index, i: i.clone(), j: j.clone(), mu, radius, slip };
+            out.push(("Coulomb friction", Box::new(element)));
+        }
+        None if slip.is_some() || radius.is_some() => {
+            return Err(format!("`radius` and `slip_velocity` describe Coulomb friction: give the {kind} joint `coulomb: μ` too"));
+        }
+        None => {}
     }
     Ok(out)
 }

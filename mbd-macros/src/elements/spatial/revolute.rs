@@ -15,7 +15,12 @@ pub const SPEC: Spec = Spec {
     keyword: "revolute",
     axis_i: Axis::Required,
     axis_j: Axis::Required,
-    options: &[("viscous", None), ("coulomb", None)],
+    options: &[
+        ("viscous", None),
+        ("coulomb", None),
+        ("radius", Some("a pin radius")),
+        ("slip_velocity", Some("the slip velocity of Coulomb friction")),
+    ],
     build: |p: Parts| Ok(Box::new(Revolute { i: p.i, j: p.j })),
 };
 

@@ -15,7 +15,7 @@ pub const SPEC: Spec = Spec {
     keyword: "translational",
     axis_i: Axis::Required,
     axis_j: Axis::Required,
-    options: &[("viscous", None), ("coulomb", None)],
+    options: &[("viscous", None), ("coulomb", None), ("slip_velocity", Some("the slip velocity of Coulomb friction"))],
     build: |p: Parts| Ok(Box::new(Translational { i: p.i, j: p.j })),
 };
 
