@@ -42,6 +42,9 @@ pub struct Formulation {
     /// M's off-diagonal structural non-zeros (products of inertia) as (row, column, node), both
     /// triangles; empty in the plane.
     pub mass_coupling: Vec<(usize, usize, Id)>,
+    /// For each spatial body with products of inertia, the structural non-zeros of its block of
+    /// M⁻¹, J′⁻¹ = adj(J′)/det(J′), as (row, column, node); (M⁻¹)_cc = 1/M_cc everywhere else.
+    pub mass_inverse: Vec<(usize, usize, Id)>,
     /// h(q, q̇, t), one node per coordinate.
     pub h: Vec<Id>,
     /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
@@ -88,6 +91,7 @@ pub fn formulate(model: &Model) -> Formulation {
     let mut qd0 = Vec::with_capacity(nv);
     let mut mass = Vec::with_capacity(nv);
     let mut mass_coupling = Vec::new();
+    let mut mass_inverse = Vec::new();
     for (k, body) in model.bodies.iter().enumerate() {
         if model.space == crate::model::Space::Planar {
             for c in 0..3 {
@@ -110,12 +114,19 @@ pub fn formulate(model: &Model) -> Formulation {
                 for (r, row) in t.iter().enumerate() {
                     mass.push(b.expr(&row[r]));
                 }
+                let before = mass_coupling.len();
                 for (r, row) in t.iter().enumerate() {
                     for (c, entry) in row.iter().enumerate() {
                         let e = b.expr(entry);
                         if r != c && !b.g.is_zero(e) {
                             mass_coupling.push((base + r, base + c, e));
                         }
+                    }
+                }
+                if mass_coupling.len() > before {
+                    let j = t.clone().map(|row| row.map(|e| b.expr(&e)));
+                    for (r, c, e) in inverse3(&mut b, j) {
+                        mass_inverse.push((base + r, base + c, e));
                     }
                 }
             }
@@ -209,6 +220,7 @@ pub fn formulate(model: &Model) -> Formulation {
         qd0,
         mass,
         mass_coupling,
+        mass_inverse,
         h,
         h_q,
         h_qd,
@@ -230,6 +242,31 @@ fn tangent(b: &mut Builder, rows: &[Id]) -> Vec<(usize, usize, Id)> {
             rows.iter().enumerate().flat_map(|(r, &row)| b.gradient(row).into_iter().map(move |(c, d)| (r, c, d))).collect::<Vec<_>>()
         }
     }
+}
+
+/// The structural non-zeros of the inverse of a symmetric 3×3 matrix, adj(J)/det(J).
+fn inverse3(b: &mut Builder, j: [[Id; 3]; 3]) -> Vec<(usize, usize, Id)> {
+    // cofactor C_rc = J_(r+1)(c+1) J_(r+2)(c+2) − J_(r+1)(c+2) J_(r+2)(c+1) (indices mod 3)
+    let cofactor: [[Id; 3]; 3] = std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+            let a = b.g.mul(j[r1][c1], j[r2][c2]);
+            let d = b.g.mul(j[r1][c2], j[r2][c1]);
+            b.g.sub(a, d)
+        })
+    });
+    let det = b.dot(&j[0], &cofactor[0]);
+    let mut out = Vec::new();
+    for (r, row) in cofactor.iter().enumerate() {
+        for (c, _) in row.iter().enumerate() {
+            // (J⁻¹)_rc = C_cr / det (J symmetric, so C is too)
+            let e = b.g.div(cofactor[c][r], det);
+            if !b.g.is_zero(e) {
+                out.push((r, c, e));
+            }
+        }
+    }
+    out
 }
 
 /// The gyroscopic term of each spatial body, −ω′ × J′ω′, into h's ω′ rows (Newton–Euler).
@@ -435,6 +472,13 @@ mod tests {
         }
         let mass: Vec<f64> = f.mass.iter().map(|&n| eval(&f, n, &q, &v, 0.0)).collect();
         assert_eq!(mass, [2.0, 2.0, 2.0, 1.0, 2.0, 3.0]);
+        // J′⁻¹ of [[1, 0.5, 0], [0.5, 2, 0], [0, 0, 3]]: det of the 2×2 block 1.75
+        let inverse: Vec<(usize, usize, f64)> = f.mass_inverse.iter().map(|&(r, c, n)| (r, c, eval(&f, n, &q, &v, 0.0))).collect();
+        let want = [(3, 3, 2.0 / 1.75), (3, 4, -0.5 / 1.75), (4, 3, -0.5 / 1.75), (4, 4, 1.0 / 1.75), (5, 5, 1.0 / 3.0)];
+        assert_eq!(inverse.len(), want.len());
+        for ((r, c, x), (wr, wc, w)) in inverse.into_iter().zip(want) {
+            assert!((r, c) == (wr, wc) && (x - w).abs() < 1e-15, "({r}, {c}) = {x}, want ({wr}, {wc}) = {w}");
+        }
         let coupling: Vec<(usize, usize, f64)> = f.mass_coupling.iter().map(|&(r, c, n)| (r, c, eval(&f, n, &q, &v, 0.0))).collect();
         assert_eq!(coupling, [(3, 4, 0.5), (4, 3, 0.5)]);
     }

@@ -26,7 +26,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let (nq, nc, nnz) = (f.nq, f.nc, f.jacobian.len());
     let (nq_l, nc_l, nnz_l) = (usize_lit(nq), usize_lit(nc), usize_lit(nnz));
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
-    let schur = Schur::plan(nc, &pattern);
+    let schur = Schur::plan(nc, &pattern, &[]);
     let nl_l = usize_lit(schur.nl());
     let factor = schur.factor(&real, &zero);
     let solve = schur.solve();

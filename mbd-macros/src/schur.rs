@@ -2,13 +2,15 @@
 //! motion, whose sparsity is fixed by the Jacobian's pattern.
 //!
 //! With M diagonal, S_ij = Σ_c D_ic D_jc / m_c is structurally non-zero exactly when rows i and j
-//! of D = Φ_q share a coordinate. At compile time this stage orders the rows by minimum degree
+//! of D share a velocity; a spatial body with products of inertia adds the off-diagonal entries
+//! of its block J′⁻¹ (`minv_off`), coupling the rows on any of its three angular velocities. At compile time this stage orders the rows by minimum degree
 //! (a chain's block-tridiagonal S stays without fill, so the cost grows linearly with its
 //! length), computes the pattern of the LDLᵀ factor, and emits code that touches only its
 //! structural non-zeros:
 //!
-//! * `schur_factor(jv, minv, tol, allow_redundant, l, dinv)`: S from the Jacobian's non-zeros
-//!   `jv` (in `JACOBIAN_PATTERN` order) and M⁻¹'s diagonal `minv`, then S = L D Lᵀ. A pivot
+//! * `schur_factor(jv, minv, [minv_off,] tol, allow_redundant, l, dinv)`: S from the Jacobian's
+//!   non-zeros `jv` (in `JACOBIAN_PATTERN` order), M⁻¹'s diagonal `minv` and, with products of
+//!   inertia, its off-diagonal non-zeros `minv_off`, then S = L D Lᵀ. A pivot
 //!   `d_k ≤ tol · S_kk` means row k is (to `tol`) a combination of the rows eliminated before it:
 //!   the factorization fails naming that row, or, with `allow_redundant`, drops it (its
 //!   multiplier is then 0, a valid choice for a consistent redundant constraint).
@@ -19,8 +21,15 @@ use std::collections::{BTreeMap, BTreeSet};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// The terms of one entry of S: (index into jv of D_ic, index into jv of D_jc, c).
-type Terms = Vec<(usize, usize, usize)>;
+/// One term of an entry S_ij: D_i,c1 (M⁻¹)_c1c2 D_j,c2, by the indices into jv of the two
+/// Jacobian entries and where (M⁻¹)_c1c2 is: `minv[c]` on the diagonal, `minv_off[k]` off it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Term {
+    Diagonal(usize, usize, usize),
+    Off(usize, usize, usize),
+}
+
+type Terms = Vec<Term>;
 
 /// The compile-time plan of the sparse LDLᵀ of S.
 pub struct Schur {
@@ -40,8 +49,10 @@ fn lit(n: usize) -> Literal {
 }
 
 impl Schur {
-    /// Plans the factorization for a Jacobian pattern (row, column), row-major, of `nc` rows.
-    pub fn plan(nc: usize, pattern: &[(usize, usize)]) -> Schur {
+    /// Plans the factorization for a Jacobian pattern (row, column), row-major, of `nc` rows, and
+    /// the off-diagonal structural non-zeros (c1, c2) of M⁻¹ (both triangles; `minv_off[k]` is
+    /// the k-th), empty for a diagonal M.
+    pub fn plan(nc: usize, pattern: &[(usize, usize)], coupling: &[(usize, usize)]) -> Schur {
         // Entries of each column: (row, index into jv).
         let mut columns: BTreeMap<usize, Vec<(usize, usize)>> = BTreeMap::new();
         for (k, &(r, c)) in pattern.iter().enumerate() {
@@ -52,7 +63,17 @@ impl Schur {
             for &(ri, ki) in entries {
                 for &(rj, kj) in entries {
                     if ri >= rj {
-                        s.entry((ri, rj)).or_default().push((ki, kj, c));
+                        s.entry((ri, rj)).or_default().push(Term::Diagonal(ki, kj, c));
+                    }
+                }
+            }
+        }
+        let none = Vec::new();
+        for (index, &(c1, c2)) in coupling.iter().enumerate() {
+            for &(ri, ki) in columns.get(&c1).unwrap_or(&none) {
+                for &(rj, kj) in columns.get(&c2).unwrap_or(&none) {
+                    if ri >= rj {
+                        s.entry((ri, rj)).or_default().push(Term::Off(ki, kj, index));
                     }
                 }
             }
@@ -103,9 +124,15 @@ impl Schur {
     fn s_entry(&self, i: usize, j: usize) -> Option<TokenStream> {
         let (i, j) = if i >= j { (i, j) } else { (j, i) };
         let terms = self.s.get(&(i, j))?;
-        let terms = terms.iter().map(|&(ki, kj, c)| {
-            let (ki, kj, c) = (lit(ki), lit(kj), lit(c));
-            quote!(jv[#ki] * jv[#kj] * minv[#c])
+        let terms = terms.iter().map(|&term| match term {
+            Term::Diagonal(ki, kj, c) => {
+                let (ki, kj, c) = (lit(ki), lit(kj), lit(c));
+                quote!(jv[#ki] * jv[#kj] * minv[#c])
+            }
+            Term::Off(ki, kj, k) => {
+                let (ki, kj, k) = (lit(ki), lit(kj), lit(k));
+                quote!(jv[#ki] * jv[#kj] * minv_off[#k])
+            }
         });
         Some(quote!((#(#terms)+*)))
     }
@@ -248,7 +275,7 @@ mod tests {
             }
         }
         pattern.sort();
-        let schur = Schur::plan(2 * n, &pattern);
+        let schur = Schur::plan(2 * n, &pattern, &[]);
         let off_diagonal = schur.s.keys().filter(|(i, j)| i != j).count();
         assert_eq!(schur.nl(), off_diagonal, "no fill");
         assert!(schur.nl() <= 7 * n, "L grows linearly: {}", schur.nl());
@@ -260,8 +287,19 @@ mod tests {
     /// Two rows on the same coordinates: S is full 2×2, one entry of L.
     #[test]
     fn coupled_rows_share_one_entry() {
-        let schur = Schur::plan(2, &[(0, 0), (0, 1), (1, 0), (1, 1)]);
+        let schur = Schur::plan(2, &[(0, 0), (0, 1), (1, 0), (1, 1)], &[]);
         assert_eq!(schur.nl(), 1);
         assert_eq!(schur.s.len(), 3);
+    }
+
+    /// Two rows on different angular velocities of one body are uncoupled with a diagonal
+    /// inertia and coupled through its products of inertia (M⁻¹ off the diagonal).
+    #[test]
+    fn products_of_inertia_couple_rows() {
+        let pattern = [(0, 3), (1, 4)];
+        assert_eq!(Schur::plan(2, &pattern, &[]).nl(), 0);
+        let coupled = Schur::plan(2, &pattern, &[(3, 4), (4, 3)]);
+        assert_eq!(coupled.nl(), 1);
+        assert_eq!(coupled.s[&(1, 0)], [Term::Off(1, 0, 1)], "S_10 = D_1,4 (M⁻¹)_43 D_0,3");
     }
 }
