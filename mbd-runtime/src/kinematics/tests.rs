@@ -42,6 +42,13 @@ const ANGLE_ROW: usize = 7;
 /// Column of `slider.y`.
 const SLIDER_Y: usize = 7;
 
+/// q ← q + h dv: planar bodies, v = q̇.
+fn integrate_planar<T: Real, const N: usize>(q: &mut [T; N], dv: &[T; N], h: T) {
+    for (x, &d) in q.iter_mut().zip(dv.iter()) {
+        *x += h * d;
+    }
+}
+
 /// Slider-crank with its parameters in the scalar type T.
 #[derive(Clone, Copy, Debug)]
 struct SliderCrank<T> {
@@ -94,7 +101,7 @@ impl<T: Real> Mechanism for SliderCrank<T> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<T: Real> Kinematics<T, NQ, NC> for SliderCrank<T> {
+impl<T: Real> Kinematics<T, NQ, NQ, NC> for SliderCrank<T> {
     /// The assembled configuration at t = 0: everything on the x-axis.
     fn initial_positions(&self) -> [T; NQ] {
         let half = T::from_f64(0.5);
@@ -105,6 +112,16 @@ impl<T: Real> Kinematics<T, NQ, NC> for SliderCrank<T> {
     fn initial_velocities(&self) -> [T; NQ] {
         [T::ZERO; NQ]
     }
+
+    fn position_rates(&self, _q: &[T; NQ], v: &[T; NQ], qdot: &mut [T; NQ]) {
+        *qdot = *v;
+    }
+
+    fn integrate_positions(&self, q: &mut [T; NQ], dv: &[T; NQ], h: T) {
+        integrate_planar(q, dv, h);
+    }
+
+    fn normalize_positions(&self, _q: &mut [T; NQ]) {}
 
     fn constraints(&self, q: &[T; NQ], t: T, phi: &mut [T; NC]) {
         let mut d = [[T::ZERO; NQ]; NC];
@@ -220,12 +237,21 @@ impl Mechanism for LockedSlider {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl Kinematics<f64, NQ, NC> for LockedSlider {
+impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     fn initial_positions(&self) -> [f64; NQ] {
         self.0.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.0.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.0.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.0.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.0.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC]) {
         let mut d = [[0.0; NQ]; NC];
@@ -290,12 +316,21 @@ impl<M: Mechanism> Mechanism for WithoutDriver<M> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<M: Kinematics<f64, NQ, NC>> Kinematics<f64, NQ, FREE_NC> for WithoutDriver<M> {
+impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for WithoutDriver<M> {
     fn initial_positions(&self) -> [f64; NQ] {
         self.0.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.0.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.0.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.0.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.0.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; FREE_NC]) {
         let mut full = [0.0; NC];
@@ -367,13 +402,20 @@ impl<T: Real> Mechanism for Crank<T> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<T: Real> Kinematics<T, 3, 3> for Crank<T> {
+impl<T: Real> Kinematics<T, 3, 3, 3> for Crank<T> {
     fn initial_positions(&self) -> [T; 3] {
         [T::from_f64(0.5) * self.r, T::ZERO, T::ZERO]
     }
     fn initial_velocities(&self) -> [T; 3] {
         [T::ZERO; 3]
     }
+    fn position_rates(&self, _q: &[T; 3], v: &[T; 3], qdot: &mut [T; 3]) {
+        *qdot = *v;
+    }
+    fn integrate_positions(&self, q: &mut [T; 3], dv: &[T; 3], h: T) {
+        integrate_planar(q, dv, h);
+    }
+    fn normalize_positions(&self, _q: &mut [T; 3]) {}
     fn constraints(&self, q: &[T; 3], t: T, phi: &mut [T; 3]) {
         let mut d = [[T::ZERO; 3]; 3];
         self.position_eval(q, t, phi, &mut d);
@@ -507,9 +549,9 @@ fn analysis_matches_the_closed_form() {
         let slider_error = (state.q[6] - exact[6]).abs();
         assert!(slider_error < POSITION_TOLERANCE, "x_B at t = {t}");
         assert!(state.convergence.residual <= DEFAULT_TOLERANCE);
-        let velocity_error = max_abs_difference(&state.qd, &exact_qd(t));
+        let velocity_error = max_abs_difference(&state.v, &exact_qd(t));
         assert!(velocity_error < VELOCITY_TOLERANCE, "t = {t}: |q̇ − q̇_exact| = {velocity_error:e}");
-        let acceleration_error = max_abs_difference(&state.qdd, &exact_qdd(t));
+        let acceleration_error = max_abs_difference(&state.vd, &exact_qdd(t));
         assert!(acceleration_error < ACCELERATION_TOLERANCE, "t = {t}: |q̈ − q̈_exact| = {acceleration_error:e}");
 
         // The separate solves agree with the combined one.
@@ -517,8 +559,8 @@ fn analysis_matches_the_closed_form() {
         let mut qdd = [0.0; NQ];
         solver.solve_velocity(&m, &state.q, t, &mut qd).expect("velocity");
         solver.solve_acceleration(&m, &state.q, &qd, t, &mut qdd).expect("acceleration");
-        assert_eq!(qd, state.qd);
-        assert_eq!(qdd, state.qdd);
+        assert_eq!(qd, state.v);
+        assert_eq!(qdd, state.vd);
     }
 }
 
@@ -570,12 +612,21 @@ impl<M: Mechanism> Mechanism for Counting<M> {
     const MODEL_JSON: &'static str = M::MODEL_JSON;
 }
 
-impl<M: Kinematics<f64, NQ, NC>> Kinematics<f64, NQ, NC> for Counting<M> {
+impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, NC> for Counting<M> {
     fn initial_positions(&self) -> [f64; NQ] {
         self.inner.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.inner.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.inner.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.inner.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.inner.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC]) {
         self.inner.constraints(q, t, phi);
