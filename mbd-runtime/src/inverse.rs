@@ -255,7 +255,8 @@ mod tests {
         const COORDINATE_NAMES: &'static [&'static str] = &["top.x", "top.y", "top.z", "top.e0", "top.e1", "top.e2", "top.e3"];
         const VELOCITY_NAMES: &'static [&'static str] = &["top.vx", "top.vy", "top.vz", "top.wx", "top.wy", "top.wz"];
         const DIMENSION: u8 = 3;
-        const CONSTRAINT_NAMES: &'static [&'static str] = &["spherical ground~top: x", "spherical ground~top: y", "spherical ground~top: z"];
+        const CONSTRAINT_NAMES: &'static [&'static str] =
+            &["spherical ground~top: x", "spherical ground~top: y", "spherical ground~top: z"];
         const PARAM_NAMES: &'static [&'static str] = &[];
         const DOF: i32 = 3;
         const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[];

@@ -123,6 +123,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    // One index runs over q (or v) and its stage derivatives, start and end in step.
+    #[allow(clippy::needless_range_loop)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
@@ -289,6 +291,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
 /// tolerance, refined with a second derivative estimate; here the derivatives at hand suffice:
 /// h = 0.01 · ‖y‖ / ‖y'‖ in the tolerance's norm (y = (q, v), y' = (q̇, v̇)), capped by
 /// `max_step`.
+// One index runs over q and v together (see the loop).
+#[allow(clippy::needless_range_loop)]
 fn initial_step<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
     p: &Point<T, NQ, NV, NC>,
     qdot: &[T; NQ],

@@ -323,6 +323,8 @@ fn hermite<T: Real>(y0: T, yd0: T, y1: T, yd1: T, h: T, theta: T) -> T {
 
 /// Hermite interpolation of q (with q̇ = B(q) v at both ends) and of v (with v̇) between two
 /// points.
+// One index runs over the values and rates at both ends.
+#[allow(clippy::needless_range_loop)]
 fn hermite_state<T: Real, M, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     from: &Point<T, NQ, NV, NC>,

@@ -37,6 +37,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     #[inline]
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    // One index runs over the state and its stage derivatives in step.
+    #[allow(clippy::needless_range_loop)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
