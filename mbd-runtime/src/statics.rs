@@ -250,3 +250,32 @@ impl StaticSolver {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_support::{UnitPendulum, GRAVITY, LENGTH, MASS};
+
+    /// NQ ≠ NV: Newton on (h + Dᵀλ = 0, Φ = 0) in velocity space, with q updated through
+    /// `integrate_positions`, hangs the unit-complex pendulum straight down from a guess off the
+    /// unit circle: q = (0, −L, 0, −1), the pin carrying the weight, λ = (0, m g). Newton's
+    /// residual tolerance 1e-9 leaves q within about 1e-9 / (m g L) ≈ 1e-10. (From λ = 0 the
+    /// pendulum has no stiffness at all — gravity's enters through K(λ) — so λ starts near the
+    /// weight.)
+    #[test]
+    fn velocity_space_newton_finds_the_hanging_pendulum() {
+        let mut q = [0.2, -0.4, 0.4, -0.95];
+        let mut lambda = [0.0, 15.0];
+        let iterations = StaticSolver::default().solve(&UnitPendulum, &mut q, 0.0, &mut lambda, &mut KktWorkspace::<f64, 5>::new());
+        assert!(iterations.expect("equilibrium") < 20);
+        let expected = [0.0, -LENGTH, 0.0, -1.0];
+        for (x, e) in q.iter().zip(expected) {
+            assert!((x - e).abs() < 1e-9, "q = {q:?}");
+        }
+        assert!((q[2].hypot(q[3]) - 1.0).abs() < 1e-15, "{q:?}");
+        assert!(lambda[0].abs() < 1e-9 && (lambda[1] - MASS * GRAVITY).abs() < 1e-9, "λ = {lambda:?}");
+        // A work space of NQ + NC rows is the wrong size: it takes NV + NC.
+        let err = StaticSolver::default().solve(&UnitPendulum, &mut q, 0.0, &mut lambda, &mut KktWorkspace::<f64, 6>::new());
+        assert_eq!(err, Err(StaticError::WorkspaceSize { expected: 5, found: 6 }));
+    }
+}

@@ -32,6 +32,8 @@ mod dopri5;
 mod generalized_alpha;
 mod rk4;
 mod simulate;
+#[cfg(test)]
+mod tests;
 
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
