@@ -199,7 +199,7 @@ const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 /// coordinates q, the Jacobian `d` = D(q, t) and the multipliers λ at the same state; `mechanism`
 /// is read for its type (its joints, bodies and dimension). `None` if there is no such joint.
 ///
-/// Per body k it sums g = D[R]ᵀ λ[R] over the joint's rows R at k's velocities: planar
+/// Per body k it sums `g = D[R]ᵀ λ[R]` over the joint's rows R at k's velocities: planar
 /// (fx, fy, n) give the force (fx, fy, 0) and the moment (0, 0, n); spatial (f, n′) the force f
 /// and the moment A(p) n′, with p = q[7k+3..7k+7] (docs/formulation.md, "Spatial bodies").
 pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
