@@ -26,12 +26,13 @@ use free_slider_crank::FreeSliderCrank;
 macro_rules! bench_dynamics {
     ($c:expr, $label:literal, $ty:ty) => {{
         const NQ: usize = <$ty>::NQ;
+        const NV: usize = <$ty>::NV;
         const NC: usize = <$ty>::NC;
         let m = <$ty>::default();
         let mut q = m.initial_positions();
         KinematicSolver::default().assemble(&m, &mut q, 0.0).expect("the benchmark mechanism assembles");
         let system = System::new(&m);
-        let from: Point<f64, NQ, NC> = system.point(0.0, q, [0.0; NQ], [0.0; 2]).expect("forward dynamics");
+        let from: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
         // Start from a moving state: 0.05 s into the fall.
         let mut rk4 = Rk4::new(1e-3);
         let mut p = from;
@@ -42,12 +43,12 @@ macro_rules! bench_dynamics {
         }
         let options = DynamicsOptions::default();
         let mut g = $c.benchmark_group($label);
-        let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
+        let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
         g.bench_function("accelerations (right-hand side)", |b| {
-            b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.qd), black_box(p.t), &options, &mut qdd, &mut lambda))
+            b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.v), black_box(p.t), &options, &mut vd, &mut lambda))
         });
         g.bench_function("RK4 step, h = 1 ms", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
-        let mut dopri = Dopri5::<f64, NQ>::default();
+        let mut dopri = Dopri5::<f64, NQ, NV>::default();
         dopri.next_step = 1e-3;
         dopri.options.max_step = 1e-3;
         g.bench_function("DOPRI5 step, h = 1 ms", |b| {

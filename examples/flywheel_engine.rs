@@ -69,7 +69,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         }
         // Kinetic energy / (½ω²): the reduced inertia at this angle.
         // (same geometry and coordinates: the engine's states are the free engine's too).
-        reduced += 2.0 * kinetic_energy(&m, qd) / (omega0 * omega0) / n as f64;
+        reduced += 2.0 * kinetic_energy(&m, q, qd) / (omega0 * omega0) / n as f64;
     })?;
     let mean_torque = torque.iter().sum::<f64>() / n as f64;
     // The drive brakes on average (τ_mean < 0); the generator takes that power: c = −τ_mean/ω₀.
@@ -95,7 +95,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
-    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((s.point.q[2], s.point.qd[2])))?;
+    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((s.point.q[2], s.point.v[2])))?;
     // The last full revolution.
     let end_angle = last_rev.last().map(|p| p.0).unwrap_or(0.0);
     let rev: Vec<f64> = last_rev.iter().filter(|p| p.0 > end_angle - 2.0 * PI).map(|p| p.1).collect();

@@ -38,7 +38,7 @@ pub struct Run {
 
 const T_END: f64 = 2.0;
 
-fn one<I: Integrator<f64, FreeFourBar, 9, 8>>(
+fn one<I: Integrator<f64, FreeFourBar, 9, 9, 8>>(
     m: &FreeFourBar,
     q: &[f64; 9],
     integrator: &mut I,

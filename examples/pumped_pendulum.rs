@@ -84,8 +84,10 @@ fn reduced_energy(p: &PumpedPendulum, inertia: f64, mass: f64, g: f64, t: f64, y
 
 pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut m = PumpedPendulum::default();
-    let mass = m.mass_diagonal();
-    let (inertia, rod_mass, g) = (mass[2] + mass[5], mass[3], 9.81);
+    // M is constant and diagonal: (m, m, J) per body.
+    let mut mass = [[0.0; PumpedPendulum::NV]; PumpedPendulum::NV];
+    m.add_mass_matrix(&m.initial_positions(), 1.0, &mut mass);
+    let (inertia, rod_mass, g) = (mass[2][2] + mass[5][5], mass[3][3], 9.81);
     // Pump at twice the swing's natural frequency.
     m.omega = (rod_mass * g * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
     let mut q = m.initial_positions();

@@ -66,13 +66,14 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             failure.get_or_insert(e);
             return;
         }
-        let mut d = [[0.0; Engine::NQ]; Engine::NC];
+        let mut d = [[0.0; Engine::NV]; Engine::NC];
         m.jacobian(q, t, &mut d);
-        let motor = joint_reaction::<f64, Engine, 9, 9>(&d, &lambda, 4).and_then(|j| j.on_i);
-        let bearing = joint_reaction::<f64, Engine, 9, 9>(&d, &lambda, 0).and_then(|j| j.on_j);
-        let wrist = joint_reaction::<f64, Engine, 9, 9>(&d, &lambda, 2).and_then(|j| j.on_j);
+        let motor = joint_reaction(&m, q, &d, &lambda, 4).and_then(|j| j.on_i);
+        let bearing = joint_reaction(&m, q, &d, &lambda, 0).and_then(|j| j.on_j);
+        let wrist = joint_reaction(&m, q, &d, &lambda, 2).and_then(|j| j.on_j);
         let (Some(motor), Some(bearing), Some(wrist)) = (motor, bearing, wrist) else { return };
-        let torque = motor.moment;
+        // Planar: the moment is about z.
+        let torque = motor.moment[2];
         let gas = -m.f0 * (q[2].sin() + q[2].sin().abs()) / 2.0;
         r.torque_max = r.torque_max.max(torque);
         r.torque_min = r.torque_min.min(torque);

@@ -96,7 +96,7 @@ fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
     mut ws: KktWorkspace<f64, N>,
 ) -> Result<Report, Box<dyn std::error::Error>>
 where
-    M: ForwardDynamics<f64, NQ, NC> + ConstraintForces<f64, NQ, NC>,
+    M: ForwardDynamics<f64, NQ, NQ, NC> + ConstraintForces<f64, NQ, NQ, NC>,
 {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(m, &mut q, 0.0)?;
@@ -122,7 +122,7 @@ where
         let p = &s.point;
         let travel = p.q[3 * knuckle + 1] - y0;
         r.peak_travel = r.peak_travel.max(travel);
-        r.peak_tyre_load = r.peak_tyre_load.max(tyre_load(&p.q, &p.qd, p.t));
+        r.peak_tyre_load = r.peak_tyre_load.max(tyre_load(&p.q, &p.v, p.t));
         if p.t >= 1.2 {
             r.residual_motion = r.residual_motion.max(travel.abs());
         }

@@ -89,7 +89,7 @@ fn integrators_do_not_allocate() {
 
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut steps = 0;
-    let mut collect = |s: &Sample<f64, 9, 8>| {
+    let mut collect = |s: &Sample<f64, 9, 9, 8>| {
         samples += 1;
         energy += s.energy.balance();
     };

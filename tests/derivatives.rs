@@ -14,7 +14,8 @@ use mbd::{Kinematics, Mechanism};
 const H: f64 = 1e-6;
 const TOL: f64 = 1e-6;
 
-fn check<M: Kinematics<f64, NQ, NC>, const NQ: usize, const NC: usize>(m: &M, seed: u64) {
+/// Planar mechanisms: v = q̇ and D = Φ_q, so D is checked against differences in q.
+fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(m: &M, seed: u64) {
     let mut rng = Rng::new(seed);
     for sample in 0..50 {
         let mut q = m.initial_positions();

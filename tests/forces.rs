@@ -65,7 +65,7 @@ fn force_jacobians_match_central_differences() {
         let (q, qd, t) = random_state(&mut rng);
         let (mut dq, mut dqd) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
         m.forces_q(&q, &qd, t, &mut dq);
-        m.forces_qd(&q, &qd, t, &mut dqd);
+        m.forces_v(&q, &qd, t, &mut dqd);
         for c in 0..6 {
             let (mut p, mut n) = ([0.0; 6], [0.0; 6]);
             let (mut qp, mut qn) = (q, q);

@@ -65,17 +65,18 @@ fn dense<M, const NQ: usize, const NC: usize, const N: usize>(
     beta: f64,
 ) -> ([f64; NQ], [f64; NC])
 where
-    M: Dynamics<f64, NQ, NC>,
+    M: Dynamics<f64, NQ, NQ, NC>,
 {
     let (mut phi, mut d, mut nu, mut gamma) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC]);
     m.full_eval(q, qd, t, &mut phi, &mut d, &mut nu, &mut gamma);
     let mut h = [0.0; NQ];
     m.forces(q, qd, t, &mut h);
-    let mass = m.mass_diagonal();
+    let mut mass = [[0.0; NQ]; NQ];
+    m.add_mass_matrix(q, 1.0, &mut mass);
     let mut a = [[0.0; N]; N];
     let mut b = [0.0; N];
     for i in 0..NQ {
-        a[i][i] = mass[i];
+        a[i][..NQ].copy_from_slice(&mass[i]);
         b[i] = h[i];
         for r in 0..NC {
             a[i][NQ + r] = -d[r][i];
@@ -100,7 +101,7 @@ fn agree<const N: usize>(what: &str, a: &[f64; N], b: &[f64; N]) {
 
 fn check_against_dense<M, const NQ: usize, const NC: usize, const N: usize>(m: &M, seed: u64)
 where
-    M: ForwardDynamics<f64, NQ, NC>,
+    M: ForwardDynamics<f64, NQ, NQ, NC>,
 {
     let mut rng = Rng::new(seed);
     let q_ref = m.initial_positions();

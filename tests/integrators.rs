@@ -76,7 +76,7 @@ mechanism! {
 }
 
 /// Runs `integrator` on the double pendulum from horizontal rest to t = 1 s; returns q(1).
-fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 4>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
+fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
     let m = DoublePendulum::default();
     let options = SimulationOptions { correction, ..SimulationOptions::default() };
     let mut last = [0.0; 6];
@@ -127,7 +127,7 @@ fn conservative_mechanisms_conserve_energy() {
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
     let mut rk4 = Rk4::new(1e-3);
     for (name, bound, integrator) in
-        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 8>), ("RK4", 1e-6, &mut rk4)]
+        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8>), ("RK4", 1e-6, &mut rk4)]
     {
         let mut energies = Vec::new();
         let mut swing = (f64::INFINITY, f64::NEG_INFINITY);
@@ -146,20 +146,20 @@ fn conservative_mechanisms_conserve_energy() {
 }
 
 /// Adapter so a `&mut dyn Integrator` can be passed where `simulate` wants a sized type.
-struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 8>);
+struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 9, 8>);
 
-impl<M> Integrator<f64, M, 9, 8> for DynIntegrator<'_, M> {
+impl<M> Integrator<f64, M, 9, 9, 8> for DynIntegrator<'_, M> {
     fn step(
         &mut self,
         s: &System<'_, M, f64>,
-        from: &Point<f64, 9, 8>,
+        from: &Point<f64, 9, 9, 8>,
         t_max: f64,
-        to: &mut Point<f64, 9, 8>,
+        to: &mut Point<f64, 9, 9, 8>,
     ) -> Result<(), SimulationError> {
         self.0.step(s, from, t_max, to)
     }
-    fn interpolate(&self, from: &Point<f64, 9, 8>, to: &Point<f64, 9, 8>, t: f64, q: &mut [f64; 9], qd: &mut [f64; 9]) {
-        self.0.interpolate(from, to, t, q, qd)
+    fn interpolate(&self, m: &M, from: &Point<f64, 9, 9, 8>, to: &Point<f64, 9, 9, 8>, t: f64, q: &mut [f64; 9], v: &mut [f64; 9]) {
+        self.0.interpolate(m, from, to, t, q, v)
     }
     fn restart(&mut self) {
         self.0.restart()
@@ -212,7 +212,7 @@ fn partitioning_and_projection_agree() {
         m.position_eval(&b.q, b.t, &mut phi, &mut d);
         assert!(phi.iter().all(|v| v.abs() <= 1e-10), "Φ = {phi:?}");
         for row in &d {
-            let v: f64 = row.iter().zip(&b.qd).map(|(x, y)| x * y).sum();
+            let v: f64 = row.iter().zip(&b.v).map(|(x, y)| x * y).sum();
             assert!(v.abs() <= 1e-9, "Φ_q q̇ = {v}");
         }
         // Both corrections are O(h⁵) per step: the motions agree far better than the 1 mm / 1
@@ -258,14 +258,14 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         let s = solver.analyze(&driven, &guess, t).unwrap();
         guess = s.q;
         let mut lambda = [0.0; 9];
-        mbd::inverse_dynamics(&driven, &s.q, &s.qd, &s.qdd, t, &mut lambda).unwrap();
+        mbd::inverse_dynamics(&driven, &s.q, &s.v, &s.vd, t, &mut lambda).unwrap();
         // The driver row's multiplier: Φ = φ − f(t), Φ_q = +1 on φ, so Φ_qᵀλ = λ is the torque
         // the driver applies to the crank.
         lambda[8]
     };
     let mut free = TorqueCrank::default();
     let h = 1e-3;
-    let (mut q, mut qd) = (start.q, start.qd);
+    let (mut q, mut qd) = (start.q, start.v);
     let mut worst: f64 = 0.0;
     for k in 0..500 {
         let t0 = k as f64 * h;
@@ -278,7 +278,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         let from = system.point(t0, q, qd, [0.0; 2]).unwrap();
         let mut to = from;
         Rk4::new(h).step(&system, &from, f64::INFINITY, &mut to).unwrap();
-        (q, qd) = (to.q, to.qd);
+        (q, qd) = (to.q, to.v);
         let exact = 0.3 + 5.0 * to.t + 0.5 * (3.0 * to.t).sin();
         worst = worst.max((q[2] - exact).abs());
     }

@@ -20,7 +20,7 @@ fn solve(m: &DrivenRod, t: f64) -> ([f64; 3], [[f64; 3]; 3], [f64; 3]) {
     solver.assemble(m, &mut q, t).expect("assembles");
     let state = solver.analyze(m, &q, t).expect("analysis");
     let mut lambda = [0.0; 3];
-    inverse_dynamics(m, &state.q, &state.qd, &state.qdd, t, &mut lambda).expect("inverse dynamics");
+    inverse_dynamics(m, &state.q, &state.v, &state.vd, t, &mut lambda).expect("inverse dynamics");
     let mut d = [[0.0; 3]; 3];
     m.jacobian(&state.q, t, &mut d);
     (state.q, d, lambda)
@@ -34,21 +34,23 @@ fn solve(m: &DrivenRod, t: f64) -> ([f64; 3], [[f64; 3]; 3], [f64; 3]) {
 fn static_rod_against_hand_statics() {
     let m = DrivenRod::default();
     let (q, d, lambda) = solve(&m, 0.0);
-    let pin = joint_reaction::<f64, DrivenRod, 3, 3>(&d, &lambda, 0).expect("joint 0 exists");
-    let motor = joint_reaction::<f64, DrivenRod, 3, 3>(&d, &lambda, 1).expect("joint 1 exists");
+    let pin = joint_reaction(&m, &q, &d, &lambda, 0).expect("joint 0 exists");
+    let motor = joint_reaction(&m, &q, &d, &lambda, 1).expect("joint 1 exists");
     assert_eq!(pin.joint, "pin");
     assert!(pin.on_i.is_none(), "the pin's first body is ground");
     let on_rod = pin.on_j.expect("the pin acts on the rod");
     assert!((on_rod.force[0]).abs() < 1e-9 && (on_rod.force[1] - 2.0 * G).abs() < 1e-9, "{on_rod:?}");
-    let torque = motor.on_i.expect("the motor acts on the rod").moment;
+    // A planar wrench: no force along z, a moment about z only.
+    assert_eq!((on_rod.force[2], on_rod.moment[0], on_rod.moment[1]), (0.0, 0.0, 0.0));
+    let torque = motor.on_i.expect("the motor acts on the rod").moment[2];
     let expected = 2.0 * G * 0.5 * m.theta0.cos();
     assert!((torque - expected).abs() < 1e-9, "motor torque {torque} vs {expected}");
     // The pin's moment about its own point is zero: a revolute joint transmits no torque.
     let (s, c) = q[2].sin_cos();
-    let arm = [-0.5 * c, -0.5 * s];
-    assert!(on_rod.moment_about(arm).abs() < 1e-9);
+    let arm = [-0.5 * c, -0.5 * s, 0.0];
+    assert!(on_rod.moment_about(arm)[2].abs() < 1e-9);
     // In the rod's frame the weight's reaction is (m g sin θ, m g cos θ).
-    let local = on_rod.force_in_body_frame(q[2]);
+    let local = on_rod.force_in_body_frame();
     assert!((local[0] - 2.0 * G * s).abs() < 1e-9 && (local[1] - 2.0 * G * c).abs() < 1e-9);
 }
 
@@ -59,10 +61,10 @@ fn spinning_rod_pin_force_is_centripetal() {
     let m = DrivenRod { omega: 3.0, ..Default::default() };
     let t = 0.37;
     let (q, d, lambda) = solve(&m, t);
-    let on_rod = joint_reaction::<f64, DrivenRod, 3, 3>(&d, &lambda, 0).and_then(|r| r.on_j).expect("pin on rod");
-    let motor = joint_reaction::<f64, DrivenRod, 3, 3>(&d, &lambda, 1).and_then(|r| r.on_i).expect("motor");
+    let on_rod = joint_reaction(&m, &q, &d, &lambda, 0).and_then(|r| r.on_j).expect("pin on rod");
+    let motor = joint_reaction(&m, &q, &d, &lambda, 1).and_then(|r| r.on_i).expect("motor");
     let a = [-9.0 * q[0], -9.0 * q[1]];
     let expected = [2.0 * a[0], 2.0 * (a[1] + G)];
     assert!((on_rod.force[0] - expected[0]).abs() < 1e-9 && (on_rod.force[1] - expected[1]).abs() < 1e-9, "{on_rod:?} vs {expected:?}");
-    assert!((motor.moment - 2.0 * G * 0.5 * q[2].cos()).abs() < 1e-9);
+    assert!((motor.moment[2] - 2.0 * G * 0.5 * q[2].cos()).abs() < 1e-9);
 }

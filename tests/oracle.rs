@@ -115,12 +115,14 @@ fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
 
 /// Evaluates a mechanism's generated functions at random states and writes the samples file.
 /// Kinematics: "phi", "jacobian" (structural non-zeros in `JACOBIAN_PATTERN` order), "nu",
-/// "gamma". Dynamics: "mass" (the diagonal of M), "h", "h_q" and "h_qd" (dense NQ×NQ, row r =
-/// h_r), "potential"; Coulomb friction at random loads: "friction_lambda", "friction",
-/// "friction_q", "friction_qd"; forward dynamics: "qdd", "lambda", "alpha", "beta".
+/// "gamma". Dynamics: "mass" (the diagonal of M, read from `add_mass_matrix`), "h", "h_q" and
+/// "h_qd" (dense NQ×NQ, row r = h_r), "potential"; Coulomb friction at random loads:
+/// "friction_lambda", "friction", "friction_q", "friction_qd"; forward dynamics: "qdd",
+/// "lambda", "alpha", "beta". Planar mechanisms: v = q̇, so NV = NQ and every velocity-space
+/// quantity is indexed by the coordinates.
 fn write_samples<M, const NQ: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
-    M: mbd::ForwardDynamics<f64, NQ, NC>,
+    M: mbd::ForwardDynamics<f64, NQ, NQ, NC>,
 {
     let mut forward = 0;
     let mut rng = Rng::new(seed);
@@ -142,14 +144,17 @@ where
         let (mut h, mut h_q, mut h_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
         m.forces(&q, &qd, t, &mut h);
         m.forces_q(&q, &qd, t, &mut h_q);
-        m.forces_qd(&q, &qd, t, &mut h_qd);
+        m.forces_v(&q, &qd, t, &mut h_qd);
         let potential = m.potential_energy(&q, t);
         let jacobian: Vec<f64> = M::JACOBIAN_PATTERN.iter().map(|&(r, c)| d[r as usize][c as usize]).collect();
         let named: serde_json::Map<String, Value> = M::PARAM_NAMES.iter().zip(&params).map(|(n, v)| (n.to_string(), json!(v))).collect();
         let dense = |a: &[[f64; NQ]; NQ]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
+        let mut mass = [[0.0; NQ]; NQ];
+        m.add_mass_matrix(&q, 1.0, &mut mass);
+        let mass_diagonal: Vec<f64> = (0..NQ).map(|i| mass[i][i]).collect();
         let mut sample = json!({"params": named, "t": t, "q": q.to_vec(), "qd": qd.to_vec(), "phi": phi.to_vec(),
                             "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec(),
-                            "mass": m.mass_diagonal().to_vec(), "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
+                            "mass": mass_diagonal, "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
                             "potential": potential});
         // Coulomb friction at random loads λ (zeros for a mechanism without it).
         let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
@@ -228,7 +233,11 @@ fn casadi_oracle() {
 
 /// mbd's kinematic sweep against a stored CasADi reference trajectory (CVODES at rtol 1e-12 on
 /// q̇ = Φ_q⁻¹ ν): the file's header names the coordinates; rows are t, q.
-fn compare_reference<M: Kinematics<f64, NQ, NC>, const NQ: usize, const NC: usize>(m: &M, file: &str, tol: f64) -> f64 {
+fn compare_reference<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    file: &str,
+    tol: f64,
+) -> f64 {
     let text = std::fs::read_to_string(repo().join("tests/oracle/reference").join(file)).expect("reference file");
     let mut rows = text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty());
     let header: Vec<&str> = rows.next().expect("header").split(',').map(str::trim).collect();

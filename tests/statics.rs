@@ -52,7 +52,7 @@ fn rod_on_a_torsion_spring() {
     // At rest the pin carries the weight.
     let mut d = [[0.0; 3]; 2];
     m.jacobian(&q, 0.0, &mut d);
-    let pin = joint_reaction::<f64, SpringRod, 3, 2>(&d, &lambda, 0).and_then(|r| r.on_j).expect("pin on rod");
+    let pin = joint_reaction(&m, &q, &d, &lambda, 0).and_then(|r| r.on_j).expect("pin on rod");
     assert!(pin.force[0].abs() < 1e-9 && (pin.force[1] - 2.0 * 9.81).abs() < 1e-9, "{pin:?}");
 }
 
@@ -98,7 +98,7 @@ fn free_rotation_is_singular() {
 
 /// K = ∂(Φ_qᵀλ)/∂q against central differences of the generated Jacobian times λ, for every example.
 /// Tolerance as in tests/derivatives.rs (h = 1e-6, 1e-6 relative).
-fn check_k<M: ConstraintForces<f64, NQ, NC>, const NQ: usize, const NC: usize>(m: &M, seed: u64) {
+fn check_k<M: ConstraintForces<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(m: &M, seed: u64) {
     let mut rng = Rng::new(seed);
     let g = |q: &[f64; NQ], lambda: &[f64; NC]| {
         let mut d = [[0.0; NQ]; NC];

@@ -1,7 +1,7 @@
 // Generated from slider_crank.rs by `MBD_BLESS=1 cargo test -p mbd-macros snapshot`. Do not edit.
 /// Slider-crank driven at constant speed (Nikravesh, Planar Multibody Dynamics, ch. 7).
 ///
-/// 3 bodies, 9 coordinates, 9 constraint rows (0 degrees of freedom); Φ_q has 23 structural non-zeros of 81.
+/// 3 bodies, 9 coordinates and velocities, 9 constraint rows (0 degrees of freedom); Φ_q has 23 structural non-zeros of 81.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderCrank {
     ///Parameter `omega` (default 6.283185307179586).
@@ -25,11 +25,13 @@ impl ::core::default::Default for SliderCrank {
 impl SliderCrank {
     /// Number of moving bodies.
     pub const N_BODIES: usize = 3;
-    /// Number of generalized coordinates (3 per body).
+    /// Number of generalized coordinates q (3 per body).
     pub const NQ: usize = 9;
+    /// Number of velocities v (3 per body; planar v = q̇, so NV = NQ).
+    pub const NV: usize = 9;
     /// Number of constraint rows (joints, drivers and user constraints).
     pub const NC: usize = 9;
-    /// Degrees of freedom: `NQ − NC`.
+    /// Degrees of freedom: `NV − NC`.
     pub const DOF: i32 = 0i32;
     /// Number of structurally non-zero entries of Φ_q.
     pub const NNZ: usize = 23;
@@ -47,12 +49,12 @@ impl SliderCrank {
             l: p[2],
         }
     }
-    /// Work space for solvers that factor the (NQ + NC)-square saddle-point matrix
-    /// [[K, Φ_qᵀ], [Φ_q, 0]] (static equilibrium).
+    /// Work space for solvers that factor the (NV + NC)-square saddle-point matrix
+    /// [[K, Dᵀ], [D, 0]] (static equilibrium).
     pub fn kkt_workspace() -> ::mbd::KktWorkspace<f64, 18> {
         ::mbd::KktWorkspace::new()
     }
-    /// A generalized-α integrator with work space for this mechanism's NQ + NC unknowns.
+    /// A generalized-α integrator with work space for this mechanism's NV + NC unknowns.
     pub fn generalized_alpha(
         options: ::mbd::GeneralizedAlphaOptions<f64>,
     ) -> ::mbd::GeneralizedAlpha<f64, 18> {
@@ -102,7 +104,7 @@ impl SliderCrank {
     pub fn full_eval_values(
         &self,
         q: &[f64; 9],
-        qd: &[f64; 9],
+        v: &[f64; 9],
         t: f64,
         phi: &mut [f64; 9],
         out: &mut [f64; 23],
@@ -121,15 +123,15 @@ impl SliderCrank {
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
         let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * qd[8]);
-        let v126: f64 = (c_slider * qd[8]);
-        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v151: f64 = (qd[6] * v126);
-        let v152: f64 = (qd[8] * v119);
-        let v158: f64 = (qd[7] * v119);
+        let v119: f64 = (s_slider * v[8]);
+        let v126: f64 = (c_slider * v[8]);
+        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
+        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
+        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
+        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
+        let v151: f64 = (v[6] * v126);
+        let v152: f64 = (v[8] * v119);
+        let v158: f64 = (v[7] * v119);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -178,7 +180,7 @@ impl SliderCrank {
         gamma[4] = v141;
         gamma[5] = v147;
         gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
         gamma[7] = (-v152);
         gamma[8] = 0f64;
     }
@@ -197,6 +199,18 @@ impl ::mbd::Mechanism for SliderCrank {
         "slider.y",
         "slider.phi",
     ];
+    const VELOCITY_NAMES: &'static [&'static str] = &[
+        "crank.x",
+        "crank.y",
+        "crank.phi",
+        "rod.x",
+        "rod.y",
+        "rod.phi",
+        "slider.x",
+        "slider.y",
+        "slider.phi",
+    ];
+    const DIMENSION: u8 = 2;
     const CONSTRAINT_NAMES: &'static [&'static str] = &[
         "revolute ground~crank: x",
         "revolute ground~crank: y",
@@ -308,7 +322,7 @@ impl ::mbd::Mechanism for SliderCrank {
             call: 0u32,
         },
         ::mbd::OpCount {
-            function: "forces_qd",
+            function: "forces_v",
             add: 0u32,
             mul: 0u32,
             div: 0u32,
@@ -389,7 +403,7 @@ impl ::mbd::Mechanism for SliderCrank {
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }
 #[allow(unused_variables, unused_parens, clippy::all)]
-impl ::mbd::ConstraintForces<f64, 9, 9> for SliderCrank {
+impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn constraint_force_q(
         &self,
@@ -422,10 +436,10 @@ impl ::mbd::ConstraintForces<f64, 9, 9> for SliderCrank {
             + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
     }
 }
-#[allow(unused_variables, unused_parens, clippy::all)]
-impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
+#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
-    fn mass_diagonal(&self) -> [f64; 9] {
+    fn mass_times(&self, q: &[f64; 9], x: &[f64; 9], y: &mut [f64; 9]) {
         let mut m = [0f64; 9];
         m[0] = 1f64;
         m[1] = 1f64;
@@ -436,10 +450,40 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
         m[6] = 0.5f64;
         m[7] = 0.5f64;
         m[8] = 0.001f64;
-        m
+        y[0] = m[0] * x[0];
+        y[1] = m[1] * x[1];
+        y[2] = m[2] * x[2];
+        y[3] = m[3] * x[3];
+        y[4] = m[4] * x[4];
+        y[5] = m[5] * x[5];
+        y[6] = m[6] * x[6];
+        y[7] = m[7] * x[7];
+        y[8] = m[8] * x[8];
     }
     #[inline]
-    fn forces(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, h: &mut [f64; 9]) {
+    fn add_mass_matrix(&self, q: &[f64; 9], scale: f64, a: &mut [[f64; 9]; 9]) {
+        let mut m = [0f64; 9];
+        m[0] = 1f64;
+        m[1] = 1f64;
+        m[2] = 0.002f64;
+        m[3] = 2f64;
+        m[4] = 2f64;
+        m[5] = 0.015f64;
+        m[6] = 0.5f64;
+        m[7] = 0.5f64;
+        m[8] = 0.001f64;
+        a[0][0] += scale * m[0];
+        a[1][1] += scale * m[1];
+        a[2][2] += scale * m[2];
+        a[3][3] += scale * m[3];
+        a[4][4] += scale * m[4];
+        a[5][5] += scale * m[5];
+        a[6][6] += scale * m[6];
+        a[7][7] += scale * m[7];
+        a[8][8] += scale * m[8];
+    }
+    #[inline]
+    fn forces(&self, q: &[f64; 9], v: &[f64; 9], t: f64, h: &mut [f64; 9]) {
         h[0] = 0f64;
         h[1] = 0f64;
         h[2] = 0f64;
@@ -451,11 +495,11 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
         h[8] = 0f64;
     }
     #[inline]
-    fn forces_q(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+    fn forces_q(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
         *dh = [[0f64; 9]; 9];
     }
     #[inline]
-    fn forces_qd(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+    fn forces_v(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
         *dh = [[0f64; 9]; 9];
     }
     #[inline]
@@ -468,7 +512,7 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
     fn friction_forces(
         &self,
         q: &[f64; 9],
-        qd: &[f64; 9],
+        v: &[f64; 9],
         t: f64,
         lambda: &[f64; 9],
         h: &mut [f64; 9],
@@ -477,14 +521,14 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
     fn friction_derivatives(
         &self,
         q: &[f64; 9],
-        qd: &[f64; 9],
+        v: &[f64; 9],
         t: f64,
         lambda: &[f64; 9],
         d_q: &mut [[f64; 9]; 9],
-        d_qd: &mut [[f64; 9]; 9],
+        d_v: &mut [[f64; 9]; 9],
     ) {}
     #[inline]
-    fn nonconservative_power(&self, q: &[f64; 9], qd: &[f64; 9], t: f64) -> f64 {
+    fn nonconservative_power(&self, q: &[f64; 9], v: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
         power[0] = 0f64;
         power[0]
@@ -492,7 +536,7 @@ impl ::mbd::Dynamics<f64, 9, 9> for SliderCrank {
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
 impl SliderCrank {
-    /// LDLᵀ of S = Φ_q M⁻¹ Φ_qᵀ over its compile-time pattern; `Err(row)` for a dependent row.
+    /// LDLᵀ of S = D M⁻¹ Dᵀ over its compile-time pattern; `Err(row)` for a dependent row.
     #[inline(always)]
     fn schur_factor(
         jv: &[f64; 23],
@@ -667,15 +711,15 @@ impl SliderCrank {
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
-impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
+impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn accelerations(
         &self,
         q: &[f64; 9],
-        qd: &[f64; 9],
+        v: &[f64; 9],
         t: f64,
         options: &::mbd::DynamicsOptions<f64>,
-        qdd: &mut [f64; 9],
+        vd: &mut [f64; 9],
         lambda: &mut [f64; 9],
     ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
         let mut jv = [0f64; 23];
@@ -696,15 +740,15 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
         let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * qd[8]);
-        let v126: f64 = (c_slider * qd[8]);
-        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v151: f64 = (qd[6] * v126);
-        let v152: f64 = (qd[8] * v119);
-        let v158: f64 = (qd[7] * v119);
+        let v119: f64 = (s_slider * v[8]);
+        let v126: f64 = (c_slider * v[8]);
+        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
+        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
+        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
+        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
+        let v151: f64 = (v[6] * v126);
+        let v152: f64 = (v[8] * v119);
+        let v158: f64 = (v[7] * v119);
         jv[0] = (-1f64);
         jv[1] = v13;
         jv[2] = (-1f64);
@@ -753,7 +797,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
         gamma[4] = v141;
         gamma[5] = v147;
         gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
         gamma[7] = (-v152);
         gamma[8] = 0f64;
         h[0] = 0f64;
@@ -798,65 +842,65 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
                 .iter()
                 .chain(jv.iter())
                 .chain(m.iter())
-                .all(|v| v.is_finite());
+                .all(|x| x.is_finite());
             return ::core::result::Result::Err(
                 ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
             );
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
         let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-        qdd[0] = h[0] * minv[0];
-        qdd[1] = h[1] * minv[1];
-        qdd[2] = h[2] * minv[2];
-        qdd[3] = h[3] * minv[3];
-        qdd[4] = h[4] * minv[4];
-        qdd[5] = h[5] * minv[5];
-        qdd[6] = h[6] * minv[6];
-        qdd[7] = h[7] * minv[7];
-        qdd[8] = h[8] * minv[8];
-        lambda[0] = gamma[0] - (jv[0] * qdd[0] + jv[1] * qdd[2])
-            - two_alpha * ((jv[0] * qd[0] + jv[1] * qd[2]) - nu[0]) - beta2 * phi[0];
-        lambda[1] = gamma[1] - (jv[2] * qdd[1] + jv[3] * qdd[2])
-            - two_alpha * ((jv[2] * qd[1] + jv[3] * qd[2]) - nu[1]) - beta2 * phi[1];
+        vd[0] = h[0] * minv[0];
+        vd[1] = h[1] * minv[1];
+        vd[2] = h[2] * minv[2];
+        vd[3] = h[3] * minv[3];
+        vd[4] = h[4] * minv[4];
+        vd[5] = h[5] * minv[5];
+        vd[6] = h[6] * minv[6];
+        vd[7] = h[7] * minv[7];
+        vd[8] = h[8] * minv[8];
+        lambda[0] = gamma[0] - (jv[0] * vd[0] + jv[1] * vd[2])
+            - two_alpha * ((jv[0] * v[0] + jv[1] * v[2]) - nu[0]) - beta2 * phi[0];
+        lambda[1] = gamma[1] - (jv[2] * vd[1] + jv[3] * vd[2])
+            - two_alpha * ((jv[2] * v[1] + jv[3] * v[2]) - nu[1]) - beta2 * phi[1];
         lambda[2] = gamma[2]
-            - (jv[4] * qdd[0] + jv[5] * qdd[2] + jv[6] * qdd[3] + jv[7] * qdd[5])
+            - (jv[4] * vd[0] + jv[5] * vd[2] + jv[6] * vd[3] + jv[7] * vd[5])
             - two_alpha
-                * ((jv[4] * qd[0] + jv[5] * qd[2] + jv[6] * qd[3] + jv[7] * qd[5])
-                    - nu[2]) - beta2 * phi[2];
+                * ((jv[4] * v[0] + jv[5] * v[2] + jv[6] * v[3] + jv[7] * v[5]) - nu[2])
+            - beta2 * phi[2];
         lambda[3] = gamma[3]
-            - (jv[8] * qdd[1] + jv[9] * qdd[2] + jv[10] * qdd[4] + jv[11] * qdd[5])
+            - (jv[8] * vd[1] + jv[9] * vd[2] + jv[10] * vd[4] + jv[11] * vd[5])
             - two_alpha
-                * ((jv[8] * qd[1] + jv[9] * qd[2] + jv[10] * qd[4] + jv[11] * qd[5])
-                    - nu[3]) - beta2 * phi[3];
-        lambda[4] = gamma[4] - (jv[12] * qdd[3] + jv[13] * qdd[5] + jv[14] * qdd[6])
-            - two_alpha * ((jv[12] * qd[3] + jv[13] * qd[5] + jv[14] * qd[6]) - nu[4])
+                * ((jv[8] * v[1] + jv[9] * v[2] + jv[10] * v[4] + jv[11] * v[5]) - nu[3])
+            - beta2 * phi[3];
+        lambda[4] = gamma[4] - (jv[12] * vd[3] + jv[13] * vd[5] + jv[14] * vd[6])
+            - two_alpha * ((jv[12] * v[3] + jv[13] * v[5] + jv[14] * v[6]) - nu[4])
             - beta2 * phi[4];
-        lambda[5] = gamma[5] - (jv[15] * qdd[4] + jv[16] * qdd[5] + jv[17] * qdd[7])
-            - two_alpha * ((jv[15] * qd[4] + jv[16] * qd[5] + jv[17] * qd[7]) - nu[5])
+        lambda[5] = gamma[5] - (jv[15] * vd[4] + jv[16] * vd[5] + jv[17] * vd[7])
+            - two_alpha * ((jv[15] * v[4] + jv[16] * v[5] + jv[17] * v[7]) - nu[5])
             - beta2 * phi[5];
-        lambda[6] = gamma[6] - (jv[18] * qdd[6] + jv[19] * qdd[7] + jv[20] * qdd[8])
-            - two_alpha * ((jv[18] * qd[6] + jv[19] * qd[7] + jv[20] * qd[8]) - nu[6])
+        lambda[6] = gamma[6] - (jv[18] * vd[6] + jv[19] * vd[7] + jv[20] * vd[8])
+            - two_alpha * ((jv[18] * v[6] + jv[19] * v[7] + jv[20] * v[8]) - nu[6])
             - beta2 * phi[6];
-        lambda[7] = gamma[7] - (jv[21] * qdd[8]) - two_alpha * ((jv[21] * qd[8]) - nu[7])
+        lambda[7] = gamma[7] - (jv[21] * vd[8]) - two_alpha * ((jv[21] * v[8]) - nu[7])
             - beta2 * phi[7];
-        lambda[8] = gamma[8] - (jv[22] * qdd[2]) - two_alpha * ((jv[22] * qd[2]) - nu[8])
+        lambda[8] = gamma[8] - (jv[22] * vd[2]) - two_alpha * ((jv[22] * v[2]) - nu[8])
             - beta2 * phi[8];
         Self::schur_solve(&l, &dinv, lambda);
-        qdd[0] += minv[0] * (jv[0] * lambda[0] + jv[4] * lambda[2]);
-        qdd[1] += minv[1] * (jv[2] * lambda[1] + jv[8] * lambda[3]);
-        qdd[2]
+        vd[0] += minv[0] * (jv[0] * lambda[0] + jv[4] * lambda[2]);
+        vd[1] += minv[1] * (jv[2] * lambda[1] + jv[8] * lambda[3]);
+        vd[2]
             += minv[2]
                 * (jv[1] * lambda[0] + jv[3] * lambda[1] + jv[5] * lambda[2]
                     + jv[9] * lambda[3] + jv[22] * lambda[8]);
-        qdd[3] += minv[3] * (jv[6] * lambda[2] + jv[12] * lambda[4]);
-        qdd[4] += minv[4] * (jv[10] * lambda[3] + jv[15] * lambda[5]);
-        qdd[5]
+        vd[3] += minv[3] * (jv[6] * lambda[2] + jv[12] * lambda[4]);
+        vd[4] += minv[4] * (jv[10] * lambda[3] + jv[15] * lambda[5]);
+        vd[5]
             += minv[5]
                 * (jv[7] * lambda[2] + jv[11] * lambda[3] + jv[13] * lambda[4]
                     + jv[16] * lambda[5]);
-        qdd[6] += minv[6] * (jv[14] * lambda[4] + jv[18] * lambda[6]);
-        qdd[7] += minv[7] * (jv[17] * lambda[5] + jv[19] * lambda[6]);
-        qdd[8] += minv[8] * (jv[20] * lambda[6] + jv[21] * lambda[7]);
+        vd[6] += minv[6] * (jv[14] * lambda[4] + jv[18] * lambda[6]);
+        vd[7] += minv[7] * (jv[17] * lambda[5] + jv[19] * lambda[6]);
+        vd[8] += minv[8] * (jv[20] * lambda[6] + jv[21] * lambda[7]);
         ::core::result::Result::Ok(())
     }
     #[inline]
@@ -949,15 +993,15 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
                 .iter()
                 .chain(jv.iter())
                 .chain(m.iter())
-                .all(|v| v.is_finite());
+                .all(|x| x.is_finite());
             return ::core::result::Result::Err(
                 ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
             );
         }
         let mut b = phi;
         let mut worst = 0f64;
-        for v in b.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*v));
+        for x in b.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
         }
         Self::schur_solve(&l, &dinv, &mut b);
         q[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
@@ -978,7 +1022,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
     fn project_velocities(
         &self,
         q: &[f64; 9],
-        qd: &mut [f64; 9],
+        v: &mut [f64; 9],
         t: f64,
         options: &::mbd::DynamicsOptions<f64>,
     ) -> ::core::result::Result<f64, ::mbd::DynamicsError> {
@@ -1060,49 +1104,46 @@ impl ::mbd::ForwardDynamics<f64, 9, 9> for SliderCrank {
                 .iter()
                 .chain(jv.iter())
                 .chain(m.iter())
-                .all(|v| v.is_finite());
+                .all(|x| x.is_finite());
             return ::core::result::Result::Err(
                 ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
             );
         }
         let mut b = [0f64; 9];
         {
-            let qd: &[f64; 9] = qd;
-            b[0] = (jv[0] * qd[0] + jv[1] * qd[2]) - nu[0];
-            b[1] = (jv[2] * qd[1] + jv[3] * qd[2]) - nu[1];
-            b[2] = (jv[4] * qd[0] + jv[5] * qd[2] + jv[6] * qd[3] + jv[7] * qd[5])
-                - nu[2];
-            b[3] = (jv[8] * qd[1] + jv[9] * qd[2] + jv[10] * qd[4] + jv[11] * qd[5])
-                - nu[3];
-            b[4] = (jv[12] * qd[3] + jv[13] * qd[5] + jv[14] * qd[6]) - nu[4];
-            b[5] = (jv[15] * qd[4] + jv[16] * qd[5] + jv[17] * qd[7]) - nu[5];
-            b[6] = (jv[18] * qd[6] + jv[19] * qd[7] + jv[20] * qd[8]) - nu[6];
-            b[7] = (jv[21] * qd[8]) - nu[7];
-            b[8] = (jv[22] * qd[2]) - nu[8];
+            let v: &[f64; 9] = v;
+            b[0] = (jv[0] * v[0] + jv[1] * v[2]) - nu[0];
+            b[1] = (jv[2] * v[1] + jv[3] * v[2]) - nu[1];
+            b[2] = (jv[4] * v[0] + jv[5] * v[2] + jv[6] * v[3] + jv[7] * v[5]) - nu[2];
+            b[3] = (jv[8] * v[1] + jv[9] * v[2] + jv[10] * v[4] + jv[11] * v[5]) - nu[3];
+            b[4] = (jv[12] * v[3] + jv[13] * v[5] + jv[14] * v[6]) - nu[4];
+            b[5] = (jv[15] * v[4] + jv[16] * v[5] + jv[17] * v[7]) - nu[5];
+            b[6] = (jv[18] * v[6] + jv[19] * v[7] + jv[20] * v[8]) - nu[6];
+            b[7] = (jv[21] * v[8]) - nu[7];
+            b[8] = (jv[22] * v[2]) - nu[8];
         }
         let mut worst = 0f64;
-        for v in b.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*v));
+        for x in b.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
         }
         Self::schur_solve(&l, &dinv, &mut b);
-        qd[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
-        qd[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
-        qd[2]
+        v[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
+        v[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
+        v[2]
             -= minv[2]
                 * (jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
                     + jv[22] * b[8]);
-        qd[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
-        qd[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
-        qd[5]
-            -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
-        qd[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
-        qd[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
-        qd[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
+        v[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
+        v[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
+        v[5] -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
+        v[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
+        v[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
+        v[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
         ::core::result::Result::Ok(worst)
     }
 }
 #[allow(unused_variables, unused_parens, clippy::all)]
-impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
+impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn initial_positions(&self) -> [f64; 9] {
         let mut q = [0f64; 9];
@@ -1119,18 +1160,30 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
     }
     #[inline]
     fn initial_velocities(&self) -> [f64; 9] {
-        let mut qd = [0f64; 9];
-        qd[0] = 0f64;
-        qd[1] = 0f64;
-        qd[2] = 0f64;
-        qd[3] = 0f64;
-        qd[4] = 0f64;
-        qd[5] = 0f64;
-        qd[6] = 0f64;
-        qd[7] = 0f64;
-        qd[8] = 0f64;
-        qd
+        let mut v = [0f64; 9];
+        v[0] = 0f64;
+        v[1] = 0f64;
+        v[2] = 0f64;
+        v[3] = 0f64;
+        v[4] = 0f64;
+        v[5] = 0f64;
+        v[6] = 0f64;
+        v[7] = 0f64;
+        v[8] = 0f64;
+        v
     }
+    #[inline]
+    fn position_rates(&self, q: &[f64; 9], v: &[f64; 9], qdot: &mut [f64; 9]) {
+        *qdot = *v;
+    }
+    #[inline]
+    fn integrate_positions(&self, q: &mut [f64; 9], dv: &[f64; 9], h: f64) {
+        for i in 0..9 {
+            q[i] += h * dv[i];
+        }
+    }
+    #[inline]
+    fn normalize_positions(&self, q: &mut [f64; 9]) {}
     #[inline]
     fn constraints(&self, q: &[f64; 9], t: f64, phi: &mut [f64; 9]) {
         let v5: f64 = (self.r / 2f64);
@@ -1202,21 +1255,21 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         nu[8] = self.omega;
     }
     #[inline]
-    fn gamma(&self, q: &[f64; 9], qd: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
+    fn gamma(&self, q: &[f64; 9], v: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v24: f64 = (self.l / 2f64);
         let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v119: f64 = (s_slider * qd[8]);
-        let v126: f64 = (c_slider * qd[8]);
-        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v151: f64 = (qd[6] * v126);
-        let v152: f64 = (qd[8] * v119);
-        let v158: f64 = (qd[7] * v119);
+        let v119: f64 = (s_slider * v[8]);
+        let v126: f64 = (c_slider * v[8]);
+        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
+        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
+        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
+        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
+        let v151: f64 = (v[6] * v126);
+        let v152: f64 = (v[8] * v119);
+        let v158: f64 = (v[7] * v119);
         gamma[0] = v134;
         gamma[1] = v138;
         gamma[2] = (v134 + v141);
@@ -1224,7 +1277,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         gamma[4] = v141;
         gamma[5] = v147;
         gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
         gamma[7] = (-v152);
         gamma[8] = 0f64;
     }
@@ -1286,7 +1339,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
     fn full_eval(
         &self,
         q: &[f64; 9],
-        qd: &[f64; 9],
+        v: &[f64; 9],
         t: f64,
         phi: &mut [f64; 9],
         d: &mut [[f64; 9]; 9],
@@ -1306,15 +1359,15 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
         let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * qd[8]);
-        let v126: f64 = (c_slider * qd[8]);
-        let v134: f64 = (v5 * (qd[2] * (c_crank * qd[2])));
-        let v138: f64 = (v5 * (qd[2] * (s_crank * qd[2])));
-        let v141: f64 = (v24 * (qd[5] * (c_rod * qd[5])));
-        let v147: f64 = (v24 * (qd[5] * (s_rod * qd[5])));
-        let v151: f64 = (qd[6] * v126);
-        let v152: f64 = (qd[8] * v119);
-        let v158: f64 = (qd[7] * v119);
+        let v119: f64 = (s_slider * v[8]);
+        let v126: f64 = (c_slider * v[8]);
+        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
+        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
+        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
+        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
+        let v151: f64 = (v[6] * v126);
+        let v152: f64 = (v[8] * v119);
+        let v158: f64 = (v[7] * v119);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -1363,7 +1416,7 @@ impl ::mbd::Kinematics<f64, 9, 9> for SliderCrank {
         gamma[4] = v141;
         gamma[5] = v147;
         gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (qd[8] * v126))))));
+            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
         gamma[7] = (-v152);
         gamma[8] = 0f64;
     }

@@ -118,7 +118,8 @@ macro_rules! compare_dynamics {
         let system = System::new(&m);
         // A moving state: 50 steps of 1 ms into the fall from rest, as in benches/dynamics.rs.
         let mut rk4 = Rk4::new(1e-3);
-        let mut p: Point<f64, NQ, NC> = system.point(0.0, q, [0.0; NQ], [0.0; 2]).expect("forward dynamics");
+        // Planar: v = q̇, NV = NQ, the state CasADi's functions take.
+        let mut p: Point<f64, NQ, NQ, NC> = system.point(0.0, q, [0.0; NQ], [0.0; 2]).expect("forward dynamics");
         let mut next = p;
         for _ in 0..50 {
             rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
@@ -132,13 +133,13 @@ macro_rules! compare_dynamics {
         let mut qr = mbd_bench::$casadi::fd_qr();
         let mut g = $c.benchmark_group(concat!($label, " forward dynamics"));
         g.bench_function("q̈, λ: mbd", |b| {
-            b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.qd), black_box(p.t), &options, &mut qdd, &mut lambda))
+            b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.v), black_box(p.t), &options, &mut qdd, &mut lambda))
         });
         g.bench_function("q̈, λ: CasADi Schur (symbolic)", |b| {
-            b.iter(|| schur.call(&[black_box(&p.q), black_box(&p.qd), &[black_box(p.t)], &params, &gains], &mut out))
+            b.iter(|| schur.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
         });
         g.bench_function("q̈, λ: CasADi KKT (sparse QR)", |b| {
-            b.iter(|| qr.call(&[black_box(&p.q), black_box(&p.qd), &[black_box(p.t)], &params, &gains], &mut out))
+            b.iter(|| qr.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
         });
         g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
         let (mut q1, mut qd1, mut qdd1) = ([0.0; NQ], [0.0; NQ], [0.0; NQ]);
@@ -150,7 +151,7 @@ macro_rules! compare_dynamics {
                         &params,
                         &gains,
                         1e-3,
-                        (p.t, black_box(&p.q), black_box(&p.qd), &p.qdd),
+                        (p.t, black_box(&p.q), black_box(&p.v), &p.vd),
                         &mut out,
                         (&mut q1, &mut qd1, &mut qdd1),
                     )
@@ -159,7 +160,7 @@ macro_rules! compare_dynamics {
         }
         // Both loops take the same step: a wrong loop would time something else.
         rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
-        rk4_step(&mut schur, &params, &gains, 1e-3, (p.t, &p.q, &p.qd, &p.qdd), &mut out, (&mut q1, &mut qd1, &mut qdd1));
+        rk4_step(&mut schur, &params, &gains, 1e-3, (p.t, &p.q, &p.v, &p.vd), &mut out, (&mut q1, &mut qd1, &mut qdd1));
         let differ = next.q.iter().zip(&q1).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         assert!(differ < 1e-12, "{}: mbd's RK4 and the CasADi loop differ by {differ:e}", $label);
         g.finish();

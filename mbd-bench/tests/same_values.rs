@@ -17,7 +17,8 @@ mod pendulum_chain16 {
     include!("../../benches/pendulum_chain16.rs");
 }
 
-fn check<M: Kinematics<f64, NQ, NC>, const NQ: usize, const NC: usize>(
+/// Planar mechanisms: v = q̇ (NV = NQ), the velocity CasADi's functions take.
+fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(
     m: &M,
     params: &[f64],
     mut phi_c: mbd_bench::CasadiFunction,
@@ -68,7 +69,7 @@ fn casadi_c_and_mbd_compute_the_same_functions() {
 /// from singular positions) whose inputs agree to rounding differ by about cond · ε ‖x‖; 1e-9
 /// relative to ‖[q̈; λ]‖∞ leaves ample margin for cond(S) ≤ 1e5, and is still far below any
 /// modelling difference (a wrong term moves the result by its own size).
-fn check_forward<M: ForwardDynamics<f64, NQ, NC>, const NQ: usize, const NC: usize>(
+fn check_forward<M: ForwardDynamics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(
     m: &M,
     params: &[f64],
     mut schur: mbd_bench::CasadiFunction,

@@ -139,9 +139,10 @@ impl Emitter<'_> {
                 let i = Literal::usize_unsuffixed(i as usize);
                 quote!(q[#i])
             }
+            // The velocity v (planar: v = q̇), named `v` in every generated signature.
             Var::Qd(i) => {
                 let i = Literal::usize_unsuffixed(i as usize);
-                quote!(qd[#i])
+                quote!(v[#i])
             }
             Var::T => quote!(t),
             Var::Lambda(i) => {

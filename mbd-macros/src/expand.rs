@@ -80,10 +80,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let name = &m.name;
     let vis = &m.vis;
     let attrs = &m.attrs;
-    let (nb, nq, nc, nnz) = (m.bodies.len(), f.nq, f.nc, f.jacobian.len());
-    let (nb_l, nq_l, nc_l, nnz_l) = (usize_lit(nb), usize_lit(nq), usize_lit(nc), usize_lit(nnz));
+    // Planar bodies: the velocities are the coordinates' rates, NV = NQ and B = I.
+    let (nb, nq, nv, nc, nnz) = (m.bodies.len(), f.nq, f.nq, f.nc, f.jacobian.len());
+    let (nb_l, nq_l, nv_l, nc_l, nnz_l) = (usize_lit(nb), usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz));
     let np = usize_lit(m.params.len());
-    let dof = nq as i32 - nc as i32;
+    let dof = nv as i32 - nc as i32;
     let zero = e.literal(0.0);
 
     let params: Vec<_> = m.params.iter().map(|p| &p.name).collect();
@@ -111,10 +112,22 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     full_values.extend(vector_outputs("gamma", &f.gamma));
     let (full_values_body, full_values_ops) = e.body(&full_values);
     let (q0_body, _) = e.body(&vector_outputs("q", &f.q0));
-    let (mass_body, _) = e.body(&vector_outputs("m", &f.mass));
+    // The constant diagonal of M, only its non-zeros.
+    let mass_entries: Vec<usize> = (0..nv).filter(|&i| !f.graph.is_zero(f.mass[i])).collect();
+    let mass_outputs: Vec<Output> = mass_entries
+        .iter()
+        .map(|&i| {
+            let il = usize_lit(i);
+            Output { target: quote!(m[#il]), node: f.mass[i] }
+        })
+        .collect();
+    let (mass_body, _) = e.body(&mass_outputs);
+    // y = M x writes every entry: zeros first only where M has a zero on its diagonal.
+    let zero_y = if mass_entries.len() < nv { quote!(*y = [#zero; #nv_l];) } else { quote!() };
+    let mass_entries: Vec<Literal> = mass_entries.into_iter().map(usize_lit).collect();
     let (h_body, h_ops) = e.body(&vector_outputs("h", &f.h));
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
-    let (h_qd_body, h_qd_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
+    let (h_v_body, h_v_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
     let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
     let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
@@ -127,12 +140,12 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         let indices: Vec<Literal> =
             f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
         quote! {
-            let mut hf = [#zero; #nq_l];
+            let mut hf = [#zero; #nv_l];
             #body
             #( h[#indices] += hf[#indices]; )*
         }
     };
-    // ∂/∂q and ∂/∂q̇ of the friction forces, added into the caller's dense matrices.
+    // ∂/∂q and ∂/∂v of the friction forces, added into the caller's dense matrices.
     let friction_derivatives_fn = if f.friction_q.is_empty() && f.friction_qd.is_empty() {
         quote!()
     } else {
@@ -153,16 +166,16 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             });
             quote!(#(#adds)*)
         };
-        let (add_q, add_qd) = (add(quote!(d_q), quote!(fq), &f.friction_q), add(quote!(d_qd), quote!(fqd), &f.friction_qd));
+        let (add_q, add_v) = (add(quote!(d_q), quote!(fq), &f.friction_q), add(quote!(d_v), quote!(fqd), &f.friction_qd));
         quote! {
             let mut fq = [#zero; #n_q];
             let mut fqd = [#zero; #n_qd];
             #body
             #add_q
-            #add_qd
+            #add_v
         }
     };
-    let nz_l = usize_lit(nq + nc);
+    let nz_l = usize_lit(nv + nc);
     let mut joints = Vec::new();
     let mut first_row = 0u16;
     for (index, c) in m.constraints.iter().enumerate() {
@@ -191,7 +204,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             effects.push(element.kind.effect());
         }
     }
-    let (qd0_body, _) = e.body(&vector_outputs("qd", &f.qd0));
+    let (v0_body, _) = e.body(&vector_outputs("v", &f.qd0));
 
     let op_counts = [
         op_count("constraints", phi_ops),
@@ -204,7 +217,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("full_eval_values", full_values_ops),
         op_count("forces", h_ops),
         op_count("forces_q", h_q_ops),
-        op_count("forces_qd", h_qd_ops),
+        op_count("forces_v", h_v_ops),
         op_count("potential_energy", v_ops),
         op_count("constraint_force_q", cfq_ops),
         op_count("nonconservative_power", power_ops),
@@ -226,9 +239,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let name_str = name.to_string();
 
     let summary = format!(
-        " {nb} bodies, {nq} coordinates, {nc} constraint rows ({dof} degrees of freedom); \
+        " {nb} bodies, {nq} coordinates and velocities, {nc} constraint rows ({dof} degrees of freedom); \
          Φ_q has {nnz} structural non-zeros of {}.",
-        nq * nc
+        nv * nc
     );
     let zero_nu = if phi_t_zero { quote!(*nu = [#zero; #nc_l];) } else { nu_body };
 
@@ -254,11 +267,13 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         impl #name {
             /// Number of moving bodies.
             pub const N_BODIES: usize = #nb_l;
-            /// Number of generalized coordinates (3 per body).
+            /// Number of generalized coordinates q (3 per body).
             pub const NQ: usize = #nq_l;
+            /// Number of velocities v (3 per body; planar v = q̇, so NV = NQ).
+            pub const NV: usize = #nv_l;
             /// Number of constraint rows (joints, drivers and user constraints).
             pub const NC: usize = #nc_l;
-            /// Degrees of freedom: `NQ − NC`.
+            /// Degrees of freedom: `NV − NC`.
             pub const DOF: i32 = #dof;
             /// Number of structurally non-zero entries of Φ_q.
             pub const NNZ: usize = #nnz_l;
@@ -275,13 +290,13 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 Self { #( #params: p[#param_idx], )* }
             }
 
-            /// Work space for solvers that factor the (NQ + NC)-square saddle-point matrix
-            /// [[K, Φ_qᵀ], [Φ_q, 0]] (static equilibrium).
+            /// Work space for solvers that factor the (NV + NC)-square saddle-point matrix
+            /// [[K, Dᵀ], [D, 0]] (static equilibrium).
             pub fn kkt_workspace() -> ::mbd::KktWorkspace<#real, #nz_l> {
                 ::mbd::KktWorkspace::new()
             }
 
-            /// A generalized-α integrator with work space for this mechanism's NQ + NC unknowns.
+            /// A generalized-α integrator with work space for this mechanism's NV + NC unknowns.
             pub fn generalized_alpha(options: ::mbd::GeneralizedAlphaOptions<#real>) -> ::mbd::GeneralizedAlpha<#real, #nz_l> {
                 ::mbd::GeneralizedAlpha::new(options)
             }
@@ -299,7 +314,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             pub fn full_eval_values(
                 &self,
                 q: &[#real; #nq_l],
-                qd: &[#real; #nq_l],
+                v: &[#real; #nv_l],
                 t: #real,
                 phi: &mut [#real; #nc_l],
                 out: &mut [#real; #nnz_l],
@@ -314,6 +329,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const NAME: &'static str = #name_str;
             const BODY_NAMES: &'static [&'static str] = &[#(#body_names),*];
             const COORDINATE_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
+            const VELOCITY_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
+            const DIMENSION: u8 = 2;
             const CONSTRAINT_NAMES: &'static [&'static str] = &[#(#row_names),*];
             const PARAM_NAMES: &'static [&'static str] = &[#(#param_names),*];
             const DOF: i32 = #dof;
@@ -326,35 +343,42 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         }
 
         #[allow(unused_variables, unused_parens, clippy::all)]
-        impl ::mbd::ConstraintForces<#real, #nq_l, #nc_l> for #name {
+        impl ::mbd::ConstraintForces<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
-            fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nq_l]; #nq_l]) {
-                *k = [[#zero; #nq_l]; #nq_l];
+            fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nv_l]; #nv_l]) {
+                *k = [[#zero; #nv_l]; #nv_l];
                 #cfq_body
             }
         }
 
-        #[allow(unused_variables, unused_parens, clippy::all)]
-        impl ::mbd::Dynamics<#real, #nq_l, #nc_l> for #name {
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        impl ::mbd::Dynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
-            fn mass_diagonal(&self) -> [#real; #nq_l] {
-                let mut m = [#zero; #nq_l];
+            fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
+                let mut m = [#zero; #nv_l];
                 #mass_body
-                m
+                #zero_y
+                #( y[#mass_entries] = m[#mass_entries] * x[#mass_entries]; )*
             }
             #[inline]
-            fn forces(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, h: &mut [#real; #nq_l]) {
+            fn add_mass_matrix(&self, q: &[#real; #nq_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
+                let mut m = [#zero; #nv_l];
+                #mass_body
+                #( a[#mass_entries][#mass_entries] += scale * m[#mass_entries]; )*
+            }
+            #[inline]
+            fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
                 #h_body
             }
             #[inline]
-            fn forces_q(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, dh: &mut [[#real; #nq_l]; #nq_l]) {
-                *dh = [[#zero; #nq_l]; #nq_l];
+            fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
+                *dh = [[#zero; #nv_l]; #nv_l];
                 #h_q_body
             }
             #[inline]
-            fn forces_qd(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, dh: &mut [[#real; #nq_l]; #nq_l]) {
-                *dh = [[#zero; #nq_l]; #nq_l];
-                #h_qd_body
+            fn forces_v(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
+                *dh = [[#zero; #nv_l]; #nv_l];
+                #h_v_body
             }
             #[inline]
             fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
@@ -363,23 +387,23 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 energy[0]
             }
             #[inline]
-            fn friction_forces(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nq_l]) {
+            fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
                 #friction_fn
             }
             #[inline]
             fn friction_derivatives(
                 &self,
                 q: &[#real; #nq_l],
-                qd: &[#real; #nq_l],
+                v: &[#real; #nv_l],
                 t: #real,
                 lambda: &[#real; #nc_l],
-                d_q: &mut [[#real; #nq_l]; #nq_l],
-                d_qd: &mut [[#real; #nq_l]; #nq_l],
+                d_q: &mut [[#real; #nv_l]; #nv_l],
+                d_v: &mut [[#real; #nv_l]; #nv_l],
             ) {
                 #friction_derivatives_fn
             }
             #[inline]
-            fn nonconservative_power(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real) -> #real {
+            fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
                 let mut power = [#zero; 1];
                 #power_body
                 power[0]
@@ -394,7 +418,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         #impl_block
 
         #[allow(unused_variables, unused_parens, clippy::all)]
-        impl ::mbd::Kinematics<#real, #nq_l, #nc_l> for #name {
+        impl ::mbd::Kinematics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn initial_positions(&self) -> [#real; #nq_l] {
                 let mut q = [#zero; #nq_l];
@@ -402,18 +426,30 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 q
             }
             #[inline]
-            fn initial_velocities(&self) -> [#real; #nq_l] {
-                let mut qd = [#zero; #nq_l];
-                #qd0_body
-                qd
+            fn initial_velocities(&self) -> [#real; #nv_l] {
+                let mut v = [#zero; #nv_l];
+                #v0_body
+                v
             }
+            #[inline]
+            fn position_rates(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], qdot: &mut [#real; #nq_l]) {
+                *qdot = *v;
+            }
+            #[inline]
+            fn integrate_positions(&self, q: &mut [#real; #nq_l], dv: &[#real; #nv_l], h: #real) {
+                for i in 0..#nq_l {
+                    q[i] += h * dv[i];
+                }
+            }
+            #[inline]
+            fn normalize_positions(&self, q: &mut [#real; #nq_l]) {}
             #[inline]
             fn constraints(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l]) {
                 #phi_body
             }
             #[inline]
-            fn jacobian(&self, q: &[#real; #nq_l], t: #real, d: &mut [[#real; #nq_l]; #nc_l]) {
-                *d = [[#zero; #nq_l]; #nc_l];
+            fn jacobian(&self, q: &[#real; #nq_l], t: #real, d: &mut [[#real; #nv_l]; #nc_l]) {
+                *d = [[#zero; #nv_l]; #nc_l];
                 #jac_body
             }
             #[inline]
@@ -421,26 +457,26 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #zero_nu
             }
             #[inline]
-            fn gamma(&self, q: &[#real; #nq_l], qd: &[#real; #nq_l], t: #real, gamma: &mut [#real; #nc_l]) {
+            fn gamma(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l]) {
                 #gamma_body
             }
             #[inline]
-            fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nq_l]; #nc_l]) {
-                *d = [[#zero; #nq_l]; #nc_l];
+            fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
+                *d = [[#zero; #nv_l]; #nc_l];
                 #pos_body
             }
             #[inline]
             fn full_eval(
                 &self,
                 q: &[#real; #nq_l],
-                qd: &[#real; #nq_l],
+                v: &[#real; #nv_l],
                 t: #real,
                 phi: &mut [#real; #nc_l],
-                d: &mut [[#real; #nq_l]; #nc_l],
+                d: &mut [[#real; #nv_l]; #nc_l],
                 nu: &mut [#real; #nc_l],
                 gamma: &mut [#real; #nc_l],
             ) {
-                *d = [[#zero; #nq_l]; #nc_l];
+                *d = [[#zero; #nv_l]; #nc_l];
                 #full_body
             }
         }

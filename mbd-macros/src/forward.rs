@@ -1,6 +1,7 @@
 //! The generated forward dynamics (docs/formulation.md, "Forward dynamics"): the sparse LDLᵀ of
-//! S = Φ_q M⁻¹ Φ_qᵀ planned by [`Schur`] at compile time, fused with one evaluation of Φ, Φ_q's
-//! non-zeros, ν, γ, h and M, and the mass-weighted projections that reuse its factor.
+//! S = D M⁻¹ Dᵀ planned by [`Schur`] at compile time, fused with one evaluation of Φ, D's
+//! non-zeros, ν, γ, h and M, and the mass-weighted projections that reuse its factor. Planar:
+//! v = q̇, NV = NQ, D = Φ_q, and a projection step q ⊕ Δv is q + Δv.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -23,8 +24,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let name = &m.name;
     let zero = e.literal(0.0);
     let one = e.literal(1.0);
-    let (nq, nc, nnz) = (f.nq, f.nc, f.jacobian.len());
-    let (nq_l, nc_l, nnz_l) = (usize_lit(nq), usize_lit(nc), usize_lit(nnz));
+    // Planar bodies: NV = NQ.
+    let (nq, nv, nc, nnz) = (f.nq, f.nq, f.nc, f.jacobian.len());
+    let (nq_l, nv_l, nc_l, nnz_l) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz));
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
     let schur = Schur::plan(nc, &pattern, &[]);
     let nl_l = usize_lit(schur.nl());
@@ -41,7 +43,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         .collect();
     let phi_t_zero = f.phi_t_is_zero();
 
-    // q̈ = M⁻¹ h (+ M⁻¹ Φ_qᵀ λ later), M⁻¹ once per distinct mass expression.
+    // v̇ = M⁻¹ h (+ M⁻¹ Dᵀ λ later), M⁻¹ once per distinct mass expression.
     let mut minv = Vec::new();
     for (i, &node) in f.mass.iter().enumerate() {
         let il = usize_lit(i);
@@ -53,7 +55,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             None => minv.push(quote!(minv[#il] = #one / m[#il];)),
         }
     }
-    // (Φ_q x)_r for a vector x, straight-line over the pattern.
+    // (D x)_r for a vector x, straight-line over the pattern.
     let row_times = |x: &TokenStream| -> Vec<TokenStream> {
         (0..nc)
             .map(|r| {
@@ -74,9 +76,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             })
             .collect()
     };
-    // x[c] += minv[c] (Φ_qᵀ y)_c, straight-line over the pattern.
+    // x[c] += minv[c] (Dᵀ y)_c, straight-line over the pattern.
     let add_transpose = |x: &TokenStream, y: &TokenStream, sign: TokenStream| -> Vec<TokenStream> {
-        (0..nq)
+        (0..nv)
             .filter_map(|c| {
                 let terms: Vec<TokenStream> = pattern
                     .iter()
@@ -93,9 +95,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             .collect()
     };
     let rows: Vec<Literal> = (0..nc).map(usize_lit).collect();
-    let cols: Vec<Literal> = (0..nq).map(usize_lit).collect();
+    let cols: Vec<Literal> = (0..nv).map(usize_lit).collect();
 
-    // accelerations: one fused evaluation of Φ, Φ_q's non-zeros, ν, γ, h and M.
+    // accelerations: one fused evaluation of Φ, D's non-zeros, ν, γ, h and M.
     let mut outputs = jv_outputs;
     outputs.extend(vector_outputs("phi", &f.phi));
     if !phi_t_zero {
@@ -105,9 +107,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     outputs.extend(vector_outputs("h", &f.h));
     outputs.extend(vector_outputs("m", &f.mass));
     let (eval_body, eval_ops) = e.body(&outputs);
-    let dq = row_times(&quote!(qdd));
-    let dqd = row_times(&quote!(qd));
-    let lambda_qdd = add_transpose(&quote!(qdd), &quote!(lambda), quote!(+=));
+    let d_vd = row_times(&quote!(vd));
+    let d_v = row_times(&quote!(v));
+    let lambda_vd = add_transpose(&quote!(vd), &quote!(lambda), quote!(+=));
 
     let mut positions = vector_outputs("phi", &f.phi);
     positions.extend(jacobian_values_outputs(f, "jv"));
@@ -121,15 +123,15 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     }
     velocities.extend(vector_outputs("m", &f.mass));
     let (velocities_body, _) = e.body(&velocities);
-    let qd_step = add_transpose(&quote!(qd), &quote!(b), quote!(-=));
+    let v_step = add_transpose(&quote!(v), &quote!(b), quote!(-=));
 
     // Without Coulomb friction one solve; with it, fixed-point iteration on the normal loads λ
     // (the factorization of S does not depend on h, so each iteration is one more solve).
     let one_solve = quote! {
-        #( qdd[#cols] = h[#cols] * minv[#cols]; )*
-        #( lambda[#rows] = gamma[#rows] - #dq - two_alpha * (#dqd - nu[#rows]) - beta2 * phi[#rows]; )*
+        #( vd[#cols] = h[#cols] * minv[#cols]; )*
+        #( lambda[#rows] = gamma[#rows] - #d_vd - two_alpha * (#d_v - nu[#rows]) - beta2 * phi[#rows]; )*
         Self::schur_solve(&l, &dinv, lambda);
-        #(#lambda_qdd)*
+        #(#lambda_vd)*
     };
     let friction = friction_outputs(f);
     let solve_for_lambda = if friction.is_empty() {
@@ -144,7 +146,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             let mut iteration = 0u32;
             loop {
                 let previous = *lambda;
-                let mut hf = [#zero; #nq_l];
+                let mut hf = [#zero; #nv_l];
                 {
                     let lambda: &[#real; #nc_l] = lambda;
                     #friction_body
@@ -171,11 +173,11 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
     let fail = quote! {
-        let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|v| v.is_finite());
+        let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|x| x.is_finite());
         return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, finite));
     };
     let factor_call = quote! {
-        let mut minv = [#zero; #nq_l];
+        let mut minv = [#zero; #nv_l];
         #(#minv)*
         let mut l = [#zero; #nl_l];
         let mut dinv = [#zero; #nc_l];
@@ -187,17 +189,17 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     };
     let max_abs = quote! {
         let mut worst = #zero;
-        for v in b.iter() {
-            worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*v));
+        for x in b.iter() {
+            worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
         }
     };
 
     let helpers = quote! {
-        /// LDLᵀ of S = Φ_q M⁻¹ Φ_qᵀ over its compile-time pattern; `Err(row)` for a dependent row.
+        /// LDLᵀ of S = D M⁻¹ Dᵀ over its compile-time pattern; `Err(row)` for a dependent row.
         #[inline(always)]
         fn schur_factor(
             jv: &[#real; #nnz_l],
-            minv: &[#real; #nq_l],
+            minv: &[#real; #nv_l],
             tol: #real,
             allow_redundant: bool,
             l: &mut [#real; #nl_l],
@@ -214,23 +216,23 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     };
     let impl_block = quote! {
         #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
-        impl ::mbd::ForwardDynamics<#real, #nq_l, #nc_l> for #name {
+        impl ::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn accelerations(
                 &self,
                 q: &[#real; #nq_l],
-                qd: &[#real; #nq_l],
+                v: &[#real; #nv_l],
                 t: #real,
                 options: &::mbd::DynamicsOptions<#real>,
-                qdd: &mut [#real; #nq_l],
+                vd: &mut [#real; #nv_l],
                 lambda: &mut [#real; #nc_l],
             ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
                 let mut jv = [#zero; #nnz_l];
                 let mut phi = [#zero; #nc_l];
                 let mut nu = [#zero; #nc_l];
                 let mut gamma = [#zero; #nc_l];
-                let mut h = [#zero; #nq_l];
-                let mut m = [#zero; #nq_l];
+                let mut h = [#zero; #nv_l];
+                let mut m = [#zero; #nv_l];
                 #eval_body
                 #factor_call
                 let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -247,7 +249,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
                 let mut jv = [#zero; #nnz_l];
                 let mut phi = [#zero; #nc_l];
-                let mut m = [#zero; #nq_l];
+                let mut m = [#zero; #nv_l];
                 {
                     let q: &[#real; #nq_l] = q;
                     #positions_body
@@ -264,23 +266,23 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             fn project_velocities(
                 &self,
                 q: &[#real; #nq_l],
-                qd: &mut [#real; #nq_l],
+                v: &mut [#real; #nv_l],
                 t: #real,
                 options: &::mbd::DynamicsOptions<#real>,
             ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
                 let mut jv = [#zero; #nnz_l];
                 let mut nu = [#zero; #nc_l];
-                let mut m = [#zero; #nq_l];
+                let mut m = [#zero; #nv_l];
                 #velocities_body
                 #factor_call
                 let mut b = [#zero; #nc_l];
                 {
-                    let qd: &[#real; #nq_l] = qd;
-                    #( b[#rows] = #dqd - nu[#rows]; )*
+                    let v: &[#real; #nv_l] = v;
+                    #( b[#rows] = #d_v - nu[#rows]; )*
                 }
                 #max_abs
                 Self::schur_solve(&l, &dinv, &mut b);
-                #(#qd_step)*
+                #(#v_step)*
                 ::core::result::Result::Ok(worst)
             }
         }

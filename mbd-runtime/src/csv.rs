@@ -1,7 +1,9 @@
 //! Simulation output as CSV (feature `std`): one row per [`Sample`], columns
-//! `t, <coordinate>…, d/dt <coordinate>…, d2/dt2 <coordinate>…, lambda <constraint row>…,
-//! kinetic, potential, nonconservative_work, constraint_work`, in SI units, named from the
-//! mechanism so a spreadsheet or pandas reads it without a legend.
+//! `t, <coordinate>…, <velocity>…, <acceleration>…, lambda <constraint row>…, kinetic, potential,
+//! nonconservative_work, constraint_work`, in SI units, named from the mechanism so a
+//! spreadsheet or pandas reads it without a legend: q from [`Mechanism::COORDINATE_NAMES`]; v
+//! and v̇ from [`Mechanism::VELOCITY_NAMES`], planar as `d/dt crank.x` and `d2/dt2 crank.x`
+//! (v = q̇), spatial as `top.wx` and `d/dt top.wx`.
 
 use std::io::{self, Write};
 
@@ -19,8 +21,10 @@ impl<W: Write> CsvWriter<W> {
     /// A writer that has written the header row for mechanism `M`.
     pub fn new<M: Mechanism>(mut out: W) -> Self {
         let mut header = String::from("t");
-        for prefix in ["", "d/dt ", "d2/dt2 "] {
-            for name in M::COORDINATE_NAMES {
+        // Planar velocities are the coordinates' rates; spatial ones have names of their own.
+        let (velocity, acceleration) = if M::DIMENSION == 3 { ("", "d/dt ") } else { ("d/dt ", "d2/dt2 ") };
+        for (prefix, names) in [("", M::COORDINATE_NAMES), (velocity, M::VELOCITY_NAMES), (acceleration, M::VELOCITY_NAMES)] {
+            for name in names {
                 header.push(',');
                 header.push_str(prefix);
                 header.push_str(name);
@@ -36,7 +40,7 @@ impl<W: Write> CsvWriter<W> {
     }
 
     /// Appends one sample (does nothing after an I/O error).
-    pub fn write<T: Real, const NQ: usize, const NC: usize>(&mut self, s: &Sample<T, NQ, NC>) {
+    pub fn write<T: Real, const NQ: usize, const NV: usize, const NC: usize>(&mut self, s: &Sample<T, NQ, NV, NC>) {
         if self.error.is_some() {
             return;
         }
@@ -44,8 +48,8 @@ impl<W: Write> CsvWriter<W> {
         let e = &s.energy;
         let values = core::iter::once(p.t)
             .chain(p.q.iter().copied())
-            .chain(p.qd.iter().copied())
-            .chain(p.qdd.iter().copied())
+            .chain(p.v.iter().copied())
+            .chain(p.vd.iter().copied())
             .chain(p.lambda.iter().copied())
             .chain([e.kinetic, e.potential, e.nonconservative_work, e.constraint_work]);
         let mut line = String::new();

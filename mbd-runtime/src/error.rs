@@ -1,9 +1,11 @@
 //! Why a kinematic analysis failed, in the mechanism's own words: every error names the
-//! constraint row and/or coordinate involved (from [`Mechanism::CONSTRAINT_NAMES`] and
-//! [`Mechanism::COORDINATE_NAMES`]) and the time at which it happened.
+//! constraint row and/or coordinate or velocity involved (from [`Mechanism::CONSTRAINT_NAMES`],
+//! [`Mechanism::COORDINATE_NAMES`] and [`Mechanism::VELOCITY_NAMES`]; planar velocities are named
+//! as their coordinates) and the time at which it happened.
 //!
 //! [`Mechanism::CONSTRAINT_NAMES`]: crate::Mechanism::CONSTRAINT_NAMES
 //! [`Mechanism::COORDINATE_NAMES`]: crate::Mechanism::COORDINATE_NAMES
+//! [`Mechanism::VELOCITY_NAMES`]: crate::Mechanism::VELOCITY_NAMES
 
 use core::fmt;
 
@@ -16,20 +18,20 @@ pub enum NonFiniteQuantity {
     /// A coordinate of q: given to the solver, or predicted from the previous point of a sweep
     /// (m or rad). The row is a coordinate name.
     Coordinate,
-    /// A velocity of q̇: given to the solver, or computed by it (m/s or rad/s). The row is a
-    /// coordinate name.
+    /// A velocity of v: given to the solver, or computed by it (m/s or rad/s). The row is a
+    /// velocity name.
     Velocity,
-    /// A computed acceleration of q̈ (m/s² or rad/s²). The row is a coordinate name.
+    /// A computed acceleration of v̇ (m/s² or rad/s²). The row is a velocity name.
     Acceleration,
     /// A constraint value Φ evaluated by the mechanism. The row is a constraint name.
     Constraint,
-    /// An entry of the Jacobian Φ_q evaluated by the mechanism. The row is a constraint name.
+    /// An entry of the Jacobian D evaluated by the mechanism. The row is a constraint name.
     Jacobian,
     /// The velocity right-hand side ν = −Φ_t. The row is a constraint name.
     VelocityRhs,
     /// The acceleration right-hand side γ. The row is a constraint name.
     Gamma,
-    /// A Newton correction Δq (overflow of a nearly singular solve). The row is a coordinate name.
+    /// A Newton correction Δv (overflow of a nearly singular solve). The row is a velocity name.
     Step,
 }
 
@@ -41,10 +43,10 @@ impl fmt::Display for NonFiniteQuantity {
             NonFiniteQuantity::Velocity => "velocity",
             NonFiniteQuantity::Acceleration => "acceleration",
             NonFiniteQuantity::Constraint => "constraint Φ",
-            NonFiniteQuantity::Jacobian => "Jacobian Φ_q, row",
+            NonFiniteQuantity::Jacobian => "Jacobian D, row",
             NonFiniteQuantity::VelocityRhs => "velocity right-hand side ν = −Φ_t, row",
             NonFiniteQuantity::Gamma => "acceleration right-hand side γ, row",
-            NonFiniteQuantity::Step => "Newton step Δq, coordinate",
+            NonFiniteQuantity::Step => "Newton step Δv, velocity",
         })
     }
 }
@@ -67,19 +69,21 @@ pub enum KinematicError {
         /// That |Φ|: ‖Φ‖∞ after the last iteration.
         residual: f64,
     },
-    /// The square Jacobian D = Φ_q has no acceptable pivot for a coordinate: at this
-    /// configuration the constraints do not determine that coordinate independently of the
-    /// ones eliminated before it (a lock-up or toggle position, a missing driver, or redundant
+    /// The square Jacobian D = Φ_q B has no acceptable pivot for a velocity (planar: a
+    /// coordinate): at this configuration the constraints do not determine that velocity
+    /// independently of the ones eliminated before it (a lock-up or toggle position, a missing driver, or redundant
     /// constraints).
     SingularJacobian {
         /// Time of the failed solve (s).
         t: f64,
-        /// The coordinate whose column of D had no acceptable pivot.
+        /// The velocity whose column of D had no acceptable pivot, from
+        /// [`Mechanism::VELOCITY_NAMES`](crate::Mechanism::VELOCITY_NAMES) (planar: the
+        /// coordinate).
         coordinate: &'static str,
         /// The constraint row that held the best (largest) candidate pivot for it.
         constraint: &'static str,
     },
-    /// During assembly (minimum-norm Newton, DOF ≥ 0) a constraint row of D = Φ_q is a linear
+    /// During assembly (minimum-norm Newton, DOF ≥ 0) a constraint row of D = Φ_q B is a linear
     /// combination of the rows before it: redundant constraints, or a singular configuration.
     DependentConstraint {
         /// Time of the failed solve (s).
@@ -88,14 +92,15 @@ pub enum KinematicError {
         constraint: &'static str,
     },
     /// A square kinematic analysis (position, velocity, acceleration) needs exactly as many
-    /// constraint rows, drivers included, as coordinates: degrees of freedom DOF = 0.
+    /// constraint rows, drivers included, as velocities (planar: coordinates): degrees of
+    /// freedom DOF = NV − NC = 0.
     NotDriven {
-        /// Coordinates minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
+        /// Velocities minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
         dof: i32,
     },
-    /// Assembly needs at most as many constraint rows as coordinates (DOF ≥ 0).
+    /// Assembly needs at most as many constraint rows as velocities (DOF ≥ 0).
     Overconstrained {
-        /// Coordinates minus constraint rows (< 0).
+        /// Velocities minus constraint rows (< 0).
         dof: i32,
     },
     /// A NaN or an infinity in the input or in an evaluated quantity: the solver stops instead
@@ -105,7 +110,8 @@ pub enum KinematicError {
         t: f64,
         /// What held the value.
         quantity: NonFiniteQuantity,
-        /// The constraint row or coordinate name (see [`NonFiniteQuantity`]); `"t"` for the time.
+        /// The constraint row, coordinate or velocity name (see [`NonFiniteQuantity`]); `"t"`
+        /// for the time.
         row: &'static str,
     },
 }

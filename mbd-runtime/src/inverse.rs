@@ -1,21 +1,25 @@
 //! Inverse dynamics (Nikravesh, *Planar Multibody Dynamics*, ch. 12): for a kinematically driven
-//! mechanism (DOF = 0) the motion q(t) is known, so the equations of motion
-//! M q̈ − Φ_qᵀ λ = h give the Lagrange multipliers directly, Φ_qᵀ λ = M q̈ − h, and from them the
+//! mechanism (DOF = NV − NC = 0) the motion q(t) is known, so the equations of motion
+//! M v̇ − Dᵀ λ = h give the Lagrange multipliers directly, Dᵀ λ = M v̇ − h, and from them the
 //! driver forces and torques and the reaction of every joint:
 //!
-//! the generalized reaction a joint with rows R applies is g = Φ_q[R]ᵀ λ[R]; its three entries at a
-//! body's coordinates are the force (N, global x and y) and the moment (N·m) about that body's
-//! centre of mass with which the joint acts on the body. A driver's reaction is the force or
-//! torque the actuator must supply.
+//! the generalized reaction a joint with rows R applies is g = D[R]ᵀ λ[R]; its entries at a
+//! body's velocities are the force (N, global) and the moment (N·m) about that body's centre of
+//! mass with which the joint acts on the body — planar (fx, fy, n), spatial (f, n′) with the
+//! moment n′ in body axes (ω′ is a body-frame velocity), global A n′. A driver's reaction is the
+//! force or torque the actuator must supply.
 
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
+use crate::mechanism::{coordinates_per_body, velocities_per_body};
 use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real};
 
-/// Relative pivot tolerance of the LU factorization of Φ_qᵀ (see [`crate::linalg::lu_factor`]).
+/// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
 pub const INVERSE_PIVOT_TOLERANCE: f64 = 1e-12;
 
-/// The force and moment a joint applies to one body.
+/// The force and moment a joint applies to one body, in global components, and the body's
+/// orientation to read them in its own frame. The same for planar and spatial bodies: a planar
+/// force has z = 0 and a planar moment is (0, 0, n), n counter-clockwise positive.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wrench<T> {
     /// The body, by name.
@@ -23,23 +27,69 @@ pub struct Wrench<T> {
     /// Its index among the moving bodies.
     pub body_index: usize,
     /// Force on the body, global components (N).
-    pub force: [T; 2],
-    /// Moment about the body's centre of mass, counter-clockwise positive (N·m).
-    pub moment: T,
+    pub force: [T; 3],
+    /// Moment about the body's centre of mass, global components (N·m).
+    pub moment: [T; 3],
+    /// The body's rotation A at the state of the reaction (body-frame components → global,
+    /// `rotation[i][j]` = A_ij): planar a turn by φ about z, spatial A(p) of its Euler
+    /// parameters.
+    pub rotation: [[T; 3]; 3],
 }
 
 impl<T: Real> Wrench<T> {
-    /// The force in the body's own frame, A(φ)ᵀ f, for the body's angle φ (rad).
-    pub fn force_in_body_frame(&self, phi: T) -> [T; 2] {
-        let (s, c) = phi.sin_cos();
-        [c * self.force[0] + s * self.force[1], -s * self.force[0] + c * self.force[1]]
+    /// The force in the body's own frame, Aᵀ f (N).
+    pub fn force_in_body_frame(&self) -> [T; 3] {
+        transpose_times(&self.rotation, &self.force)
+    }
+
+    /// The moment about the centre of mass in the body's own frame, Aᵀ n (N·m).
+    pub fn moment_in_body_frame(&self) -> [T; 3] {
+        transpose_times(&self.rotation, &self.moment)
     }
 
     /// The moment about a point of the body at `arm` = r_P − r (global, m) from its centre:
-    /// M_P = M − arm × f (N·m). For a revolute joint taken at its pin, this is zero.
-    pub fn moment_about(&self, arm: [T; 2]) -> T {
-        self.moment - (arm[0] * self.force[1] - arm[1] * self.force[0])
+    /// n_P = n − arm × f (N·m, global). For a revolute or spherical joint taken at its pin, this
+    /// is zero.
+    pub fn moment_about(&self, arm: [T; 3]) -> [T; 3] {
+        let f = &self.force;
+        let cross = [arm[1] * f[2] - arm[2] * f[1], arm[2] * f[0] - arm[0] * f[2], arm[0] * f[1] - arm[1] * f[0]];
+        core::array::from_fn(|k| self.moment[k] - cross[k])
     }
+}
+
+/// Aᵀ x.
+fn transpose_times<T: Real>(a: &[[T; 3]; 3], x: &[T; 3]) -> [T; 3] {
+    core::array::from_fn(|j| a[0][j] * x[0] + a[1][j] * x[1] + a[2][j] * x[2])
+}
+
+/// A x.
+fn times<T: Real>(a: &[[T; 3]; 3], x: &[T; 3]) -> [T; 3] {
+    core::array::from_fn(|i| a[i][0] * x[0] + a[i][1] * x[1] + a[i][2] * x[2])
+}
+
+/// The planar rotation by φ about z.
+fn planar_rotation<T: Real>(phi: T) -> [[T; 3]; 3] {
+    let (s, c) = phi.sin_cos();
+    let (zero, one) = (T::ZERO, T::ONE);
+    [[c, -s, zero], [s, c, zero], [zero, zero, one]]
+}
+
+/// A(p) = (2 e0² − 1) I + 2 (e eᵀ + e0 ẽ) of the Euler parameters p = (e0, e1, e2, e3), exactly
+/// this polynomial (docs/formulation.md, "Spatial bodies"): the rotation matrix at |p| = 1.
+pub(crate) fn euler_rotation<T: Real>(p: [T; 4]) -> [[T; 3]; 3] {
+    let [e0, e1, e2, e3] = p;
+    let two = T::from_f64(2.0);
+    let e = [e1, e2, e3];
+    // ẽ, the cross-product matrix of e.
+    let tilde = [[T::ZERO, -e3, e2], [e3, T::ZERO, -e1], [-e2, e1, T::ZERO]];
+    let mut a = [[T::ZERO; 3]; 3];
+    for (i, row) in a.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            *entry = two * (e[i] * e[j] + e0 * tilde[i][j]);
+        }
+        row[i] += two * e0 * e0 - T::ONE;
+    }
+    a
 }
 
 /// The reaction of one joint (or driver, or user constraint) on each moving body it connects.
@@ -53,60 +103,62 @@ pub struct JointReaction<T> {
     pub on_j: Option<Wrench<T>>,
 }
 
-/// Solves Φ_qᵀ λ = M q̈ − h for the Lagrange multipliers λ of a driven mechanism (NQ = NC), given
-/// its motion (q, q̇, q̈) at time t, e.g. from a kinematic analysis.
+/// Solves Dᵀ λ = M v̇ − h for the Lagrange multipliers λ of a driven mechanism (NV = NC), given
+/// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis.
 ///
-/// Errors: `NotDriven` unless DOF = 0; `SingularJacobian` (naming a coordinate and the dependent
+/// Errors: `NotDriven` unless DOF = 0; `SingularJacobian` (naming a velocity and the dependent
 /// constraint) at a singular position or with redundant constraints, where λ is not unique;
 /// `NonFinite` for NaN or infinite inputs or forces.
-pub fn inverse_dynamics<T, M, const NQ: usize, const NC: usize>(
+pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
     q: &[T; NQ],
-    qd: &[T; NQ],
-    qdd: &[T; NQ],
+    v: &[T; NV],
+    vd: &[T; NV],
     t: T,
     lambda: &mut [T; NC],
 ) -> Result<(), KinematicError>
 where
     T: Real,
-    M: Dynamics<T, NQ, NC>,
+    M: Dynamics<T, NQ, NV, NC>,
 {
-    require_driven::<NQ, NC>()?;
+    require_driven::<NV, NC>()?;
     let time = t.to_f64();
-    for (values, quantity) in
-        [(q, NonFiniteQuantity::Coordinate), (qd, NonFiniteQuantity::Velocity), (qdd, NonFiniteQuantity::Acceleration)]
-    {
+    if let Some(i) = first_non_finite(q) {
+        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Coordinate, row: name(M::COORDINATE_NAMES, i) });
+    }
+    for (values, quantity) in [(v, NonFiniteQuantity::Velocity), (vd, NonFiniteQuantity::Acceleration)] {
         if let Some(i) = first_non_finite(values) {
-            return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::COORDINATE_NAMES, i) });
+            return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
         }
     }
-    let mut d = [[T::ZERO; NQ]; NC];
+    let mut d = [[T::ZERO; NV]; NC];
     m.jacobian(q, t, &mut d);
-    let mut h = [T::ZERO; NQ];
-    m.forces(q, qd, t, &mut h);
-    let mass = m.mass_diagonal();
-    // Φ_qᵀ, square because NQ = NC: row k is coordinate k, column r is constraint r.
-    let mut dt = [[T::ZERO; NQ]; NQ];
+    let mut h = [T::ZERO; NV];
+    m.forces(q, v, t, &mut h);
+    let mut inertia = [T::ZERO; NV];
+    m.mass_times(q, vd, &mut inertia);
+    // Dᵀ, square because NV = NC: row k is velocity k, column r is constraint r.
+    let mut dt = [[T::ZERO; NV]; NV];
     for (r, row) in d.iter().enumerate() {
-        for (c, &v) in row.iter().enumerate() {
-            dt[c][r] = v;
+        for (c, &value) in row.iter().enumerate() {
+            dt[c][r] = value;
         }
     }
-    let mut rhs: [T; NQ] = core::array::from_fn(|k| mass[k] * qdd[k] - h[k]);
+    let mut rhs: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
     if let Some(i) = first_non_finite(&rhs) {
-        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::COORDINATE_NAMES, i) });
+        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::VELOCITY_NAMES, i) });
     }
     let permutation = lu_factor(&mut dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
-        // Column r of Φ_qᵀ is constraint r; the candidate row is a coordinate.
+        // Column r of Dᵀ is constraint r; the candidate row is a velocity.
         LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
             t: time,
-            coordinate: name(M::COORDINATE_NAMES, candidate_row),
+            coordinate: name(M::VELOCITY_NAMES, candidate_row),
             constraint: name(M::CONSTRAINT_NAMES, column),
         },
         LinalgError::NonFinite { column, .. } => {
             KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, column) }
         }
-        LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NQ as i32 - NC as i32 },
+        LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NV as i32 - NC as i32 },
     })?;
     let base = rhs;
     lu_solve_in_place(&dt, &permutation, &mut rhs);
@@ -114,19 +166,19 @@ where
     // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
     // to do for a mechanism without it, whose friction forces are all zero).
     for _ in 0..INVERSE_FRICTION_ITERATIONS {
-        let mut friction = [T::ZERO; NQ];
-        m.friction_forces(q, qd, t, lambda, &mut friction);
+        let mut friction = [T::ZERO; NV];
+        m.friction_forces(q, v, t, lambda, &mut friction);
         if friction.iter().all(|f| *f == T::ZERO) {
             return Ok(());
         }
-        let mut rhs: [T; NQ] = core::array::from_fn(|k| base[k] - friction[k]);
+        let mut rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
         lu_solve_in_place(&dt, &permutation, &mut rhs);
         let mut change = T::ZERO;
         let mut size = T::ONE;
-        for (l, v) in lambda.iter_mut().zip(rhs.iter()) {
-            change = change.max((*l - *v).abs());
-            size = size.max(v.abs());
-            *l = *v;
+        for (l, x) in lambda.iter_mut().zip(rhs.iter()) {
+            change = change.max((*l - *x).abs());
+            size = size.max(x.abs());
+            *l = *x;
         }
         if change <= T::from_f64(1e-12) * size {
             return Ok(());
@@ -143,25 +195,144 @@ where
 /// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].
 const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 
-/// The reaction of joint number `joint` (an index into [`Mechanism::JOINTS`]) from the Jacobian
-/// `d` = Φ_q(q, t) and the multipliers λ at the same state. `None` if there is no such joint.
-pub fn joint_reaction<T, M, const NQ: usize, const NC: usize>(d: &[[T; NQ]; NC], lambda: &[T; NC], joint: usize) -> Option<JointReaction<T>>
+/// The reaction of joint number `joint` (an index into [`Mechanism::JOINTS`]) from the
+/// coordinates q, the Jacobian `d` = D(q, t) and the multipliers λ at the same state; `mechanism`
+/// is read for its type (its joints, bodies and dimension). `None` if there is no such joint.
+///
+/// Per body k it sums `g = D[R]ᵀ λ[R]` over the joint's rows R at k's velocities: planar
+/// (fx, fy, n) give the force (fx, fy, 0) and the moment (0, 0, n); spatial (f, n′) the force f
+/// and the moment A(p) n′, with p = q[7k+3..7k+7] (docs/formulation.md, "Spatial bodies").
+pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    q: &[T; NQ],
+    d: &[[T; NV]; NC],
+    lambda: &[T; NC],
+    joint: usize,
+) -> Option<JointReaction<T>>
 where
     T: Real,
     M: Mechanism,
 {
+    let _ = mechanism;
     let info = M::JOINTS.get(joint)?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
+    let (per_body, coordinates) = (velocities_per_body::<M>(), coordinates_per_body::<M>());
     let wrench = |body: Option<u16>| -> Option<Wrench<T>> {
         let b = body? as usize;
-        let mut g = [T::ZERO; 3];
+        let mut g = [T::ZERO; 6];
         for r in rows.clone() {
             let (row, l) = (d.get(r)?, *lambda.get(r)?);
-            for (k, gk) in g.iter_mut().enumerate() {
-                *gk += *row.get(3 * b + k)? * l;
+            for (k, gk) in g.iter_mut().enumerate().take(per_body) {
+                *gk += *row.get(per_body * b + k)? * l;
             }
         }
-        Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force: [g[0], g[1]], moment: g[2] })
+        let first = coordinates * b;
+        let (force, moment, rotation) = if M::DIMENSION == 3 {
+            let p = [*q.get(first + 3)?, *q.get(first + 4)?, *q.get(first + 5)?, *q.get(first + 6)?];
+            let rotation = euler_rotation(p);
+            ([g[0], g[1], g[2]], times(&rotation, &[g[3], g[4], g[5]]), rotation)
+        } else {
+            let rotation = planar_rotation(*q.get(first + 2)?);
+            ([g[0], g[1], T::ZERO], [T::ZERO, T::ZERO, g[2]], rotation)
+        };
+        Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force, moment, rotation })
     };
     Some(JointReaction { joint: info.name, on_i: wrench(info.body_i), on_j: wrench(info.body_j) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{JointInfo, OpCount};
+
+    /// A spatial body `top` held by a spherical joint at its body point s′ (no generated spatial
+    /// mechanism exists yet): q = (r, p), v = (ṙ, ω′), Φ = r + A s′ − r_O.
+    struct SphericalTop;
+
+    impl Mechanism for SphericalTop {
+        const NAME: &'static str = "SphericalTop";
+        const BODY_NAMES: &'static [&'static str] = &["top"];
+        const COORDINATE_NAMES: &'static [&'static str] = &["top.x", "top.y", "top.z", "top.e0", "top.e1", "top.e2", "top.e3"];
+        const VELOCITY_NAMES: &'static [&'static str] = &["top.vx", "top.vy", "top.vz", "top.wx", "top.wy", "top.wz"];
+        const DIMENSION: u8 = 3;
+        const CONSTRAINT_NAMES: &'static [&'static str] =
+            &["spherical ground~top: x", "spherical ground~top: y", "spherical ground~top: z"];
+        const PARAM_NAMES: &'static [&'static str] = &[];
+        const DOF: i32 = 3;
+        const JACOBIAN_PATTERN: &'static [(u16, u16)] = &[];
+        const PHI_T_IS_ZERO: bool = true;
+        const OP_COUNTS: &'static [OpCount] = &[];
+        const JOINTS: &'static [JointInfo] =
+            &[JointInfo { name: "spherical ground~top", kind: "spherical", first_row: 0, rows: 3, body_i: None, body_j: Some(0) }];
+        const MODEL_JSON: &'static str = "{}";
+    }
+
+    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    }
+
+    /// Rodrigues' rotation by θ about the unit axis u: cos θ I + sin θ ũ + (1 − cos θ) u uᵀ.
+    fn rodrigues(u: [f64; 3], theta: f64) -> [[f64; 3]; 3] {
+        let (s, c) = theta.sin_cos();
+        let tilde = [[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]];
+        core::array::from_fn(|i| core::array::from_fn(|j| (if i == j { c } else { 0.0 }) + s * tilde[i][j] + (1.0 - c) * u[i] * u[j]))
+    }
+
+    fn max_diff(a: [f64; 3], b: [f64; 3]) -> f64 {
+        (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
+    }
+
+    /// The reaction of a spherical joint on a rotated body, against the force and moment it
+    /// applies by hand: the pin force λ at the point s = A s′ gives the moment s × λ about the
+    /// centre; in the body frame Aᵀλ and s′ × Aᵀλ. D = [I, −A s̃′] is written from Rodrigues'
+    /// rotation, independently of A(p).
+    #[test]
+    fn spherical_reaction_on_a_rotated_body() {
+        let norm = (1.0f64 + 4.0 + 9.0).sqrt();
+        let u = [1.0 / norm, -2.0 / norm, 3.0 / norm];
+        let theta = 0.7;
+        let (sh, ch) = (0.5 * theta).sin_cos();
+        let q = [0.3, -0.1, 0.8, ch, sh * u[0], sh * u[1], sh * u[2]];
+        let a = rodrigues(u, theta);
+        // Tolerance: a few ulps of entries of size 1.
+        for (i, row) in euler_rotation([q[3], q[4], q[5], q[6]]).iter().enumerate() {
+            assert!(max_diff(*row, a[i]) < 1e-15, "A(p) row {i}: {row:?} vs {:?}", a[i]);
+        }
+        let s_local = [0.1, 0.2, -0.4];
+        let s_tilde = [[0.0, -s_local[2], s_local[1]], [s_local[2], 0.0, -s_local[0]], [-s_local[1], s_local[0], 0.0]];
+        let mut d = [[0.0; 6]; 3];
+        for r in 0..3 {
+            d[r][r] = 1.0;
+            for c in 0..3 {
+                d[r][3 + c] = -(0..3).map(|k| a[r][k] * s_tilde[k][c]).sum::<f64>();
+            }
+        }
+        let lambda = [5.0, -3.0, 12.0];
+        let w = joint_reaction(&SphericalTop, &q, &d, &lambda, 0).and_then(|j| j.on_j).expect("the pin acts on top");
+        assert_eq!((w.body, w.body_index), ("top", 0));
+        let s_global: [f64; 3] = core::array::from_fn(|i| (0..3).map(|k| a[i][k] * s_local[k]).sum());
+        let force_local: [f64; 3] = core::array::from_fn(|j| (0..3).map(|i| a[i][j] * lambda[i]).sum());
+        // Tolerance: rounding of sums of products of O(10) values.
+        assert!(max_diff(w.force, lambda) < 1e-14, "{w:?}");
+        assert!(max_diff(w.moment, cross(s_global, lambda)) < 1e-13, "{w:?}");
+        assert!(max_diff(w.moment_about(s_global), [0.0; 3]) < 1e-13, "a pin has no moment about itself: {w:?}");
+        assert!(max_diff(w.force_in_body_frame(), force_local) < 1e-13, "{w:?}");
+        assert!(max_diff(w.moment_in_body_frame(), cross(s_local, force_local)) < 1e-13, "{w:?}");
+        assert!(joint_reaction(&SphericalTop, &q, &d, &lambda, 0).and_then(|j| j.on_i).is_none(), "ground has no wrench");
+        assert!(joint_reaction(&SphericalTop, &q, &d, &lambda, 1).is_none(), "one joint only");
+    }
+
+    /// Planar: the rotation is a turn by φ about z and reads the force in the body frame as
+    /// A(φ)ᵀ f.
+    #[test]
+    fn planar_body_frame() {
+        let phi = 0.4f64;
+        let (s, c) = phi.sin_cos();
+        let w = Wrench { body: "b", body_index: 0, force: [2.0, 1.0, 0.0], moment: [0.0, 0.0, 3.0], rotation: planar_rotation(phi) };
+        let local = w.force_in_body_frame();
+        assert!(max_diff(local, [c * 2.0 + s * 1.0, -s * 2.0 + c * 1.0, 0.0]) < 1e-15, "{local:?}");
+        assert_eq!(w.moment_in_body_frame()[2], 3.0);
+        // n − arm × f with arm (1, 0, 0): 3 − (1·1 − 0·2) = 2.
+        assert_eq!(w.moment_about([1.0, 0.0, 0.0]), [0.0, 0.0, 2.0]);
+    }
 }

@@ -18,6 +18,8 @@ mod partition;
 mod planar;
 mod real;
 mod statics;
+#[cfg(test)]
+mod test_support;
 
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;

@@ -1,46 +1,49 @@
-//! Coordinate partitioning (Nikravesh 13.6.2): q splits into NQ − NC independent coordinates,
-//! kept as integrated, and NC dependent ones, solved from Φ(q, t) = 0 (Newton on the square
-//! block D_d of Φ_q) and from D_d q̇_d = ν − D_i q̇_i.
+//! Coordinate partitioning (Nikravesh 13.6.2) in velocity space: the NV velocity directions
+//! split into NV − NC independent ones, kept as integrated, and NC dependent ones. Positions are
+//! corrected by Newton on Φ(q, t) = 0 with steps Δv that are zero in the independent entries,
+//! D_d Δv_d = −Φ (D_d the square block of D = Φ_q B), applied as q ⊕ Δv
+//! ([`Kinematics::integrate_positions`], h = 1; planar: the dependent coordinates move, the
+//! others stay); velocities from D_d v_d = ν − D_i v_i.
 //!
-//! The split is chosen by Gaussian elimination with full pivoting on Φ_q: each step takes the
+//! The split is chosen by Gaussian elimination with full pivoting on D: each step takes the
 //! largest remaining entry, whose column becomes dependent. It is chosen again when D_d's LU
 //! meets a pivot below 1e-4 of its column's largest entry, i.e. when the independent
-//! coordinates stop determining the others well (Nikravesh: "when the dependent Jacobian
+//! velocities stop determining the others well (Nikravesh: "when the dependent Jacobian
 //! becomes ill-conditioned").
 
 use crate::integrate::SimulationError;
 use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::{DynamicsError, Kinematics, Real};
+use crate::{DynamicsError, Kinematics, Mechanism, Real};
 
 /// Pivot ratio below which D_d is chosen anew.
 const REPARTITION_PIVOT: f64 = 1e-4;
 /// Pivot ratio below which even a fresh partition is singular.
 const SINGULAR_PIVOT: f64 = 1e-12;
 
-/// A choice of dependent coordinates.
+/// A choice of dependent velocities (planar: coordinates).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Partition<const NQ: usize, const NC: usize> {
-    /// The dependent coordinates, one per constraint row.
+pub struct Partition<const NV: usize, const NC: usize> {
+    /// The dependent velocities, one per constraint row.
     dependent: [usize; NC],
     chosen: bool,
     /// How many times a partition was chosen.
     pub choices: u32,
 }
 
-impl<const NQ: usize, const NC: usize> Default for Partition<NQ, NC> {
+impl<const NV: usize, const NC: usize> Default for Partition<NV, NC> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
+impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     /// No partition yet: the first correction chooses one.
     pub fn new() -> Self {
         Self { dependent: [0; NC], chosen: false, choices: 0 }
     }
 
-    /// The dependent coordinates (indices into q), once chosen.
+    /// The dependent velocities (indices into v; planar: into q), once chosen.
     pub fn dependent(&self) -> Option<&[usize; NC]> {
         self.chosen.then_some(&self.dependent)
     }
@@ -49,10 +52,10 @@ impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
     /// no acceptable pivot left (dependent constraints).
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    fn choose<T: Real>(&mut self, d: &[[T; NQ]; NC]) -> Result<(), usize> {
+    fn choose<T: Real>(&mut self, d: &[[T; NV]; NC]) -> Result<(), usize> {
         let mut a = *d;
         let mut rows: [usize; NC] = core::array::from_fn(|i| i);
-        let mut used = [false; NQ];
+        let mut used = [false; NV];
         let scale = a.iter().flatten().fold(T::ZERO, |m, v| m.max(v.abs()));
         for k in 0..NC {
             let mut best = (T::ZERO, k, 0);
@@ -85,10 +88,10 @@ impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
     }
 
     /// LU of D_d, choosing the partition anew when it is missing or ill-conditioned.
-    fn factor<T: Real, M: Kinematics<T, NQ, NC>>(
+    fn factor<T: Real, M: Mechanism>(
         &mut self,
         t: T,
-        d: &[[T; NQ]; NC],
+        d: &[[T; NV]; NC],
         block: &mut [[T; NC]; NC],
     ) -> Result<crate::linalg::Permutation<NC>, SimulationError> {
         for attempt in 0..2 {
@@ -117,21 +120,22 @@ impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
         Err(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, 0) }.into())
     }
 
-    /// Solves the dependent coordinates and velocities for the independent ones.
+    /// Solves the dependent directions of q and the dependent velocities for the independent
+    /// ones.
     ///
     /// # Errors
     /// [`SimulationError::NotConverged`] naming the worst row, or a dependent-constraint error.
-    pub fn correct<T: Real, M: Kinematics<T, NQ, NC>>(
+    pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize>(
         &mut self,
         mechanism: &M,
         t: T,
         q: &mut [T; NQ],
-        qd: &mut [T; NQ],
+        v: &mut [T; NV],
         tolerance: T,
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
         let mut phi = [T::ZERO; NC];
-        let mut d = [[T::ZERO; NQ]; NC];
+        let mut d = [[T::ZERO; NV]; NC];
         let mut block = [[T::ZERO; NC]; NC];
         let mut iterations = 0;
         loop {
@@ -150,26 +154,29 @@ impl<const NQ: usize, const NC: usize> Partition<NQ, NC> {
             }
             let permutation = self.factor::<T, M>(t, &d, &mut block)?;
             lu_solve_in_place(&block, &permutation, &mut phi);
+            // The partition may have been chosen anew: only this one's entries move.
+            let mut step = [T::ZERO; NV];
             for (k, &c) in self.dependent.iter().enumerate() {
-                q[c] -= phi[k];
+                step[c] = -phi[k];
             }
+            mechanism.integrate_positions(q, &step, T::ONE);
             iterations += 1;
         }
-        // Velocities: D_d q̇_d = ν − D_i q̇_i, with D at the corrected q.
+        // Velocities: D_d v_d = ν − D_i v_i, with D at the corrected q.
         let permutation = self.factor::<T, M>(t, &d, &mut block)?;
         let mut rhs = [T::ZERO; NC];
         mechanism.velocity_rhs(q, t, &mut rhs);
         for &c in &self.dependent {
-            qd[c] = T::ZERO;
+            v[c] = T::ZERO;
         }
         for (r, row) in d.iter().enumerate() {
-            for (entry, &v) in row.iter().zip(qd.iter()) {
-                rhs[r] -= *entry * v;
+            for (entry, &vc) in row.iter().zip(v.iter()) {
+                rhs[r] -= *entry * vc;
             }
         }
         lu_solve_in_place(&block, &permutation, &mut rhs);
         for (k, &c) in self.dependent.iter().enumerate() {
-            qd[c] = rhs[k];
+            v[c] = rhs[k];
         }
         Ok(())
     }

@@ -2,8 +2,9 @@
 //! Nørsett & Wanner, *Solving ODEs I*, II.5 and its `DOPRI5` code): [`Dopri5`] and its
 //! [`Dopri5Options`].
 //!
-//! Seven stages (FSAL: the last is the next step's first, so 6 evaluations of q̈ per accepted
-//! step); the error of the embedded 4th-order solution, RMS over q and q̇ in the mixed tolerance
+//! On y = (q, v), y' = (B(q) v, v̇); each accepted step ends with q normalized. Seven stages
+//! (FSAL: the last is the next step's first, so 6 evaluations of v̇ per accepted step); the
+//! error of the embedded 4th-order solution, RMS over q and v in the mixed tolerance
 //! atol + rtol·|y|, sets the next step by the PI rule h₊ = h · 0.9 · err^−0.17 · err_prev^0.04
 //! (the factor clamped to [0.2, 10]). The 4th-order dense output is
 //! y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))).
@@ -42,7 +43,7 @@ impl<T: Real> Default for Dopri5Options<T> {
 /// Nørsett & Wanner, *Solving ODEs I*, II.5 and its `DOPRI5` code). The work integrals use the
 /// method's 5th-order weights on the stage powers.
 #[derive(Clone, Copy, Debug)]
-pub struct Dopri5<T, const NQ: usize> {
+pub struct Dopri5<T, const NQ: usize, const NV: usize> {
     /// Tolerances and step limits.
     pub options: Dopri5Options<T>,
     /// The step size the next step will try (s); 0 before the first.
@@ -52,18 +53,28 @@ pub struct Dopri5<T, const NQ: usize> {
     /// Rejected steps so far.
     pub rejected: u64,
     previous_error: T,
-    // Dense output of the last step: y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))) for q, q̇.
-    dense: [[[T; NQ]; 2]; 5],
+    // Dense output of the last step: y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))) for q
+    // and for v.
+    dense_q: [[T; NQ]; 5],
+    dense_v: [[T; NV]; 5],
 }
 
-impl<T: Real, const NQ: usize> Dopri5<T, NQ> {
+impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
     /// A Dormand–Prince integrator with the given options.
     pub fn new(options: Dopri5Options<T>) -> Self {
-        Self { options, next_step: T::ZERO, accepted: 0, rejected: 0, previous_error: T::from_f64(1e-4), dense: [[[T::ZERO; NQ]; 2]; 5] }
+        Self {
+            options,
+            next_step: T::ZERO,
+            accepted: 0,
+            rejected: 0,
+            previous_error: T::from_f64(1e-4),
+            dense_q: [[T::ZERO; NQ]; 5],
+            dense_v: [[T::ZERO; NV]; 5],
+        }
     }
 }
 
-impl<T: Real, const NQ: usize> Default for Dopri5<T, NQ> {
+impl<T: Real, const NQ: usize, const NV: usize> Default for Dopri5<T, NQ, NV> {
     fn default() -> Self {
         Self::new(Dopri5Options::default())
     }
@@ -93,15 +104,33 @@ const D: [f64; 7] = [
     69997945.0 / 29380423.0,
 ];
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> Integrator<T, M, NQ, NC> for Dopri5<T, NQ> {
+/// Dense-output coefficients r1 … r5 of one component y with stage derivatives k (Hairer's
+/// `contd5`): `dense[0..5]` for y0 → y1 over a step h.
+#[inline]
+fn dense_coefficients<T: Real>(y0: T, y1: T, k: impl Fn(usize) -> T, h: T) -> [T; 5] {
+    let r2 = y1 - y0;
+    let r3 = h * k(0) - r2;
+    let r4 = r2 - h * k(6) - r3;
+    let mut r5 = T::ZERO;
+    for (s, &d) in D.iter().enumerate() {
+        r5 += T::from_f64(d) * k(s);
+    }
+    [y0, r2, r3, r4, h * r5]
+}
+
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> Integrator<T, M, NQ, NV, NC>
+    for Dopri5<T, NQ, NV>
+{
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    // One index runs over q (or v) and its stage derivatives, start and end in step.
+    #[allow(clippy::needless_range_loop)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        from: &Point<T, NQ, NC>,
+        from: &Point<T, NQ, NV, NC>,
         t_max: T,
-        to: &mut Point<T, NQ, NC>,
+        to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         let o = self.options;
         if !(o.rtol >= T::ZERO && o.atol >= T::ZERO && o.rtol + o.atol > T::ZERO) {
@@ -115,17 +144,18 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
             *to = *from;
             return Ok(());
         }
+        let mech = system.mechanism;
         let scale = |y0: T, y1: T| o.atol + o.rtol * y0.abs().max(y1.abs());
-        if !(self.next_step > T::ZERO) {
-            self.next_step = if o.initial_step > T::ZERO { o.initial_step } else { initial_step(from, &scale, o.max_step) };
-        }
-        // Stage derivatives: (q̇, q̈) and powers.
+        // Stage derivatives: (q̇ = B(q) v, v̇) and powers.
         let mut kq = [[T::ZERO; NQ]; 7];
-        let mut kv = [[T::ZERO; NQ]; 7];
+        let mut kv = [[T::ZERO; NV]; 7];
         let mut kp = [[T::ZERO; 2]; 7];
-        kq[0] = from.qd;
-        kv[0] = from.qdd;
+        mech.position_rates(&from.q, &from.v, &mut kq[0]);
+        kv[0] = from.vd;
         kp[0] = from.power;
+        if !(self.next_step > T::ZERO) {
+            self.next_step = if o.initial_step > T::ZERO { o.initial_step } else { initial_step(from, &kq[0], &scale, o.max_step) };
+        }
         let mut lambda = from.lambda;
         'attempt: loop {
             let mut h = self.next_step.max(o.min_step);
@@ -137,21 +167,25 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
                 h = span;
             }
             let mut q = [T::ZERO; NQ];
-            let mut qd = [T::ZERO; NQ];
+            let mut v = [T::ZERO; NV];
             for s in 1..7 {
                 for i in 0..NQ {
-                    let (mut dq, mut dv) = (T::ZERO, T::ZERO);
+                    let mut dq = T::ZERO;
                     for j in 0..s {
-                        let a = T::from_f64(A[s][j]);
-                        dq += a * kq[j][i];
-                        dv += a * kv[j][i];
+                        dq += T::from_f64(A[s][j]) * kq[j][i];
                     }
                     q[i] = from.q[i] + h * dq;
-                    qd[i] = from.qd[i] + h * dv;
                 }
-                kq[s] = qd;
+                for i in 0..NV {
+                    let mut dv = T::ZERO;
+                    for j in 0..s {
+                        dv += T::from_f64(A[s][j]) * kv[j][i];
+                    }
+                    v[i] = from.v[i] + h * dv;
+                }
+                mech.position_rates(&q, &v, &mut kq[s]);
                 let t_s = if s == 6 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
-                match system.derivatives(t_s, &q, &qd, &mut kv[s], &mut lambda) {
+                match system.derivatives(t_s, &q, &v, &mut kv[s], &mut lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:
                     // shrink the step, and report the failure only at the minimum step.
@@ -166,24 +200,29 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
                 }
             }
             to.q = q;
-            to.qd = qd;
-            to.qdd = kv[6];
+            to.v = v;
+            to.vd = kv[6];
             to.lambda = lambda;
             to.power = kp[6];
-            // Error estimate, RMS over q and q̇ scaled by the tolerances.
+            // Error estimate, RMS over q and v scaled by the tolerances (one pass over both, so
+            // that for NQ = NV the sum is accumulated in the same order as q and v pairwise).
             let mut sum = T::ZERO;
-            for i in 0..NQ {
+            for i in 0..NQ.max(NV) {
                 let (mut eq, mut ev) = (T::ZERO, T::ZERO);
                 for s in 0..7 {
                     let e = T::from_f64(E[s]);
-                    eq += e * kq[s][i];
-                    ev += e * kv[s][i];
+                    if i < NQ {
+                        eq += e * kq[s][i];
+                    }
+                    if i < NV {
+                        ev += e * kv[s][i];
+                    }
                 }
-                let rq = h * eq / scale(from.q[i], to.q[i]);
-                let rv = h * ev / scale(from.qd[i], to.qd[i]);
+                let rq = if i < NQ { h * eq / scale(from.q[i], to.q[i]) } else { T::ZERO };
+                let rv = if i < NV { h * ev / scale(from.v[i], to.v[i]) } else { T::ZERO };
                 sum += rq * rq + rv * rv;
             }
-            let error = (sum / T::from_f64((2 * NQ).max(1) as f64)).sqrt();
+            let error = (sum / T::from_f64((NQ + NV).max(1) as f64)).sqrt();
             // PI step-size control (Hairer: exponents 0.2 − 0.75·0.04 and 0.04, safety 0.9).
             let safe = T::from_f64(0.9);
             if error <= T::ONE {
@@ -205,31 +244,28 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
                     to.work[k] = from.work[k] + h * w;
                 }
                 to.t = if last { t_max } else { from.t + h };
-                // Dense output coefficients.
-                for (c, (y0, y1, k)) in [(&from.q, &to.q, &kq), (&from.qd, &to.qd, &kv)].into_iter().enumerate() {
-                    for i in 0..NQ {
-                        let r2 = y1[i] - y0[i];
-                        let r3 = h * k[0][i] - r2;
-                        let r4 = r2 - h * k[6][i] - r3;
-                        let mut r5 = T::ZERO;
-                        for s in 0..7 {
-                            r5 += T::from_f64(D[s]) * k[s][i];
-                        }
-                        self.dense[0][c][i] = y0[i];
-                        self.dense[1][c][i] = r2;
-                        self.dense[2][c][i] = r3;
-                        self.dense[3][c][i] = r4;
-                        self.dense[4][c][i] = h * r5;
+                // Dense output coefficients, from the step's unnormalized end (the stages' flow).
+                for i in 0..NQ {
+                    let r = dense_coefficients(from.q[i], to.q[i], |s| kq[s][i], h);
+                    for (c, value) in r.into_iter().enumerate() {
+                        self.dense_q[c][i] = value;
                     }
                 }
-                return check_step::<T, M, NQ, NC>(from, to);
+                for i in 0..NV {
+                    let r = dense_coefficients(from.v[i], to.v[i], |s| kv[s][i], h);
+                    for (c, value) in r.into_iter().enumerate() {
+                        self.dense_v[c][i] = value;
+                    }
+                }
+                mech.normalize_positions(&mut to.q);
+                return check_step::<T, M, NQ, NV, NC>(from, to);
             }
             self.rejected += 1;
             let e = if error.is_finite() { error } else { T::from_f64(1e10) };
             let factor = (safe * e.powf(T::from_f64(-0.2))).max(T::from_f64(0.1));
             self.next_step = h * factor;
             if self.next_step < o.min_step {
-                if let Some(coordinate) = non_finite::<T, M, NQ>(&to.q, &to.qd) {
+                if let Some(coordinate) = non_finite::<T, M, NQ, NV>(&to.q, &to.v) {
                     return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate });
                 }
                 return Err(SimulationError::StepSizeTooSmall { t: from.t.to_f64(), step: self.next_step.to_f64() });
@@ -237,28 +273,48 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
         }
     }
 
-    fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]) {
+    fn interpolate(&self, _mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
         let h = to.t - from.t;
         let theta = if h > T::ZERO { (t - from.t) / h } else { T::ONE };
         let one_minus = T::ONE - theta;
-        let d = &self.dense;
-        for i in 0..NQ {
-            for (c, out) in [&mut *q, &mut *qd].into_iter().enumerate() {
-                out[i] = d[0][c][i] + theta * (d[1][c][i] + one_minus * (d[2][c][i] + theta * (d[3][c][i] + one_minus * d[4][c][i])));
-            }
+        let at = |d: [T; 5]| d[0] + theta * (d[1] + one_minus * (d[2] + theta * (d[3] + one_minus * d[4])));
+        for (i, out) in q.iter_mut().enumerate() {
+            *out = at(core::array::from_fn(|c| self.dense_q[c][i]));
+        }
+        for (i, out) in v.iter_mut().enumerate() {
+            *out = at(core::array::from_fn(|c| self.dense_v[c][i]));
         }
     }
 }
 
 /// Hairer's initial step: h such that an explicit Euler step changes the state by about the
 /// tolerance, refined with a second derivative estimate; here the derivatives at hand suffice:
-/// h = 0.01 · ‖y‖ / ‖y'‖ in the tolerance's norm, capped by `max_step`.
-fn initial_step<T: Real, const NQ: usize, const NC: usize>(p: &Point<T, NQ, NC>, scale: &impl Fn(T, T) -> T, max_step: T) -> T {
+/// h = 0.01 · ‖y‖ / ‖y'‖ in the tolerance's norm (y = (q, v), y' = (q̇, v̇)), capped by
+/// `max_step`.
+// One index runs over q and v together (see the loop).
+#[allow(clippy::needless_range_loop)]
+fn initial_step<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
+    p: &Point<T, NQ, NV, NC>,
+    qdot: &[T; NQ],
+    scale: &impl Fn(T, T) -> T,
+    max_step: T,
+) -> T {
     let (mut d0, mut d1) = (T::ZERO, T::ZERO);
-    for i in 0..NQ {
-        let (sq, sv) = (scale(p.q[i], p.q[i]), scale(p.qd[i], p.qd[i]));
-        d0 += (p.q[i] / sq) * (p.q[i] / sq) + (p.qd[i] / sv) * (p.qd[i] / sv);
-        d1 += (p.qd[i] / sq) * (p.qd[i] / sq) + (p.qdd[i] / sv) * (p.qdd[i] / sv);
+    // One pass over both, in the order of q and v pairwise (as for NQ = NV).
+    for i in 0..NQ.max(NV) {
+        let (mut y, mut dy) = (T::ZERO, T::ZERO);
+        if i < NQ {
+            let sq = scale(p.q[i], p.q[i]);
+            y = (p.q[i] / sq) * (p.q[i] / sq);
+            dy = (qdot[i] / sq) * (qdot[i] / sq);
+        }
+        if i < NV {
+            let sv = scale(p.v[i], p.v[i]);
+            y += (p.v[i] / sv) * (p.v[i] / sv);
+            dy += (p.vd[i] / sv) * (p.vd[i] / sv);
+        }
+        d0 += y;
+        d1 += dy;
     }
     let h = if d0 < T::from_f64(1e-10) || d1 < T::from_f64(1e-10) { T::from_f64(1e-6) } else { T::from_f64(0.01) * (d0 / d1).sqrt() };
     h.min_(max_step)

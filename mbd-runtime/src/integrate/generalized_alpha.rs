@@ -1,15 +1,15 @@
 //! The generalized-α method (Chung & Hulbert 1993; Arnold & Brüls 2007) on the index-3
-//! equations M q̈ − Φ_qᵀλ = h, Φ = 0: [`GeneralizedAlpha`] and its [`GeneralizedAlphaOptions`].
+//! equations M v̇ − Dᵀλ = h, Φ = 0: [`GeneralizedAlpha`] and its [`GeneralizedAlphaOptions`].
 //!
 //! Implicit and second-order accurate, with numerical damping of high frequencies set by ρ∞:
 //! α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1), γ = ½ + α_f − α_m, β = ¼(γ + ½)². Each step
-//! solves for (q̈₊, λ₊) by Newton with the exact ∂h/∂q, ∂h/∂q̇ and ∂(Φ_qᵀλ)/∂q (the
-//! equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
+//! solves for (v̇₊, λ₊) by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v and
+//! ∂(Dᵀλ)/∂q·B (the equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
 
 use super::{check_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place};
-use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Real};
+use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Real};
 
 /// Options of [`GeneralizedAlpha`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,7 +19,8 @@ pub struct GeneralizedAlphaOptions<T> {
     /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1]: 1 keeps every mode undamped, 0
     /// annihilates the highest frequencies in one step. Default 0.8.
     pub rho_infinity: T,
-    /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the correction ‖Δq‖∞ (m, rad). Default 1e-10.
+    /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction β'h²‖Δv̇‖∞ (m, rad).
+    /// Default 1e-10.
     pub tolerance: T,
     /// Newton iterations per step before failing. Default 12.
     pub max_iterations: u32,
@@ -40,22 +41,25 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
 }
 
 /// The generalized-α method on the index-3 equations of motion (Chung & Hulbert 1993; Arnold &
-/// Brüls 2007, as in Chrono and Exudyn): with pseudo-accelerations a,
+/// Brüls 2007, as in Chrono and Exudyn), in velocity space: with pseudo-accelerations a,
 ///
 /// ```text
-/// (1 − α_m) a₊ + α_m a = (1 − α_f) q̈₊ + α_f q̈
-/// q₊ = q + h q̇ + h² (½ − β) a + h² β a₊,     q̇₊ = q̇ + h (1 − γ) a + h γ a₊
-/// M q̈₊ − Φ_qᵀ λ₊ = h(q₊, q̇₊, t₊),           Φ(q₊, t₊) = 0
+/// (1 − α_m) a₊ + α_m a = (1 − α_f) v̇₊ + α_f v̇
+/// q₊ = q ⊕ (h v + h² (½ − β) a + h² β a₊),     v₊ = v + h (1 − γ) a + h γ a₊
+/// M v̇₊ − Dᵀ λ₊ = h(q₊, v₊, t₊),               Φ(q₊, t₊) = 0
 /// ```
 ///
-/// solved for (q̈₊, λ₊) by Newton with the exact iteration matrix
-/// [[M − γ'h ∂h/∂q̇ − β'h² (∂h/∂q + ∂(Φ_qᵀλ)/∂q), −Φ_qᵀ], [Φ_q, 0]] (β' = β(1−α_f)/(1−α_m),
+/// (q ⊕ Δ is [`Kinematics::integrate_positions`] with h = 1 from q; planar: q + Δ), solved for
+/// (v̇₊, λ₊) by Newton with the exact iteration matrix
+/// [[M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + ∂(Dᵀλ)/∂q·B), −Dᵀ], [D, 0]] (β' = β(1−α_f)/(1−α_m),
 /// γ' = γ(1−α_f)/(1−α_m); the constraint rows scaled by 1/(β'h²)). h includes Coulomb friction
-/// at the iterate's λ, and ∂h/∂q, ∂h/∂q̇ its exact derivatives at fixed λ
+/// at the iterate's λ, and its derivatives its exact ones at fixed λ
 /// ([`Dynamics::friction_derivatives`]; friction's slope in λ, at most μ, is left out). Where a
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
-/// N must be NQ + NC; the generated `Name::generalized_alpha(options)` makes one of the right size.
+/// N must be NV + NC; the generated `Name::generalized_alpha(options)` makes one of the right size.
+///
+/// [`Kinematics::integrate_positions`]: crate::Kinematics::integrate_positions
 ///
 /// [`Dynamics::friction_derivatives`]: crate::Dynamics::friction_derivatives
 #[derive(Clone, Copy, Debug)]
@@ -71,33 +75,33 @@ pub struct GeneralizedAlpha<T, const N: usize> {
 }
 
 impl<T: Real, const N: usize> GeneralizedAlpha<T, N> {
-    /// A generalized-α integrator (N = NQ + NC).
+    /// A generalized-α integrator (N = NV + NC).
     pub fn new(options: GeneralizedAlphaOptions<T>) -> Self {
         Self { options, iterations: 0, a: [T::ZERO; N], started: false, matrix: [[T::ZERO; N]; N] }
     }
 
-    /// Forget the pseudo-accelerations: the next step starts from q̈ of its initial point (call
+    /// Forget the pseudo-accelerations: the next step starts from v̇ of its initial point (call
     /// after changing the state by hand).
     pub fn restart(&mut self) {
         self.started = false;
     }
 }
 
-impl<T: Real, M, const NQ: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NC> for GeneralizedAlpha<T, N>
+impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NV, NC> for GeneralizedAlpha<T, N>
 where
-    M: ForwardDynamics<T, NQ, NC> + ConstraintForces<T, NQ, NC>,
+    M: ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>,
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        from: &Point<T, NQ, NC>,
+        from: &Point<T, NQ, NV, NC>,
         t_max: T,
-        to: &mut Point<T, NQ, NC>,
+        to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if N != NQ + NC {
-            return Err(SimulationError::WorkspaceSize { expected: NQ + NC, found: N });
+        if N != NV + NC {
+            return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
         let o = self.options;
         if !(o.step > T::ZERO) {
@@ -121,57 +125,54 @@ where
         }
         let beta_p = beta * (one - alpha_f) / (one - alpha_m);
         let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
-        let mut a_n = [T::ZERO; NQ];
+        let mut a_n = [T::ZERO; NV];
         if self.started {
-            a_n.copy_from_slice(&self.a[..NQ]);
+            a_n.copy_from_slice(&self.a[..NV]);
         } else {
-            a_n = from.qdd;
+            a_n = from.vd;
         }
         let t1 = from.t + h;
-        let m = mech.mass_diagonal();
-        // Unknowns: q̈₊ (start from q̈) and λ₊ (start from λ).
-        let mut qdd = from.qdd;
+        // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
+        let mut vd = from.vd;
         let mut lambda = from.lambda;
         let mut q = [T::ZERO; NQ];
-        let mut qd = [T::ZERO; NQ];
-        let mut a1 = [T::ZERO; NQ];
-        let (mut phi, mut d, mut nu, mut gam) = ([T::ZERO; NC], [[T::ZERO; NQ]; NC], [T::ZERO; NC], [T::ZERO; NC]);
-        let mut hq = [[T::ZERO; NQ]; NQ];
-        let mut hqd = [[T::ZERO; NQ]; NQ];
-        let mut kc = [[T::ZERO; NQ]; NQ];
-        let mut force = [T::ZERO; NQ];
+        let mut v = [T::ZERO; NV];
+        let mut a1 = [T::ZERO; NV];
+        let (mut phi, mut d, mut nu, mut gam) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC], [T::ZERO; NC]);
+        let mut hq = [[T::ZERO; NV]; NV];
+        let mut hv = [[T::ZERO; NV]; NV];
+        let mut kc = [[T::ZERO; NV]; NV];
+        let mut force = [T::ZERO; NV];
+        let mut inertia = [T::ZERO; NV];
         let mut rhs = [T::ZERO; N];
         let mut iteration = 0;
         // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
-        let (mut base_qdd, mut base_lambda) = (qdd, lambda);
+        let (mut base_vd, mut base_lambda) = (vd, lambda);
         let mut step = [T::ZERO; N];
         let mut theta = one;
         let mut norm_before = T::ZERO;
         let mut correction = T::ZERO;
         loop {
-            for i in 0..NQ {
-                a1[i] = (alpha_f * from.qdd[i] + (one - alpha_f) * qdd[i] - alpha_m * a_n[i]) / (one - alpha_m);
-                q[i] = from.q[i] + h * from.qd[i] + h * h * ((half - beta) * a_n[i] + beta * a1[i]);
-                qd[i] = from.qd[i] + h * ((one - gamma) * a_n[i] + gamma * a1[i]);
-            }
-            mech.full_eval(&q, &qd, t1, &mut phi, &mut d, &mut nu, &mut gam);
-            mech.forces(&q, &qd, t1, &mut force);
-            // Coulomb friction with the iterate's loads (its exact ∂/∂q and ∂/∂q̇ enter the
+            state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+            mech.full_eval(&q, &v, t1, &mut phi, &mut d, &mut nu, &mut gam);
+            mech.forces(&q, &v, t1, &mut force);
+            // Coulomb friction with the iterate's loads (its exact derivatives enter the
             // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
             // slope ≤ μ).
-            mech.friction_forces(&q, &qd, t1, &lambda, &mut force);
-            // Residuals: r = M q̈ − Φ_qᵀλ − h, Φ/(β'h²).
+            mech.friction_forces(&q, &v, t1, &lambda, &mut force);
+            mech.mass_times(&q, &vd, &mut inertia);
+            // Residuals: r = M v̇ − Dᵀλ − h, Φ/(β'h²).
             let mut worst = (T::ZERO, 0usize);
-            for i in 0..NQ {
-                let mut r = m[i] * qdd[i] - force[i];
+            for i in 0..NV {
+                let mut r = inertia[i] - force[i];
                 for (row, &l) in d.iter().zip(lambda.iter()) {
                     r -= row[i] * l;
                 }
                 rhs[i] = -r;
             }
             for (r, &p) in phi.iter().enumerate() {
-                rhs[NQ + r] = -p / (beta_p * h * h);
+                rhs[NV + r] = -p / (beta_p * h * h);
                 if p.abs() > worst.0 {
                     worst = (p.abs(), r);
                 }
@@ -182,22 +183,22 @@ where
             let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
             if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
                 theta *= half;
-                for i in 0..NQ {
-                    qdd[i] = base_qdd[i] + theta * step[i];
+                for i in 0..NV {
+                    vd[i] = base_vd[i] + theta * step[i];
                 }
                 for r in 0..NC {
-                    lambda[r] = base_lambda[r] + theta * step[NQ + r];
+                    lambda[r] = base_lambda[r] + theta * step[NV + r];
                 }
                 continue;
             }
             if iteration >= o.max_iterations {
-                // Name the violated constraint, or, with every constraint met, the coordinate
+                // Name the violated constraint, or, with every constraint met, the velocity
                 // whose correction would not settle.
                 let (worst_row, residual) = if worst.0 > o.tolerance {
                     (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
                 } else {
-                    let k = (0..NQ).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
-                    (name(M::COORDINATE_NAMES, k), (step[k] * beta_p * h * h).abs())
+                    let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
+                    (name(M::VELOCITY_NAMES, k), (step[k] * beta_p * h * h).abs())
                 };
                 return Err(SimulationError::NotConverged {
                     t: t1.to_f64(),
@@ -206,26 +207,28 @@ where
                     residual: residual.to_f64(),
                 });
             }
-            mech.forces_q(&q, &qd, t1, &mut hq);
-            mech.forces_qd(&q, &qd, t1, &mut hqd);
-            mech.friction_derivatives(&q, &qd, t1, &lambda, &mut hq, &mut hqd);
+            mech.forces_q(&q, &v, t1, &mut hq);
+            mech.forces_v(&q, &v, t1, &mut hv);
+            mech.friction_derivatives(&q, &v, t1, &lambda, &mut hq, &mut hv);
             mech.constraint_force_q(&q, t1, &lambda, &mut kc);
-            let a = &mut self.matrix;
-            for i in 0..NQ {
-                for j in 0..NQ {
-                    a[i][j] = -gamma_p * h * hqd[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
+            // The velocity block M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + K), built in `hq`.
+            for i in 0..NV {
+                for j in 0..NV {
+                    hq[i][j] = -gamma_p * h * hv[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
                 }
-                a[i][i] += m[i];
+            }
+            mech.add_mass_matrix(&q, one, &mut hq);
+            let a = &mut self.matrix;
+            for i in 0..NV {
+                a[i][..NV].copy_from_slice(&hq[i]);
                 for r in 0..NC {
-                    a[i][NQ + r] = -d[r][i];
+                    a[i][NV + r] = -d[r][i];
                 }
             }
             for r in 0..NC {
-                for j in 0..NQ {
-                    a[NQ + r][j] = d[r][j];
-                }
+                a[NV + r][..NV].copy_from_slice(&d[r]);
                 for k in 0..NC {
-                    a[NQ + r][NQ + k] = T::ZERO;
+                    a[NV + r][NV + k] = T::ZERO;
                 }
             }
             let permutation = match lu_factor(a, o.pivot_tolerance) {
@@ -238,42 +241,38 @@ where
                 }
             };
             lu_solve_in_place(a, &permutation, &mut rhs);
-            (base_qdd, base_lambda, step, theta, norm_before) = (qdd, lambda, rhs, one, norm);
+            (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
             correction = T::ZERO;
-            for i in 0..NQ {
-                qdd[i] += rhs[i];
+            for i in 0..NV {
+                vd[i] += rhs[i];
                 correction = correction.max((rhs[i] * beta_p * h * h).abs());
             }
             for r in 0..NC {
-                lambda[r] += rhs[NQ + r];
+                lambda[r] += rhs[NV + r];
             }
             iteration += 1;
             if !correction.is_finite() {
-                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: name(M::COORDINATE_NAMES, 0) });
+                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: name(M::VELOCITY_NAMES, 0) });
             }
             if correction <= o.tolerance && worst.0 <= o.tolerance {
                 break;
             }
         }
         // The state of the converged iterate (the last correction is below tolerance).
-        for i in 0..NQ {
-            a1[i] = (alpha_f * from.qdd[i] + (one - alpha_f) * qdd[i] - alpha_m * a_n[i]) / (one - alpha_m);
-            q[i] = from.q[i] + h * from.qd[i] + h * h * ((half - beta) * a_n[i] + beta * a1[i]);
-            qd[i] = from.qd[i] + h * ((one - gamma) * a_n[i] + gamma * a1[i]);
-        }
+        state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
         self.iterations = iteration;
-        self.a[..NQ].copy_from_slice(&a1);
+        self.a[..NV].copy_from_slice(&a1);
         self.started = true;
         to.t = t1;
         to.q = q;
-        to.qd = qd;
-        to.qdd = qdd;
+        to.v = v;
+        to.vd = vd;
         to.lambda = lambda;
-        check_step::<T, M, NQ, NC>(from, to)?;
+        check_step::<T, M, NQ, NV, NC>(from, to)?;
         to.power = if system.track_work {
-            let mut scratch_qdd = [T::ZERO; NQ];
+            let mut scratch_vd = [T::ZERO; NV];
             let mut scratch_lambda = [T::ZERO; NC];
-            system.derivatives(t1, &q, &qd, &mut scratch_qdd, &mut scratch_lambda)?
+            system.derivatives(t1, &q, &v, &mut scratch_vd, &mut scratch_lambda)?
         } else {
             [T::ZERO; 2]
         };
@@ -284,11 +283,40 @@ where
         Ok(())
     }
 
-    fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]) {
-        hermite_state(from, to, t, q, qd);
+    fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
+        hermite_state(mechanism, from, to, t, q, v);
     }
 
     fn restart(&mut self) {
         self.started = false;
     }
+}
+
+/// The iterate's state from v̇₊: the pseudo-acceleration a₊, q₊ = q ⊕ (h v + h²(½ − β) a +
+/// h² β a₊) and v₊ = v + h (1 − γ) a + h γ a₊. `coefficients` = [α_m, α_f, β, γ, h].
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn state<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mech: &M,
+    from: &Point<T, NQ, NV, NC>,
+    a_n: &[T; NV],
+    vd: &[T; NV],
+    coefficients: [T; 5],
+    a1: &mut [T; NV],
+    q: &mut [T; NQ],
+    v: &mut [T; NV],
+) where
+    T: Real,
+    M: Kinematics<T, NQ, NV, NC>,
+{
+    let [alpha_m, alpha_f, beta, gamma, h] = coefficients;
+    let (one, half) = (T::ONE, T::from_f64(0.5));
+    let mut displacement = [T::ZERO; NV];
+    for i in 0..NV {
+        a1[i] = (alpha_f * from.vd[i] + (one - alpha_f) * vd[i] - alpha_m * a_n[i]) / (one - alpha_m);
+        displacement[i] = h * from.v[i] + h * h * ((half - beta) * a_n[i] + beta * a1[i]);
+        v[i] = from.v[i] + h * ((one - gamma) * a_n[i] + gamma * a1[i]);
+    }
+    *q = from.q;
+    mech.integrate_positions(q, &displacement, one);
 }

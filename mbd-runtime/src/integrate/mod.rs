@@ -1,15 +1,23 @@
 //! Time integration of the equations of motion (Nikravesh ch. 13; Arnold & Brüls 2007 for the
 //! generalized-α method), allocation-free: every work array is a fixed-size field.
 //!
-//! The state is (t, q, q̇); each step ends at a [`Point`] that also holds q̈, λ and, when asked
-//! for, the work of non-conservative forces and of constraint forces. Three integrators:
+//! The state is (t, q, v) with q̇ = B(q) v ([`Kinematics::position_rates`]; planar v = q̇); each
+//! step ends at a [`Point`] that also holds v̇, λ and, when asked for, the work of
+//! non-conservative forces and of constraint forces. Three integrators:
 //!
-//! * [`Rk4`]: classical Runge–Kutta, fixed step, 4 evaluations of q̈ per step.
+//! * [`Rk4`]: classical Runge–Kutta, fixed step, 4 evaluations of v̇ per step.
 //! * [`Dopri5`]: Dormand–Prince 5(4) with error control (mixed absolute/relative tolerance on q
-//!   and q̇), PI step-size control and 4th-order dense output; 6 evaluations per accepted step.
+//!   and v), PI step-size control and 4th-order dense output; 6 evaluations per accepted step.
 //! * [`GeneralizedAlpha`]: the implicit generalized-α method on the index-3 equations
-//!   M q̈ − Φ_qᵀλ = h, Φ = 0, solved by Newton with the exact ∂h/∂q, ∂h/∂q̇ and ∂(Φ_qᵀλ)/∂q:
-//!   second-order accurate, numerical damping set by ρ∞, fit for stiff springs and dampers.
+//!   M v̇ − Dᵀλ = h, Φ = 0, solved by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v
+//!   and ∂(Dᵀλ)/∂q·B: second-order accurate, numerical damping set by ρ∞, fit for stiff springs
+//!   and dampers.
+//!
+//! Each accepted step ends with [`Kinematics::normalize_positions`] (spatial: unit Euler
+//! parameters; planar: nothing).
+//!
+//! [`Kinematics::position_rates`]: crate::Kinematics::position_rates
+//! [`Kinematics::normalize_positions`]: crate::Kinematics::normalize_positions
 //!
 //! [`simulate`](simulate()) drives any of them to a list of output times, corrects drift after
 //! each step ([`Correction`]: mass-weighted projection or coordinate partitioning) and hands each
@@ -24,6 +32,8 @@ mod dopri5;
 mod generalized_alpha;
 mod rk4;
 mod simulate;
+#[cfg(test)]
+mod tests;
 
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
@@ -33,21 +43,21 @@ pub use simulate::{project, simulate, Correction, SimulationOptions, Statistics}
 use core::fmt;
 
 use crate::kinematics::name;
-use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Mechanism, Real};
+use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, Real};
 
-/// The state of the mechanism at the end of a step: time, coordinates and their derivatives,
-/// multipliers, and the accumulated work.
+/// The state of the mechanism at the end of a step: time, coordinates, velocities and their
+/// derivatives, multipliers, and the accumulated work.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Point<T, const NQ: usize, const NC: usize> {
+pub struct Point<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// Time (s).
     pub t: T,
-    /// Coordinates (m, rad).
+    /// Coordinates q (m, rad; spatial: m and Euler parameters).
     pub q: [T; NQ],
-    /// Velocities (m/s, rad/s).
-    pub qd: [T; NQ],
-    /// Accelerations (m/s², rad/s²).
-    pub qdd: [T; NQ],
-    /// Lagrange multipliers (N, N·m per constraint row), M q̈ − Φ_qᵀλ = h.
+    /// Velocities v (m/s, rad/s; planar v = q̇).
+    pub v: [T; NV],
+    /// Accelerations v̇ (m/s², rad/s²).
+    pub vd: [T; NV],
+    /// Lagrange multipliers (N, N·m per constraint row), M v̇ − Dᵀλ = h.
     pub lambda: [T; NC],
     /// Work since the start (J): `[non-conservative forces, constraint forces]`; zero unless
     /// [`SimulationOptions::track_work`].
@@ -56,14 +66,14 @@ pub struct Point<T, const NQ: usize, const NC: usize> {
     pub power: [T; 2],
 }
 
-impl<T: Real, const NQ: usize, const NC: usize> Point<T, NQ, NC> {
+impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Point<T, NQ, NV, NC> {
     /// A point at rest at t = 0 with all zeros (overwritten before use).
     pub fn zero() -> Self {
         Self {
             t: T::ZERO,
             q: [T::ZERO; NQ],
-            qd: [T::ZERO; NQ],
-            qdd: [T::ZERO; NQ],
+            v: [T::ZERO; NV],
+            vd: [T::ZERO; NV],
             lambda: [T::ZERO; NC],
             work: [T::ZERO; 2],
             power: [T::ZERO; 2],
@@ -77,13 +87,13 @@ impl<T: Real, const NQ: usize, const NC: usize> Point<T, NQ, NC> {
 /// conservative mechanisms with scleronomic constraints).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Energy<T> {
-    /// ½ q̇ᵀ M q̇.
+    /// ½ vᵀ M v.
     pub kinetic: T,
     /// Potential of gravity and springs V(q, t).
     pub potential: T,
-    /// ∫ (q̇ᵀh + dV/dt) dt: work of dampers, actuators, applied forces and friction.
+    /// ∫ (vᵀh + dV/dt) dt: work of dampers, actuators, applied forces and friction.
     pub nonconservative_work: T,
-    /// ∫ λᵀ Φ_q q̇ dt: work of drivers (and of the stabilization on drifted states).
+    /// ∫ λᵀ D v dt: work of drivers (and of the stabilization on drifted states).
     pub constraint_work: T,
 }
 
@@ -96,9 +106,9 @@ impl<T: Real> Energy<T> {
 
 /// One output of [`simulate`](simulate()).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample<T, const NQ: usize, const NC: usize> {
+pub struct Sample<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// State, accelerations and multipliers at the output time.
-    pub point: Point<T, NQ, NC>,
+    pub point: Point<T, NQ, NV, NC>,
     /// Its energies.
     pub energy: Energy<T>,
 }
@@ -114,7 +124,8 @@ pub enum SimulationError {
     NonFinite {
         /// Time of the step's start (s).
         t: f64,
-        /// The first non-finite coordinate (its velocity if the name is of a velocity).
+        /// The first non-finite coordinate, or velocity (from
+        /// [`Mechanism::VELOCITY_NAMES`]; planar: named as its coordinate).
         coordinate: &'static str,
     },
     /// Error control asked for a step below the minimum: a singularity or a discontinuity.
@@ -138,7 +149,7 @@ pub enum SimulationError {
         /// Iterations made.
         iterations: u32,
         /// The constraint with the largest residual; or, when every constraint is met and the
-        /// corrections do not settle, the coordinate with the largest correction.
+        /// corrections do not settle, the velocity with the largest correction.
         worst_row: &'static str,
         /// That residual or correction (m or rad).
         residual: f64,
@@ -153,7 +164,7 @@ pub enum SimulationError {
         /// Index of the first offending time.
         index: usize,
     },
-    /// A generalized-α work space does not have NQ + NC rows (use the generated
+    /// A generalized-α work space does not have NV + NC rows (use the generated
     /// `Name::generalized_alpha`).
     WorkspaceSize {
         /// Rows the mechanism needs.
@@ -188,7 +199,7 @@ impl fmt::Display for SimulationError {
                 write!(f, "output time {index} is before the one before it or before the start")
             }
             SimulationError::WorkspaceSize { expected, found } => {
-                write!(f, "the generalized-α work space has {found} rows; this mechanism needs NQ + NC = {expected}")
+                write!(f, "the generalized-α work space has {found} rows; this mechanism needs NV + NC = {expected}")
             }
         }
     }
@@ -215,78 +226,81 @@ impl<'m, M, T: Real> System<'m, M, T> {
         Self { mechanism, dynamics: DynamicsOptions::default(), track_work: false }
     }
 
-    /// q̈ and λ at (t, q, q̇), and the powers `[P_nc, P_c]` when work is tracked.
+    /// v̇ and λ at (t, q, v), and the powers `[P_nc, P_c]` when work is tracked.
     #[inline]
-    pub fn derivatives<const NQ: usize, const NC: usize>(
+    pub fn derivatives<const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         t: T,
         q: &[T; NQ],
-        qd: &[T; NQ],
-        qdd: &mut [T; NQ],
+        v: &[T; NV],
+        vd: &mut [T; NV],
         lambda: &mut [T; NC],
     ) -> Result<[T; 2], DynamicsError>
     where
-        M: ForwardDynamics<T, NQ, NC>,
+        M: ForwardDynamics<T, NQ, NV, NC>,
     {
-        self.mechanism.accelerations(q, qd, t, &self.dynamics, qdd, lambda)?;
+        self.mechanism.accelerations(q, v, t, &self.dynamics, vd, lambda)?;
         if !self.track_work {
             return Ok([T::ZERO; 2]);
         }
-        let mut nonconservative = self.mechanism.nonconservative_power(q, qd, t);
+        let mut nonconservative = self.mechanism.nonconservative_power(q, v, t);
         // Coulomb friction (absent from the generated power, which is λ-free).
-        let mut friction = [T::ZERO; NQ];
-        self.mechanism.friction_forces(q, qd, t, lambda, &mut friction);
-        for i in 0..NQ {
-            nonconservative += qd[i] * friction[i];
+        let mut friction = [T::ZERO; NV];
+        self.mechanism.friction_forces(q, v, t, lambda, &mut friction);
+        for i in 0..NV {
+            nonconservative += v[i] * friction[i];
         }
-        // λᵀ Φ_q q̇ = q̇ᵀ (M q̈ − h − h_friction)
-        let mut h = [T::ZERO; NQ];
-        self.mechanism.forces(q, qd, t, &mut h);
-        for i in 0..NQ {
+        // λᵀ D v = vᵀ (M v̇ − h − h_friction)
+        let mut h = [T::ZERO; NV];
+        self.mechanism.forces(q, v, t, &mut h);
+        for i in 0..NV {
             h[i] += friction[i];
         }
-        let m = self.mechanism.mass_diagonal();
+        let mut inertia = [T::ZERO; NV];
+        self.mechanism.mass_times(q, vd, &mut inertia);
         let mut constraint = T::ZERO;
-        for i in 0..NQ {
-            constraint += qd[i] * (m[i] * qdd[i] - h[i]);
+        for i in 0..NV {
+            constraint += v[i] * (inertia[i] - h[i]);
         }
         Ok([nonconservative, constraint])
     }
 
-    /// A point at (t, q, q̇) with its q̈, λ and powers; `work` as given.
-    pub fn point<const NQ: usize, const NC: usize>(
+    /// A point at (t, q, v) with its v̇, λ and powers; `work` as given.
+    pub fn point<const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         t: T,
         q: [T; NQ],
-        qd: [T; NQ],
+        v: [T; NV],
         work: [T; 2],
-    ) -> Result<Point<T, NQ, NC>, DynamicsError>
+    ) -> Result<Point<T, NQ, NV, NC>, DynamicsError>
     where
-        M: ForwardDynamics<T, NQ, NC>,
+        M: ForwardDynamics<T, NQ, NV, NC>,
     {
-        let mut p = Point { t, q, qd, qdd: [T::ZERO; NQ], lambda: [T::ZERO; NC], work, power: [T::ZERO; 2] };
-        p.power = self.derivatives(t, &p.q, &p.qd, &mut p.qdd, &mut p.lambda)?;
+        let mut p = Point { t, q, v, vd: [T::ZERO; NV], lambda: [T::ZERO; NC], work, power: [T::ZERO; 2] };
+        p.power = self.derivatives(t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
         Ok(p)
     }
 }
 
 /// A one-step method for the equations of motion.
-pub trait Integrator<T: Real, M, const NQ: usize, const NC: usize> {
-    /// One step from `from` (whose q̈, λ and powers are consistent with its state) to at most
-    /// `t_max`; writes the end point `to` with its q̈, λ and powers.
+pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize> {
+    /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
+    /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
+    /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions)).
     ///
     /// # Errors
     /// A [`SimulationError`] naming the time, coordinate or constraint.
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        from: &Point<T, NQ, NC>,
+        from: &Point<T, NQ, NV, NC>,
         t_max: T,
-        to: &mut Point<T, NQ, NC>,
+        to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError>;
 
-    /// q and q̇ at `t` within the last step from `from` to `to` (its dense output).
-    fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]);
+    /// q and v at `t` within the last step from `from` to `to` (its dense output); `mechanism`
+    /// gives the rates q̇ = B(q) v the interpolation of q needs. q is not normalized.
+    fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]);
 
     /// Forgets what the method carries from step to step (called by [`simulate`](simulate()) at
     /// its start, so an integrator can be reused for another run).
@@ -309,33 +323,47 @@ fn hermite<T: Real>(y0: T, yd0: T, y1: T, yd1: T, h: T, theta: T) -> T {
     h00 * y0 + h10 * h * yd0 + h01 * y1 + h11 * h * yd1
 }
 
-/// Hermite interpolation of q (with q̇) and of q̇ (with q̈) between two points.
-fn hermite_state<T: Real, const NQ: usize, const NC: usize>(
-    from: &Point<T, NQ, NC>,
-    to: &Point<T, NQ, NC>,
+/// Hermite interpolation of q (with q̇ = B(q) v at both ends) and of v (with v̇) between two
+/// points.
+// One index runs over the values and rates at both ends.
+#[allow(clippy::needless_range_loop)]
+fn hermite_state<T: Real, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    from: &Point<T, NQ, NV, NC>,
+    to: &Point<T, NQ, NV, NC>,
     t: T,
     q: &mut [T; NQ],
-    qd: &mut [T; NQ],
-) {
+    v: &mut [T; NV],
+) where
+    M: Kinematics<T, NQ, NV, NC>,
+{
     let h = to.t - from.t;
     let theta = if h > T::ZERO { (t - from.t) / h } else { T::ONE };
+    let (mut rates_from, mut rates_to) = ([T::ZERO; NQ], [T::ZERO; NQ]);
+    mechanism.position_rates(&from.q, &from.v, &mut rates_from);
+    mechanism.position_rates(&to.q, &to.v, &mut rates_to);
     for i in 0..NQ {
-        q[i] = hermite(from.q[i], from.qd[i], to.q[i], to.qd[i], h, theta);
-        qd[i] = hermite(from.qd[i], from.qdd[i], to.qd[i], to.qdd[i], h, theta);
+        q[i] = hermite(from.q[i], rates_from[i], to.q[i], rates_to[i], h, theta);
+    }
+    for i in 0..NV {
+        v[i] = hermite(from.v[i], from.vd[i], to.v[i], to.vd[i], h, theta);
     }
 }
 
-/// The first non-finite entry of q or q̇, by coordinate name.
-fn non_finite<T: Real, M: Mechanism, const NQ: usize>(q: &[T; NQ], qd: &[T; NQ]) -> Option<&'static str> {
-    let i = q.iter().chain(qd.iter()).position(|v| !v.is_finite())?;
-    Some(name(M::COORDINATE_NAMES, i % NQ))
+/// The first non-finite entry of q (by coordinate name) or of v (by velocity name).
+fn non_finite<T: Real, M: Mechanism, const NQ: usize, const NV: usize>(q: &[T; NQ], v: &[T; NV]) -> Option<&'static str> {
+    if let Some(i) = q.iter().position(|x| !x.is_finite()) {
+        return Some(name(M::COORDINATE_NAMES, i));
+    }
+    let i = v.iter().position(|x| !x.is_finite())?;
+    Some(name(M::VELOCITY_NAMES, i))
 }
 
-fn check_step<T: Real, M: Mechanism, const NQ: usize, const NC: usize>(
-    from: &Point<T, NQ, NC>,
-    to: &Point<T, NQ, NC>,
+fn check_step<T: Real, M: Mechanism, const NQ: usize, const NV: usize, const NC: usize>(
+    from: &Point<T, NQ, NV, NC>,
+    to: &Point<T, NQ, NV, NC>,
 ) -> Result<(), SimulationError> {
-    match non_finite::<T, M, NQ>(&to.q, &to.qd) {
+    match non_finite::<T, M, NQ, NV>(&to.q, &to.v) {
         Some(coordinate) => Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate }),
         None => Ok(()),
     }

@@ -1,11 +1,11 @@
-//! Classical fourth-order Runge–Kutta with a fixed step h, on y = (q, q̇), y' = (q̇, q̈):
+//! Classical fourth-order Runge–Kutta with a fixed step h, on y = (q, v), y' = (B(q) v, v̇):
 //!
 //! ```text
 //! k₁ = f(t, y),  k₂ = f(t + h/2, y + h/2 k₁),  k₃ = f(t + h/2, y + h/2 k₂),  k₄ = f(t + h, y + h k₃)
-//! y₊ = y + h/6 (k₁ + 2k₂ + 2k₃ + k₄)
+//! y₊ = y + h/6 (k₁ + 2k₂ + 2k₃ + k₄),  then q₊ normalized
 //! ```
 //!
-//! 4 evaluations of q̈ per step (k₁ is the start point's); the work integrals use the same
+//! 4 evaluations of v̇ per step (k₁ is the start point's); the work integrals use the same
 //! weights on the stage powers; dense output is cubic Hermite.
 
 use super::{check_step, hermite_state, Integrator, Point, SimulationError, System};
@@ -31,20 +31,25 @@ impl<T: Real> Rk4<T> {
     }
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> Integrator<T, M, NQ, NC> for Rk4<T> {
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> Integrator<T, M, NQ, NV, NC>
+    for Rk4<T>
+{
     #[inline]
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    // One index runs over the state and its stage derivatives in step.
+    #[allow(clippy::needless_range_loop)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        from: &Point<T, NQ, NC>,
+        from: &Point<T, NQ, NV, NC>,
         t_max: T,
-        to: &mut Point<T, NQ, NC>,
+        to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         if !(self.step > T::ZERO) {
             return Err(SimulationError::InvalidOptions { what: "Rk4::step must be positive" });
         }
+        let mech = system.mechanism;
         let h = if from.t + self.step > t_max { t_max - from.t } else { self.step };
         let half = h * T::from_f64(0.5);
         let sixth = h / T::from_f64(6.0);
@@ -52,43 +57,60 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize> I
         let t_half = from.t + half;
         // The start's multipliers: the first guess of Coulomb friction loads, if any.
         let mut lambda = from.lambda;
-        // k1 = (q̇0, q̈0)
+        // k1 = (B(q0) v0, v̇0)
+        let mut qd1 = [T::ZERO; NQ];
+        mech.position_rates(&from.q, &from.v, &mut qd1);
         let mut q = [T::ZERO; NQ];
-        let mut qd2 = [T::ZERO; NQ];
+        let mut v2 = [T::ZERO; NV];
         for i in 0..NQ {
-            q[i] = from.q[i] + half * from.qd[i];
-            qd2[i] = from.qd[i] + half * from.qdd[i];
+            q[i] = from.q[i] + half * qd1[i];
         }
-        let mut qdd2 = [T::ZERO; NQ];
-        let p2 = system.derivatives(t_half, &q, &qd2, &mut qdd2, &mut lambda)?;
-        let mut qd3 = [T::ZERO; NQ];
+        for i in 0..NV {
+            v2[i] = from.v[i] + half * from.vd[i];
+        }
+        let mut qd2 = [T::ZERO; NQ];
+        mech.position_rates(&q, &v2, &mut qd2);
+        let mut vd2 = [T::ZERO; NV];
+        let p2 = system.derivatives(t_half, &q, &v2, &mut vd2, &mut lambda)?;
+        let mut v3 = [T::ZERO; NV];
         for i in 0..NQ {
             q[i] = from.q[i] + half * qd2[i];
-            qd3[i] = from.qd[i] + half * qdd2[i];
         }
-        let mut qdd3 = [T::ZERO; NQ];
-        let p3 = system.derivatives(t_half, &q, &qd3, &mut qdd3, &mut lambda)?;
-        let mut qd4 = [T::ZERO; NQ];
+        for i in 0..NV {
+            v3[i] = from.v[i] + half * vd2[i];
+        }
+        let mut qd3 = [T::ZERO; NQ];
+        mech.position_rates(&q, &v3, &mut qd3);
+        let mut vd3 = [T::ZERO; NV];
+        let p3 = system.derivatives(t_half, &q, &v3, &mut vd3, &mut lambda)?;
+        let mut v4 = [T::ZERO; NV];
         for i in 0..NQ {
             q[i] = from.q[i] + h * qd3[i];
-            qd4[i] = from.qd[i] + h * qdd3[i];
         }
-        let mut qdd4 = [T::ZERO; NQ];
-        let p4 = system.derivatives(from.t + h, &q, &qd4, &mut qdd4, &mut lambda)?;
+        for i in 0..NV {
+            v4[i] = from.v[i] + h * vd3[i];
+        }
+        let mut qd4 = [T::ZERO; NQ];
+        mech.position_rates(&q, &v4, &mut qd4);
+        let mut vd4 = [T::ZERO; NV];
+        let p4 = system.derivatives(from.t + h, &q, &v4, &mut vd4, &mut lambda)?;
         for i in 0..NQ {
-            to.q[i] = from.q[i] + sixth * (from.qd[i] + two * (qd2[i] + qd3[i]) + qd4[i]);
-            to.qd[i] = from.qd[i] + sixth * (from.qdd[i] + two * (qdd2[i] + qdd3[i]) + qdd4[i]);
+            to.q[i] = from.q[i] + sixth * (qd1[i] + two * (qd2[i] + qd3[i]) + qd4[i]);
         }
+        for i in 0..NV {
+            to.v[i] = from.v[i] + sixth * (from.vd[i] + two * (vd2[i] + vd3[i]) + vd4[i]);
+        }
+        mech.normalize_positions(&mut to.q);
         for k in 0..2 {
             to.work[k] = from.work[k] + sixth * (from.power[k] + two * (p2[k] + p3[k]) + p4[k]);
         }
         to.t = from.t + h;
-        check_step::<T, M, NQ, NC>(from, to)?;
-        to.power = system.derivatives(to.t, &to.q, &to.qd, &mut to.qdd, &mut to.lambda)?;
+        check_step::<T, M, NQ, NV, NC>(from, to)?;
+        to.power = system.derivatives(to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
         Ok(())
     }
 
-    fn interpolate(&self, from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T, q: &mut [T; NQ], qd: &mut [T; NQ]) {
-        hermite_state(from, to, t, q, qd);
+    fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
+        hermite_state(mechanism, from, to, t, q, v);
     }
 }

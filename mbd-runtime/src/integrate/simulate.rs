@@ -1,7 +1,7 @@
 //! The driver: [`simulate`] integrates with any [`Integrator`] to a list of output times,
 //! corrects drift after each step ([`Correction`]: the mass-weighted [`project`]ion, or
 //! coordinate partitioning, Nikravesh 13.6.2), interpolates each output with the step's dense
-//! output and hands its [`Sample`] (state, q̈, λ and energies) to a callback; its
+//! output and hands its [`Sample`] (state, v̇, λ and energies) to a callback; its
 //! [`SimulationOptions`] and [`Statistics`].
 //!
 //! The initial state is corrected first (initial-condition correction, Nikravesh 14.3).
@@ -17,7 +17,7 @@ use crate::{DynamicsOptions, ForwardDynamics, Real};
 pub enum Correction<T> {
     /// Nothing (Baumgarte stabilization, if set, still acts through the accelerations).
     None,
-    /// Mass-weighted projection (Newton on Φ = 0 with steps −M⁻¹Φ_qᵀS⁻¹Φ, then the exact
+    /// Mass-weighted projection (Newton on Φ = 0 with steps q ⊕ (−M⁻¹DᵀS⁻¹Φ), then the exact
     /// velocity projection), to ‖Φ‖∞ ≤ `tolerance`.
     Projection {
         /// On ‖Φ‖∞ (m, rad).
@@ -25,9 +25,10 @@ pub enum Correction<T> {
         /// Newton steps before failing.
         max_iterations: u32,
     },
-    /// Coordinate partitioning (Nikravesh 13.6.2): the integrated independent coordinates are
-    /// kept; the dependent ones are solved from Φ = 0 and Φ_q q̇ = ν. The partition is chosen
-    /// by full pivoting on Φ_q at the start and again whenever its pivots degrade.
+    /// Coordinate partitioning (Nikravesh 13.6.2) in velocity space: the integrated independent
+    /// directions are kept; the dependent ones are solved from Φ = 0 (Newton steps q ⊕ Δv with
+    /// Δv zero in the independent entries) and D v = ν. The partition is chosen by full
+    /// pivoting on D at the start and again whenever its pivots degrade.
     Partitioning {
         /// On ‖Φ‖∞ (m, rad).
         tolerance: T,
@@ -47,15 +48,16 @@ impl<T: Real> Correction<T> {
     }
 }
 
-/// Projects q onto Φ(q, t) = 0 and q̇ onto Φ_q q̇ = ν in the metric of M.
+/// Projects q onto Φ(q, t) = 0 and v onto D v = ν in the metric of M (position steps
+/// q ⊕ (−M⁻¹DᵀS⁻¹Φ), [`ForwardDynamics::project_positions_step`]).
 ///
 /// # Errors
 /// [`SimulationError::NotConverged`] if ‖Φ‖∞ stays above `tolerance`; dynamics errors of the solve.
-pub fn project<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     t: T,
     q: &mut [T; NQ],
-    qd: &mut [T; NQ],
+    v: &mut [T; NV],
     options: &DynamicsOptions<T>,
     tolerance: T,
     max_iterations: u32,
@@ -80,7 +82,7 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC
             });
         }
     }
-    mechanism.project_velocities(q, qd, t, options)?;
+    mechanism.project_velocities(q, v, t, options)?;
     Ok(())
 }
 
@@ -112,31 +114,33 @@ impl<T: Real> Default for SimulationOptions<T> {
     }
 }
 
-/// Integrates from `initial` (t, q, q̇) and calls `output` at each of `times` (non-decreasing,
-/// not before the initial time) with the interpolated state, its q̈ and λ, and its energies.
+/// Integrates from `initial` (t, q, v) and calls `output` at each of `times` (non-decreasing,
+/// not before the initial time) with the interpolated state, its v̇ and λ, and its energies.
 ///
-/// The initial state is corrected first when a [`Correction`] is set (initial-condition
-/// correction, Nikravesh 14.3). Nothing allocates: storage for the samples is the caller's.
+/// The initial q is normalized ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions))
+/// and the initial state corrected when a [`Correction`] is set (initial-condition correction,
+/// Nikravesh 14.3); interpolated outputs are normalized too. Nothing allocates: storage for the
+/// samples is the caller's.
 ///
 /// # Errors
 /// The first [`SimulationError`] met; the samples before it have been delivered.
 #[allow(clippy::too_many_arguments)]
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate<T, M, I, const NQ: usize, const NC: usize>(
+pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     integrator: &mut I,
     t0: T,
     q0: &[T; NQ],
-    qd0: &[T; NQ],
+    v0: &[T; NV],
     times: &[T],
     options: &SimulationOptions<T>,
-    mut output: impl FnMut(&Sample<T, NQ, NC>),
+    mut output: impl FnMut(&Sample<T, NQ, NV, NC>),
 ) -> Result<Statistics, SimulationError>
 where
     T: Real,
-    M: ForwardDynamics<T, NQ, NC>,
-    I: Integrator<T, M, NQ, NC>,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC>,
 {
     for (i, &t) in times.iter().enumerate() {
         let before = if i == 0 { t0 } else { times[i - 1] };
@@ -145,10 +149,11 @@ where
         }
     }
     let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
-    let (mut q, mut qd) = (*q0, *qd0);
-    let mut partition = Partition::<NQ, NC>::new();
-    correct(mechanism, &mut partition, options, t0, &mut q, &mut qd)?;
-    let mut from = system.point(t0, q, qd, [T::ZERO; 2])?;
+    let (mut q, mut v) = (*q0, *v0);
+    mechanism.normalize_positions(&mut q);
+    let mut partition = Partition::<NV, NC>::new();
+    correct(mechanism, &mut partition, options, t0, &mut q, &mut v)?;
+    let mut from = system.point(t0, q, v, [T::ZERO; 2])?;
     let mut to = from;
     integrator.restart();
     let mut stats = Statistics::default();
@@ -171,18 +176,19 @@ where
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         let end = to;
         if !matches!(options.correction, Correction::None) {
-            let (mut q, mut qd) = (to.q, to.qd);
-            correct(mechanism, &mut partition, options, to.t, &mut q, &mut qd)?;
-            to = system.point(to.t, q, qd, to.work)?;
+            let (mut q, mut v) = (to.q, to.v);
+            correct(mechanism, &mut partition, options, to.t, &mut q, &mut v)?;
+            to = system.point(to.t, q, v, to.work)?;
         }
         while next < times.len() && times[next] <= end.t {
             if times[next] == end.t {
                 output(&sample(mechanism, &to));
             } else {
-                let (mut q, mut qd) = ([T::ZERO; NQ], [T::ZERO; NQ]);
-                integrator.interpolate(&from, &end, times[next], &mut q, &mut qd);
+                let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
+                integrator.interpolate(mechanism, &from, &end, times[next], &mut q, &mut v);
+                mechanism.normalize_positions(&mut q);
                 let work = interpolate_work(&from, &end, times[next]);
-                output(&sample(mechanism, &system.point(times[next], q, qd, work)?));
+                output(&sample(mechanism, &system.point(times[next], q, v, work)?));
             }
             stats.samples += 1;
             next += 1;
@@ -192,19 +198,23 @@ where
     Ok(stats)
 }
 
-fn interpolate_work<T: Real, const NQ: usize, const NC: usize>(from: &Point<T, NQ, NC>, to: &Point<T, NQ, NC>, t: T) -> [T; 2] {
+fn interpolate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
+    from: &Point<T, NQ, NV, NC>,
+    to: &Point<T, NQ, NV, NC>,
+    t: T,
+) -> [T; 2] {
     let h = to.t - from.t;
     let theta = if h > T::ZERO { (t - from.t) / h } else { T::ONE };
     core::array::from_fn(|k| hermite(from.work[k], from.power[k], to.work[k], to.power[k], h, theta))
 }
 
 /// A point with its energies.
-fn sample<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+fn sample<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
-    p: &Point<T, NQ, NC>,
-) -> Sample<T, NQ, NC> {
+    p: &Point<T, NQ, NV, NC>,
+) -> Sample<T, NQ, NV, NC> {
     let energy = Energy {
-        kinetic: kinetic_energy(mechanism, &p.qd),
+        kinetic: kinetic_energy(mechanism, &p.q, &p.v),
         potential: mechanism.potential_energy(&p.q, p.t),
         nonconservative_work: p.work[0],
         constraint_work: p.work[1],
@@ -212,18 +222,18 @@ fn sample<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usi
     Sample { point: *p, energy }
 }
 
-/// Applies the drift correction of `options` to (q, q̇) at t.
-fn correct<T: Real, M: ForwardDynamics<T, NQ, NC>, const NQ: usize, const NC: usize>(
+/// Applies the drift correction of `options` to (q, v) at t.
+fn correct<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
-    partition: &mut Partition<NQ, NC>,
+    partition: &mut Partition<NV, NC>,
     options: &SimulationOptions<T>,
     t: T,
     q: &mut [T; NQ],
-    qd: &mut [T; NQ],
+    v: &mut [T; NV],
 ) -> Result<(), SimulationError> {
     match options.correction {
         Correction::None => Ok(()),
-        Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, qd, &options.dynamics, tolerance, max_iterations),
-        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, t, q, qd, tolerance, max_iterations),
+        Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, v, &options.dynamics, tolerance, max_iterations),
+        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, t, q, v, tolerance, max_iterations),
     }
 }

@@ -8,8 +8,11 @@
 //!   slider-y row, so no row involves `slider.phi` (a structurally singular Jacobian).
 //! - `WithoutDriver<M>`: M without its last row (the driver), DOF = 1.
 //! - `Crank<T>`: a single driven crank (3 × 3), used in f32.
+//! - `UnitPendulum`, `DrivenUnitPendulum` (crate::test_support): NQ = 4 ≠ NV = 3, the orientation
+//!   a unit complex number.
 
 use super::*;
+use crate::test_support::{DrivenUnitPendulum, UnitPendulum, LENGTH};
 use crate::{Kinematics, Mechanism, OpCount};
 use core::f64::consts::PI;
 
@@ -41,6 +44,13 @@ const SLIDER_CRANK_CONSTRAINTS: &[&str] = &[
 const ANGLE_ROW: usize = 7;
 /// Column of `slider.y`.
 const SLIDER_Y: usize = 7;
+
+/// q ← q + h dv: planar bodies, v = q̇.
+fn integrate_planar<T: Real, const N: usize>(q: &mut [T; N], dv: &[T; N], h: T) {
+    for (x, &d) in q.iter_mut().zip(dv.iter()) {
+        *x += h * d;
+    }
+}
 
 /// Slider-crank with its parameters in the scalar type T.
 #[derive(Clone, Copy, Debug)]
@@ -94,7 +104,7 @@ impl<T: Real> Mechanism for SliderCrank<T> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<T: Real> Kinematics<T, NQ, NC> for SliderCrank<T> {
+impl<T: Real> Kinematics<T, NQ, NQ, NC> for SliderCrank<T> {
     /// The assembled configuration at t = 0: everything on the x-axis.
     fn initial_positions(&self) -> [T; NQ] {
         let half = T::from_f64(0.5);
@@ -105,6 +115,16 @@ impl<T: Real> Kinematics<T, NQ, NC> for SliderCrank<T> {
     fn initial_velocities(&self) -> [T; NQ] {
         [T::ZERO; NQ]
     }
+
+    fn position_rates(&self, _q: &[T; NQ], v: &[T; NQ], qdot: &mut [T; NQ]) {
+        *qdot = *v;
+    }
+
+    fn integrate_positions(&self, q: &mut [T; NQ], dv: &[T; NQ], h: T) {
+        integrate_planar(q, dv, h);
+    }
+
+    fn normalize_positions(&self, _q: &mut [T; NQ]) {}
 
     fn constraints(&self, q: &[T; NQ], t: T, phi: &mut [T; NC]) {
         let mut d = [[T::ZERO; NQ]; NC];
@@ -220,12 +240,21 @@ impl Mechanism for LockedSlider {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl Kinematics<f64, NQ, NC> for LockedSlider {
+impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     fn initial_positions(&self) -> [f64; NQ] {
         self.0.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.0.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.0.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.0.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.0.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC]) {
         let mut d = [[0.0; NQ]; NC];
@@ -290,12 +319,21 @@ impl<M: Mechanism> Mechanism for WithoutDriver<M> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<M: Kinematics<f64, NQ, NC>> Kinematics<f64, NQ, FREE_NC> for WithoutDriver<M> {
+impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for WithoutDriver<M> {
     fn initial_positions(&self) -> [f64; NQ] {
         self.0.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.0.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.0.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.0.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.0.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; FREE_NC]) {
         let mut full = [0.0; NC];
@@ -367,13 +405,20 @@ impl<T: Real> Mechanism for Crank<T> {
     const MODEL_JSON: &'static str = "{}";
 }
 
-impl<T: Real> Kinematics<T, 3, 3> for Crank<T> {
+impl<T: Real> Kinematics<T, 3, 3, 3> for Crank<T> {
     fn initial_positions(&self) -> [T; 3] {
         [T::from_f64(0.5) * self.r, T::ZERO, T::ZERO]
     }
     fn initial_velocities(&self) -> [T; 3] {
         [T::ZERO; 3]
     }
+    fn position_rates(&self, _q: &[T; 3], v: &[T; 3], qdot: &mut [T; 3]) {
+        *qdot = *v;
+    }
+    fn integrate_positions(&self, q: &mut [T; 3], dv: &[T; 3], h: T) {
+        integrate_planar(q, dv, h);
+    }
+    fn normalize_positions(&self, _q: &mut [T; 3]) {}
     fn constraints(&self, q: &[T; 3], t: T, phi: &mut [T; 3]) {
         let mut d = [[T::ZERO; 3]; 3];
         self.position_eval(q, t, phi, &mut d);
@@ -507,9 +552,9 @@ fn analysis_matches_the_closed_form() {
         let slider_error = (state.q[6] - exact[6]).abs();
         assert!(slider_error < POSITION_TOLERANCE, "x_B at t = {t}");
         assert!(state.convergence.residual <= DEFAULT_TOLERANCE);
-        let velocity_error = max_abs_difference(&state.qd, &exact_qd(t));
+        let velocity_error = max_abs_difference(&state.v, &exact_qd(t));
         assert!(velocity_error < VELOCITY_TOLERANCE, "t = {t}: |q̇ − q̇_exact| = {velocity_error:e}");
-        let acceleration_error = max_abs_difference(&state.qdd, &exact_qdd(t));
+        let acceleration_error = max_abs_difference(&state.vd, &exact_qdd(t));
         assert!(acceleration_error < ACCELERATION_TOLERANCE, "t = {t}: |q̈ − q̈_exact| = {acceleration_error:e}");
 
         // The separate solves agree with the combined one.
@@ -517,8 +562,8 @@ fn analysis_matches_the_closed_form() {
         let mut qdd = [0.0; NQ];
         solver.solve_velocity(&m, &state.q, t, &mut qd).expect("velocity");
         solver.solve_acceleration(&m, &state.q, &qd, t, &mut qdd).expect("acceleration");
-        assert_eq!(qd, state.qd);
-        assert_eq!(qdd, state.qdd);
+        assert_eq!(qd, state.v);
+        assert_eq!(qdd, state.vd);
     }
 }
 
@@ -570,12 +615,21 @@ impl<M: Mechanism> Mechanism for Counting<M> {
     const MODEL_JSON: &'static str = M::MODEL_JSON;
 }
 
-impl<M: Kinematics<f64, NQ, NC>> Kinematics<f64, NQ, NC> for Counting<M> {
+impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, NC> for Counting<M> {
     fn initial_positions(&self) -> [f64; NQ] {
         self.inner.initial_positions()
     }
     fn initial_velocities(&self) -> [f64; NQ] {
         self.inner.initial_velocities()
+    }
+    fn position_rates(&self, q: &[f64; NQ], v: &[f64; NQ], qdot: &mut [f64; NQ]) {
+        self.inner.position_rates(q, v, qdot);
+    }
+    fn integrate_positions(&self, q: &mut [f64; NQ], dv: &[f64; NQ], h: f64) {
+        self.inner.integrate_positions(q, dv, h);
+    }
+    fn normalize_positions(&self, q: &mut [f64; NQ]) {
+        self.inner.normalize_positions(q);
     }
     fn constraints(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC]) {
         self.inner.constraints(q, t, phi);
@@ -899,4 +953,101 @@ fn error_messages() {
     assert_eq!(non_finite.to_string(), "non-finite value (NaN or ±∞) in coordinate 'rod.x' at t = 0.1 s");
     let boxed: std::boxed::Box<dyn std::error::Error> = std::boxed::Box::new(not_converged);
     assert!(boxed.to_string().contains("did not converge"));
+}
+
+/// Central differences along the velocity map of the NQ ≠ NV test double (q ⊕ ε e_j through
+/// `integrate_positions`) agree with its D = Φ_q B, and differences along the flow q ⊕ εv with
+/// its γ: the tests below test the solver, not the double. h = 1e-6: truncation O(h²) ≈ 1e-12,
+/// rounding O(ε_mach/h) ≈ 1e-10; tolerance 1e-8.
+#[test]
+fn unit_pendulum_derivatives_are_consistent() {
+    const STEP: f64 = 1e-6;
+    let m = DrivenUnitPendulum { omega: 2.0 };
+    let (q, v, t) = ([0.3, 0.35, 0.6, 0.8], [0.4, -0.3, 1.7], 0.4);
+    let mut d = [[0.0; 3]; 3];
+    m.jacobian(&q, t, &mut d);
+    for j in 0..3 {
+        let mut e = [0.0; 3];
+        e[j] = 1.0;
+        let (mut plus, mut minus) = (q, q);
+        m.integrate_positions(&mut plus, &e, STEP);
+        m.integrate_positions(&mut minus, &e, -STEP);
+        let (mut phi_plus, mut phi_minus) = ([0.0; 3], [0.0; 3]);
+        m.constraints(&plus, t, &mut phi_plus);
+        m.constraints(&minus, t, &mut phi_minus);
+        for r in 0..3 {
+            let numeric = (phi_plus[r] - phi_minus[r]) / (2.0 * STEP);
+            assert!((numeric - d[r][j]).abs() < 1e-8, "D[{r}][{j}] = {} vs {numeric}", d[r][j]);
+        }
+    }
+    // γ = −d/dε (D v − ν) along q ⊕ εv, t + ε.
+    let violation_rate = |q: &[f64; 4], t: f64| {
+        let (mut d, mut nu) = ([[0.0; 3]; 3], [0.0; 3]);
+        m.jacobian(q, t, &mut d);
+        m.velocity_rhs(q, t, &mut nu);
+        core::array::from_fn::<f64, 3, _>(|r| (0..3).map(|i| d[r][i] * v[i]).sum::<f64>() - nu[r])
+    };
+    let (mut plus, mut minus) = (q, q);
+    m.integrate_positions(&mut plus, &v, STEP);
+    m.integrate_positions(&mut minus, &v, -STEP);
+    let (fp, fm) = (violation_rate(&plus, t + STEP), violation_rate(&minus, t - STEP));
+    let mut gamma = [0.0; 3];
+    m.gamma(&q, &v, t, &mut gamma);
+    for r in 0..3 {
+        let numeric = -(fp[r] - fm[r]) / (2.0 * STEP);
+        assert!((numeric - gamma[r]).abs() < 1e-8, "γ[{r}] = {} vs {numeric}", gamma[r]);
+    }
+}
+
+/// NQ ≠ NV: Newton solves D Δv = −Φ and moves q through `integrate_positions`, so a guess off the
+/// unit circle (|(c, s)| = 1.03) lands on it; position, velocity and acceleration match φ = Ωt
+/// (Newton stops at ‖Φ‖∞ ≤ 1e-10 and D is well conditioned: 1e-9), and so does a sweep with
+/// the predictor q ⊕ v Δt.
+#[test]
+fn velocity_space_newton_keeps_the_orientation_unit() {
+    let m = DrivenUnitPendulum { omega: 2.0 };
+    let exact = |t: f64| {
+        let (s, c) = (m.omega * t).sin_cos();
+        let w = m.omega;
+        ([LENGTH * c, LENGTH * s, c, s], [-LENGTH * w * s, LENGTH * w * c, w], [-LENGTH * w * w * c, -LENGTH * w * w * s, 0.0])
+    };
+    let solver = KinematicSolver::default();
+    let t = 0.3;
+    for assemble in [false, true] {
+        let mut q = [0.4, 0.2, 0.9, 0.5];
+        if assemble { solver.assemble(&m, &mut q, t) } else { solver.solve_position(&m, &mut q, t) }.expect("converges");
+        assert!((q[2] * q[2] + q[3] * q[3] - 1.0).abs() < 1e-15, "{q:?}");
+        assert!(max_abs_difference(&q, &exact(t).0) < 1e-9, "{q:?} vs {:?}", exact(t).0);
+    }
+    let state = solver.analyze(&m, &exact(t).0, t).expect("analysis");
+    assert!(max_abs_difference(&state.v, &exact(t).1) < 1e-9, "v = {:?}", state.v);
+    assert!(max_abs_difference(&state.vd, &exact(t).2) < 1e-9, "v̇ = {:?}", state.vd);
+    let mut q = m.initial_positions();
+    let mut visited = 0;
+    solver
+        .sweep(&m, &mut q, (0..=50).map(|k| f64::from(k) * 0.04), |t, q, v, vd| {
+            visited += 1;
+            let (q0, v0, vd0) = exact(t);
+            assert!(max_abs_difference(q, &q0) < 1e-9 && (q[2] * q[2] + q[3] * q[3] - 1.0).abs() < 1e-15, "t = {t}: {q:?}");
+            assert!(max_abs_difference(v, &v0) < 1e-9 && max_abs_difference(vd, &vd0) < 1e-9, "t = {t}: {v:?}, {vd:?}");
+        })
+        .expect("sweep");
+    assert_eq!(visited, 51);
+}
+
+/// DOF and the names of velocity-space entries come from NV and VELOCITY_NAMES: the free pendulum
+/// (NQ − NC = 2, NV − NC = 1) is not driven by one degree of freedom, and a Jacobian singular in
+/// the ω column names `rod.w`, a velocity, not a coordinate.
+#[test]
+fn degrees_of_freedom_and_names_are_velocity_space() {
+    let solver = KinematicSolver::default();
+    let mut q = UnitPendulum.initial_positions();
+    assert_eq!(solver.solve_position(&UnitPendulum, &mut q, 0.0), Err(KinematicError::NotDriven { dof: 1 }));
+    // At φ − Ωt = π/2 the driver's row (0, 0, cos(φ − Ωt)) vanishes.
+    let m = DrivenUnitPendulum { omega: 2.0 };
+    let mut q = [0.0, LENGTH, 0.0, 1.0];
+    match solver.solve_position(&m, &mut q, 0.0) {
+        Err(KinematicError::SingularJacobian { coordinate, .. }) => assert_eq!(coordinate, "rod.w"),
+        other => panic!("expected SingularJacobian, got {other:?}"),
+    }
 }
