@@ -1,7 +1,7 @@
 // Generated from slider_crank.rs by `MBD_BLESS=1 cargo test -p mbd-macros snapshot`. Do not edit.
 /// Slider-crank driven at constant speed (Nikravesh, Planar Multibody Dynamics, ch. 7).
 ///
-/// 3 bodies, 9 coordinates and velocities, 9 constraint rows (0 degrees of freedom); Φ_q has 23 structural non-zeros of 81.
+/// 3 planar bodies, 9 coordinates and velocities, 9 constraint rows (0 degrees of freedom); D has 23 structural non-zeros of 81.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderCrank {
     ///Parameter `omega` (default 6.283185307179586).
@@ -25,7 +25,7 @@ impl ::core::default::Default for SliderCrank {
 impl SliderCrank {
     /// Number of moving bodies.
     pub const N_BODIES: usize = 3;
-    /// Number of generalized coordinates q (3 per body).
+    /// Number of generalized coordinates q (3 per body: x, y, φ).
     pub const NQ: usize = 9;
     /// Number of velocities v (3 per body; planar v = q̇, so NV = NQ).
     pub const NV: usize = 9;

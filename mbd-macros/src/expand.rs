@@ -70,9 +70,6 @@ fn matrix_outputs(name: &str, entries: &[(usize, usize, u32)]) -> Vec<Output> {
 
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
-    if m.space == crate::model::Space::Spatial {
-        return Err(syn::Error::new(m.name.span(), "spatial mechanisms are validated and formulated, but their code is not generated yet"));
-    }
     let f = formulate(m);
     emit::check_finite(&f, m.name.span())?;
     let e: Emitter = emit::emitter(m, &f);
@@ -80,8 +77,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let name = &m.name;
     let vis = &m.vis;
     let attrs = &m.attrs;
-    // Planar bodies: the velocities are the coordinates' rates, NV = NQ and B = I.
-    let (nb, nq, nv, nc, nnz) = (m.bodies.len(), f.nq, f.nq, f.nc, f.jacobian.len());
+    let (nb, nq, nv, nc, nnz) = (m.bodies.len(), f.nq, f.nv, f.nc, f.jacobian.len());
     let (nb_l, nq_l, nv_l, nc_l, nnz_l) = (usize_lit(nb), usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz));
     let np = usize_lit(m.params.len());
     let dof = nv as i32 - nc as i32;
@@ -121,10 +117,25 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             Output { target: quote!(m[#il]), node: f.mass[i] }
         })
         .collect();
+    // and its products of inertia (spatial bodies), `mc[k]` the k-th of `mass_coupling`
+    let mut mass_outputs = mass_outputs;
+    mass_outputs.extend(f.mass_coupling.iter().enumerate().map(|(k, &(_, _, node))| {
+        let k = usize_lit(k);
+        Output { target: quote!(mc[#k]), node }
+    }));
     let (mass_body, _) = e.body(&mass_outputs);
     // y = M x writes every entry: zeros first only where M has a zero on its diagonal.
     let zero_y = if mass_entries.len() < nv { quote!(*y = [#zero; #nv_l];) } else { quote!() };
     let mass_entries: Vec<Literal> = mass_entries.into_iter().map(usize_lit).collect();
+    let (coupling_decl, coupling_times, coupling_add) = if f.mass_coupling.is_empty() {
+        (quote!(), quote!(), quote!())
+    } else {
+        let n = usize_lit(f.mass_coupling.len());
+        let (k, r, c): (Vec<Literal>, Vec<Literal>, Vec<Literal>) =
+            f.mass_coupling.iter().enumerate().map(|(k, &(r, c, _))| (usize_lit(k), usize_lit(r), usize_lit(c))).collect();
+        (quote!(let mut mc = [#zero; #n];), quote!(#( y[#r] += mc[#k] * x[#c]; )*), quote!(#( a[#r][#c] += scale * mc[#k]; )*))
+    };
+    let positions_code = position_updates(m, &e);
     let (h_body, h_ops) = e.body(&vector_outputs("h", &f.h));
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_v_body, h_v_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
@@ -227,6 +238,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
     let coordinate_names = m.coordinate_names();
+    // planar v = q̇: the velocities are named by their coordinates, as the runtime's messages say
+    let velocity_names = if m.space == crate::model::Space::Planar { m.coordinate_names() } else { m.velocity_names() };
+    let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
     let row_names = &f.row_names;
     let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
@@ -238,11 +252,19 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let json = model_json(m, &f.row_names, &f.first_rows, &pattern);
     let name_str = name.to_string();
 
+    let sizes = if nq == nv { format!("{nq} coordinates and velocities") } else { format!("{nq} coordinates, {nv} velocities") };
     let summary = format!(
-        " {nb} bodies, {nq} coordinates and velocities, {nc} constraint rows ({dof} degrees of freedom); \
-         Φ_q has {nnz} structural non-zeros of {}.",
+        " {nb} {} bodies, {sizes}, {nc} constraint rows ({dof} degrees of freedom); \
+         D has {nnz} structural non-zeros of {}.",
+        if m.space == crate::model::Space::Planar { "planar" } else { "spatial" },
         nv * nc
     );
+    let (per_body_q, per_body_v) = match m.space {
+        crate::model::Space::Planar => ("3 per body: x, y, φ", "3 per body; planar v = q̇, so NV = NQ"),
+        crate::model::Space::Spatial => ("7 per body: x, y, z, e0, e1, e2, e3", "6 per body: ẋ, ẏ, ż, ω′x, ω′y, ω′z"),
+    };
+    let (doc_nq, doc_nv) =
+        (format!(" Number of generalized coordinates q ({per_body_q})."), format!(" Number of velocities v ({per_body_v})."));
     let zero_nu = if phi_t_zero { quote!(*nu = [#zero; #nc_l];) } else { nu_body };
 
     Ok(quote! {
@@ -267,9 +289,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         impl #name {
             /// Number of moving bodies.
             pub const N_BODIES: usize = #nb_l;
-            /// Number of generalized coordinates q (3 per body).
+            #[doc = #doc_nq]
             pub const NQ: usize = #nq_l;
-            /// Number of velocities v (3 per body; planar v = q̇, so NV = NQ).
+            #[doc = #doc_nv]
             pub const NV: usize = #nv_l;
             /// Number of constraint rows (joints, drivers and user constraints).
             pub const NC: usize = #nc_l;
@@ -329,8 +351,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const NAME: &'static str = #name_str;
             const BODY_NAMES: &'static [&'static str] = &[#(#body_names),*];
             const COORDINATE_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
-            const VELOCITY_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
-            const DIMENSION: u8 = 2;
+            const VELOCITY_NAMES: &'static [&'static str] = &[#(#velocity_names),*];
+            const DIMENSION: u8 = #dimension;
             const CONSTRAINT_NAMES: &'static [&'static str] = &[#(#row_names),*];
             const PARAM_NAMES: &'static [&'static str] = &[#(#param_names),*];
             const DOF: i32 = #dof;
@@ -356,15 +378,19 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             #[inline]
             fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
                 let mut m = [#zero; #nv_l];
+                #coupling_decl
                 #mass_body
                 #zero_y
                 #( y[#mass_entries] = m[#mass_entries] * x[#mass_entries]; )*
+                #coupling_times
             }
             #[inline]
             fn add_mass_matrix(&self, q: &[#real; #nq_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
                 let mut m = [#zero; #nv_l];
+                #coupling_decl
                 #mass_body
                 #( a[#mass_entries][#mass_entries] += scale * m[#mass_entries]; )*
+                #coupling_add
             }
             #[inline]
             fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
@@ -431,18 +457,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #v0_body
                 v
             }
-            #[inline]
-            fn position_rates(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], qdot: &mut [#real; #nq_l]) {
-                *qdot = *v;
-            }
-            #[inline]
-            fn integrate_positions(&self, q: &mut [#real; #nq_l], dv: &[#real; #nv_l], h: #real) {
-                for i in 0..#nq_l {
-                    q[i] += h * dv[i];
-                }
-            }
-            #[inline]
-            fn normalize_positions(&self, q: &mut [#real; #nq_l]) {}
+            #positions_code
             #[inline]
             fn constraints(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l]) {
                 #phi_body
@@ -481,6 +496,70 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
     })
+}
+
+/// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)
+/// and `normalize_positions`. Planar: B = I and nothing to normalize. Spatial, per body:
+/// ṙ = v_r, ṗ = ½ Lᵀ(p) ω′ (docs/formulation.md), then p ← p/|p|.
+fn position_updates(m: &Model, e: &Emitter) -> TokenStream {
+    let real = real(m.scalar);
+    let (nq, nv) = (usize_lit(7 * m.bodies.len()), usize_lit(6 * m.bodies.len()));
+    if m.space == crate::model::Space::Planar {
+        let n = usize_lit(3 * m.bodies.len());
+        return quote! {
+            #[inline]
+            fn position_rates(&self, q: &[#real; #n], v: &[#real; #n], qdot: &mut [#real; #n]) {
+                *qdot = *v;
+            }
+            #[inline]
+            fn integrate_positions(&self, q: &mut [#real; #n], dv: &[#real; #n], h: #real) {
+                for i in 0..#n {
+                    q[i] += h * dv[i];
+                }
+            }
+            #[inline]
+            fn normalize_positions(&self, q: &mut [#real; #n]) {}
+        };
+    }
+    let (half, one) = (e.literal(0.5), e.literal(1.0));
+    let nb = usize_lit(m.bodies.len());
+    quote! {
+        #[inline]
+        fn position_rates(&self, q: &[#real; #nq], v: &[#real; #nv], qdot: &mut [#real; #nq]) {
+            for k in 0..#nb {
+                let (r, w) = (7 * k, 6 * k);
+                let (e0, e1, e2, e3) = (q[r + 3], q[r + 4], q[r + 5], q[r + 6]);
+                let (wx, wy, wz) = (v[w + 3], v[w + 4], v[w + 5]);
+                qdot[r] = v[w];
+                qdot[r + 1] = v[w + 1];
+                qdot[r + 2] = v[w + 2];
+                qdot[r + 3] = #half * (-e1 * wx - e2 * wy - e3 * wz);
+                qdot[r + 4] = #half * (e0 * wx - e3 * wy + e2 * wz);
+                qdot[r + 5] = #half * (e3 * wx + e0 * wy - e1 * wz);
+                qdot[r + 6] = #half * (-e2 * wx + e1 * wy + e0 * wz);
+            }
+        }
+        #[inline]
+        fn integrate_positions(&self, q: &mut [#real; #nq], dv: &[#real; #nv], h: #real) {
+            let mut rates = [<#real as ::mbd::Real>::ZERO; #nq];
+            ::mbd::Kinematics::position_rates(self, q, dv, &mut rates);
+            for i in 0..#nq {
+                q[i] += h * rates[i];
+            }
+            ::mbd::Kinematics::normalize_positions(self, q);
+        }
+        #[inline]
+        fn normalize_positions(&self, q: &mut [#real; #nq]) {
+            for k in 0..#nb {
+                let p = 7 * k + 3;
+                let norm = <#real as ::mbd::Real>::sqrt(q[p] * q[p] + q[p + 1] * q[p + 1] + q[p + 2] * q[p + 2] + q[p + 3] * q[p + 3]);
+                let scale = #one / norm;
+                for i in p..p + 4 {
+                    q[i] *= scale;
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -14,7 +14,6 @@ use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
 /// The symbolic equations of one mechanism.
-#[allow(dead_code)] // TEMPORARY: `nv` and `mass_coupling` are read by the spatial emission, next
 pub struct Formulation {
     pub graph: Graph,
     pub nq: usize,

@@ -24,11 +24,14 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let name = &m.name;
     let zero = e.literal(0.0);
     let one = e.literal(1.0);
-    // Planar bodies: NV = NQ.
-    let (nq, nv, nc, nnz) = (f.nq, f.nq, f.nc, f.jacobian.len());
+    let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
     let (nq_l, nv_l, nc_l, nnz_l) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz));
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
-    let schur = Schur::plan(nc, &pattern, &[]);
+    // M⁻¹ off its diagonal (spatial bodies with products of inertia): `minv_off[k]` is the k-th
+    // of `coupling`, read with the diagonal of those blocks from the evaluated `mi`.
+    let coupling: Vec<(usize, usize)> = f.mass_inverse.iter().filter(|e| e.0 != e.1).map(|&(r, c, _)| (r, c)).collect();
+    let coupled = !coupling.is_empty();
+    let schur = Schur::plan(nc, &pattern, &coupling);
     let nl_l = usize_lit(schur.nl());
     let factor = schur.factor(&real, &zero);
     let solve = schur.solve();
@@ -43,11 +46,26 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         .collect();
     let phi_t_zero = f.phi_t_is_zero();
 
-    // v̇ = M⁻¹ h (+ M⁻¹ Dᵀ λ later), M⁻¹ once per distinct mass expression.
+    // v̇ = M⁻¹ h (+ M⁻¹ Dᵀ λ later), M⁻¹ once per distinct mass expression; a block with
+    // products of inertia from its evaluated inverse.
     let mut minv = Vec::new();
+    let mut minv_off = Vec::new();
+    for (k, &(r, c, _)) in f.mass_inverse.iter().enumerate() {
+        let (kl, rl) = (usize_lit(k), usize_lit(r));
+        if r == c {
+            minv.push(quote!(minv[#rl] = mi[#kl];));
+        } else {
+            let index = usize_lit(minv_off.len());
+            minv_off.push(quote!(minv_off[#index] = mi[#kl];));
+        }
+    }
+    let from_block = |i: usize| f.mass_inverse.iter().any(|e| e.0 == i && e.1 == i);
     for (i, &node) in f.mass.iter().enumerate() {
         let il = usize_lit(i);
-        match f.mass[..i].iter().position(|&n| n == node) {
+        if from_block(i) {
+            continue;
+        }
+        match (0..i).find(|&j| f.mass[j] == node && !from_block(j)) {
             Some(j) => {
                 let jl = usize_lit(j);
                 minv.push(quote!(minv[#il] = minv[#jl];));
@@ -76,23 +94,55 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             })
             .collect()
     };
-    // x[c] += minv[c] (Dᵀ y)_c, straight-line over the pattern.
-    let add_transpose = |x: &TokenStream, y: &TokenStream, sign: TokenStream| -> Vec<TokenStream> {
+    // (Dᵀ y)_c, straight-line over the pattern; None for a column without non-zeros.
+    let transpose_column = |y: &TokenStream, c: usize| -> Option<TokenStream> {
+        let terms: Vec<TokenStream> = pattern
+            .iter()
+            .enumerate()
+            .filter(|(_, &(_, col))| col == c)
+            .map(|(k, &(r, _))| {
+                let (k, r) = (usize_lit(k), usize_lit(r));
+                quote!(jv[#k] * #y[#r])
+            })
+            .collect();
+        (!terms.is_empty()).then(|| quote!((#(#terms)+*)))
+    };
+    // x[c] += (M⁻¹ w)_c for w given per column (`w(c)`), over M⁻¹'s structural non-zeros.
+    let add_minv = |x: &TokenStream, sign: &TokenStream, w: &dyn Fn(usize) -> Option<TokenStream>| -> Vec<TokenStream> {
         (0..nv)
             .filter_map(|c| {
-                let terms: Vec<TokenStream> = pattern
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, &(_, col))| col == c)
-                    .map(|(k, &(r, _))| {
-                        let (k, r) = (usize_lit(k), usize_lit(r));
-                        quote!(jv[#k] * #y[#r])
-                    })
-                    .collect();
                 let cl = usize_lit(c);
-                (!terms.is_empty()).then(|| quote!(#x[#cl] #sign minv[#cl] * (#(#terms)+*);))
+                let mut terms: Vec<TokenStream> = w(c).map(|wc| quote!(minv[#cl] * #wc)).into_iter().collect();
+                for (k, &(r, c2)) in coupling.iter().enumerate() {
+                    if r == c {
+                        if let Some(wc2) = w(c2) {
+                            let kl = usize_lit(k);
+                            terms.push(quote!(minv_off[#kl] * #wc2));
+                        }
+                    }
+                }
+                (!terms.is_empty()).then(|| quote!(#x[#cl] #sign #(#terms)+*;))
             })
             .collect()
+    };
+    // x[c] += (M⁻¹ Dᵀ y)_c; with M⁻¹ coupled, Dᵀy is formed first.
+    let add_transpose = |x: &TokenStream, y: &TokenStream, sign: TokenStream| -> Vec<TokenStream> {
+        if !coupled {
+            return add_minv(x, &sign, &|c| transpose_column(y, c));
+        }
+        let columns: Vec<TokenStream> = (0..nv)
+            .filter_map(|c| {
+                let cl = usize_lit(c);
+                transpose_column(y, c).map(|t| quote!(w[#cl] = #t;))
+            })
+            .collect();
+        let has = |c: usize| transpose_column(y, c).is_some();
+        let mut out = vec![quote!(let mut w = [#zero; #nv_l]; #(#columns)*)];
+        out.extend(add_minv(x, &sign, &|c| {
+            let cl = usize_lit(c);
+            has(c).then(|| quote!(w[#cl]))
+        }));
+        out
     };
     let rows: Vec<Literal> = (0..nc).map(usize_lit).collect();
     let cols: Vec<Literal> = (0..nv).map(usize_lit).collect();
@@ -106,6 +156,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     outputs.extend(vector_outputs("gamma", &f.gamma));
     outputs.extend(vector_outputs("h", &f.h));
     outputs.extend(vector_outputs("m", &f.mass));
+    outputs.extend(inverse_outputs(f));
     let (eval_body, eval_ops) = e.body(&outputs);
     let d_vd = row_times(&quote!(vd));
     let d_v = row_times(&quote!(v));
@@ -114,21 +165,39 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let mut positions = vector_outputs("phi", &f.phi);
     positions.extend(jacobian_values_outputs(f, "jv"));
     positions.extend(vector_outputs("m", &f.mass));
+    positions.extend(inverse_outputs(f));
     let (positions_body, _) = e.body(&positions);
-    let q_step = add_transpose(&quote!(q), &quote!(b), quote!(-=));
+    // q ← q ⊕ (−M⁻¹ Dᵀ b): directly in q where v = q̇, through the velocity map otherwise.
+    let q_step = if nq == nv {
+        add_transpose(&quote!(q), &quote!(b), quote!(-=))
+    } else {
+        let mut step = vec![quote!(let mut dv = [#zero; #nv_l];)];
+        step.extend(add_transpose(&quote!(dv), &quote!(b), quote!(-=)));
+        step.push(quote!(::mbd::Kinematics::integrate_positions(self, q, &dv, #one);));
+        step
+    };
 
     let mut velocities = jacobian_values_outputs(f, "jv");
     if !phi_t_zero {
         velocities.extend(vector_outputs("nu", &f.nu));
     }
     velocities.extend(vector_outputs("m", &f.mass));
+    velocities.extend(inverse_outputs(f));
     let (velocities_body, _) = e.body(&velocities);
     let v_step = add_transpose(&quote!(v), &quote!(b), quote!(-=));
 
     // Without Coulomb friction one solve; with it, fixed-point iteration on the normal loads λ
     // (the factorization of S does not depend on h, so each iteration is one more solve).
+    let minv_h = if coupled {
+        add_minv(&quote!(vd), &quote!(=), &|c| {
+            let cl = usize_lit(c);
+            Some(quote!(h[#cl]))
+        })
+    } else {
+        cols.iter().map(|c| quote!(vd[#c] = h[#c] * minv[#c];)).collect()
+    };
     let one_solve = quote! {
-        #( vd[#cols] = h[#cols] * minv[#cols]; )*
+        #(#minv_h)*
         #( lambda[#rows] = gamma[#rows] - #d_vd - two_alpha * (#d_v - nu[#rows]) - beta2 * phi[#rows]; )*
         Self::schur_solve(&l, &dinv, lambda);
         #(#lambda_vd)*
@@ -176,13 +245,26 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|x| x.is_finite());
         return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, finite));
     };
+    // With products of inertia: the evaluated blocks of M⁻¹ (`mi`) and its off-diagonal part.
+    let (n_mi, n_off) = (usize_lit(f.mass_inverse.len()), usize_lit(coupling.len()));
+    let (minv_off_decl, minv_off_arg, minv_off_param, mi_decl) = if coupled {
+        (
+            quote!(let mut minv_off = [#zero; #n_off]; #(#minv_off)*),
+            quote!(&minv_off,),
+            quote!(minv_off: &[#real; #n_off],),
+            quote!(let mut mi = [#zero; #n_mi];),
+        )
+    } else {
+        (quote!(), quote!(), quote!(), quote!())
+    };
     let factor_call = quote! {
         let mut minv = [#zero; #nv_l];
         #(#minv)*
+        #minv_off_decl
         let mut l = [#zero; #nl_l];
         let mut dinv = [#zero; #nc_l];
         if let ::core::result::Result::Err(row) =
-            Self::schur_factor(&jv, &minv, options.pivot_tolerance, options.allow_redundant, &mut l, &mut dinv)
+            Self::schur_factor(&jv, &minv, #minv_off_arg options.pivot_tolerance, options.allow_redundant, &mut l, &mut dinv)
         {
             #fail
         }
@@ -200,6 +282,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         fn schur_factor(
             jv: &[#real; #nnz_l],
             minv: &[#real; #nv_l],
+            #minv_off_param
             tol: #real,
             allow_redundant: bool,
             l: &mut [#real; #nl_l],
@@ -233,6 +316,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 let mut gamma = [#zero; #nc_l];
                 let mut h = [#zero; #nv_l];
                 let mut m = [#zero; #nv_l];
+                #mi_decl
                 #eval_body
                 #factor_call
                 let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -250,6 +334,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 let mut jv = [#zero; #nnz_l];
                 let mut phi = [#zero; #nc_l];
                 let mut m = [#zero; #nv_l];
+                #mi_decl
                 {
                     let q: &[#real; #nq_l] = q;
                     #positions_body
@@ -273,6 +358,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 let mut jv = [#zero; #nnz_l];
                 let mut nu = [#zero; #nc_l];
                 let mut m = [#zero; #nv_l];
+                #mi_decl
                 #velocities_body
                 #factor_call
                 let mut b = [#zero; #nc_l];
@@ -288,4 +374,17 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
     ForwardCode { helpers, impl_block, eval_ops }
+}
+
+/// Outputs `mi[k]` = the k-th structural non-zero of the coupled blocks of M⁻¹ (none for a
+/// diagonal M).
+fn inverse_outputs(f: &Formulation) -> Vec<Output> {
+    f.mass_inverse
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(mi[#k]), node }
+        })
+        .collect()
 }
