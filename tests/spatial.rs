@@ -70,9 +70,10 @@ mechanism! {
         params { a: 0.1, len: 0.35, ey: 0.05, ez: 0.08, omega: 3.0 }
         body crank { mass: 1.0, inertia: [1.0e-3, 1.0e-3, 2.0e-3] }
         body slider { mass: 0.5, inertia: [1.0e-4, 1.0e-4, 1.0e-4], at: [0.4, ey, ez] }
+        point crank.pin = [a, 0.0, 0.0];
         revolute crankshaft: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ crank[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0];
         translational guide: ground[0.0, ey, ez] along [1.0, 0.0, 0.0] ~ slider[0.0, 0.0, 0.0] along [1.0, 0.0, 0.0];
-        distance crank[a, 0.0, 0.0] ~ slider[0.0, 0.0, 0.0] { length: len };
+        distance crank.pin ~ slider[0.0, 0.0, 0.0] { length: len };
         drive crankshaft.angle = omega * t;
     }
 }
@@ -230,14 +231,16 @@ fn rssr_output_angle() {
         .sweep(&m, &mut q, times(0.05, 2.0 * PI / w), |t, q, v, _| {
             let theta = w * t;
             // the rocker turns about x: p = (cos ψ/2, sin ψ/2, 0, 0)
-            let got = 2.0 * q[7 + 4].atan2(q[7 + 3]);
+            let p = Rssr::ROCKER.orientation(q);
+            let got = 2.0 * p.i.atan2(p.w);
             let want = psi(theta, previous);
             previous = want;
             let d = 1e-6;
             let rate = (psi(theta + d, want) - psi(theta - d, want)) / (2.0 * d) * w;
             assert!((got - want).abs() < 1e-9, "θ = {theta}: ψ = {got}, closed form {want}");
             // ω′x of the rocker is ψ̇ (the difference quotient is good to ~1e-9)
-            assert!((v[6 + 3] - rate).abs() < 1e-7, "θ = {theta}: ψ̇ = {}, closed form {rate}", v[6 + 3]);
+            let psi_dot = Rssr::ROCKER.body_angular_velocity(v).x;
+            assert!((psi_dot - rate).abs() < 1e-7, "θ = {theta}: ψ̇ = {psi_dot}, closed form {rate}");
             checked += 1;
         })
         .unwrap();
@@ -264,9 +267,14 @@ fn spatial_slider_crank_stroke() {
             let (speed, accel) = ((s(t + d) - s(t - d)) / (2.0 * d), (s(t + d) - 2.0 * s(t) + s(t - d)) / (d * d));
             // the slider's centre is at x = s; central differences with d = 1e-4 s are good to
             // ~1e-7 (speed) and ~1e-5 (acceleration, with rounding ε s / d² ≈ 1e-8)
-            assert!((q[7] - s(t)).abs() < 1e-9, "t = {t}: x = {}, closed form {}", q[7], s(t));
-            assert!((v[6] - speed).abs() < 1e-6, "t = {t}: ẋ = {}, closed form {speed}", v[6]);
-            assert!((vd[6] - accel).abs() < 1e-3 * (1.0 + accel.abs()), "t = {t}: ẍ = {}, closed form {accel}", vd[6]);
+            let slider = SpatialSliderCrank::SLIDER;
+            let (x, xd, xdd) = (slider.position(q).x, slider.velocity(v).x, slider.acceleration(vd).x);
+            assert!((x - s(t)).abs() < 1e-9, "t = {t}: x = {x}, closed form {}", s(t));
+            assert!((xd - speed).abs() < 1e-6, "t = {t}: ẋ = {xd}, closed form {speed}");
+            assert!((xdd - accel).abs() < 1e-3 * (1.0 + accel.abs()), "t = {t}: ẍ = {xdd}, closed form {accel}");
+            // the crank pin, a named point, stays a from the axis and the rod length from the slider
+            let pin = m.crank_pin().position(q);
+            assert!(((pin - slider.position(q)).norm() - len).abs() < 1e-9 && (pin.coords.xy().norm() - a).abs() < 1e-9);
         })
         .unwrap();
     assert!(checked > 100);

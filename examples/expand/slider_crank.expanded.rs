@@ -37,6 +37,12 @@ impl SliderCrank {
     pub const NNZ: usize = 23;
     /// Number of runtime parameters.
     pub const NP: usize = 3;
+    /// Body `crank`: its coordinates, velocities and points.
+    pub const CRANK: ::mbd::PlanarBody = ::mbd::PlanarBody::new(0, "crank");
+    /// Body `rod`: its coordinates, velocities and points.
+    pub const ROD: ::mbd::PlanarBody = ::mbd::PlanarBody::new(1, "rod");
+    /// Body `slider`: its coordinates, velocities and points.
+    pub const SLIDER: ::mbd::PlanarBody = ::mbd::PlanarBody::new(2, "slider");
     /// Parameter values in declaration order (see `PARAM_NAMES`).
     pub fn params(&self) -> [f64; 3] {
         [self.omega, self.r, self.l]

@@ -136,6 +136,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         (quote!(let mut mc = [#zero; #n];), quote!(#( y[#r] += mc[#k] * x[#c]; )*), quote!(#( a[#r][#c] += scale * mc[#k]; )*))
     };
     let positions_code = position_updates(m, &e);
+    let named = named_items(m, &f, &e);
     let (h_body, h_ops) = e.body(&vector_outputs("h", &f.h));
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_v_body, h_v_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
@@ -301,6 +302,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             pub const NNZ: usize = #nnz_l;
             /// Number of runtime parameters.
             pub const NP: usize = #np;
+
+            #named
 
             /// Parameter values in declaration order (see `PARAM_NAMES`).
             pub fn params(&self) -> [#real; #np] {
@@ -496,6 +499,46 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
     })
+}
+
+/// Named access: a constant per body (`Name::CRANK`, a `PlanarBody` or `SpatialBody`) and per
+/// labelled joint, driver or constraint (`Name::MOTOR`, a `JointId`), and an accessor per named
+/// point on a body (`crank_a()`, its coordinates evaluated from the parameters).
+fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
+    let real = real(m.scalar);
+    let (body_type, point_type) = match m.space {
+        crate::model::Space::Planar => (quote!(::mbd::PlanarBody), quote!(::mbd::PlanarPoint)),
+        crate::model::Space::Spatial => (quote!(::mbd::SpatialBody), quote!(::mbd::SpatialPoint)),
+    };
+    let bodies = m.bodies.iter().enumerate().map(|(k, b)| {
+        let (name, constant) = (b.name.to_string(), format_ident!("{}", crate::model::constant_name(&b.name.to_string())));
+        let (doc, k) = (format!(" Body `{name}`: its coordinates, velocities and points."), usize_lit(k));
+        quote!(#[doc = #doc] pub const #constant: #body_type = #body_type::new(#k, #name);)
+    });
+    let joints = m.constraints.iter().enumerate().filter(|(_, c)| syn::parse_str::<syn::Ident>(&c.name).is_ok()).map(|(k, c)| {
+        let constant = format_ident!("{}", crate::model::constant_name(&c.name));
+        let (doc, name, k) = (format!(" The {} `{}` (for `joint_reaction`, `JOINTS`).", c.kind.kind(), c.name), &c.name, usize_lit(k));
+        quote!(#[doc = #doc] pub const #constant: ::mbd::JointId = ::mbd::JointId::new(#k, #name);)
+    });
+    let dim = usize_lit(m.space.dim());
+    let points = m.points.iter().zip(&f.points).filter_map(|(p, nodes)| {
+        let crate::model::BodyRef::Body(k) = p.body else { return None };
+        let body = m.bodies[k].name.to_string();
+        let accessor = format_ident!("{}", crate::model::point_accessor(&body, &p.name));
+        let (doc, constant) = (format!(" Point `{body}.{}`.", p.name), format_ident!("{}", crate::model::constant_name(&body)));
+        let (local, _) = e.body(&vector_outputs("local", nodes));
+        let zero = e.literal(0.0);
+        Some(quote! {
+            #[doc = #doc]
+            #[allow(unused_parens)]
+            pub fn #accessor(&self) -> #point_type<#real> {
+                let mut local = [#zero; #dim];
+                #local
+                Self::#constant.point(local)
+            }
+        })
+    });
+    quote!(#(#bodies)* #(#joints)* #(#points)*)
 }
 
 /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)

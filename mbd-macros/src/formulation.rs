@@ -64,6 +64,9 @@ pub struct Formulation {
     /// Structural non-zeros of ∂(Φ_qᵀλ)/∂q (the constraints' geometric stiffness), with λ as
     /// variables.
     pub constraint_force_q: Vec<(usize, usize, Id)>,
+    /// The body-frame coordinates of each named point (`model.points`), functions of the
+    /// parameters, for the generated point accessors.
+    pub points: Vec<Vec<Id>>,
 }
 
 impl Formulation {
@@ -203,6 +206,7 @@ pub fn formulate(model: &Model) -> Formulation {
         constraint_force[c] = b.g.add(constraint_force[c], term);
     }
     let constraint_force_q = tangent(&mut b, &constraint_force);
+    let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
 
     Formulation {
         nc: phi.len(),
@@ -229,6 +233,7 @@ pub fn formulate(model: &Model) -> Formulation {
         friction_q,
         friction_qd,
         constraint_force_q,
+        points,
     }
 }
 

@@ -598,6 +598,64 @@ fn claim_name(
     None
 }
 
+/// Associated items of every generated mechanism type: a body or joint whose generated constant
+/// (its name in upper case) or a point whose accessor (`body_point`) would take one of these
+/// names is refused.
+const GENERATED_ITEMS: &[&str] = &[
+    "N_BODIES",
+    "NQ",
+    "NV",
+    "NC",
+    "DOF",
+    "NNZ",
+    "NP",
+    "NAME",
+    "BODY_NAMES",
+    "COORDINATE_NAMES",
+    "VELOCITY_NAMES",
+    "DIMENSION",
+    "CONSTRAINT_NAMES",
+    "PARAM_NAMES",
+    "JACOBIAN_PATTERN",
+    "PHI_T_IS_ZERO",
+    "OP_COUNTS",
+    "JOINTS",
+    "EFFECTS",
+    "MODEL_JSON",
+    "params",
+    "from_params",
+    "kkt_workspace",
+    "generalized_alpha",
+    "jacobian_values",
+    "full_eval_values",
+    "schur_factor",
+    "schur_solve",
+];
+
+/// The generated constant of a body or labelled joint: its name in upper case (`Name::CRANK`).
+pub fn constant_name(name: &str) -> String {
+    name.to_uppercase()
+}
+
+/// The generated accessor of a named point: `crank.A` → `crank_a()`.
+pub fn point_accessor(body: &str, point: &str) -> String {
+    format!("{body}_{point}").to_lowercase()
+}
+
+/// Claims a generated item name (a body's or labelled joint's constant, a point's accessor) for
+/// `what`; an error on `span` if a generated item or an earlier name has it.
+fn claim_item(items: &mut HashMap<String, String>, errors: &mut Errors, item: String, what: String, span: Span) -> bool {
+    if GENERATED_ITEMS.contains(&item.as_str()) {
+        errors.push(span, format!("{what} would generate `{item}`, which every mechanism already has: rename it"));
+        return false;
+    }
+    if let Some(other) = items.insert(item.clone(), what.clone()) {
+        errors.push(span, format!("{what} and {other} would both generate `{item}`: rename one"));
+        return false;
+    }
+    true
+}
+
 /// Checks a number that must be positive when it is a constant (a parameter's value is checked
 /// at run time by the solver that needs it).
 pub fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str) {
@@ -657,6 +715,8 @@ impl MechanismDef {
         let mut params = Vec::new();
         let mut bodies = Vec::new();
         let mut ok = true;
+        // generated item names (constants of bodies and labelled joints, point accessors)
+        let mut items: HashMap<String, String> = HashMap::new();
 
         // Pass 1: declarations (params, bodies) so statements can refer to them in any order.
         for item in &self.items {
@@ -713,6 +773,11 @@ impl MechanismDef {
                         ok = false;
                         continue;
                     }
+                    let item = constant_name(&b.name.to_string());
+                    if !claim_item(&mut items, r.errors, item, format!("body `{}`", b.name), b.name.span()) {
+                        ok = false;
+                        continue;
+                    }
                     r.bodies.insert(b.name.to_string(), bodies.len());
                     bodies.push(b);
                 }
@@ -750,6 +815,13 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
+            if let (true, BodyRef::Body(_)) = (is_point, body) {
+                let item = point_accessor(&nv.body.to_string(), &nv.name.to_string());
+                if !claim_item(&mut items, r.errors, item, format!("point `{}.{}`", nv.body, nv.name), nv.name.span()) {
+                    ok = false;
+                    continue;
+                }
+            }
             let key = (body, nv.name.to_string());
             let table = if is_point { &mut r.points } else { &mut r.vectors };
             if table.insert(key, local.clone()).is_some() {
@@ -770,7 +842,8 @@ impl MechanismDef {
             BodyRef::Body(k) => bodies[k].name.to_string(),
         };
         let mut names: HashMap<String, Span> = HashMap::new();
-        let (constraints, mut forces, joints) = constraints(&self.items, &mut r, &mut names, &model_bodies, &body_name, &mut ok);
+        let (constraints, mut forces, joints) =
+            constraints(&self.items, &mut r, &mut names, &mut items, &model_bodies, &body_name, &mut ok);
         let gravity = force_elements(&self.items, &mut r, &mut names, &body_name, &joints, &mut forces, &mut ok);
 
         if bodies.is_empty() {
@@ -807,6 +880,7 @@ fn constraints(
     items: &[Item],
     r: &mut Resolver,
     names: &mut HashMap<String, Span>,
+    generated: &mut HashMap<String, String>,
     bodies: &[Body],
     body_name: &dyn Fn(BodyRef) -> String,
     ok: &mut bool,
@@ -868,6 +942,12 @@ fn constraints(
             *ok = false;
             continue;
         };
+        if let Some(l) = label {
+            if !claim_item(generated, r.errors, constant_name(&name), format!("joint `{name}`"), l.span()) {
+                *ok = false;
+                continue;
+            }
+        }
         for (what, kind) in friction {
             forces.push(ForceElement { name: format!("{name} {what}"), kind });
         }
@@ -1212,5 +1292,28 @@ mod tests {
         assert!(e.to_string().contains("in space (it is a planar joint)"), "{e}");
         let Err(e) = validate("S { spatial; body a { mass: 1.0, inertia: 0.1 } }") else { panic!("a spatial inertia is a tensor") };
         assert!(e.to_string().contains("a spatial body's `inertia` is a list"), "{e}");
+    }
+
+    /// Bodies, labelled joints and named points generate named items (`Name::CRANK`,
+    /// `Name::MOTOR`, `crank_a()`): two that would generate the same one, or one that would take a
+    /// name every mechanism has, are refused on the later name.
+    #[test]
+    fn generated_names_do_not_collide() {
+        let cases = [
+            (
+                "M { body a { mass: 1.0, inertia: 0.1 } body A { mass: 1.0, inertia: 0.1 } }",
+                "body `A` and body `a` would both generate `A`",
+            ),
+            ("M { body nq { mass: 1.0, inertia: 0.1 } }", "body `nq` would generate `NQ`, which every mechanism already has"),
+            (
+                "M { body a { mass: 1.0, inertia: 0.1 } revolute a: ground[0.0, 0.0] ~ a[0.0, 0.0]; }",
+                "joint `a` and body `a` would both generate `A`",
+            ),
+            ("M { body a { mass: 1.0, inertia: 0.1 } point a.B = [0.0, 0.0]; point a.b = [1.0, 0.0]; }", "would both generate `a_b`"),
+        ];
+        for (src, want) in cases {
+            let Err(e) = validate(src) else { panic!("{src} has a name collision") };
+            assert!(e.to_string().contains(want), "{src}: {e}");
+        }
     }
 }

@@ -195,7 +195,8 @@ where
 /// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].
 const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 
-/// The reaction of joint number `joint` (an index into [`Mechanism::JOINTS`]) from the
+/// The reaction of a joint — by its label, `Name::LABEL`, or its index into
+/// [`Mechanism::JOINTS`] — from the
 /// coordinates q, the Jacobian `d` = D(q, t) and the multipliers λ at the same state; `mechanism`
 /// is read for its type (its joints, bodies and dimension). `None` if there is no such joint.
 ///
@@ -207,14 +208,14 @@ pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     q: &[T; NQ],
     d: &[[T; NV]; NC],
     lambda: &[T; NC],
-    joint: usize,
+    joint: impl Into<usize>,
 ) -> Option<JointReaction<T>>
 where
     T: Real,
     M: Mechanism,
 {
     let _ = mechanism;
-    let info = M::JOINTS.get(joint)?;
+    let info = M::JOINTS.get(joint.into())?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
     let (per_body, coordinates) = (velocities_per_body::<M>(), coordinates_per_body::<M>());
     let wrench = |body: Option<u16>| -> Option<Wrench<T>> {

@@ -14,6 +14,7 @@ mod inverse;
 mod kinematics;
 pub mod linalg;
 mod mechanism;
+mod named;
 mod partition;
 mod planar;
 mod real;
@@ -35,6 +36,10 @@ pub use kinematics::{
     DEFAULT_TOLERANCE,
 };
 pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
+/// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
+/// points come out as its types).
+pub use nalgebra;
+pub use named::{JointId, PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;

@@ -23,6 +23,12 @@ pub trait Real:
     + SubAssign
     + MulAssign
     + DivAssign
+    + nalgebra::Scalar
+    + nalgebra::ClosedAddAssign
+    + nalgebra::ClosedSubAssign
+    + nalgebra::ClosedMulAssign
+    + num_traits::Zero
+    + num_traits::One
     + 'static
 {
     /// 0

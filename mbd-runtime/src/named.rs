@@ -1,0 +1,258 @@
+//! Named access to a mechanism's state: what `mechanism!` generates for each body, labelled
+//! joint and named point, so that results are read by name (`Engine::CRANK.phi(&q)`,
+//! `engine.crank_a().velocity(&q, &v)`, `joint_reaction(.., Engine::MOTOR)`) and never by an
+//! index into q.
+//!
+//! Positions, velocities and accelerations go out as nalgebra types (`Point3`, `Vector3`,
+//! `UnitQuaternion`, `Matrix3`; `Point2`, `Vector2` in the plane). The state goes in as slices,
+//! so arrays (`&q`) and nalgebra vectors (`q.as_slice()`) both work. A slice shorter than the
+//! mechanism's state panics with an index error: these are read-out helpers for the state the
+//! solvers return, whose size the mechanism fixes.
+
+use nalgebra::{Matrix3, Point2, Point3, Quaternion, UnitQuaternion, Vector2, Vector3};
+
+use crate::inverse::euler_rotation;
+use crate::Real;
+
+/// A joint, driver or user constraint of a mechanism by its label: its index into
+/// [`Mechanism::JOINTS`](crate::Mechanism::JOINTS). Generated as `Name::LABEL`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JointId {
+    /// Its index among the mechanism's joints, drivers and constraints.
+    pub index: usize,
+    /// Its label.
+    pub name: &'static str,
+}
+
+impl JointId {
+    /// The joint number `index`, labelled `name`.
+    pub const fn new(index: usize, name: &'static str) -> Self {
+        JointId { index, name }
+    }
+}
+
+impl From<JointId> for usize {
+    fn from(j: JointId) -> usize {
+        j.index
+    }
+}
+
+/// A planar body: coordinates q[3k..3k+3] = (x, y, φ), velocities the same entries of v = q̇.
+/// Generated as `Name::BODY`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanarBody {
+    /// Its index among the moving bodies.
+    pub index: usize,
+    /// Its name.
+    pub name: &'static str,
+}
+
+impl PlanarBody {
+    /// Body number `index`, named `name`.
+    pub const fn new(index: usize, name: &'static str) -> Self {
+        PlanarBody { index, name }
+    }
+    /// x of its centre of mass (m).
+    pub fn x<T: Real>(&self, q: &[T]) -> T {
+        q[3 * self.index]
+    }
+    /// y of its centre of mass (m).
+    pub fn y<T: Real>(&self, q: &[T]) -> T {
+        q[3 * self.index + 1]
+    }
+    /// Its angle φ (rad).
+    pub fn phi<T: Real>(&self, q: &[T]) -> T {
+        q[3 * self.index + 2]
+    }
+    /// Its centre of mass (m).
+    pub fn position<T: Real>(&self, q: &[T]) -> Point2<T> {
+        Point2::new(self.x(q), self.y(q))
+    }
+    /// The velocity of its centre of mass (m/s).
+    pub fn velocity<T: Real>(&self, v: &[T]) -> Vector2<T> {
+        Vector2::new(v[3 * self.index], v[3 * self.index + 1])
+    }
+    /// Its angular velocity φ̇ (rad/s, counter-clockwise).
+    pub fn omega<T: Real>(&self, v: &[T]) -> T {
+        v[3 * self.index + 2]
+    }
+    /// Its angular acceleration φ̈ (rad/s²) from the accelerations v̇.
+    pub fn alpha<T: Real>(&self, vd: &[T]) -> T {
+        vd[3 * self.index + 2]
+    }
+    /// The point with body-fixed coordinates `local` (m).
+    pub fn point<T: Real>(&self, local: [T; 2]) -> PlanarPoint<T> {
+        PlanarPoint { body: *self, local }
+    }
+}
+
+/// A point fixed on a planar body, by its body-frame coordinates. Generated for each named
+/// point as a method `body_point()` of the mechanism (its coordinates may depend on parameters).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanarPoint<T> {
+    /// The body it is on.
+    pub body: PlanarBody,
+    /// Its coordinates in the body frame (m).
+    pub local: [T; 2],
+}
+
+impl<T: Real> PlanarPoint<T> {
+    /// r^P = r + A(φ) s′ (m).
+    pub fn position(&self, q: &[T]) -> Point2<T> {
+        let (s, c) = self.body.phi(q).sin_cos();
+        let [a, b] = self.local;
+        Point2::new(self.body.x(q) + c * a - s * b, self.body.y(q) + s * a + c * b)
+    }
+    /// ṙ^P = ṙ + φ̇ ∂A/∂φ s′ (m/s).
+    pub fn velocity(&self, q: &[T], v: &[T]) -> Vector2<T> {
+        let arm = self.arm(q);
+        let w = self.body.omega(v);
+        self.body.velocity(v) + Vector2::new(-w * arm.y, w * arm.x)
+    }
+    /// r̈^P = r̈ + φ̈ ∂A/∂φ s′ − φ̇² A s′ (m/s²).
+    pub fn acceleration(&self, q: &[T], v: &[T], vd: &[T]) -> Vector2<T> {
+        let arm = self.arm(q);
+        let (w, alpha) = (self.body.omega(v), self.body.alpha(vd));
+        let base = Vector2::new(vd[3 * self.body.index], vd[3 * self.body.index + 1]);
+        base + Vector2::new(-alpha * arm.y - w * w * arm.x, alpha * arm.x - w * w * arm.y)
+    }
+    /// A s′: from the centre of mass to the point, global components (m).
+    fn arm(&self, q: &[T]) -> Vector2<T> {
+        let (s, c) = self.body.phi(q).sin_cos();
+        let [a, b] = self.local;
+        Vector2::new(c * a - s * b, s * a + c * b)
+    }
+}
+
+/// A spatial body: coordinates q[7k..7k+7] = (x, y, z, e0, e1, e2, e3), velocities
+/// v[6k..6k+6] = (ẋ, ẏ, ż, ω′x, ω′y, ω′z) with ω′ in the body frame. Generated as `Name::BODY`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpatialBody {
+    /// Its index among the moving bodies.
+    pub index: usize,
+    /// Its name.
+    pub name: &'static str,
+}
+
+impl SpatialBody {
+    /// Body number `index`, named `name`.
+    pub const fn new(index: usize, name: &'static str) -> Self {
+        SpatialBody { index, name }
+    }
+    /// Its centre of mass (m).
+    pub fn position<T: Real>(&self, q: &[T]) -> Point3<T> {
+        let k = 7 * self.index;
+        Point3::new(q[k], q[k + 1], q[k + 2])
+    }
+    /// Its orientation: the unit quaternion of its Euler parameters (e0 the scalar part).
+    pub fn orientation<T: Real>(&self, q: &[T]) -> UnitQuaternion<T> {
+        let [e0, e1, e2, e3] = self.euler_parameters(q);
+        UnitQuaternion::new_unchecked(Quaternion::new(e0, e1, e2, e3))
+    }
+    /// Its rotation matrix A(p): body-frame components → global.
+    pub fn rotation<T: Real>(&self, q: &[T]) -> Matrix3<T> {
+        let a = euler_rotation(self.euler_parameters(q));
+        Matrix3::from_fn(|r, c| a[r][c])
+    }
+    /// The velocity of its centre of mass, global (m/s).
+    pub fn velocity<T: Real>(&self, v: &[T]) -> Vector3<T> {
+        let k = 6 * self.index;
+        Vector3::new(v[k], v[k + 1], v[k + 2])
+    }
+    /// Its angular velocity ω′ in its own frame (rad/s), as v holds it.
+    pub fn body_angular_velocity<T: Real>(&self, v: &[T]) -> Vector3<T> {
+        let k = 6 * self.index + 3;
+        Vector3::new(v[k], v[k + 1], v[k + 2])
+    }
+    /// Its angular velocity in global components, ω = A ω′ (rad/s).
+    pub fn angular_velocity<T: Real>(&self, q: &[T], v: &[T]) -> Vector3<T> {
+        self.rotation(q) * self.body_angular_velocity(v)
+    }
+    /// The acceleration of its centre of mass, global (m/s²), from v̇.
+    pub fn acceleration<T: Real>(&self, vd: &[T]) -> Vector3<T> {
+        self.velocity(vd)
+    }
+    /// Its angular acceleration ω̇′ in its own frame (rad/s²), from v̇.
+    pub fn body_angular_acceleration<T: Real>(&self, vd: &[T]) -> Vector3<T> {
+        self.body_angular_velocity(vd)
+    }
+    /// The point with body-fixed coordinates `local` (m).
+    pub fn point<T: Real>(&self, local: [T; 3]) -> SpatialPoint<T> {
+        SpatialPoint { body: *self, local }
+    }
+    fn euler_parameters<T: Real>(&self, q: &[T]) -> [T; 4] {
+        let k = 7 * self.index + 3;
+        [q[k], q[k + 1], q[k + 2], q[k + 3]]
+    }
+}
+
+/// A point fixed on a spatial body, by its body-frame coordinates. Generated for each named
+/// point as a method `body_point()` of the mechanism.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpatialPoint<T> {
+    /// The body it is on.
+    pub body: SpatialBody,
+    /// Its coordinates in the body frame (m).
+    pub local: [T; 3],
+}
+
+impl<T: Real> SpatialPoint<T> {
+    /// r^P = r + A s′ (m).
+    pub fn position(&self, q: &[T]) -> Point3<T> {
+        self.body.position(q) + self.body.rotation(q) * self.local_vector()
+    }
+    /// ṙ^P = ṙ + A (ω′ × s′) (m/s).
+    pub fn velocity(&self, q: &[T], v: &[T]) -> Vector3<T> {
+        let w = self.body.body_angular_velocity(v);
+        self.body.velocity(v) + self.body.rotation(q) * w.cross(&self.local_vector())
+    }
+    /// r̈^P = r̈ + A (ω̇′ × s′ + ω′ × (ω′ × s′)) (m/s²).
+    pub fn acceleration(&self, q: &[T], v: &[T], vd: &[T]) -> Vector3<T> {
+        let (w, wd, s) = (self.body.body_angular_velocity(v), self.body.body_angular_acceleration(vd), self.local_vector());
+        self.body.acceleration(vd) + self.body.rotation(q) * (wd.cross(&s) + w.cross(&w.cross(&s)))
+    }
+    fn local_vector(&self) -> Vector3<T> {
+        Vector3::new(self.local[0], self.local[1], self.local[2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A planar point 0.5 m along x of a body at (1, 2) turned 90° and spinning at 2 rad/s,
+    /// accelerating at 3 rad/s²: at (1, 2.5), moving at (−1, 0) m/s, accelerating at
+    /// (−1.5, −2) m/s² (tangential α r, centripetal ω² r).
+    #[test]
+    fn planar_point() {
+        let body = PlanarBody::new(1, "b");
+        let q = [0.0, 0.0, 0.0, 1.0, 2.0, core::f64::consts::FRAC_PI_2];
+        let (v, vd) = ([0.0, 0.0, 0.0, 0.0, 0.0, 2.0], [0.0, 0.0, 0.0, 0.0, 0.0, 3.0]);
+        let p = body.point([0.5, 0.0]);
+        // Tolerances: a few ulps of the O(1) values involved (cos 90° = 6e-17).
+        assert!((p.position(&q) - Point2::new(1.0, 2.5)).norm() < 1e-15);
+        assert!((p.velocity(&q, &v) - Vector2::new(-1.0, 0.0)).norm() < 1e-15);
+        assert!((p.acceleration(&q, &v, &vd) - Vector2::new(-1.5, -2.0)).norm() < 1e-15);
+        assert_eq!((body.x(&q), body.y(&q), body.omega(&v)), (1.0, 2.0, 2.0));
+    }
+
+    /// A spatial body turned 90° about z (p = (cos 45°, 0, 0, sin 45°)) spinning at ω′ = 2 about
+    /// its own z: its body x-axis point s′ = (0.5, 0, 0) is at r + (0, 0.5, 0) and moves at
+    /// ω × (A s′) = (−1, 0, 0); the quaternion and the rotation matrix agree with nalgebra's.
+    #[test]
+    fn spatial_point() {
+        let body = SpatialBody::new(0, "b");
+        let h = core::f64::consts::FRAC_1_SQRT_2;
+        let q = [1.0, 2.0, 3.0, h, 0.0, 0.0, h];
+        let v = [0.1, 0.0, 0.0, 0.0, 0.0, 2.0];
+        let vd = [0.0; 6];
+        let p = body.point([0.5, 0.0, 0.0]);
+        assert!((p.position(&q) - Point3::new(1.0, 2.5, 3.0)).norm() < 1e-15);
+        assert!((p.velocity(&q, &v) - Vector3::new(0.1 - 1.0, 0.0, 0.0)).norm() < 1e-15);
+        // centripetal ω² |s′| = 2 toward the centre: −2 along A s′ = (0, 1, 0)
+        assert!((p.acceleration(&q, &v, &vd) - Vector3::new(0.0, -2.0, 0.0)).norm() < 1e-15);
+        let nalgebra_rotation = body.orientation(&q).to_rotation_matrix().into_inner();
+        assert!((body.rotation(&q) - nalgebra_rotation).norm() < 1e-15);
+        assert!((body.angular_velocity(&q, &v) - Vector3::new(0.0, 0.0, 2.0)).norm() < 1e-15);
+    }
+}
