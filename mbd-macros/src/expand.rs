@@ -502,8 +502,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 }
 
 /// Named access: a constant per body (`Name::CRANK`, a `PlanarBody` or `SpatialBody`) and per
-/// labelled joint, driver or constraint (`Name::MOTOR`, a `JointId`), and an accessor per named
-/// point on a body (`crank_a()`, its coordinates evaluated from the parameters).
+/// labelled joint, driver or constraint (`Name::MOTOR`, its index into `JOINTS`), and an
+/// accessor per named point on a body (`crank_a()`, its coordinates evaluated from the
+/// parameters).
 fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let real = real(m.scalar);
     let (body_type, point_type) = match m.space {
@@ -517,8 +518,8 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     });
     let joints = m.constraints.iter().enumerate().filter(|(_, c)| syn::parse_str::<syn::Ident>(&c.name).is_ok()).map(|(k, c)| {
         let constant = format_ident!("{}", crate::model::constant_name(&c.name));
-        let (doc, name, k) = (format!(" The {} `{}` (for `joint_reaction`, `JOINTS`).", c.kind.kind(), c.name), &c.name, usize_lit(k));
-        quote!(#[doc = #doc] pub const #constant: ::mbd::JointId = ::mbd::JointId::new(#k, #name);)
+        let (doc, k) = (format!(" The {} `{}`: its index into `JOINTS` (for `joint_reaction`).", c.kind.kind(), c.name), usize_lit(k));
+        quote!(#[doc = #doc] pub const #constant: usize = #k;)
     });
     let dim = usize_lit(m.space.dim());
     let points = m.points.iter().zip(&f.points).filter_map(|(p, nodes)| {

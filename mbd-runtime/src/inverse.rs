@@ -195,7 +195,7 @@ where
 /// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].
 const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 
-/// The reaction of a joint — by its label, `Name::LABEL`, or its index into
+/// The reaction of a joint — by its label's generated constant `Name::LABEL`, its index into
 /// [`Mechanism::JOINTS`] — from the
 /// coordinates q, the Jacobian `d` = D(q, t) and the multipliers λ at the same state; `mechanism`
 /// is read for its type (its joints, bodies and dimension). `None` if there is no such joint.
@@ -208,14 +208,14 @@ pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     q: &[T; NQ],
     d: &[[T; NV]; NC],
     lambda: &[T; NC],
-    joint: impl Into<usize>,
+    joint: usize,
 ) -> Option<JointReaction<T>>
 where
     T: Real,
     M: Mechanism,
 {
     let _ = mechanism;
-    let info = M::JOINTS.get(joint.into())?;
+    let info = M::JOINTS.get(joint)?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
     let (per_body, coordinates) = (velocities_per_body::<M>(), coordinates_per_body::<M>());
     let wrench = |body: Option<u16>| -> Option<Wrench<T>> {

@@ -39,7 +39,7 @@ pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;
-pub use named::{JointId, PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
+pub use named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;

@@ -1,7 +1,7 @@
-//! Named access to a mechanism's state: what `mechanism!` generates for each body, labelled
-//! joint and named point, so that results are read by name (`Engine::CRANK.phi(&q)`,
-//! `engine.crank_a().velocity(&q, &v)`, `joint_reaction(.., Engine::MOTOR)`) and never by an
-//! index into q.
+//! Named access to a mechanism's state: what `mechanism!` generates for each body and named
+//! point, so that results are read by name (`Engine::CRANK.phi(&q)`,
+//! `engine.crank_a().velocity(&q, &v)`) and never by an index into q. A labelled joint gets a
+//! constant too, its index into `JOINTS` (`joint_reaction(.., Engine::MOTOR)`).
 //!
 //! Positions, velocities and accelerations go out as nalgebra types (`Point3`, `Vector3`,
 //! `UnitQuaternion`, `Matrix3`; `Point2`, `Vector2` in the plane). The state goes in as slices,
@@ -13,29 +13,6 @@ use nalgebra::{Matrix3, Point2, Point3, Quaternion, UnitQuaternion, Vector2, Vec
 
 use crate::inverse::euler_rotation;
 use crate::Real;
-
-/// A joint, driver or user constraint of a mechanism by its label: its index into
-/// [`Mechanism::JOINTS`](crate::Mechanism::JOINTS). Generated as `Name::LABEL`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct JointId {
-    /// Its index among the mechanism's joints, drivers and constraints.
-    pub index: usize,
-    /// Its label.
-    pub name: &'static str,
-}
-
-impl JointId {
-    /// The joint number `index`, labelled `name`.
-    pub const fn new(index: usize, name: &'static str) -> Self {
-        JointId { index, name }
-    }
-}
-
-impl From<JointId> for usize {
-    fn from(j: JointId) -> usize {
-        j.index
-    }
-}
 
 /// A planar body: coordinates q[3k..3k+3] = (x, y, φ), velocities the same entries of v = q̇.
 /// Generated as `Name::BODY`.
