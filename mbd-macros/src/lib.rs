@@ -24,7 +24,8 @@ mod sym;
 
 use proc_macro::TokenStream;
 
-/// Declares a planar mechanism in body coordinates and generates its constraint equations, their
+/// Declares a planar or spatial (`spatial;`) mechanism in body coordinates and generates its
+/// constraint equations, their
 /// exact Jacobian and the velocity and acceleration right-hand sides as straight-line Rust.
 ///
 /// See the README's DSL reference for the grammar and `docs/formulation.md` for the equations.
