@@ -21,7 +21,7 @@ impl ::core::default::Default for SliderCrank {
         }
     }
 }
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, clippy::approx_constant)]
 impl SliderCrank {
     /// Number of moving bodies.
     pub const N_BODIES: usize = 3;
@@ -408,7 +408,7 @@ impl ::mbd::Mechanism for SliderCrank {
     const EFFECTS: &'static [&'static str] = &[];
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, clippy::approx_constant)]
 impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn constraint_force_q(
@@ -442,7 +442,7 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
             + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
     }
 }
-#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+#[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
 impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn mass_times(&self, q: &[f64; 9], x: &[f64; 9], y: &mut [f64; 9]) {
@@ -540,7 +540,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
         power[0]
     }
 }
-#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+#[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
 impl SliderCrank {
     /// LDLᵀ of S = D M⁻¹ Dᵀ over its compile-time pattern; `Err(row)` for a dependent row.
     #[inline(always)]
@@ -689,14 +689,24 @@ impl SliderCrank {
     /// b ← S⁻¹ b with the factors of `schur_factor`.
     #[inline(always)]
     fn schur_solve(l: &[f64; 18], dinv: &[f64; 9], b: &mut [f64; 9]) {
-        b[6] = b[6] - l[0] * b[7];
-        b[4] = b[4] - l[1] * b[6];
-        b[5] = b[5] - l[2] * b[6] - l[3] * b[4];
-        b[1] = b[1] - l[8] * b[0];
-        b[2] = b[2] - l[4] * b[4] - l[6] * b[5] - l[9] * b[0] - l[12] * b[1];
-        b[3] = b[3] - l[5] * b[4] - l[7] * b[5] - l[10] * b[0] - l[13] * b[1]
-            - l[15] * b[2];
-        b[8] = b[8] - l[11] * b[0] - l[14] * b[1] - l[16] * b[2] - l[17] * b[3];
+        b[6] -= l[0] * b[7];
+        b[4] -= l[1] * b[6];
+        b[5] -= l[2] * b[6];
+        b[5] -= l[3] * b[4];
+        b[1] -= l[8] * b[0];
+        b[2] -= l[4] * b[4];
+        b[2] -= l[6] * b[5];
+        b[2] -= l[9] * b[0];
+        b[2] -= l[12] * b[1];
+        b[3] -= l[5] * b[4];
+        b[3] -= l[7] * b[5];
+        b[3] -= l[10] * b[0];
+        b[3] -= l[13] * b[1];
+        b[3] -= l[15] * b[2];
+        b[8] -= l[11] * b[0];
+        b[8] -= l[14] * b[1];
+        b[8] -= l[16] * b[2];
+        b[8] -= l[17] * b[3];
         b[7] *= dinv[0];
         b[6] *= dinv[1];
         b[4] *= dinv[2];
@@ -706,17 +716,27 @@ impl SliderCrank {
         b[2] *= dinv[6];
         b[3] *= dinv[7];
         b[8] *= dinv[8];
-        b[3] = b[3] - l[17] * b[8];
-        b[2] = b[2] - l[15] * b[3] - l[16] * b[8];
-        b[1] = b[1] - l[12] * b[2] - l[13] * b[3] - l[14] * b[8];
-        b[0] = b[0] - l[8] * b[1] - l[9] * b[2] - l[10] * b[3] - l[11] * b[8];
-        b[5] = b[5] - l[6] * b[2] - l[7] * b[3];
-        b[4] = b[4] - l[3] * b[5] - l[4] * b[2] - l[5] * b[3];
-        b[6] = b[6] - l[1] * b[4] - l[2] * b[5];
-        b[7] = b[7] - l[0] * b[6];
+        b[3] -= l[17] * b[8];
+        b[2] -= l[15] * b[3];
+        b[2] -= l[16] * b[8];
+        b[1] -= l[12] * b[2];
+        b[1] -= l[13] * b[3];
+        b[1] -= l[14] * b[8];
+        b[0] -= l[8] * b[1];
+        b[0] -= l[9] * b[2];
+        b[0] -= l[10] * b[3];
+        b[0] -= l[11] * b[8];
+        b[5] -= l[6] * b[2];
+        b[5] -= l[7] * b[3];
+        b[4] -= l[3] * b[5];
+        b[4] -= l[4] * b[2];
+        b[4] -= l[5] * b[3];
+        b[6] -= l[1] * b[4];
+        b[6] -= l[2] * b[5];
+        b[7] -= l[0] * b[6];
     }
 }
-#[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+#[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
 impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn accelerations(
@@ -1148,7 +1168,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         ::core::result::Result::Ok(worst)
     }
 }
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, clippy::approx_constant)]
 impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn initial_positions(&self) -> [f64; 9] {

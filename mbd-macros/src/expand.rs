@@ -286,7 +286,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
 
-        #[allow(unused_variables, unused_parens, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl #name {
             /// Number of moving bodies.
             pub const N_BODIES: usize = #nb_l;
@@ -367,7 +368,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const MODEL_JSON: &'static str = #json;
         }
 
-        #[allow(unused_variables, unused_parens, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::ConstraintForces<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nv_l]; #nv_l]) {
@@ -376,7 +378,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
 
-        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
         impl ::mbd::Dynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
@@ -439,14 +442,16 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
         }
 
-        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
         impl #name {
             #helpers
         }
 
         #impl_block
 
-        #[allow(unused_variables, unused_parens, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::Kinematics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn initial_positions(&self) -> [#real; #nq_l] {

@@ -298,7 +298,8 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
     let impl_block = quote! {
-        #[allow(unused_variables, unused_parens, unused_mut, clippy::all)]
+        // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
         impl ::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn accelerations(

@@ -193,17 +193,13 @@ impl Schur {
     pub fn solve(&self) -> TokenStream {
         let mut stmts = Vec::new();
         let pos = |k: usize| lit(self.order[k]);
+        // b_k −= L_kj b_j one term at a time: the same left-to-right rounding as one long
+        // difference, written as assignment operators.
         for k in 0..self.nc {
-            let terms: Vec<TokenStream> = (0..k)
-                .filter_map(|j| self.l.get(&(k, j)).map(|&idx| (j, idx)))
-                .map(|(j, idx)| {
-                    let (bj, idx) = (pos(j), lit(idx));
-                    quote!(- l[#idx] * b[#bj])
-                })
-                .collect();
-            if !terms.is_empty() {
-                let bk = pos(k);
-                stmts.push(quote!(b[#bk] = b[#bk] #(#terms)*;));
+            let bk = pos(k);
+            for (j, idx) in (0..k).filter_map(|j| self.l.get(&(k, j)).map(|&idx| (j, idx))) {
+                let (bj, idx) = (pos(j), lit(idx));
+                stmts.push(quote!(b[#bk] -= l[#idx] * b[#bj];));
             }
         }
         for k in 0..self.nc {
@@ -211,16 +207,10 @@ impl Schur {
             stmts.push(quote!(b[#bk] *= dinv[#kl];));
         }
         for k in (0..self.nc).rev() {
-            let terms: Vec<TokenStream> = ((k + 1)..self.nc)
-                .filter_map(|i| self.l.get(&(i, k)).map(|&idx| (i, idx)))
-                .map(|(i, idx)| {
-                    let (bi, idx) = (pos(i), lit(idx));
-                    quote!(- l[#idx] * b[#bi])
-                })
-                .collect();
-            if !terms.is_empty() {
-                let bk = pos(k);
-                stmts.push(quote!(b[#bk] = b[#bk] #(#terms)*;));
+            let bk = pos(k);
+            for (i, idx) in ((k + 1)..self.nc).filter_map(|i| self.l.get(&(i, k)).map(|&idx| (i, idx))) {
+                let (bi, idx) = (pos(i), lit(idx));
+                stmts.push(quote!(b[#bk] -= l[#idx] * b[#bi];));
             }
         }
         quote!(#(#stmts)*)
