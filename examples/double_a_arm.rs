@@ -9,6 +9,7 @@
 //! arm (0.475, 0.14) to the chassis (0.45, 0.60).
 //!
 //! Run: `cargo run --release --example double_a_arm`
+use mbd::nalgebra::{distance, Point2};
 use mbd::prelude::*;
 
 mechanism! {
@@ -35,7 +36,10 @@ mechanism! {
 }
 
 /// Chassis end of the spring (m).
-pub const SPRING_TOP: [f64; 2] = [0.45, 0.60];
+pub const SPRING_TOP: Point2<f64> = Point2::new(0.45, 0.60);
+/// Chassis pivots of the lower and the upper arm (m), as in the mechanism.
+const LOWER_PIVOT: Point2<f64> = Point2::new(0.20, 0.15);
+const UPPER_PIVOT: Point2<f64> = Point2::new(0.30, 0.45);
 
 #[derive(Debug, Clone, Copy)]
 pub struct Report {
@@ -54,18 +58,17 @@ pub struct Report {
     pub link_length_error: f64,
 }
 
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
 pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = DoubleAArm::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut q, 0.0)?;
-    let contact0 = point_position(&q, 2, [0.0, -0.30]).unwrap_or([f64::NAN; 2]);
-    let lower_len = dist([0.20, 0.15], [0.55, 0.13]);
-    let upper_len = dist([0.30, 0.45], [0.52, 0.47]);
+    let knuckle = DoubleAArm::KNUCKLE;
+    let (spring_point, contact_point) = (m.lower_spring(), m.knuckle_contact());
+    let (lower_ball, upper_ball) = (m.lower_outer(), m.upper_outer());
+    let contact0 = contact_point.position(&q);
+    let lower_len = distance(&LOWER_PIVOT, &Point2::new(0.55, 0.13));
+    let upper_len = distance(&UPPER_PIVOT, &Point2::new(0.52, 0.47));
     let mut r = Report {
         samples: 0,
         camber_min: f64::INFINITY,
@@ -82,30 +85,30 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
     solver.sweep(&m, &mut q, times, |t, q, qd, _| {
-        let spring_bottom = point_position(q, 0, [0.1, 0.0]).unwrap_or([f64::NAN; 2]);
-        let spring = dist(spring_bottom, SPRING_TOP);
-        let contact = point_position(q, 2, [0.0, -0.30]).unwrap_or([f64::NAN; 2]);
+        let spring_bottom = spring_point.position(q);
+        let spring = distance(&spring_bottom, &SPRING_TOP);
+        let contact = contact_point.position(q);
         // Camber: the wheel's tilt, positive with its top leaning outward (+x); the knuckle's
         // counter-clockwise rotation φ leans the top inward, so camber = −φ.
-        let camber = -q[8].to_degrees();
-        let travel = q[7] - m.wheel_y;
-        let lo = dist([0.20, 0.15], point_position(q, 0, [0.175, -0.01]).unwrap_or([f64::NAN; 2]));
-        let up = dist([0.30, 0.45], point_position(q, 1, [0.11, 0.01]).unwrap_or([f64::NAN; 2]));
+        let camber = -knuckle.phi(q).to_degrees();
+        let travel = knuckle.y(q) - m.wheel_y;
+        let lo = distance(&LOWER_PIVOT, &lower_ball.position(q));
+        let up = distance(&UPPER_PIVOT, &upper_ball.position(q));
         r.link_length_error = r.link_length_error.max((lo - lower_len).abs()).max((up - upper_len).abs());
         r.camber_min = r.camber_min.min(camber);
         r.camber_max = r.camber_max.max(camber);
-        r.track_change = r.track_change.max((contact[0] - contact0[0]).abs());
+        r.track_change = r.track_change.max((contact.x - contact0.x).abs());
         r.spring_min = r.spring_min.min(spring);
         r.spring_max = r.spring_max.max(spring);
         if t == 0.0 {
             // d(spring)/dt divided by the wheel's vertical speed: both from the velocity solve.
-            let v = point_velocity(q, qd, 0, [0.1, 0.0]).unwrap_or([f64::NAN; 2]);
-            let e = [(spring_bottom[0] - SPRING_TOP[0]) / spring, (spring_bottom[1] - SPRING_TOP[1]) / spring];
-            r.motion_ratio = -(v[0] * e[0] + v[1] * e[1]) / qd[7];
+            let v = spring_point.velocity(q, qd);
+            let e = (spring_bottom - SPRING_TOP) / spring;
+            r.motion_ratio = -v.dot(&e) / knuckle.velocity(qd).y;
         }
         r.samples += 1;
         if print && r.samples % 4 == 1 {
-            println!("{:>12.1} {:>12.4} {:>14.3} {:>12.2}", travel * 1e3, camber, (contact[0] - contact0[0]) * 1e3, spring * 1e3);
+            println!("{:>12.1} {:>12.4} {:>14.3} {:>12.2}", travel * 1e3, camber, (contact.x - contact0.x) * 1e3, spring * 1e3);
         }
     })?;
     if print {

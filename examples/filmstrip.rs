@@ -62,21 +62,22 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>8} {:>10} {:>10} {:>10} {:>10}", "θ (deg)", "tip x (mm)", "tip y (mm)", "speed (m/s)", "|err| (m)");
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
+    let claw_tip = m.claw_tip();
     solver.sweep(&m, &mut q, times, |t, q, qd, _| {
-        let tip = point_position(q, 1, [0.06, -0.005]).unwrap_or([f64::NAN; 2]);
-        let v = point_velocity(q, qd, 1, [0.06, -0.005]).unwrap_or([f64::NAN; 2]);
+        let tip = claw_tip.position(q);
+        let v = claw_tip.velocity(q, qd);
         let exact = tip_exact(m.r, m.omega * t);
-        let err = ((tip[0] - exact[0]).powi(2) + (tip[1] - exact[1]).powi(2)).sqrt();
-        let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        let err = ((tip.x - exact[0]).powi(2) + (tip.y - exact[1]).powi(2)).sqrt();
+        let speed = (v.x * v.x + v.y * v.y).sqrt();
         r.tip_error = r.tip_error.max(err);
         r.max_speed = r.max_speed.max(speed);
-        x0 = x0.min(tip[0]);
-        x1 = x1.max(tip[0]);
-        y0 = y0.min(tip[1]);
-        y1 = y1.max(tip[1]);
+        x0 = x0.min(tip.x);
+        x1 = x1.max(tip.x);
+        y0 = y0.min(tip.y);
+        y1 = y1.max(tip.y);
         r.samples += 1;
         if print && r.samples % 8 == 1 {
-            println!("{:>8.1} {:>10.3} {:>10.3} {:>10.4} {:>10.1e}", (m.omega * t).to_degrees(), tip[0] * 1e3, tip[1] * 1e3, speed, err);
+            println!("{:>8.1} {:>10.3} {:>10.3} {:>10.4} {:>10.1e}", (m.omega * t).to_degrees(), tip.x * 1e3, tip.y * 1e3, speed, err);
         }
     })?;
     r.stroke = x1 - x0;

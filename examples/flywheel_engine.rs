@@ -61,11 +61,12 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut m = FreeEngine::default();
     let mut reduced = 0.0;
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
+    // The motor's row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is its λ, the drive torque.
+    let motor_row = usize::from(Engine::JOINTS[Engine::MOTOR].first_row);
     solver.sweep(&engine, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
         if inverse_dynamics(&engine, q, qd, qdd, t, &mut lambda).is_ok() {
-            // The motor row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is λ, the drive torque.
-            torque.push(lambda[8]);
+            torque.push(lambda[motor_row]);
         }
         // Kinetic energy / (½ω²): the reduced inertia at this angle.
         // (same geometry and coordinates: the engine's states are the free engine's too).
@@ -95,7 +96,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
-    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((s.point.q[2], s.point.v[2])))?;
+    let crank = FreeEngine::CRANK;
+    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
     // The last full revolution.
     let end_angle = last_rev.last().map(|p| p.0).unwrap_or(0.0);
     let rev: Vec<f64> = last_rev.iter().filter(|p| p.0 > end_angle - 2.0 * PI).map(|p| p.1).collect();

@@ -18,8 +18,9 @@ mechanism! {
         body rocker  { mass: 1.0, inertia: 5.2e-3, at: [0.28, 0.12, 1.70] }
         revolute ground[0.0, 0.0] ~ crank[-a / 2.0, 0.0];
         revolute crank[a / 2.0, 0.0] ~ coupler[-b / 2.0, 0.0];
-        revolute coupler[b / 2.0, 0.0] ~ rocker[c / 2.0, 0.0];
+        revolute coupler.C ~ rocker[c / 2.0, 0.0];
         revolute rocker[-c / 2.0, 0.0] ~ ground[d, 0.0];
+        point coupler.C = [b / 2.0, 0.0];
         point coupler.P = [0.0, 0.05];
         drive crank.phi = omega * t;
     }
@@ -64,19 +65,21 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>8} {:>12} {:>12} {:>12} {:>14} {:>10}", "θ (deg)", "rocker (deg)", "P x (m)", "P y (m)", "transm. (deg)", "|C−exact|");
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
+    let (pin, tracer) = (m.coupler_c(), m.coupler_p());
     solver.sweep(&m, &mut q, times, |t, q, _qd, _qdd| {
         let c_exact = pin_c(m.a, m.b, m.c, m.d, m.omega * t);
-        let c = point_position(q, 1, [m.b / 2.0, 0.0]).unwrap_or([f64::NAN; 2]);
-        let p = point_position(q, 1, [0.0, 0.05]).unwrap_or([f64::NAN; 2]);
-        let err = ((c[0] - c_exact[0]).powi(2) + (c[1] - c_exact[1]).powi(2)).sqrt();
+        let c = pin.position(q);
+        let p = tracer.position(q);
+        let err = ((c.x - c_exact[0]).powi(2) + (c.y - c_exact[1]).powi(2)).sqrt();
+        let (coupler, rocker) = (FourBar::COUPLER.phi(q), FourBar::ROCKER.phi(q));
         let mut phi = [0.0; FourBar::NC];
         m.constraints(q, t, &mut phi);
         r.max_residual = phi.iter().fold(r.max_residual, |a, v| a.max(v.abs()));
         r.pin_error = r.pin_error.max(err);
-        lo = lo.min(q[8]);
-        hi = hi.max(q[8]);
+        lo = lo.min(rocker);
+        hi = hi.max(rocker);
         // Transmission angle: between coupler and rocker directions, folded into [0°, 90°].
-        let mu = (q[8] - q[5]).rem_euclid(PI).to_degrees();
+        let mu = (rocker - coupler).rem_euclid(PI).to_degrees();
         let mu = if mu > 90.0 { 180.0 - mu } else { mu };
         r.min_transmission_angle = r.min_transmission_angle.min(mu);
         r.samples += 1;
@@ -84,9 +87,9 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             println!(
                 "{:>8.1} {:>12.4} {:>12.6} {:>12.6} {:>14.2} {:>10.2e}",
                 (m.omega * t).to_degrees(),
-                q[8].to_degrees(),
-                p[0],
-                p[1],
+                rocker.to_degrees(),
+                p.x,
+                p.y,
                 mu,
                 err
             );

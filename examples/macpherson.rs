@@ -8,6 +8,7 @@
 //! (0.65, 0.30), strut axis from (0.57, 0.40) on the knuckle to the top mount (0.50, 0.75).
 //!
 //! Run: `cargo run --release --example macpherson`
+use mbd::nalgebra::{distance, Point2};
 use mbd::prelude::*;
 
 mechanism! {
@@ -21,6 +22,7 @@ mechanism! {
         point lower.outer = [0.175, -0.01];
         point knuckle.ball = [-0.05, -0.20];
         point knuckle.strut = [-0.08, 0.10];
+        point knuckle.contact = [0.0, -0.30];
         point rod.top = [-0.035, 0.175];
         point rod.bottom = [0.035, -0.175];
         vector knuckle.axis = [-0.07, 0.35];
@@ -34,7 +36,7 @@ mechanism! {
 }
 
 /// The top mount on the chassis (m).
-pub const TOP_MOUNT: [f64; 2] = [0.50, 0.75];
+pub const TOP_MOUNT: Point2<f64> = Point2::new(0.50, 0.75);
 
 #[derive(Debug, Clone, Copy)]
 pub struct Report {
@@ -52,16 +54,14 @@ pub struct Report {
     pub axis_error: f64,
 }
 
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
 pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = MacPherson::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut q, 0.0)?;
-    let contact0 = point_position(&q, 1, [0.0, -0.30]).unwrap_or([f64::NAN; 2]);
+    let knuckle = MacPherson::KNUCKLE;
+    let (strut_point, contact_point) = (m.knuckle_strut(), m.knuckle_contact());
+    let contact0 = contact_point.position(&q);
     let mut r = Report {
         samples: 0,
         camber_min: f64::INFINITY,
@@ -78,34 +78,34 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
     solver.sweep(&m, &mut q, times, |t, q, qd, _| {
-        let s = point_position(q, 1, [-0.08, 0.10]).unwrap_or([f64::NAN; 2]);
-        let strut = dist(s, TOP_MOUNT);
-        let contact = point_position(q, 1, [0.0, -0.30]).unwrap_or([f64::NAN; 2]);
+        let s = strut_point.position(q);
+        let strut = distance(&s, &TOP_MOUNT);
+        let contact = contact_point.position(q);
         // Camber: the wheel's tilt, positive with its top leaning outward (+x); the knuckle's
         // counter-clockwise rotation φ leans the top inward, so camber = −φ.
-        let camber = -q[5].to_degrees();
+        let camber = -knuckle.phi(q).to_degrees();
         // distance of the knuckle's strut point from the line through the top mount along the rod
-        let (sn, cs) = q[8].sin_cos();
+        let (sn, cs) = MacPherson::ROD.phi(q).sin_cos();
         let len = (0.07f64 * 0.07 + 0.35 * 0.35).sqrt();
         let u = [(cs * -0.07 - sn * 0.35) / len, (sn * -0.07 + cs * 0.35) / len];
-        let d = [s[0] - TOP_MOUNT[0], s[1] - TOP_MOUNT[1]];
-        r.axis_error = r.axis_error.max((d[0] * u[1] - d[1] * u[0]).abs());
+        let d = s - TOP_MOUNT;
+        r.axis_error = r.axis_error.max((d.x * u[1] - d.y * u[0]).abs());
         r.camber_min = r.camber_min.min(camber);
         r.camber_max = r.camber_max.max(camber);
-        r.track_change = r.track_change.max((contact[0] - contact0[0]).abs());
+        r.track_change = r.track_change.max((contact.x - contact0.x).abs());
         r.strut_min = r.strut_min.min(strut);
         r.strut_max = r.strut_max.max(strut);
         if t == 0.0 {
-            let v = point_velocity(q, qd, 1, [-0.08, 0.10]).unwrap_or([f64::NAN; 2]);
-            r.motion_ratio = -(v[0] * d[0] + v[1] * d[1]) / strut / qd[4];
+            let v = strut_point.velocity(q, qd);
+            r.motion_ratio = -v.dot(&d) / strut / knuckle.velocity(qd).y;
         }
         r.samples += 1;
         if print && r.samples % 4 == 1 {
             println!(
                 "{:>12.1} {:>12.4} {:>14.3} {:>12.2}",
-                (q[4] - m.wheel_y) * 1e3,
+                (knuckle.y(q) - m.wheel_y) * 1e3,
                 camber,
-                (contact[0] - contact0[0]) * 1e3,
+                (contact.x - contact0.x) * 1e3,
                 strut * 1e3
             );
         }

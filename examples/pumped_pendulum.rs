@@ -56,7 +56,7 @@ pub struct Report {
 
 /// Swing angle θ (from hanging straight down) of the rod's coordinates.
 fn swing(q: &[f64]) -> f64 {
-    q[5] + PI / 2.0
+    PumpedPendulum::ROD.phi(q) + PI / 2.0
 }
 
 /// The reduced model's state (θ, θ̇) integrated by RK4 from `t` over `h`.
@@ -123,6 +123,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     };
     let mut balance0 = None;
     let t_end = *times.last().expect("output times");
+    // The length driver's row of Φ, and so of λ.
+    let length_row = usize::from(PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].first_row);
     let stats = simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
         let t = s.point.t;
         while t_reduced < t - 1e-12 {
@@ -146,8 +148,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         r.balance_drift = r.balance_drift.max((balance - b0).abs());
         r.driver_work = s.energy.constraint_work;
         r.energy_gain_reduced = reduced_energy(&m, inertia, rod_mass, g, t, y) - e0;
-        // The length driver is the last row; λ > 0 pulls the rod towards the pivot.
-        r.peak_pull = r.peak_pull.max(s.point.lambda[PumpedPendulum::NC - 1].abs());
+        // λ > 0 pulls the rod towards the pivot.
+        r.peak_pull = r.peak_pull.max(s.point.lambda[length_row].abs());
     })?;
     r.steps = stats.steps;
     if print {

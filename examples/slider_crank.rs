@@ -19,10 +19,11 @@ mechanism! {
         point crank.A = [r / 2.0, 0.0];
         point rod.A = [-l / 2.0, 0.0];
         point rod.B = [l / 2.0, 0.0];
+        point slider.pin = [0.0, 0.0];
         revolute ground[0.0, 0.0] ~ crank.O;
         revolute crank.A ~ rod.A;
-        revolute rod.B ~ slider[0.0, 0.0];
-        translational slider[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+        revolute rod.B ~ slider.pin;
+        translational slider.pin along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
         drive crank.phi = omega * t;
     }
 }
@@ -73,26 +74,28 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>8} {:>10} {:>12} {:>12} {:>12} {:>10}", "θ (deg)", "x (m)", "ẋ (m/s)", "ẍ (m/s²)", "rod φ (deg)", "|x−exact|");
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
+    let pin = m.slider_pin();
     solver.sweep(&m, &mut q, times, |t, q, qd, qdd| {
         let (x, xd, xdd) = exact(m.r, m.l, m.omega, t);
         let mut phi = [0.0; SliderCrank::NC];
         m.constraints(q, t, &mut phi);
         report.max_residual = phi.iter().fold(report.max_residual, |a, v| a.max(v.abs()));
-        report.position_error = report.position_error.max((q[6] - x).abs());
-        report.velocity_error = report.velocity_error.max((qd[6] - xd).abs());
-        report.acceleration_error = report.acceleration_error.max((qdd[6] - xdd).abs());
-        xmin = xmin.min(q[6]);
-        xmax = xmax.max(q[6]);
+        let (slider_x, slider_xd, slider_xdd) = (pin.position(q).x, pin.velocity(q, qd).x, pin.acceleration(q, qd, qdd).x);
+        report.position_error = report.position_error.max((slider_x - x).abs());
+        report.velocity_error = report.velocity_error.max((slider_xd - xd).abs());
+        report.acceleration_error = report.acceleration_error.max((slider_xdd - xdd).abs());
+        xmin = xmin.min(slider_x);
+        xmax = xmax.max(slider_x);
         report.samples += 1;
         if print && report.samples % 6 == 1 {
             println!(
                 "{:>8.1} {:>10.6} {:>12.6} {:>12.4} {:>12.4} {:>10.2e}",
                 (m.omega * t).to_degrees(),
-                q[6],
-                qd[6],
-                qdd[6],
-                q[5].to_degrees(),
-                (q[6] - x).abs()
+                slider_x,
+                slider_xd,
+                slider_xdd,
+                SliderCrank::ROD.phi(q).to_degrees(),
+                (slider_x - x).abs()
             );
         }
     })?;

@@ -68,23 +68,24 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
         let mut d = [[0.0; Engine::NV]; Engine::NC];
         m.jacobian(q, t, &mut d);
-        let motor = joint_reaction(&m, q, &d, &lambda, 4).and_then(|j| j.on_i);
-        let bearing = joint_reaction(&m, q, &d, &lambda, 0).and_then(|j| j.on_j);
-        let wrist = joint_reaction(&m, q, &d, &lambda, 2).and_then(|j| j.on_j);
+        let motor = joint_reaction(&m, q, &d, &lambda, Engine::MOTOR).and_then(|j| j.on_i);
+        let bearing = joint_reaction(&m, q, &d, &lambda, Engine::BEARING).and_then(|j| j.on_j);
+        let wrist = joint_reaction(&m, q, &d, &lambda, Engine::WRISTPIN).and_then(|j| j.on_j);
         let (Some(motor), Some(bearing), Some(wrist)) = (motor, bearing, wrist) else { return };
         // Planar: the moment is about z.
         let torque = motor.moment[2];
-        let gas = -m.f0 * (q[2].sin() + q[2].sin().abs()) / 2.0;
+        let theta = Engine::CRANK.phi(q);
+        let gas = -m.f0 * (theta.sin() + theta.sin().abs()) / 2.0;
         r.torque_max = r.torque_max.max(torque);
         r.torque_min = r.torque_min.min(torque);
-        r.drive_power += torque * qd[2] / n as f64;
-        r.gas_power += gas * qd[6] / n as f64;
+        r.drive_power += torque * Engine::CRANK.omega(qd) / n as f64;
+        r.gas_power += gas * Engine::PISTON.velocity(qd).x / n as f64;
         let b = (bearing.force[0].powi(2) + bearing.force[1].powi(2)).sqrt();
         r.bearing_max = r.bearing_max.max(b);
         r.samples += 1;
         if print && r.samples % 30 == 1 {
             let w = (wrist.force[0].powi(2) + wrist.force[1].powi(2)).sqrt();
-            println!("{:>7.1} {:>12.3} {:>14.2} {:>14.2} {:>14.2}", q[2].to_degrees(), torque, bearing.force[0], bearing.force[1], w);
+            println!("{:>7.1} {:>12.3} {:>14.2} {:>14.2} {:>14.2}", theta.to_degrees(), torque, bearing.force[0], bearing.force[1], w);
         }
     })?;
     if let Some(e) = failure {

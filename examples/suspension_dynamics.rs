@@ -88,10 +88,10 @@ pub struct Report {
     pub steps: u64,
 }
 
-/// Static equilibrium, then the bump; `knuckle` is the wheel body's index among the bodies.
+/// Static equilibrium, then the bump; `knuckle` is the wheel body.
 fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
     m: &M,
-    knuckle: usize,
+    knuckle: PlanarBody,
     tyre_load: impl Fn(&[f64; NQ], &[f64; NQ], f64) -> f64,
     mut ws: KktWorkspace<f64, N>,
 ) -> Result<Report, Box<dyn std::error::Error>>
@@ -102,7 +102,7 @@ where
     KinematicSolver::default().assemble(m, &mut q, 0.0)?;
     let mut lambda = [0.0; NC];
     StaticSolver::default().solve(m, &mut q, 0.0, &mut lambda, &mut ws)?;
-    let y0 = q[3 * knuckle + 1];
+    let y0 = knuckle.y(&q);
     let static_tyre_load = tyre_load(&q, &[0.0; NQ], 0.0);
     let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
     let times: Vec<f64> = (0..=1500).map(|k| k as f64 * 1e-3).collect();
@@ -120,7 +120,7 @@ where
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, max_step: 2e-3, ..Dopri5Options::default() });
     let stats = simulate(m, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
         let p = &s.point;
-        let travel = p.q[3 * knuckle + 1] - y0;
+        let travel = knuckle.y(&p.q) - y0;
         r.peak_travel = r.peak_travel.max(travel);
         r.peak_tyre_load = r.peak_tyre_load.max(tyre_load(&p.q, &p.v, p.t));
         if p.t >= 1.2 {
@@ -151,21 +151,23 @@ struct Tyre {
 }
 
 impl Tyre {
-    /// The tyre's vertical force for a wheel body at index `k` (same law as in the mechanisms).
-    fn force(&self, q: &[f64], qd: &[f64], t: f64, k: usize) -> f64 {
+    /// The tyre's vertical force on the wheel body `wheel` (same law as in the mechanisms).
+    fn force(&self, q: &[f64], qd: &[f64], t: f64, wheel: PlanarBody) -> f64 {
         let road = self.bump * (-((t - self.t_bump) / self.width).powi(2)).exp();
-        let contact = q[3 * k + 1] - 0.3 * q[3 * k + 2].cos();
-        self.k_t * (road - contact) - self.c_t * qd[3 * k + 1]
+        let contact = wheel.y(q) - 0.3 * wheel.phi(q).cos();
+        self.k_t * (road - contact) - self.c_t * wheel.velocity(qd).y
     }
 }
 
 pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
     let a = DoubleAArmRide::default();
     let tyre = Tyre { k_t: a.k_t, c_t: a.c_t, bump: a.bump, t_bump: a.t_bump, width: a.width };
-    let double_a_arm = ride(&a, 2, |q: &[f64; 9], qd: &[f64; 9], t| tyre.force(q, qd, t, 2), DoubleAArmRide::kkt_workspace())?;
+    let wheel = DoubleAArmRide::KNUCKLE;
+    let double_a_arm = ride(&a, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), DoubleAArmRide::kkt_workspace())?;
     let b = MacPhersonRide::default();
     let tyre = Tyre { k_t: b.k_t, c_t: b.c_t, bump: b.bump, t_bump: b.t_bump, width: b.width };
-    let macpherson = ride(&b, 1, |q: &[f64; 9], qd: &[f64; 9], t| tyre.force(q, qd, t, 1), MacPhersonRide::kkt_workspace())?;
+    let wheel = MacPhersonRide::KNUCKLE;
+    let macpherson = ride(&b, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), MacPhersonRide::kkt_workspace())?;
     if print {
         for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
             println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);

@@ -20,6 +20,7 @@ mechanism! {
         point input.A = [0.125, 0.0];
         point output.O = [-0.125, 0.0];
         point output.B = [0.125, 0.0];
+        point coupler.knife = [0.0, 0.0];
         revolute ground[0.0, 0.0] ~ input.O;
         revolute ground[0.2, 0.0] ~ output.O;
         revolute input.A ~ coupler[-0.05, 0.0];
@@ -68,22 +69,23 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>7} {:>12} {:>12} {:>12} {:>10}", "t (s)", "knife x (m)", "knife y (m)", "vx (m/s)", "|err| (m)");
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
+    let knife = m.coupler_knife();
     solver.sweep(&m, &mut q, times, |t, q, qd, _| {
-        let k = point_position(q, 1, [0.0, 0.0]).unwrap_or([f64::NAN; 2]);
-        let v = point_velocity(q, qd, 1, [0.0, 0.0]).unwrap_or([f64::NAN; 2]);
+        let k = knife.position(q);
+        let v = knife.velocity(q, qd);
         let e = knife_exact(m.phi_mid + m.amplitude * (m.omega * t).sin());
-        let err = ((k[0] - e[0]).powi(2) + (k[1] - e[1]).powi(2)).sqrt();
+        let err = ((k.x - e[0]).powi(2) + (k.y - e[1]).powi(2)).sqrt();
         r.knife_error = r.knife_error.max(err);
-        x0 = x0.min(k[0]);
-        x1 = x1.max(k[0]);
-        y0 = y0.min(k[1]);
-        y1 = y1.max(k[1]);
+        x0 = x0.min(k.x);
+        x1 = x1.max(k.x);
+        y0 = y0.min(k.y);
+        y1 = y1.max(k.y);
         if r.samples == 0 {
-            r.mid_speed = v[0].abs();
+            r.mid_speed = v.x.abs();
         }
         r.samples += 1;
         if print && r.samples % 8 == 1 {
-            println!("{:>7.3} {:>12.6} {:>12.6} {:>12.5} {:>10.1e}", t, k[0], k[1], v[0], err);
+            println!("{:>7.3} {:>12.6} {:>12.6} {:>12.5} {:>10.1e}", t, k.x, k.y, v.x, err);
         }
     })?;
     r.travel = x1 - x0;
