@@ -62,7 +62,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut reduced = 0.0;
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
     // The motor's row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is its λ, the drive torque.
-    let motor_row = usize::from(Engine::JOINTS[Engine::MOTOR].first_row);
+    let motor_row = Engine::JOINTS[Engine::MOTOR].row_range().start;
     solver.sweep(&engine, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
         if inverse_dynamics(&engine, q, qd, qdd, t, &mut lambda).is_ok() {

@@ -124,7 +124,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut balance0 = None;
     let t_end = *times.last().expect("output times");
     // The length driver's row of Φ, and so of λ.
-    let length_row = usize::from(PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].first_row);
+    let length_row = PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].row_range().start;
     let stats = simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
         let t = s.point.t;
         while t_reduced < t - 1e-12 {

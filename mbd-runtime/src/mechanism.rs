@@ -60,6 +60,14 @@ pub struct JointInfo {
     pub body_j: Option<u16>,
 }
 
+impl JointInfo {
+    /// Its rows of Φ — and of λ: `&lambda[Name::JOINTS[Name::MOTOR].row_range()]` are a driver's
+    /// multipliers (its force or torque, N or N·m, up to the sign of the row's definition).
+    pub const fn row_range(&self) -> core::ops::Range<usize> {
+        self.first_row as usize..(self.first_row + self.rows) as usize
+    }
+}
+
 /// What every generated mechanism says about itself: sizes, names, sparsity, model description.
 ///
 /// Everything here is a compile-time constant of the mechanism; nothing depends on the scalar

@@ -49,6 +49,10 @@ impl PlanarBody {
     pub fn velocity<T: Real>(&self, v: &[T]) -> Vector2<T> {
         Vector2::new(v[3 * self.index], v[3 * self.index + 1])
     }
+    /// The acceleration of its centre of mass (m/s²), from the accelerations v̇.
+    pub fn acceleration<T: Real>(&self, vd: &[T]) -> Vector2<T> {
+        self.velocity(vd)
+    }
     /// Its angular velocity φ̇ (rad/s, counter-clockwise).
     pub fn omega<T: Real>(&self, v: &[T]) -> T {
         v[3 * self.index + 2]
