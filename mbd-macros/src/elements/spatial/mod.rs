@@ -325,13 +325,15 @@ pub fn drive_joint<'a>(
         "angle" if angle => Box::new(drive_angle::DriveAngle { joint: joint.to_string(), i: i.clone(), j: j.clone(), f: f? }),
         "stroke" if stroke => Box::new(drive_stroke::DriveStroke { joint: joint.to_string(), i: i.clone(), j: j.clone(), f: f? }),
         other => {
-            let can = match (angle, stroke) {
-                (true, true) => "its `angle` or its `stroke`",
-                (true, false) => "its `angle`",
-                (false, true) => "its `stroke`",
-                (false, false) => "nothing: drive a revolute or cylindrical joint's angle, a translational or cylindrical joint's stroke",
+            let hint = match (angle, stroke) {
+                (true, true) => "drive its `angle` or its `stroke`",
+                (true, false) => "drive its `angle`",
+                (false, true) => "drive its `stroke`",
+                (false, false) => {
+                    "drivers act on a revolute or cylindrical joint's `angle` and a translational or cylindrical joint's `stroke`"
+                }
             };
-            r.errors.push(what.span(), format!("`{joint}.{other}` cannot be driven: `{joint}` is a {kind} joint, which drives {can}"));
+            r.errors.push(what.span(), format!("`{joint}.{other}` cannot be driven: `{joint}` is a {kind} joint; {hint}"));
             return None;
         }
     };
