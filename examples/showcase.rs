@@ -11,6 +11,8 @@ mod flywheel_engine;
 mod four_bar;
 #[path = "free_four_bar.rs"]
 mod free_four_bar;
+#[path = "gyroscope.rs"]
+mod gyroscope;
 #[path = "macpherson.rs"]
 mod macpherson;
 #[path = "pumped_pendulum.rs"]
@@ -29,7 +31,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 12] = [
+    let runs: [(&str, Run); 13] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -42,6 +44,7 @@ fn main() {
         ("suspension_dynamics", || suspension_dynamics::run(true).map(drop)),
         ("pumped_pendulum", || pumped_pendulum::run(true).map(drop)),
         ("free_four_bar", || free_four_bar::run(true).map(drop)),
+        ("gyroscope", || gyroscope::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -11,6 +11,8 @@ pub mod flywheel_engine;
 pub mod four_bar;
 #[path = "../../examples/free_four_bar.rs"]
 pub mod free_four_bar;
+#[path = "../../examples/gyroscope.rs"]
+pub mod gyroscope;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[path = "../../examples/pumped_pendulum.rs"]
