@@ -17,6 +17,8 @@ mod gyroscope;
 mod macpherson;
 #[path = "pumped_pendulum.rs"]
 mod pumped_pendulum;
+#[path = "rssr.rs"]
+mod rssr;
 #[path = "slider_crank.rs"]
 mod slider_crank;
 #[path = "suspension_dynamics.rs"]
@@ -31,7 +33,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 13] = [
+    let runs: [(&str, Run); 14] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -45,6 +47,7 @@ fn main() {
         ("pumped_pendulum", || pumped_pendulum::run(true).map(drop)),
         ("free_four_bar", || free_four_bar::run(true).map(drop)),
         ("gyroscope", || gyroscope::run(true).map(drop)),
+        ("rssr", || Ok(rssr::run(true).map(drop)?)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -199,3 +199,26 @@ fn gyroscope_precesses_and_nutates_as_the_lagrange_top() {
         assert!(rel(approx, exact) > 0.01 && rel(approx, exact) < 0.1, "the fast-top value is an O(ε) approximation: {r:?}");
     }
 }
+
+/// The RSSR four-bar against its closed form. Positions: the coupler's row is ½(|d|² − L²) ≤
+/// 1e-10 m², i.e. |d| − L ≤ 1e-10/L ≈ 7e-10 m, which moves the rocker by up to that over b times
+/// the transmission index (≥ 0.83): ≈ 8e-9 rad, so 1e-8 rad; rates and accelerations from exact
+/// solves at that configuration (ψ̇ up to 7.5 rad/s, ψ̈ up to 124 rad/s²): 1e-7 and 1e-5. The
+/// drive torque (peak 0.185 N·m) against virtual power: errors of ψ̈ of 1e-7 rad/s² times
+/// J_O ψ̇/ω ≈ 1e-3 kg·m²: 1e-8 N·m. The mean drive power over a turn is the integral of a smooth
+/// periodic function sampled evenly (exact to rounding), Δ(T + V) = 0: 1e-8 W.
+#[test]
+fn rssr_output_and_drive_torque_match_closed_forms() {
+    let r = rssr::run(false).expect("the RSSR runs");
+    assert_eq!(r.samples, 360);
+    assert!(r.angle_error < 1e-8, "{r:?}");
+    assert!(r.rate_error < 1e-7, "{r:?}");
+    assert!(r.acceleration_error < 1e-5, "{r:?}");
+    assert!(r.peak_acceleration > 100.0, "{r:?}");
+    // A crank-rocker: the rocker swings about 61°, never a full turn.
+    assert!(r.swing > 1.0 && r.swing < 1.2, "{r:?}");
+    assert!((r.min_transmission - r.min_transmission_exact).abs() < 1e-8 && r.min_transmission > 0.8, "{r:?}");
+    assert!(r.peak_torque > 0.1 && r.torque_error < 1e-8, "{r:?}");
+    assert!(r.mean_drive_power.abs() < 1e-8, "{r:?}");
+    assert!(r.peak_coupler_force > 1.0, "{r:?}");
+}

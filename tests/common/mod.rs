@@ -17,6 +17,8 @@ pub mod gyroscope;
 pub mod macpherson;
 #[path = "../../examples/pumped_pendulum.rs"]
 pub mod pumped_pendulum;
+#[path = "../../examples/rssr.rs"]
+pub mod rssr;
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
 #[path = "../../examples/suspension_dynamics.rs"]
