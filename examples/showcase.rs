@@ -21,6 +21,8 @@ mod pumped_pendulum;
 mod rssr;
 #[path = "slider_crank.rs"]
 mod slider_crank;
+#[path = "spatial_slider_crank.rs"]
+mod spatial_slider_crank;
 #[path = "suspension_dynamics.rs"]
 mod suspension_dynamics;
 #[path = "variable_pendulum.rs"]
@@ -33,7 +35,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 14] = [
+    let runs: [(&str, Run); 15] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -48,6 +50,7 @@ fn main() {
         ("free_four_bar", || free_four_bar::run(true).map(drop)),
         ("gyroscope", || gyroscope::run(true).map(drop)),
         ("rssr", || Ok(rssr::run(true).map(drop)?)),
+        ("spatial_slider_crank", || Ok(spatial_slider_crank::run(true).map(drop)?)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

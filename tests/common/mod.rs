@@ -21,6 +21,8 @@ pub mod pumped_pendulum;
 pub mod rssr;
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
+#[path = "../../examples/spatial_slider_crank.rs"]
+pub mod spatial_slider_crank;
 #[path = "../../examples/suspension_dynamics.rs"]
 pub mod suspension_dynamics;
 #[path = "../../examples/variable_pendulum.rs"]
