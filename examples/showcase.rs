@@ -3,6 +3,8 @@
 
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
+#[path = "double_wishbone_3d.rs"]
+mod double_wishbone_3d;
 #[path = "filmstrip.rs"]
 mod filmstrip;
 #[path = "flywheel_engine.rs"]
@@ -35,7 +37,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 15] = [
+    let runs: [(&str, Run); 16] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -51,6 +53,7 @@ fn main() {
         ("gyroscope", || gyroscope::run(true).map(drop)),
         ("rssr", || Ok(rssr::run(true).map(drop)?)),
         ("spatial_slider_crank", || Ok(spatial_slider_crank::run(true).map(drop)?)),
+        ("double_wishbone_3d", || Ok(double_wishbone_3d::run(true).map(drop)?)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

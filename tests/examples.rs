@@ -245,3 +245,21 @@ fn spatial_slider_crank_matches_its_closed_forms() {
     assert!(r.peak_rod_force > 500.0 && r.rod_force_error < 1e-5, "{r:?}");
     assert!(r.load_power > 10.0 && (r.drive_power + r.load_power).abs() < 1e-6, "{r:?}");
 }
+
+/// The 3D double wishbone. Layout A moves in the front-view plane (the example's argument), so
+/// its toe stays zero and its camber and wheel-centre track are those of the planar four-bar in
+/// closed form: to the position solve's 1e-10 m over lever arms of ≥ 0.1 m, 1e-9 rad and 1e-9 m.
+/// Its camber changes by degrees (short upper arm over a long lower one: negative camber gain
+/// in bump). Layout B's inclined pivots steer the wheel by tenths of a degree: A's zero is the
+/// geometry's, not the solver's.
+#[test]
+fn double_wishbone_3d_bump_steer_and_camber() {
+    let r = double_wishbone_3d::run(false).expect("both layouts sweep");
+    assert_eq!(r.parallel.travel.len(), 33);
+    assert!(r.parallel_bump_steer < 1e-9, "{r:?}");
+    assert!(r.camber_error < 1e-9 && r.track_error < 1e-9, "{r:?}");
+    let (first, last) = (r.parallel.camber[0], r.parallel.camber[32]);
+    assert!(first > 0.01 && last < -0.02, "rebound camber {first} rad, bump camber {last} rad");
+    let toe_b = r.inclined.toe.iter().fold(0.0f64, |a, t| a.max(t.abs()));
+    assert!(toe_b > 1e-3 && toe_b < 0.02, "layout B's bump steer {toe_b} rad");
+}

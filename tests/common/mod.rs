@@ -3,6 +3,8 @@
 
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
+#[path = "../../examples/double_wishbone_3d.rs"]
+pub mod double_wishbone_3d;
 #[path = "../../examples/filmstrip.rs"]
 pub mod filmstrip;
 #[path = "../../examples/flywheel_engine.rs"]
