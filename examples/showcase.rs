@@ -25,6 +25,8 @@ mod rssr;
 mod slider_crank;
 #[path = "spatial_slider_crank.rs"]
 mod spatial_slider_crank;
+#[path = "stewart_platform.rs"]
+mod stewart_platform;
 #[path = "suspension_dynamics.rs"]
 mod suspension_dynamics;
 #[path = "variable_pendulum.rs"]
@@ -37,7 +39,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 16] = [
+    let runs: [(&str, Run); 17] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -54,6 +56,7 @@ fn main() {
         ("rssr", || Ok(rssr::run(true).map(drop)?)),
         ("spatial_slider_crank", || Ok(spatial_slider_crank::run(true).map(drop)?)),
         ("double_wishbone_3d", || Ok(double_wishbone_3d::run(true).map(drop)?)),
+        ("stewart_platform", || Ok(stewart_platform::run(true).map(drop)?)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

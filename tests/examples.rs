@@ -263,3 +263,23 @@ fn double_wishbone_3d_bump_steer_and_camber() {
     let toe_b = r.inclined.toe.iter().fold(0.0f64, |a, t| a.max(t.abs()));
     assert!(toe_b > 1e-3 && toe_b < 0.02, "layout B's bump steer {toe_b} rad");
 }
+
+/// The Stewart platform: the pose Newton finds from the six strokes is the commanded one, and the
+/// leg lengths of that pose are the inverse kinematics', to the position tolerance (1e-10 m;
+/// Newton lands far below it): 1e-9. Statics at every pose: the stroke drivers' reactions and
+/// the example's 6×6 solve are two solutions of the same well-conditioned equilibrium, equal to
+/// rounding (cond · ε · |f| ≈ 1e3 · 2e-16 · 170 N ≈ 3e-11 N): 1e-8 N. The vertical components
+/// carry the whole load.
+#[test]
+fn stewart_platform_pose_lengths_and_statics() {
+    let r = stewart_platform::run(false).expect("the Stewart platform runs");
+    assert_eq!(r.samples, 49);
+    assert!(r.position_error < 1e-9 && r.rotation_error < 1e-9, "{r:?}");
+    assert!(r.length_error < 1e-9, "{r:?}");
+    // ±50 mm of heave and ±5° of roll change the legs by about ±60 mm.
+    assert!(r.length_max - r.length_min > 0.1, "{r:?}");
+    assert!(r.static_peak > 50.0 && r.static_error < 1e-8, "{r:?}");
+    assert!((r.static_vertical - r.static_load).abs() < 1e-9 * r.static_load, "{r:?}");
+    // The actuators hold the platform and the legs up (pushing), more in the lower poses.
+    assert!(r.force_min > 50.0 && r.force_max < 200.0, "{r:?}");
+}

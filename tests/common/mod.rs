@@ -25,6 +25,8 @@ pub mod rssr;
 pub mod slider_crank;
 #[path = "../../examples/spatial_slider_crank.rs"]
 pub mod spatial_slider_crank;
+#[path = "../../examples/stewart_platform.rs"]
+pub mod stewart_platform;
 #[path = "../../examples/suspension_dynamics.rs"]
 pub mod suspension_dynamics;
 #[path = "../../examples/variable_pendulum.rs"]
