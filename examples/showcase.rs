@@ -3,6 +3,8 @@
 
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
+#[path = "double_wishbone_3d.rs"]
+mod double_wishbone_3d;
 #[path = "filmstrip.rs"]
 mod filmstrip;
 #[path = "flywheel_engine.rs"]
@@ -11,12 +13,20 @@ mod flywheel_engine;
 mod four_bar;
 #[path = "free_four_bar.rs"]
 mod free_four_bar;
+#[path = "gyroscope.rs"]
+mod gyroscope;
 #[path = "macpherson.rs"]
 mod macpherson;
 #[path = "pumped_pendulum.rs"]
 mod pumped_pendulum;
+#[path = "rssr.rs"]
+mod rssr;
 #[path = "slider_crank.rs"]
 mod slider_crank;
+#[path = "spatial_slider_crank.rs"]
+mod spatial_slider_crank;
+#[path = "stewart_platform.rs"]
+mod stewart_platform;
 #[path = "suspension_dynamics.rs"]
 mod suspension_dynamics;
 #[path = "variable_pendulum.rs"]
@@ -29,7 +39,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 12] = [
+    let runs: [(&str, Run); 17] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -42,6 +52,11 @@ fn main() {
         ("suspension_dynamics", || suspension_dynamics::run(true).map(drop)),
         ("pumped_pendulum", || pumped_pendulum::run(true).map(drop)),
         ("free_four_bar", || free_four_bar::run(true).map(drop)),
+        ("gyroscope", || gyroscope::run(true).map(drop)),
+        ("rssr", || Ok(rssr::run(true).map(drop)?)),
+        ("spatial_slider_crank", || Ok(spatial_slider_crank::run(true).map(drop)?)),
+        ("double_wishbone_3d", || Ok(double_wishbone_3d::run(true).map(drop)?)),
+        ("stewart_platform", || Ok(stewart_platform::run(true).map(drop)?)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

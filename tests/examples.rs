@@ -170,3 +170,116 @@ fn free_four_bar_errors_fall_at_each_method_s_order() {
     }
     assert!(of("DOPRI5 (rtol)").last().unwrap().error < 1e-9);
 }
+
+/// The heavy top against the Lagrange top's closed forms. Steady precession: DOPRI5 at rtol
+/// 1e-10 over ~700 steps keeps the global error near 1e-9 relative (measured 6e-12), so both
+/// roots of A cos θ Ω² − C ω3 Ω + m g l = 0 to 1e-8. Nutation, measured from 400 samples per
+/// period: the period from mid-level crossings by linear interpolation (at θ's steepest point,
+/// an error of the crossing time of ~ε ω h²/8 ≈ 2e-8 s at worst, divided by 20 periods), the
+/// amplitude from the parabola through the largest sample (O(h³) of 0.02 rad), the mean
+/// precession over whole periods: 1e-6 relative for all three. The fast-top approximations
+/// are their leading terms in ε = 0.045: off by percents, which the exact forms are not.
+#[test]
+fn gyroscope_precesses_and_nutates_as_the_lagrange_top() {
+    let r = gyroscope::run(false).expect("the top runs");
+    let rel = |x: f64, y: f64| ((x - y) / y).abs();
+    assert!(rel(r.slow_rate, r.slow_exact) < 1e-8, "{r:?}");
+    assert!(rel(r.fast_rate, r.fast_exact) < 1e-8, "{r:?}");
+    assert!(r.fast_exact > 40.0 * r.slow_exact, "two distinct roots: {r:?}");
+    assert!(r.tilt_drift < 1e-8, "{r:?}");
+    assert!(r.periods >= 19, "{r:?}");
+    assert!(rel(r.nutation_period, r.nutation_period_exact) < 1e-6, "{r:?}");
+    assert!(rel(r.nutation_amplitude, r.nutation_amplitude_exact) < 1e-6, "{r:?}");
+    assert!(rel(r.mean_precession, r.mean_precession_exact) < 1e-6, "{r:?}");
+    for (approx, exact) in [
+        (r.nutation_period_fast_top, r.nutation_period_exact),
+        (r.nutation_amplitude_fast_top, r.nutation_amplitude_exact),
+        (r.mean_precession_fast_top, r.mean_precession_exact),
+    ] {
+        assert!(rel(approx, exact) > 0.01 && rel(approx, exact) < 0.1, "the fast-top value is an O(ε) approximation: {r:?}");
+    }
+}
+
+/// The RSSR four-bar against its closed form. Positions: the coupler's row is ½(|d|² − L²) ≤
+/// 1e-10 m², i.e. |d| − L ≤ 1e-10/L ≈ 7e-10 m, which moves the rocker by up to that over b times
+/// the transmission index (≥ 0.83): ≈ 8e-9 rad, so 1e-8 rad; rates and accelerations from exact
+/// solves at that configuration (ψ̇ up to 7.5 rad/s, ψ̈ up to 124 rad/s²): 1e-7 and 1e-5. The
+/// drive torque (peak 0.185 N·m) against virtual power: errors of ψ̈ of 1e-7 rad/s² times
+/// J_O ψ̇/ω ≈ 1e-3 kg·m²: 1e-8 N·m. The mean drive power over a turn is the integral of a smooth
+/// periodic function sampled evenly (exact to rounding), Δ(T + V) = 0: 1e-8 W.
+#[test]
+fn rssr_output_and_drive_torque_match_closed_forms() {
+    let r = rssr::run(false).expect("the RSSR runs");
+    assert_eq!(r.samples, 360);
+    assert!(r.angle_error < 1e-8, "{r:?}");
+    assert!(r.rate_error < 1e-7, "{r:?}");
+    assert!(r.acceleration_error < 1e-5, "{r:?}");
+    assert!(r.peak_acceleration > 100.0, "{r:?}");
+    // A crank-rocker: the rocker swings about 61°, never a full turn.
+    assert!(r.swing > 1.0 && r.swing < 1.2, "{r:?}");
+    assert!((r.min_transmission - r.min_transmission_exact).abs() < 1e-8 && r.min_transmission > 0.8, "{r:?}");
+    assert!(r.peak_torque > 0.1 && r.torque_error < 1e-8, "{r:?}");
+    assert!(r.mean_drive_power.abs() < 1e-8, "{r:?}");
+    assert!(r.peak_coupler_force > 1.0, "{r:?}");
+}
+
+/// The offset spatial slider-crank against its closed forms (tolerances as for the planar
+/// slider-crank: positions 1e-8 m, speeds 1e-7 m/s, accelerations up to 250 m/s² to 1e-5). The
+/// dead centres are closed-form crank angles: there x is the closed-form extreme to 1e-8 m and
+/// ẋ vanishes to 1e-8 m/s. Torque (peak 28 N·m) and rod force (peak 935 N) against virtual
+/// work and the slider's equation: ẍ errors of 1e-7 m/s² times m s′ ≈ 0.04 kg·m and m/ê_x ≈ 1 kg
+/// give 1e-7 N·m and 1e-5 N. The mean powers of drive and load cancel over a turn (the slider's
+/// kinetic energy returns) to the rounding of 360 sums: 1e-6 W of 65 W.
+#[test]
+fn spatial_slider_crank_matches_its_closed_forms() {
+    let r = spatial_slider_crank::run(false).expect("the spatial slider-crank runs");
+    assert_eq!(r.samples, 360);
+    assert!(r.position_error < 1e-8, "{r:?}");
+    assert!(r.velocity_error < 1e-7, "{r:?}");
+    assert!(r.acceleration_error < 1e-5, "{r:?}");
+    assert!((r.stroke - r.stroke_exact).abs() < 1e-8 && r.stroke > 0.1, "{r:?}");
+    assert!(r.dead_centre_speed < 1e-8, "{r:?}");
+    // The offset makes the strokes unequal: a quick return, a few per cent.
+    assert!(r.time_ratio > 1.01 && r.time_ratio < 1.1, "{r:?}");
+    assert!(r.peak_torque > 10.0 && r.torque_error < 1e-7, "{r:?}");
+    assert!(r.peak_rod_force > 500.0 && r.rod_force_error < 1e-5, "{r:?}");
+    assert!(r.load_power > 10.0 && (r.drive_power + r.load_power).abs() < 1e-6, "{r:?}");
+}
+
+/// The 3D double wishbone. Layout A moves in the front-view plane (the example's argument), so
+/// its toe stays zero and its camber and wheel-centre track are those of the planar four-bar in
+/// closed form: to the position solve's 1e-10 m over lever arms of ≥ 0.1 m, 1e-9 rad and 1e-9 m.
+/// Its camber changes by degrees (short upper arm over a long lower one: negative camber gain
+/// in bump). Layout B's inclined pivots steer the wheel by tenths of a degree: A's zero is the
+/// geometry's, not the solver's.
+#[test]
+fn double_wishbone_3d_bump_steer_and_camber() {
+    let r = double_wishbone_3d::run(false).expect("both layouts sweep");
+    assert_eq!(r.parallel.travel.len(), 33);
+    assert!(r.parallel_bump_steer < 1e-9, "{r:?}");
+    assert!(r.camber_error < 1e-9 && r.track_error < 1e-9, "{r:?}");
+    let (first, last) = (r.parallel.camber[0], r.parallel.camber[32]);
+    assert!(first > 0.01 && last < -0.02, "rebound camber {first} rad, bump camber {last} rad");
+    let toe_b = r.inclined.toe.iter().fold(0.0f64, |a, t| a.max(t.abs()));
+    assert!(toe_b > 1e-3 && toe_b < 0.02, "layout B's bump steer {toe_b} rad");
+}
+
+/// The Stewart platform: the pose Newton finds from the six strokes is the commanded one, and the
+/// leg lengths of that pose are the inverse kinematics', to the position tolerance (1e-10 m;
+/// Newton lands far below it): 1e-9. Statics at every pose: the stroke drivers' reactions and
+/// the example's 6×6 solve are two solutions of the same well-conditioned equilibrium, equal to
+/// rounding (cond · ε · |f| ≈ 1e3 · 2e-16 · 170 N ≈ 3e-11 N): 1e-8 N. The vertical components
+/// carry the whole load.
+#[test]
+fn stewart_platform_pose_lengths_and_statics() {
+    let r = stewart_platform::run(false).expect("the Stewart platform runs");
+    assert_eq!(r.samples, 49);
+    assert!(r.position_error < 1e-9 && r.rotation_error < 1e-9, "{r:?}");
+    assert!(r.length_error < 1e-9, "{r:?}");
+    // ±50 mm of heave and ±5° of roll change the legs by about ±60 mm.
+    assert!(r.length_max - r.length_min > 0.1, "{r:?}");
+    assert!(r.static_peak > 50.0 && r.static_error < 1e-8, "{r:?}");
+    assert!((r.static_vertical - r.static_load).abs() < 1e-9 * r.static_load, "{r:?}");
+    // The actuators hold the platform and the legs up (pushing), more in the lower poses.
+    assert!(r.force_min > 50.0 && r.force_max < 200.0, "{r:?}");
+}

@@ -3,6 +3,8 @@
 
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
+#[path = "../../examples/double_wishbone_3d.rs"]
+pub mod double_wishbone_3d;
 #[path = "../../examples/filmstrip.rs"]
 pub mod filmstrip;
 #[path = "../../examples/flywheel_engine.rs"]
@@ -11,12 +13,20 @@ pub mod flywheel_engine;
 pub mod four_bar;
 #[path = "../../examples/free_four_bar.rs"]
 pub mod free_four_bar;
+#[path = "../../examples/gyroscope.rs"]
+pub mod gyroscope;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[path = "../../examples/pumped_pendulum.rs"]
 pub mod pumped_pendulum;
+#[path = "../../examples/rssr.rs"]
+pub mod rssr;
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
+#[path = "../../examples/spatial_slider_crank.rs"]
+pub mod spatial_slider_crank;
+#[path = "../../examples/stewart_platform.rs"]
+pub mod stewart_platform;
 #[path = "../../examples/suspension_dynamics.rs"]
 pub mod suspension_dynamics;
 #[path = "../../examples/variable_pendulum.rs"]
