@@ -238,6 +238,8 @@ fn rssr_output_angle() {
             let d = 1e-6;
             let rate = (psi(theta + d, want) - psi(theta - d, want)) / (2.0 * d) * w;
             assert!((got - want).abs() < 1e-9, "θ = {theta}: ψ = {got}, closed form {want}");
+            // the joint's own angle accessor: from the y-axis (the default reference of an x axis)
+            assert!((m.output_angle(q) - want).abs() < 1e-9, "θ = {theta}: output angle {}, closed form {want}", m.output_angle(q));
             // ω′x of the rocker is ψ̇ (the difference quotient is good to ~1e-9)
             let psi_dot = Rssr::ROCKER.body_angular_velocity(v).x;
             assert!((psi_dot - rate).abs() < 1e-7, "θ = {theta}: ψ̇ = {psi_dot}, closed form {rate}");
@@ -269,7 +271,7 @@ fn spatial_slider_crank_stroke() {
             // ~1e-7 (speed) and ~1e-5 (acceleration, with rounding ε s / d² ≈ 1e-8)
             let slider = SpatialSliderCrank::SLIDER;
             let (x, xd, xdd) = (slider.position(q).x, slider.velocity(v).x, slider.acceleration(vd).x);
-            assert!((x - s(t)).abs() < 1e-9, "t = {t}: x = {x}, closed form {}", s(t));
+            assert!((x - s(t)).abs() < 1e-9 && (m.guide_stroke(q) - s(t)).abs() < 1e-9, "t = {t}: x = {x}, closed form {}", s(t));
             assert!((xd - speed).abs() < 1e-6, "t = {t}: ẋ = {xd}, closed form {speed}");
             assert!((xdd - accel).abs() < 1e-3 * (1.0 + accel.abs()), "t = {t}: ẍ = {xdd}, closed form {accel}");
             // the crank pin, a named point, stays a from the axis and the rod length from the slider

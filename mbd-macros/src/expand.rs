@@ -12,7 +12,8 @@ use crate::model::{Model, Partial};
 use crate::parse::MechanismDef;
 
 /// Expands a `mechanism!` invocation. Never fails: mistakes become `compile_error!`s next to a
-/// stub of the mechanism's type, so code that uses the type does not add follow-up errors.
+/// stub of the mechanism's type (its struct and parameters), so code that names the type or its
+/// parameters does not add follow-up errors.
 pub fn expand(input: TokenStream) -> TokenStream {
     let def: MechanismDef = match syn::parse2(input) {
         Ok(d) => d,
@@ -544,7 +545,28 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             }
         })
     });
-    quote!(#(#bodies)* #(#joints)* #(#points)*)
+    let nq = usize_lit(f.nq);
+    let coordinates = f.joint_coordinates.iter().map(|(accessor, node)| {
+        let (what, joint) = match accessor.rsplit_once('_') {
+            Some((joint, "angle")) => ("angle θ (rad): the turn of its second marker about the first one's axis from its x-axis", joint),
+            Some((joint, _)) => ("stroke s (m): the slide of its second marker along the first one's axis", joint),
+            None => ("coordinate", accessor.as_str()),
+        };
+        let doc = format!(" The {what}, of joint `{joint}` at q (valid within (−π, π) for an angle).");
+        let accessor = format_ident!("{}", accessor);
+        let (body, _) = e.body(&[Output { target: quote!(out[0]), node: *node }]);
+        let zero = e.literal(0.0);
+        quote! {
+            #[doc = #doc]
+            #[allow(unused_parens, clippy::approx_constant)]
+            pub fn #accessor(&self, q: &[#real; #nq]) -> #real {
+                let mut out = [#zero; 1];
+                #body
+                out[0]
+            }
+        }
+    });
+    quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)*)
 }
 
 /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)

@@ -67,6 +67,10 @@ pub struct Formulation {
     /// The body-frame coordinates of each named point (`model.points`), functions of the
     /// parameters, for the generated point accessors.
     pub points: Vec<Vec<Id>>,
+    /// The joint coordinates of each labelled spatial joint that has them — the angle θ_J of a
+    /// revolute or cylindrical joint, the stroke s_J of a translational or cylindrical one — as
+    /// (accessor name `hinge_angle`, node), for the generated accessors.
+    pub joint_coordinates: Vec<(String, Id)>,
 }
 
 impl Formulation {
@@ -207,6 +211,16 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let constraint_force_q = tangent(&mut b, &constraint_force);
     let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
+    let mut joint_coordinates = Vec::new();
+    for c in &model.constraints {
+        let (Some([i, j]), true) = (c.kind.markers(), syn::parse_str::<syn::Ident>(&c.name).is_ok()) else { continue };
+        for (what, kinds) in crate::model::JOINT_COORDINATES {
+            if kinds.contains(&c.kind.kind()) {
+                let node = if *what == "angle" { b.joint_angle(i, j) } else { b.joint_stroke(i, j) };
+                joint_coordinates.push((format!("{}_{what}", c.name), node));
+            }
+        }
+    }
 
     Formulation {
         nc: phi.len(),
@@ -234,6 +248,7 @@ pub fn formulate(model: &Model) -> Formulation {
         friction_qd,
         constraint_force_q,
         points,
+        joint_coordinates,
     }
 }
 

@@ -632,6 +632,10 @@ const GENERATED_ITEMS: &[&str] = &[
     "schur_solve",
 ];
 
+/// The joint coordinates a labelled spatial joint gets an accessor for (`hinge_angle(&q)`), by
+/// the kinds that have them.
+pub const JOINT_COORDINATES: &[(&str, &[&str])] = &[("angle", &["revolute", "cylindrical"]), ("stroke", &["translational", "cylindrical"])];
+
 /// The generated constant of a body or labelled joint: its name in upper case (`Name::CRANK`).
 pub fn constant_name(name: &str) -> String {
     name.to_uppercase()
@@ -946,6 +950,12 @@ fn constraints(
             if !claim_item(generated, r.errors, constant_name(&name), format!("joint `{name}`"), l.span()) {
                 *ok = false;
                 continue;
+            }
+            let coordinates = JOINT_COORDINATES.iter().filter(|(_, kinds)| r.space == Space::Spatial && kinds.contains(&kind.kind()));
+            for (what, _) in coordinates {
+                if !claim_item(generated, r.errors, format!("{name}_{what}"), format!("the {what} of joint `{name}`"), l.span()) {
+                    *ok = false;
+                }
             }
         }
         for (what, kind) in friction {
