@@ -45,8 +45,11 @@ impl OpCount {
 pub struct JointInfo {
     /// `"revolute crank~rod"`, `"drive crank.phi"`, or the name the user gave it.
     pub name: &'static str,
-    /// `"revolute"`, `"translational"`, `"revolute_revolute"`, `"revolute_translational"`,
-    /// `"rigid"`, `"fix"`, `"drive"`, `"drive_angle"`, `"drive_distance"` or `"constraint"`.
+    /// Planar: `"revolute"`, `"translational"`, `"revolute_revolute"`,
+    /// `"revolute_translational"`, `"rigid"`, `"fix"`, `"drive"`, `"drive_angle"`,
+    /// `"drive_distance"`; spatial: `"spherical"`, `"universal"`, `"revolute"`, `"cylindrical"`,
+    /// `"translational"`, `"planar"`, `"rigid"`, `"point_on_line"`, `"point_on_plane"`,
+    /// `"distance"`, `"drive"`, `"drive_angle"`, `"drive_stroke"`; both: `"constraint"`.
     pub kind: &'static str,
     /// Its first row in Φ.
     pub first_row: u16,
