@@ -20,13 +20,15 @@
 //!   arm), so it is the motion: the upright never steers. Bump steer is zero, and the camber is
 //!   minus the upright's front-view turn, which the planar four-bar of the two arms' front
 //!   views gives in closed form (two circles' intersection; the lower arm angle that puts the
-//!   wheel centre at the commanded height found by bisection). Both checked.
+//!   wheel centre at the commanded height found by bisection; its hardpoints read off the
+//!   mechanism's named points at the declared design configuration). Both checked.
 //! - **B, inclined pivot axes** (anti-dive and plan-view angles), the same tie rod: the layout
 //!   an engineer tunes; its bump steer and camber curves are the output.
 //!
 //! The sweep's "time" t is the wheel travel in metres: `drive upright.z = z0 + t`.
 //!
 //! Run: `cargo run --release --example double_wishbone_3d`
+use mbd::nalgebra::Point3;
 use mbd::prelude::*;
 
 mechanism! {
@@ -56,13 +58,6 @@ mechanism! {
     }
 }
 
-/// Front-view (y, z) hardpoints at design (m): lower pivot, lower ball, upper pivot, upper
-/// ball, wheel centre — as in the `mechanism!` above.
-const LOWER_PIVOT: [f64; 2] = [0.25, 0.15];
-const LOWER_BALL: [f64; 2] = [0.70, 0.13];
-const UPPER_PIVOT: [f64; 2] = [0.35, 0.45];
-const UPPER_BALL: [f64; 2] = [0.66, 0.47];
-const WHEEL: [f64; 2] = [0.76, 0.30];
 /// Wheel travel (m): ±80 mm in 5 mm steps.
 const TRAVEL: f64 = 0.08;
 const STEPS: usize = 32;
@@ -94,75 +89,89 @@ pub struct Report {
     pub inclined: Curves,
 }
 
-/// A(p) = (2e0² − 1)I + 2(eeᵀ + e0ẽ) of body `body`'s Euler parameters q[7k+3..7k+7]
-/// (docs/formulation.md, "Spatial bodies").
-fn rotation(q: &[f64], body: usize) -> [[f64; 3]; 3] {
-    let [e0, e1, e2, e3] = [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]];
-    let e = [e1, e2, e3];
-    let tilde = [[0.0, -e3, e2], [e3, 0.0, -e1], [-e2, e1, 0.0]];
-    core::array::from_fn(|r| {
-        core::array::from_fn(|c| if r == c { 2.0 * e0 * e0 - 1.0 } else { 0.0 } + 2.0 * (e[r] * e[c] + e0 * tilde[r][c]))
-    })
+/// The front-view (y, z) hardpoints of layout A at design (m), read off the mechanism: the arms'
+/// named pivot and ball points and the wheel centre (the upright's centre of mass) at its declared
+/// design configuration.
+struct FrontView {
+    lower_pivot: [f64; 2],
+    lower_ball: [f64; 2],
+    upper_pivot: [f64; 2],
+    upper_ball: [f64; 2],
+    wheel: [f64; 2],
 }
 
-fn rotate2(v: [f64; 2], angle: f64) -> [f64; 2] {
+impl FrontView {
+    fn of(m: &DoubleWishbone) -> Self {
+        let q = m.initial_positions();
+        let yz = |p: Point3<f64>| [p.y, p.z];
+        FrontView {
+            lower_pivot: yz(m.lower_pivot().position(&q)),
+            lower_ball: yz(m.lower_ball().position(&q)),
+            upper_pivot: yz(m.upper_pivot().position(&q)),
+            upper_ball: yz(m.upper_ball().position(&q)),
+            wheel: yz(DoubleWishbone::UPRIGHT.position(&q)),
+        }
+    }
+}
+
+fn rotate2(p: [f64; 2], angle: f64) -> [f64; 2] {
     let (s, c) = angle.sin_cos();
-    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+    [c * p[0] - s * p[1], s * p[0] + c * p[1]]
 }
 
 fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
-fn angle2(v: [f64; 2]) -> f64 {
-    v[1].atan2(v[0])
+fn angle2(p: [f64; 2]) -> f64 {
+    p[1].atan2(p[0])
 }
 
-fn norm2(v: [f64; 2]) -> f64 {
-    v[0].hypot(v[1])
+fn norm2(p: [f64; 2]) -> f64 {
+    p[0].hypot(p[1])
 }
 
 /// The front-view four-bar of layout A at lower arm angle `alpha` (from the y-axis, rad): the
 /// upright's turn about x from design (rad) and the wheel centre (y, z) (m).
-fn front_view(alpha: f64) -> (f64, [f64; 2]) {
-    let (lower, upper) = (norm2(sub2(LOWER_BALL, LOWER_PIVOT)), norm2(sub2(UPPER_BALL, UPPER_PIVOT)));
-    let kingpin = norm2(sub2(UPPER_BALL, LOWER_BALL));
-    let ball = [LOWER_PIVOT[0] + lower * alpha.cos(), LOWER_PIVOT[1] + lower * alpha.sin()];
+fn front_view(h: &FrontView, alpha: f64) -> (f64, [f64; 2]) {
+    let (lower, upper) = (norm2(sub2(h.lower_ball, h.lower_pivot)), norm2(sub2(h.upper_ball, h.upper_pivot)));
+    let kingpin = norm2(sub2(h.upper_ball, h.lower_ball));
+    let ball = [h.lower_pivot[0] + lower * alpha.cos(), h.lower_pivot[1] + lower * alpha.sin()];
     // The upper ball: on the circle of radius `upper` about the upper pivot and `kingpin` from
     // the lower ball, on the design's side of the line between them.
-    let to_pivot = sub2(UPPER_PIVOT, ball);
+    let to_pivot = sub2(h.upper_pivot, ball);
     let d = norm2(to_pivot);
     let along = (kingpin * kingpin - upper * upper + d * d) / (2.0 * d);
     let across = (kingpin * kingpin - along * along).sqrt();
     let (u, n) = ([to_pivot[0] / d, to_pivot[1] / d], [-to_pivot[1] / d, to_pivot[0] / d]);
     let side = {
-        let (a, b) = (sub2(UPPER_PIVOT, LOWER_BALL), sub2(UPPER_BALL, LOWER_BALL));
+        let (a, b) = (sub2(h.upper_pivot, h.lower_ball), sub2(h.upper_ball, h.lower_ball));
         (a[0] * b[1] - a[1] * b[0]).signum()
     };
     // n is u turned +90°: a point at +n lies to the left of the line ball → pivot, where
     // (pivot − ball) × (point − ball) > 0; keep the design's sign.
     let upper_ball = [ball[0] + along * u[0] + side * across * n[0], ball[1] + along * u[1] + side * across * n[1]];
-    let turn = angle2(sub2(upper_ball, ball)) - angle2(sub2(UPPER_BALL, LOWER_BALL));
-    let w = rotate2(sub2(WHEEL, LOWER_BALL), turn);
+    let turn = angle2(sub2(upper_ball, ball)) - angle2(sub2(h.upper_ball, h.lower_ball));
+    let w = rotate2(sub2(h.wheel, h.lower_ball), turn);
     (turn, [ball[0] + w[0], ball[1] + w[1]])
 }
 
 /// Layout A's closed form at wheel travel `travel`: (camber, wheel centre y). The lower arm
 /// angle is found by bisection on the wheel centre's height, which rises monotonically with it
 /// over ±0.4 rad about design.
-fn parallel_closed_form(travel: f64) -> (f64, f64) {
-    let alpha0 = angle2(sub2(LOWER_BALL, LOWER_PIVOT));
-    let target = WHEEL[1] + travel;
+fn parallel_closed_form(h: &FrontView, travel: f64) -> (f64, f64) {
+    let alpha0 = angle2(sub2(h.lower_ball, h.lower_pivot));
+    let target = h.wheel[1] + travel;
     let (mut lo, mut hi) = (alpha0 - 0.4, alpha0 + 0.4);
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if front_view(mid).1[1] < target {
+        if front_view(h, mid).1[1] < target {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    let (turn, wheel) = front_view(0.5 * (lo + hi));
+    let (turn, wheel) = front_view(h, 0.5 * (lo + hi));
     // A turn by `turn` about +x tips the spin axis (0, 1, 0) up by `turn`: the wheel's top leans
     // inward, camber −turn.
     (-turn + 0.0, wheel[0])
@@ -172,6 +181,7 @@ fn parallel_closed_form(travel: f64) -> (f64, f64) {
 fn sweep(m: &DoubleWishbone) -> Result<Curves, KinematicError> {
     let solver = KinematicSolver::default();
     let q0 = m.initial_positions();
+    let upright = DoubleWishbone::UPRIGHT;
     let mut curves = Curves { travel: Vec::new(), toe: Vec::new(), camber: Vec::new(), track: Vec::new() };
     let step = 2.0 * TRAVEL / STEPS as f64;
     // Out from design in each direction (each position solve starts from its neighbour), then
@@ -182,10 +192,11 @@ fn sweep(m: &DoubleWishbone) -> Result<Curves, KinematicError> {
         // (+ 0.0 turns the first point's −0.0 into 0.0.)
         let times = (0..=STEPS / 2).map(|k| direction * k as f64 * step + 0.0);
         solver.sweep(m, &mut q, times, |t, q, _, _| {
-            let a = rotation(q, 2);
-            // The spin axis is the upright's y-axis: w = A (0, 1, 0).
-            let w = [a[0][1], a[1][1], a[2][1]];
-            points.push((t, w[0].atan2(w[1]), -w[2].asin() + 0.0, q[14 + 1] - q0[14 + 1]));
+            // The spin axis is the upright's y-axis: w = A (0, 1, 0); the wheel centre is its
+            // centre of mass.
+            let w = upright.rotation(q).column(1).into_owned();
+            let track = upright.position(q).y - upright.position(&q0).y;
+            points.push((t, w.x.atan2(w.y), -w.z.asin() + 0.0, track));
         })?;
     }
     points.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -201,14 +212,16 @@ fn sweep(m: &DoubleWishbone) -> Result<Curves, KinematicError> {
 
 /// Runs both layouts; prints their curves when `print` is set.
 pub fn run(print: bool) -> Result<Report, KinematicError> {
-    let parallel = sweep(&DoubleWishbone::default())?;
+    let parallel_layout = DoubleWishbone::default();
+    let design = FrontView::of(&parallel_layout);
+    let parallel = sweep(&parallel_layout)?;
     let inclined_layout = DoubleWishbone { lower_y: 0.05, lower_z: 0.10, upper_y: -0.04, upper_z: -0.06, ..DoubleWishbone::default() };
     let inclined = sweep(&inclined_layout)?;
     let (mut camber_error, mut track_error, mut bump_steer) = (0.0f64, 0.0f64, 0.0f64);
     for k in 0..parallel.travel.len() {
-        let (camber, wheel_y) = parallel_closed_form(parallel.travel[k]);
+        let (camber, wheel_y) = parallel_closed_form(&design, parallel.travel[k]);
         camber_error = camber_error.max((parallel.camber[k] - camber).abs());
-        track_error = track_error.max((parallel.track[k] - (wheel_y - WHEEL[0])).abs());
+        track_error = track_error.max((parallel.track[k] - (wheel_y - design.wheel[0])).abs());
         bump_steer = bump_steer.max(parallel.toe[k].abs());
     }
     let r = Report { parallel, parallel_bump_steer: bump_steer, camber_error, track_error, inclined };
@@ -220,7 +233,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             "travel (mm)", "toe (deg)", "camber (deg)", "closed form", "track (mm)", "toe (deg)", "camber (deg)"
         );
         for k in (0..r.parallel.travel.len()).step_by(4) {
-            let (camber, _) = parallel_closed_form(r.parallel.travel[k]);
+            let (camber, _) = parallel_closed_form(&design, r.parallel.travel[k]);
             println!(
                 "{:>12.1} | {:>12.2e} {:>13.6} {:>13.6} {:>11.3} | {:>12.5} {:>13.6}",
                 r.parallel.travel[k] * 1e3,

@@ -73,21 +73,11 @@ pub struct Report {
     pub periods: usize,
 }
 
-/// A(p) = (2e0² − 1)I + 2(eeᵀ + e0ẽ) of body `body`'s Euler parameters q[7k+3..7k+7]
-/// (docs/formulation.md, "Spatial bodies"): body-frame components → global.
-pub fn rotation(q: &[f64], body: usize) -> [[f64; 3]; 3] {
-    let [e0, e1, e2, e3] = [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]];
-    let e = [e1, e2, e3];
-    let tilde = [[0.0, -e3, e2], [e3, 0.0, -e1], [-e2, e1, 0.0]];
-    core::array::from_fn(|r| {
-        core::array::from_fn(|c| if r == c { 2.0 * e0 * e0 - 1.0 } else { 0.0 } + 2.0 * (e[r] * e[c] + e0 * tilde[r][c]))
-    })
-}
-
-/// The top's tilt θ from the vertical and the azimuth of its axis (rad).
+/// The top's tilt θ from the vertical and the azimuth of its axis (rad): its symmetry axis is
+/// the rotor's body z, the third column of A.
 fn axis_angles(q: &[f64]) -> (f64, f64) {
-    let a = rotation(q, 0);
-    (a[2][2].clamp(-1.0, 1.0).acos(), a[1][2].atan2(a[0][2]))
+    let axis = Gyroscope::ROTOR.rotation(q).column(2).into_owned();
+    (axis.z.clamp(-1.0, 1.0).acos(), axis.y.atan2(axis.x))
 }
 
 /// Adds 2π k to `angle` to bring it within π of `previous` (unwrapping an azimuth).
@@ -140,11 +130,11 @@ fn options() -> SimulationOptions<f64> {
 /// Runs the top started in steady precession at rate Ω for `duration` s; returns the measured
 /// precession rate and the largest drift of the tilt.
 fn steady(base: &Gyroscope, omega: f64, duration: f64) -> Result<(f64, f64), SimulationError> {
-    let (theta, l) = (base.theta, base.l);
+    let theta = base.theta;
     // ω′ = Ω Aᵀẑ + ψ̇ ẑ′ with Aᵀẑ = (0, sin θ, cos θ) for a tilt about x; its axial component is
-    // the spin ω3 = Ω cos θ + ψ̇. The centre moves with Ω ẑ × r (ψ̇ ẑ′ is along r).
-    let r = [0.0, -l * theta.sin(), l * theta.cos()];
-    let m = Gyroscope { wx: 0.0, wy: omega * theta.sin(), wz: SPIN, vx: -omega * r[1], vy: omega * r[0], vz: 0.0, ..*base };
+    // the spin ω3 = Ω cos θ + ψ̇. The centre r, as declared, moves with Ω ẑ × r (ψ̇ ẑ′ is along r).
+    let r = Gyroscope::ROTOR.position(&base.initial_positions());
+    let m = Gyroscope { wx: 0.0, wy: omega * theta.sin(), wz: SPIN, vx: -omega * r.y, vy: omega * r.x, vz: 0.0, ..*base };
     let (q0, v0) = (m.initial_positions(), m.initial_velocities());
     let steps = (duration / 0.002).round() as usize;
     let times: Vec<f64> = (1..=steps).map(|k| k as f64 * 0.002).collect();

@@ -16,10 +16,16 @@
 //! - the transmission index |ê·t̂| (ê the coupler's direction, t̂ the direction the rocker pin
 //!   moves: 1 ideal, 0 at a dead point), from the closed-form geometry;
 //! - the drive torque by virtual power: τ ω = d(T + V)/dt, with T = ½ J_O ψ̇² of the rocker
-//!   about its hinge (the crank's T is constant at constant ω) and V the links' weight, all
-//!   from the closed-form ψ, ψ̇, ψ̈; over a revolution its mean, the mean drive power, is zero.
+//!   about its hinge (J_O = m b²/3 + j0 of the declared bar; the crank's T is constant at
+//!   constant ω) and V the links' weight, all from the closed-form ψ, ψ̇, ψ̈; over a revolution
+//!   its mean, the mean drive power, is zero.
+//!
+//! mbd's side is read by name: ψ as the hinge `output`'s angle, ψ̇ and ψ̈ from the rocker's
+//! angular velocity and acceleration, the pins as the named points `crank.pin` and `rocker.pin`,
+//! the drive torque and the coupler force as the reactions of `motor` and `coupler`.
 //!
 //! Run: `cargo run --release --example rssr`
+use mbd::nalgebra::{Point3, Vector3};
 use mbd::prelude::*;
 
 mechanism! {
@@ -29,17 +35,18 @@ mechanism! {
         spatial;
         params {
             a: 0.05, b: 0.10, len: 0.15, ox: 0.10, oy: 0.10, oz: -0.10, omega: 4.0 * PI,
-            m_crank: 0.3, m_rocker: 0.5, psi0: -0.34
+            m_crank: 0.3, m_rocker: 0.5, j0: 1.0e-6, psi0: -0.34
         }
         gravity [0.0, 0.0, -9.81];
         // The crank's centre of mass halfway along its arm (body x at θ = 0).
         body crank { mass: m_crank, inertia: [1.0e-5, 8.0e-5, 8.0e-5], at: [a / 2.0, 0.0, 0.0] }
-        // A slender bar along x̂ = (2, −2, −1)/3 at ψ = 0: J = (m b²/12)(I − x̂x̂ᵀ) + 1e-6 I.
+        // A slender bar along x̂ = (2, −2, −1)/3 at ψ = 0: J = (m b²/12)(I − x̂x̂ᵀ) + j0 I (j0 keeps
+        // the mass matrix positive definite about the bar's own axis).
         body rocker {
             mass: m_rocker,
             inertia: [
-                m_rocker * b^2 / 12.0 * 5.0 / 9.0 + 1.0e-6, m_rocker * b^2 / 12.0 * 5.0 / 9.0 + 1.0e-6,
-                m_rocker * b^2 / 12.0 * 8.0 / 9.0 + 1.0e-6,
+                m_rocker * b^2 / 12.0 * 5.0 / 9.0 + j0, m_rocker * b^2 / 12.0 * 5.0 / 9.0 + j0,
+                m_rocker * b^2 / 12.0 * 8.0 / 9.0 + j0,
                 m_rocker * b^2 / 12.0 * 4.0 / 9.0, m_rocker * b^2 / 12.0 * 2.0 / 9.0, -m_rocker * b^2 / 12.0 * 2.0 / 9.0
             ],
             // The assembly guess: the rocker turned by psi0 from x̂.
@@ -62,9 +69,9 @@ mechanism! {
 }
 
 /// The rocker's hinge axis u, and x̂, ŷ spanning the plane its pin moves in.
-pub const U: [f64; 3] = [2.0 / 3.0, 1.0 / 3.0, 2.0 / 3.0];
-pub const X_HAT: [f64; 3] = [2.0 / 3.0, -2.0 / 3.0, -1.0 / 3.0];
-pub const Y_HAT: [f64; 3] = [1.0 / 3.0, 2.0 / 3.0, -2.0 / 3.0];
+pub const U: Vector3<f64> = Vector3::new(2.0 / 3.0, 1.0 / 3.0, 2.0 / 3.0);
+pub const X_HAT: Vector3<f64> = Vector3::new(2.0 / 3.0, -2.0 / 3.0, -1.0 / 3.0);
+pub const Y_HAT: Vector3<f64> = Vector3::new(1.0 / 3.0, 2.0 / 3.0, -2.0 / 3.0);
 /// Gravity (m/s²), as declared.
 const G: f64 = 9.81;
 
@@ -94,45 +101,16 @@ pub struct Report {
     pub peak_coupler_force: f64,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// A(p) = (2e0² − 1)I + 2(eeᵀ + e0ẽ) of body `body`'s Euler parameters q[7k+3..7k+7]
-/// (docs/formulation.md, "Spatial bodies").
-fn rotation(q: &[f64], body: usize) -> [[f64; 3]; 3] {
-    let [e0, e1, e2, e3] = [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]];
-    let e = [e1, e2, e3];
-    let tilde = [[0.0, -e3, e2], [e3, 0.0, -e1], [-e2, e1, 0.0]];
-    core::array::from_fn(|r| {
-        core::array::from_fn(|c| if r == c { 2.0 * e0 * e0 - 1.0 } else { 0.0 } + 2.0 * (e[r] * e[c] + e0 * tilde[r][c]))
-    })
-}
-
-/// The global position r + A s′ of the body point s′.
-fn point(q: &[f64], body: usize, local: [f64; 3]) -> [f64; 3] {
-    let a = rotation(q, body);
-    core::array::from_fn(|i| q[7 * body + i] + dot(a[i], local))
-}
-
 /// The closed form at crank angle θ: ψ on the branch nearest `near`, ψ′ = dψ/dθ, ψ″ = d²ψ/dθ².
 pub fn closed_form(m: &Rssr, theta: f64, near: f64) -> (f64, f64, f64) {
-    let o = [m.ox, m.oy, m.oz];
+    let o = Point3::new(m.ox, m.oy, m.oz);
     let (s, c) = theta.sin_cos();
-    let p = [m.a * c, 0.0, m.a * s];
-    let (p1, p2) = ([-m.a * s, 0.0, m.a * c], [-m.a * c, 0.0, -m.a * s]);
-    let d = sub(p, o);
-    let (k1, k2, k3) = (dot(d, X_HAT), dot(d, Y_HAT), (dot(d, d) + m.b * m.b - m.len * m.len) / (2.0 * m.b));
-    let (k1d, k2d, k3d) = (dot(p1, X_HAT), dot(p1, Y_HAT), dot(d, p1) / m.b);
-    let (k1dd, k2dd, k3dd) = (dot(p2, X_HAT), dot(p2, Y_HAT), (dot(p1, p1) + dot(d, p2)) / m.b);
+    let p = Point3::new(m.a * c, 0.0, m.a * s);
+    let (p1, p2) = (Vector3::new(-m.a * s, 0.0, m.a * c), Vector3::new(-m.a * c, 0.0, -m.a * s));
+    let d = p - o;
+    let (k1, k2, k3) = (d.dot(&X_HAT), d.dot(&Y_HAT), (d.dot(&d) + m.b * m.b - m.len * m.len) / (2.0 * m.b));
+    let (k1d, k2d, k3d) = (p1.dot(&X_HAT), p1.dot(&Y_HAT), d.dot(&p1) / m.b);
+    let (k1dd, k2dd, k3dd) = (p2.dot(&X_HAT), p2.dot(&Y_HAT), (p1.dot(&p1) + d.dot(&p2)) / m.b);
     let (phase, spread) = (k2.atan2(k1), (k3 / k1.hypot(k2)).acos());
     let nearest = |x: f64| x - ((x - near) / (2.0 * PI)).round() * 2.0 * PI;
     let (x, y) = (nearest(phase + spread), nearest(phase - spread));
@@ -156,19 +134,11 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut q, 0.0)?;
-    let joint = |name: &str| Rssr::JOINTS.iter().position(|j| j.name == name);
-    let (motor, coupler) = (joint("motor"), joint("coupler"));
-    // Inertia of the rocker about its hinge: uᵀJ′u from the model's own mass matrix (the hinge
-    // axis is u in the rocker's frame too, which is the global frame at ψ = 0) plus m (b/2)².
-    let mut mass = [[0.0; Rssr::NV]; Rssr::NV];
-    m.add_mass_matrix(&q, 1.0, &mut mass);
-    let j_rocker: f64 =
-        (0..3).map(|i| (0..3).map(|k| U[i] * mass[9 + i][9 + k] * U[k]).sum::<f64>()).sum::<f64>() + m.m_rocker * m.b * m.b / 4.0;
-    let rocker_angle = |q: &[f64]| {
-        // p = (cos ψ/2, sin ψ/2 u): the rocker turns about u from its declared frame.
-        2.0 * dot([q[11], q[12], q[13]], U).atan2(q[10])
-    };
-    let mut near = rocker_angle(&q);
+    // Inertia of the rocker about its hinge: the declared slender bar's uᵀJ′u = m b²/12 + j0
+    // (u ⟂ x̂) plus m (b/2)².
+    let j_rocker = m.m_rocker * m.b * m.b / 12.0 + m.j0 + m.m_rocker * m.b * m.b / 4.0;
+    // ψ is the hinge `output`'s angle: the rocker's reference x̂ turned about u from the ground's.
+    let mut near = m.output_angle(&q);
     let n = 360;
     let period = 2.0 * PI / m.omega;
     let mut r = Report {
@@ -202,15 +172,15 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     // Equally spaced over the period: the mean of the samples is the cycle average.
     let times = (0..n).map(|k| period * k as f64 / n as f64);
-    let o = [m.ox, m.oy, m.oz];
+    let o = Point3::new(m.ox, m.oy, m.oz);
     solver.sweep(&m, &mut q, times, |t, q, v, vd| {
         let theta = m.omega * t;
         let (psi_exact, d1, d2) = closed_form(&m, theta, near);
         near = psi_exact;
-        let psi = rocker_angle(q);
+        let psi = m.output_angle(q);
         let psi = psi - ((psi - psi_exact) / (2.0 * PI)).round() * 2.0 * PI;
         // The rocker turns about u, global and body frame alike: ψ̇ = u·ω′.
-        let (rate, accel) = (dot([v[9], v[10], v[11]], U), dot([vd[9], vd[10], vd[11]], U));
+        let (rate, accel) = (Rssr::ROCKER.body_angular_velocity(v).dot(&U), Rssr::ROCKER.body_angular_acceleration(vd).dot(&U));
         let (rate_exact, accel_exact) = (d1 * m.omega, d2 * m.omega * m.omega);
         r.angle_error = r.angle_error.max((psi - psi_exact).abs());
         r.rate_error = r.rate_error.max((rate - rate_exact).abs());
@@ -220,14 +190,14 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         psi_max = psi_max.max(psi);
 
         // Transmission index from mbd's pins, and from the closed form.
-        let index = |p: [f64; 3], pin: [f64; 3]| {
-            let e = sub(pin, p);
-            dot(e, cross(U, sub(pin, o))).abs() / (dot(e, e).sqrt() * m.b)
+        let index = |p: Point3<f64>, pin: Point3<f64>| {
+            let e = pin - p;
+            e.dot(&U.cross(&(pin - o))).abs() / (e.norm() * m.b)
         };
-        let (p_mbd, q_mbd) = (point(q, 0, [m.a / 2.0, 0.0, 0.0]), point(q, 1, [m.b / 3.0, -m.b / 3.0, -m.b / 6.0]));
+        let (p_mbd, q_mbd) = (m.crank_pin().position(q), m.rocker_pin().position(q));
         let (s, c) = theta.sin_cos();
-        let p_exact = [m.a * c, 0.0, m.a * s];
-        let q_exact: [f64; 3] = core::array::from_fn(|i| o[i] + m.b * (psi_exact.cos() * X_HAT[i] + psi_exact.sin() * Y_HAT[i]));
+        let p_exact = Point3::new(m.a * c, 0.0, m.a * s);
+        let q_exact = o + m.b * (psi_exact.cos() * X_HAT + psi_exact.sin() * Y_HAT);
         let ti = index(p_mbd, q_mbd);
         r.min_transmission = r.min_transmission.min(ti);
         r.min_transmission_exact = r.min_transmission_exact.min(index(p_exact, q_exact));
@@ -240,14 +210,14 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
         let mut d = [[0.0; Rssr::NV]; Rssr::NC];
         m.jacobian(q, t, &mut d);
-        let reaction = |joint: Option<usize>| joint.and_then(|i| joint_reaction(&m, q, &d, &lambda, i));
+        let reaction = |joint: usize| joint_reaction(&m, q, &d, &lambda, joint).and_then(|j| j.on_j);
         // The motor's moment on the crank about the shaft axis −y.
-        let torque = reaction(motor).and_then(|j| j.on_j).map_or(f64::NAN, |w| -w.moment[1]);
+        let torque = reaction(Rssr::MOTOR).map_or(f64::NAN, |w| -w.moment[1]);
         // The coupler pulls the rocker pin toward the crank pin when in tension.
-        let pull = reaction(coupler).and_then(|j| j.on_j).map_or(f64::NAN, |w| dot(w.force, sub(p_mbd, q_mbd)) / m.len);
+        let pull = reaction(Rssr::COUPLER).map_or(f64::NAN, |w| Vector3::from(w.force).dot(&(p_mbd - q_mbd)) / m.len);
         // d(T + V)/dt: the rocker's J_O ψ̇ ψ̈, the weights' m g ż (z of each centre of mass).
         let crank_zdot = m.a / 2.0 * c * m.omega;
-        let rocker_zdot = m.b / 2.0 * (-psi_exact.sin() * X_HAT[2] + psi_exact.cos() * Y_HAT[2]) * rate_exact;
+        let rocker_zdot = m.b / 2.0 * (-psi_exact.sin() * X_HAT.z + psi_exact.cos() * Y_HAT.z) * rate_exact;
         let power = j_rocker * rate_exact * accel_exact + G * (m.m_crank * crank_zdot + m.m_rocker * rocker_zdot);
         let torque_exact = power / m.omega;
         r.peak_torque = r.peak_torque.max(torque.abs());

@@ -21,6 +21,9 @@
 //! - the rod force from the slider's equation along x: m ẍ = F + T ê_x, ê the unit vector from
 //!   the slider to the crank pin, so T = (m ẍ − F)/ê_x (tension positive).
 //!
+//! mbd's side is read by name: x as the stroke of the translational joint `guide`, ẋ and ẍ as the
+//! slider's, the drive torque and the rod force as the reactions of `motor` and `rod`.
+//!
 //! Run: `cargo run --release --example spatial_slider_crank`
 use mbd::prelude::*;
 
@@ -91,8 +94,6 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut q, 0.0)?;
-    let joint = |name: &str| SpatialSliderCrank::JOINTS.iter().position(|j| j.name == name);
-    let (motor, rod) = (joint("motor"), joint("rod"));
 
     // Dead centres: crank and rod in line seen along z (the ez offset only shortens the rod).
     let lp = (m.len * m.len - m.ez * m.ez).sqrt();
@@ -145,7 +146,10 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let (mut x_outer, mut x_inner) = (f64::NAN, f64::NAN);
     solver.sweep(&m, &mut q, times, |t, q, v, vd| {
         let theta = m.omega * t;
-        let (x, xd, xdd) = (q[7], v[6], vd[6]);
+        // The guide's stroke is the slider's x (the guide's ground marker is at x = 0), so its
+        // rates are the slider's ẋ and ẍ.
+        let slider = SpatialSliderCrank::SLIDER;
+        let (x, xd, xdd) = (m.guide_stroke(q), slider.velocity(v).x, slider.acceleration(vd).x);
         if t == t_outer || t == t_inner {
             *(if t == t_outer { &mut x_outer } else { &mut x_inner }) = x;
             r.dead_centre_speed = r.dead_centre_speed.max(xd.abs());
@@ -165,13 +169,13 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
         let mut d = [[0.0; SpatialSliderCrank::NV]; SpatialSliderCrank::NC];
         m.jacobian(q, t, &mut d);
-        let reaction = |joint: Option<usize>| joint.and_then(|i| joint_reaction(&m, q, &d, &lambda, i));
+        let reaction = |joint: usize| joint_reaction(&m, q, &d, &lambda, joint).and_then(|j| j.on_j);
         // The motor's moment on the crank about z.
-        let torque = reaction(motor).and_then(|j| j.on_j).map_or(f64::NAN, |w| w.moment[2]);
+        let torque = reaction(SpatialSliderCrank::MOTOR).map_or(f64::NAN, |w| w.moment[2]);
         // ê from the slider to the crank pin, from the closed form.
         let (sn, cs) = theta.sin_cos();
         let e = [(m.a * cs - s) / m.len, (m.a * sn - m.ey) / m.len, -m.ez / m.len];
-        let tension = reaction(rod).and_then(|j| j.on_j).map_or(f64::NAN, |w| w.force[0] * e[0] + w.force[1] * e[1] + w.force[2] * e[2]);
+        let tension = reaction(SpatialSliderCrank::ROD).map_or(f64::NAN, |w| w.force[0] * e[0] + w.force[1] * e[1] + w.force[2] * e[2]);
         let load = -m.f0 * (1.0 - theta.cos()) / 2.0;
         let torque_exact = (m.m_slider * accel - load) * d1;
         let tension_exact = (m.m_slider * accel - load) / e[0];

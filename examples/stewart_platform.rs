@@ -24,7 +24,13 @@
 //!   load: Σ f_i ê_i + F = 0, Σ (P_i − c) × f_i ê_i + M_c = 0, a 6×6 linear system solved here
 //!   by Gaussian elimination; its solution against the stroke drivers' reactions.
 //!
+//! mbd's side is read by name: the platform's pose from the body `platform`, its joints P_i and
+//! the payload as its named points, the base joints b_i as the cylinders' universal-joint centres
+//! `cylinder_i.u` at the declared design pose, the strokes (printed) as the translational joints'
+//! `leg_i_stroke`, the actuator forces as the reactions of the stroke drivers `actuator_i`.
+//!
 //! Run: `cargo run --release --example stewart_platform`
+use mbd::nalgebra::{Point3, UnitQuaternion, Vector3};
 use mbd::prelude::*;
 
 mechanism! {
@@ -37,9 +43,17 @@ mechanism! {
         }
         gravity [0.0, 0.0, -g];
         body platform { mass: m_platform, inertia: [2.0, 2.0, 3.8], at: [0.0, 0.0, z0] }
+        // The platform joints p_i, in the platform frame (its centre of mass is its origin).
+        point platform.p1 = [0.224976, 0.268116, 0.0];
+        point platform.p2 = [0.119707, 0.328892, 0.0];
+        point platform.p3 = [-0.344683, 0.060777, 0.0];
+        point platform.p4 = [-0.344683, -0.060777, 0.0];
+        point platform.p5 = [0.119707, -0.328892, 0.0];
+        point platform.p6 = [0.224976, -0.268116, 0.0];
         // Loads for the static check: a weight at the platform's centre and a payload off centre.
+        point platform.payload = [0.15, 0.05, 0.10];
         force weight: platform[0.0, 0.0, 0.0] = [0.0, 0.0, -w_centre];
-        force payload: platform[0.15, 0.05, 0.10] = [0.0, 0.0, -w_payload];
+        force payload: platform.payload = [0.0, 0.0, -w_payload];
         // Each leg i, with ê_i its unit vector from the base joint b_i to the platform joint p_i at
         // the design pose (numbers to the micrometre): a cylinder (centre 0.25 m up the leg) on a
         // universal joint at b_i, the cross's axes ẑ × ê_i on the base and ê_i × (ẑ × ê_i) on the
@@ -57,8 +71,8 @@ mechanism! {
         vector rod1.axis = [-0.453589, 0.203207, 0.867735];
         universal ground[0.590885, 0.104189, 0.0] along [-0.408846, -0.912603, 0.000000] ~ cylinder1.u along [0.791898, -0.354770, 0.497027];
         translational leg1: cylinder1.u along cylinder1.axis ~ rod1.s along rod1.axis;
-        spherical rod1.s ~ platform[0.224976, 0.268116, 0.0];
-        drive leg1.stroke = sqrt(0.365909^2 + (0.268116 * cos(roll * sin(w * t)) - 0.104189)^2 + (0.268116 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod1.s ~ platform.p1;
+        drive actuator1: leg1.stroke = sqrt(0.365909^2 + (0.268116 * cos(roll * sin(w * t)) - 0.104189)^2 + (0.268116 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
         // Leg 2: base -0.205212, 0.563816, platform 0.119707, 0.328892.
         body cylinder2 { mass: m_cylinder, inertia: [0.070333, 0.076537, 0.022996, 0.009399, -0.028007, 0.020250], at: [-0.104518, 0.491012, 0.216934] }
         body rod2 { mass: m_rod, inertia: [0.022405, 0.024439, 0.006889, 0.003081, -0.009180, 0.006638], at: [0.039152, 0.387135, 0.526453] }
@@ -68,8 +82,8 @@ mechanism! {
         vector rod2.axis = [0.402777, -0.291217, 0.867735];
         universal ground[-0.205212, 0.563816, 0.0] along [0.585917, 0.810371, 0.000000] ~ cylinder2.u along [-0.703187, 0.508421, 0.497027];
         translational leg2: cylinder2.u along cylinder2.axis ~ rod2.s along rod2.axis;
-        spherical rod2.s ~ platform[0.119707, 0.328892, 0.0];
-        drive leg2.stroke = sqrt(0.324919^2 + (0.328892 * cos(roll * sin(w * t)) - 0.563816)^2 + (0.328892 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod2.s ~ platform.p2;
+        drive actuator2: leg2.stroke = sqrt(0.324919^2 + (0.328892 * cos(roll * sin(w * t)) - 0.563816)^2 + (0.328892 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
         // Leg 3: base -0.385673, 0.459627, platform -0.344683, 0.060777.
         body cylinder3 { mass: m_cylinder, inertia: [0.083126, 0.063744, 0.022996, 0.002013, -0.003533, 0.034379], at: [-0.372970, 0.336021, 0.216934] }
         body rod3 { mass: m_rod, inertia: [0.026599, 0.020246, 0.006889, 0.000660, -0.001158, 0.011269], at: [-0.354845, 0.159662, 0.526453] }
@@ -79,8 +93,8 @@ mechanism! {
         vector rod3.axis = [0.050812, -0.494423, 0.867735];
         universal ground[-0.385673, 0.459627, 0.0] along [0.994761, 0.102232, 0.000000] ~ cylinder3.u along [-0.088710, 0.863189, 0.497027];
         translational leg3: cylinder3.u along cylinder3.axis ~ rod3.s along rod3.axis;
-        spherical rod3.s ~ platform[-0.344683, 0.060777, 0.0];
-        drive leg3.stroke = sqrt(0.040990^2 + (0.060777 * cos(roll * sin(w * t)) - 0.459627)^2 + (0.060777 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod3.s ~ platform.p3;
+        drive actuator3: leg3.stroke = sqrt(0.040990^2 + (0.060777 * cos(roll * sin(w * t)) - 0.459627)^2 + (0.060777 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
         // Leg 4: base -0.385673, -0.459627, platform -0.344683, -0.060777.
         body cylinder4 { mass: m_cylinder, inertia: [0.083126, 0.063744, 0.022996, -0.002013, -0.003533, -0.034379], at: [-0.372970, -0.336021, 0.216934] }
         body rod4 { mass: m_rod, inertia: [0.026599, 0.020246, 0.006889, -0.000660, -0.001158, -0.011269], at: [-0.354845, -0.159662, 0.526453] }
@@ -90,8 +104,8 @@ mechanism! {
         vector rod4.axis = [0.050812, 0.494423, 0.867735];
         universal ground[-0.385673, -0.459627, 0.0] along [-0.994761, 0.102232, 0.000000] ~ cylinder4.u along [-0.088710, -0.863189, 0.497027];
         translational leg4: cylinder4.u along cylinder4.axis ~ rod4.s along rod4.axis;
-        spherical rod4.s ~ platform[-0.344683, -0.060777, 0.0];
-        drive leg4.stroke = sqrt(0.040990^2 + (-0.060777 * cos(roll * sin(w * t)) + 0.459627)^2 + (-0.060777 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod4.s ~ platform.p4;
+        drive actuator4: leg4.stroke = sqrt(0.040990^2 + (-0.060777 * cos(roll * sin(w * t)) + 0.459627)^2 + (-0.060777 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
         // Leg 5: base -0.205212, -0.563816, platform 0.119707, -0.328892.
         body cylinder5 { mass: m_cylinder, inertia: [0.070333, 0.076537, 0.022996, -0.009399, -0.028007, -0.020250], at: [-0.104518, -0.491012, 0.216934] }
         body rod5 { mass: m_rod, inertia: [0.022405, 0.024439, 0.006889, -0.003081, -0.009180, -0.006638], at: [0.039152, -0.387135, 0.526453] }
@@ -101,8 +115,8 @@ mechanism! {
         vector rod5.axis = [0.402777, 0.291217, 0.867735];
         universal ground[-0.205212, -0.563816, 0.0] along [-0.585917, 0.810371, 0.000000] ~ cylinder5.u along [-0.703187, -0.508421, 0.497027];
         translational leg5: cylinder5.u along cylinder5.axis ~ rod5.s along rod5.axis;
-        spherical rod5.s ~ platform[0.119707, -0.328892, 0.0];
-        drive leg5.stroke = sqrt(0.324919^2 + (-0.328892 * cos(roll * sin(w * t)) + 0.563816)^2 + (-0.328892 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod5.s ~ platform.p5;
+        drive actuator5: leg5.stroke = sqrt(0.324919^2 + (-0.328892 * cos(roll * sin(w * t)) + 0.563816)^2 + (-0.328892 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
         // Leg 6: base 0.590885, -0.104189, platform 0.224976, -0.268116.
         body cylinder6 { mass: m_cylinder, inertia: [0.066846, 0.080024, 0.022996, -0.007386, 0.031540, 0.014130], at: [0.477488, -0.154991, 0.216934] }
         body rod6 { mass: m_rod, inertia: [0.021262, 0.025582, 0.006889, -0.002421, 0.010338, 0.004632], at: [0.315694, -0.227475, 0.526453] }
@@ -112,33 +126,13 @@ mechanism! {
         vector rod6.axis = [-0.453589, -0.203207, 0.867735];
         universal ground[0.590885, -0.104189, 0.0] along [0.408846, -0.912603, 0.000000] ~ cylinder6.u along [0.791898, 0.354770, 0.497027];
         translational leg6: cylinder6.u along cylinder6.axis ~ rod6.s along rod6.axis;
-        spherical rod6.s ~ platform[0.224976, -0.268116, 0.0];
-        drive leg6.stroke = sqrt(0.365909^2 + (-0.268116 * cos(roll * sin(w * t)) + 0.104189)^2 + (-0.268116 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
+        spherical rod6.s ~ platform.p6;
+        drive actuator6: leg6.stroke = sqrt(0.365909^2 + (-0.268116 * cos(roll * sin(w * t)) + 0.104189)^2 + (-0.268116 * sin(roll * sin(w * t)) + z0 + heave * sin(w * t))^2);
     }
 }
 
-/// Base joint centres (x, y; z = 0) and platform joint centres (x, y in the platform frame,
-/// z = 0; the platform's centre of mass is its origin), as in the `mechanism!` (m).
-pub const BASE: [[f64; 2]; 6] = [
-    [0.590885, 0.104189],
-    [-0.205212, 0.563816],
-    [-0.385673, 0.459627],
-    [-0.385673, -0.459627],
-    [-0.205212, -0.563816],
-    [0.590885, -0.104189],
-];
-pub const PLATFORM: [[f64; 2]; 6] = [
-    [0.224976, 0.268116],
-    [0.119707, 0.328892],
-    [-0.344683, 0.060777],
-    [-0.344683, -0.060777],
-    [0.119707, -0.328892],
-    [0.224976, -0.268116],
-];
-/// The payload's point in the platform frame (m) and mass (kg), as in the `mechanism!`.
-const PAYLOAD_AT: [f64; 3] = [0.15, 0.05, 0.10];
+/// The payload's mass (kg) for the static check; it sits at the named point `platform.payload`.
 const PAYLOAD_MASS: f64 = 20.0;
-const G: f64 = 9.81;
 /// Samples over the period of the motion.
 const SAMPLES: usize = 48;
 
@@ -168,54 +162,51 @@ pub struct Report {
     pub static_load: f64,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+/// The stroke drivers, leg by leg: their indices into `JOINTS`.
+const ACTUATORS: [usize; 6] = [
+    StewartPlatform::ACTUATOR1,
+    StewartPlatform::ACTUATOR2,
+    StewartPlatform::ACTUATOR3,
+    StewartPlatform::ACTUATOR4,
+    StewartPlatform::ACTUATOR5,
+    StewartPlatform::ACTUATOR6,
+];
+
+/// The legs' joints, read off the mechanism by name: the base joints b_i (global; the cylinders'
+/// universal-joint centres `cylinder_i.u` at the declared design pose, where they sit on the base
+/// hardpoints) and the platform joints `platform.p_i`.
+struct Legs {
+    base: [Point3<f64>; 6],
+    platform: [SpatialPoint<f64>; 6],
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
+impl Legs {
+    fn of(m: &StewartPlatform) -> Self {
+        let design = m.initial_positions();
+        let universal = [m.cylinder1_u(), m.cylinder2_u(), m.cylinder3_u(), m.cylinder4_u(), m.cylinder5_u(), m.cylinder6_u()];
+        Legs {
+            base: universal.map(|u| u.position(&design)),
+            platform: [m.platform_p1(), m.platform_p2(), m.platform_p3(), m.platform_p4(), m.platform_p5(), m.platform_p6()],
+        }
+    }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
+    /// The strokes of the translational joints `leg_i` at q (m).
+    fn strokes(m: &StewartPlatform, q: &[f64; StewartPlatform::NQ]) -> [f64; 6] {
+        [m.leg1_stroke(q), m.leg2_stroke(q), m.leg3_stroke(q), m.leg4_stroke(q), m.leg5_stroke(q), m.leg6_stroke(q)]
+    }
 
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// A(p) = (2e0² − 1)I + 2(eeᵀ + e0ẽ) of body `body`'s Euler parameters q[7k+3..7k+7]
-/// (docs/formulation.md, "Spatial bodies").
-fn rotation(q: &[f64], body: usize) -> [[f64; 3]; 3] {
-    let [e0, e1, e2, e3] = [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]];
-    let e = [e1, e2, e3];
-    let tilde = [[0.0, -e3, e2], [e3, 0.0, -e1], [-e2, e1, 0.0]];
-    core::array::from_fn(|r| {
-        core::array::from_fn(|c| if r == c { 2.0 * e0 * e0 - 1.0 } else { 0.0 } + 2.0 * (e[r] * e[c] + e0 * tilde[r][c]))
-    })
-}
-
-/// The global position r + A s′ of the body point s′.
-fn point(q: &[f64], body: usize, local: [f64; 3]) -> [f64; 3] {
-    let a = rotation(q, body);
-    core::array::from_fn(|i| q[7 * body + i] + dot(a[i], local))
+    /// Platform joint i of the commanded pose (height z, roll φ about x), global (m).
+    fn commanded(&self, i: usize, z: f64, phi: f64) -> Point3<f64> {
+        let (s, c) = phi.sin_cos();
+        let [x, y, _] = self.platform[i].local;
+        Point3::new(x, y * c, y * s + z)
+    }
 }
 
 /// The commanded pose at t: the platform centre's height (m) and roll about x (rad).
 pub fn command(m: &StewartPlatform, t: f64) -> (f64, f64) {
     let s = (m.w * t).sin();
     (m.z0 + m.heave * s, m.roll * s)
-}
-
-/// Platform joint i of the commanded pose (height z, roll φ), global (m).
-fn platform_joint(i: usize, z: f64, phi: f64) -> [f64; 3] {
-    let (s, c) = phi.sin_cos();
-    let [x, y] = PLATFORM[i];
-    [x, y * c, y * s + z]
-}
-
-fn base_joint(i: usize) -> [f64; 3] {
-    [BASE[i][0], BASE[i][1], 0.0]
 }
 
 /// Solves a x = b by Gaussian elimination with partial pivoting (a nonsingular).
@@ -241,15 +232,20 @@ fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> [f64; 6] {
 }
 
 /// The six leg forces (N, positive pushing the platform away from the base) that hold the
-/// platform, its centre at `centre`, against a force `load` at the point `at` (global), the
+/// platform, its centre at `centre`, against forces `load` at the points `at` (global), the
 /// legs being two-force members along ê_i = (P_i − b_i)/|P_i − b_i|: Σ f_i ê_i + F = 0,
 /// Σ (P_i − c) × f_i ê_i + (at − c) × F = 0.
-fn static_forces(joints: &[[f64; 3]; 6], centre: [f64; 3], loads: &[([f64; 3], [f64; 3])]) -> [f64; 6] {
+fn static_forces(
+    joints: &[Point3<f64>; 6],
+    base: &[Point3<f64>; 6],
+    centre: Point3<f64>,
+    loads: &[(Point3<f64>, Vector3<f64>)],
+) -> [f64; 6] {
     let mut a = [[0.0; 6]; 6];
-    for (i, p) in joints.iter().enumerate() {
-        let leg = sub(*p, base_joint(i));
-        let e = leg.map(|x| x / norm(leg));
-        let moment = cross(sub(*p, centre), e);
+    for (i, (p, b)) in joints.iter().zip(base).enumerate() {
+        let leg = p - b;
+        let e = leg / leg.norm();
+        let moment = (p - centre).cross(&e);
         for k in 0..3 {
             a[k][i] = e[k];
             a[3 + k][i] = moment[k];
@@ -257,7 +253,7 @@ fn static_forces(joints: &[[f64; 3]; 6], centre: [f64; 3], loads: &[([f64; 3], [
     }
     let mut b = [0.0; 6];
     for (at, force) in loads {
-        let moment = cross(sub(*at, centre), *force);
+        let moment = (at - centre).cross(force);
         for k in 0..3 {
             b[k] -= force[k];
             b[3 + k] -= moment[k];
@@ -270,9 +266,9 @@ fn static_forces(joints: &[[f64; 3]; 6], centre: [f64; 3], loads: &[([f64; 3], [
 pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = StewartPlatform::default();
     // The statics: no gravity on any body, the platform's weight and the payload as forces.
-    let loaded = StewartPlatform { g: 0.0, w_centre: m.m_platform * G, w_payload: PAYLOAD_MASS * G, ..m };
-    let drivers: Vec<usize> = (0..StewartPlatform::JOINTS.len()).filter(|&j| StewartPlatform::JOINTS[j].kind == "drive_stroke").collect();
-    assert_eq!(drivers.len(), 6, "six stroke drivers");
+    let loaded = StewartPlatform { g: 0.0, w_centre: m.m_platform * m.g, w_payload: PAYLOAD_MASS * m.g, ..m };
+    let legs = Legs::of(&m);
+    let (platform, payload) = (StewartPlatform::PLATFORM, m.platform_payload());
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut q, 0.0)?;
@@ -295,7 +291,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let mut static_table = Vec::new();
     if print {
         println!(
-            "Stewart–Gough platform: heave ±{} mm about {} m and roll ±{:.1}° at {} Hz; leg lengths (mm) and actuator forces (N)",
+            "Stewart–Gough platform: heave ±{} mm about {} m and roll ±{:.1}° at {} Hz; strokes (mm) and actuator forces (N)",
             m.heave * 1e3,
             m.z0,
             m.roll.to_degrees(),
@@ -306,20 +302,16 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let times = (0..=SAMPLES).map(|k| period * k as f64 / SAMPLES as f64);
     solver.sweep(&m, &mut q, times, |t, q, v, vd| {
         let (z, phi) = command(&m, t);
-        // The pose solved from the strokes against the command: p = (cos φ/2, sin φ/2, 0, 0).
-        let (s, c) = (0.5 * phi).sin_cos();
-        let e = [q[4], q[5], q[6]];
-        // The vector part of p_cmd⁻¹ ⊗ p: c e − e0 (s, 0, 0) − (s, 0, 0) × e, |·| = sin(angle/2).
-        let err = [c * e[0] - q[3] * s, c * e[1] + s * e[2], c * e[2] - s * e[1]];
-        r.rotation_error = r.rotation_error.max(2.0 * norm(err).asin());
-        r.position_error = r.position_error.max(norm(sub([q[0], q[1], q[2]], [0.0, 0.0, z])));
+        // The pose solved from the strokes against the command.
+        let commanded = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), phi);
+        r.rotation_error = r.rotation_error.max(commanded.angle_to(&platform.orientation(q)));
+        r.position_error = r.position_error.max((platform.position(q) - Point3::new(0.0, 0.0, z)).norm());
         let mut lengths = [0.0; 6];
-        let mut joints = [[0.0; 3]; 6];
+        let mut joints = [Point3::origin(); 6];
         for i in 0..6 {
-            let commanded = platform_joint(i, z, phi);
-            lengths[i] = norm(sub(commanded, base_joint(i)));
-            joints[i] = point(q, 0, [PLATFORM[i][0], PLATFORM[i][1], 0.0]);
-            let solved = norm(sub(joints[i], base_joint(i)));
+            lengths[i] = (legs.commanded(i, z, phi) - legs.base[i]).norm();
+            joints[i] = legs.platform[i].position(q);
+            let solved = (joints[i] - legs.base[i]).norm();
             r.length_error = r.length_error.max((solved - lengths[i]).abs());
             r.length_min = r.length_min.min(lengths[i]);
             r.length_max = r.length_max.max(lengths[i]);
@@ -333,8 +325,10 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             let mut lambda = [0.0; StewartPlatform::NC];
             inverse_dynamics(mech, q, v, vd, t, &mut lambda).map(|()| {
                 core::array::from_fn::<f64, 6, _>(|i| {
-                    let e = sub(joints[i], base_joint(i)).map(|x| x / lengths[i]);
-                    joint_reaction(mech, q, &d, &lambda, drivers[i]).and_then(|j| j.on_j).map_or(f64::NAN, |w| dot(w.force, e))
+                    let e = (joints[i] - legs.base[i]) / lengths[i];
+                    joint_reaction(mech, q, &d, &lambda, ACTUATORS[i])
+                        .and_then(|j| j.on_j)
+                        .map_or(f64::NAN, |w| Vector3::from(w.force).dot(&e))
                 })
             })
         };
@@ -351,22 +345,24 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             r.force_max = r.force_max.max(f);
         }
         // The independent statics of the solved pose.
-        let centre = [q[0], q[1], q[2]];
-        let load_points = [(centre, [0.0, 0.0, -loaded.w_centre]), (point(q, 0, PAYLOAD_AT), [0.0, 0.0, -loaded.w_payload])];
-        let expected = static_forces(&joints, centre, &load_points);
+        let centre = platform.position(q);
+        let load_points =
+            [(centre, Vector3::new(0.0, 0.0, -loaded.w_centre)), (payload.position(q), Vector3::new(0.0, 0.0, -loaded.w_payload))];
+        let expected = static_forces(&joints, &legs.base, centre, &load_points);
         for i in 0..6 {
             r.static_error = r.static_error.max((statics[i] - expected[i]).abs());
             r.static_peak = r.static_peak.max(statics[i].abs());
         }
         if r.samples == 0 {
-            r.static_vertical = (0..6).map(|i| statics[i] * (joints[i][2] - base_joint(i)[2]) / lengths[i]).sum();
+            r.static_vertical = (0..6).map(|i| statics[i] * (joints[i].z - legs.base[i].z) / lengths[i]).sum();
         }
         if r.samples == SAMPLES / 4 {
             static_table = (0..6).map(|i| (statics[i], expected[i])).collect();
         }
         if print && r.samples % 6 == 0 {
             let list = |x: [f64; 6], scale: f64| x.iter().map(|v| format!("{:>8.1}", v * scale)).collect::<Vec<_>>().join("");
-            println!("{t:>6.3} {:>9.2} {:>8.3} | {} | {}", (z - m.z0) * 1e3, phi.to_degrees(), list(lengths, 1e3), list(forces, 1.0));
+            let strokes = Legs::strokes(&m, q);
+            println!("{t:>6.3} {:>9.2} {:>8.3} | {} | {}", (z - m.z0) * 1e3, phi.to_degrees(), list(strokes, 1e3), list(forces, 1.0));
         }
         r.samples += 1;
     })?;
@@ -383,7 +379,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
             "statics (g = 0; platform weight {:.1} N at the centre, payload {:.1} N at {:?} m), at the pose of t = {:.2} s:",
             loaded.w_centre,
             loaded.w_payload,
-            PAYLOAD_AT,
+            payload.local,
             period / 4.0
         );
         println!("{:>5} {:>16} {:>16} {:>10}", "leg", "driver λ (N)", "6×6 solve (N)", "difference");
