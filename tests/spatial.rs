@@ -71,8 +71,9 @@ mechanism! {
         body crank { mass: 1.0, inertia: [1.0e-3, 1.0e-3, 2.0e-3] }
         body slider { mass: 0.5, inertia: [1.0e-4, 1.0e-4, 1.0e-4], at: [0.4, ey, ez] }
         point crank.pin = [a, 0.0, 0.0];
+        point ground.guide = [0.0, ey, ez];
         revolute crankshaft: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ crank[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0];
-        translational guide: ground[0.0, ey, ez] along [1.0, 0.0, 0.0] ~ slider[0.0, 0.0, 0.0] along [1.0, 0.0, 0.0];
+        translational guide: ground.guide along [1.0, 0.0, 0.0] ~ slider[0.0, 0.0, 0.0] along [1.0, 0.0, 0.0];
         distance crank.pin ~ slider[0.0, 0.0, 0.0] { length: len };
         drive crankshaft.angle = omega * t;
     }
@@ -259,6 +260,7 @@ fn spatial_slider_crank_stroke() {
         let theta = w * t;
         a * theta.cos() + (len * len - (a * theta.sin() - ey).powi(2) - ez * ez).sqrt()
     };
+    assert_eq!(m.ground_guide(), nalgebra::Point3::new(0.0, ey, ez), "a ground point's accessor is its fixed position");
     let solver = KinematicSolver::new(KinematicOptions::default());
     let mut q = m.initial_positions();
     let mut checked = 0;

@@ -528,14 +528,14 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
         quote!(#[doc = #doc] pub const #constant: usize = #k;)
     });
     let dim = usize_lit(m.space.dim());
-    let points = m.points.iter().zip(&f.points).filter_map(|(p, nodes)| {
-        let crate::model::BodyRef::Body(k) = p.body else { return None };
+    let points = m.points.iter().zip(&f.points).map(|(p, nodes)| {
+        let crate::model::BodyRef::Body(k) = p.body else { return ground_point(m, &p.name, nodes, e) };
         let body = m.bodies[k].name.to_string();
         let accessor = format_ident!("{}", crate::model::point_accessor(&body, &p.name));
         let (doc, constant) = (format!(" Point `{body}.{}`.", p.name), format_ident!("{}", crate::model::constant_name(&body)));
         let (local, _) = e.body(&vector_outputs("local", nodes));
         let zero = e.literal(0.0);
-        Some(quote! {
+        quote! {
             #[doc = #doc]
             #[allow(unused_parens)]
             pub fn #accessor(&self) -> #point_type<#real> {
@@ -543,7 +543,7 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
                 #local
                 Self::#constant.point(local)
             }
-        })
+        }
     });
     let nq = usize_lit(f.nq);
     let coordinates = f.joint_coordinates.iter().map(|(accessor, node)| {
@@ -567,6 +567,28 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
         }
     });
     quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)*)
+}
+
+/// The accessor of a named point on ground, `ground_o()`: its fixed position (global).
+fn ground_point(m: &Model, name: &str, nodes: &[u32], e: &Emitter) -> TokenStream {
+    let real = real(m.scalar);
+    let accessor = format_ident!("{}", crate::model::point_accessor("ground", name));
+    let doc = format!(" Point `ground.{name}`: fixed, global coordinates (m).");
+    let (point, dim) = match m.space {
+        crate::model::Space::Planar => (quote!(::mbd::nalgebra::Point2), usize_lit(2)),
+        crate::model::Space::Spatial => (quote!(::mbd::nalgebra::Point3), usize_lit(3)),
+    };
+    let (body, _) = e.body(&vector_outputs("p", nodes));
+    let zero = e.literal(0.0);
+    quote! {
+        #[doc = #doc]
+        #[allow(unused_parens)]
+        pub fn #accessor(&self) -> #point<#real> {
+            let mut p = [#zero; #dim];
+            #body
+            #point::from(p)
+        }
+    }
 }
 
 /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)

@@ -819,7 +819,7 @@ impl MechanismDef {
                 ok = false;
                 continue;
             };
-            if let (true, BodyRef::Body(_)) = (is_point, body) {
+            if is_point {
                 let item = point_accessor(&nv.body.to_string(), &nv.name.to_string());
                 if !claim_item(&mut items, r.errors, item, format!("point `{}.{}`", nv.body, nv.name), nv.name.span()) {
                     ok = false;
