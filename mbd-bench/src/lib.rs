@@ -20,6 +20,9 @@
 //! `fd_qr(q, v, t, p, [α, β])` returning [v̇; λ], as above with M = blockdiag(m I₃, J′) and D in
 //! place of Φ_q. q has 7 entries per body (x, y, z, e0..e3), v has 6 (ṙ global, ω′ body frame).
 //!
+//! The comparison with MuJoCo (`benches/vs_mujoco.rs`) needs none of this: it runs MuJoCo from
+//! its own Python environment (`peers/`) and times mbd's RK4 step beside it.
+//!
 //! Each function has CasADi's standard C interface: `f(arg, res, iw, w, mem)` with the work-space
 //! sizes reported by `f_work`. [`CasadiFunction`] queries those sizes once and owns the work
 //! space, so a call allocates nothing.
