@@ -7,8 +7,15 @@
 //! `accelerations` against CasADi's symbolic Schur-complement form and its sparse numeric QR of
 //! the KKT matrix, and one RK4 step at h = 1 ms — mbd's `Rk4` against the same four-stage loop
 //! (`rk4_step` below) over each CasADi form.
+//!
+//! Spatial (7 coordinates, 6 velocities per body): Φ, the non-zeros of D = Φ_q B and γ of the
+//! driven spatial slider-crank and of the 16-link spherical pendulum chain; v̇ and λ (α = β = 5)
+//! and the RK4 step of the free spatial slider-crank and of the same chain. The RK4 loop over
+//! CasADi (`rk4_step_spatial`) takes mbd's stages and updates positions with mbd's own
+//! `integrate_positions` (the quaternion update with renormalization), so only the right-hand
+//! sides differ. mbd's operation counts (`OP_COUNTS`) of the spatial mechanisms are printed first.
 use criterion::{criterion_group, criterion_main, Criterion};
-use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Point, Rk4, System};
+use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, System};
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -22,6 +29,15 @@ mod free_slider_crank {
 }
 mod pendulum_chain16 {
     include!("../../benches/pendulum_chain16.rs");
+}
+mod spatial_slider_crank {
+    include!("../mechanisms/spatial_slider_crank.rs");
+}
+mod free_spatial_slider_crank {
+    include!("../mechanisms/free_spatial_slider_crank.rs");
+}
+mod spatial_chain16 {
+    include!("../mechanisms/spatial_chain16.rs");
 }
 
 macro_rules! compare {
@@ -167,11 +183,212 @@ macro_rules! compare_dynamics {
     }};
 }
 
+/// A moving state of a spatial mechanism: assembled at rest at t = 0, then 50 RK4 steps of 1 ms
+/// with mbd (as for the planar forward dynamics).
+fn moving_state<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(m: &M) -> Point<f64, NQ, NV, NC> {
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the benchmark mechanism assembles");
+    let system = System::new(m);
+    let mut rk4 = Rk4::new(1e-3);
+    let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
+    let mut next = p;
+    for _ in 0..50 {
+        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        p = next;
+    }
+    p
+}
+
+macro_rules! compare_spatial {
+    ($c:expr, $label:literal, $ty:ty, $casadi:ident, $state:expr) => {{
+        const NV: usize = <$ty>::NV;
+        const NC: usize = <$ty>::NC;
+        const NNZ: usize = <$ty>::NNZ;
+        let m = <$ty>::default();
+        let params = m.params();
+        let (t, q, v) = $state(&m);
+        let (mut phi, mut nu, mut gamma, mut values) = ([0.0; NC], [0.0; NC], [0.0; NC], [0.0; NNZ]);
+        let mut cphi = mbd_bench::$casadi::phi();
+        let mut cjac = mbd_bench::$casadi::jac();
+        let mut cgamma = mbd_bench::$casadi::gamma();
+        let _: &[f64; NV] = &v;
+        let mut g = $c.benchmark_group($label);
+        g.bench_function("Φ mbd", |b| b.iter(|| m.constraints(black_box(&q), black_box(t), &mut phi)));
+        g.bench_function("Φ CasADi", |b| b.iter(|| cphi.call(&[black_box(&q), &[black_box(t)], &params], &mut phi)));
+        g.bench_function("D mbd", |b| b.iter(|| m.jacobian_values(black_box(&q), black_box(t), &mut values)));
+        g.bench_function("D CasADi", |b| b.iter(|| cjac.call(&[black_box(&q), &[black_box(t)], &params], &mut values)));
+        g.bench_function("γ mbd", |b| b.iter(|| m.gamma(black_box(&q), black_box(&v), black_box(t), &mut gamma)));
+        g.bench_function("γ CasADi", |b| b.iter(|| cgamma.call(&[black_box(&q), black_box(&v), &[black_box(t)], &params], &mut gamma)));
+        g.bench_function("Φ, D, γ: mbd fused", |b| {
+            b.iter(|| m.full_eval_values(black_box(&q), black_box(&v), black_box(t), &mut phi, &mut values, &mut nu, &mut gamma))
+        });
+        g.bench_function("Φ, D, γ: CasADi three calls", |b| {
+            b.iter(|| {
+                cphi.call(&[black_box(&q), &[black_box(t)], &params], &mut phi);
+                cjac.call(&[black_box(&q), &[black_box(t)], &params], &mut values);
+                cgamma.call(&[black_box(&q), black_box(&v), &[black_box(t)], &params], &mut gamma);
+            })
+        });
+        g.finish();
+    }};
+}
+
+/// One RK4 step of a spatial mechanism over a CasADi forward-dynamics function returning
+/// [v̇; λ]: the stages of mbd's `Rk4` — positions advanced by q̇ = B(q) v (mbd's
+/// `position_rates`), velocities by v̇, the Euler parameters renormalized at the end — with v̇ of
+/// the start known, so that only the right-hand sides differ.
+#[allow(clippy::too_many_arguments)]
+fn rk4_step_spatial<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    f: &mut mbd_bench::CasadiFunction,
+    params: &[f64],
+    gains: &[f64; 2],
+    h: f64,
+    from: (f64, &[f64; NQ], &[f64; NV], &[f64; NV]),
+    out: &mut [f64],
+    to: (&mut [f64; NQ], &mut [f64; NV], &mut [f64; NV]),
+) {
+    let (t, q0, v0, vd0) = from;
+    let (half, sixth) = (0.5 * h, h / 6.0);
+    let mut stage = |q: &[f64; NQ], v: &[f64; NV], t: f64, out: &mut [f64], vd: &mut [f64; NV]| {
+        f.call(&[q, v, &[t], params, gains], out);
+        vd.copy_from_slice(&out[..NV]);
+    };
+    let (mut qd1, mut qd2, mut qd3, mut qd4) = ([0.0; NQ], [0.0; NQ], [0.0; NQ], [0.0; NQ]);
+    let (mut v2, mut v3, mut v4) = ([0.0; NV], [0.0; NV], [0.0; NV]);
+    let (mut vd2, mut vd3, mut vd4) = ([0.0; NV], [0.0; NV], [0.0; NV]);
+    let mut q = [0.0; NQ];
+    m.position_rates(q0, v0, &mut qd1);
+    for i in 0..NQ {
+        q[i] = q0[i] + half * qd1[i];
+    }
+    for i in 0..NV {
+        v2[i] = v0[i] + half * vd0[i];
+    }
+    m.position_rates(&q, &v2, &mut qd2);
+    stage(&q, &v2, t + half, out, &mut vd2);
+    for i in 0..NQ {
+        q[i] = q0[i] + half * qd2[i];
+    }
+    for i in 0..NV {
+        v3[i] = v0[i] + half * vd2[i];
+    }
+    m.position_rates(&q, &v3, &mut qd3);
+    stage(&q, &v3, t + half, out, &mut vd3);
+    for i in 0..NQ {
+        q[i] = q0[i] + h * qd3[i];
+    }
+    for i in 0..NV {
+        v4[i] = v0[i] + h * vd3[i];
+    }
+    m.position_rates(&q, &v4, &mut qd4);
+    stage(&q, &v4, t + h, out, &mut vd4);
+    let (q1, v1, vd1) = to;
+    for i in 0..NQ {
+        q1[i] = q0[i] + sixth * (qd1[i] + 2.0 * (qd2[i] + qd3[i]) + qd4[i]);
+    }
+    for i in 0..NV {
+        v1[i] = v0[i] + sixth * (vd0[i] + 2.0 * (vd2[i] + vd3[i]) + vd4[i]);
+    }
+    m.normalize_positions(q1);
+    stage(q1, v1, t + h, out, vd1);
+}
+
+macro_rules! compare_spatial_dynamics {
+    ($c:expr, $label:literal, $ty:ty, $casadi:ident) => {{
+        const NQ: usize = <$ty>::NQ;
+        const NV: usize = <$ty>::NV;
+        const NC: usize = <$ty>::NC;
+        let m = <$ty>::default();
+        let params = m.params();
+        let system = System::new(&m);
+        let mut rk4 = Rk4::new(1e-3);
+        let p = moving_state(&m);
+        let mut next = p;
+        let options = DynamicsOptions::default();
+        let gains = [options.baumgarte_alpha, options.baumgarte_beta];
+        let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
+        let mut out = [0.0; NV + NC];
+        let mut schur = mbd_bench::$casadi::fd_schur();
+        let mut qr = mbd_bench::$casadi::fd_qr();
+        let mut g = $c.benchmark_group(concat!($label, " forward dynamics"));
+        g.bench_function("v̇, λ: mbd", |b| {
+            b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.v), black_box(p.t), &options, &mut vd, &mut lambda))
+        });
+        g.bench_function("v̇, λ: CasADi Schur (symbolic)", |b| {
+            b.iter(|| schur.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
+        });
+        g.bench_function("v̇, λ: CasADi KKT (sparse QR)", |b| {
+            b.iter(|| qr.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
+        });
+        g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        let (mut q1, mut v1, mut vd1) = ([0.0; NQ], [0.0; NV], [0.0; NV]);
+        for (name, f) in [("RK4 step: CasADi Schur", &mut schur), ("RK4 step: CasADi KKT", &mut qr)] {
+            g.bench_function(name, |b| {
+                b.iter(|| {
+                    rk4_step_spatial(
+                        &m,
+                        f,
+                        &params,
+                        &gains,
+                        1e-3,
+                        (p.t, black_box(&p.q), black_box(&p.v), &p.vd),
+                        &mut out,
+                        (&mut q1, &mut v1, &mut vd1),
+                    )
+                })
+            });
+        }
+        // Both loops take the same step: a wrong loop would time something else.
+        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        for f in [&mut schur, &mut qr] {
+            rk4_step_spatial(&m, f, &params, &gains, 1e-3, (p.t, &p.q, &p.v, &p.vd), &mut out, (&mut q1, &mut v1, &mut vd1));
+            let differ = next.q.iter().zip(&q1).chain(next.v.iter().zip(&v1)).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+            assert!(differ < 1e-10, "{}: mbd's RK4 and the CasADi loop differ by {differ:e}", $label);
+        }
+        g.finish();
+    }};
+}
+
+/// mbd's operation counts after common-subexpression elimination, per generated function.
+fn print_op_counts<M: Mechanism>() {
+    println!("{} operation counts (add, mul, div, calls):", M::NAME);
+    for o in M::OP_COUNTS {
+        println!("  {:<28} {:>6} {:>6} {:>5} {:>5}   total {}", o.function, o.add, o.mul, o.div, o.call, o.total());
+    }
+}
+
+fn spatial_kinematic_state<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+) -> (f64, [f64; NQ], [f64; NV]) {
+    let t = 0.37;
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    solver.assemble(m, &mut q, t).expect("assembles");
+    let mut v = [0.0; NV];
+    solver.solve_velocity(m, &q, t, &mut v).expect("velocity");
+    (t, q, v)
+}
+
+fn spatial_moving_state<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+) -> (f64, [f64; NQ], [f64; NV]) {
+    let p = moving_state(m);
+    (p.t, p.q, p.v)
+}
+
 fn benches(c: &mut Criterion) {
+    print_op_counts::<spatial_slider_crank::SpatialSliderCrank>();
+    print_op_counts::<free_spatial_slider_crank::FreeSpatialSliderCrank>();
+    print_op_counts::<spatial_chain16::SpatialChain16>();
     compare!(c, "slider_crank", slider_crank::SliderCrank, slider_crank);
     compare!(c, "chain16", chain16::Chain16, chain16);
     compare_dynamics!(c, "free_slider_crank", free_slider_crank::FreeSliderCrank, free_slider_crank);
     compare_dynamics!(c, "pendulum_chain16", pendulum_chain16::PendulumChain16, pendulum_chain16);
+    compare_spatial!(c, "spatial_slider_crank", spatial_slider_crank::SpatialSliderCrank, spatial_slider_crank, spatial_kinematic_state);
+    compare_spatial!(c, "spatial_chain16", spatial_chain16::SpatialChain16, spatial_chain16, spatial_moving_state);
+    compare_spatial_dynamics!(c, "free_spatial_slider_crank", free_spatial_slider_crank::FreeSpatialSliderCrank, free_spatial_slider_crank);
+    compare_spatial_dynamics!(c, "spatial_chain16", spatial_chain16::SpatialChain16, spatial_chain16_dynamics);
 }
 
 criterion_group!(vs_casadi, benches);

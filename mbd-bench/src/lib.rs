@@ -12,6 +12,17 @@
 //! (straight-line code), the second through CasADi's sparse numeric QR of the KKT matrix.
 //! The samples files come from `cargo test --test oracle` (`target/oracle/samples/`).
 //!
+//! Spatial mechanisms (`mechanisms/*.rs`; `casadi/generate_spatial.sh` regenerates their C from
+//! the oracle's spatial rebuild of each `MODEL_JSON`): kinematics (`spatial_slider_crank`,
+//! `spatial_chain16`) `phi(q, t, p)`, `jac(q, t, p)` (the non-zeros of D = Φ_q B on mbd's
+//! `JACOBIAN_PATTERN`, column-major) and `gamma(q, v, t, p)`; forward dynamics
+//! (`free_spatial_slider_crank`, `spatial_chain16_dynamics`) `fd_schur(q, v, t, p, [α, β])` and
+//! `fd_qr(q, v, t, p, [α, β])` returning [v̇; λ], as above with M = blockdiag(m I₃, J′) and D in
+//! place of Φ_q. q has 7 entries per body (x, y, z, e0..e3), v has 6 (ṙ global, ω′ body frame).
+//!
+//! The comparison with MuJoCo (`benches/vs_mujoco.rs`) needs none of this: it runs MuJoCo from
+//! its own Python environment (`peers/`) and times mbd's RK4 step beside it.
+//!
 //! Each function has CasADi's standard C interface: `f(arg, res, iw, w, mem)` with the work-space
 //! sizes reported by `f_work`. [`CasadiFunction`] queries those sizes once and owns the work
 //! space, so a call allocates nothing.
@@ -89,4 +100,13 @@ casadi_functions! {
         fd_qr = free_slider_crank_fd_qr / free_slider_crank_fd_qr_work;
     pendulum_chain16: fd_schur = pendulum_chain16_fd_schur / pendulum_chain16_fd_schur_work,
         fd_qr = pendulum_chain16_fd_qr / pendulum_chain16_fd_qr_work;
+    spatial_slider_crank: phi = spatial_slider_crank_phi / spatial_slider_crank_phi_work,
+        jac = spatial_slider_crank_jac / spatial_slider_crank_jac_work,
+        gamma = spatial_slider_crank_gamma / spatial_slider_crank_gamma_work;
+    spatial_chain16: phi = spatial_chain16_phi / spatial_chain16_phi_work, jac = spatial_chain16_jac / spatial_chain16_jac_work,
+        gamma = spatial_chain16_gamma / spatial_chain16_gamma_work;
+    free_spatial_slider_crank: fd_schur = free_spatial_slider_crank_fd_schur / free_spatial_slider_crank_fd_schur_work,
+        fd_qr = free_spatial_slider_crank_fd_qr / free_spatial_slider_crank_fd_qr_work;
+    spatial_chain16_dynamics: fd_schur = spatial_chain16_fd_schur / spatial_chain16_fd_schur_work,
+        fd_qr = spatial_chain16_fd_qr / spatial_chain16_fd_qr_work;
 }

@@ -102,3 +102,142 @@ fn casadi_c_and_mbd_compute_the_same_forward_dynamics() {
     let ch = pendulum_chain16::PendulumChain16::default();
     check_forward(&ch, &ch.params(), mbd_bench::pendulum_chain16::fd_schur(), mbd_bench::pendulum_chain16::fd_qr());
 }
+
+mod spatial_slider_crank {
+    include!("../mechanisms/spatial_slider_crank.rs");
+}
+mod free_spatial_slider_crank {
+    include!("../mechanisms/free_spatial_slider_crank.rs");
+}
+mod spatial_chain16 {
+    include!("../mechanisms/spatial_chain16.rs");
+}
+
+/// A few states of a spatial mechanism: the assembled one at t = 0.37 with velocities in ±0.3,
+/// and two off the constraint manifold — every position moved by up to 0.05 m, every Euler
+/// parameter by up to 0.1 and renormalized, velocities in ±2, at t = 1.1 and 1.9 — so Φ ≠ 0 and
+/// every term of γ and of h counts. Deterministic (a fixed sine sequence), no random source.
+fn spatial_states<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+) -> Vec<(f64, [f64; NQ], [f64; NV])> {
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, &mut q, 0.37).expect("assembles");
+    let mut states = vec![(0.37, q, core::array::from_fn(|i| 0.3 * (i as f64 + 1.0).sin()))];
+    for (k, t) in [(1.0, 1.1), (2.0, 1.9)] {
+        let mut moved = q;
+        for (i, x) in moved.iter_mut().enumerate() {
+            let wiggle = (k * 7.3 + i as f64 * 1.7).sin();
+            *x += if i % 7 < 3 { 0.05 } else { 0.1 } * wiggle;
+        }
+        m.normalize_positions(&mut moved);
+        states.push((t, moved, core::array::from_fn(|i| 2.0 * (k * 3.1 + i as f64 * 0.9).cos())));
+    }
+    states
+}
+
+/// Spatial Φ, the non-zeros of D = Φ_q B and γ (velocity space, v = (ṙ, ω′) per body) of mbd
+/// against CasADi's C at each of `spatial_states`, to 1e-12 relative to the function's largest
+/// entry (same sums of products in different orders). Returns the largest relative difference.
+fn check_spatial<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    params: &[f64],
+    mut phi_c: mbd_bench::CasadiFunction,
+    mut jac_c: mbd_bench::CasadiFunction,
+    mut gamma_c: mbd_bench::CasadiFunction,
+) -> f64 {
+    // CasADi's D is projected on mbd's pattern, column-major: order mbd's pattern the same way.
+    let mut pattern: Vec<(u16, u16)> = M::JACOBIAN_PATTERN.to_vec();
+    pattern.sort_by_key(|&(r, c)| (c, r));
+    let scale = |v: &[f64]| v.iter().fold(1.0f64, |a, x| a.max(x.abs()));
+    let mut worst = 0.0f64;
+    for (t, q, v) in spatial_states(m) {
+        let (mut phi, mut d, mut gamma) = ([0.0; NC], [[0.0; NV]; NC], [0.0; NC]);
+        m.constraints(&q, t, &mut phi);
+        m.jacobian(&q, t, &mut d);
+        m.gamma(&q, &v, t, &mut gamma);
+        let mbd_d: Vec<f64> = pattern.iter().map(|&(r, c)| d[r as usize][c as usize]).collect();
+        let (mut phi2, mut gamma2, mut d2) = ([0.0; NC], [0.0; NC], vec![0.0; pattern.len()]);
+        phi_c.call(&[&q, &[t], params], &mut phi2);
+        jac_c.call(&[&q, &[t], params], &mut d2);
+        gamma_c.call(&[&q, &v, &[t], params], &mut gamma2);
+        for (what, a, b) in [("Φ", &phi[..], &phi2[..]), ("D", &mbd_d[..], &d2[..]), ("γ", &gamma[..], &gamma2[..])] {
+            let s = scale(b);
+            for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                let rel = (x - y).abs() / s;
+                worst = worst.max(rel);
+                let at = if what == "D" {
+                    let (r, c) = pattern[k];
+                    format!("[{}][{}]", M::CONSTRAINT_NAMES[r as usize], M::VELOCITY_NAMES[c as usize])
+                } else {
+                    format!("[{}]", M::CONSTRAINT_NAMES[k])
+                };
+                assert!(rel <= 1e-12, "{} t = {t}: {what}{at}: mbd {x} vs CasADi {y}", M::NAME);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn casadi_c_and_mbd_compute_the_same_spatial_functions() {
+    let sc = spatial_slider_crank::SpatialSliderCrank::default();
+    let worst = check_spatial(
+        &sc,
+        &sc.params(),
+        mbd_bench::spatial_slider_crank::phi(),
+        mbd_bench::spatial_slider_crank::jac(),
+        mbd_bench::spatial_slider_crank::gamma(),
+    );
+    println!("spatial slider-crank: Φ, D, γ agree to {worst:.1e} relative");
+    let ch = spatial_chain16::SpatialChain16::default();
+    let worst =
+        check_spatial(&ch, &[], mbd_bench::spatial_chain16::phi(), mbd_bench::spatial_chain16::jac(), mbd_bench::spatial_chain16::gamma());
+    println!("spatial chain of 16: Φ, D, γ agree to {worst:.1e} relative");
+}
+
+/// Spatial forward dynamics, v̇ and λ with α = β = 5, of mbd's planned Schur solve against
+/// CasADi's symbolic Schur form and its sparse QR of the KKT matrix at each of
+/// `spatial_states` (Φ ≠ 0 off the assembled one, so the Baumgarte terms count). Tolerance as
+/// for the planar forward dynamics (three solves of one well-conditioned system); the largest
+/// difference relative to ‖[v̇; λ]‖∞ is returned and printed.
+fn check_spatial_forward<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    params: &[f64],
+    mut schur: mbd_bench::CasadiFunction,
+    mut qr: mbd_bench::CasadiFunction,
+) -> f64 {
+    let (alpha, beta) = (5.0, 5.0);
+    let mut worst = 0.0f64;
+    for (t, q, v) in spatial_states(m) {
+        let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
+        m.accelerations(&q, &v, t, &DynamicsOptions::baumgarte(alpha, beta), &mut vd, &mut lambda).expect("forward dynamics");
+        let mbd: Vec<f64> = vd.iter().chain(&lambda).copied().collect();
+        let scale = mbd.iter().fold(1.0f64, |a, x| a.max(x.abs()));
+        for (form, f) in [("Schur", &mut schur), ("QR", &mut qr)] {
+            let mut casadi = vec![0.0; NV + NC];
+            f.call(&[&q, &v, &[t], params, &[alpha, beta]], &mut casadi);
+            for (k, (a, b)) in mbd.iter().zip(&casadi).enumerate() {
+                let what = if k < NV { format!("v̇[{}]", M::VELOCITY_NAMES[k]) } else { format!("λ[{}]", M::CONSTRAINT_NAMES[k - NV]) };
+                worst = worst.max((a - b).abs() / scale);
+                assert!((a - b).abs() <= 1e-9 * scale, "{} t = {t} {what}: mbd {a} vs CasADi {form} {b}", M::NAME);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn casadi_c_and_mbd_compute_the_same_spatial_forward_dynamics() {
+    let sc = free_spatial_slider_crank::FreeSpatialSliderCrank::default();
+    let worst = check_spatial_forward(
+        &sc,
+        &sc.params(),
+        mbd_bench::free_spatial_slider_crank::fd_schur(),
+        mbd_bench::free_spatial_slider_crank::fd_qr(),
+    );
+    println!("free spatial slider-crank: v̇, λ agree to {worst:.1e} relative");
+    let ch = spatial_chain16::SpatialChain16::default();
+    let worst =
+        check_spatial_forward(&ch, &[], mbd_bench::spatial_chain16_dynamics::fd_schur(), mbd_bench::spatial_chain16_dynamics::fd_qr());
+    println!("spatial chain of 16: v̇, λ agree to {worst:.1e} relative");
+}

@@ -20,6 +20,16 @@ each returning [q̈; λ] (NQ + NC values):
   PREFIX_fd_qr(q, qd, t, p, ab): the sparse KKT matrix [M, −Φ_qᵀ; Φ_q, 0] assembled by SX
       functions and solved at run time by CasADi's sparse numeric QR linear solver ("qr").
 Every function has CasADi's standard C interface.
+
+Spatial models ("dimension": 3, rebuilt by mbd_oracle.spatial) get the same functions in velocity
+space, with q (7 per body), v (6 per body: ṙ global, ω′ body frame), t, p:
+  PREFIX_phi(q, t, p), PREFIX_jac(q, t, p) (the non-zeros of D = Φ_q B, projected on the model
+      JSON's "jacobian_pattern" and column-major, so that they line up with mbd's sorted pattern;
+      CasADi's own structural pattern is compared with it and the difference printed),
+      PREFIX_gamma(q, v, t, p);
+  PREFIX_fd_schur(q, v, t, p, ab) and PREFIX_fd_qr(q, v, t, p, ab) returning [v̇; λ] (NV + NC) of
+      M v̇ − Dᵀ λ = h, D v̇ = γ − 2α (D v − ν) − β² Φ; the Schur form with
+      M⁻¹ = blockdiag(I₃/m, J′⁻¹) (J′⁻¹ as adjugate over determinant, symbolic).
 """
 
 import json
@@ -30,6 +40,7 @@ import casadi as ca
 
 from .dynamics import Dynamics
 from .model import Model
+from .spatial import Spatial, is_spatial
 
 
 def kinematics(m, prefix):
@@ -68,6 +79,61 @@ def forward_dynamics(m, prefix):
     return [fd_schur, fd_qr]
 
 
+def pattern_of(s, model_json):
+    """mbd's structural pattern of D (the model JSON's "jacobian_pattern") as a CasADi Sparsity,
+    after printing how CasADi's own structural pattern differs from it."""
+    pattern = [tuple(rc) for rc in model_json["jacobian_pattern"]]
+    mine, theirs = s.structural_jacobian(), set(pattern)
+    print(f"{s.name}: D has {len(theirs)} structural non-zeros in mbd, {len(mine)} in CasADi "
+          f"({len(mine - theirs)} only in CasADi, {len(theirs - mine)} only in mbd)")
+    rows, cols = zip(*pattern) if pattern else ((), ())
+    return ca.Sparsity.triplet(s.nc, s.nv, list(rows), list(cols))
+
+
+def spatial_kinematics(s, prefix, pattern):
+    q, v, t, p = s.q, s.v, s.t, s.p
+    return [
+        ca.Function(f"{prefix}_phi", [q, t, p], [s.phi]),
+        ca.Function(f"{prefix}_jac", [q, t, p], [ca.project(s.D, pattern)]),
+        ca.Function(f"{prefix}_gamma", [q, v, t, p], [s.gamma]),
+    ]
+
+
+def inverse3(j):
+    """J⁻¹ = adj(J) / det(J) of a 3×3 SX (zeros of a principal J simplify away)."""
+    cof = [[j[(r + 1) % 3, (c + 1) % 3] * j[(r + 2) % 3, (c + 2) % 3]
+            - j[(r + 1) % 3, (c + 2) % 3] * j[(r + 2) % 3, (c + 1) % 3] for c in range(3)] for r in range(3)]
+    det = j[0, 0] * cof[0][0] + j[0, 1] * cof[0][1] + j[0, 2] * cof[0][2]
+    # adj = cofactor matrixᵀ
+    return ca.vertcat(*[ca.horzcat(*[cof[c][r] / det for c in range(3)]) for r in range(3)])
+
+
+def spatial_forward_dynamics(s, prefix):
+    q, v, t, p = s.q, s.v, s.t, s.p
+    ab = ca.SX.sym("ab", 2)
+    d = s.D
+    # γ̂ = γ − 2α (D v − ν) − β² Φ
+    rhs = s.gamma - 2 * ab[0] * (ca.mtimes(d, v) - s.nu) - ab[1] ** 2 * s.phi
+    minv = ca.diagcat(*[ca.diagcat(ca.SX.eye(3) / m, inverse3(j)) for m, j in zip(s.masses, s.inertias)])
+    dm = ca.mtimes(d, minv)
+    schur = ca.mtimes(dm, d.T)
+    lam = ca.solve(schur, rhs - ca.mtimes(dm, s.h))
+    vd = ca.mtimes(minv, s.h + ca.mtimes(d.T, lam))
+    inputs = [q, v, t, p, ab]
+    fd_schur = ca.Function(f"{prefix}_fd_schur", inputs, [ca.vertcat(vd, lam)])
+
+    nv, nc = s.nv, s.nc
+    kkt = ca.blockcat([[s.mass, -d.T], [d, ca.SX(nc, nc)]])
+    pieces = ca.Function("kkt_pieces", inputs, [kkt, ca.vertcat(s.h, rhs)])
+    mx = [ca.MX.sym(name, x.sparsity()) for name, x in zip(["q", "v", "t", "p", "ab"], inputs)]
+    a, b = pieces(*mx)
+    x = ca.solve(a, b, "qr")
+    fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x])
+    print(f"{s.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nv + nc}×{nv + nc}); "
+          f"Schur form {fd_schur.n_instructions()} instructions")
+    return [fd_schur, fd_qr]
+
+
 def main(argv):
     dynamics = argv[:1] == ["--dynamics"]
     if dynamics:
@@ -78,15 +144,25 @@ def main(argv):
     src, prefix, out = argv
     with open(src) as f:
         data = json.load(f)
-    m = Model(data.get("model", data))
-    functions = forward_dynamics(m, prefix) if dynamics else kinematics(m, prefix)
+    model_json = data.get("model", data)
+    if is_spatial(model_json):
+        m = Spatial(model_json)
+        if dynamics:
+            functions = spatial_forward_dynamics(m, prefix)
+        else:
+            functions = spatial_kinematics(m, prefix, pattern_of(m, model_json))
+        jac_nnz = len(model_json["jacobian_pattern"])
+    else:
+        m = Model(model_json)
+        functions = forward_dynamics(m, prefix) if dynamics else kinematics(m, prefix)
+        jac_nnz = m.jac.nnz()
     name = os.path.basename(out)
     gen = ca.CodeGenerator(name, {"with_header": False, "casadi_real": "double", "casadi_int": "long long"})
     for f in functions:
         gen.add(f)
     directory = os.path.dirname(os.path.abspath(out))
     gen.generate(directory + os.sep)
-    print(f"{m.name}: wrote {out} ({m.nq} coordinates, {m.nc} rows, {m.jac.nnz()} Jacobian non-zeros) with CasADi {ca.__version__}")
+    print(f"{m.name}: wrote {out} ({m.nq} coordinates, {m.nc} rows, {jac_nnz} Jacobian non-zeros) with CasADi {ca.__version__}")
     return 0
 
 

@@ -1,0 +1,181 @@
+//! One RK4 step of the spatial pendulum chains of 4 and 16 links (`mechanisms/spatial_chain*.rs`,
+//! spherical joints) in mbd against MuJoCo's RK4 on the same physical chain (ball joints), in the
+//! same run: `cargo bench -p mbd-bench --bench vs_mujoco -- --warm-up-time 1 --measurement-time 3`.
+//!
+//! First, MuJoCo's side: `peers/ensure_env.sh` creates the pinned Python environment
+//! (`peers/requirements.txt`, under `target/peers-venv`) on first use, and `peers/mujoco_chain.py`
+//! builds each chain for MuJoCo, times its C loop (`mujoco.rollout`) and integrates 0.5 s at
+//! h = 1 ms and 0.25 ms. Then criterion times mbd's `Rk4::step` (h = 1 ms, Baumgarte α = β = 5,
+//! from a moving state 50 ms into the fall); mbd integrates the same 0.5 s at both step sizes.
+//! Last, a table: per-step times, their ratio, and the distance between the two tips at 0.5 s.
+//!
+//! The two integrate different coordinates (mbd: 7 per body with 3 constraint rows per joint;
+//! MuJoCo: a quaternion per ball joint), so their tips agree to the integration error, which must
+//! shrink with the step (RK4: about 256 times from 1 ms to 0.25 ms) — the check that both
+//! simulate the same motion. It fails the run if the tips differ by more than 1e-4 m at 1 ms.
+use criterion::Criterion;
+use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, System};
+use serde_json::Value;
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::SystemTime;
+
+mod spatial_chain4 {
+    include!("../mechanisms/spatial_chain4.rs");
+}
+mod spatial_chain16 {
+    include!("../mechanisms/spatial_chain16.rs");
+}
+use spatial_chain16::SpatialChain16;
+use spatial_chain4::SpatialChain4;
+
+/// Tip positions of mbd and MuJoCo at 0.5 s closer than this (m) at h = 1 ms count as the same
+/// motion: 1e-4 m is 6e-5 of the 16-link chain's length, far above what either RK4 leaves
+/// (measured: 5e-8 m for 4 links, 1.4e-6 m for 16) and far below what a different model would
+/// move the tip.
+const SAME_MOTION: f64 = 1e-4;
+
+/// The simulated time of the tip comparison (s).
+const TIP_TIME: f64 = 0.5;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("mbd-bench sits in the repository").to_path_buf()
+}
+
+/// MuJoCo's measurements: runs `peers/ensure_env.sh`, then `peers/mujoco_chain.py 4 16`.
+fn mujoco() -> Value {
+    let peers = repo().join("mbd-bench/peers");
+    let env = Command::new("bash").arg(peers.join("ensure_env.sh")).output().expect("bash runs peers/ensure_env.sh");
+    assert!(env.status.success(), "peers/ensure_env.sh failed:\n{}", String::from_utf8_lossy(&env.stderr));
+    let stdout = String::from_utf8_lossy(&env.stdout);
+    let python = stdout.lines().last().expect("ensure_env.sh prints the interpreter").trim().to_string();
+    let out = Command::new(&python).arg(peers.join("mujoco_chain.py")).args(["4", "16"]).output().expect("the peers' Python runs");
+    eprint!("{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "peers/mujoco_chain.py failed");
+    serde_json::from_slice(&out.stdout).expect("mujoco_chain.py prints JSON")
+}
+
+/// The tip of mbd's chain after `TIP_TIME` of RK4 at step h from the mechanism's initial
+/// positions at rest, and the largest |Φ| on the way.
+fn mbd_tip<M, const NQ: usize, const NV: usize, const NC: usize>(m: &M, h: f64, tip: impl Fn(&[f64; NQ]) -> [f64; 3]) -> ([f64; 3], f64)
+where
+    M: mbd::ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the chain assembles");
+    let system = System::new(m);
+    let mut rk4 = Rk4::new(h);
+    let mut p: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
+    let mut next = p;
+    let (mut drift, mut phi) = (0.0f64, [0.0; NC]);
+    for _ in 0..(TIP_TIME / h).round() as usize {
+        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        p = next;
+        m.constraints(&p.q, p.t, &mut phi);
+        drift = phi.iter().fold(drift, |a, x| a.max(x.abs()));
+    }
+    (tip(&p.q), drift)
+}
+
+/// A moving state: 50 RK4 steps of 1 ms from rest.
+fn moving_state<M, const NQ: usize, const NV: usize, const NC: usize>(m: &M) -> Point<f64, NQ, NV, NC>
+where
+    M: mbd::ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the chain assembles");
+    let system = System::new(m);
+    let mut rk4 = Rk4::new(1e-3);
+    let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
+    let mut next = p;
+    for _ in 0..50 {
+        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        p = next;
+    }
+    p
+}
+
+/// criterion's median (s) of `group/function` from its estimates file, if this run wrote it.
+fn median(dir: &Path, group: &str, function: &str, since: SystemTime) -> Option<f64> {
+    let path = dir.join(group).join(function).join("new/estimates.json");
+    let fresh = std::fs::metadata(&path).and_then(|m| m.modified()).is_ok_and(|t| t >= since);
+    if !fresh {
+        return None;
+    }
+    let estimates: Value = serde_json::from_slice(&std::fs::read(&path).ok()?).ok()?;
+    Some(estimates["median"]["point_estimate"].as_f64()? * 1e-9)
+}
+
+fn distance(a: &[f64; 3], b: &Value) -> f64 {
+    let b: Vec<f64> = b.as_array().expect("a position").iter().map(|x| x.as_f64().expect("a number")).collect();
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+fn micros(s: f64) -> String {
+    format!("{:.2} µs", s * 1e6)
+}
+
+struct Row {
+    links: usize,
+    group: &'static str,
+    mujoco_step: f64,
+    tips: Vec<(f64, f64)>,
+    drift: f64,
+}
+
+macro_rules! chain {
+    ($c:expr, $peers:expr, $group:literal, $ty:ty, $tip:ident) => {{
+        const NV: usize = <$ty>::NV;
+        const NC: usize = <$ty>::NC;
+        let m = <$ty>::default();
+        let links = <$ty>::BODY_NAMES.len();
+        let peer = $peers["chains"].as_array().expect("chains").iter().find(|c| c["links"] == links).expect("MuJoCo measured this chain");
+        assert!(peer["finite"].as_bool() == Some(true), "MuJoCo's timed rollout of the chain of {links} blew up");
+        let mut tips = Vec::new();
+        let mut worst_drift = 0.0f64;
+        for run in peer["tips"].as_array().expect("tips") {
+            let h = run["h"].as_f64().expect("h");
+            let (tip, drift) = mbd_tip(&m, h, |q| {
+                let p = m.$tip().position(q);
+                [p.x, p.y, p.z]
+            });
+            worst_drift = worst_drift.max(drift);
+            tips.push((h, distance(&tip, &run["tip"])));
+        }
+        assert!(tips[0].1 < SAME_MOTION, "chain of {links}: mbd's and MuJoCo's tips differ by {:e} m at 0.5 s", tips[0].1);
+        let system = System::new(&m);
+        let mut rk4 = Rk4::new(1e-3);
+        let p = moving_state(&m);
+        let mut next = p;
+        let _: (&[f64; NV], &[f64; NC]) = (&p.v, &p.lambda);
+        let mut g = $c.benchmark_group($group);
+        g.bench_function("mbd_rk4_step", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        g.finish();
+        Row { links, group: $group, mujoco_step: peer["step_seconds"].as_f64().expect("step_seconds"), tips, drift: worst_drift }
+    }};
+}
+
+fn main() {
+    let peers = mujoco();
+    let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| repo().join("target"));
+    let output = target.join("criterion");
+    let started = SystemTime::now();
+    let mut c = Criterion::default().output_directory(&output).configure_from_args();
+    let rows =
+        [chain!(c, peers, "vs_mujoco_chain4", SpatialChain4, l3_tip), chain!(c, peers, "vs_mujoco_chain16", SpatialChain16, l15_tip)];
+    c.final_summary();
+
+    println!();
+    println!("Spatial pendulum chains, one RK4 step at h = 1 ms (MuJoCo {}):", peers["mujoco"].as_str().unwrap_or("?"));
+    println!("| links | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
+    println!("|---|---|---|---|---|---|---|");
+    for r in &rows {
+        let (mbd, ratio) = match median(&output, r.group, "mbd_rk4_step", started) {
+            Some(s) => (micros(s), format!("{:.2}", s / r.mujoco_step)),
+            None => ("not timed in this run".into(), "—".into()),
+        };
+        let apart: Vec<String> = r.tips.iter().map(|(_, d)| format!("{d:.1e} m")).collect();
+        println!("| {} | {mbd} | {} | {ratio} | {} | {} | {:.1e} m |", r.links, micros(r.mujoco_step), apart[0], apart[1], r.drift);
+    }
+}
