@@ -148,16 +148,39 @@ pub fn resolve<'a>(
     };
     let axis_i = axis(r, &j.i, li.body, spec.axis_i, "first");
     let axis_j = axis(r, &j.j, lj.body, spec.axis_j, "second");
-    let mut options: HashMap<String, MExpr> = HashMap::new();
+    let options = joint_options(r, &kind, spec.options, &j.options);
+    let (axis_i, axis_j) = (axis_i?, axis_j?);
+    let mut options = options?;
+    let friction = match friction::from_joint_options(&mut options, &li, axis_i.as_ref(), &lj, joint_index) {
+        Ok(f) => f,
+        Err(msg) => {
+            r.errors.push(j.kind.span(), msg.replace("{kind}", &kind));
+            return None;
+        }
+    };
+    let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
+    match (spec.build)(Parts { i: li, j: lj, axis_i, axis_j, options, keyword: j.kind.clone() }) {
+        Ok(joint) => Some((j.label.as_ref(), name, j.kind.span(), joint, friction)),
+        Err((span, msg)) => {
+            r.errors.push(span, msg);
+            None
+        }
+    }
+}
+
+/// A joint statement's options: each known, a number, positive where it must be.
+pub fn joint_options(
+    r: &mut Resolver,
+    kind: &str,
+    known: &[(&'static str, Option<&'static str>)],
+    fields: &[parse::Field],
+) -> Option<HashMap<String, MExpr>> {
+    let mut options = HashMap::new();
     let mut bad = false;
-    for f in &j.options {
+    for f in fields {
         let key = f.name.to_string();
-        let Some(&(_, positive)) = spec.options.iter().find(|(n, _)| *n == key) else {
-            let list = if spec.options.is_empty() {
-                "none".to_string()
-            } else {
-                spec.options.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
-            };
+        let Some(&(_, positive)) = known.iter().find(|(n, _)| *n == key) else {
+            let list = if known.is_empty() { "none".to_string() } else { known.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
             r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
             bad = true;
             continue;
@@ -178,25 +201,7 @@ pub fn resolve<'a>(
             },
         }
     }
-    let (axis_i, axis_j) = (axis_i?, axis_j?);
-    if bad {
-        return None;
-    }
-    let friction = match friction::from_joint_options(&mut options, &li, axis_i.as_ref(), &lj, joint_index) {
-        Ok(f) => f,
-        Err(msg) => {
-            r.errors.push(j.kind.span(), msg.replace("{kind}", &kind));
-            return None;
-        }
-    };
-    let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));
-    match (spec.build)(Parts { i: li, j: lj, axis_i, axis_j, options, keyword: j.kind.clone() }) {
-        Ok(joint) => Some((j.label.as_ref(), name, j.kind.span(), joint, friction)),
-        Err((span, msg)) => {
-            r.errors.push(span, msg);
-            None
-        }
-    }
+    (!bad).then_some(options)
 }
 
 /// Coordinates and relative angles already fixed or driven: each may be only once.

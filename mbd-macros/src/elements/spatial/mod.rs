@@ -15,8 +15,8 @@ use super::{Joint, Mistake, Named, Resolved};
 use crate::forces::friction;
 use crate::frames::Builder;
 use crate::json::Ctx;
-use crate::model::{check_positive, BodyRef, Components, Loc, MExpr, Resolver, Scope};
-use crate::parse::{self, Value as FieldValue};
+use crate::model::{BodyRef, Components, Loc, MExpr, Resolver};
+use crate::parse;
 use crate::sym::Id;
 
 pub mod cylindrical;
@@ -186,7 +186,7 @@ pub fn resolve<'a>(
         r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
         return None;
     }
-    let mut options = joint_options(r, &kind, spec.options, &j.options)?;
+    let mut options = super::joint_options(r, &kind, spec.options, &j.options)?;
     let name = format!("{kind} {}~{}", body_name(mi.loc.body), body_name(mj.loc.body));
     let joint_name = j.label.as_ref().map_or_else(|| name.clone(), |l| l.to_string());
     let friction = friction_options(&mut options, &kind, (&joint_name, joint_index), &mi, &mj)
@@ -199,42 +199,6 @@ pub fn resolve<'a>(
             None
         }
     }
-}
-
-/// A joint statement's options: each known, a number, positive where it must be.
-pub fn joint_options(
-    r: &mut Resolver,
-    kind: &str,
-    known: &[(&'static str, Option<&'static str>)],
-    fields: &[parse::Field],
-) -> Option<HashMap<String, MExpr>> {
-    let mut options = HashMap::new();
-    let mut bad = false;
-    for f in fields {
-        let key = f.name.to_string();
-        let Some(&(_, positive)) = known.iter().find(|(n, _)| *n == key) else {
-            let list = if known.is_empty() { "none".to_string() } else { known.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
-            r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
-            bad = true;
-            continue;
-        };
-        match &f.value {
-            FieldValue::List(v) => {
-                r.errors.push(v.span, format!("`{key}` is a number, not a list"));
-                bad = true;
-            }
-            FieldValue::Expr(e) => match r.expr(e, Scope::Params) {
-                Some(m) => {
-                    if let Some(what) = positive {
-                        check_positive(r.errors, &m, e, what);
-                    }
-                    options.insert(key, m);
-                }
-                None => bad = true,
-            },
-        }
-    }
-    (!bad).then_some(options)
 }
 
 /// The friction options of a spatial revolute or translational joint: `viscous: c` and
