@@ -6,10 +6,10 @@
 //! solves for (v̇₊, λ₊) by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v and
 //! ∂(Dᵀλ)/∂q·B (the equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
 
-use super::{check_step, hermite_state, Integrator, Point, SimulationError, System};
+use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::kinematics::name;
-use crate::linalg::{lu_factor, lu_solve_in_place};
-use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Real};
+use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
+use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Mechanism, Real};
 
 /// Options of [`GeneralizedAlpha`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,10 +22,22 @@ pub struct GeneralizedAlphaOptions<T> {
     /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction β'h²‖Δv̇‖∞ (m, rad).
     /// Default 1e-10.
     pub tolerance: T,
+    /// Newton tolerance on the multipliers, relative: ‖Δλ‖∞ ≤ `lambda_tolerance` · (the force
+    /// scale max(‖λ‖∞, ‖h‖∞, ‖M v̇‖∞), N or N·m). Needed on its own: λ reaches the positions
+    /// only through M⁻¹Dᵀ and β'h², so at small steps a λ wrong by percents moves q by less
+    /// than `tolerance`. Default 1e-8.
+    pub lambda_tolerance: T,
     /// Newton iterations per step before failing. Default 12.
     pub max_iterations: u32,
     /// Relative pivot tolerance of the LU of the iteration matrix. Default 1e-13.
     pub pivot_tolerance: T,
+    /// Project each step's velocities onto D v = ν in the metric of M
+    /// ([`ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
+    /// enforce Φ = 0 but leave D v − ν = O(h²); without damping (ρ∞ = 1) that error feeds an
+    /// oscillation that grows with time at every step size (a pendulum's energy grew about 20×
+    /// per second from t = 1 s until Newton failed at 5–9 s), and a coordinate-partitioning
+    /// correction turns it into a first-order error. Default true.
+    pub project_velocities: bool,
 }
 
 impl<T: Real> Default for GeneralizedAlphaOptions<T> {
@@ -34,8 +46,10 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
             step: T::from_f64(1e-3),
             rho_infinity: T::from_f64(0.8),
             tolerance: T::from_f64(1e-10),
+            lambda_tolerance: T::from_f64(1e-8),
             max_iterations: 12,
             pivot_tolerance: T::from_f64(1e-13),
+            project_velocities: true,
         }
     }
 }
@@ -118,7 +132,7 @@ where
         let alpha_f = rho / (rho + one);
         let gamma = half + alpha_f - alpha_m;
         let beta = T::from_f64(0.25) * (gamma + half) * (gamma + half);
-        let h = if from.t + o.step > t_max { t_max - from.t } else { o.step };
+        let (h, t1) = fixed_step(from.t, o.step, t_max);
         if !(h > T::ZERO) {
             *to = *from;
             return Ok(());
@@ -131,7 +145,6 @@ where
         } else {
             a_n = from.vd;
         }
-        let t1 = from.t + h;
         // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
         let mut vd = from.vd;
         let mut lambda = from.lambda;
@@ -177,6 +190,10 @@ where
                     worst = (p.abs(), r);
                 }
             }
+            // A NaN or infinity in a force, Φ or the state: name the row it surfaced in.
+            if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
+                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
+            }
             // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
             // Newton steps overshoot and cycle; where the step made the residual grow, take half
             // of it instead (at most six times, then go on from there).
@@ -192,13 +209,16 @@ where
                 continue;
             }
             if iteration >= o.max_iterations {
-                // Name the violated constraint, or, with every constraint met, the velocity
-                // whose correction would not settle.
+                // Name the violated constraint, or, with every constraint met, the velocity or
+                // multiplier whose correction would not settle.
+                let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
                 let (worst_row, residual) = if worst.0 > o.tolerance {
                     (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
-                } else {
-                    let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
+                } else if (step[k] * beta_p * h * h).abs() > o.tolerance || NC == 0 {
                     (name(M::VELOCITY_NAMES, k), (step[k] * beta_p * h * h).abs())
+                } else {
+                    let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
+                    (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
                 };
                 return Err(SimulationError::NotConverged {
                     t: t1.to_f64(),
@@ -231,35 +251,35 @@ where
                     a[NV + r][NV + k] = T::ZERO;
                 }
             }
-            let permutation = match lu_factor(a, o.pivot_tolerance) {
-                Ok(p) => p,
-                Err(_) => {
-                    return Err(SimulationError::Dynamics(DynamicsError::DependentConstraint {
-                        t: t1.to_f64(),
-                        row: name(M::CONSTRAINT_NAMES, worst.1),
-                    }))
-                }
-            };
+            let permutation = lu_factor(a, o.pivot_tolerance).map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
             lu_solve_in_place(a, &permutation, &mut rhs);
+            if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
+                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
+            }
             (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
             correction = T::ZERO;
+            let mut force_scale = T::ZERO;
             for i in 0..NV {
                 vd[i] += rhs[i];
                 correction = correction.max((rhs[i] * beta_p * h * h).abs());
+                force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
             }
+            let mut lambda_change = T::ZERO;
             for r in 0..NC {
                 lambda[r] += rhs[NV + r];
+                lambda_change = lambda_change.max(rhs[NV + r].abs());
+                force_scale = force_scale.max(lambda[r].abs());
             }
             iteration += 1;
-            if !correction.is_finite() {
-                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: name(M::VELOCITY_NAMES, 0) });
-            }
-            if correction <= o.tolerance && worst.0 <= o.tolerance {
+            if correction <= o.tolerance && worst.0 <= o.tolerance && lambda_change <= o.lambda_tolerance * force_scale {
                 break;
             }
         }
         // The state of the converged iterate (the last correction is below tolerance).
         state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+        if o.project_velocities {
+            mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
+        }
         self.iterations = iteration;
         self.a[..NV].copy_from_slice(&a1);
         self.started = true;
@@ -289,6 +309,47 @@ where
 
     fn restart(&mut self) {
         self.started = false;
+    }
+
+    /// v̇ and λ are unknowns of the method: the corrected point keeps them (and the powers of the
+    /// step's end), and only q and v change.
+    fn after_correction(
+        &mut self,
+        _system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        Ok(Point { q, v, ..*end })
+    }
+}
+
+/// Name of row `i` of the iteration matrix: a velocity (the momentum rows) or a constraint.
+fn row_name<M: Mechanism>(i: usize, nv: usize) -> &'static str {
+    if i < nv {
+        name(M::VELOCITY_NAMES, i)
+    } else {
+        name(M::CONSTRAINT_NAMES, i - nv)
+    }
+}
+
+/// What a failed factorization of the iteration matrix means: no pivot in a multiplier's
+/// column is a constraint row that depends on the others (a singular position or redundant
+/// constraints); no pivot in a velocity's column is a direction with neither mass nor
+/// stiffness; a NaN or infinity is named by its row.
+fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usize) -> SimulationError {
+    match error {
+        LinalgError::Singular { column, .. } if column >= nv => {
+            SimulationError::Dynamics(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, column - nv) })
+        }
+        LinalgError::Singular { column, .. } => {
+            SimulationError::SingularIterationMatrix { t: t.to_f64(), velocity: name(M::VELOCITY_NAMES, column) }
+        }
+        LinalgError::NonFinite { row, .. } => SimulationError::NonFinite { t: t.to_f64(), coordinate: row_name::<M>(row, nv) },
+        // Not returned for the square matrix `lu_factor` is given here.
+        LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
+            SimulationError::WorkspaceSize { expected: rows, found: columns }
+        }
     }
 }
 

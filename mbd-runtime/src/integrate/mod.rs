@@ -125,7 +125,8 @@ pub enum SimulationError {
         /// Time of the step's start (s).
         t: f64,
         /// The first non-finite coordinate, or velocity (from
-        /// [`Mechanism::VELOCITY_NAMES`]; planar: named as its coordinate).
+        /// [`Mechanism::VELOCITY_NAMES`]; planar: named as its coordinate), or — from
+        /// generalized-α's Newton step — the constraint row whose multiplier became non-finite.
         coordinate: &'static str,
     },
     /// Error control asked for a step below the minimum: a singularity or a discontinuity.
@@ -164,6 +165,14 @@ pub enum SimulationError {
         /// Index of the first offending time.
         index: usize,
     },
+    /// The generalized-α iteration matrix has no pivot in the column of a velocity: a direction
+    /// with neither mass nor stiffness (a massless body, a zero inertia).
+    SingularIterationMatrix {
+        /// Time (s).
+        t: f64,
+        /// The velocity, from [`Mechanism::VELOCITY_NAMES`].
+        velocity: &'static str,
+    },
     /// A generalized-α work space does not have NV + NC rows (use the generated
     /// `Name::generalized_alpha`).
     WorkspaceSize {
@@ -197,6 +206,12 @@ impl fmt::Display for SimulationError {
             SimulationError::InvalidOptions { what } => write!(f, "invalid option: {what}"),
             SimulationError::TimesNotIncreasing { index } => {
                 write!(f, "output time {index} is before the one before it or before the start")
+            }
+            SimulationError::SingularIterationMatrix { t, velocity } => {
+                write!(
+                    f,
+                    "at t = {t} s the generalized-α iteration matrix is singular in `{velocity}`: no mass or stiffness in that direction"
+                )
             }
             SimulationError::WorkspaceSize { expected, found } => {
                 write!(f, "the generalized-α work space has {found} rows; this mechanism needs NV + NC = {expected}")
@@ -305,6 +320,50 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// Forgets what the method carries from step to step (called by [`simulate`](simulate()) at
     /// its start, so an integrator can be reused for another run).
     fn restart(&mut self) {}
+
+    /// The point to go on from after [`simulate`](simulate()) corrected the drift of the step's
+    /// end `end` to (`q`, `v`). By default v̇, λ and the powers are those of forward dynamics at
+    /// the corrected state, as an explicit method needs (its next step starts from v̇ = f(q, v)).
+    /// A method whose v̇ and λ are unknowns of its own equations keeps them: they are part of
+    /// its state, and replacing them by forward dynamics' (with its Baumgarte terms) would
+    /// restart it every step.
+    ///
+    /// # Errors
+    /// Those of forward dynamics at the corrected state.
+    fn after_correction(
+        &mut self,
+        system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+    {
+        Ok(system.point(end.t, q, v, end.work)?)
+    }
+}
+
+/// Relative stretch of a fixed step allowed to land on the end time: a last step of up to
+/// `(1 + LAST_STEP_STRETCH) · h` is taken whole. The time of a fixed-step run is a sum of steps
+/// that is rarely exact in floating point (ten steps of 0.1 s end at 0.9999999999999999 s):
+/// without the stretch the run would end on a sliver of about 1e-16 s, which an implicit method
+/// divides by h² (generalized-α scales its constraint rows by 1/(β′h²)). The stretch must
+/// exceed the rounding a sum of n steps accumulates, about n·ε·t: 1e-3 covers 10⁹ steps of any
+/// size in f64, and changes a last step's error by 0.1 %.
+const LAST_STEP_STRETCH: f64 = 1e-3;
+
+/// The size and end time of a fixed step of nominal size `step` from `t` towards `t_max`: the
+/// nominal step, or the rest of the way when that is at most [`LAST_STEP_STRETCH`] longer — then
+/// the step ends exactly at `t_max`, not at a rounded sum.
+#[inline]
+pub(crate) fn fixed_step<T: Real>(t: T, step: T, t_max: T) -> (T, T) {
+    let remaining = t_max - t;
+    if remaining <= step * (T::ONE + T::from_f64(LAST_STEP_STRETCH)) {
+        (remaining, t_max)
+    } else {
+        (step, t + step)
+    }
 }
 
 /// Cubic Hermite interpolation of y with derivative yd between two points, at θ ∈ [0, 1] of a

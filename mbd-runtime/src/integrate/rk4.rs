@@ -8,7 +8,7 @@
 //! 4 evaluations of v̇ per step (k₁ is the start point's); the work integrals use the same
 //! weights on the stage powers; dense output is cubic Hermite.
 
-use super::{check_step, hermite_state, Integrator, Point, SimulationError, System};
+use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::{ForwardDynamics, Real};
 
 /// Classical fourth-order Runge–Kutta with a fixed step.
@@ -50,7 +50,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             return Err(SimulationError::InvalidOptions { what: "Rk4::step must be positive" });
         }
         let mech = system.mechanism;
-        let h = if from.t + self.step > t_max { t_max - from.t } else { self.step };
+        let (h, t_end) = fixed_step(from.t, self.step, t_max);
         let half = h * T::from_f64(0.5);
         let sixth = h / T::from_f64(6.0);
         let two = T::from_f64(2.0);
@@ -93,7 +93,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let mut qd4 = [T::ZERO; NQ];
         mech.position_rates(&q, &v4, &mut qd4);
         let mut vd4 = [T::ZERO; NV];
-        let p4 = system.derivatives(from.t + h, &q, &v4, &mut vd4, &mut lambda)?;
+        let p4 = system.derivatives(t_end, &q, &v4, &mut vd4, &mut lambda)?;
         for i in 0..NQ {
             to.q[i] = from.q[i] + sixth * (qd1[i] + two * (qd2[i] + qd3[i]) + qd4[i]);
         }
@@ -104,7 +104,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         for k in 0..2 {
             to.work[k] = from.work[k] + sixth * (from.power[k] + two * (p2[k] + p3[k]) + p4[k]);
         }
-        to.t = from.t + h;
+        to.t = t_end;
         check_step::<T, M, NQ, NV, NC>(from, to)?;
         to.power = system.derivatives(to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
         Ok(())

@@ -178,7 +178,7 @@ where
         if !matches!(options.correction, Correction::None) {
             let (mut q, mut v) = (to.q, to.v);
             correct(mechanism, &mut partition, options, to.t, &mut q, &mut v)?;
-            to = system.point(to.t, q, v, to.work)?;
+            to = integrator.after_correction(&system, &end, q, v)?;
         }
         while next < times.len() && times[next] <= end.t {
             if times[next] == end.t {
