@@ -98,10 +98,13 @@ fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
 where
     M: ForwardDynamics<f64, NQ, NQ, NC> + ConstraintForces<f64, NQ, NQ, NC>,
 {
+    // The stable rest state from the `at:` guesses (the solver assembles them first).
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, 0.0)?;
     let mut lambda = [0.0; NC];
-    StaticSolver::default().solve(m, &mut q, 0.0, &mut lambda, &mut ws)?;
+    let report = StaticSolver::default().solve(m, &mut q, 0.0, &mut lambda, &mut ws)?;
+    if !matches!(report.stability, Stability::Stable { .. }) {
+        return Err(format!("{}: the static equilibrium is not stable: {:?}", M::NAME, report.stability).into());
+    }
     let y0 = knuckle.y(&q);
     let static_tyre_load = tyre_load(&q, &[0.0; NQ], 0.0);
     let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };

@@ -44,6 +44,7 @@ pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
 pub use statics::{
-    KktWorkspace, StaticError, StaticOptions, StaticSolver, DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_PIVOT_TOLERANCE,
+    KktWorkspace, Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS,
+    DEFAULT_STATIC_INITIAL_STEP, DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE,
     DEFAULT_STATIC_TOLERANCE,
 };
