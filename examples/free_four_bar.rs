@@ -38,18 +38,24 @@ pub struct Run {
 
 const T_END: f64 = 2.0;
 
-fn one<I: Integrator<f64, FreeFourBar, 9, 9, 8>>(
+/// One run with any integrator; the sizes are the mechanism's, inferred from `q` and the
+/// integrator (no numbers to repeat).
+fn one<I, const NQ: usize, const NV: usize, const NC: usize>(
     m: &FreeFourBar,
-    q: &[f64; 9],
+    q: &[f64; NQ],
     integrator: &mut I,
-) -> Result<(u64, f64, f64, f64), SimulationError> {
+) -> Result<(u64, f64, f64, f64), SimulationError>
+where
+    FreeFourBar: ForwardDynamics<f64, NQ, NV, NC>,
+    I: Integrator<f64, FreeFourBar, NQ, NV, NC>,
+{
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let times: Vec<f64> = (1..=20).map(|k| k as f64 * T_END / 20.0).collect();
     let e0 = m.potential_energy(q, 0.0);
     let mut drift: f64 = 0.0;
     let mut last = 0.0;
     let start = Instant::now();
-    let stats = simulate(m, integrator, 0.0, q, &[0.0; 9], &times, &options, |s| {
+    let stats = simulate(m, integrator, 0.0, q, &[0.0; NV], &times, &options, |s| {
         drift = drift.max((s.energy.kinetic + s.energy.potential - e0).abs());
         last = FreeFourBar::ROCKER.phi(&s.point.q);
     })?;

@@ -25,7 +25,8 @@ pub struct GeneralizedAlphaOptions<T> {
     /// Newton tolerance on the multipliers, relative: ‖Δλ‖∞ ≤ `lambda_tolerance` · (the force
     /// scale max(‖λ‖∞, ‖h‖∞, ‖M v̇‖∞), N or N·m). Needed on its own: λ reaches the positions
     /// only through M⁻¹Dᵀ and β'h², so at small steps a λ wrong by percents moves q by less
-    /// than `tolerance`. Default 1e-8.
+    /// than `tolerance`. Default 1e-6: reactions to six digits; 1e-8 costs a third Newton
+    /// iteration in most steps (2.9 against 2.0 on average on a 16-link chain at h = 1 ms).
     pub lambda_tolerance: T,
     /// Newton iterations per step before failing. Default 12.
     pub max_iterations: u32,
@@ -46,7 +47,7 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
             step: T::from_f64(1e-3),
             rho_infinity: T::from_f64(0.8),
             tolerance: T::from_f64(1e-10),
-            lambda_tolerance: T::from_f64(1e-8),
+            lambda_tolerance: T::from_f64(1e-6),
             max_iterations: 12,
             pivot_tolerance: T::from_f64(1e-13),
             project_velocities: true,
