@@ -18,7 +18,7 @@ mod named;
 mod partition;
 mod planar;
 mod real;
-mod statics;
+pub mod statics;
 #[cfg(test)]
 mod test_support;
 

@@ -288,8 +288,9 @@ pub enum StaticError {
         /// Its value.
         residual: f64,
     },
-    /// [[M, Dᵀ], [D, 0]] has no pivot: redundant constraints (the row named is a constraint) or
-    /// a velocity without mass.
+    /// [[M, Dᵀ], [D, 0]] has no pivot: a singular pose (links collinear — e.g. every angle 0
+    /// where `at:` angles were left out — where the constraint rows named depend on each
+    /// other), redundant constraints, or a velocity without mass.
     Singular {
         /// Time (s).
         t: f64,
@@ -321,7 +322,7 @@ impl fmt::Display for StaticError {
                 "static equilibrium not found at t = {t} s after {iterations} iterations: worst residual {residual:.3e} in '{worst_row}'"
             ),
             StaticError::Singular { t, row } => {
-                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (redundant constraints, or a velocity without mass)")
+                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (a singular start pose such as collinear links — give `at:` angles near the equilibrium —, redundant constraints, or a velocity without mass)")
             }
             StaticError::NonFinite { t, row } => write!(f, "static equilibrium at t = {t} s: non-finite value in '{row}'"),
         }
@@ -350,7 +351,8 @@ impl<T: Real, const N: usize> Default for KktWorkspace<T, N> {
     }
 }
 
-/// Static-equilibrium solver that finds stable equilibria (see the module documentation).
+/// Static-equilibrium solver that finds stable equilibria (the algorithm: [the `statics`
+/// module](crate::statics)).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct StaticSolver {
     /// Tolerances, iteration caps and the choice at unstable equilibria.
