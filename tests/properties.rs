@@ -1,0 +1,146 @@
+//! Property tests (issue 10, item 8): random four-bars — Grashof or not, any driver speed and
+//! phase — either assemble and satisfy their constraints to tolerance along a kinematic sweep,
+//! or stop with the typed error that says why, and only where the closed-form geometry says the
+//! linkage cannot go on (a limit position: the coupler and rocker circles cease to meet, or meet
+//! at a tangent).
+use mbd::prelude::*;
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+
+/// The seed of the cases: `PROPTEST_RNG_SEED` if set, else a fixed one.
+fn seed() -> u64 {
+    std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(20_261_123)
+}
+
+mechanism! {
+    /// A four-bar of any proportions: ground pivots A = (0, 0) and D = (a, 0), crank AB (b),
+    /// coupler BC (c), rocker DC (d), the crank driven at θ₀ + ω t.
+    pub AnyFourBar {
+        params { a: 0.4, b: 0.15, c: 0.35, d: 0.3, theta0: 1.0, omega: 1.0 }
+        body crank   { mass: 1.0, inertia: 0.01, at: [0.0, 0.0, 0.0] }
+        body coupler { mass: 1.0, inertia: 0.01, at: [0.0, 0.0, 0.0] }
+        body rocker  { mass: 1.0, inertia: 0.01, at: [0.0, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ crank[-b / 2.0, 0.0];
+        revolute crank[b / 2.0, 0.0] ~ coupler[-c / 2.0, 0.0];
+        revolute coupler[c / 2.0, 0.0] ~ rocker[d / 2.0, 0.0];
+        revolute rocker[-d / 2.0, 0.0] ~ ground[a, 0.0];
+        drive crank.phi = theta0 + omega * t;
+    }
+}
+
+/// The closed-form pose at crank angle θ on the branch with C to the left of B→D (`sign` +1)
+/// or to the right (−1), and sin of the angle between coupler and rocker at C (0 at a limit
+/// position, where the Jacobian is singular); `None` where the circles about B (radius c) and
+/// D (radius d) do not meet.
+fn pose(m: &AnyFourBar, theta: f64, sign: f64) -> Option<([f64; 9], f64)> {
+    let (bx, by) = (m.b * theta.cos(), m.b * theta.sin());
+    let (ex, ey) = (m.a - bx, -by);
+    let e = ex.hypot(ey);
+    // Distance from B along B→D to the foot of C, and C's offset from that line.
+    let along = (m.c * m.c - m.d * m.d + e * e) / (2.0 * e);
+    let offset2 = m.c * m.c - along * along;
+    if offset2 < 0.0 || e == 0.0 {
+        return None;
+    }
+    let offset = sign * offset2.sqrt();
+    let (ux, uy) = (ex / e, ey / e);
+    let (cx, cy) = (bx + along * ux - offset * uy, by + along * uy + offset * ux);
+    let coupler = (cy - by).atan2(cx - bx);
+    let rocker = (cy - 0.0).atan2(cx - m.a);
+    let q = [bx / 2.0, by / 2.0, theta, (bx + cx) / 2.0, (by + cy) / 2.0, coupler, (cx + m.a) / 2.0, cy / 2.0, rocker];
+    Some((q, (rocker - coupler).sin()))
+}
+
+fn constraint_norm(m: &AnyFourBar, q: &[f64; 9], t: f64) -> f64 {
+    let mut phi = [0.0; 9];
+    m.constraints(q, t, &mut phi);
+    phi.iter().fold(0.0, |s, x| s.max(x.abs()))
+}
+
+/// Link lengths from 0.05 to 1 m (any Grashof class), a start angle, a speed of up to 3 rad/s
+/// either way, and the assembly branch.
+fn four_bars() -> impl Strategy<Value = (AnyFourBar, f64)> {
+    (0.05..1.0f64, 0.05..1.0f64, 0.05..1.0f64, 0.05..1.0f64, -3.2..3.2f64, -3.0..3.0f64, prop::bool::ANY)
+        .prop_map(|(a, b, c, d, theta0, omega, left)| (AnyFourBar { a, b, c, d, theta0, omega }, if left { 1.0 } else { -1.0 }))
+}
+
+proptest! {
+    // A fixed seed: CI sees the same 256 cases every run (set PROPTEST_RNG_SEED, or edit it,
+    // to explore others; five other seeds passed when this was written).
+    #![proptest_config(ProptestConfig { cases: 256, rng_seed: RngSeed::Fixed(seed()), ..ProptestConfig::default() })]
+
+    /// From the closed-form pose perturbed by up to 5 % of the shortest link and 0.02 rad, Newton assembles onto the
+    /// same branch with ‖Φ‖∞ ≤ 1e-10 (the solver's tolerance) wherever the pose is well away
+    /// from a limit position (|sin μ| ≥ 0.2: the Jacobian's condition is then bounded, and the
+    /// perturbation is inside Newton's basin); near one it may stop, but only with a typed
+    /// error. Where the circles do not meet, no pose exists and the solver says so — it never
+    /// returns a q that violates the constraints, and never a NaN.
+    #[test]
+    fn random_four_bars_assemble_or_say_why((m, sign) in four_bars(), noise in prop::array::uniform9(-1.0..1.0f64)) {
+        let solver = KinematicSolver::default();
+        match pose(&m, m.theta0, sign) {
+            Some((exact, sin_mu)) => {
+                // Up to 5 % of the shortest link in position, 0.02 rad in angle.
+                let shortest = m.a.min(m.b).min(m.c).min(m.d);
+                let mut q = exact;
+                for (i, x) in q.iter_mut().enumerate() {
+                    *x += noise[i] * if i % 3 == 2 { 0.02 } else { 0.05 * shortest };
+                }
+                match solver.solve_position(&m, &mut q, 0.0) {
+                    Ok(_) => {
+                        prop_assert!(constraint_norm(&m, &q, 0.0) <= 1e-10);
+                        if sin_mu.abs() >= 0.2 {
+                            // The same branch: the solution is the closed form (to Newton's
+                            // tolerance over the Jacobian's bounded inverse).
+                            let angle_error = (0..3).map(|k| ((q[3 * k + 2] - exact[3 * k + 2] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI).abs()).fold(0.0, f64::max);
+                            prop_assert!(angle_error < 1e-6, "another branch: {q:?} vs {exact:?}");
+                        }
+                    }
+                    Err(e) => {
+                        prop_assert!(sin_mu.abs() < 0.2, "a regular pose (sin μ = {sin_mu}) failed: {e}");
+                        prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+                        prop_assert!(q.iter().all(|x| x.is_finite()));
+                    }
+                }
+            }
+            None => {
+                // A pose the geometry does not allow: from the `at:` zeros Newton cannot reach
+                // Φ = 0, and says why (not converged, singular, or a step that overflowed).
+                let mut q = m.initial_positions();
+                let result = solver.solve_position(&m, &mut q, 0.0);
+                prop_assert!(result.is_err(), "assembled an impossible four-bar: {q:?}");
+            }
+        }
+    }
+
+    /// A kinematic sweep of 1 s (every 10 ms) from an assembled regular pose: every point it
+    /// delivers satisfies Φ to 1e-10; if it stops, the error is typed and the linkage is at or
+    /// near a limit position there (|sin μ| < 0.2 at the last point reached or in the step to
+    /// the failed one, or no pose at all): never an error where the geometry is regular.
+    #[test]
+    fn random_four_bar_sweeps_hold_or_stop_at_a_limit((m, sign) in four_bars()) {
+        let Some((start, sin_mu)) = pose(&m, m.theta0, sign) else { return Ok(()) };
+        prop_assume!(sin_mu.abs() >= 0.2);
+        let solver = KinematicSolver::default();
+        let mut q = start;
+        let mut last_t = 0.0;
+        let mut worst: f64 = 0.0;
+        let result = solver.sweep(&m, &mut q, (0..=100).map(|k| k as f64 * 0.01), |t, q, _, _| {
+            worst = worst.max(constraint_norm(&m, q, t));
+            last_t = t;
+        });
+        prop_assert!(worst <= 1e-10, "‖Φ‖ = {worst:e}");
+        if let Err(e) = result {
+            prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+            // Near a limit between the last point reached and the next one (checked finely).
+            let near_limit = (0..=20).any(|j| {
+                let t = last_t + 0.01 * j as f64 / 20.0;
+                match pose(&m, m.theta0 + m.omega * t, sign).or_else(|| pose(&m, m.theta0 + m.omega * t, -sign)) {
+                    Some((_, s)) => s.abs() < 0.2,
+                    None => true,
+                }
+            });
+            prop_assert!(near_limit, "stopped at t = {last_t} s where the linkage is regular: {e}");
+        }
+    }
+}
