@@ -30,7 +30,8 @@ macro_rules! bench_dynamics {
         const NC: usize = <$ty>::NC;
         let m = <$ty>::default();
         let mut q = m.initial_positions();
-        KinematicSolver::default().assemble(&m, &mut q, 0.0).expect("the benchmark mechanism assembles");
+        let mut ws = <$ty>::workspace();
+        KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
         let system = System::new(&m);
         let from: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
         // Start from a moving state: 0.05 s into the fall.
@@ -38,7 +39,7 @@ macro_rules! bench_dynamics {
         let mut p = from;
         let mut next = from;
         for _ in 0..50 {
-            rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+            rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
             p = next;
         }
         let options = DynamicsOptions::default();
@@ -47,19 +48,21 @@ macro_rules! bench_dynamics {
         g.bench_function("accelerations (right-hand side)", |b| {
             b.iter(|| m.accelerations(black_box(&p.q), black_box(&p.v), black_box(p.t), &options, &mut vd, &mut lambda))
         });
-        g.bench_function("RK4 step, h = 1 ms", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        g.bench_function("RK4 step, h = 1 ms", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         let mut dopri = Dopri5::<f64, NQ, NV>::default();
         dopri.next_step = 1e-3;
         dopri.options.max_step = 1e-3;
         g.bench_function("DOPRI5 step, h = 1 ms", |b| {
             b.iter(|| {
                 dopri.next_step = 1e-3;
-                dopri.step(&system, black_box(&p), f64::INFINITY, &mut next)
+                dopri.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)
             })
         });
         if NQ <= 48 {
             let mut alpha = <$ty>::generalized_alpha(GeneralizedAlphaOptions::default());
-            g.bench_function("generalized-α step, h = 1 ms", |b| b.iter(|| alpha.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+            g.bench_function("generalized-α step, h = 1 ms", |b| {
+                b.iter(|| alpha.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next))
+            });
         }
         g.finish();
     }};

@@ -25,9 +25,10 @@ macro_rules! bench_mechanism {
         let solver = KinematicSolver::default();
         let t0 = 0.37;
         let mut q = m.initial_positions();
-        solver.assemble(&m, &mut q, t0).expect("the benchmark mechanism assembles");
+        let mut ws = <$ty>::workspace();
+        solver.assemble(&m, &mut ws, &mut q, t0).expect("the benchmark mechanism assembles");
         let mut qd = [0.0; NQ];
-        solver.solve_velocity(&m, &q, t0, &mut qd).expect("velocity solve");
+        solver.solve_velocity(&m, &mut ws, &q, t0, &mut qd).expect("velocity solve");
         let mut g = $c.benchmark_group($label);
         let (mut phi, mut d, mut nu, mut gamma, mut values) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC], [0.0; NNZ]);
         g.bench_function("constraints", |b| b.iter(|| m.constraints(black_box(&q), black_box(t0), &mut phi)));
@@ -52,7 +53,7 @@ macro_rules! bench_mechanism {
         g.bench_function("position solve, t → t + 1 ms", |b| {
             b.iter(|| {
                 let mut qn = q;
-                solver.solve_position(&m, &mut qn, black_box(t0 + 1e-3)).expect("converges");
+                solver.solve_position(&m, &mut ws, &mut qn, black_box(t0 + 1e-3)).expect("converges");
                 qn
             })
         });

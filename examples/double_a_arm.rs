@@ -62,7 +62,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = DoubleAArm::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = DoubleAArm::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let knuckle = DoubleAArm::KNUCKLE;
     let (spring_point, contact_point) = (m.lower_spring(), m.knuckle_contact());
     let (lower_ball, upper_ball) = (m.lower_outer(), m.upper_outer());
@@ -84,7 +85,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>12} {:>12} {:>14} {:>12}", "travel (mm)", "camber (deg)", "track Δ (mm)", "spring (mm)");
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
-    solver.sweep(&m, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
         let spring_bottom = spring_point.position(q);
         let spring = distance(&spring_bottom, &SPRING_TOP);
         let contact = contact_point.position(q);

@@ -191,7 +191,8 @@ fn sweep(m: &DoubleWishbone) -> Result<Curves, KinematicError> {
         let mut q = q0;
         // (+ 0.0 turns the first point's −0.0 into 0.0.)
         let times = (0..=STEPS / 2).map(|k| direction * k as f64 * step + 0.0);
-        solver.sweep(m, &mut q, times, |t, q, _, _| {
+        let mut ws = DoubleWishbone::workspace();
+        solver.sweep(m, &mut ws, &mut q, times, |t, q, _, _| {
             // The spin axis is the upright's y-axis: w = A (0, 1, 0); the wheel centre is its
             // centre of mass.
             let w = upright.rotation(q).column(1).into_owned();

@@ -52,7 +52,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = Filmstrip::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = Filmstrip::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let period = 2.0 * PI / m.omega;
     let n = 96;
     let mut r = Report { samples: 0, tip_error: 0.0, stroke: 0.0, lift: 0.0, max_speed: 0.0 };
@@ -63,7 +64,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let claw_tip = m.claw_tip();
-    solver.sweep(&m, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
         let tip = claw_tip.position(q);
         let v = claw_tip.velocity(q, qd);
         let exact = tip_exact(m.r, m.omega * t);

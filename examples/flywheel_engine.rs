@@ -53,7 +53,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let engine = Engine::default();
     let solver = KinematicSolver::default();
     let mut q = engine.initial_positions();
-    solver.assemble(&engine, &mut q, 0.0)?;
+    let mut ws = Engine::workspace();
+    solver.assemble(&engine, &mut ws, &mut q, 0.0)?;
     let omega0 = engine.omega;
     let n = 720;
     let period = 2.0 * PI / omega0;
@@ -63,9 +64,10 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
     // The motor's row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is its λ, the drive torque.
     let motor_row = Engine::JOINTS[Engine::MOTOR].row_range().start;
-    solver.sweep(&engine, &mut q, times, |t, q, qd, qdd| {
+    let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
+    solver.sweep(&engine, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
-        if inverse_dynamics(&engine, q, qd, qdd, t, &mut lambda).is_ok() {
+        if inverse_dynamics(&engine, &mut inverse_ws, q, qd, qdd, t, &mut lambda).is_ok() {
             torque.push(lambda[motor_row]);
         }
         // Kinetic energy / (½ω²): the reduced inertia at this angle.
@@ -88,7 +90,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     // Forward dynamics of the free engine with that generator.
     m.c_load = c_load;
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0)?;
+    let mut ws = FreeEngine::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
     let mut qd = m.initial_velocities();
     mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
     let t_end = 6.0;
@@ -97,7 +100,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
     let crank = FreeEngine::CRANK;
-    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
+    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
     // The last full revolution.
     let end_angle = last_rev.last().map(|p| p.0).unwrap_or(0.0);
     let rev: Vec<f64> = last_rev.iter().filter(|p| p.0 > end_angle - 2.0 * PI).map(|p| p.1).collect();

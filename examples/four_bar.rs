@@ -55,7 +55,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = FourBar::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = FourBar::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let n = 72;
     let period = 2.0 * PI / m.omega;
     let mut r = Report { samples: 0, pin_error: 0.0, rocker_swing: 0.0, min_transmission_angle: 90.0, max_residual: 0.0 };
@@ -66,7 +67,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let (pin, tracer) = (m.coupler_c(), m.coupler_p());
-    solver.sweep(&m, &mut q, times, |t, q, _qd, _qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _qd, _qdd| {
         let c_exact = pin_c(m.a, m.b, m.c, m.d, m.omega * t);
         let c = pin.position(q);
         let p = tracer.position(q);

@@ -40,14 +40,15 @@ const T_END: f64 = 2.0;
 
 /// One run with any integrator; the sizes are the mechanism's, inferred from `q` and the
 /// integrator (no numbers to repeat).
-fn one<I, const NQ: usize, const NV: usize, const NC: usize>(
+fn one<I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     m: &FreeFourBar,
+    ws: &mut Workspace<f64, NV, NC, N>,
     q: &[f64; NQ],
     integrator: &mut I,
 ) -> Result<(u64, f64, f64, f64), SimulationError>
 where
     FreeFourBar: ForwardDynamics<f64, NQ, NV, NC>,
-    I: Integrator<f64, FreeFourBar, NQ, NV, NC>,
+    I: Integrator<f64, FreeFourBar, NQ, NV, NC, N>,
 {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let times: Vec<f64> = (1..=20).map(|k| k as f64 * T_END / 20.0).collect();
@@ -55,7 +56,7 @@ where
     let mut drift: f64 = 0.0;
     let mut last = 0.0;
     let start = Instant::now();
-    let stats = simulate(m, integrator, 0.0, q, &[0.0; NV], &times, &options, |s| {
+    let stats = simulate(m, ws, integrator, 0.0, q, &[0.0; NV], &times, &options, |s| {
         drift = drift.max((s.energy.kinetic + s.energy.potential - e0).abs());
         last = FreeFourBar::ROCKER.phi(&s.point.q);
     })?;
@@ -65,26 +66,27 @@ where
 pub fn run(print: bool) -> Result<Vec<Run>, Box<dyn std::error::Error>> {
     let m = FreeFourBar::default();
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0)?;
+    let mut ws = FreeFourBar::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
     let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
-    let (_, _, exact, _) = one(&m, &q, &mut reference)?;
+    let (_, _, exact, _) = one(&m, &mut ws, &q, &mut reference)?;
     let mut runs = Vec::new();
     let mut record = |method, setting, (steps, seconds, last, drift): (u64, f64, f64, f64)| {
         runs.push(Run { method, setting, steps, seconds, error: (last - exact).abs(), energy_drift: drift });
     };
     for h in [4e-3, 2e-3, 1e-3, 5e-4] {
-        record("RK4 (h)", h, one(&m, &q, &mut Rk4::new(h))?);
+        record("RK4 (h)", h, one(&m, &mut ws, &q, &mut Rk4::new(h))?);
     }
     for rtol in [1e-4, 1e-6, 1e-8, 1e-10] {
         record(
             "DOPRI5 (rtol)",
             rtol,
-            one(&m, &q, &mut Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() }))?,
+            one(&m, &mut ws, &q, &mut Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() }))?,
         );
     }
     for h in [4e-3, 2e-3, 1e-3] {
         let options = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
-        record("generalized-α (h)", h, one(&m, &q, &mut FreeFourBar::generalized_alpha(options))?);
+        record("generalized-α (h)", h, one(&m, &mut ws, &q, &mut FreeFourBar::generalized_alpha(options))?);
     }
     if print {
         println!("free four-bar, 2 s from rest; error of the rocker angle at 2 s against DOPRI5 at rtol 1e-12");

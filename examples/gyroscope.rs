@@ -139,7 +139,8 @@ fn steady(base: &Gyroscope, omega: f64, duration: f64) -> Result<(f64, f64), Sim
     let steps = (duration / 0.002).round() as usize;
     let times: Vec<f64> = (1..=steps).map(|k| k as f64 * 0.002).collect();
     let (mut azimuth, mut previous, mut drift, mut end) = (0.0, axis_angles(&q0).1, 0.0f64, 0.0);
-    simulate(&m, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
+    let mut ws = Gyroscope::workspace();
+    simulate(&m, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
         let (tilt, az) = axis_angles(&s.point.q);
         let az = unwrap(az, previous);
         azimuth += az - previous;
@@ -173,7 +174,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let times: Vec<f64> = (1..=(20.5 * 400.0) as usize).map(|k| k as f64 * dt).collect();
     let mut track = Vec::with_capacity(times.len() + 1);
     track.push((0.0, theta, axis_angles(&q0).1));
-    simulate(&released, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
+    let mut ws = Gyroscope::workspace();
+    simulate(&released, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
         let (tilt, az) = axis_angles(&s.point.q);
         let previous = track.last().map_or(az, |p: &(f64, f64, f64)| p.2);
         track.push((s.point.t, tilt, unwrap(az, previous)));

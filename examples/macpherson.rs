@@ -58,7 +58,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = MacPherson::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = MacPherson::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let knuckle = MacPherson::KNUCKLE;
     let (strut_point, contact_point) = (m.knuckle_strut(), m.knuckle_contact());
     let contact0 = contact_point.position(&q);
@@ -77,7 +78,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>12} {:>12} {:>14} {:>12}", "travel (mm)", "camber (deg)", "track Δ (mm)", "strut (mm)");
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
-    solver.sweep(&m, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
         let s = strut_point.position(q);
         let strut = distance(&s, &TOP_MOUNT);
         let contact = contact_point.position(q);

@@ -91,7 +91,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     // Pump at twice the swing's natural frequency.
     m.omega = (rod_mass * g * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0)?;
+    let mut ws = PumpedPendulum::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
     // At rest in the swing; the rod's radial velocity is the driver's (L̇(0) = 0 here).
     let mut qd = [0.0; PumpedPendulum::NQ];
     mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
@@ -125,7 +126,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let t_end = *times.last().expect("output times");
     // The length driver's row of Φ, and so of λ.
     let length_row = PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].row_range().start;
-    let stats = simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
+    let stats = simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
         let t = s.point.t;
         while t_reduced < t - 1e-12 {
             let h = (t - t_reduced) / substeps as f64;

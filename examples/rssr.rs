@@ -133,7 +133,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = Rssr::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = Rssr::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     // Inertia of the rocker about its hinge: the declared slender bar's uᵀJ′u = m b²/12 + j0
     // (u ⟂ x̂) plus m (b/2)².
     let j_rocker = m.m_rocker * m.b * m.b / 12.0 + m.j0 + m.m_rocker * m.b * m.b / 4.0;
@@ -173,7 +174,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     // Equally spaced over the period: the mean of the samples is the cycle average.
     let times = (0..n).map(|k| period * k as f64 / n as f64);
     let o = Point3::new(m.ox, m.oy, m.oz);
-    solver.sweep(&m, &mut q, times, |t, q, v, vd| {
+    let mut inverse_ws = Rssr::workspace(); // the sweep holds `ws`
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
         let theta = m.omega * t;
         let (psi_exact, d1, d2) = closed_form(&m, theta, near);
         near = psi_exact;
@@ -204,7 +206,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
 
         // Drive torque: inverse dynamics, against virtual power.
         let mut lambda = [0.0; Rssr::NC];
-        if let Err(e) = inverse_dynamics(&m, q, v, vd, t, &mut lambda) {
+        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }

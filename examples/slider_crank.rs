@@ -63,7 +63,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = SliderCrank::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = SliderCrank::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let n = 72;
     let period = 2.0 * PI / m.omega;
     let mut report =
@@ -75,7 +76,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let pin = m.slider_pin();
-    solver.sweep(&m, &mut q, times, |t, q, qd, qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let (x, xd, xdd) = exact(m.r, m.l, m.omega, t);
         let mut phi = [0.0; SliderCrank::NC];
         m.constraints(q, t, &mut phi);

@@ -48,7 +48,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = Engine::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = Engine::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let period = 2.0 * PI / m.omega;
     let n = 360;
     let mut r =
@@ -60,9 +61,10 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     // Samples at the midpoints of n equal intervals: the mean over them is the cycle average.
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
-    solver.sweep(&m, &mut q, times, |t, q, qd, qdd| {
+    let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
-        if let Err(e) = inverse_dynamics(&m, q, qd, qdd, t, &mut lambda) {
+        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, qd, qdd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }

@@ -93,7 +93,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = SpatialSliderCrank::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = SpatialSliderCrank::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
 
     // Dead centres: crank and rod in line seen along z (the ez offset only shortens the rod).
     let lp = (m.len * m.len - m.ez * m.ez).sqrt();
@@ -144,7 +145,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         );
     }
     let (mut x_outer, mut x_inner) = (f64::NAN, f64::NAN);
-    solver.sweep(&m, &mut q, times, |t, q, v, vd| {
+    let mut inverse_ws = SpatialSliderCrank::workspace(); // the sweep holds `ws`
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
         let theta = m.omega * t;
         // The guide's stroke is the slider's x (the guide's ground marker is at x = 0), so its
         // rates are the slider's ẋ and ẍ.
@@ -163,7 +165,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.peak_acceleration = r.peak_acceleration.max(accel.abs());
 
         let mut lambda = [0.0; SpatialSliderCrank::NC];
-        if let Err(e) = inverse_dynamics(&m, q, v, vd, t, &mut lambda) {
+        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }

@@ -271,7 +271,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let (platform, payload) = (StewartPlatform::PLATFORM, m.platform_payload());
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = StewartPlatform::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let period = 2.0 * PI / m.w;
     let mut r = Report {
         samples: 0,
@@ -300,7 +301,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>6} {:>9} {:>8} | {:>48} | {:>54}", "t (s)", "heave(mm)", "roll(°)", "L1 … L6 (mm)", "F1 … F6 (N)");
     }
     let times = (0..=SAMPLES).map(|k| period * k as f64 / SAMPLES as f64);
-    solver.sweep(&m, &mut q, times, |t, q, v, vd| {
+    let mut inverse_ws = StewartPlatform::workspace(); // the sweep holds `ws`
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
         let (z, phi) = command(&m, t);
         // The pose solved from the strokes against the command.
         let commanded = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), phi);
@@ -321,9 +323,9 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         // row z_iᵀd − f(t) pushes rod i along the cylinder's axis z_i).
         let mut d = [[0.0; StewartPlatform::NV]; StewartPlatform::NC];
         m.jacobian(q, t, &mut d);
-        let leg_forces = |mech: &StewartPlatform, v: &[f64; StewartPlatform::NV], vd: &[f64; StewartPlatform::NV]| {
+        let mut leg_forces = |mech: &StewartPlatform, v: &[f64; StewartPlatform::NV], vd: &[f64; StewartPlatform::NV]| {
             let mut lambda = [0.0; StewartPlatform::NC];
-            inverse_dynamics(mech, q, v, vd, t, &mut lambda).map(|()| {
+            inverse_dynamics(mech, &mut inverse_ws, q, v, vd, t, &mut lambda).map(|()| {
                 core::array::from_fn::<f64, 6, _>(|i| {
                     let e = (joints[i] - legs.base[i]) / lengths[i];
                     joint_reaction(mech, q, &d, &lambda, ACTUATORS[i])

@@ -93,7 +93,7 @@ fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
     m: &M,
     knuckle: PlanarBody,
     tyre_load: impl Fn(&[f64; NQ], &[f64; NQ], f64) -> f64,
-    mut ws: KktWorkspace<f64, N>,
+    mut ws: Box<Workspace<f64, NQ, NC, N>>,
 ) -> Result<Report, Box<dyn std::error::Error>>
 where
     M: ForwardDynamics<f64, NQ, NQ, NC> + ConstraintForces<f64, NQ, NQ, NC>,
@@ -101,7 +101,7 @@ where
     // The stable rest state from the `at:` guesses (the solver assembles them first).
     let mut q = m.initial_positions();
     let mut lambda = [0.0; NC];
-    let report = StaticSolver::default().solve(m, &mut q, 0.0, &mut lambda, &mut ws)?;
+    let report = StaticSolver::default().solve(m, &mut ws, &mut q, 0.0, &mut lambda)?;
     if !matches!(report.stability, Stability::Stable { .. }) {
         return Err(format!("{}: the static equilibrium is not stable: {:?}", M::NAME, report.stability).into());
     }
@@ -121,7 +121,7 @@ where
     };
     let mut balance0 = None;
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, max_step: 2e-3, ..Dopri5Options::default() });
-    let stats = simulate(m, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
+    let stats = simulate(m, &mut *ws, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
         let p = &s.point;
         let travel = knuckle.y(&p.q) - y0;
         r.peak_travel = r.peak_travel.max(travel);
@@ -166,11 +166,11 @@ pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
     let a = DoubleAArmRide::default();
     let tyre = Tyre { k_t: a.k_t, c_t: a.c_t, bump: a.bump, t_bump: a.t_bump, width: a.width };
     let wheel = DoubleAArmRide::KNUCKLE;
-    let double_a_arm = ride(&a, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), DoubleAArmRide::kkt_workspace())?;
+    let double_a_arm = ride(&a, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), DoubleAArmRide::workspace())?;
     let b = MacPhersonRide::default();
     let tyre = Tyre { k_t: b.k_t, c_t: b.c_t, bump: b.bump, t_bump: b.t_bump, width: b.width };
     let wheel = MacPhersonRide::KNUCKLE;
-    let macpherson = ride(&b, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), MacPhersonRide::kkt_workspace())?;
+    let macpherson = ride(&b, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), MacPhersonRide::workspace())?;
     if print {
         for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
             println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);

@@ -66,7 +66,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = VariablePendulum::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = VariablePendulum::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let mut r = Report { samples: 0, position_error: 0.0, velocity_error: 0.0, acceleration_error: 0.0, max_coriolis: 0.0 };
     if print {
         println!("Variable-length pendulum: L = {} + {} sin 2ωt m, θ = {} sin ωt rad, ω = {:.4} rad/s", m.l0, m.dl, m.theta0, m.omega);
@@ -77,7 +78,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=80).map(|k| 2.0 * k as f64 / 80.0);
     let bob = m.rod_bob();
-    solver.sweep(&m, &mut q, times, |t, q, qd, qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let (p, v, a, cor) = exact(&m, t);
         let (bob_p, bob_v, bob_a) = (bob.position(q).coords, bob.velocity(q, qd), bob.acceleration(q, qd, qdd));
         r.position_error = r.position_error.max(dist(p, bob_p));

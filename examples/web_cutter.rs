@@ -59,7 +59,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     let m = WebCutter::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(&m, &mut q, 0.0)?;
+    let mut ws = WebCutter::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let n = 80;
     let period = 2.0 * PI / m.omega;
     let mut r = Report { samples: 0, knife_error: 0.0, travel: 0.0, straightness: 0.0, mid_speed: 0.0 };
@@ -70,7 +71,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let knife = m.coupler_knife();
-    solver.sweep(&m, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
         let k = knife.position(q);
         let v = knife.velocity(q, qd);
         let e = knife_exact(m.phi_mid + m.amplitude * (m.omega * t).sin());

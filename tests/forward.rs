@@ -157,7 +157,7 @@ fn pendulum_acceleration_matches_the_closed_form() {
 fn projection_restores_the_constraints() {
     let m = FreeFourBar::default();
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0).unwrap();
+    KinematicSolver::default().assemble(&m, &mut FreeFourBar::workspace(), &mut q, 0.0).unwrap();
     let mut rng = Rng::new(7);
     for v in q.iter_mut() {
         *v += rng.uniform(-1e-3, 1e-3);

@@ -61,13 +61,13 @@ fn friction_holds_a_block_on_a_shallow_slope() {
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let mut last = q;
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-8, atol: 1e-10, ..Dopri5Options::default() });
-    simulate(&m, &mut dopri, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    simulate(&m, &mut Incline::workspace(), &mut dopri, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     // Creep speed v = v_s · r/√(1 − r²), r = tan θ / μ = 0.72: about 1.04 v_s.
     assert!(moved < 2e-4, "moved {moved} m in 1 s");
     // A slope steeper than the friction angle slides: 1 s at g (sin θ − μ cos θ).
     let slippery = Incline { mu: 0.3, ..Incline::default() };
-    simulate(&slippery, &mut Dopri5::default(), 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    simulate(&slippery, &mut Incline::workspace(), &mut Dopri5::default(), 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     let (sin, cos) = slippery.theta.sin_cos();
     let expected = 0.5 * 9.81 * (sin - 0.3 * cos);
@@ -105,7 +105,7 @@ fn friction_work_closes_the_energy_balance() {
     let mut worst: f64 = 0.0;
     let mut lost = 0.0;
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
-    simulate(&m, &mut dopri, 0.0, &q, &[0.0; 3], &times, &options, |s| {
+    simulate(&m, &mut FrictionPendulum::workspace(), &mut dopri, 0.0, &q, &[0.0; 3], &times, &options, |s| {
         let b = s.energy.balance();
         let b0 = *first.get_or_insert(b);
         worst = worst.max((b - b0).abs());
@@ -200,7 +200,7 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     let (q, qd) = incline_state(&sticky, 0.0, 0.0);
     let mut last = q;
     let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
-    let stats = simulate(&sticky, &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    let stats = simulate(&sticky, &mut Incline::workspace(), &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
     assert_eq!(stats.steps, 1000);
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     // Creep speed v_s · r/√(1 − r²) with r = tan θ / μ = 0.72: 1.04e-4 m in 1 s.
@@ -212,7 +212,7 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     for (v0, tolerance) in [(0.5, 1e-7 * (0.5 + 0.5 * a)), (0.0, 1e-3 * a)] {
         let (q, qd) = incline_state(&slippery, 0.0, -v0);
         let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
-        simulate(&slippery, &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+        simulate(&slippery, &mut Incline::workspace(), &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
         let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
         let expected = v0 + 0.5 * a;
         assert!((moved - expected).abs() < tolerance, "from {v0} m/s: slid {moved} m, expected {expected}");

@@ -76,11 +76,14 @@ mechanism! {
 }
 
 /// Runs `integrator` on the double pendulum from horizontal rest to t = 1 s; returns q(1).
-fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
+fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
     let m = DoublePendulum::default();
     let options = SimulationOptions { correction, ..SimulationOptions::default() };
     let mut last = [0.0; 6];
-    simulate(&m, integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[1.0], &options, |s| last = s.point.q).unwrap();
+    simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[1.0], &options, |s| {
+        last = s.point.q
+    })
+    .unwrap();
     last
 }
 
@@ -121,17 +124,17 @@ fn integrators_converge_at_their_order() {
 fn conservative_mechanisms_conserve_energy() {
     let m = SpringFourBar::default();
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0).unwrap();
+    KinematicSolver::default().assemble(&m, &mut SpringFourBar::workspace(), &mut q, 0.0).unwrap();
     let times: Vec<f64> = (1..=300).map(|k| k as f64 * 0.01).collect();
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
     let mut rk4 = Rk4::new(1e-3);
     for (name, bound, integrator) in
-        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8>), ("RK4", 1e-6, &mut rk4)]
+        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8, 17>), ("RK4", 1e-6, &mut rk4)]
     {
         let mut energies = Vec::new();
         let mut swing = (f64::INFINITY, f64::NEG_INFINITY);
-        simulate(&m, &mut DynIntegrator(integrator), 0.0, &q, &[0.0; 9], &times, &options, |s| {
+        simulate(&m, &mut SpringFourBar::workspace(), &mut DynIntegrator(integrator), 0.0, &q, &[0.0; 9], &times, &options, |s| {
             energies.push(s.energy.kinetic + s.energy.potential);
             swing = (swing.0.min(s.energy.kinetic), swing.1.max(s.energy.kinetic));
         })
@@ -146,17 +149,18 @@ fn conservative_mechanisms_conserve_energy() {
 }
 
 /// Adapter so a `&mut dyn Integrator` can be passed where `simulate` wants a sized type.
-struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 9, 8>);
+struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 9, 8, 17>);
 
-impl<M> Integrator<f64, M, 9, 9, 8> for DynIntegrator<'_, M> {
+impl<M> Integrator<f64, M, 9, 9, 8, 17> for DynIntegrator<'_, M> {
     fn step(
         &mut self,
         s: &System<'_, M, f64>,
+        ws: &mut Workspace<f64, 9, 8, 17>,
         from: &Point<f64, 9, 9, 8>,
         t_max: f64,
         to: &mut Point<f64, 9, 9, 8>,
     ) -> Result<(), SimulationError> {
-        self.0.step(s, from, t_max, to)
+        self.0.step(s, ws, from, t_max, to)
     }
     fn interpolate(&self, m: &M, from: &Point<f64, 9, 9, 8>, to: &Point<f64, 9, 9, 8>, t: f64, q: &mut [f64; 9], v: &mut [f64; 9]) {
         self.0.interpolate(m, from, to, t, q, v)
@@ -172,15 +176,15 @@ impl<M> Integrator<f64, M, 9, 9, 8> for DynIntegrator<'_, M> {
 fn the_energy_balance_holds_with_dampers_and_drivers() {
     let m = DrivenCrank::default();
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0).unwrap();
+    KinematicSolver::default().assemble(&m, &mut DrivenCrank::workspace(), &mut q, 0.0).unwrap();
     let mut qd = [0.0; 9];
-    KinematicSolver::default().solve_velocity(&m, &q, 0.0, &mut qd).unwrap();
+    KinematicSolver::default().solve_velocity(&m, &mut DrivenCrank::workspace(), &q, 0.0, &mut qd).unwrap();
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.02).collect();
     let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
     let mut balances = Vec::new();
     let mut totals = Vec::new();
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
-    simulate(&m, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
+    simulate(&m, &mut DrivenCrank::workspace(), &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
         balances.push(s.energy.balance());
         totals.push(s.energy.kinetic + s.energy.potential);
     })
@@ -198,11 +202,14 @@ fn the_energy_balance_holds_with_dampers_and_drivers() {
 fn partitioning_and_projection_agree() {
     let m = SpringFourBar { c: 0.5 };
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut q, 0.0).unwrap();
+    KinematicSolver::default().assemble(&m, &mut SpringFourBar::workspace(), &mut q, 0.0).unwrap();
     let run = |correction| {
         let options = SimulationOptions { correction, dynamics: DynamicsOptions::without_stabilization(), ..SimulationOptions::default() };
         let mut out = Vec::new();
-        simulate(&m, &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 9], &[0.5, 1.0, 2.0], &options, |s| out.push(s.point)).unwrap();
+        simulate(&m, &mut SpringFourBar::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 9], &[0.5, 1.0, 2.0], &options, |s| {
+            out.push(s.point)
+        })
+        .unwrap();
         out
     };
     let projected = run(Correction::projection());
@@ -230,7 +237,7 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
     let m = StiffBlock::default();
     let q = m.initial_positions();
     let options = SimulationOptions::default();
-    let err = simulate(&m, &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 3], &[2.0], &options, |_| {}).unwrap_err();
+    let err = simulate(&m, &mut StiffBlock::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 3], &[2.0], &options, |_| {}).unwrap_err();
     match err {
         SimulationError::NonFinite { coordinate, .. } => assert!(coordinate.starts_with("block."), "{coordinate}"),
         other => panic!("expected a non-finite error, got {other:?}"),
@@ -238,7 +245,7 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
     let mut alpha =
         StiffBlock::generalized_alpha(GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
     let mut last = [0.0; 3];
-    simulate(&m, &mut alpha, 0.0, &q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
+    simulate(&m, &mut StiffBlock::workspace(), &mut alpha, 0.0, &q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
     eprintln!("stiff block: RK4 {err}; generalized-α x(2 s) = {}", last[0]);
     // Released 1 mm from its free length; damped (c = 20 N·s/m and numerical damping) it rests at 0.1 m.
     assert!((last[0] - 0.1).abs() < 1e-4, "x = {}", last[0]);
@@ -252,13 +259,13 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
     let driven = DrivenCrank::default();
     let solver = KinematicSolver::default();
     let mut guess = driven.initial_positions();
-    solver.assemble(&driven, &mut guess, 0.0).unwrap();
-    let start = solver.analyze(&driven, &guess, 0.0).unwrap();
+    solver.assemble(&driven, &mut DrivenCrank::workspace(), &mut guess, 0.0).unwrap();
+    let start = solver.analyze(&driven, &mut DrivenCrank::workspace(), &guess, 0.0).unwrap();
     let mut torque = |t: f64| {
-        let s = solver.analyze(&driven, &guess, t).unwrap();
+        let s = solver.analyze(&driven, &mut DrivenCrank::workspace(), &guess, t).unwrap();
         guess = s.q;
         let mut lambda = [0.0; 9];
-        mbd::inverse_dynamics(&driven, &s.q, &s.v, &s.vd, t, &mut lambda).unwrap();
+        mbd::inverse_dynamics(&driven, &mut DrivenCrank::workspace(), &s.q, &s.v, &s.vd, t, &mut lambda).unwrap();
         // The driver row's multiplier: Φ = φ − f(t), Φ_q = +1 on φ, so Φ_qᵀλ = λ is the torque
         // the driver applies to the crank.
         lambda[8]
@@ -277,7 +284,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         let system = System::new(&free);
         let from = system.point(t0, q, qd, [0.0; 2]).unwrap();
         let mut to = from;
-        Rk4::new(h).step(&system, &from, f64::INFINITY, &mut to).unwrap();
+        Rk4::new(h).step(&system, &mut TorqueCrank::workspace(), &from, f64::INFINITY, &mut to).unwrap();
         (q, qd) = (to.q, to.v);
         let exact = 0.3 + 5.0 * to.t + 0.5 * (3.0 * to.t).sin();
         worst = worst.max((q[2] - exact).abs());

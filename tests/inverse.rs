@@ -17,12 +17,15 @@ const G: f64 = 9.81;
 fn solve(m: &DrivenRod, t: f64) -> ([f64; 3], [[f64; 3]; 3], [f64; 3]) {
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(m, &mut q, t).expect("assembles");
-    let state = solver.analyze(m, &q, t).expect("analysis");
+    let mut ws = DrivenRod::workspace();
+    solver.assemble(m, &mut ws, &mut q, t).expect("assembles");
+    let state = solver.analyze(m, &mut ws, &q, t).expect("analysis");
     let mut lambda = [0.0; 3];
-    inverse_dynamics(m, &state.q, &state.v, &state.vd, t, &mut lambda).expect("inverse dynamics");
+    inverse_dynamics(m, &mut ws, &state.q, &state.v, &state.vd, t, &mut lambda).expect("inverse dynamics");
+    // The work space holds D(q, t) after inverse dynamics, exactly the generated Jacobian's.
     let mut d = [[0.0; 3]; 3];
     m.jacobian(&state.q, t, &mut d);
+    assert_eq!(ws.jacobian(), &d);
     (state.q, d, lambda)
 }
 

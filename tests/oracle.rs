@@ -34,7 +34,7 @@ mod free_slider_crank {
 mod pendulum_chain16 {
     include!("../benches/pendulum_chain16.rs");
 }
-use mbd::{KinematicSolver, Kinematics};
+use mbd::{KinematicSolver, Kinematics, Workspace};
 use serde_json::{json, Value};
 
 mbd::mechanism! {
@@ -245,11 +245,13 @@ fn compare_reference<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: 
     let data: Vec<Vec<f64>> = rows.map(|l| l.split(',').map(|v| v.trim().parse().expect("number")).collect()).collect();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(m, &mut q, data[0][0]).expect("assembles");
+    // The kinematic solver uses no saddle-point work space: N = 0.
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    solver.assemble(m, &mut ws, &mut q, data[0][0]).expect("assembles");
     let mut worst = 0.0f64;
     let mut k = 0;
     solver
-        .sweep(m, &mut q, data.iter().map(|r| r[0]), |_, q, _, _| {
+        .sweep(m, &mut ws, &mut q, data.iter().map(|r| r[0]), |_, q, _, _| {
             for c in 0..NQ {
                 worst = worst.max((q[c] - data[k][c + 1]).abs());
             }

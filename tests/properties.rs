@@ -86,7 +86,7 @@ proptest! {
                 for (i, x) in q.iter_mut().enumerate() {
                     *x += noise[i] * if i % 3 == 2 { 0.02 } else { 0.05 * shortest };
                 }
-                match solver.solve_position(&m, &mut q, 0.0) {
+                match solver.solve_position(&m, &mut AnyFourBar::workspace(), &mut q, 0.0) {
                     Ok(_) => {
                         prop_assert!(constraint_norm(&m, &q, 0.0) <= 1e-10);
                         if sin_mu.abs() >= 0.2 {
@@ -107,7 +107,7 @@ proptest! {
                 // A pose the geometry does not allow: from the `at:` zeros Newton cannot reach
                 // Φ = 0, and says why (not converged, singular, or a step that overflowed).
                 let mut q = m.initial_positions();
-                let result = solver.solve_position(&m, &mut q, 0.0);
+                let result = solver.solve_position(&m, &mut AnyFourBar::workspace(), &mut q, 0.0);
                 prop_assert!(result.is_err(), "assembled an impossible four-bar: {q:?}");
             }
         }
@@ -125,7 +125,7 @@ proptest! {
         let mut q = start;
         let mut last_t = 0.0;
         let mut worst: f64 = 0.0;
-        let result = solver.sweep(&m, &mut q, (0..=100).map(|k| k as f64 * 0.01), |t, q, _, _| {
+        let result = solver.sweep(&m, &mut AnyFourBar::workspace(), &mut q, (0..=100).map(|k| k as f64 * 0.01), |t, q, _, _| {
             worst = worst.max(constraint_norm(&m, q, t));
             last_t = t;
         });

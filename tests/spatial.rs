@@ -115,7 +115,7 @@ fn torque_free_body() {
         let l0 = momentum(&q0, &v0);
         let e0: f64 = (0..3).map(|k| 0.5 * j[k] * w0[k] * w0[k]).sum();
         let (mut worst_e, mut worst_l, mut wobble) = (0.0f64, 0.0f64, 0.0f64);
-        simulate(&m, &mut tight(), 0.0, &q0, &v0, &times(0.05, 100.0), &SimulationOptions::default(), |s| {
+        simulate(&m, &mut FreeBody::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.05, 100.0), &SimulationOptions::default(), |s| {
             let (q, v) = (&s.point.q, &s.point.v);
             let e: f64 = (0..3).map(|k| 0.5 * j[k] * v[3 + k] * v[3 + k]).sum();
             worst_e = worst_e.max((e - e0).abs() / e0);
@@ -156,7 +156,7 @@ fn heavy_top_precesses_steadily() {
     let (q0, v0) = (top.initial_positions(), top.initial_velocities());
     let (mut last, mut worst_tilt, mut azimuth) = (0.0, 0.0f64, Vec::new());
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
-    simulate(&top, &mut tight(), 0.0, &q0, &v0, &times(0.01, 2.0), &options, |s| {
+    simulate(&top, &mut Top::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.01, 2.0), &options, |s| {
         let axis = rotation(&s.point.q, 0).map(|row| row[2]);
         worst_tilt = worst_tilt.max((axis[2].acos() - theta).abs());
         azimuth.push((s.point.t, axis[1].atan2(axis[0])));
@@ -187,7 +187,7 @@ fn conical_pendulum() {
     let (mut worst_z, mut angle_error) = (0.0f64, 0.0f64);
     let mut previous = 0.0f64;
     let (mut turned, mut samples) = (0.0, 0);
-    simulate(&m, &mut tight(), 0.0, &q0, &v0, &times(0.01, 5.0), &SimulationOptions::default(), |s| {
+    simulate(&m, &mut ConicalPendulum::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.01, 5.0), &SimulationOptions::default(), |s| {
         samples += 1;
         let q = &s.point.q;
         worst_z = worst_z.max((q[2] + len * theta.cos()).abs());
@@ -229,7 +229,7 @@ fn rssr_output_angle() {
     let mut q = m.initial_positions();
     let (mut checked, mut previous) = (0, 0.27);
     solver
-        .sweep(&m, &mut q, times(0.05, 2.0 * PI / w), |t, q, v, _| {
+        .sweep(&m, &mut Rssr::workspace(), &mut q, times(0.05, 2.0 * PI / w), |t, q, v, _| {
             let theta = w * t;
             // the rocker turns about x: p = (cos ψ/2, sin ψ/2, 0, 0)
             let p = Rssr::ROCKER.orientation(q);
@@ -265,7 +265,7 @@ fn spatial_slider_crank_stroke() {
     let mut q = m.initial_positions();
     let mut checked = 0;
     solver
-        .sweep(&m, &mut q, times(0.02, 2.0 * PI / w), |t, q, v, vd| {
+        .sweep(&m, &mut SpatialSliderCrank::workspace(), &mut q, times(0.02, 2.0 * PI / w), |t, q, v, vd| {
             checked += 1;
             let d = 1e-4;
             let (speed, accel) = ((s(t + d) - s(t - d)) / (2.0 * d), (s(t + d) - 2.0 * s(t) + s(t - d)) / (d * d));

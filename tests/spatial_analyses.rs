@@ -54,7 +54,9 @@ fn energy(m: &SpatialDoublePendulum, q: &[f64; 14], v: &[f64; 12]) -> f64 {
 fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64) {
     let m = SpatialDoublePendulum::default();
     let mut q0 = m.initial_positions();
-    KinematicSolver::new(KinematicOptions::default()).assemble(&m, &mut q0, 0.0).expect("assembles");
+    KinematicSolver::new(KinematicOptions::default())
+        .assemble(&m, &mut SpatialDoublePendulum::workspace(), &mut q0, 0.0)
+        .expect("assembles");
     let mut v0 = m.initial_velocities();
     m.project_velocities(&q0, &mut v0, 0.0, &DynamicsOptions::default()).expect("consistent velocities");
     let e0 = energy(&m, &q0, &v0);
@@ -68,14 +70,24 @@ fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64)
         worst_e = worst_e.max((energy(&m, &s.point.q, &s.point.v) - e0).abs());
     };
     let result = match integrator {
-        "rk4" => simulate(&m, &mut Rk4::new(h), 0.0, &q0, &v0, &times, &options, &mut check),
+        "rk4" => simulate(&m, &mut SpatialDoublePendulum::workspace(), &mut Rk4::new(h), 0.0, &q0, &v0, &times, &options, &mut check),
         "dopri5" => {
             let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
-            simulate(&m, &mut dopri, 0.0, &q0, &v0, &times, &options, &mut check)
+            simulate(&m, &mut SpatialDoublePendulum::workspace(), &mut dopri, 0.0, &q0, &v0, &times, &options, &mut check)
         }
         _ => {
             let ga = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
-            simulate(&m, &mut SpatialDoublePendulum::generalized_alpha(ga), 0.0, &q0, &v0, &times, &options, &mut check)
+            simulate(
+                &m,
+                &mut SpatialDoublePendulum::workspace(),
+                &mut SpatialDoublePendulum::generalized_alpha(ga),
+                0.0,
+                &q0,
+                &v0,
+                &times,
+                &options,
+                &mut check,
+            )
         }
     };
     result.unwrap_or_else(|e| panic!("{integrator} with {correction:?}: {e}"));
@@ -128,9 +140,9 @@ fn inverse_dynamics_with_reactions() {
     let mut q = m.initial_positions();
     let mut checked = 0;
     solver
-        .sweep(&m, &mut q, (0..40).map(|k| k as f64 * 0.05), |t, q, v, vd| {
+        .sweep(&m, &mut DrivenCrank::workspace(), &mut q, (0..40).map(|k| k as f64 * 0.05), |t, q, v, vd| {
             let mut lambda = [0.0; 6];
-            inverse_dynamics(&m, q, v, vd, t, &mut lambda).expect("inverse dynamics");
+            inverse_dynamics(&m, &mut DrivenCrank::workspace(), q, v, vd, t, &mut lambda).expect("inverse dynamics");
             let mut d = [[0.0; 6]; 6];
             m.jacobian(q, t, &mut d);
             let theta = w * t;
@@ -174,8 +186,8 @@ fn statics_of_a_sprung_bar() {
     let theta = 0.5 * (lo + hi);
     let mut q = m.initial_positions();
     let mut lambda = [0.0; 5];
-    let mut ws = SpringBar::kkt_workspace();
-    StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut ws).expect("equilibrium");
+    let mut ws = SpringBar::workspace();
+    StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("equilibrium");
     // the bar's axis x′ in global: (cos θ, 0, sin θ) for a turn θ about −y
     let axis = SpringBar::BAR.rotation(&q).column(0).into_owned();
     let got = axis.z.atan2(axis.x);

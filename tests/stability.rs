@@ -65,7 +65,7 @@ fn pendulum_run(h: f64, rho: f64, t_end: f64, every: f64) -> (Vec<(f64, f64)>, f
     let mut samples = Vec::with_capacity(times.len());
     let mut e0 = None;
     let mut drift = 0.0_f64;
-    simulate(&m, &mut alpha, 0.0, &q0, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
+    simulate(&m, &mut Pendulum::workspace(), &mut alpha, 0.0, &q0, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
         samples.push((s.point.t, Pendulum::ROD.phi(&s.point.q)));
         let e = s.energy.kinetic + s.energy.potential;
         drift = drift.max((e - *e0.get_or_insert(e)).abs());
@@ -104,7 +104,7 @@ fn generalized_alpha_without_damping_runs_long() {
 }
 
 /// q and v of the double pendulum at `t_end` from horizontal rest.
-fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4>>(
+fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(
     integrator: &mut I,
     correction: Correction<f64>,
     t_end: f64,
@@ -112,7 +112,10 @@ fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4>>(
     let m = DoublePendulum::default();
     let options = SimulationOptions { correction, ..SimulationOptions::default() };
     let mut last = ([0.0; 6], [0.0; 6]);
-    let stats = simulate(&m, integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[t_end], &options, |s| last = (s.point.q, s.point.v))
+    let stats =
+        simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[t_end], &options, |s| {
+            last = (s.point.q, s.point.v)
+        })
         .unwrap_or_else(|e| panic!("{e}"));
     (last.0, last.1, stats.steps)
 }
@@ -121,17 +124,25 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 
-fn alpha(step: f64) -> GeneralizedAlpha<f64, 10> {
+fn alpha(step: f64) -> GeneralizedAlpha<f64, 6> {
     DoublePendulum::generalized_alpha(GeneralizedAlphaOptions { step, rho_infinity: 0.8, ..GeneralizedAlphaOptions::default() })
 }
 
 /// q and v of the pendulum at `t_end` from horizontal rest, and the steps taken.
-fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2>>(integrator: &mut I, t_end: f64) -> ([f64; 3], [f64; 3], u64) {
+fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2, 5>>(integrator: &mut I, t_end: f64) -> ([f64; 3], [f64; 3], u64) {
     let m = Pendulum::default();
     let mut last = ([0.0; 3], [0.0; 3]);
-    let stats = simulate(&m, integrator, 0.0, &m.initial_positions(), &[0.0; 3], &[t_end], &SimulationOptions::default(), |s| {
-        last = (s.point.q, s.point.v)
-    })
+    let stats = simulate(
+        &m,
+        &mut Pendulum::workspace(),
+        integrator,
+        0.0,
+        &m.initial_positions(),
+        &[0.0; 3],
+        &[t_end],
+        &SimulationOptions::default(),
+        |s| last = (s.point.q, s.point.v),
+    )
     .unwrap_or_else(|e| panic!("{e}"));
     (last.0, last.1, stats.steps)
 }
@@ -190,8 +201,9 @@ fn generalized_alpha_multipliers_converge_at_small_steps() {
     for h in [1e-4, 1e-5, 1e-6] {
         let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
         let (mut from, mut to) = (start, start);
+        let mut ws = Pendulum::workspace();
         for _ in 0..20 {
-            alpha.step(&system, &from, f64::INFINITY, &mut to).expect("a step");
+            alpha.step(&system, &mut ws, &from, f64::INFINITY, &mut to).expect("a step");
             // The constraint rows are scaled by 1/(β'h²), so the iteration matrix tends to
             // [[M, −Dᵀ], [D, 0]] as h shrinks instead of degrading: Newton still converges in
             // a few iterations at h = 1e-6 s.
@@ -240,7 +252,9 @@ fn generalized_alpha_failures_say_what_they_are() {
     };
     let m = TwicePinned::default();
     let mut to = Point::zero();
-    let err = TwicePinned::generalized_alpha(step).step(&System::new(&m), &rest(m.initial_positions()), 1.0, &mut to).unwrap_err();
+    let err = TwicePinned::generalized_alpha(step)
+        .step(&System::new(&m), &mut TwicePinned::workspace(), &rest(m.initial_positions()), 1.0, &mut to)
+        .unwrap_err();
     eprintln!("{err}");
     match err {
         SimulationError::Dynamics(DynamicsError::DependentConstraint { row, .. }) => assert!(row.starts_with("second"), "{row}"),
@@ -258,14 +272,14 @@ fn generalized_alpha_failures_say_what_they_are() {
     let mut start = Point::<f64, 3, 3, 2>::zero();
     start.q = m.initial_positions();
     let mut to = start;
-    let err = Massless::generalized_alpha(step).step(&System::new(&m), &start, 1.0, &mut to).unwrap_err();
+    let err = Massless::generalized_alpha(step).step(&System::new(&m), &mut Massless::workspace(), &start, 1.0, &mut to).unwrap_err();
     eprintln!("{err}");
     assert_eq!(err, SimulationError::SingularIterationMatrix { t: 1e-3, velocity: "rod.phi" });
     let m = BadTorque::default();
     let mut start = Point::<f64, 3, 3, 2>::zero();
     start.q = m.initial_positions();
     let mut to = start;
-    let err = BadTorque::generalized_alpha(step).step(&System::new(&m), &start, 1.0, &mut to).unwrap_err();
+    let err = BadTorque::generalized_alpha(step).step(&System::new(&m), &mut BadTorque::workspace(), &start, 1.0, &mut to).unwrap_err();
     eprintln!("{err}");
     assert!(matches!(err, SimulationError::NonFinite { coordinate: "rod.phi", .. }), "{err:?}");
 }

@@ -49,8 +49,8 @@ fn rod_on_a_torsion_spring() {
     let theta = 0.5 * (lo + hi);
     let mut q = m.initial_positions();
     let mut lambda = [0.0; 2];
-    let mut ws = SpringRod::kkt_workspace();
-    let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut ws).expect("equilibrium");
+    let mut ws = SpringRod::workspace();
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("equilibrium");
     eprintln!("rod on a torsion spring: {report:?}");
     assert!(report.iterations < 20, "{report:?}");
     assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");
@@ -71,8 +71,8 @@ fn hanging_mass_without_joints() {
     let m = Hanging::default();
     let mut q = m.initial_positions();
     let mut lambda = [0.0; 0];
-    let mut ws = Hanging::kkt_workspace();
-    let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut ws).expect("equilibrium");
+    let mut ws = Hanging::workspace();
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("equilibrium");
     eprintln!("hanging mass: {report:?}");
     assert!(report.iterations < 10 && matches!(report.stability, Stability::Stable { .. }), "{report:?}");
     assert!(q[0].abs() < 1e-9 && (q[1] + 0.5 + 3.0 * 9.81 / 100.0).abs() < 1e-9 && q[2].abs() < 1e-9, "{q:?}");
@@ -82,8 +82,8 @@ fn hanging_mass_without_joints() {
 fn wrong_workspace_is_an_error() {
     let m = SpringRod::default();
     let mut q = m.initial_positions();
-    let mut ws = KktWorkspace::<f64, 4>::new();
-    let err = StaticSolver::default().solve(&m, &mut q, 0.0, &mut [0.0; 2], &mut ws).unwrap_err();
+    let mut ws = Workspace::<f64, 3, 2, 4>::new();
+    let err = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 2]).unwrap_err();
     assert_eq!(err, StaticError::WorkspaceSize { expected: 5, found: 4 });
 }
 
@@ -102,8 +102,8 @@ fn free_rotation_is_neutral() {
     let m = FreeRod::default();
     let mut q = m.initial_positions();
     q[1] += 0.01; // not yet assembled
-    let mut ws = FreeRod::kkt_workspace();
-    let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut [0.0; 2], &mut ws).expect("an equilibrium");
+    let mut ws = FreeRod::workspace();
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 2]).expect("an equilibrium");
     eprintln!("free rod: {report:?}");
     assert_eq!(report.iterations, 0, "assembled, it is at rest already: {report:?}");
     match report.stability {
@@ -121,8 +121,8 @@ fn free_rotation_is_neutral() {
 fn a_nan_load_names_its_row() {
     let m = SpringRod { k: f64::NAN };
     let mut q = m.initial_positions();
-    let mut ws = SpringRod::kkt_workspace();
-    let err = StaticSolver::default().solve(&m, &mut q, 0.25, &mut [0.0; 2], &mut ws).unwrap_err();
+    let mut ws = SpringRod::workspace();
+    let err = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.25, &mut [0.0; 2]).unwrap_err();
     assert_eq!(err, StaticError::NonFinite { t: 0.25, row: "rod.phi" });
     assert!(err.to_string().contains("t = 0.25 s") && err.to_string().contains("rod.phi"), "{err}");
 }
@@ -182,7 +182,7 @@ fn pendulum_hangs_from_the_documented_start_and_rough_guesses() {
     for (from, start) in starts {
         let mut q = start;
         let mut lambda = [0.0; 2];
-        let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut Pendulum::kkt_workspace()).expect(from);
+        let report = StaticSolver::default().solve(&m, &mut Pendulum::workspace(), &mut q, 0.0, &mut lambda).expect(from);
         eprintln!("pendulum from {from}: {report:?}");
         assert!(report.iterations + report.rejected <= 30, "from {from}: {report:?}");
         assert!(q[2] > -PI && q[2] <= PI, "from {from}: φ = {} out of (−π, π]", q[2]);
@@ -200,14 +200,14 @@ fn upright_pendulum_is_left_or_reported_unstable() {
     let upright = [0.0, 0.5, PI / 2.0];
     let mut q = upright;
     let mut lambda = [0.0; 2];
-    let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut Pendulum::kkt_workspace()).expect("falls and hangs");
+    let report = StaticSolver::default().solve(&m, &mut Pendulum::workspace(), &mut q, 0.0, &mut lambda).expect("falls and hangs");
     eprintln!("pendulum from upright: {report:?}");
     assert!(report.iterations + report.rejected <= 30, "{report:?}");
     assert_hanging(&q, &lambda, &report, "upright");
 
     let mut q = upright;
     let solver = StaticSolver::new(StaticOptions::default().with_leave_unstable(false));
-    let report = solver.solve(&m, &mut q, 0.0, &mut lambda, &mut Pendulum::kkt_workspace()).expect("an equilibrium");
+    let report = solver.solve(&m, &mut Pendulum::workspace(), &mut q, 0.0, &mut lambda).expect("an equilibrium");
     assert_eq!(report.iterations, 0, "{report:?}");
     match report.stability {
         Stability::Unstable { direction, omega_squared } => {
@@ -255,7 +255,7 @@ fn double_pendulum_hangs_straight_down() {
     for (from, start) in starts {
         let mut q = start;
         let mut lambda = [0.0; 4];
-        let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut DoublePendulum::kkt_workspace()).expect(from);
+        let report = StaticSolver::default().solve(&m, &mut DoublePendulum::workspace(), &mut q, 0.0, &mut lambda).expect(from);
         eprintln!("double pendulum from {from}: {report:?}");
         assert!(report.iterations + report.rejected <= 60, "from {from}: {report:?}");
         for body in [DoublePendulum::UPPER, DoublePendulum::LOWER] {
@@ -280,7 +280,7 @@ fn driven_pendulum_holds_its_angle() {
     let m = HeldRod::default();
     let mut q = m.initial_positions();
     let mut lambda = [0.0; 3];
-    let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut HeldRod::kkt_workspace()).expect("held");
+    let report = StaticSolver::default().solve(&m, &mut HeldRod::workspace(), &mut q, 0.0, &mut lambda).expect("held");
     assert_eq!(report.stability, Stability::Stable { omega_squared: f64::INFINITY });
     let torque = lambda[HeldRod::JOINTS[HeldRod::MOTOR].row_range()][0];
     assert!((torque.abs() - 2.0 * 9.81 * 0.5 * 0.3f64.cos()).abs() < 1e-9, "motor torque {torque}");
@@ -452,7 +452,7 @@ fn excavator_stays_on_its_branch() {
     for (from, start) in starts {
         let mut q = start;
         let mut lambda = [0.0; 6];
-        let report = StaticSolver::default().solve(&m, &mut q, 0.0, &mut lambda, &mut Excavator::kkt_workspace()).expect(from);
+        let report = StaticSolver::default().solve(&m, &mut Excavator::workspace(), &mut q, 0.0, &mut lambda).expect(from);
         eprintln!("excavator from {from}: {report:?}");
         assert!(report.iterations + report.rejected <= 60, "from {from}: {report:?}");
         let angles = [Excavator::BOOM.phi(&q), Excavator::STICK.phi(&q), Excavator::BUCKET.phi(&q)];
@@ -534,10 +534,12 @@ where
 {
     const POINTS: usize = 61;
     let solver = KinematicSolver::new(KinematicOptions::default().with_tolerance(1e-14));
-    let energy = |m: &mut M, theta: f64, q: &mut [f64; NQ]| {
+    // The kinematic solver uses no saddle-point work space: N = 0.
+    let mut ws = Workspace::<f64, NQ, NC, 0>::boxed();
+    let mut energy = |m: &mut M, theta: f64, q: &mut [f64; NQ]| {
         set(m, theta);
         q[2] = theta; // lower.phi: the driven coordinate
-        solver.solve_position(m, q, 0.0).expect("the driven copy assembles");
+        solver.solve_position(m, &mut ws, q, 0.0).expect("the driven copy assembles");
         m.potential_energy(q, 0.0) + tyre(k_t, knuckle, q).1
     };
     let grid: Vec<f64> = (0..POINTS).map(|i| around - 0.15 + 0.005 * i as f64).collect();
@@ -557,7 +559,7 @@ where
     let best = (1..POINTS - 1).min_by(|&a, &b| values[a].total_cmp(&values[b])).expect("an interior minimum");
     assert!((1..POINTS - 1).filter(|&i| values[i] < values[i - 1] && values[i] < values[i + 1]).count() == 1, "one minimum");
     let mut q = start;
-    let slope = |m: &mut M, th: f64, q: &mut [f64; NQ]| (energy(m, th + 1e-5, q) - energy(m, th - 1e-5, q)) / 2e-5;
+    let mut slope = |m: &mut M, th: f64, q: &mut [f64; NQ]| (energy(m, th + 1e-5, q) - energy(m, th - 1e-5, q)) / 2e-5;
     let (mut lo, mut hi) = (grid[best - 1], grid[best + 1]);
     assert!(slope(&mut m, lo, &mut q) < 0.0 && slope(&mut m, hi, &mut q) > 0.0, "bracketed");
     for _ in 0..60 {
@@ -588,7 +590,7 @@ fn suspensions_settle_on_their_springs() {
     let a = DoubleAArmRide::default();
     let mut q = a.initial_positions();
     let mut lambda = [0.0; DoubleAArmRide::NC];
-    let report = StaticSolver::default().solve(&a, &mut q, 0.0, &mut lambda, &mut DoubleAArmRide::kkt_workspace()).expect("double A-arm");
+    let report = StaticSolver::default().solve(&a, &mut DoubleAArmRide::workspace(), &mut q, 0.0, &mut lambda).expect("double A-arm");
     eprintln!("double A-arm: {report:?}");
     assert!(report.iterations + report.rejected <= 30, "{report:?}");
     assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");
@@ -602,7 +604,7 @@ fn suspensions_settle_on_their_springs() {
     let b = MacPhersonRide::default();
     let mut q = b.initial_positions();
     let mut lambda = [0.0; MacPhersonRide::NC];
-    let report = StaticSolver::default().solve(&b, &mut q, 0.0, &mut lambda, &mut MacPhersonRide::kkt_workspace()).expect("MacPherson");
+    let report = StaticSolver::default().solve(&b, &mut MacPhersonRide::workspace(), &mut q, 0.0, &mut lambda).expect("MacPherson");
     eprintln!("MacPherson: {report:?}");
     assert!(report.iterations + report.rejected <= 30, "{report:?}");
     assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");

@@ -55,15 +55,20 @@ impl SliderCrank {
             l: p[2],
         }
     }
-    /// Work space for solvers that factor the (NV + NC)-square saddle-point matrix
-    /// [[K, Dᵀ], [D, 0]] (static equilibrium).
-    pub fn kkt_workspace() -> ::mbd::KktWorkspace<f64, 18> {
-        ::mbd::KktWorkspace::new()
+    ::mbd::__if_std! {
+        #[doc =
+        r" The work space every solver takes (its O(N²) arrays: D, the saddle-point"]
+        #[doc =
+        r" matrix, NV × NV derivatives), zeroed on the heap. Make it once and pass it to"]
+        #[doc =
+        r" each analysis; without `std`, put a `Workspace::new()` of the same type in a"]
+        #[doc = r" `static`."] pub fn workspace() -> ::mbd::workspace::Boxed < f64, 9, 9,
+        18 > { ::mbd::Workspace::boxed() }
     }
-    /// A generalized-α integrator with work space for this mechanism's NV + NC unknowns.
+    /// A generalized-α integrator for this mechanism.
     pub fn generalized_alpha(
         options: ::mbd::GeneralizedAlphaOptions<f64>,
-    ) -> ::mbd::GeneralizedAlpha<f64, 18> {
+    ) -> ::mbd::GeneralizedAlpha<f64, 9> {
         ::mbd::GeneralizedAlpha::new(options)
     }
     /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
@@ -418,7 +423,9 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
         lambda: &[f64; 9],
         k: &mut [[f64; 9]; 9],
     ) {
-        *k = [[0f64; 9]; 9];
+        for row in k.iter_mut() {
+            *row = [0f64; 9];
+        }
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);
@@ -502,11 +509,15 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     }
     #[inline]
     fn forces_q(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
-        *dh = [[0f64; 9]; 9];
+        for row in dh.iter_mut() {
+            *row = [0f64; 9];
+        }
     }
     #[inline]
     fn forces_v(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
-        *dh = [[0f64; 9]; 9];
+        for row in dh.iter_mut() {
+            *row = [0f64; 9];
+        }
     }
     #[inline]
     fn potential_energy(&self, q: &[f64; 9], t: f64) -> f64 {
@@ -1233,7 +1244,9 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     }
     #[inline]
     fn jacobian(&self, q: &[f64; 9], t: f64, d: &mut [[f64; 9]; 9]) {
-        *d = [[0f64; 9]; 9];
+        for row in d.iter_mut() {
+            *row = [0f64; 9];
+        }
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);
@@ -1315,7 +1328,9 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         phi: &mut [f64; 9],
         d: &mut [[f64; 9]; 9],
     ) {
-        *d = [[0f64; 9]; 9];
+        for row in d.iter_mut() {
+            *row = [0f64; 9];
+        }
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);
@@ -1372,7 +1387,9 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         nu: &mut [f64; 9],
         gamma: &mut [f64; 9],
     ) {
-        *d = [[0f64; 9]; 9];
+        for row in d.iter_mut() {
+            *row = [0f64; 9];
+        }
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);

@@ -15,7 +15,7 @@
 //! `integrate_positions` (the quaternion update with renormalization), so only the right-hand
 //! sides differ. mbd's operation counts (`OP_COUNTS`) of the spatial mechanisms are printed first.
 use criterion::{criterion_group, criterion_main, Criterion};
-use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, System};
+use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, System, Workspace};
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -50,9 +50,10 @@ macro_rules! compare {
         let t = 0.37;
         let solver = KinematicSolver::default();
         let mut q = m.initial_positions();
-        solver.assemble(&m, &mut q, t).expect("assembles");
+        let mut ws = <$ty>::workspace();
+        solver.assemble(&m, &mut ws, &mut q, t).expect("assembles");
         let mut qd = [0.0; NQ];
-        solver.solve_velocity(&m, &q, t, &mut qd).expect("velocity");
+        solver.solve_velocity(&m, &mut ws, &q, t, &mut qd).expect("velocity");
         let (mut phi, mut nu, mut gamma, mut values) = ([0.0; NC], [0.0; NC], [0.0; NC], [0.0; NNZ]);
         let mut cphi = mbd_bench::$casadi::phi();
         let mut cjac = mbd_bench::$casadi::jac();
@@ -130,7 +131,8 @@ macro_rules! compare_dynamics {
         let m = <$ty>::default();
         let params = m.params();
         let mut q = m.initial_positions();
-        KinematicSolver::default().assemble(&m, &mut q, 0.0).expect("the benchmark mechanism assembles");
+        let mut ws = <$ty>::workspace();
+        KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
         let system = System::new(&m);
         // A moving state: 50 steps of 1 ms into the fall from rest, as in benches/dynamics.rs.
         let mut rk4 = Rk4::new(1e-3);
@@ -138,7 +140,7 @@ macro_rules! compare_dynamics {
         let mut p: Point<f64, NQ, NQ, NC> = system.point(0.0, q, [0.0; NQ], [0.0; 2]).expect("forward dynamics");
         let mut next = p;
         for _ in 0..50 {
-            rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+            rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
             p = next;
         }
         let options = DynamicsOptions::default();
@@ -157,7 +159,7 @@ macro_rules! compare_dynamics {
         g.bench_function("q̈, λ: CasADi KKT (sparse QR)", |b| {
             b.iter(|| qr.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
         });
-        g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         let (mut q1, mut qd1, mut qdd1) = ([0.0; NQ], [0.0; NQ], [0.0; NQ]);
         for (name, f) in [("RK4 step: CasADi Schur", &mut schur), ("RK4 step: CasADi KKT", &mut qr)] {
             g.bench_function(name, |b| {
@@ -175,7 +177,7 @@ macro_rules! compare_dynamics {
             });
         }
         // Both loops take the same step: a wrong loop would time something else.
-        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
         rk4_step(&mut schur, &params, &gains, 1e-3, (p.t, &p.q, &p.v, &p.vd), &mut out, (&mut q1, &mut qd1, &mut qdd1));
         let differ = next.q.iter().zip(&q1).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         assert!(differ < 1e-12, "{}: mbd's RK4 and the CasADi loop differ by {differ:e}", $label);
@@ -187,13 +189,15 @@ macro_rules! compare_dynamics {
 /// with mbd (as for the planar forward dynamics).
 fn moving_state<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(m: &M) -> Point<f64, NQ, NV, NC> {
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the benchmark mechanism assembles");
+    // Kinematics and RK4 use no saddle-point work space: N = 0.
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
     let system = System::new(m);
     let mut rk4 = Rk4::new(1e-3);
     let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     for _ in 0..50 {
-        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
         p = next;
     }
     p
@@ -305,6 +309,7 @@ macro_rules! compare_spatial_dynamics {
         let mut rk4 = Rk4::new(1e-3);
         let p = moving_state(&m);
         let mut next = p;
+        let mut ws = <$ty>::workspace();
         let options = DynamicsOptions::default();
         let gains = [options.baumgarte_alpha, options.baumgarte_beta];
         let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
@@ -321,7 +326,7 @@ macro_rules! compare_spatial_dynamics {
         g.bench_function("v̇, λ: CasADi KKT (sparse QR)", |b| {
             b.iter(|| qr.call(&[black_box(&p.q), black_box(&p.v), &[black_box(p.t)], &params, &gains], &mut out))
         });
-        g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        g.bench_function("RK4 step: mbd", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         let (mut q1, mut v1, mut vd1) = ([0.0; NQ], [0.0; NV], [0.0; NV]);
         for (name, f) in [("RK4 step: CasADi Schur", &mut schur), ("RK4 step: CasADi KKT", &mut qr)] {
             g.bench_function(name, |b| {
@@ -340,7 +345,7 @@ macro_rules! compare_spatial_dynamics {
             });
         }
         // Both loops take the same step: a wrong loop would time something else.
-        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
         for f in [&mut schur, &mut qr] {
             rk4_step_spatial(&m, f, &params, &gains, 1e-3, (p.t, &p.q, &p.v, &p.vd), &mut out, (&mut q1, &mut v1, &mut vd1));
             let differ = next.q.iter().zip(&q1).chain(next.v.iter().zip(&v1)).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
@@ -364,9 +369,10 @@ fn spatial_kinematic_state<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, cons
     let t = 0.37;
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(m, &mut q, t).expect("assembles");
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    solver.assemble(m, &mut ws, &mut q, t).expect("assembles");
     let mut v = [0.0; NV];
-    solver.solve_velocity(m, &q, t, &mut v).expect("velocity");
+    solver.solve_velocity(m, &mut ws, &q, t, &mut v).expect("velocity");
     (t, q, v)
 }
 

@@ -14,7 +14,7 @@
 //! shrink with the step (RK4: about 256 times from 1 ms to 0.25 ms) — the check that both
 //! simulate the same motion. It fails the run if the tips differ by more than 1e-4 m at 1 ms.
 use criterion::Criterion;
-use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, System};
+use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, System, Workspace};
 use serde_json::Value;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -63,14 +63,16 @@ where
     M: mbd::ForwardDynamics<f64, NQ, NV, NC>,
 {
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the chain assembles");
+    // Kinematics and RK4 use no saddle-point work space: N = 0.
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the chain assembles");
     let system = System::new(m);
     let mut rk4 = Rk4::new(h);
     let mut p: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     let (mut drift, mut phi) = (0.0f64, [0.0; NC]);
     for _ in 0..(TIP_TIME / h).round() as usize {
-        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
         p = next;
         m.constraints(&p.q, p.t, &mut phi);
         drift = phi.iter().fold(drift, |a, x| a.max(x.abs()));
@@ -84,13 +86,15 @@ where
     M: mbd::ForwardDynamics<f64, NQ, NV, NC>,
 {
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, 0.0).expect("the chain assembles");
+    // Kinematics and RK4 use no saddle-point work space: N = 0.
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the chain assembles");
     let system = System::new(m);
     let mut rk4 = Rk4::new(1e-3);
     let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     for _ in 0..50 {
-        rk4.step(&system, &p, f64::INFINITY, &mut next).expect("step");
+        rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");
         p = next;
     }
     p
@@ -149,8 +153,9 @@ macro_rules! chain {
         let p = moving_state(&m);
         let mut next = p;
         let _: (&[f64; NV], &[f64; NC]) = (&p.v, &p.lambda);
+        let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
         let mut g = $c.benchmark_group($group);
-        g.bench_function("mbd_rk4_step", |b| b.iter(|| rk4.step(&system, black_box(&p), f64::INFINITY, &mut next)));
+        g.bench_function("mbd_rk4_step", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         g.finish();
         Row { links, group: $group, mujoco_step: peer["step_seconds"].as_f64().expect("step_seconds"), tips, drift: worst_drift }
     }};

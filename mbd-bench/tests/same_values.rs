@@ -2,7 +2,7 @@
 //! same Φ, Jacobian non-zeros and γ at the benchmark state (to rounding: 1e-12 relative to the
 //! functions' scale — both evaluate the same sums of products in possibly different orders), and
 //! the same q̈ and λ of forward dynamics.
-use mbd::{DynamicsOptions, ForwardDynamics, KinematicSolver, Kinematics};
+use mbd::{DynamicsOptions, ForwardDynamics, KinematicSolver, Kinematics, Workspace};
 
 #[allow(dead_code)]
 #[path = "../../examples/slider_crank.rs"]
@@ -28,7 +28,7 @@ fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(
     let t = 0.37;
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
-    solver.assemble(m, &mut q, t).expect("assembles");
+    solver.assemble(m, &mut Workspace::<f64, NQ, NC, 0>::boxed(), &mut q, t).expect("assembles");
     let qd: [f64; NQ] = core::array::from_fn(|i| 0.3 * (i as f64 + 1.0).sin());
     let (mut phi, mut d, mut gamma) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC]);
     m.constraints(&q, t, &mut phi);
@@ -77,7 +77,7 @@ fn check_forward<M: ForwardDynamics<f64, NQ, NQ, NC>, const NQ: usize, const NC:
 ) {
     let t = 0.37;
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, t).expect("assembles");
+    KinematicSolver::default().assemble(m, &mut Workspace::<f64, NQ, NC, 0>::boxed(), &mut q, t).expect("assembles");
     q[0] += 1e-4; // Φ ≠ 0: the β² Φ term contributes.
     let qd: [f64; NQ] = core::array::from_fn(|i| 0.3 * (i as f64 + 1.0).sin());
     let (alpha, beta) = (5.0, 5.0);
@@ -121,7 +121,7 @@ fn spatial_states<M: Kinematics<f64, NQ, NV, NC>, const NQ: usize, const NV: usi
     m: &M,
 ) -> Vec<(f64, [f64; NQ], [f64; NV])> {
     let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(m, &mut q, 0.37).expect("assembles");
+    KinematicSolver::default().assemble(m, &mut Workspace::<f64, NV, NC, 0>::boxed(), &mut q, 0.37).expect("assembles");
     let mut states = vec![(0.37, q, core::array::from_fn(|i| 0.3 * (i as f64 + 1.0).sin()))];
     for (k, t) in [(1.0, 1.1), (2.0, 1.9)] {
         let mut moved = q;

@@ -317,14 +317,18 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 Self { #( #params: p[#param_idx], )* }
             }
 
-            /// Work space for solvers that factor the (NV + NC)-square saddle-point matrix
-            /// [[K, Dᵀ], [D, 0]] (static equilibrium).
-            pub fn kkt_workspace() -> ::mbd::KktWorkspace<#real, #nz_l> {
-                ::mbd::KktWorkspace::new()
+            ::mbd::__if_std! {
+                /// The work space every solver takes (its O(N²) arrays: D, the saddle-point
+                /// matrix, NV × NV derivatives), zeroed on the heap. Make it once and pass it to
+                /// each analysis; without `std`, put a `Workspace::new()` of the same type in a
+                /// `static`.
+                pub fn workspace() -> ::mbd::workspace::Boxed<#real, #nv_l, #nc_l, #nz_l> {
+                    ::mbd::Workspace::boxed()
+                }
             }
 
-            /// A generalized-α integrator with work space for this mechanism's NV + NC unknowns.
-            pub fn generalized_alpha(options: ::mbd::GeneralizedAlphaOptions<#real>) -> ::mbd::GeneralizedAlpha<#real, #nz_l> {
+            /// A generalized-α integrator for this mechanism.
+            pub fn generalized_alpha(options: ::mbd::GeneralizedAlphaOptions<#real>) -> ::mbd::GeneralizedAlpha<#real, #nv_l> {
                 ::mbd::GeneralizedAlpha::new(options)
             }
 
@@ -374,7 +378,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         impl ::mbd::ConstraintForces<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]
             fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nv_l]; #nv_l]) {
-                *k = [[#zero; #nv_l]; #nv_l];
+                for row in k.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #cfq_body
             }
         }
@@ -405,12 +411,16 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
             #[inline]
             fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
-                *dh = [[#zero; #nv_l]; #nv_l];
+                for row in dh.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #h_q_body
             }
             #[inline]
             fn forces_v(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
-                *dh = [[#zero; #nv_l]; #nv_l];
+                for row in dh.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #h_v_body
             }
             #[inline]
@@ -473,7 +483,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
             #[inline]
             fn jacobian(&self, q: &[#real; #nq_l], t: #real, d: &mut [[#real; #nv_l]; #nc_l]) {
-                *d = [[#zero; #nv_l]; #nc_l];
+                for row in d.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #jac_body
             }
             #[inline]
@@ -486,7 +498,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
             #[inline]
             fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
-                *d = [[#zero; #nv_l]; #nc_l];
+                for row in d.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #pos_body
             }
             #[inline]
@@ -500,7 +514,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 nu: &mut [#real; #nc_l],
                 gamma: &mut [#real; #nc_l],
             ) {
-                *d = [[#zero; #nv_l]; #nc_l];
+                for row in d.iter_mut() {
+                    *row = [#zero; #nv_l];
+                }
                 #full_body
             }
         }

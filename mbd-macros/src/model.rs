@@ -624,7 +624,7 @@ const GENERATED_ITEMS: &[&str] = &[
     "MODEL_JSON",
     "params",
     "from_params",
-    "kkt_workspace",
+    "workspace",
     "generalized_alpha",
     "jacobian_values",
     "full_eval_values",

@@ -12,7 +12,7 @@
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::mechanism::{coordinates_per_body, velocities_per_body};
-use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real};
+use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
 
 /// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
 pub const INVERSE_PIVOT_TOLERANCE: f64 = 1e-12;
@@ -104,13 +104,16 @@ pub struct JointReaction<T> {
 }
 
 /// Solves Dᵀ λ = M v̇ − h for the Lagrange multipliers λ of a driven mechanism (NV = NC), given
-/// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis.
+/// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis. On success
+/// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
+/// joint's reaction in N and N·m.
 ///
 /// Errors: `NotDriven` unless DOF = 0; `SingularJacobian` (naming a velocity and the dependent
 /// constraint) at a singular position or with redundant constraints, where λ is not unique;
 /// `NonFinite` for NaN or infinite inputs or forces.
-pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     m: &M,
+    ws: &mut Workspace<T, NV, NC, N>,
     q: &[T; NQ],
     v: &[T; NV],
     vd: &[T; NV],
@@ -131,14 +134,13 @@ where
             return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
         }
     }
-    let mut d = [[T::ZERO; NV]; NC];
-    m.jacobian(q, t, &mut d);
+    let Workspace { jacobian: d, velocity_squares: [dt, ..], .. } = ws;
+    m.jacobian(q, t, d);
     let mut h = [T::ZERO; NV];
     m.forces(q, v, t, &mut h);
     let mut inertia = [T::ZERO; NV];
     m.mass_times(q, vd, &mut inertia);
     // Dᵀ, square because NV = NC: row k is velocity k, column r is constraint r.
-    let mut dt = [[T::ZERO; NV]; NV];
     for (r, row) in d.iter().enumerate() {
         for (c, &value) in row.iter().enumerate() {
             dt[c][r] = value;
@@ -148,7 +150,7 @@ where
     if let Some(i) = first_non_finite(&rhs) {
         return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::VELOCITY_NAMES, i) });
     }
-    let permutation = lu_factor(&mut dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
+    let permutation = lu_factor(dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
         // Column r of Dᵀ is constraint r; the candidate row is a velocity.
         LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
             t: time,
@@ -161,7 +163,7 @@ where
         LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NV as i32 - NC as i32 },
     })?;
     let base = rhs;
-    lu_solve_in_place(&dt, &permutation, &mut rhs);
+    lu_solve_in_place(dt, &permutation, &mut rhs);
     lambda.copy_from_slice(&rhs);
     // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
     // to do for a mechanism without it, whose friction forces are all zero).
@@ -172,7 +174,7 @@ where
             return Ok(());
         }
         let mut rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
-        lu_solve_in_place(&dt, &permutation, &mut rhs);
+        lu_solve_in_place(dt, &permutation, &mut rhs);
         let mut change = T::ZERO;
         let mut size = T::ONE;
         for (l, x) in lambda.iter_mut().zip(rhs.iter()) {

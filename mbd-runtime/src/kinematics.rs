@@ -12,13 +12,13 @@
 //! rad/s², times in s. Assembly ([`KinematicSolver::assemble`]) also handles DOF > 0 with
 //! minimum-norm Newton steps.
 //!
-//! Nothing here allocates: work space is fixed-size arrays on the stack, sized by the
-//! mechanism's `NQ`, `NV` and `NC` (about (NV·NC + NC² + 4·NV + 4·NC) scalars for the largest
-//! call).
+//! Nothing here allocates. D (NC × NV) and, for minimum-norm steps, D Dᵀ (NC × NC) live in the
+//! caller's [`Workspace`]; the stack holds only O(NV + NC) scalars, so large mechanisms run on
+//! an ordinary thread's stack.
 
 use crate::error::{KinematicError, NonFiniteQuantity};
 use crate::linalg::{self, LinalgError, Permutation};
-use crate::{Kinematics, Mechanism, Real};
+use crate::{Kinematics, Mechanism, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
 /// coordinate in f64. Too small for f32 (whose ulp at 1 m is 1.2e-7): set about 1e-5 there.
@@ -262,9 +262,10 @@ impl KinematicSolver {
     /// [`KinematicError::NotDriven`] if NV ≠ NC; [`KinematicError::NonFinite`] for a NaN or
     /// infinite t, q, Φ, D or step; [`KinematicError::SingularJacobian`];
     /// [`KinematicError::NotConverged`].
-    pub fn solve_position<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn solve_position<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &mut [T; NQ],
         t: T,
     ) -> Result<Convergence, KinematicError>
@@ -273,8 +274,7 @@ impl KinematicSolver {
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
-        let mut jacobian = [[T::ZERO; NV]; NC];
-        self.newton(m, q, t, &mut jacobian, StepRule::Square)
+        self.newton(m, q, t, ws, StepRule::Square)
     }
 
     /// Assembly: brings a rough guess `q` onto the constraint manifold Φ(q, t) = 0 for any
@@ -294,9 +294,10 @@ impl KinematicSolver {
     /// [`KinematicError::Overconstrained`] if NC > NV; [`KinematicError::DependentConstraint`]
     /// if D loses row rank (DOF > 0) or [`KinematicError::SingularJacobian`] (DOF = 0);
     /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
-    pub fn assemble<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn assemble<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &mut [T; NQ],
         t: T,
     ) -> Result<Convergence, KinematicError>
@@ -308,9 +309,8 @@ impl KinematicSolver {
         if dof < 0 {
             return Err(KinematicError::Overconstrained { dof });
         }
-        let mut jacobian = [[T::ZERO; NV]; NC];
         let rule = if dof == 0 { StepRule::Square } else { StepRule::MinimumNorm };
-        self.newton(m, q, t, &mut jacobian, rule)
+        self.newton(m, q, t, ws, rule)
     }
 
     /// Velocity solve for a driven mechanism (NV = NC): D(q, t) v = ν(q, t), ν = −Φ_t, written
@@ -320,9 +320,10 @@ impl KinematicSolver {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, D, ν or v;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_velocity<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn solve_velocity<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &[T; NQ],
         t: T,
         v: &mut [T; NV],
@@ -334,10 +335,10 @@ impl KinematicSolver {
         require_driven::<NV, NC>()?;
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
-        let mut jacobian = [[T::ZERO; NV]; NC];
-        m.jacobian(q, t, &mut jacobian);
-        let permutation = self.factor::<T, M, NV, NC>(&mut jacobian, t)?;
-        velocity_from_factors(m, q, t, &jacobian, &permutation, v)
+        let jacobian = &mut ws.jacobian;
+        m.jacobian(q, t, jacobian);
+        let permutation = self.factor::<T, M, NV, NC>(jacobian, t)?;
+        velocity_from_factors(m, q, t, jacobian, &permutation, v)
     }
 
     /// Acceleration solve for a driven mechanism (NV = NC): D(q, t) v̇ = γ(q, v, t), written to
@@ -347,9 +348,10 @@ impl KinematicSolver {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, v, D, γ or v̇;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_acceleration<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn solve_acceleration<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &[T; NQ],
         v: &[T; NV],
         t: T,
@@ -363,10 +365,10 @@ impl KinematicSolver {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         check_finite(v, t, NonFiniteQuantity::Velocity, M::VELOCITY_NAMES)?;
-        let mut jacobian = [[T::ZERO; NV]; NC];
-        m.jacobian(q, t, &mut jacobian);
-        let permutation = self.factor::<T, M, NV, NC>(&mut jacobian, t)?;
-        acceleration_from_factors(m, q, v, t, &jacobian, &permutation, vd)
+        let jacobian = &mut ws.jacobian;
+        m.jacobian(q, t, jacobian);
+        let permutation = self.factor::<T, M, NV, NC>(jacobian, t)?;
+        acceleration_from_factors(m, q, v, t, jacobian, &permutation, vd)
     }
 
     /// Complete kinematic analysis at time t from the guess `q`: position (Newton, as
@@ -381,9 +383,10 @@ impl KinematicSolver {
     /// # Errors
     /// Those of [`solve_position`](Self::solve_position), [`solve_velocity`](Self::solve_velocity)
     /// and [`solve_acceleration`](Self::solve_acceleration).
-    pub fn analyze<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn analyze<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &[T; NQ],
         t: T,
     ) -> Result<KinematicState<T, NQ, NV>, KinematicError>
@@ -394,8 +397,7 @@ impl KinematicSolver {
         require_driven::<NV, NC>()?;
         let mut state =
             KinematicState { t, q: *q, v: [T::ZERO; NV], vd: [T::ZERO; NV], convergence: Convergence { iterations: 0, residual: 0.0 } };
-        let mut jacobian = [[T::ZERO; NV]; NC];
-        state.convergence = self.analyze_in_place(m, &mut state.q, t, &mut jacobian, &mut state.v, &mut state.vd)?;
+        state.convergence = self.analyze_in_place(m, &mut state.q, t, ws, &mut state.v, &mut state.vd)?;
         Ok(state)
     }
 
@@ -416,9 +418,10 @@ impl KinematicSolver {
     ///
     /// # Errors
     /// The first error of any point (each carries its t); the sweep stops there.
-    pub fn sweep<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    pub fn sweep<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &mut [T; NQ],
         times: impl IntoIterator<Item = T>,
         mut f: impl FnMut(T, &[T; NQ], &[T; NV], &[T; NV]),
@@ -428,7 +431,6 @@ impl KinematicSolver {
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
-        let mut jacobian = [[T::ZERO; NV]; NC];
         let mut v = [T::ZERO; NV];
         let mut vd = [T::ZERO; NV];
         let mut previous_time: Option<T> = None;
@@ -441,10 +443,10 @@ impl KinematicSolver {
                 }
                 _ => false,
             };
-            let mut result = self.analyze_in_place(m, &mut trial, t, &mut jacobian, &mut v, &mut vd);
+            let mut result = self.analyze_in_place(m, &mut trial, t, ws, &mut v, &mut vd);
             if predicted && result.is_err() {
                 trial = *q;
-                result = self.analyze_in_place(m, &mut trial, t, &mut jacobian, &mut v, &mut vd);
+                result = self.analyze_in_place(m, &mut trial, t, ws, &mut v, &mut vd);
             }
             result?;
             *q = trial;
@@ -456,12 +458,12 @@ impl KinematicSolver {
 
     /// Position, velocity and acceleration at t into `q`, `v`, `vd` (NV = NC, checked by the
     /// callers), with `jacobian` as work space.
-    fn analyze_in_place<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    fn analyze_in_place<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        jacobian: &mut [[T; NV]; NC],
+        ws: &mut Workspace<T, NV, NC, N>,
         v: &mut [T; NV],
         vd: &mut [T; NV],
     ) -> Result<Convergence, KinematicError>
@@ -469,8 +471,9 @@ impl KinematicSolver {
         T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
-        let convergence = self.newton(m, q, t, jacobian, StepRule::Square)?;
+        let convergence = self.newton(m, q, t, ws, StepRule::Square)?;
         // `newton` returns D evaluated at the converged q, not yet factored.
+        let jacobian = &mut ws.jacobian;
         let permutation = self.factor::<T, M, NV, NC>(jacobian, t)?;
         velocity_from_factors(m, q, t, jacobian, &permutation, v)?;
         acceleration_from_factors(m, q, v, t, jacobian, &permutation, vd)?;
@@ -489,12 +492,12 @@ impl KinematicSolver {
     /// Newton iteration on Φ(q, t) = 0 with the given step rule, each step Δv applied as
     /// q ⊕ Δv. On success `jacobian` holds D(q, t) at the returned q (unfactored): the
     /// convergence test comes after each evaluation, so the last evaluation is at the solution.
-    fn newton<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    fn newton<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        jacobian: &mut [[T; NV]; NC],
+        ws: &mut Workspace<T, NV, NC, N>,
         rule: StepRule,
     ) -> Result<Convergence, KinematicError>
     where
@@ -510,6 +513,7 @@ impl KinematicSolver {
         let mut negative_residual = [T::ZERO; NC];
         let mut step = [T::ZERO; NV];
         let mut iterations = 0;
+        let Workspace { jacobian, constraint_square, .. } = ws;
         loop {
             m.position_eval(q, t, &mut residual, jacobian);
             check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
@@ -534,7 +538,7 @@ impl KinematicSolver {
                     linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step).map_err(|e| jacobian_error::<M>(e, time))?;
                 }
                 StepRule::MinimumNorm => {
-                    linalg::minimum_norm_solve(jacobian, &negative_residual, pivot_tolerance, &mut step)
+                    linalg::minimum_norm_solve(jacobian, &negative_residual, pivot_tolerance, constraint_square, &mut step)
                         .map_err(|e| minimum_norm_error::<M>(e, time))?;
                 }
             }

@@ -1,7 +1,8 @@
 //! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
 //!
 //! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
-//! No solver allocates: work space is fixed-size arrays sized by the mechanism's const generics.
+//! No solver allocates: O(N²) work space is the caller's [`Workspace`] (made once, on the heap
+//! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
@@ -21,6 +22,7 @@ mod real;
 pub mod statics;
 #[cfg(test)]
 mod test_support;
+pub mod workspace;
 
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
@@ -43,8 +45,25 @@ pub use named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
+pub use workspace::Workspace;
+
+/// Its items when the runtime has `std`, nothing without (the generated code's `workspace()`,
+/// which boxes).
+#[doc(hidden)]
+#[cfg(feature = "std")]
+#[macro_export]
+macro_rules! __if_std {
+    ($($tokens:tt)*) => { $($tokens)* };
+}
+
+/// Its items when the runtime has `std`, nothing without.
+#[doc(hidden)]
+#[cfg(not(feature = "std"))]
+#[macro_export]
+macro_rules! __if_std {
+    ($($tokens:tt)*) => {};
+}
 pub use statics::{
-    KktWorkspace, Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS,
-    DEFAULT_STATIC_INITIAL_STEP, DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE,
-    DEFAULT_STATIC_TOLERANCE,
+    Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS, DEFAULT_STATIC_INITIAL_STEP,
+    DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE, DEFAULT_STATIC_TOLERANCE,
 };

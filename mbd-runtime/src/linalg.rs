@@ -252,7 +252,8 @@ pub fn lu_solve_in_place<T: Real, const N: usize>(lu: &[[T; N]; N], permutation:
 /// ```
 ///
 /// the solution of smallest Euclidean norm (the one orthogonal to the null space of D). The
-/// NC × NC Gram matrix G = D Dᵀ is factored by [`lu_factor`] with `relative_tolerance` as τ.
+/// NC × NC Gram matrix G = D Dᵀ is formed in `gram` (work space; its contents on entry do not
+/// matter) and factored by [`lu_factor`] with `relative_tolerance` as τ.
 ///
 /// Since G is the Gram matrix of the rows of D, elimination step k of G fails exactly when row
 /// k of D is (to τ) a linear combination of rows 0..k: the reported
@@ -269,6 +270,7 @@ pub fn minimum_norm_solve<T: Real, const NC: usize, const NQ: usize>(
     d: &[[T; NQ]; NC],
     r: &[T; NC],
     relative_tolerance: T,
+    gram: &mut [[T; NC]; NC],
     dq: &mut [T; NQ],
 ) -> Result<(), LinalgError> {
     if NC > NQ {
@@ -277,7 +279,6 @@ pub fn minimum_norm_solve<T: Real, const NC: usize, const NQ: usize>(
     if let Some((row, column)) = first_non_finite(d) {
         return Err(LinalgError::NonFinite { row, column });
     }
-    let mut gram = [[T::ZERO; NC]; NC];
     for (i, row_i) in d.iter().enumerate() {
         for (j, row_j) in d.iter().enumerate().skip(i) {
             let product = dot(row_i, row_j);
@@ -285,9 +286,9 @@ pub fn minimum_norm_solve<T: Real, const NC: usize, const NQ: usize>(
             gram[j][i] = product;
         }
     }
-    let permutation = lu_factor(&mut gram, relative_tolerance)?;
+    let permutation = lu_factor(gram, relative_tolerance)?;
     let mut multipliers = [T::ZERO; NC];
-    substitute(&gram, &permutation, r, &mut multipliers);
+    substitute(gram, &permutation, r, &mut multipliers);
     // Δq = Dᵀ λ
     *dq = [T::ZERO; NQ];
     for (row, &lambda) in d.iter().zip(multipliers.iter()) {
@@ -507,7 +508,10 @@ mod tests {
         assert_eq!(lu_factor(&mut rectangular, PIVOT_TOLERANCE), Err(LinalgError::NotSquare { rows: 2, columns: 3 }));
         let d = [[1.0], [2.0]];
         let mut dq = [0.0];
-        assert_eq!(minimum_norm_solve(&d, &[1.0, 2.0], PIVOT_TOLERANCE, &mut dq), Err(LinalgError::Overdetermined { rows: 2, columns: 1 }));
+        assert_eq!(
+            minimum_norm_solve(&d, &[1.0, 2.0], PIVOT_TOLERANCE, &mut Default::default(), &mut dq),
+            Err(LinalgError::Overdetermined { rows: 2, columns: 1 })
+        );
     }
 
     /// D Δq = r holds, Δq lies in the row space of D (Δq = Dᵀ λ), and it is shorter than
@@ -529,7 +533,7 @@ mod tests {
                 *v = rng.uniform();
             }
             let mut dq = [0.0; NQ];
-            minimum_norm_solve(&d, &r, PIVOT_TOLERANCE, &mut dq).expect("full row rank");
+            minimum_norm_solve(&d, &r, PIVOT_TOLERANCE, &mut Default::default(), &mut dq).expect("full row rank");
             assert!(max_abs_difference(&multiply(&d, &dq), &r) < 1e-12, "D Δq = r");
             // Basic solution: the leading NC × NC block solved, the other unknowns zero.
             let mut block = [[0.0; NC]; NC];
@@ -561,7 +565,7 @@ mod tests {
     fn minimum_norm_names_the_dependent_row() {
         let d = [[1.0, 2.0, 0.0, 1.0], [0.0, 1.0, 1.0, 0.0], [1.0, 2.0, 0.0, 1.0]];
         let mut dq = [7.0; 4];
-        match minimum_norm_solve(&d, &[1.0, 1.0, 1.0], PIVOT_TOLERANCE, &mut dq) {
+        match minimum_norm_solve(&d, &[1.0, 1.0, 1.0], PIVOT_TOLERANCE, &mut Default::default(), &mut dq) {
             Err(LinalgError::Singular { column, .. }) => assert_eq!(column, 2),
             other => panic!("expected Singular, got {other:?}"),
         }

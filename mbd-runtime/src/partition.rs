@@ -14,7 +14,7 @@
 use crate::integrate::SimulationError;
 use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::{DynamicsError, Kinematics, Mechanism, Real};
+use crate::{DynamicsError, Kinematics, Mechanism, Real, Workspace};
 
 /// Pivot ratio below which D_d is chosen anew.
 const REPARTITION_PIVOT: f64 = 1e-4;
@@ -52,8 +52,8 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     /// no acceptable pivot left (dependent constraints).
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    fn choose<T: Real>(&mut self, d: &[[T; NV]; NC]) -> Result<(), usize> {
-        let mut a = *d;
+    fn choose<T: Real>(&mut self, d: &[[T; NV]; NC], a: &mut [[T; NV]; NC]) -> Result<(), usize> {
+        *a = *d;
         let mut rows: [usize; NC] = core::array::from_fn(|i| i);
         let mut used = [false; NV];
         let scale = a.iter().flatten().fold(T::ZERO, |m, v| m.max(v.abs()));
@@ -92,11 +92,12 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         &mut self,
         t: T,
         d: &[[T; NV]; NC],
+        scratch: &mut [[T; NV]; NC],
         block: &mut [[T; NC]; NC],
     ) -> Result<crate::linalg::Permutation<NC>, SimulationError> {
         for attempt in 0..2 {
             if !self.chosen || attempt == 1 {
-                if let Err(row) = self.choose(d) {
+                if let Err(row) = self.choose(d, scratch) {
                     return Err(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, row) }.into());
                 }
             }
@@ -125,9 +126,12 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     ///
     /// # Errors
     /// [`SimulationError::NotConverged`] naming the worst row, or a dependent-constraint error.
-    pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize>(
+    // The mechanism, its work space, the state and the two tolerances: no grouping reads better.
+    #[allow(clippy::too_many_arguments)]
+    pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const N: usize>(
         &mut self,
         mechanism: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         t: T,
         q: &mut [T; NQ],
         v: &mut [T; NV],
@@ -135,11 +139,10 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
         let mut phi = [T::ZERO; NC];
-        let mut d = [[T::ZERO; NV]; NC];
-        let mut block = [[T::ZERO; NC]; NC];
+        let Workspace { jacobian: d, jacobian_scratch: scratch, constraint_square: block, .. } = ws;
         let mut iterations = 0;
         loop {
-            mechanism.position_eval(q, t, &mut phi, &mut d);
+            mechanism.position_eval(q, t, &mut phi, d);
             let worst = phi.iter().enumerate().fold((0, T::ZERO), |w, (i, v)| if v.abs() > w.1 { (i, v.abs()) } else { w });
             if worst.1 <= tolerance {
                 break;
@@ -152,8 +155,8 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                     residual: worst.1.to_f64(),
                 });
             }
-            let permutation = self.factor::<T, M>(t, &d, &mut block)?;
-            lu_solve_in_place(&block, &permutation, &mut phi);
+            let permutation = self.factor::<T, M>(t, d, scratch, block)?;
+            lu_solve_in_place(block, &permutation, &mut phi);
             // The partition may have been chosen anew: only this one's entries move.
             let mut step = [T::ZERO; NV];
             for (k, &c) in self.dependent.iter().enumerate() {
@@ -163,7 +166,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
             iterations += 1;
         }
         // Velocities: D_d v_d = ν − D_i v_i, with D at the corrected q.
-        let permutation = self.factor::<T, M>(t, &d, &mut block)?;
+        let permutation = self.factor::<T, M>(t, d, scratch, block)?;
         let mut rhs = [T::ZERO; NC];
         mechanism.velocity_rhs(q, t, &mut rhs);
         for &c in &self.dependent {
@@ -174,7 +177,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                 rhs[r] -= *entry * vc;
             }
         }
-        lu_solve_in_place(&block, &permutation, &mut rhs);
+        lu_solve_in_place(block, &permutation, &mut rhs);
         for (k, &c) in self.dependent.iter().enumerate() {
             v[c] = rhs[k];
         }

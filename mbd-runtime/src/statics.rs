@@ -65,14 +65,13 @@
 //! angles are wrapped one at a time). Spatial Euler parameters come back unit, with e0 ≥ 0
 //! (p and −p are the same rotation).
 //!
-//! Work space: the (NV + NC)-square matrix of [`KktWorkspace`] (stable Rust cannot size it from
-//! the mechanism's const generics; the generated `Name::kkt_workspace()` makes one) holds
-//! [[M, Dᵀ], [D, 0]] and its factors, then the reduced stiffness; on the stack, two NV × NV
-//! arrays (H, and the basis Z) and D. Nothing allocates.
+//! Work space: the caller's [`Workspace`] holds D, the (NV + NC)-square matrix
+//! [[M, Dᵀ], [D, 0]] and its factors (then the reduced stiffness), and two NV × NV arrays (H,
+//! and the basis Z); the stack holds O(NV + NC) scalars. Nothing allocates.
 
 use crate::kinematics::{first_non_finite, name};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError, Permutation};
-use crate::{ConstraintForces, Dynamics, Mechanism, Real};
+use crate::{ConstraintForces, Dynamics, Mechanism, Real, Workspace};
 use core::fmt;
 
 /// Default tolerance on max(‖h + Dᵀλ‖∞ (N, N·m), ‖Φ‖∞ (m, rad)).
@@ -311,7 +310,7 @@ impl fmt::Display for StaticError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             StaticError::WorkspaceSize { expected, found } => {
-                write!(f, "static equilibrium: the workspace has {found} rows but the mechanism needs NV + NC = {expected}; use Name::kkt_workspace()")
+                write!(f, "static equilibrium: the workspace has {found} rows but the mechanism needs NV + NC = {expected}; use Name::workspace()")
             }
             StaticError::NotAssembled { t, iterations, worst_row, residual } => write!(
                 f,
@@ -331,24 +330,11 @@ impl fmt::Display for StaticError {
 
 impl core::error::Error for StaticError {}
 
-/// Work space for the (NV + NC)-square saddle-point system; N must equal NV + NC.
-#[derive(Clone, Debug)]
-pub struct KktWorkspace<T, const N: usize> {
-    matrix: [[T; N]; N],
-    rhs: [T; N],
-}
-
-impl<T: Real, const N: usize> KktWorkspace<T, N> {
-    /// A zeroed workspace.
-    pub fn new() -> Self {
-        KktWorkspace { matrix: [[T::ZERO; N]; N], rhs: [T::ZERO; N] }
-    }
-}
-
-impl<T: Real, const N: usize> Default for KktWorkspace<T, N> {
-    fn default() -> Self {
-        Self::new()
-    }
+/// The saddle-point part of the [`Workspace`]: the (NV + NC)-square matrix and its right-hand
+/// side.
+struct Saddle<'w, T, const N: usize> {
+    matrix: &'w mut [[T; N]; N],
+    rhs: &'w mut [T; N],
 }
 
 /// Static-equilibrium solver that finds stable equilibria (the algorithm: [the `statics`
@@ -550,10 +536,10 @@ impl StaticSolver {
     pub fn solve<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
         q: &mut [T; NQ],
         t: T,
         lambda: &mut [T; NC],
-        ws: &mut KktWorkspace<T, N>,
     ) -> Result<StaticReport, StaticError>
     where
         T: Real,
@@ -574,16 +560,17 @@ impl StaticSolver {
         let half = T::from_f64(0.5);
         let dof = NV.saturating_sub(NC);
         let zero_v = [T::ZERO; NV];
-        let (mut phi, mut d) = ([T::ZERO; NC], [[T::ZERO; NV]; NC]);
-        // H = (∂h/∂q)B + K(λ), then Z: the stack's two NV × NV arrays.
-        let (mut stiffness, mut basis) = ([[T::ZERO; NV]; NV], [[T::ZERO; NV]; NV]);
+        let mut phi = [T::ZERO; NC];
+        // D; H = (∂h/∂q)B + K(λ) and then Z in two NV × NV arrays; the saddle-point system.
+        let Workspace { jacobian: d, velocity_squares: [stiffness, basis, _], saddle, saddle_rhs, .. } = ws;
+        let ws = &mut Saddle { matrix: saddle, rhs: saddle_rhs };
         let (mut h, mut r, mut mass_diagonal) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
         // Per mode: ω², the force along it, its largest entry, the largest entry of M z.
         let (mut omega2, mut f, mut reach, mut force_scale) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
         let (mut y, mut active, mut trial) = ([T::ZERO; NV], [false; NV], *q);
         let mut correction = [T::ZERO; NV];
 
-        self.restore(m, q, t, &mut phi, &mut d, ws, &mut correction).map_err(|e| match e {
+        self.restore(m, q, t, &mut phi, d, ws, &mut correction).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -595,7 +582,7 @@ impl StaticSolver {
         let mut radius = T::from_f64(options.initial_step);
         loop {
             // Forces, constraints, multipliers and the projected residual at the assembled q.
-            m.position_eval(q, t, &mut phi, &mut d);
+            m.position_eval(q, t, &mut phi, d);
             m.forces(q, &zero_v, t, &mut h);
             if let Some(i) = first_non_finite(&phi) {
                 return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
@@ -603,10 +590,10 @@ impl StaticSolver {
             if let Some(i) = first_non_finite(&h) {
                 return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
             }
-            let factors = self.factor_saddle(m, q, t, &d, ws, &mut mass_diagonal)?;
+            let factors = self.factor_saddle(m, q, t, d, ws, &mut mass_diagonal)?;
             ws.rhs[..NV].copy_from_slice(&h);
             ws.rhs[NV..].fill(T::ZERO);
-            lu_solve_in_place(&ws.matrix, &factors.permutation, &mut ws.rhs);
+            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
             for (l, &x) in lambda.iter_mut().zip(&ws.rhs[NV..]) {
                 *l = -x;
             }
@@ -625,8 +612,8 @@ impl StaticSolver {
             };
 
             // Modes: Z (M-orthonormal null-space basis) and the reduced stiffness's eigenpairs.
-            m.forces_q(q, &zero_v, t, &mut stiffness);
-            m.constraint_force_q(q, t, lambda, &mut basis);
+            m.forces_q(q, &zero_v, t, stiffness);
+            m.constraint_force_q(q, t, lambda, basis);
             for (row, krow) in stiffness.iter_mut().zip(basis.iter()) {
                 for (x, &kx) in row.iter_mut().zip(krow) {
                     *x += kx;
@@ -637,13 +624,13 @@ impl StaticSolver {
                     return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
                 }
             }
-            self.null_space_basis(m, q, t, &factors, ws, dof, &mut basis)?;
-            let scale = reduced_stiffness(&stiffness, &basis, dof, &mass_diagonal, ws);
-            jacobi_eigen(&mut ws.matrix, dof, &mut basis);
+            self.null_space_basis(m, q, t, &factors, ws, dof, basis)?;
+            let scale = reduced_stiffness(stiffness, basis, dof, &mass_diagonal, ws);
+            jacobi_eigen(ws.matrix, dof, basis);
             let mut lowest = 0;
             for i in 0..dof {
                 omega2[i] = ws.matrix[i][i];
-                let z = column(&basis, i);
+                let z = column(basis, i);
                 f[i] = dot(&z, &r);
                 reach[i] = max_abs(&z).0;
                 let mut mz = [T::ZERO; NV];
@@ -666,8 +653,8 @@ impl StaticSolver {
             let converged = residual <= tol;
             let unstable = dof > 0 && omega2[lowest] < -neutral;
             if converged && !(unstable && options.leave_unstable) {
-                let stability = classify::<T, M, NV>(dof, &omega2, &basis, &mass_diagonal, lowest, neutral);
-                self.wrap_angles(m, q, t, &phi, &mut d, &h, &stiffness);
+                let stability = classify::<T, M, NV>(dof, &omega2, basis, &mass_diagonal, lowest, neutral);
+                self.wrap_angles(m, q, t, &phi, d, &h, stiffness);
                 return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
             }
             let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
@@ -695,7 +682,7 @@ impl StaticSolver {
                     y[..dof].fill(T::ZERO);
                     // Downhill along the force if it has any, else toward the mode's largest
                     // entry (either way falls off a saddle).
-                    let z = column(&basis, lowest);
+                    let z = column(basis, lowest);
                     let sign = if f[lowest] != T::ZERO { f[lowest] } else { z[max_abs(&z).1] };
                     let size = radius / reach[lowest];
                     y[lowest] = if sign < T::ZERO { -size } else { size };
@@ -720,7 +707,7 @@ impl StaticSolver {
                 for (di, row) in delta.iter_mut().zip(basis.iter()) {
                     *di = dot(&row[..dof], &y[..dof]);
                 }
-                let ratio = self.trial(m, q, t, &h, &delta, predicted, &mut trial, &mut phi, &mut d, ws);
+                let ratio = self.trial(m, q, t, &h, &delta, predicted, &mut trial, &mut phi, d, ws);
                 if let Some(ratio) = ratio {
                     *q = trial;
                     accepted += 1;
@@ -737,9 +724,9 @@ impl StaticSolver {
                 if escape && attempts >= ESCAPE_ATTEMPTS {
                     // Every step off it raised the energy: unstable as it looked, but not
                     // leavable at this resolution; report it as it is.
-                    m.position_eval(q, t, &mut phi, &mut d);
-                    let stability = classify::<T, M, NV>(dof, &omega2, &basis, &mass_diagonal, lowest, neutral);
-                    self.wrap_angles(m, q, t, &phi, &mut d, &h, &stiffness);
+                    m.position_eval(q, t, &mut phi, d);
+                    let stability = classify::<T, M, NV>(dof, &omega2, basis, &mass_diagonal, lowest, neutral);
+                    self.wrap_angles(m, q, t, &phi, d, &h, stiffness);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
                 }
                 if accepted + rejected >= options.max_iterations {
@@ -768,7 +755,7 @@ impl StaticSolver {
         trial: &mut [T; NQ],
         phi: &mut [T; NC],
         d: &mut [[T; NV]; NC],
-        ws: &mut KktWorkspace<T, N>,
+        ws: &mut Saddle<'_, T, N>,
     ) -> Option<T>
     where
         T: Real,
@@ -810,7 +797,7 @@ impl StaticSolver {
         q: &[T; NQ],
         t: T,
         d: &[[T; NV]; NC],
-        ws: &mut KktWorkspace<T, N>,
+        ws: &mut Saddle<'_, T, N>,
         mass_diagonal: &mut [T; NV],
     ) -> Result<SaddleFactors<N>, StaticError>
     where
@@ -838,7 +825,7 @@ impl StaticSolver {
                 ws.matrix[NV + r][c] = value;
             }
         }
-        let permutation = lu_factor(&mut ws.matrix, T::from_f64(self.options.pivot_tolerance).max(T::EPSILON)).map_err(|e| match e {
+        let permutation = lu_factor(ws.matrix, T::from_f64(self.options.pivot_tolerance).max(T::EPSILON)).map_err(|e| match e {
             LinalgError::Singular { column, .. } => StaticError::Singular { t: time, row: row_name::<M>(column, NV) },
             // M is NV × NV, D's entries sit in the rows or columns past NV.
             LinalgError::NonFinite { row, column } => StaticError::NonFinite { t: time, row: row_name::<M>(row.max(column), NV) },
@@ -860,7 +847,7 @@ impl StaticSolver {
         t: T,
         phi: &mut [T; NC],
         d: &mut [[T; NV]; NC],
-        ws: &mut KktWorkspace<T, N>,
+        ws: &mut Saddle<'_, T, N>,
         correction: &mut [T; NV],
     ) -> Result<u32, RestoreFailure>
     where
@@ -888,7 +875,7 @@ impl StaticSolver {
             for (x, &p) in ws.rhs[NV..].iter_mut().zip(phi.iter()) {
                 *x = -p;
             }
-            lu_solve_in_place(&ws.matrix, &factors.permutation, &mut ws.rhs);
+            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
             let mut step = [T::ZERO; NV];
             step.copy_from_slice(&ws.rhs[..NV]);
             if let Some(i) = first_non_finite(&step) {
@@ -915,7 +902,7 @@ impl StaticSolver {
         q: &[T; NQ],
         t: T,
         factors: &SaddleFactors<N>,
-        ws: &mut KktWorkspace<T, N>,
+        ws: &mut Saddle<'_, T, N>,
         dof: usize,
         basis: &mut [[T; NV]; NV],
     ) -> Result<(), StaticError>
@@ -931,7 +918,7 @@ impl StaticSolver {
             unit[j] = T::ZERO;
             ws.rhs[..NV].copy_from_slice(&mz);
             ws.rhs[NV..].fill(T::ZERO);
-            lu_solve_in_place(&ws.matrix, &factors.permutation, &mut ws.rhs);
+            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
             for (row, &value) in basis.iter_mut().zip(ws.rhs.iter()) {
                 row[j] = value;
             }
@@ -1039,7 +1026,7 @@ fn reduced_stiffness<T: Real, const NV: usize, const N: usize>(
     basis: &[[T; NV]; NV],
     dof: usize,
     mass_diagonal: &[T; NV],
-    ws: &mut KktWorkspace<T, N>,
+    ws: &mut Saddle<'_, T, N>,
 ) -> T {
     let mut scale = T::ZERO;
     for (i, row) in stiffness.iter().enumerate() {
@@ -1110,7 +1097,7 @@ mod tests {
         for start in [[0.2, -0.4, 0.4, -0.95], [LENGTH, 0.0, 1.0, 0.0], [0.0, LENGTH, 0.0, 1.0]] {
             let mut q = start;
             let mut lambda = [123.0, -7.0];
-            let report = StaticSolver::default().solve(&UnitPendulum, &mut q, 0.0, &mut lambda, &mut KktWorkspace::<f64, 5>::new());
+            let report = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 5>::new(), &mut q, 0.0, &mut lambda);
             let report = report.expect("equilibrium");
             assert!(report.iterations < 30, "{report:?}");
             let expected = [0.0, -LENGTH, 0.0, -1.0];
@@ -1128,7 +1115,7 @@ mod tests {
         }
         // A work space of NQ + NC rows is the wrong size: it takes NV + NC.
         let mut q = [0.2, -0.4, 0.4, -0.95];
-        let err = StaticSolver::default().solve(&UnitPendulum, &mut q, 0.0, &mut [0.0; 2], &mut KktWorkspace::<f64, 6>::new());
+        let err = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 6>::new(), &mut q, 0.0, &mut [0.0; 2]);
         assert_eq!(err, Err(StaticError::WorkspaceSize { expected: 5, found: 6 }));
     }
 

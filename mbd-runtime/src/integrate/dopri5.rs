@@ -10,7 +10,7 @@
 //! y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))).
 
 use super::{check_step, non_finite, Integrator, Point, SimulationError, System};
-use crate::{ForwardDynamics, Real};
+use crate::{ForwardDynamics, Real, Workspace};
 
 /// Options of [`Dopri5`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -118,8 +118,8 @@ fn dense_coefficients<T: Real>(y0: T, y1: T, k: impl Fn(usize) -> T, h: T) -> [T
     [y0, r2, r3, r4, h * r5]
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> Integrator<T, M, NQ, NV, NC>
-    for Dopri5<T, NQ, NV>
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
+    Integrator<T, M, NQ, NV, NC, N> for Dopri5<T, NQ, NV>
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -128,6 +128,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

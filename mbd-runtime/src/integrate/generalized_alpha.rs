@@ -9,7 +9,7 @@
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Mechanism, Real};
+use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Mechanism, Real, Workspace};
 
 /// Options of [`GeneralizedAlpha`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,27 +75,27 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
 /// ([`Dynamics::friction_derivatives`]; friction's slope in λ, at most μ, is left out). Where a
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
-/// N must be NV + NC; the generated `Name::generalized_alpha(options)` makes one of the right size.
+/// The iteration matrix, ∂h/∂q, ∂h/∂v, D and ∂(Dᵀλ)/∂q live in the [`Workspace`] that
+/// [`simulate`](super::simulate()) passes to each step; the integrator itself holds O(NV).
 ///
 /// [`Kinematics::integrate_positions`]: crate::Kinematics::integrate_positions
 ///
 /// [`Dynamics::friction_derivatives`]: crate::Dynamics::friction_derivatives
 #[derive(Clone, Copy, Debug)]
-pub struct GeneralizedAlpha<T, const N: usize> {
+pub struct GeneralizedAlpha<T, const NV: usize> {
     /// Step size, damping and Newton options.
     pub options: GeneralizedAlphaOptions<T>,
     /// Newton iterations of the last step.
     pub iterations: u32,
     // Pseudo-acceleration a of the last point, and whether it is valid.
-    a: [T; N],
+    a: [T; NV],
     started: bool,
-    matrix: [[T; N]; N],
 }
 
-impl<T: Real, const N: usize> GeneralizedAlpha<T, N> {
-    /// A generalized-α integrator (N = NV + NC).
+impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
+    /// A generalized-α integrator for a mechanism with NV velocities.
     pub fn new(options: GeneralizedAlphaOptions<T>) -> Self {
-        Self { options, iterations: 0, a: [T::ZERO; N], started: false, matrix: [[T::ZERO; N]; N] }
+        Self { options, iterations: 0, a: [T::ZERO; NV], started: false }
     }
 
     /// Forget the pseudo-accelerations: the next step starts from v̇ of its initial point (call
@@ -105,7 +105,8 @@ impl<T: Real, const N: usize> GeneralizedAlpha<T, N> {
     }
 }
 
-impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NV, NC> for GeneralizedAlpha<T, N>
+impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NV, NC, N>
+    for GeneralizedAlpha<T, NV>
 where
     M: ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>,
 {
@@ -114,11 +115,12 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if N != NV + NC {
+        if !Workspace::<T, NV, NC, N>::sized_for_saddle() {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
         let o = self.options;
@@ -143,22 +145,15 @@ where
         }
         let beta_p = beta * (one - alpha_f) / (one - alpha_m);
         let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
-        let mut a_n = [T::ZERO; NV];
-        if self.started {
-            a_n.copy_from_slice(&self.a[..NV]);
-        } else {
-            a_n = from.vd;
-        }
+        let a_n = if self.started { self.a } else { from.vd };
         // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
         let mut vd = from.vd;
         let mut lambda = from.lambda;
         let mut q = [T::ZERO; NQ];
         let mut v = [T::ZERO; NV];
         let mut a1 = [T::ZERO; NV];
-        let (mut phi, mut d, mut nu, mut gam) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC], [T::ZERO; NC]);
-        let mut hq = [[T::ZERO; NV]; NV];
-        let mut hv = [[T::ZERO; NV]; NV];
-        let mut kc = [[T::ZERO; NV]; NV];
+        let (mut phi, mut nu, mut gam) = ([T::ZERO; NC], [T::ZERO; NC], [T::ZERO; NC]);
+        let Workspace { jacobian: d, velocity_squares: [hq, hv, kc], saddle: a, .. } = ws;
         let mut force = [T::ZERO; NV];
         let mut inertia = [T::ZERO; NV];
         let mut rhs = [T::ZERO; N];
@@ -172,7 +167,7 @@ where
         let mut correction = T::ZERO;
         loop {
             state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-            mech.full_eval(&q, &v, t1, &mut phi, &mut d, &mut nu, &mut gam);
+            mech.full_eval(&q, &v, t1, &mut phi, d, &mut nu, &mut gam);
             mech.forces(&q, &v, t1, &mut force);
             // Coulomb friction with the iterate's loads (its exact derivatives enter the
             // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
@@ -231,18 +226,17 @@ where
                     residual: residual.to_f64(),
                 });
             }
-            mech.forces_q(&q, &v, t1, &mut hq);
-            mech.forces_v(&q, &v, t1, &mut hv);
-            mech.friction_derivatives(&q, &v, t1, &lambda, &mut hq, &mut hv);
-            mech.constraint_force_q(&q, t1, &lambda, &mut kc);
+            mech.forces_q(&q, &v, t1, hq);
+            mech.forces_v(&q, &v, t1, hv);
+            mech.friction_derivatives(&q, &v, t1, &lambda, hq, hv);
+            mech.constraint_force_q(&q, t1, &lambda, kc);
             // The velocity block M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + K), built in `hq`.
             for i in 0..NV {
                 for j in 0..NV {
                     hq[i][j] = -gamma_p * h * hv[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
                 }
             }
-            mech.add_mass_matrix(&q, one, &mut hq);
-            let a = &mut self.matrix;
+            mech.add_mass_matrix(&q, one, hq);
             for i in 0..NV {
                 a[i][..NV].copy_from_slice(&hq[i]);
                 for r in 0..NC {
@@ -285,7 +279,7 @@ where
             mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
         }
         self.iterations = iteration;
-        self.a[..NV].copy_from_slice(&a1);
+        self.a = a1;
         self.started = true;
         to.t = t1;
         to.q = q;

@@ -43,7 +43,7 @@ pub use simulate::{project, simulate, Correction, SimulationOptions, Statistics}
 use core::fmt;
 
 use crate::kinematics::name;
-use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, Real};
+use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, Real, Workspace};
 
 /// The state of the mechanism at the end of a step: time, coordinates, velocities and their
 /// derivatives, multipliers, and the accumulated work.
@@ -298,7 +298,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 }
 
 /// A one-step method for the equations of motion.
-pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize> {
+pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> {
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
     /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
     /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions)).
@@ -308,6 +308,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     fn step(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

@@ -9,7 +9,7 @@
 //! weights on the stage powers; dense output is cubic Hermite.
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
-use crate::{ForwardDynamics, Real};
+use crate::{ForwardDynamics, Real, Workspace};
 
 /// Classical fourth-order Runge–Kutta with a fixed step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,8 +31,8 @@ impl<T: Real> Rk4<T> {
     }
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> Integrator<T, M, NQ, NV, NC>
-    for Rk4<T>
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
+    Integrator<T, M, NQ, NV, NC, N> for Rk4<T>
 {
     #[inline]
     // `!(x > y)` on purpose: it is also true when either side is NaN.
@@ -42,6 +42,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

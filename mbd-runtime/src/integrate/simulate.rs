@@ -10,7 +10,7 @@ use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System}
 use crate::dynamics::kinetic_energy;
 use crate::kinematics::name;
 use crate::partition::Partition;
-use crate::{DynamicsOptions, ForwardDynamics, Real};
+use crate::{DynamicsOptions, ForwardDynamics, Real, Workspace};
 
 /// What brings the state back onto the constraint manifold after each step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -127,8 +127,9 @@ impl<T: Real> Default for SimulationOptions<T> {
 #[allow(clippy::too_many_arguments)]
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize>(
+pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
+    ws: &mut Workspace<T, NV, NC, N>,
     integrator: &mut I,
     t0: T,
     q0: &[T; NQ],
@@ -140,7 +141,7 @@ pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize>(
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
-    I: Integrator<T, M, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N>,
 {
     for (i, &t) in times.iter().enumerate() {
         let before = if i == 0 { t0 } else { times[i - 1] };
@@ -152,7 +153,7 @@ where
     let (mut q, mut v) = (*q0, *v0);
     mechanism.normalize_positions(&mut q);
     let mut partition = Partition::<NV, NC>::new();
-    correct(mechanism, &mut partition, options, t0, &mut q, &mut v)?;
+    correct(mechanism, ws, &mut partition, options, t0, &mut q, &mut v)?;
     let mut from = system.point(t0, q, v, [T::ZERO; 2])?;
     let mut to = from;
     integrator.restart();
@@ -171,13 +172,13 @@ where
         if stats.steps >= options.max_steps {
             return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
         }
-        integrator.step(&system, &from, t_end, &mut to)?;
+        integrator.step(&system, ws, &from, t_end, &mut to)?;
         stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         let end = to;
         if !matches!(options.correction, Correction::None) {
             let (mut q, mut v) = (to.q, to.v);
-            correct(mechanism, &mut partition, options, to.t, &mut q, &mut v)?;
+            correct(mechanism, ws, &mut partition, options, to.t, &mut q, &mut v)?;
             to = integrator.after_correction(&system, &end, q, v)?;
         }
         while next < times.len() && times[next] <= end.t {
@@ -223,8 +224,9 @@ fn sample<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV:
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.
-fn correct<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+fn correct<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
+    ws: &mut Workspace<T, NV, NC, N>,
     partition: &mut Partition<NV, NC>,
     options: &SimulationOptions<T>,
     t: T,
@@ -234,6 +236,6 @@ fn correct<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV
     match options.correction {
         Correction::None => Ok(()),
         Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, v, &options.dynamics, tolerance, max_iterations),
-        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, t, q, v, tolerance, max_iterations),
+        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, ws, t, q, v, tolerance, max_iterations),
     }
 }

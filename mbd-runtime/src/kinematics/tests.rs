@@ -46,6 +46,11 @@ const ANGLE_ROW: usize = 7;
 const SLIDER_Y: usize = 7;
 
 /// q ← q + h dv: planar bodies, v = q̇.
+/// Work space for the kinematic solver, which does not use its saddle-point part (N = 0).
+fn ws<T: Real, const NV: usize, const NC: usize>() -> Workspace<T, NV, NC, 0> {
+    Workspace::new()
+}
+
 fn integrate_planar<T: Real, const N: usize>(q: &mut [T; N], dv: &[T; N], h: T) {
     for (x, &d) in q.iter_mut().zip(dv.iter()) {
         *x += h * d;
@@ -545,7 +550,7 @@ fn analysis_matches_the_closed_form() {
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     for t in revolution_times() {
-        let state = solver.analyze(&m, &q, t).expect("the slider-crank is regular for l > r");
+        let state = solver.analyze(&m, &mut ws(), &q, t).expect("the slider-crank is regular for l > r");
         q = state.q;
         let exact = exact_q(t);
         assert!(max_abs_difference(&state.q, &exact) < POSITION_TOLERANCE, "t = {t}: q {:?}", state.q);
@@ -560,8 +565,8 @@ fn analysis_matches_the_closed_form() {
         // The separate solves agree with the combined one.
         let mut qd = [0.0; NQ];
         let mut qdd = [0.0; NQ];
-        solver.solve_velocity(&m, &state.q, t, &mut qd).expect("velocity");
-        solver.solve_acceleration(&m, &state.q, &qd, t, &mut qdd).expect("acceleration");
+        solver.solve_velocity(&m, &mut ws(), &state.q, t, &mut qd).expect("velocity");
+        solver.solve_acceleration(&m, &mut ws(), &state.q, &qd, t, &mut qdd).expect("acceleration");
         assert_eq!(qd, state.v);
         assert_eq!(qdd, state.vd);
     }
@@ -575,11 +580,11 @@ fn sweep_matches_the_closed_form() {
         let m = SliderCrank::<f64>::default();
         let solver = KinematicSolver::new(KinematicOptions::default().with_predictor(predictor));
         let mut q = m.initial_positions();
-        solver.assemble(&m, &mut q, 0.0).expect("assembles");
+        solver.assemble(&m, &mut ws(), &mut q, 0.0).expect("assembles");
         let mut visited = 0;
         let mut worst = [0.0f64; 3];
         solver
-            .sweep(&m, &mut q, revolution_times(), |t, q, qd, qdd| {
+            .sweep(&m, &mut ws(), &mut q, revolution_times(), |t, q, qd, qdd| {
                 visited += 1;
                 worst[0] = worst[0].max(max_abs_difference(q, &exact_q(t)));
                 worst[1] = worst[1].max(max_abs_difference(qd, &exact_qd(t)));
@@ -670,7 +675,7 @@ fn predictor_saves_iterations() {
         let solver = KinematicSolver::new(KinematicOptions::default().with_predictor(predictor));
         let mut q = m.initial_positions();
         let times = (0..SAMPLES).map(|k| f64::from(k) / f64::from(SAMPLES));
-        solver.sweep(&m, &mut q, times, |_, _, _, _| {}).expect("sweep");
+        solver.sweep(&m, &mut ws(), &mut q, times, |_, _, _, _| {}).expect("sweep");
         m.evaluations.get()
     };
     let (with, without) = (count(true), count(false));
@@ -689,14 +694,16 @@ fn converges_from_a_rough_guess() {
     let solver = KinematicSolver::default();
     for assemble in [false, true] {
         let mut q = guess;
-        let convergence = if assemble { solver.assemble(&m, &mut q, t) } else { solver.solve_position(&m, &mut q, t) }.expect("converges");
+        let convergence =
+            if assemble { solver.assemble(&m, &mut ws(), &mut q, t) } else { solver.solve_position(&m, &mut ws(), &mut q, t) }
+                .expect("converges");
         assert!(convergence.iterations >= 3 && convergence.iterations <= 8, "{convergence:?}");
         assert!(convergence.residual <= DEFAULT_TOLERANCE);
         assert!(max_abs_difference(&q, &exact) < POSITION_TOLERANCE, "{q:?}");
     }
     // Starting at the solution takes no iteration.
     let mut q = exact;
-    let convergence = solver.solve_position(&m, &mut q, t).expect("converges");
+    let convergence = solver.solve_position(&m, &mut ws(), &mut q, t).expect("converges");
     assert_eq!(convergence.iterations, 0);
 }
 
@@ -708,7 +715,7 @@ fn reports_not_converged() {
     let exact = exact_q(t);
     let mut q: [f64; NQ] = core::array::from_fn(|i| exact[i] + if i % 3 == 2 { 0.5 } else { 0.05 });
     let solver = KinematicSolver::new(KinematicOptions::default().with_max_iterations(1));
-    match solver.solve_position(&m, &mut q, t) {
+    match solver.solve_position(&m, &mut ws(), &mut q, t) {
         Err(KinematicError::NotConverged { t: at, iterations, worst_row, residual }) => {
             assert_eq!(at, t);
             assert_eq!(iterations, 1);
@@ -743,12 +750,12 @@ fn structurally_singular_jacobian_names_the_coordinate() {
     };
     let mut q = exact_q(t);
     q[2] += 0.1; // not at the solution, so Newton has to factor D
-    check(solver.solve_position(&m, &mut q, t).unwrap_err());
-    check(solver.analyze(&m, &exact_q(t), t).unwrap_err());
+    check(solver.solve_position(&m, &mut ws(), &mut q, t).unwrap_err());
+    check(solver.analyze(&m, &mut ws(), &exact_q(t), t).unwrap_err());
     let mut qd = [0.0; NQ];
-    check(solver.solve_velocity(&m, &exact_q(t), t, &mut qd).unwrap_err());
+    check(solver.solve_velocity(&m, &mut ws(), &exact_q(t), t, &mut qd).unwrap_err());
     let mut qdd = [0.0; NQ];
-    check(solver.solve_acceleration(&m, &exact_q(t), &qd, t, &mut qdd).unwrap_err());
+    check(solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &qd, t, &mut qdd).unwrap_err());
 }
 
 /// NaN or infinity in the time, the coordinates, the velocities or a parameter (hence in Φ)
@@ -761,30 +768,30 @@ fn non_finite_values_are_reported() {
     let mut q = exact_q(t);
     q[3] = f64::NAN;
     assert_eq!(
-        solver.solve_position(&m, &mut q, t),
+        solver.solve_position(&m, &mut ws(), &mut q, t),
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Coordinate, row: "rod.x" })
     );
     let mut q = exact_q(t);
-    match solver.solve_position(&m, &mut q, f64::NAN) {
+    match solver.solve_position(&m, &mut ws(), &mut q, f64::NAN) {
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, row: "t" }) => assert!(t.is_nan()),
         other => panic!("expected NonFinite time, got {other:?}"),
     }
     let broken = SliderCrank { l: f64::NAN, ..SliderCrank::default() };
     assert_eq!(
-        solver.solve_position(&broken, &mut q, t),
+        solver.solve_position(&broken, &mut ws(), &mut q, t),
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Constraint, row: "revolute crank~rod: x" })
     );
     let mut qd = [0.0; NQ];
     qd[8] = f64::INFINITY;
     let mut qdd = [0.0; NQ];
     assert_eq!(
-        solver.solve_acceleration(&m, &exact_q(t), &qd, t, &mut qdd),
+        solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &qd, t, &mut qdd),
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Velocity, row: "slider.phi" })
     );
     // An infinite crank speed: Φ is finite at t = 0 only if ω·0 is, and ∞·0 is NaN.
     let runaway = SliderCrank { omega: f64::INFINITY, ..SliderCrank::default() };
     assert_eq!(
-        solver.solve_position(&runaway, &mut exact_q(0.0), 0.0),
+        solver.solve_position(&runaway, &mut ws(), &mut exact_q(0.0), 0.0),
         Err(KinematicError::NonFinite { t: 0.0, quantity: NonFiniteQuantity::Constraint, row: "drive crank.phi: phi" })
     );
 }
@@ -799,7 +806,7 @@ fn undriven_mechanism_assembles_but_is_not_driven() {
     let offsets = [0.01, -0.01, 0.05, 0.02, 0.01, -0.05, -0.02, 0.01, 0.03];
     let mut q: [f64; NQ] = core::array::from_fn(|i| exact[i] + offsets[i]);
     let guess = q;
-    let convergence = solver.assemble(&m, &mut q, t).expect("assembles");
+    let convergence = solver.assemble(&m, &mut ws(), &mut q, t).expect("assembles");
     assert!(convergence.residual <= DEFAULT_TOLERANCE, "{convergence:?}");
     let mut phi = [0.0; FREE_NC];
     m.constraints(&q, t, &mut phi);
@@ -808,13 +815,13 @@ fn undriven_mechanism_assembles_but_is_not_driven() {
     assert!((q[2] - guess[2]).abs() < 0.1, "crank angle {} from guess {}", q[2], guess[2]);
 
     let not_driven = KinematicError::NotDriven { dof: 1 };
-    assert_eq!(solver.solve_position(&m, &mut q, t), Err(not_driven));
+    assert_eq!(solver.solve_position(&m, &mut ws(), &mut q, t), Err(not_driven));
     let mut qd = [0.0; NQ];
-    assert_eq!(solver.solve_velocity(&m, &q, t, &mut qd), Err(not_driven));
+    assert_eq!(solver.solve_velocity(&m, &mut ws(), &q, t, &mut qd), Err(not_driven));
     let mut qdd = [0.0; NQ];
-    assert_eq!(solver.solve_acceleration(&m, &q, &qd, t, &mut qdd), Err(not_driven));
-    assert_eq!(solver.analyze(&m, &q, t).map(|s| s.convergence), Err(not_driven));
-    assert_eq!(solver.sweep(&m, &mut q, [0.0], |_, _, _, _| {}), Err(not_driven));
+    assert_eq!(solver.solve_acceleration(&m, &mut ws(), &q, &qd, t, &mut qdd), Err(not_driven));
+    assert_eq!(solver.analyze(&m, &mut ws(), &q, t).map(|s| s.convergence), Err(not_driven));
+    assert_eq!(solver.sweep(&m, &mut ws(), &mut q, [0.0], |_, _, _, _| {}), Err(not_driven));
 }
 
 /// With a duplicated row and no driver, assembly reports the dependent row by name.
@@ -824,7 +831,10 @@ fn dependent_constraint_is_named_during_assembly() {
     let solver = KinematicSolver::default();
     let exact = exact_q(0.1);
     let mut q: [f64; NQ] = core::array::from_fn(|i| exact[i] + 0.01);
-    assert_eq!(solver.assemble(&m, &mut q, 0.1), Err(KinematicError::DependentConstraint { t: 0.1, constraint: "fix slider.y: y" }));
+    assert_eq!(
+        solver.assemble(&m, &mut ws(), &mut q, 0.1),
+        Err(KinematicError::DependentConstraint { t: 0.1, constraint: "fix slider.y: y" })
+    );
 }
 
 /// A sweep stops at the first failing point and leaves q at the last good one.
@@ -834,7 +844,7 @@ fn sweep_stops_at_the_first_error() {
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
     let mut visited = 0;
-    let result = solver.sweep(&m, &mut q, [0.0, 0.05, 0.1, f64::INFINITY, 0.2], |_, _, _, _| visited += 1);
+    let result = solver.sweep(&m, &mut ws(), &mut q, [0.0, 0.05, 0.1, f64::INFINITY, 0.2], |_, _, _, _| visited += 1);
     assert!(matches!(result, Err(KinematicError::NonFinite { quantity: NonFiniteQuantity::Time, .. })), "{result:?}");
     assert_eq!(visited, 3);
     assert!(max_abs_difference(&q, &exact_q(0.1)) < POSITION_TOLERANCE);
@@ -849,17 +859,17 @@ fn predictor_failure_is_retried_from_the_previous_solution() {
     let solver = KinematicSolver::new(KinematicOptions::default().with_max_iterations(0));
     let mut q = m.initial_positions();
     let mut visited = 0;
-    solver.sweep(&m, &mut q, [0.0, 0.5], |_, _, _, _| visited += 1).expect("retried from the previous q");
+    solver.sweep(&m, &mut ws(), &mut q, [0.0, 0.5], |_, _, _, _| visited += 1).expect("retried from the previous q");
     assert_eq!(visited, 2);
     assert_eq!(q, m.initial_positions());
     // The prediction alone fails: check by predicting by hand.
     let mut predicted = q;
     let mut qd = [0.0; 3];
-    solver.solve_velocity(&m, &q, 0.0, &mut qd).expect("velocity");
+    solver.solve_velocity(&m, &mut ws(), &q, 0.0, &mut qd).expect("velocity");
     for (x, v) in predicted.iter_mut().zip(qd.iter()) {
         *x += v * 0.5;
     }
-    assert!(matches!(solver.solve_position(&m, &mut predicted, 0.5), Err(KinematicError::NotConverged { iterations: 0, .. })));
+    assert!(matches!(solver.solve_position(&m, &mut ws(), &mut predicted, 0.5), Err(KinematicError::NotConverged { iterations: 0, .. })));
 }
 
 /// f32 on the single crank: position, velocity and acceleration against the closed form, with
@@ -874,7 +884,7 @@ fn single_crank_in_f32() {
     let times = (0..=20u8).map(|k| f32::from(k) / 20.0);
     let mut visited = 0;
     solver
-        .sweep(&m, &mut q, times, |t, q, qd, qdd| {
+        .sweep(&m, &mut ws(), &mut q, times, |t, q, qd, qdd| {
             visited += 1;
             let theta = omega * f64::from(t);
             let (s, c) = theta.sin_cos();
@@ -899,7 +909,7 @@ fn slider_crank_in_f32() {
     let mut q = m.initial_positions();
     let times = (0..=40u8).map(|k| f32::from(k) / 40.0);
     solver
-        .sweep(&m, &mut q, times, |t, q, qd, qdd| {
+        .sweep(&m, &mut ws(), &mut q, times, |t, q, qd, qdd| {
             let t = f64::from(t);
             assert!(max_abs_difference(q, &exact_q(t)) < 1e-5, "t = {t}: {q:?}");
             assert!(max_abs_difference(qd, &exact_qd(t)) < 1e-4, "t = {t}: {qd:?}");
@@ -910,7 +920,7 @@ fn slider_crank_in_f32() {
     let strict = KinematicSolver::default();
     let mut q = exact_q(0.3).map(|v| v as f32);
     q[2] += 0.2;
-    match strict.solve_position(&m, &mut q, 0.3f32) {
+    match strict.solve_position(&m, &mut ws(), &mut q, 0.3f32) {
         Err(KinematicError::NotConverged { iterations, residual, .. }) => {
             assert_eq!(iterations, DEFAULT_MAX_ITERATIONS);
             assert!(residual > DEFAULT_TOLERANCE && residual < F32_TOLERANCE, "stalled at f32 rounding: {residual:e}");
@@ -1015,17 +1025,18 @@ fn velocity_space_newton_keeps_the_orientation_unit() {
     let t = 0.3;
     for assemble in [false, true] {
         let mut q = [0.4, 0.2, 0.9, 0.5];
-        if assemble { solver.assemble(&m, &mut q, t) } else { solver.solve_position(&m, &mut q, t) }.expect("converges");
+        if assemble { solver.assemble(&m, &mut ws(), &mut q, t) } else { solver.solve_position(&m, &mut ws(), &mut q, t) }
+            .expect("converges");
         assert!((q[2] * q[2] + q[3] * q[3] - 1.0).abs() < 1e-15, "{q:?}");
         assert!(max_abs_difference(&q, &exact(t).0) < 1e-9, "{q:?} vs {:?}", exact(t).0);
     }
-    let state = solver.analyze(&m, &exact(t).0, t).expect("analysis");
+    let state = solver.analyze(&m, &mut ws(), &exact(t).0, t).expect("analysis");
     assert!(max_abs_difference(&state.v, &exact(t).1) < 1e-9, "v = {:?}", state.v);
     assert!(max_abs_difference(&state.vd, &exact(t).2) < 1e-9, "v̇ = {:?}", state.vd);
     let mut q = m.initial_positions();
     let mut visited = 0;
     solver
-        .sweep(&m, &mut q, (0..=50).map(|k| f64::from(k) * 0.04), |t, q, v, vd| {
+        .sweep(&m, &mut ws(), &mut q, (0..=50).map(|k| f64::from(k) * 0.04), |t, q, v, vd| {
             visited += 1;
             let (q0, v0, vd0) = exact(t);
             assert!(max_abs_difference(q, &q0) < 1e-9 && (q[2] * q[2] + q[3] * q[3] - 1.0).abs() < 1e-15, "t = {t}: {q:?}");
@@ -1042,11 +1053,11 @@ fn velocity_space_newton_keeps_the_orientation_unit() {
 fn degrees_of_freedom_and_names_are_velocity_space() {
     let solver = KinematicSolver::default();
     let mut q = UnitPendulum.initial_positions();
-    assert_eq!(solver.solve_position(&UnitPendulum, &mut q, 0.0), Err(KinematicError::NotDriven { dof: 1 }));
+    assert_eq!(solver.solve_position(&UnitPendulum, &mut ws(), &mut q, 0.0), Err(KinematicError::NotDriven { dof: 1 }));
     // At φ − Ωt = π/2 the driver's row (0, 0, cos(φ − Ωt)) vanishes.
     let m = DrivenUnitPendulum { omega: 2.0 };
     let mut q = [0.0, LENGTH, 0.0, 1.0];
-    match solver.solve_position(&m, &mut q, 0.0) {
+    match solver.solve_position(&m, &mut ws(), &mut q, 0.0) {
         Err(KinematicError::SingularJacobian { coordinate, .. }) => assert_eq!(coordinate, "rod.w"),
         other => panic!("expected SingularJacobian, got {other:?}"),
     }
