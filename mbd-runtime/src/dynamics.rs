@@ -143,7 +143,8 @@ impl fmt::Display for DynamicsError {
             DynamicsError::DependentConstraint { t, row } => write!(
                 f,
                 "at t = {t} s the constraint row `{row}` depends on the rows before it \
-                 (singular position, missing degree of freedom or redundant constraint)"
+                 (singular position, missing degree of freedom or redundant constraint: \
+                 KinematicSolver::redundancy reports which; DynamicsOptions::allow_redundant drops it)"
             ),
             DynamicsError::NonPositiveMass { body, value } => {
                 write!(f, "body `{body}` has a mass or moment of inertia of {value}: it must be positive")

@@ -134,7 +134,7 @@ impl fmt::Display for KinematicError {
             KinematicError::DependentConstraint { t, constraint } => write!(
                 f,
                 "constraint '{constraint}' depends linearly on the constraints before it at t = {t} s: \
-                 redundant constraints, or a singular configuration"
+                 redundant constraints, or a singular configuration (KinematicSolver::redundancy reports which)"
             ),
             KinematicError::NotDriven { dof } if dof > 0 => write!(
                 f,

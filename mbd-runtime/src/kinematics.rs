@@ -31,6 +31,11 @@ pub const DEFAULT_MAX_ITERATIONS: u32 = 25;
 pub const DEFAULT_PIVOT_TOLERANCE: f64 = 1e-12;
 /// Default [`KinematicOptions::predictor`]: on.
 pub const DEFAULT_PREDICTOR: bool = true;
+/// Default [`KinematicOptions::rank_tolerance`]: a constraint row whose angle to the rows before
+/// it has a sine of at most 1e-8 is redundant. Rounding leaves about 1e-15 × the condition of
+/// the rows before it, so a clearly redundant row reads 1e-14 or so (the parallelogram with a
+/// third crank: 2e-17), while a row kept at 1e-8 still carries eight digits of its own.
+pub const DEFAULT_RANK_TOLERANCE: f64 = 1e-8;
 
 /// Name used when a mechanism's name lists are shorter than its sizes (a broken
 /// implementation): errors still carry a name instead of panicking.
@@ -61,6 +66,9 @@ pub struct KinematicOptions {
     /// prediction q ⊕ v (t − t_previous) instead of the previous q; if Newton fails from the
     /// prediction, the point is retried once from the previous q. Default [`DEFAULT_PREDICTOR`].
     pub predictor: bool,
+    /// In [`KinematicSolver::redundancy`], a row whose sine of angle to the span of the rows
+    /// before it is at most this is redundant (dimensionless). Default [`DEFAULT_RANK_TOLERANCE`].
+    pub rank_tolerance: f64,
 }
 
 impl Default for KinematicOptions {
@@ -78,6 +86,7 @@ impl KinematicOptions {
             max_iterations: DEFAULT_MAX_ITERATIONS,
             pivot_tolerance: DEFAULT_PIVOT_TOLERANCE,
             predictor: DEFAULT_PREDICTOR,
+            rank_tolerance: DEFAULT_RANK_TOLERANCE,
         }
     }
 
@@ -102,6 +111,12 @@ impl KinematicOptions {
     /// Sets [`predictor`](Self::predictor).
     pub const fn with_predictor(mut self, predictor: bool) -> Self {
         self.predictor = predictor;
+        self
+    }
+
+    /// Sets [`rank_tolerance`](Self::rank_tolerance) (a sine, dimensionless).
+    pub const fn with_rank_tolerance(mut self, rank_tolerance: f64) -> Self {
+        self.rank_tolerance = rank_tolerance;
         self
     }
 }
@@ -221,7 +236,12 @@ fn minimum_norm_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicErro
 }
 
 /// NonFinite for the first non-finite entry of `values`, named from `names`.
-fn check_finite<T: Real>(values: &[T], t: T, quantity: NonFiniteQuantity, names: &'static [&'static str]) -> Result<(), KinematicError> {
+pub(crate) fn check_finite<T: Real>(
+    values: &[T],
+    t: T,
+    quantity: NonFiniteQuantity,
+    names: &'static [&'static str],
+) -> Result<(), KinematicError> {
     match first_non_finite(values) {
         Some(index) => Err(KinematicError::NonFinite { t: t.to_f64(), quantity, row: name(names, index) }),
         None => Ok(()),
@@ -229,7 +249,7 @@ fn check_finite<T: Real>(values: &[T], t: T, quantity: NonFiniteQuantity, names:
 }
 
 /// NonFinite if t is NaN or infinite.
-fn check_time<T: Real>(t: T) -> Result<(), KinematicError> {
+pub(crate) fn check_time<T: Real>(t: T) -> Result<(), KinematicError> {
     if t.is_finite() {
         Ok(())
     } else {

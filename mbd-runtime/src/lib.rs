@@ -19,6 +19,7 @@ mod named;
 mod partition;
 mod planar;
 mod real;
+pub mod redundancy;
 pub mod statics;
 #[cfg(test)]
 mod test_support;
@@ -35,7 +36,7 @@ pub use integrate::{
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
-    DEFAULT_TOLERANCE,
+    DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE,
 };
 pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
@@ -45,6 +46,7 @@ pub use named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
+pub use redundancy::Redundancy;
 pub use workspace::Workspace;
 
 /// Its items when the runtime has `std`, nothing without (the generated code's `workspace()`,
