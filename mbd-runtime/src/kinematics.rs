@@ -21,8 +21,16 @@ use crate::linalg::{self, LinalgError, Permutation};
 use crate::{Kinematics, Mechanism, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
-/// coordinate in f64. Too small for f32 (whose ulp at 1 m is 1.2e-7): set about 1e-5 there.
+/// coordinate in f64. Below what f32 resolves (its ulp at 1 m is 1.2e-7): every tolerance is
+/// raised to [`RESOLUTION_ULPS`] ulps of the coordinates' scale, 7.6e-6 m for f32 at 1 m.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;
+/// The smallest ‖Φ‖∞ a position solve is asked for, in units of the scalar's machine epsilon ε
+/// times the coordinates' scale max(1, ‖q‖∞): a tolerance below 64 ε max(1, ‖q‖∞) is raised to
+/// it. Φ is a sum of a few products of coordinates, so rounding alone leaves it at a few ε times
+/// their size, and Newton cannot go below that; 64 ε leaves a factor of ten or so. It binds for
+/// f32 (7.6e-6 m at 1 m) and for f64 in mechanisms of kilometres (1.4e-10 m at 10 km); at
+/// metres in f64 the default 1e-10 is 7000 times above it.
+pub const RESOLUTION_ULPS: f64 = 64.0;
 /// Default [`KinematicOptions::max_iterations`]: Newton converges quadratically, so from a
 /// reasonable guess 3–6 iterations suffice; 25 leaves room for rough guesses.
 pub const DEFAULT_MAX_ITERATIONS: u32 = 25;
@@ -52,7 +60,8 @@ const UNNAMED: &str = "<unnamed>";
 pub struct KinematicOptions {
     /// Convergence test of the position solve: ‖Φ(q, t)‖∞ ≤ `tolerance`, in the units of the
     /// constraint rows (m for point coincidence, rad or dimensionless for angles, m² for
-    /// distance rows ½(dᵀd − L²)). Default [`DEFAULT_TOLERANCE`].
+    /// distance rows ½(dᵀd − L²)). Default [`DEFAULT_TOLERANCE`]; raised to what the scalar
+    /// type resolves, [`RESOLUTION_ULPS`] · ε · max(1, ‖q‖∞), where it is below that.
     pub tolerance: f64,
     /// Newton iterations allowed per position solve before [`KinematicError::NotConverged`].
     /// Default [`DEFAULT_MAX_ITERATIONS`].
@@ -527,7 +536,8 @@ impl KinematicSolver {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         let time = t.to_f64();
-        let tolerance = T::from_f64(self.options.tolerance);
+        let resolution = T::from_f64(RESOLUTION_ULPS) * T::EPSILON * max_abs(q).0.max(T::ONE);
+        let tolerance = T::from_f64(self.options.tolerance).max(resolution);
         let pivot_tolerance = self.pivot_tolerance::<T>();
         let mut residual = [T::ZERO; NC];
         let mut negative_residual = [T::ZERO; NC];

@@ -36,7 +36,7 @@ pub use integrate::{
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
-    DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE,
+    DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
 pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
