@@ -46,6 +46,26 @@ mechanism! {
 }
 
 mechanism! {
+    /// A loop of four moving bodies that closes without ground (a jointed quadrilateral hung
+    /// by one corner): its Schur complement has a 4-cycle of joints, so its factorization
+    /// needs fill-in (every other mechanism here closes its loops through ground, where a
+    /// planner that forgot the fill would pass).
+    pub HangingQuad {
+        gravity [0.0, -9.81];
+        body a { mass: 0.4, inertia: 1.0e-3, at: [0.0, -0.1, 1.5708] }
+        body b { mass: 0.6, inertia: 2.0e-3, at: [0.1, -0.2, 0.0] }
+        body c { mass: 0.5, inertia: 1.5e-3, at: [0.2, -0.1, 1.5708] }
+        body d { mass: 0.7, inertia: 2.5e-3, at: [0.1, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ d[-0.1, 0.0];
+        revolute d[-0.1, 0.0] ~ a[0.1, 0.0];
+        revolute a[-0.1, 0.0] ~ b[-0.1, 0.0];
+        revolute b[0.1, 0.0] ~ c[-0.1, 0.0];
+        revolute c[0.1, 0.0] ~ d[0.1, 0.0];
+        spring ground[0.3, 0.0] ~ c[0.0, 0.0] { k: 20.0, length: 0.1, c: 0.2 };
+    }
+}
+
+mechanism! {
     /// A single pendulum: a rod of length 2 l pinned at one end.
     pub Pendulum {
         params { l: 0.5, m: 1.5 }
@@ -124,6 +144,7 @@ fn sparse_solve_matches_the_dense_saddle_point_solve() {
     check_against_dense::<_, 9, 8, 17>(&FreeFourBar::default(), 1);
     check_against_dense::<_, 9, 9, 18>(&DrivenSliderCrank::default(), 2);
     check_against_dense::<_, 3, 2, 5>(&Pendulum::default(), 3);
+    check_against_dense::<_, 12, 10, 22>(&HangingQuad::default(), 4);
 }
 
 /// A rod pinned at one end: J_O θ̈ = −m g l cos θ with J_O = J + m l² and θ the rod's angle from

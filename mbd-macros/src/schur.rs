@@ -274,6 +274,26 @@ mod tests {
         assert_eq!(seen, (0..2 * n).collect::<Vec<_>>(), "the order is a permutation");
     }
 
+    /// A ring of four bodies (joint k between bodies k and k+1 mod 4, one row each): S is a
+    /// 4-cycle, and eliminating any row of a cycle joins its two neighbours, so L must have one
+    /// entry more than S's lower triangle — the fill a planner that forgot it would leave out
+    /// (every mechanism that closes its loops through ground factors without fill). The
+    /// generated solve of such a loop is checked against a dense one in tests/forward.rs.
+    #[test]
+    fn a_ring_needs_fill() {
+        let mut pattern = Vec::new();
+        for k in 0..4 {
+            for b in [k, (k + 1) % 4] {
+                pattern.push((k, 3 * b));
+            }
+        }
+        pattern.sort();
+        let schur = Schur::plan(4, &pattern, &[]);
+        let off_diagonal = schur.s.keys().filter(|(i, j)| i != j).count();
+        assert_eq!(off_diagonal, 4, "a 4-cycle");
+        assert_eq!(schur.nl(), off_diagonal + 1, "one fill entry");
+    }
+
     /// Two rows on the same coordinates: S is full 2×2, one entry of L.
     #[test]
     fn coupled_rows_share_one_entry() {
