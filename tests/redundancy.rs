@@ -37,6 +37,52 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// A slider on two collinear guides: the second repeats both rows of the first, so Grübler
+    /// counts 3 − 4 = −1 while it slides with one degree of freedom.
+    pub TwoGuides {
+        body slider { mass: 1.0, inertia: 0.01, at: [0.1, 0.05, 0.1] }
+        translational front: slider[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+        translational back: slider[0.2, 0.0] along [1.0, 0.0] ~ ground[0.2, 0.0] along [1.0, 0.0];
+    }
+}
+
+/// Assembly steps past redundant rows (found by a new user: the third crank from a rough guess
+/// stopped at "singular constraint Jacobian"; a negative Grübler count was refused outright).
+/// Where D has no pivot, the step is the minimum-norm one over the independent rows, so a
+/// consistent redundancy assembles as fast as a regular mechanism: ‖Φ‖∞ ≤ 1e-10, all rows met.
+#[test]
+fn redundant_mechanisms_assemble_from_rough_guesses() {
+    let solver = KinematicSolver::default();
+    let m = ThreeCranks::default();
+    let mut ws = ThreeCranks::workspace();
+    // Each coordinate 0.01–0.03 off a pose at θ = 0.7 rad.
+    let (s, c, r) = (0.7f64.sin(), 0.7f64.cos(), m.r);
+    let mut q = [0.0; 12];
+    for (k, x) in [0.0, 0.5, 1.0].into_iter().enumerate() {
+        q[3 * k..3 * k + 3].copy_from_slice(&[x + 0.5 * r * c, 0.5 * r * s, 0.7]);
+    }
+    q[9..12].copy_from_slice(&[0.5 + r * c, r * s, 0.0]);
+    for (i, x) in q.iter_mut().enumerate() {
+        *x += 0.01 + 0.01 * (i % 3) as f64;
+    }
+    let convergence = solver.assemble(&m, &mut ws, &mut q, 0.0).expect("a consistent redundancy assembles");
+    let mut phi = [0.0; 12];
+    m.constraints(&q, 0.0, &mut phi);
+    assert!(phi.iter().all(|x| x.abs() <= 1e-10), "Φ = {phi:?}");
+    let [a, b, cc] = [ThreeCranks::C1.phi(&q), ThreeCranks::C2.phi(&q), ThreeCranks::C3.phi(&q)];
+    assert!((a - b).abs() < 1e-9 && (a - cc).abs() < 1e-9, "the cranks stay parallel: {a} {b} {cc}");
+    assert!(convergence.iterations <= 8, "{convergence:?}");
+
+    let m = TwoGuides::default();
+    let mut ws = TwoGuides::workspace();
+    let mut q = m.initial_positions();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("Grübler's −1 is not an error when the rows agree");
+    assert!(q[1].abs() <= 1e-10 && q[2].abs() <= 1e-10, "on the guide, square to it: {q:?}");
+    let report = solver.redundancy(&m, &mut ws, &q, 0.0).expect("finite");
+    assert_eq!((report.grubler, report.mobility, report.redundant_rows().count()), (-1, 1, 2), "{report}");
+}
+
 /// The third crank's pin repeats, in one direction, what the other two already impose: rank 11
 /// of 12, mobility 1 against Grübler's 0, and the one redundant row is the last declared joint's
 /// (rows are taken in declaration order). The decision is clear-cut at a general angle: the

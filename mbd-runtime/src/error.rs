@@ -151,7 +151,7 @@ impl fmt::Display for KinematicError {
             KinematicError::Overconstrained { dof } => write!(
                 f,
                 "assembly needs at most as many constraint rows as coordinates, but DOF = {dof}: \
-                 remove {} redundant constraint row(s)",
+                 at least {} constraint row(s) must be redundant (KinematicSolver::redundancy names them)",
                 dof.unsigned_abs()
             ),
             KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, .. } => {

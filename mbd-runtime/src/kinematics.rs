@@ -18,6 +18,7 @@
 
 use crate::error::{KinematicError, NonFiniteQuantity};
 use crate::linalg::{self, LinalgError, Permutation};
+use crate::redundancy::rank_revealing_step;
 use crate::{Kinematics, Mechanism, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
@@ -174,8 +175,9 @@ pub struct KinematicSolver {
 enum StepRule {
     /// D Δv = −Φ with D square (LU with partial pivoting).
     Square,
-    /// Δv = −Dᵀ (D Dᵀ)⁻¹ Φ for NC ≤ NV.
-    MinimumNorm,
+    /// The minimum-norm step over the rows independent of the rows before them
+    /// ([`crate::redundancy`]): for redundant constraints, any NC.
+    RankRevealing,
 }
 
 /// `names[index]`, or [`UNNAMED`] if the list is too short.
@@ -226,20 +228,6 @@ fn jacobian_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
         }
         LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
             KinematicError::NotDriven { dof: degrees_of_freedom(columns, rows) }
-        }
-    }
-}
-
-/// The error for a failed minimum-norm step Δv = −Dᵀ (D Dᵀ)⁻¹ Φ at time `t`: a singular Gram
-/// matrix at step k means constraint row k depends on the rows before it.
-fn minimum_norm_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
-    match error {
-        LinalgError::Singular { column, .. } => KinematicError::DependentConstraint { t, constraint: name(M::CONSTRAINT_NAMES, column) },
-        LinalgError::NonFinite { row, .. } => {
-            KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, row) }
-        }
-        LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
-            KinematicError::Overconstrained { dof: degrees_of_freedom(columns, rows) }
         }
     }
 }
@@ -306,22 +294,31 @@ impl KinematicSolver {
         self.newton(m, q, t, ws, StepRule::Square)
     }
 
-    /// Assembly: brings a rough guess `q` onto the constraint manifold Φ(q, t) = 0 for any
-    /// NC ≤ NV (DOF ≥ 0), with undamped Newton steps of minimum norm,
+    /// Assembly: brings a rough guess `q` onto the constraint manifold Φ(q, t) = 0, for any
+    /// number of constraint rows, with undamped Newton steps of minimum norm over the rows that
+    /// are independent at the iterate,
     ///
     /// ```text
-    /// Δv = −Dᵀ (D Dᵀ)⁻¹ Φ(q_k, t),   q_{k+1} = q_k ⊕ Δv,
+    /// Δv = −D_Iᵀ (D_I D_Iᵀ)⁻¹ Φ_I(q_k, t),   q_{k+1} = q_k ⊕ Δv,
     /// ```
     ///
-    /// which, among all corrections that zero the linearized constraints, moves q the least: the
-    /// free coordinates stay as close to the guess as the constraints allow. For NV = NC this is
-    /// [`solve_position`](Self::solve_position) (the same step, computed without squaring D's
-    /// condition number). The guess must lie in the basin of attraction of the wanted assembly
-    /// mode: Newton converges to the nearest branch, not to a chosen one.
+    /// which, among all corrections that zero those linearized rows, moves q the least: the free
+    /// coordinates stay as close to the guess as the constraints allow. D's rows are
+    /// orthogonalized in declaration order ([`crate::redundancy`]; no Gram matrix, so D's
+    /// condition number is not squared), and a row is left out of this step — I is the rest —
+    /// when the sine of its angle to the rows before it is at most
+    /// max([`KinematicOptions::rank_tolerance`], min(0.1, ‖Φ‖∞ / max(1, ‖q‖∞))): along a
+    /// direction that nearly repeats others the linearization cannot be trusted while the
+    /// residual is large, and near the solution the test falls to `rank_tolerance`, so
+    /// convergence is Newton's. After a step that did not halve ‖Φ‖∞ every row takes part in
+    /// the next (a waiting row may be the one holding the residual).
+    /// Redundant constraints (a parallelogram with a third crank, two collinear guides: NC may
+    /// exceed NV) therefore assemble: a consistent redundant row is met when the others are. A
+    /// row that contradicts the others is left violated, and the error names it. The guess must
+    /// lie in the basin of attraction of the wanted assembly mode: Newton converges to the
+    /// nearest branch, not to a chosen one.
     ///
     /// # Errors
-    /// [`KinematicError::Overconstrained`] if NC > NV; [`KinematicError::DependentConstraint`]
-    /// if D loses row rank (DOF > 0) or [`KinematicError::SingularJacobian`] (DOF = 0);
     /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
     pub fn assemble<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
@@ -334,12 +331,7 @@ impl KinematicSolver {
         T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
-        let dof = degrees_of_freedom(NV, NC);
-        if dof < 0 {
-            return Err(KinematicError::Overconstrained { dof });
-        }
-        let rule = if dof == 0 { StepRule::Square } else { StepRule::MinimumNorm };
-        self.newton(m, q, t, ws, rule)
+        self.newton(m, q, t, ws, StepRule::RankRevealing)
     }
 
     /// Velocity solve for a driven mechanism (NV = NC): D(q, t) v = ν(q, t), ν = −Φ_t, written
@@ -543,7 +535,8 @@ impl KinematicSolver {
         let mut negative_residual = [T::ZERO; NC];
         let mut step = [T::ZERO; NV];
         let mut iterations = 0;
-        let Workspace { jacobian, constraint_square, .. } = ws;
+        let mut previous_norm = T::from_f64(f64::INFINITY);
+        let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
         loop {
             m.position_eval(q, t, &mut residual, jacobian);
             check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
@@ -562,16 +555,35 @@ impl KinematicSolver {
             for (negated, &value) in negative_residual.iter_mut().zip(residual.iter()) {
                 *negated = -value;
             }
-            match rule {
-                StepRule::Square => {
-                    let permutation = linalg::lu_factor(jacobian, pivot_tolerance).map_err(|e| jacobian_error::<M>(e, time))?;
-                    linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step).map_err(|e| jacobian_error::<M>(e, time))?;
+            let solved = match rule {
+                StepRule::Square => linalg::lu_factor(jacobian, pivot_tolerance)
+                    .and_then(|permutation| linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step))
+                    .map_err(|e| jacobian_error::<M>(e, time)),
+                StepRule::RankRevealing => {
+                    if let Some(r) = jacobian.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
+                        let row = name(M::CONSTRAINT_NAMES, r);
+                        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row });
+                    }
+                    // A row whose independent part is small against the residual is near-
+                    // dependent at this iterate: the linearization cannot be trusted along it,
+                    // so it waits (sine ≤ min(0.1, ‖Φ‖∞ / max(1, ‖q‖∞)): a step at most ten
+                    // times a row's residual); near the solution the test falls to
+                    // `rank_tolerance` and the step is Newton's. If the last step did not halve
+                    // ‖Φ‖∞, every row takes part (a waiting row may hold the residual).
+                    let rank_tolerance = T::from_f64(self.options.rank_tolerance);
+                    let threshold = if norm <= T::from_f64(0.5) * previous_norm {
+                        let relative = norm / max_abs(q).0.max(T::ONE);
+                        let cap = T::from_f64(0.1);
+                        (if relative < cap { relative } else { cap }).max(rank_tolerance)
+                    } else {
+                        rank_tolerance
+                    };
+                    previous_norm = norm;
+                    rank_revealing_step(jacobian, &negative_residual, threshold, jacobian_scratch, constraint_square, &mut step);
+                    Ok(())
                 }
-                StepRule::MinimumNorm => {
-                    linalg::minimum_norm_solve(jacobian, &negative_residual, pivot_tolerance, constraint_square, &mut step)
-                        .map_err(|e| minimum_norm_error::<M>(e, time))?;
-                }
-            }
+            };
+            solved?;
             check_finite(&step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
             m.integrate_positions(q, &step, T::ONE);
             iterations += 1;

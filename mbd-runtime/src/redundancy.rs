@@ -79,7 +79,13 @@ impl<const NC: usize> fmt::Display for Redundancy<NC> {
         for (k, name) in self.redundant_names().enumerate() {
             write!(f, "{} '{name}'", if k == 0 { "" } else { "," })?;
         }
-        write!(f, " (largest sine among them {:.1e}, smallest kept {:.1e})", self.largest_redundant, self.smallest_kept)
+        write!(f, " (largest sine among them {:.1e}, smallest kept {:.1e})", self.largest_redundant, self.smallest_kept)?;
+        write!(
+            f,
+            ". If they stay redundant at a nearby configuration, remove the joint that repeats the \
+             others or let forward dynamics drop them (DynamicsOptions::allow_redundant); if not, \
+             this is a singular position"
+        )
     }
 }
 
@@ -104,49 +110,109 @@ impl KinematicSolver {
     {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
-        let Workspace { jacobian: d, jacobian_scratch: basis, .. } = ws;
+        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = ws;
         m.jacobian(q, t, d);
         for row in d.iter() {
             check_finite(row, t, NonFiniteQuantity::Jacobian, M::CONSTRAINT_NAMES)?;
         }
         let tolerance = T::from_f64(self.options.rank_tolerance);
-        let mut report = Redundancy {
-            rank: 0,
+        let mut redundant = [false; NC];
+        let split = orthogonalize(d, tolerance, basis, constraint_square, &mut redundant);
+        Ok(Redundancy {
+            rank: split.rank,
             grubler: NV as i32 - NC as i32,
-            mobility: NV as i32,
-            smallest_kept: 1.0,
-            largest_redundant: 0.0,
-            redundant: [false; NC],
+            mobility: NV as i32 - split.rank as i32,
+            smallest_kept: split.smallest_kept.to_f64(),
+            largest_redundant: split.largest_redundant.to_f64(),
+            redundant,
             names: M::CONSTRAINT_NAMES,
-        };
-        for (r, row) in d.iter().enumerate() {
-            let length = norm(row);
-            let mut w = *row;
-            // Two passes of modified Gram–Schmidt: the second removes what rounding left of the
-            // first ("twice is enough", Giraud et al. 2005).
-            for _ in 0..2 {
-                for b in basis.iter().take(report.rank) {
-                    let c = dot(b, &w);
-                    for (wi, &bi) in w.iter_mut().zip(b.iter()) {
-                        *wi -= c * bi;
-                    }
+        })
+    }
+}
+
+/// What [`orthogonalize`] found: the rank and the margins of its decisions.
+pub(crate) struct Split<T> {
+    pub rank: usize,
+    pub smallest_kept: T,
+    pub largest_redundant: T,
+}
+
+/// The rows of `d` in order, each orthogonalized against the independent rows before it
+/// (modified Gram–Schmidt, twice: "twice is enough", Giraud et al. 2005): a row whose sine of
+/// angle to their span is at most `tolerance` is marked in `redundant`; the others become the
+/// orthonormal `basis` rows 0..rank, and row j of `r` holds the j-th kept row's coordinates in
+/// that basis (lower triangular: D_kept = R Q).
+pub(crate) fn orthogonalize<T: Real, const NV: usize, const NC: usize>(
+    d: &[[T; NV]; NC],
+    tolerance: T,
+    basis: &mut [[T; NV]; NC],
+    r: &mut [[T; NC]; NC],
+    redundant: &mut [bool; NC],
+) -> Split<T> {
+    let mut split = Split { rank: 0, smallest_kept: T::ONE, largest_redundant: T::ZERO };
+    for (i, row) in d.iter().enumerate() {
+        let length = norm(row);
+        let mut w = *row;
+        let mut coefficients = [T::ZERO; NC];
+        for _ in 0..2 {
+            for (b, c) in basis.iter().take(split.rank).zip(coefficients.iter_mut()) {
+                let projection = dot(b, &w);
+                *c += projection;
+                for (wi, &bi) in w.iter_mut().zip(b.iter()) {
+                    *wi -= projection * bi;
                 }
-            }
-            let left = norm(&w);
-            let sine = if length > T::ZERO { left / length } else { T::ZERO };
-            if sine > tolerance {
-                for (bi, &wi) in basis[report.rank].iter_mut().zip(w.iter()) {
-                    *bi = wi / left;
-                }
-                report.rank += 1;
-                report.smallest_kept = report.smallest_kept.min(sine.to_f64());
-            } else {
-                report.redundant[r] = true;
-                report.largest_redundant = report.largest_redundant.max(sine.to_f64());
             }
         }
-        report.mobility = NV as i32 - report.rank as i32;
-        Ok(report)
+        let left = norm(&w);
+        let sine = if length > T::ZERO { left / length } else { T::ZERO };
+        if sine > tolerance {
+            for (bi, &wi) in basis[split.rank].iter_mut().zip(w.iter()) {
+                *bi = wi / left;
+            }
+            coefficients[split.rank] = left;
+            r[split.rank] = coefficients;
+            split.rank += 1;
+            if sine < split.smallest_kept {
+                split.smallest_kept = sine;
+            }
+            redundant[i] = false;
+        } else {
+            redundant[i] = true;
+            split.largest_redundant = split.largest_redundant.max(sine);
+        }
+    }
+    split
+}
+
+/// The minimum-norm Newton step over the independent rows: D_I Δv = −Φ_I with Δv in the span of
+/// D_I's rows, the rows that depend on earlier ones (sine ≤ `tolerance`) left out — for a
+/// consistent redundant constraint, meeting the others meets it too.
+/// `basis` and `r` are work space.
+pub(crate) fn rank_revealing_step<T: Real, const NV: usize, const NC: usize>(
+    d: &[[T; NV]; NC],
+    negative_residual: &[T; NC],
+    tolerance: T,
+    basis: &mut [[T; NV]; NC],
+    r: &mut [[T; NC]; NC],
+    step: &mut [T; NV],
+) {
+    let mut redundant = [false; NC];
+    let split = orthogonalize(d, tolerance, basis, r, &mut redundant);
+    // R y = −Φ over the kept rows (forward substitution), then Δv = Qᵀ y.
+    let mut y = [T::ZERO; NC];
+    let kept = (0..NC).filter(|&i| !redundant[i]);
+    for (j, i) in kept.enumerate() {
+        let mut value = negative_residual[i];
+        for k in 0..j {
+            value -= r[j][k] * y[k];
+        }
+        y[j] = value / r[j][j];
+    }
+    *step = [T::ZERO; NV];
+    for (b, &yj) in basis.iter().take(split.rank).zip(y.iter()) {
+        for (s, &bi) in step.iter_mut().zip(b.iter()) {
+            *s += yj * bi;
+        }
     }
 }
 

@@ -214,7 +214,7 @@ impl fmt::Display for SimulationError {
                 )
             }
             SimulationError::WorkspaceSize { expected, found } => {
-                write!(f, "the generalized-α work space has {found} rows; this mechanism needs NV + NC = {expected}")
+                write!(f, "the generalized-α work space has {found} rows; this mechanism needs NV + NC = {expected}; use Name::workspace()")
             }
         }
     }
