@@ -83,24 +83,11 @@ pub enum KinematicError {
         /// The constraint row that held the best (largest) candidate pivot for it.
         constraint: &'static str,
     },
-    /// During assembly (minimum-norm Newton, DOF ≥ 0) a constraint row of D = Φ_q B is a linear
-    /// combination of the rows before it: redundant constraints, or a singular configuration.
-    DependentConstraint {
-        /// Time of the failed solve (s).
-        t: f64,
-        /// The first constraint row found to depend on the rows before it.
-        constraint: &'static str,
-    },
     /// A square kinematic analysis (position, velocity, acceleration) needs exactly as many
     /// constraint rows, drivers included, as velocities (planar: coordinates): degrees of
     /// freedom DOF = NV − NC = 0.
     NotDriven {
         /// Velocities minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
-        dof: i32,
-    },
-    /// Assembly needs at most as many constraint rows as velocities (DOF ≥ 0).
-    Overconstrained {
-        /// Velocities minus constraint rows (< 0).
         dof: i32,
     },
     /// A NaN or an infinity in the input or in an evaluated quantity: the solver stops instead
@@ -131,11 +118,6 @@ impl fmt::Display for KinematicError {
                  lock-up or toggle position, or its constraints and drivers do not determine \
                  '{coordinate}'"
             ),
-            KinematicError::DependentConstraint { t, constraint } => write!(
-                f,
-                "constraint '{constraint}' depends linearly on the constraints before it at t = {t} s: \
-                 redundant constraints, or a singular configuration (KinematicSolver::redundancy reports which)"
-            ),
             KinematicError::NotDriven { dof } if dof > 0 => write!(
                 f,
                 "kinematic analysis needs as many constraints (drivers included) as coordinates, \
@@ -146,12 +128,6 @@ impl fmt::Display for KinematicError {
                 "kinematic analysis needs as many constraints (drivers included) as coordinates, \
                  but the mechanism has {} more constraint row(s) than coordinates (DOF = {dof}): \
                  remove redundant constraints",
-                dof.unsigned_abs()
-            ),
-            KinematicError::Overconstrained { dof } => write!(
-                f,
-                "assembly needs at most as many constraint rows as coordinates, but DOF = {dof}: \
-                 at least {} constraint row(s) must be redundant (KinematicSolver::redundancy names them)",
                 dof.unsigned_abs()
             ),
             KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, .. } => {

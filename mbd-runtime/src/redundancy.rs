@@ -12,8 +12,8 @@
 //! the row is **redundant** when what is left of it is at most
 //! [`KinematicOptions::rank_tolerance`] of its own length, i.e. when the sine of its angle to
 //! the span of the rows before it is below that tolerance (default
-//! [`DEFAULT_RANK_TOLERANCE`] = 1e-8). So the row named is the later-declared one, as in
-//! [`KinematicError::DependentConstraint`]. Angles are measured in velocity space with m/s and
+//! [`DEFAULT_RANK_TOLERANCE`] = 1e-8). So the row named is the later-declared one: the first
+//! that depends on the rows declared before it. Angles are measured in velocity space with m/s and
 //! rad/s weighted alike. The report also gives the margins of that decision: the smallest sine
 //! among the rows kept and the largest among the rows named, so a user can see whether a
 //! configuration is near singular (a gap of a few orders of magnitude is clear-cut).
@@ -22,7 +22,6 @@
 //!
 //! [`KinematicOptions::rank_tolerance`]: crate::KinematicOptions::rank_tolerance
 //! [`DEFAULT_RANK_TOLERANCE`]: crate::DEFAULT_RANK_TOLERANCE
-//! [`KinematicError::DependentConstraint`]: crate::KinematicError::DependentConstraint
 
 use crate::error::NonFiniteQuantity;
 use crate::kinematics::{check_finite, check_time};
