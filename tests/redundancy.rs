@@ -197,3 +197,15 @@ fn third_crank_moves_as_one_degree_of_freedom() {
     .expect("the redundant row is dropped, not an error");
     assert_eq!(k, times.len());
 }
+
+/// A NaN in D (here from a NaN parameter) is an error naming its row, not a report.
+#[test]
+fn a_nan_in_the_jacobian_is_named() {
+    let m = ThreeCranks { r: f64::NAN };
+    let mut ws = ThreeCranks::workspace();
+    let q = ThreeCranks::default().initial_positions();
+    match KinematicSolver::default().redundancy(&m, &mut ws, &q, 0.0) {
+        Err(KinematicError::NonFinite { row, .. }) => assert_eq!(row, "revolute ground~c1: x"),
+        other => panic!("expected a non-finite Jacobian row, got {other:?}"),
+    }
+}

@@ -15,8 +15,9 @@
 //! [`DEFAULT_RANK_TOLERANCE`] = 1e-8). So the row named is the later-declared one: the first
 //! that depends on the rows declared before it. Angles are measured in velocity space with m/s and
 //! rad/s weighted alike. The report also gives the margins of that decision: the smallest sine
-//! among the rows kept and the largest among the rows named, so a user can see whether a
-//! configuration is near singular (a gap of a few orders of magnitude is clear-cut).
+//! among the rows kept and the largest among the rows named (a gap of many orders of magnitude
+//! makes the rank at q clear-cut). Whether a dependent row is a redundancy or a singular
+//! position shows only at another configuration: a redundancy stays, a singular position goes.
 //!
 //! Cost: NC² NV multiply-adds, in the caller's [`Workspace`]; nothing allocates.
 //!
@@ -111,8 +112,9 @@ impl KinematicSolver {
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = ws;
         m.jacobian(q, t, d);
-        for row in d.iter() {
-            check_finite(row, t, NonFiniteQuantity::Jacobian, M::CONSTRAINT_NAMES)?;
+        if let Some(r) = d.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
+            let row = crate::kinematics::name(M::CONSTRAINT_NAMES, r);
+            return Err(KinematicError::NonFinite { t: t.to_f64(), quantity: NonFiniteQuantity::Jacobian, row });
         }
         let tolerance = T::from_f64(self.options.rank_tolerance);
         let mut redundant = [false; NC];
