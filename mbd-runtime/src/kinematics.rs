@@ -232,6 +232,19 @@ fn jacobian_error<M: Mechanism>(error: LinalgError, t: f64) -> KinematicError {
     }
 }
 
+/// NonFinite naming the first constraint row of D that holds a NaN or an infinity.
+pub(crate) fn check_rows_finite<T: Real, M: Mechanism, const NV: usize, const NC: usize>(
+    d: &[[T; NV]; NC],
+    t: T,
+) -> Result<(), KinematicError> {
+    match d.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
+        Some(r) => {
+            Err(KinematicError::NonFinite { t: t.to_f64(), quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, r) })
+        }
+        None => Ok(()),
+    }
+}
+
 /// NonFinite for the first non-finite entry of `values`, named from `names`.
 pub(crate) fn check_finite<T: Real>(
     values: &[T],
@@ -555,15 +568,12 @@ impl KinematicSolver {
             for (negated, &value) in negative_residual.iter_mut().zip(residual.iter()) {
                 *negated = -value;
             }
-            let solved = match rule {
+            match rule {
                 StepRule::Square => linalg::lu_factor(jacobian, pivot_tolerance)
                     .and_then(|permutation| linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step))
                     .map_err(|e| jacobian_error::<M>(e, time)),
                 StepRule::RankRevealing => {
-                    if let Some(r) = jacobian.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
-                        let row = name(M::CONSTRAINT_NAMES, r);
-                        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row });
-                    }
+                    check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
                     // A row whose independent part is small against the residual is near-
                     // dependent at this iterate: the linearization cannot be trusted along it,
                     // so it waits (sine ≤ min(0.1, ‖Φ‖∞ / max(1, ‖q‖∞)): a step at most ten
@@ -582,8 +592,7 @@ impl KinematicSolver {
                     rank_revealing_step(jacobian, &negative_residual, threshold, jacobian_scratch, constraint_square, &mut step);
                     Ok(())
                 }
-            };
-            solved?;
+            }?;
             check_finite(&step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
             m.integrate_positions(q, &step, T::ONE);
             iterations += 1;

@@ -300,7 +300,7 @@ pub fn minimum_norm_solve<T: Real, const NC: usize, const NQ: usize>(
 }
 
 /// aᵀ b
-fn dot<T: Real, const N: usize>(a: &[T; N], b: &[T; N]) -> T {
+pub(crate) fn dot<T: Real, const N: usize>(a: &[T; N], b: &[T; N]) -> T {
     a.iter().zip(b.iter()).fold(T::ZERO, |sum, (&x, &y)| sum + x * y)
 }
 

@@ -25,7 +25,8 @@
 //! [`DEFAULT_RANK_TOLERANCE`]: crate::DEFAULT_RANK_TOLERANCE
 
 use crate::error::NonFiniteQuantity;
-use crate::kinematics::{check_finite, check_time};
+use crate::kinematics::{check_finite, check_rows_finite, check_time};
+use crate::linalg::dot;
 use crate::{KinematicError, KinematicSolver, Kinematics, Real, Workspace};
 use core::fmt;
 
@@ -112,10 +113,7 @@ impl KinematicSolver {
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = ws;
         m.jacobian(q, t, d);
-        if let Some(r) = d.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
-            let row = crate::kinematics::name(M::CONSTRAINT_NAMES, r);
-            return Err(KinematicError::NonFinite { t: t.to_f64(), quantity: NonFiniteQuantity::Jacobian, row });
-        }
+        check_rows_finite::<T, M, NV, NC>(d, t)?;
         let tolerance = T::from_f64(self.options.rank_tolerance);
         let mut redundant = [false; NC];
         let split = orthogonalize(d, tolerance, basis, constraint_square, &mut redundant);
@@ -215,10 +213,6 @@ pub(crate) fn rank_revealing_step<T: Real, const NV: usize, const NC: usize>(
             *s += yj * bi;
         }
     }
-}
-
-fn dot<T: Real, const N: usize>(a: &[T; N], b: &[T; N]) -> T {
-    a.iter().zip(b.iter()).fold(T::ZERO, |s, (&x, &y)| s + x * y)
 }
 
 fn norm<T: Real, const N: usize>(a: &[T; N]) -> T {

@@ -68,11 +68,6 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV,
         &self.jacobian
     }
 
-    /// Whether N = NV + NC.
-    pub(crate) const fn sized_for_saddle() -> bool {
-        N == NV + NC
-    }
-
     /// A zeroed work space built directly on the heap: `Box::new(Workspace::new())` would
     /// build it on the stack first (in a debug build, or whenever the copy is not elided),
     /// which is what the heap is for avoiding.

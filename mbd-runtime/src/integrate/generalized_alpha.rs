@@ -120,7 +120,7 @@ where
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if !Workspace::<T, NV, NC, N>::sized_for_saddle() {
+        if N != NV + NC {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
         let o = self.options;
