@@ -157,10 +157,13 @@ fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
 fn free_four_bar_errors_fall_at_each_method_s_order() {
     let runs = common::free_four_bar::run(false).expect("all runs succeed");
     let of = |method: &str| runs.iter().filter(|r| r.method == method).collect::<Vec<_>>();
-    for pair in of("RK4 (h)").windows(2) {
+    // Only where the finer run's error stays above the floor of 1e-10 rad that the projection
+    // tolerance and the reference set: from 1e-8, a 16× fall still lands at 6e-10.
+    for pair in of("RK4 (h)").windows(2).filter(|pair| pair[0].error > 1e-8) {
         let ratio = pair[0].error / pair[1].error;
         assert!(ratio > 10.0, "RK4 error ratio {ratio}: {pair:?}");
     }
+    assert!(of("RK4 (h)").iter().filter(|r| r.error > 1e-8).count() >= 2, "two RK4 steps above the floor: {runs:?}");
     for pair in of("generalized-α (h)").windows(2) {
         let ratio = pair[0].error / pair[1].error;
         assert!(ratio > 2.5, "generalized-α error ratio {ratio}: {pair:?}");

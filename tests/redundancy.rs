@@ -174,10 +174,8 @@ fn third_crank_moves_as_one_degree_of_freedom() {
         q[3 * k..3 * k + 3].copy_from_slice(&[x + 0.5 * r * c0, 0.5 * r * s0, theta0]);
     }
     q[9..12].copy_from_slice(&[0.5 + r * c0, r * s0, 0.0]);
-    let options = SimulationOptions {
-        dynamics: DynamicsOptions { allow_redundant: true, ..DynamicsOptions::default() },
-        ..SimulationOptions::default()
-    };
+    // The defaults: no Baumgarte terms, projection after each step, dependent rows dropped.
+    let options = SimulationOptions::default();
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
     let mut k = 0;
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 12], &times, &options, |s| {
@@ -190,8 +188,9 @@ fn third_crank_moves_as_one_degree_of_freedom() {
         assert!((a - b).abs() < 1e-12 && (a - c).abs() < 1e-12, "t = {t}: cranks {a} {b} {c}");
         assert!(ThreeCranks::COUPLER.phi(q).abs() < 1e-9, "the coupler translates");
         // The rule for the reactions: the dropped row carries no load (here the same row the
-        // report names, the last one, `third: y`); the others carry all of it.
-        assert_eq!(s.point.lambda[11], 0.0, "t = {t}: λ = {:?}", s.point.lambda);
+        // report names, the last one, `third: y`; its pivot is rounding, weighted by < 1e-32);
+        // the others carry all of it (~40 N).
+        assert!(s.point.lambda[11].abs() < 1e-12, "t = {t}: λ = {:?}", s.point.lambda);
         k += 1;
     })
     .expect("the redundant row is dropped, not an error");

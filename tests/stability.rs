@@ -252,8 +252,10 @@ fn generalized_alpha_failures_say_what_they_are() {
     };
     let m = TwicePinned::default();
     let mut to = Point::zero();
+    // By default the repeated pin's rows are dropped (tests/forward.rs); asked to refuse them:
+    let strict = System { dynamics: DynamicsOptions { allow_redundant: false, ..DynamicsOptions::default() }, ..System::new(&m) };
     let err = TwicePinned::generalized_alpha(step)
-        .step(&System::new(&m), &mut TwicePinned::workspace(), &rest(m.initial_positions()), 1.0, &mut to)
+        .step(&strict, &mut TwicePinned::workspace(), &rest(m.initial_positions()), 1.0, &mut to)
         .unwrap_err();
     eprintln!("{err}");
     match err {
@@ -374,9 +376,13 @@ fn a_stiff_spring_is_stable_far_past_the_explicit_limit() {
     let q0 = m.initial_positions();
     let times: Vec<f64> = (1..=4000).map(|k| k as f64 * 5e-3).collect();
     let explicit = simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q0, &[0.0; 6], &times, &SimulationOptions::default(), |_| {});
+    // The default projection meets the blow-up first and names the row it cannot close.
     match explicit {
         Err(SimulationError::NonFinite { t, coordinate }) => eprintln!("RK4 at 1 ms: non-finite `{coordinate}` at t = {t} s"),
-        other => panic!("RK4 at 14× its stability limit should fail with a non-finite coordinate: {other:?}"),
+        Err(SimulationError::NotConverged { t, worst_row, residual, .. }) => {
+            eprintln!("RK4 at 1 ms: projection did not close `{worst_row}` ({residual:e}) at t = {t} s")
+        }
+        other => panic!("RK4 at 14× its stability limit should fail with a named coordinate or row: {other:?}"),
     }
     let mut alpha =
         StiffBob::generalized_alpha(GeneralizedAlphaOptions { step: 1e-2, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
@@ -416,9 +422,11 @@ mechanism! {
 }
 
 /// Rotation at 10³ rad/s: with nothing to slow it the rod turns at exactly 1000 rad/s, 159
-/// turns in 1 s. DOPRI5 at rtol 1e-10 keeps φ = ω t to 1e-7 rad, ω to 1e-9 relative, the pin
-/// to 1e-9 m and the pin force at the centripetal m ω² d = 5e5 N to 1e-9 relative (measured
-/// 8.8e-9 rad, 1.8e-11, 2.0e-10 m and 3.5e-11: the bounds leave a factor 5 to 50).
+/// turns in 1 s. DOPRI5 at rtol 1e-10 keeps φ = ω t to 1e-6 rad, ω to 1e-9 relative, the pin
+/// to 1e-9 m and the pin force at the centripetal m ω² d = 5e5 N to 1e-8 relative (measured
+/// 2.7e-7 rad, 5.3e-10, 1.7e-11 m and 1.1e-9 with the default projection, which moves φ by up
+/// to its 1e-10 m tolerance / 0.5 m at each of the run's 19 424 steps; with Baumgarte alone they had
+/// been 8.8e-9 rad, 1.8e-11, 2.0e-10 m and 3.5e-11).
 #[test]
 fn a_rod_spinning_at_1000_rad_per_s_keeps_its_speed_and_pin() {
     let m = Spinner::default();
@@ -442,7 +450,7 @@ fn a_rod_spinning_at_1000_rad_per_s_keeps_its_speed_and_pin() {
     })
     .expect("the spinning rod");
     eprintln!("1000 rad/s: φ − ωt {:.1e} rad, ω {:.1e} rel, pin {:.1e} m, pin force {:.1e} rel", worst[0], worst[1], worst[2], worst[3]);
-    assert!(worst[0] < 1e-7 && worst[1] < 1e-9, "φ or ω drifted: {worst:?}");
+    assert!(worst[0] < 1e-6 && worst[1] < 1e-9, "φ or ω drifted: {worst:?}");
     assert!(worst[2] < 1e-9, "the pin opened by {} m", worst[2]);
-    assert!(worst[3] < 1e-9, "pin force off by {} relative", worst[3]);
+    assert!(worst[3] < 1e-8, "pin force off by {} relative", worst[3]);
 }

@@ -12,8 +12,9 @@
 //!   non-zeros `jv` (in `JACOBIAN_PATTERN` order), M⁻¹'s diagonal `minv` and, with products of
 //!   inertia, its off-diagonal non-zeros `minv_off`, then S = L D Lᵀ. A pivot
 //!   `d_k ≤ tol · S_kk` means row k is (to `tol`) a combination of the rows eliminated before it:
-//!   the factorization fails naming that row, or, with `allow_redundant`, drops it (its
-//!   multiplier is then 0, a valid choice for a consistent redundant constraint).
+//!   the factorization fails naming that row, or, with `allow_redundant`, drops it smoothly:
+//!   1/d_k becomes w/d_k with w = r⁴/(r⁴ + τ⁴), r = d_k/S_kk (its multiplier fades to 0, a
+//!   valid choice for a consistent redundant constraint; a regular pivot changes by (τ/r)⁴).
 //! * `schur_solve(l, dinv, b)`: b ← S⁻¹ b, in place, rows in Φ's order.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -156,12 +157,18 @@ impl Schur {
             stmts.push(quote! {
                 let skk: #real = #skk;
                 let dk: #real = skk #(#sub)*;
-                if dk > tol * skk {
+                if dk > tol * skk && !allow_redundant {
                     d[#kl] = dk;
                     dinv[#kl] = <#real as ::mbd::Real>::ONE / dk;
-                } else if allow_redundant {
-                    d[#kl] = #zero;
-                    dinv[#kl] = #zero;
+                } else if allow_redundant && skk > #zero && dk.is_finite() {
+                    // With r = d/S_kk: 1/d̂ = w/d, w = r⁴/(r⁴ + τ⁴) — the exact pivot where
+                    // r ≫ τ (relative change (τ/r)⁴), the row dropped (1/d̂ → 0) as r → 0,
+                    // smooth in between.
+                    let r = if dk > #zero { dk / skk } else { #zero };
+                    let (r2, t2) = (r * r, tol * tol);
+                    let den = skk * (r2 * r2 + t2 * t2);
+                    dinv[#kl] = r2 * r / den;
+                    d[#kl] = if r > #zero { den / (r2 * r) } else { #zero };
                 } else {
                     return ::core::result::Result::Err(#row_kl);
                 }

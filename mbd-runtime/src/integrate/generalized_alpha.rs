@@ -25,15 +25,19 @@ pub struct GeneralizedAlphaOptions<T> {
     /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction β'h²‖Δv̇‖∞ (m, rad).
     /// Default 1e-10.
     pub tolerance: T,
-    /// Newton tolerance on the multipliers, relative: ‖Δλ‖∞ ≤ `lambda_tolerance` · (the force
-    /// scale max(‖λ‖∞, ‖h‖∞, ‖M v̇‖∞), N or N·m). Needed on its own: λ reaches the positions
-    /// only through M⁻¹Dᵀ and β'h², so at small steps a λ wrong by percents moves q by less
-    /// than `tolerance`. Default 1e-6: reactions to six digits; 1e-8 costs a third Newton
+    /// Newton tolerance on the multipliers, relative, measured by the constraint forces they
+    /// exert: ‖DᵀΔλ‖∞ ≤ `lambda_tolerance` · (the force scale max(‖Dᵀλ‖∞, ‖h‖∞, ‖M v̇‖∞), N
+    /// or N·m). Needed on its own: λ reaches the positions only through M⁻¹Dᵀ and β'h², so at
+    /// small steps a λ wrong by percents moves q by less than `tolerance`. (Dᵀλ rather than λ:
+    /// near a singular position the part of λ that exerts no force is rounding.) Default 1e-6: reactions to six digits; 1e-8 costs a third Newton
     /// iteration in most steps (2.9 against 2.0 on average on a 16-link chain at h = 1 ms).
     pub lambda_tolerance: T,
     /// Newton iterations per step before failing. Default 12.
     pub max_iterations: u32,
-    /// Relative pivot tolerance of the LU of the iteration matrix. Default 1e-13.
+    /// Relative pivot tolerance of the LU of the iteration matrix. Default 1e-13. A multiplier's
+    /// column without a pivot is a dependent constraint row: with
+    /// [`DynamicsOptions::allow_redundant`](crate::DynamicsOptions::allow_redundant) (the
+    /// default) its Δλ is set to 0 for the rest of the step, otherwise the step fails naming it.
     pub pivot_tolerance: T,
     /// Project each step's velocities onto D v = ν in the metric of M
     /// ([`ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
@@ -158,6 +162,8 @@ where
         let mut inertia = [T::ZERO; NV];
         let mut rhs = [T::ZERO; N];
         let mut iteration = 0;
+        let mut dropped = [false; NC];
+        let mut last_change = [T::ZERO; 2];
         // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
         let (mut base_vd, mut base_lambda) = (vd, lambda);
@@ -237,19 +243,47 @@ where
                 }
             }
             mech.add_mass_matrix(&q, one, hq);
-            for i in 0..NV {
-                a[i][..NV].copy_from_slice(&hq[i]);
+            // A multiplier whose column has no pivot belongs to a row that depends on the others
+            // (a singular position, a redundant constraint): with `allow_redundant` its row and
+            // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
+            // load, as forward dynamics drops such a row.
+            let permutation = loop {
+                for i in 0..NV {
+                    a[i][..NV].copy_from_slice(&hq[i]);
+                    for r in 0..NC {
+                        a[i][NV + r] = if dropped[r] { T::ZERO } else { -d[r][i] };
+                    }
+                }
                 for r in 0..NC {
-                    a[i][NV + r] = -d[r][i];
+                    if dropped[r] {
+                        a[NV + r] = [T::ZERO; N];
+                    } else {
+                        a[NV + r][..NV].copy_from_slice(&d[r]);
+                        for k in 0..NC {
+                            a[NV + r][NV + k] = T::ZERO;
+                        }
+                    }
+                    a[NV + r][NV + r] = if dropped[r] { one } else { T::ZERO };
                 }
-            }
+                match lu_factor(a, o.pivot_tolerance) {
+                    Ok(permutation) => break permutation,
+                    Err(LinalgError::Singular { column, .. })
+                        if column >= NV && system.dynamics.allow_redundant && !dropped[column - NV] =>
+                    {
+                        dropped[column - NV] = true;
+                    }
+                    Err(e) => return Err(factorization_error::<M, T>(e, t1, NV)),
+                }
+            };
+            let mut near_singular = false;
             for r in 0..NC {
-                a[NV + r][..NV].copy_from_slice(&d[r]);
-                for k in 0..NC {
-                    a[NV + r][NV + k] = T::ZERO;
+                if dropped[r] {
+                    rhs[NV + r] = T::ZERO;
+                } else {
+                    let scale = d[r].iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+                    near_singular |= a[NV + r][NV + r].abs() < T::from_f64(1e-3) * scale;
                 }
             }
-            let permutation = lu_factor(a, o.pivot_tolerance).map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
             lu_solve_in_place(a, &permutation, &mut rhs);
             if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
                 return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
@@ -262,16 +296,37 @@ where
                 correction = correction.max((rhs[i] * beta_p * h * h).abs());
                 force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
             }
-            let mut lambda_change = T::ZERO;
             for r in 0..NC {
                 lambda[r] += rhs[NV + r];
-                lambda_change = lambda_change.max(rhs[NV + r].abs());
-                force_scale = force_scale.max(lambda[r].abs());
+            }
+            // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
+            // near a singular position the part of λ along D's (near-)null space is not
+            // determined — rounding moves it by ε/σ² — and exerts no force.
+            let mut lambda_change = T::ZERO;
+            for i in 0..NV {
+                let (mut change, mut total) = (T::ZERO, T::ZERO);
+                for r in 0..NC {
+                    change += d[r][i] * rhs[NV + r];
+                    total += d[r][i] * lambda[r];
+                }
+                lambda_change = lambda_change.max(change.abs());
+                force_scale = force_scale.max(total.abs());
             }
             iteration += 1;
-            if correction <= o.tolerance && worst.0 <= o.tolerance && lambda_change <= o.lambda_tolerance * force_scale {
+            // Converged when Φ, the position correction and the force change are all below
+            // tolerance. Near a singular position (a multiplier's pivot below 1e-3 of its
+            // column), with Φ met, a correction or force change that stopped shrinking (not
+            // smaller than the last iteration's) counts as met too: it is the rounding of an
+            // ill-conditioned solve (ε/σ in λ and v̇), which no further iteration removes.
+            // Elsewhere the tests stay strict: Coulomb friction's loads converge linearly and
+            // not always monotonically.
+            let stalled = |now: T, before: T| near_singular && iteration > 1 && !(now < before);
+            let correction_met = correction <= o.tolerance || stalled(correction, last_change[0]);
+            let force_met = lambda_change <= o.lambda_tolerance * force_scale || stalled(lambda_change, last_change[1]);
+            if worst.0 <= o.tolerance && correction_met && force_met {
                 break;
             }
+            last_change = [correction, lambda_change];
         }
         // The state of the converged iterate (the last correction is below tolerance).
         state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);

@@ -98,9 +98,15 @@ pub struct Statistics {
 /// Options of [`simulate`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimulationOptions<T> {
-    /// Baumgarte α, β and the pivot rule of the forward-dynamics solve.
+    /// Baumgarte α, β and the pivot rule of the forward-dynamics solve. Default
+    /// [`DynamicsOptions::without_stabilization`]: the projection after each step holds the
+    /// constraints, and Baumgarte's terms would only make the equations stiffer (DOPRI5 at rtol
+    /// 1e-8 took 40 % more steps with them for a 20× larger error on a parallelogram chain).
     pub dynamics: DynamicsOptions<T>,
-    /// Drift correction after each step. Default none.
+    /// Drift correction after each step. Default [`Correction::projection`]: the constraints
+    /// to 1e-10 at every step, which also keeps a mechanism on its assembly branch where two
+    /// branches cross (a parallelogram lying flat) — Baumgarte stabilization alone drifts onto
+    /// the other branch there.
     pub correction: Correction<T>,
     /// Accumulate work for the energy balance. Default off.
     pub track_work: bool,
@@ -110,7 +116,12 @@ pub struct SimulationOptions<T> {
 
 impl<T: Real> Default for SimulationOptions<T> {
     fn default() -> Self {
-        Self { dynamics: DynamicsOptions::default(), correction: Correction::None, track_work: false, max_steps: 100_000_000 }
+        Self {
+            dynamics: DynamicsOptions::without_stabilization(),
+            correction: Correction::projection(),
+            track_work: false,
+            max_steps: 100_000_000,
+        }
     }
 }
 
