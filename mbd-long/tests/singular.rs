@@ -79,23 +79,33 @@ where
     let mut kept = Kept { branch: 0.0, phi: 0.0, energy: 0.0, rise: f64::NEG_INFINITY, error: 0.0, steps: 0 };
     let mut e0 = None;
     let mut last = [0.0; NQ];
-    let stats = simulate(m, &mut Workspace::<f64, NV, NC, N>::boxed(), integrator, 0.0, &m.initial_positions(), &v0, &times, &SimulationOptions::default(), |s| {
-        let q = &s.point.q;
-        let mut phi = [0.0; NC];
-        m.constraints(q, s.point.t, &mut phi);
-        for k in 1..=n {
-            kept.branch = kept.branch.max(wrap(q[3 * k + 2] - q[2]).abs());
-        }
-        for k in 0..n {
-            kept.branch = kept.branch.max(wrap(q[3 * (n + 1 + k) + 2]).abs());
-        }
-        kept.phi = phi.iter().fold(kept.phi, |a, b| a.max(b.abs()));
-        let e = s.energy.kinetic + s.energy.potential;
-        let e0 = *e0.get_or_insert(e);
-        kept.energy = kept.energy.max((e - e0).abs());
-        kept.rise = kept.rise.max(e - e0);
-        last = *q;
-    })
+    let stats = simulate(
+        m,
+        &mut Workspace::<f64, NV, NC, N>::boxed(),
+        integrator,
+        0.0,
+        &m.initial_positions(),
+        &v0,
+        &times,
+        &SimulationOptions::default(),
+        |s| {
+            let q = &s.point.q;
+            let mut phi = [0.0; NC];
+            m.constraints(q, s.point.t, &mut phi);
+            for k in 1..=n {
+                kept.branch = kept.branch.max(wrap(q[3 * k + 2] - q[2]).abs());
+            }
+            for k in 0..n {
+                kept.branch = kept.branch.max(wrap(q[3 * (n + 1 + k) + 2]).abs());
+            }
+            kept.phi = phi.iter().fold(kept.phi, |a, b| a.max(b.abs()));
+            let e = s.energy.kinetic + s.energy.potential;
+            let e0 = *e0.get_or_insert(e);
+            kept.energy = kept.energy.max((e - e0).abs());
+            kept.rise = kept.rise.max(e - e0);
+            last = *q;
+        },
+    )
     .unwrap_or_else(|e| panic!("{n} loops: {e}"));
     kept.error = wrap(last[2] - theta).abs();
     kept.steps = stats.steps;
