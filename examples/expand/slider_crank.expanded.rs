@@ -564,9 +564,10 @@ impl SliderCrank {
         dinv: &mut [f64; 9],
     ) -> ::core::result::Result<(), usize> {
         let mut d = [0f64; 9];
+        let exact: f64 = if allow_redundant { 1e4 } else { 1.0 };
         let skk: f64 = (jv[21] * jv[21] * minv[8]);
         let dk: f64 = skk;
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[0] = dk;
             dinv[0] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -582,7 +583,7 @@ impl SliderCrank {
         let skk: f64 = (jv[18] * jv[18] * minv[6] + jv[19] * jv[19] * minv[7]
             + jv[20] * jv[20] * minv[8]);
         let dk: f64 = skk - l[0] * l[0] * d[0];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[1] = dk;
             dinv[1] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -599,7 +600,7 @@ impl SliderCrank {
         let skk: f64 = (jv[12] * jv[12] * minv[3] + jv[13] * jv[13] * minv[5]
             + jv[14] * jv[14] * minv[6]);
         let dk: f64 = skk - l[1] * l[1] * d[1];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[2] = dk;
             dinv[2] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -617,7 +618,7 @@ impl SliderCrank {
         let skk: f64 = (jv[15] * jv[15] * minv[4] + jv[16] * jv[16] * minv[5]
             + jv[17] * jv[17] * minv[7]);
         let dk: f64 = skk - l[2] * l[2] * d[1] - l[3] * l[3] * d[2];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[3] = dk;
             dinv[3] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -634,7 +635,7 @@ impl SliderCrank {
             - l[5] * l[3] * d[2]) * dinv[3];
         let skk: f64 = (jv[0] * jv[0] * minv[0] + jv[1] * jv[1] * minv[2]);
         let dk: f64 = skk;
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[4] = dk;
             dinv[4] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -652,7 +653,7 @@ impl SliderCrank {
         l[11] = ((jv[22] * jv[1] * minv[2])) * dinv[4];
         let skk: f64 = (jv[2] * jv[2] * minv[1] + jv[3] * jv[3] * minv[2]);
         let dk: f64 = skk - l[8] * l[8] * d[4];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[5] = dk;
             dinv[5] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -672,7 +673,7 @@ impl SliderCrank {
             + jv[6] * jv[6] * minv[3] + jv[7] * jv[7] * minv[5]);
         let dk: f64 = skk - l[4] * l[4] * d[2] - l[6] * l[6] * d[3] - l[9] * l[9] * d[4]
             - l[12] * l[12] * d[5];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[6] = dk;
             dinv[6] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -693,7 +694,7 @@ impl SliderCrank {
             + jv[10] * jv[10] * minv[4] + jv[11] * jv[11] * minv[5]);
         let dk: f64 = skk - l[5] * l[5] * d[2] - l[7] * l[7] * d[3]
             - l[10] * l[10] * d[4] - l[13] * l[13] * d[5] - l[15] * l[15] * d[6];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[7] = dk;
             dinv[7] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
@@ -710,7 +711,7 @@ impl SliderCrank {
         let skk: f64 = (jv[22] * jv[22] * minv[2]);
         let dk: f64 = skk - l[11] * l[11] * d[4] - l[14] * l[14] * d[5]
             - l[16] * l[16] * d[6] - l[17] * l[17] * d[7];
-        if dk > tol * skk && !allow_redundant {
+        if dk > exact * tol * skk {
             d[8] = dk;
             dinv[8] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {

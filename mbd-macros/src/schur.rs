@@ -157,7 +157,7 @@ impl Schur {
             stmts.push(quote! {
                 let skk: #real = #skk;
                 let dk: #real = skk #(#sub)*;
-                if dk > tol * skk && !allow_redundant {
+                if dk > exact * tol * skk {
                     d[#kl] = dk;
                     dinv[#kl] = <#real as ::mbd::Real>::ONE / dk;
                 } else if allow_redundant && skk > #zero && dk.is_finite() {
@@ -191,6 +191,9 @@ impl Schur {
         let nc = lit(self.nc);
         quote! {
             let mut d = [#zero; #nc];
+            // Pivots above this · τ S_kk are taken exactly (one division): with
+            // `allow_redundant` the smooth weight below is 1 there to rounding ((τ/r)⁴ < 1e-16).
+            let exact: #real = if allow_redundant { 1e4 } else { 1.0 };
             #(#stmts)*
             ::core::result::Result::Ok(())
         }
