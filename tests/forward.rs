@@ -236,8 +236,8 @@ fn redundant_constraints_are_named_or_dropped() {
     let j_o = 0.02 + 0.25 * 0.25;
     assert!((qdd[2] - (-9.81 * 0.25 / j_o)).abs() < 1e-12, "θ̈ = {}", qdd[2]);
     // Each direction's load is carried by one of the two joints (which one is the ordering's
-    // choice); the dropped row's pivot is 0 or rounding (r ≤ 1e-16 ≪ τ = 1e-8, weight
-    // r⁴/(r⁴ + τ⁴) < 1e-32), so its multiplier is zero to rounding of the ~10 N load.
+    // choice); the dropped row's pivot is 0 or rounding (d ≤ 1e-16 S_kk ≪ τ S_kk = 1e-8 S_kk:
+    // weight 1/(1 + ρ⁸) < 1e-64), so its multiplier is zero to rounding of the ~10 N load.
     let tiny = |l: f64| l.abs() < 1e-12;
     assert!(tiny(lambda[0]) || tiny(lambda[2]), "λ = {lambda:?}");
     assert!(tiny(lambda[1]) || tiny(lambda[3]), "λ = {lambda:?}");

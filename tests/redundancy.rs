@@ -188,7 +188,7 @@ fn third_crank_moves_as_one_degree_of_freedom() {
         assert!((a - b).abs() < 1e-12 && (a - c).abs() < 1e-12, "t = {t}: cranks {a} {b} {c}");
         assert!(ThreeCranks::COUPLER.phi(q).abs() < 1e-9, "the coupler translates");
         // The rule for the reactions: the dropped row carries no load (here the same row the
-        // report names, the last one, `third: y`; its pivot is rounding, weighted by < 1e-32);
+        // report names, the last one, `third: y`; its pivot is rounding, weighted by < 1e-64);
         // the others carry all of it (~40 N).
         assert!(s.point.lambda[11].abs() < 1e-12, "t = {t}: λ = {:?}", s.point.lambda);
         k += 1;

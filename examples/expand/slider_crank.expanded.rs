@@ -410,6 +410,7 @@ impl ::mbd::Mechanism for SliderCrank {
             body_j: ::core::option::Option::None,
         },
     ];
+    const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[];
     const EFFECTS: &'static [&'static str] = &[];
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }
@@ -564,18 +565,24 @@ impl SliderCrank {
         dinv: &mut [f64; 9],
     ) -> ::core::result::Result<(), usize> {
         let mut d = [0f64; 9];
-        let exact: f64 = if allow_redundant { 1e4 } else { 1.0 };
+        let exact: f64 = if allow_redundant { 1e2 } else { 1.0 };
         let skk: f64 = (jv[21] * jv[21] * minv[8]);
         let dk: f64 = skk;
         if dk > exact * tol * skk {
             d[0] = dk;
             dinv[0] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[0] = r2 * r / den;
-            d[0] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[0] = w / dk;
+                d[0] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[0] = 0f64;
+                d[0] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(7);
         }
@@ -587,11 +594,17 @@ impl SliderCrank {
             d[1] = dk;
             dinv[1] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[1] = r2 * r / den;
-            d[1] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[1] = w / dk;
+                d[1] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[1] = 0f64;
+                d[1] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(6);
         }
@@ -604,11 +617,17 @@ impl SliderCrank {
             d[2] = dk;
             dinv[2] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[2] = r2 * r / den;
-            d[2] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[2] = w / dk;
+                d[2] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[2] = 0f64;
+                d[2] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(4);
         }
@@ -622,11 +641,17 @@ impl SliderCrank {
             d[3] = dk;
             dinv[3] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[3] = r2 * r / den;
-            d[3] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[3] = w / dk;
+                d[3] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[3] = 0f64;
+                d[3] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(5);
         }
@@ -639,11 +664,17 @@ impl SliderCrank {
             d[4] = dk;
             dinv[4] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[4] = r2 * r / den;
-            d[4] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[4] = w / dk;
+                d[4] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[4] = 0f64;
+                d[4] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(0);
         }
@@ -657,11 +688,17 @@ impl SliderCrank {
             d[5] = dk;
             dinv[5] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[5] = r2 * r / den;
-            d[5] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[5] = w / dk;
+                d[5] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[5] = 0f64;
+                d[5] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(1);
         }
@@ -677,11 +714,17 @@ impl SliderCrank {
             d[6] = dk;
             dinv[6] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[6] = r2 * r / den;
-            d[6] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[6] = w / dk;
+                d[6] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[6] = 0f64;
+                d[6] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(2);
         }
@@ -698,11 +741,17 @@ impl SliderCrank {
             d[7] = dk;
             dinv[7] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[7] = r2 * r / den;
-            d[7] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[7] = w / dk;
+                d[7] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[7] = 0f64;
+                d[7] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(3);
         }
@@ -715,11 +764,17 @@ impl SliderCrank {
             d[8] = dk;
             dinv[8] = <f64 as ::mbd::Real>::ONE / dk;
         } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            let r = if dk > 0f64 { dk / skk } else { 0f64 };
-            let (r2, t2) = (r * r, tol * tol);
-            let den = skk * (r2 * r2 + t2 * t2);
-            dinv[8] = r2 * r / den;
-            d[8] = if r > 0f64 { den / (r2 * r) } else { 0f64 };
+            if dk > 0f64 {
+                let rho = tol * skk / dk;
+                let rho4 = (rho * rho) * (rho * rho);
+                let w = <f64 as ::mbd::Real>::ONE
+                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
+                dinv[8] = w / dk;
+                d[8] = if w > 0f64 { dk / w } else { 0f64 };
+            } else {
+                dinv[8] = 0f64;
+                d[8] = 0f64;
+            }
         } else {
             return ::core::result::Result::Err(8);
         }

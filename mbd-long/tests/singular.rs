@@ -122,7 +122,7 @@ where
     let check = |label: String, kept: Kept, error_bound: f64, energy_bound: f64| {
         eprintln!("{n} loops, {label}: {kept:?}");
         // The branch: the flat position is where the anti-parallelogram branch crosses; off
-        // the branch a crank differs by O(1) rad. Measured ≤ 2.4e-8 rad.
+        // the branch a crank differs by O(1) rad. Measured ≤ 4.0e-10 rad.
         assert!(kept.branch < 1e-6, "{n} loops, {label}: left the branch by {} rad", kept.branch);
         // Φ at the outputs, between projected step ends: the dense output's error (measured
         // ≤ 8.7e-7 m at rtol 1e-6, ≤ 1.6e-11 m elsewhere).
@@ -130,8 +130,8 @@ where
         assert!(kept.error < error_bound, "{n} loops, {label}: θ(20 s) off by {} rad (bound {error_bound})", kept.error);
         assert!(kept.energy < energy_bound, "{n} loops, {label}: |ΔE| = {} J (bound {energy_bound})", kept.energy);
     };
-    // DOPRI5: θ and E to 2e3·rtol + 1e-7 (measured on 4 loops: 3.0e-3 rad and 1.7e-3 J at
-    // rtol 1e-6, 4.7e-6 and 6.0e-6 at 1e-8, 5.6e-8 and 4.8e-8 at 1e-10, 2.1e-8 and 7.1e-9 at
+    // DOPRI5: θ and E to 2e3·rtol + 1e-7 (measured on 4 loops: 3.0e-3 rad and 1.5e-3 J at
+    // rtol 1e-6, 4.4e-6 and 6.2e-6 at 1e-8, 4.3e-8 and 4.5e-8 at 1e-10, 2.2e-8 and 8.0e-9 at
     // 1e-12, where the passages' disturbance is the floor); at rtol 1e-6 the phase error of
     // the loose tolerance grows to 3e-3 rad in 20 s: bounded at 1e-2.
     for rtol in [1e-6, 1e-8, 1e-10, 1e-12] {
@@ -139,8 +139,8 @@ where
         let bound = (2e3 * rtol + 1e-7).max(if rtol >= 1e-6 { 1e-2 } else { 0.0 });
         check(format!("DOPRI5 rtol {rtol:e}"), run::<M, _, NQ, NV, NC, 0>(m, n, &mut dopri, theta), bound, 2e3 * rtol + 1e-7);
     }
-    // RK4: fourth order, 4.2e-9 rad at 1 ms and 6.9e-7 rad at 0.1 ms (ten times the steps near
-    // each flat position, each disturbed by the dropped row), energy 4.7e-9 and 2.4e-7 J.
+    // RK4: fourth order, 3.7e-9 rad at 1 ms and 6.3e-7 rad at 0.1 ms (ten times the steps near
+    // each flat position, each disturbed by the dropped row), energy 4.7e-9 and 2.2e-7 J.
     for h in [1e-3, 1e-4] {
         check(format!("RK4 h {h:e}"), run::<M, _, NQ, NV, NC, 0>(m, n, &mut Rk4::new(h), theta), 1e-5, 1e-6);
     }

@@ -217,6 +217,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             effects.push(element.kind.effect());
         }
     }
+    let force_elements = f.force_velocities.iter().map(|(name, velocities)| {
+        let velocities = velocities.iter().map(|&i| i as u16);
+        quote!(::mbd::ForceInfo { name: #name, velocities: &[#(#velocities),*] })
+    });
     let (v0_body, _) = e.body(&vector_outputs("v", &f.qd0));
 
     let op_counts = [
@@ -369,6 +373,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const PHI_T_IS_ZERO: bool = #phi_t_zero;
             const OP_COUNTS: &'static [::mbd::OpCount] = &[#(#op_counts),*];
             const JOINTS: &'static [::mbd::JointInfo] = &[#(#joints),*];
+            const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[#(#force_elements),*];
             const EFFECTS: &'static [&'static str] = &[#(#effects),*];
             const MODEL_JSON: &'static str = #json;
         }

@@ -46,6 +46,9 @@ pub struct Formulation {
     pub mass_inverse: Vec<(usize, usize, Id)>,
     /// h(q, q̇, t), one node per coordinate.
     pub h: Vec<Id>,
+    /// Each force element (gravity first, as `"gravity"`) with the velocities its generalized
+    /// force (or friction force) structurally reaches, in declaration order.
+    pub force_velocities: Vec<(String, Vec<usize>)>,
     /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
     pub h_q: Vec<(usize, usize, Id)>,
     pub h_qd: Vec<(usize, usize, Id)>,
@@ -149,6 +152,22 @@ pub fn formulate(model: &Model) -> Formulation {
     for element in &model.forces {
         element.kind.apply(&mut b, &mut out);
     }
+    // Which velocities each element's generalized force reaches (structurally), for naming the
+    // element behind a NaN force at run time (`Mechanism::FORCE_ELEMENTS`). Applying an element
+    // again only revisits nodes the graph already holds.
+    let mut force_velocities = Vec::new();
+    let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
+        let mut alone = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero };
+        apply(b, &mut alone);
+        let velocities: Vec<usize> = (0..nv).filter(|&i| !b.g.is_zero(alone.h[i]) || !b.g.is_zero(alone.friction[i])).collect();
+        force_velocities.push((name.to_string(), velocities));
+    };
+    if let Some(g) = &model.gravity {
+        reach(&mut b, "gravity", &|b, out| gravity::apply(b, g, out));
+    }
+    for element in &model.forces {
+        reach(&mut b, &element.name, &|b, out| element.kind.apply(b, out));
+    }
     let Generalized { h, friction, potential } = out;
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
@@ -239,6 +258,7 @@ pub fn formulate(model: &Model) -> Formulation {
         mass_coupling,
         mass_inverse,
         h,
+        force_velocities,
         h_q,
         h_qd,
         potential,

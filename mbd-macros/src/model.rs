@@ -621,6 +621,7 @@ const GENERATED_ITEMS: &[&str] = &[
     "OP_COUNTS",
     "JOINTS",
     "EFFECTS",
+    "FORCE_ELEMENTS",
     "MODEL_JSON",
     "params",
     "from_params",

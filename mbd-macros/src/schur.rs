@@ -13,8 +13,9 @@
 //!   inertia, its off-diagonal non-zeros `minv_off`, then S = L D Lᵀ. A pivot
 //!   `d_k ≤ tol · S_kk` means row k is (to `tol`) a combination of the rows eliminated before it:
 //!   the factorization fails naming that row, or, with `allow_redundant`, drops it smoothly:
-//!   1/d_k becomes w/d_k with w = r⁴/(r⁴ + τ⁴), r = d_k/S_kk (its multiplier fades to 0, a
-//!   valid choice for a consistent redundant constraint; a regular pivot changes by (τ/r)⁴).
+//!   1/d_k becomes w/d_k with w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k (its multiplier fades to 0, a
+//!   valid choice for a consistent redundant constraint; a regular pivot changes by ρ⁸, and not
+//!   at all where ρ < 1e-2).
 //! * `schur_solve(l, dinv, b)`: b ← S⁻¹ b, in place, rows in Φ's order.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -161,14 +162,19 @@ impl Schur {
                     d[#kl] = dk;
                     dinv[#kl] = <#real as ::mbd::Real>::ONE / dk;
                 } else if allow_redundant && skk > #zero && dk.is_finite() {
-                    // With r = d/S_kk: 1/d̂ = w/d, w = r⁴/(r⁴ + τ⁴) — the exact pivot where
-                    // r ≫ τ (relative change (τ/r)⁴), the row dropped (1/d̂ → 0) as r → 0,
-                    // smooth in between.
-                    let r = if dk > #zero { dk / skk } else { #zero };
-                    let (r2, t2) = (r * r, tol * tol);
-                    let den = skk * (r2 * r2 + t2 * t2);
-                    dinv[#kl] = r2 * r / den;
-                    d[#kl] = if r > #zero { den / (r2 * r) } else { #zero };
+                    // 1/d̂ = w/d with w = 1/(1 + ρ⁸), ρ = τ S_kk/d: the exact pivot where
+                    // ρ ≪ 1 (relative change ρ⁸), the row dropped (w → 0) as d → 0, smooth in
+                    // between; ρ⁸ may overflow to ∞ (w = 0), never to NaN.
+                    if dk > #zero {
+                        let rho = tol * skk / dk;
+                        let rho4 = (rho * rho) * (rho * rho);
+                        let w = <#real as ::mbd::Real>::ONE / (<#real as ::mbd::Real>::ONE + rho4 * rho4);
+                        dinv[#kl] = w / dk;
+                        d[#kl] = if w > #zero { dk / w } else { #zero };
+                    } else {
+                        dinv[#kl] = #zero;
+                        d[#kl] = #zero;
+                    }
                 } else {
                     return ::core::result::Result::Err(#row_kl);
                 }
@@ -192,8 +198,8 @@ impl Schur {
         quote! {
             let mut d = [#zero; #nc];
             // Pivots above this · τ S_kk are taken exactly (one division): with
-            // `allow_redundant` the smooth weight below is 1 there to rounding ((τ/r)⁴ < 1e-16).
-            let exact: #real = if allow_redundant { 1e4 } else { 1.0 };
+            // `allow_redundant` the smooth weight below is 1 there to rounding (ρ⁸ < 1e-16).
+            let exact: #real = if allow_redundant { 1e2 } else { 1.0 };
             #(#stmts)*
             ::core::result::Result::Ok(())
         }

@@ -20,12 +20,12 @@ use crate::{Dynamics, Mechanism, Real};
 /// damped oscillator with a time constant of 0.2 s. Zero turns stabilization off.
 pub const DEFAULT_BAUMGARTE: f64 = 5.0;
 /// Default relative pivot tolerance τ of the LDLᵀ of S. With [`DynamicsOptions::allow_redundant`]
-/// (the default) each 1/d_k becomes w/d_k with w = r⁴/(r⁴ + τ⁴), r = d_k/S_kk: a row within
+/// (the default) each 1/d_k becomes w/d_k with w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k: a row within
 /// about √τ = 1e-4 rad of the span of the rows before it (a singular position, a redundant
-/// constraint) is dropped smoothly, and every other pivot changes by (τ/r)⁴, 1e-16 relative at
-/// r = 1e-4. Measured on parallelogram chains passing their flat positions: 1e-8 held
-/// DOPRI5 at rtol 1e-12 to 4e-10 rad of the exact motion over 20 s, where 1e-10 held it to
-/// 5e-8 and 1e-6 to 2e-9 (`tests/singular.rs`).
+/// constraint) is dropped smoothly; a pivot 100 τ S_kk or more is exact, and one at 20 τ S_kk
+/// (a row at 4.5e-4 rad, met in the spatial oracle's mechanisms) changes by 4e-11. Measured on
+/// parallelogram chains passing their flat positions (`mbd-long/tests/singular.rs`): τ = 1e-8
+/// held DOPRI5 at rtol 1e-12 to 1e-8 rad of the exact motion over 20 s, τ = 1e-10 to 4e-7.
 pub const DEFAULT_DYNAMICS_PIVOT_TOLERANCE: f64 = 1e-8;
 
 /// Options of one forward-dynamics solve.
@@ -42,8 +42,8 @@ pub struct DynamicsOptions<T> {
     /// What to do with a dependent constraint row — at a singular position (a four-bar lying
     /// flat, a slider-crank at a dead centre) or a redundant constraint (a parallelogram's
     /// third crank). `true` (default): drop it smoothly — 1/d_k becomes w/d_k with
-    /// w = r⁴/(r⁴ + τ⁴), r = d_k/S_kk, so its multiplier fades to 0 as the row becomes
-    /// dependent (r → 0) and the other
+    /// w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k, so its multiplier fades to 0 as the row becomes
+    /// dependent (d_k → 0) and the other
     /// rows carry its load: the right motion where the constraints are consistent, with
     /// reactions that are one of many valid sets. `false`: fail with
     /// [`DynamicsError::DependentConstraint`] where d_k ≤ τ S_kk, and use the exact pivots
@@ -110,12 +110,26 @@ pub enum DynamicsError {
         /// The last change of max |λ|.
         change: f64,
     },
-    /// The solve met a NaN or an infinity (in q, v, t or an evaluated force).
+    /// The solve met a NaN or an infinity (in q, v, t, a constraint's γ or the inertia terms).
     NonFinite {
         /// Time of the solve (s).
         t: f64,
-        /// The constraint row where it surfaced.
+        /// The constraint row, or the velocity, where it surfaced.
         row: &'static str,
+    },
+    /// A force element's generalized force is NaN or infinite at a finite state (a law that
+    /// divides by a length that reached 0, the square root of a negative number, ...).
+    NonFiniteForce {
+        /// Time of the evaluation (s).
+        t: f64,
+        /// The first force element (in declaration order, gravity first) whose generalized
+        /// force reaches that velocity, from [`Mechanism::FORCE_ELEMENTS`].
+        element: &'static str,
+        /// How many other elements reach it too (0: `element` is the one).
+        others: u16,
+        /// The velocity whose generalized force is not finite, from
+        /// [`Mechanism::VELOCITY_NAMES`].
+        velocity: &'static str,
     },
 }
 
@@ -143,6 +157,7 @@ impl DynamicsError {
         match *self {
             DynamicsError::DependentConstraint { t, .. }
             | DynamicsError::NonFinite { t, .. }
+            | DynamicsError::NonFiniteForce { t, .. }
             | DynamicsError::FrictionNotConverged { t, .. } => Some(t),
             DynamicsError::NonPositiveMass { .. } => None,
         }
@@ -165,11 +180,80 @@ impl fmt::Display for DynamicsError {
                 write!(f, "at t = {t} s the Coulomb friction loads did not settle (last change of λ: {change})")
             }
             DynamicsError::NonFinite { t, row } => write!(f, "at t = {t} s a NaN or infinity reached the solve at row `{row}`"),
+            DynamicsError::NonFiniteForce { t, element, others, velocity } => {
+                if *others == 0 {
+                    write!(f, "at t = {t} s the force element `{element}` gives a NaN or infinite generalized force on `{velocity}`")?;
+                } else {
+                    write!(
+                        f,
+                        "at t = {t} s the generalized force on `{velocity}` is NaN or infinite: from the force element `{element}` "
+                    )?;
+                    match others {
+                        1 => write!(f, "or the other element acting on it")?,
+                        n => write!(f, "or one of the {n} other elements acting on it")?,
+                    }
+                }
+                write!(f, " (a law undefined at this state, or a state blown up by a step too large for the stiffness)")
+            }
         }
     }
 }
 
 impl core::error::Error for DynamicsError {}
+
+/// Why a solve at a state (t, q, v) gave a NaN or infinite v̇ or λ — the cold path of the
+/// finiteness checks: a non-finite t, q or v, then the first velocity whose generalized force
+/// (Coulomb friction's included, at `lambda`) is not finite, named by the force elements that
+/// reach it, then the first constraint row whose ν or γ is not finite; else the first row
+/// whose λ is not finite.
+#[cold]
+pub fn non_finite<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    q: &[T; NQ],
+    v: &[T; NV],
+    t: T,
+    lambda: &[T; NC],
+) -> DynamicsError
+where
+    T: Real,
+    M: Dynamics<T, NQ, NV, NC>,
+{
+    let row =
+        |names: &'static [&'static str], i: usize| DynamicsError::NonFinite { t: t.to_f64(), row: names.get(i).copied().unwrap_or("?") };
+    if !t.is_finite() {
+        return row(M::CONSTRAINT_NAMES, 0);
+    }
+    if let Some(i) = q.iter().position(|x| !x.is_finite()) {
+        return row(M::COORDINATE_NAMES, i);
+    }
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return row(M::VELOCITY_NAMES, i);
+    }
+    let mut h = [T::ZERO; NV];
+    mechanism.forces(q, v, t, &mut h);
+    let finite_lambda = lambda.map(|l| if l.is_finite() { l } else { T::ZERO });
+    mechanism.friction_forces(q, v, t, &finite_lambda, &mut h);
+    if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+        let mut acting = M::FORCE_ELEMENTS.iter().filter(|e| e.velocities.contains(&(i as u16)));
+        return match acting.next() {
+            Some(first) => DynamicsError::NonFiniteForce {
+                t: t.to_f64(),
+                element: first.name,
+                others: acting.count() as u16,
+                velocity: M::VELOCITY_NAMES.get(i).copied().unwrap_or("?"),
+            },
+            // No element reaches it: the inertia terms (a spatial body's gyroscopic moment).
+            None => row(M::VELOCITY_NAMES, i),
+        };
+    }
+    let (mut nu, mut gamma) = ([T::ZERO; NC], [T::ZERO; NC]);
+    mechanism.velocity_rhs(q, t, &mut nu);
+    mechanism.gamma(q, v, t, &mut gamma);
+    if let Some(r) = nu.iter().zip(gamma.iter()).position(|(n, g)| !(n.is_finite() && g.is_finite())) {
+        return row(M::CONSTRAINT_NAMES, r);
+    }
+    row(M::CONSTRAINT_NAMES, lambda.iter().position(|x| !x.is_finite()).unwrap_or(0))
+}
 
 /// Forward dynamics of a mechanism, generated by `mechanism!` as straight-line code that
 /// exploits the block-diagonal mass matrix and the compile-time sparsity of S = D M⁻¹ Dᵀ.

@@ -38,7 +38,7 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
     DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
-pub use mechanism::{ConstraintForces, Dynamics, JointInfo, Kinematics, Mechanism, OpCount};
+pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, OpCount};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;

@@ -71,6 +71,17 @@ impl JointInfo {
     }
 }
 
+/// One force element of a mechanism (gravity included, as `"gravity"`): its name and the
+/// velocities its generalized force reaches — what a NaN or infinite force is traced back by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ForceInfo {
+    /// `"spring crank~rod"`, `"gravity"`, or the name the user gave it.
+    pub name: &'static str,
+    /// The velocities (indices into [`Mechanism::VELOCITY_NAMES`]) its generalized force or
+    /// friction force is structurally non-zero on.
+    pub velocities: &'static [u16],
+}
+
 /// What every generated mechanism says about itself: sizes, names, sparsity, model description.
 ///
 /// Everything here is a compile-time constant of the mechanism; nothing depends on the scalar
@@ -105,6 +116,8 @@ pub trait Mechanism {
     const OP_COUNTS: &'static [OpCount];
     /// Its joints, drivers and user constraints in the order of their rows in Φ.
     const JOINTS: &'static [JointInfo] = &[];
+    /// Its force elements, gravity first, then in declaration order.
+    const FORCE_ELEMENTS: &'static [ForceInfo] = &[];
     /// The physical effects the mechanism declares (`"gravity"`, `"point-to-point
     /// spring-damper-actuator"`, ...): everything else generates no code and costs nothing.
     const EFFECTS: &'static [&'static str] = &[];

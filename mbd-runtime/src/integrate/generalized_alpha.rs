@@ -196,9 +196,13 @@ where
                     worst = (p.abs(), r);
                 }
             }
-            // A NaN or infinity in a force, Φ or the state: name the row it surfaced in.
+            // A NaN or infinity in a force: name the force element; in Φ or the state: the row
+            // it surfaced in.
             if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
+                return Err(match crate::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
+                    force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
+                    _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
+                });
             }
             // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
             // Newton steps overshoot and cycle; where the step made the residual grow, take half
