@@ -24,8 +24,9 @@ pub const DEFAULT_BAUMGARTE: f64 = 5.0;
 /// about √τ = 1e-4 rad of the span of the rows before it (a singular position, a redundant
 /// constraint) is dropped smoothly; a pivot 100 τ S_kk or more is exact, and one at 20 τ S_kk
 /// (a row at 4.5e-4 rad, met in the spatial oracle's mechanisms) changes by 4e-11. Measured on
-/// parallelogram chains passing their flat positions (`mbd-long/tests/singular.rs`): τ = 1e-8
-/// held DOPRI5 at rtol 1e-12 to 1e-8 rad of the exact motion over 20 s, τ = 1e-10 to 4e-7.
+/// parallelogram chains passing their flat positions (`mbd-long/tests/singular.rs`, 4 loops):
+/// τ = 1e-8 held DOPRI5 at rtol 1e-12 to 2.2e-8 rad of the exact motion over 20 s, τ = 1e-10
+/// to 3.8e-7.
 pub const DEFAULT_DYNAMICS_PIVOT_TOLERANCE: f64 = 1e-8;
 
 /// Options of one forward-dynamics solve.
@@ -39,15 +40,14 @@ pub struct DynamicsOptions<T> {
     /// marks row k as dependent on the rows before it. Default 1e-8
     /// ([`DEFAULT_DYNAMICS_PIVOT_TOLERANCE`]).
     pub pivot_tolerance: T,
-    /// What to do with a dependent constraint row — at a singular position (a four-bar lying
-    /// flat, a slider-crank at a dead centre) or a redundant constraint (a parallelogram's
-    /// third crank). `true` (default): drop it smoothly — 1/d_k becomes w/d_k with
-    /// w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k, so its multiplier fades to 0 as the row becomes
-    /// dependent (d_k → 0) and the other
-    /// rows carry its load: the right motion where the constraints are consistent, with
-    /// reactions that are one of many valid sets. `false`: fail with
-    /// [`DynamicsError::DependentConstraint`] where d_k ≤ τ S_kk, and use the exact pivots
-    /// everywhere else.
+    /// What to do with a dependent constraint row — at a singular position (a parallelogram
+    /// lying flat, a slider-crank whose rod is as long as its crank at θ = ±π/2) or a redundant
+    /// constraint (a parallelogram's third crank). `true` (default): drop it smoothly — 1/d_k
+    /// becomes w/d_k with w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k, so its multiplier fades to 0 as the
+    /// row becomes dependent (d_k → 0) and the other rows carry its load: the right motion
+    /// where the constraints are consistent, with reactions that are one of many valid sets.
+    /// `false`: fail with [`DynamicsError::DependentConstraint`] where d_k ≤ τ S_kk, and use
+    /// the exact pivots everywhere else.
     pub allow_redundant: bool,
     /// Coulomb friction only: the loads λ are found by fixed-point iteration, starting from
     /// the `lambda` passed in, until max |Δλ| ≤ `friction_tolerance` · max(1, |λ|∞). Default 1e-10.
