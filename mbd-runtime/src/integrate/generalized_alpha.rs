@@ -280,13 +280,18 @@ where
                     Err(e) => return Err(factorization_error::<M, T>(e, t1, NV)),
                 }
             };
+            // The largest entry of each row of D, over its structural non-zeros.
+            let mut row_scale = [T::ZERO; NC];
+            for &(r, c) in M::JACOBIAN_PATTERN {
+                let r = r as usize;
+                row_scale[r] = row_scale[r].max(d[r][c as usize].abs());
+            }
             let mut near_singular = false;
             for r in 0..NC {
                 if dropped[r] {
                     rhs[NV + r] = T::ZERO;
                 } else {
-                    let scale = d[r].iter().fold(T::ZERO, |m, x| m.max(x.abs()));
-                    near_singular |= a[NV + r][NV + r].abs() < T::from_f64(1e-3) * scale;
+                    near_singular |= a[NV + r][NV + r].abs() < T::from_f64(1e-3) * row_scale[r];
                 }
             }
             lu_solve_in_place(a, &permutation, &mut rhs);
@@ -308,11 +313,10 @@ where
             // near a singular position the part of λ along D's (near-)null space is not
             // determined — rounding moves it by ε/σ² — and exerts no force.
             let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
-            for (r, row) in d.iter().enumerate() {
-                for ((c, f), &x) in change.iter_mut().zip(total.iter_mut()).zip(row.iter()) {
-                    *c += x * rhs[NV + r];
-                    *f += x * lambda[r];
-                }
+            for &(r, c) in M::JACOBIAN_PATTERN {
+                let (r, c) = (r as usize, c as usize);
+                change[c] += d[r][c] * rhs[NV + r];
+                total[c] += d[r][c] * lambda[r];
             }
             let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
             force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));

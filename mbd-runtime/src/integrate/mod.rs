@@ -256,11 +256,8 @@ impl<'m, M, T: Real> System<'m, M, T> {
     {
         self.mechanism.accelerations(q, v, t, &self.dynamics, vd, lambda)?;
         // No NaN leaves a solve silently: a non-finite v̇ or λ is traced to its source (the cold
-        // path names the force element). Summing v̇·0 and λ·0 is NaN exactly when one of them is
-        // not finite, at one multiply-add per entry.
-        let zero = T::ZERO;
-        let probe = vd.iter().chain(lambda.iter()).fold(zero, |s, &x| s + x * zero);
-        if probe != zero {
+        // path names the force element). One independent comparison per entry.
+        if !(vd.iter().all(|x| x.is_finite()) && lambda.iter().all(|x| x.is_finite())) {
             return Err(crate::dynamics::non_finite(self.mechanism, q, v, t, lambda));
         }
         if !self.track_work {
