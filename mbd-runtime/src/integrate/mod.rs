@@ -256,8 +256,10 @@ impl<'m, M, T: Real> System<'m, M, T> {
     {
         self.mechanism.accelerations(q, v, t, &self.dynamics, vd, lambda)?;
         // No NaN leaves a solve silently: a non-finite v̇ or λ is traced to its source (the cold
-        // path names the force element). One independent comparison per entry.
-        if !(vd.iter().all(|x| x.is_finite()) && lambda.iter().all(|x| x.is_finite())) {
+        // path names the force element). One independent comparison per velocity: v̇ =
+        // M⁻¹(h + Dᵀλ) multiplies every λ_r into the velocities of its row, so a non-finite λ
+        // makes v̇ non-finite too.
+        if !vd.iter().all(|x| x.is_finite()) {
             return Err(crate::dynamics::non_finite(self.mechanism, q, v, t, lambda));
         }
         if !self.track_work {
