@@ -31,8 +31,9 @@ mbd::mechanism! {
     /// independent at random states): spherical, universal, revolute, cylindrical,
     /// translational, planar, rigid (with and without axes), point-on-line, point-on-plane,
     /// distance; drivers of a revolute angle, a cylindrical angle and stroke, a translational
-    /// stroke and a coordinate; a user constraint. Axes are not unit vectors, references are
-    /// given and defaulted, two bodies have products of inertia.
+    /// stroke and a coordinate; coordinates fixed at their initial value and at a given one; a
+    /// user constraint. Axes are not unit vectors, references are given and defaulted, two
+    /// bodies have products of inertia.
     pub SpatialEveryJoint {
         spatial;
         params { l: 0.8, m: 1.0 }
@@ -62,6 +63,8 @@ mbd::mechanism! {
         drive cyl.stroke = 0.1 * cos(t);
         drive slide.stroke = 0.2 * sin(t);
         drive b10.z = 1.5 + 0.1 * t;
+        fix b9.x;
+        fix b9.y = 0.1 * l;
         constraint b1.x * b2.e1 = 0.1 * t;
     }
 }

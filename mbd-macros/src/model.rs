@@ -137,6 +137,10 @@ impl Coord {
             Coord::E3 => 6,
         }
     }
+    /// e0…e3: a spatial body's orientation, which only joints fix or drive.
+    pub fn is_euler_parameter(self) -> bool {
+        matches!(self, Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3)
+    }
     pub fn from_ident(space: Space, id: &Ident) -> Option<Coord> {
         space.coordinates().iter().copied().find(|c| id == c.name())
     }

@@ -28,7 +28,7 @@ pub fn resolve<'a>(
     driven: &mut Driven,
 ) -> Option<Resolved<'a>> {
     let b = r.body(body);
-    let coord = Coord::from_ident(r.space, coordinate).filter(|c| !matches!(c, Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3));
+    let coord = Coord::from_ident(r.space, coordinate).filter(|c| !c.is_euler_parameter());
     if coord.is_none() {
         let msg = match r.space {
             crate::model::Space::Planar => format!("unknown coordinate `{coordinate}`: a body has `x`, `y` and `phi`"),

@@ -1,5 +1,7 @@
 //! `fix body.c [= value];` — a simple constraint (Nikravesh 7.2): the coordinate c keeps a value,
-//! by default its initial value `at:`.
+//! by default its initial value `at:`. Planar bodies: c is `x`, `y` or `phi`; spatial bodies: `x`,
+//! `y` or `z` (an orientation is held by a `rigid` joint, since no single Euler parameter is an
+//! angle a user would fix).
 //!
 //! Row `c`: q_c − value.
 
@@ -20,16 +22,16 @@ pub struct Fix {
 
 pub fn resolve<'a>(r: &mut Resolver, f: &'a FixDef, driven: &mut Driven, bodies: &[Body]) -> Option<Resolved<'a>> {
     let body = r.body(&f.body);
-    if r.space == crate::model::Space::Spatial {
-        r.errors.push(
-            f.keyword.span(),
-            "`fix` is planar: in space, drive the coordinate (`drive body.x = 0.1;`) or hold the body with a `rigid` joint",
-        );
-        return None;
-    }
-    let coord = Coord::from_ident(r.space, &f.coordinate);
+    let coord = Coord::from_ident(r.space, &f.coordinate).filter(|c| !c.is_euler_parameter());
     if coord.is_none() {
-        r.errors.push(f.coordinate.span(), format!("unknown coordinate `{}`: a body has `x`, `y` and `phi`", f.coordinate));
+        let msg = match r.space {
+            crate::model::Space::Planar => format!("unknown coordinate `{}`: a body has `x`, `y` and `phi`", f.coordinate),
+            crate::model::Space::Spatial => format!(
+                "`{}` cannot be fixed: a spatial body's `x`, `y` or `z` can; hold its orientation with a `rigid` joint (to `ground` or to another body)",
+                f.coordinate
+            ),
+        };
+        r.errors.push(f.coordinate.span(), msg);
     }
     match (body, coord) {
         (Some(BodyRef::Ground), _) => {

@@ -287,10 +287,11 @@ class Spatial:
             _, _, zi = self.triad(joint["i"], "z")
             d = self.point(joint["j"]) - self.point(joint["i"])
             return [dot(zi, d) - f], ("stroke",)
-        if kind == "drive":
+        if kind in ("drive", "fix"):
             if c["coordinate"] not in ("x", "y", "z"):
-                raise ValueError(f"{self.name}: {c['name']}: a spatial drive is on x, y or z")
-            return [self.coord(c["body"], c["coordinate"]) - self.expr(c["f"])], (c["coordinate"],)
+                raise ValueError(f"{self.name}: {c['name']}: a spatial {kind} is on x, y or z")
+            value = c["f"] if kind == "drive" else c["value"]
+            return [self.coord(c["body"], c["coordinate"]) - self.expr(value)], (c["coordinate"],)
         if kind == "constraint":
             return [self.expr(c["expr"])], ("user",)
         raise ValueError(f"{self.name}: unknown spatial constraint kind {kind!r}")
