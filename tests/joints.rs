@@ -55,3 +55,11 @@ fn revolute_translational_distance_has_the_documented_sign() {
     assert!((phi - 0.25f64.asin()).abs() < 1e-9, "crank at {phi} rad, want asin(0.25) = {}", 0.25f64.asin());
     assert!((0.2 * phi.sin() - 0.05).abs() < 1e-9, "tip at y = {}", 0.2 * phi.sin());
 }
+
+/// A planar body's mass and moment of inertia by name, as written in the mechanism.
+#[test]
+fn planar_mass_and_inertia_by_name() {
+    let m = Welded::default();
+    assert_eq!((m.mass_of(Welded::CRANK), m.inertia_of(Welded::CRANK)), (1.0, 0.003));
+    assert_eq!((m.mass_of(Welded::BRACKET), m.inertia_of(Welded::BRACKET)), (0.5, 0.001));
+}

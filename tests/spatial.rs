@@ -79,6 +79,31 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// A free body with products of inertia and a parameter mass, for `mass_of`/`inertia_of`.
+    pub Tumbler {
+        spatial;
+        params { m: 2.5 }
+        body block { mass: 2.0 * m, inertia: [0.2, 0.25, 0.1, 0.01, -0.03, 0.02] }
+        body disc { mass: 0.5, inertia: [0.1, 0.1, 0.2] }
+        spherical ground[0.0, 0.0, 0.0] ~ disc[0.0, 0.0, 0.0];
+    }
+}
+
+/// A body's mass and inertia tensor by name, as written (Jxy in both off-diagonal places), with
+/// a parameter read at its current value.
+#[test]
+fn mass_and_inertia_by_name() {
+    let mut m = Tumbler::default();
+    assert_eq!(m.mass_of(Tumbler::BLOCK), 5.0);
+    assert_eq!(m.mass_of(Tumbler::DISC), 0.5);
+    let j = nalgebra::Matrix3::new(0.2, 0.01, -0.03, 0.01, 0.25, 0.02, -0.03, 0.02, 0.1);
+    assert_eq!(m.inertia_of(Tumbler::BLOCK), j);
+    assert_eq!(m.inertia_of(Tumbler::DISC), nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(0.1, 0.1, 0.2)));
+    m.m = 1.0;
+    assert_eq!(m.mass_of(Tumbler::BLOCK), 2.0);
+}
+
 /// A(p) = (2e0² − 1)I + 2(eeᵀ + e0ẽ) of the Euler parameters at q[7k+3..7k+7].
 fn rotation(q: &[f64], body: usize) -> [[f64; 3]; 3] {
     let [e0, e1, e2, e3] = [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]];
@@ -275,6 +300,10 @@ fn spatial_slider_crank_stroke() {
             let (x, xd, xdd) = (slider.position(q).x, slider.velocity(v).x, slider.acceleration(vd).x);
             assert!((x - s(t)).abs() < 1e-9 && (m.guide_stroke(q) - s(t)).abs() < 1e-9, "t = {t}: x = {x}, closed form {}", s(t));
             assert!((xd - speed).abs() < 1e-6, "t = {t}: ẋ = {xd}, closed form {speed}");
+            // the joint coordinates' rates, derived by the macro along q̇ = B(q) v: the stroke's
+            // is the slider's speed, the crank angle's the drive's ω (both to the solve's rounding)
+            assert!((m.guide_stroke_rate(q, v) - xd).abs() < 1e-9, "t = {t}: ṡ = {}", m.guide_stroke_rate(q, v));
+            assert!((m.crankshaft_angle_rate(q, v) - w).abs() < 1e-9, "t = {t}: θ̇ = {}", m.crankshaft_angle_rate(q, v));
             assert!((xdd - accel).abs() < 1e-3 * (1.0 + accel.abs()), "t = {t}: ẍ = {xdd}, closed form {accel}");
             // the crank pin, a named point, stays a from the axis and the rod length from the slider
             let pin = m.crank_pin().position(q);

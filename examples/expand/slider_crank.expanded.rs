@@ -43,6 +43,24 @@ impl SliderCrank {
     pub const ROD: ::mbd::PlanarBody = ::mbd::PlanarBody::new(1, "rod");
     /// Body `slider`: its coordinates, velocities and points.
     pub const SLIDER: ::mbd::PlanarBody = ::mbd::PlanarBody::new(2, "slider");
+    /// The mass (kg) of a body (`Name::BODY`).
+    #[allow(unused_parens, clippy::approx_constant)]
+    pub fn mass_of(&self, body: ::mbd::PlanarBody) -> f64 {
+        let mut out = [0f64; 3];
+        out[0] = 1f64;
+        out[1] = 2f64;
+        out[2] = 0.5f64;
+        out[body.index]
+    }
+    /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
+    #[allow(unused_parens, clippy::approx_constant)]
+    pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> f64 {
+        let mut out = [0f64; 3];
+        out[0] = 0.002f64;
+        out[1] = 0.015f64;
+        out[2] = 0.001f64;
+        out[body.index]
+    }
     /// Parameter values in declaration order (see `PARAM_NAMES`).
     pub fn params(&self) -> [f64; 3] {
         [self.omega, self.r, self.l]

@@ -566,16 +566,21 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             }
         }
     });
-    let nq = usize_lit(f.nq);
-    let coordinates = f.joint_coordinates.iter().map(|(accessor, node)| {
-        let (what, joint) = match accessor.rsplit_once('_') {
-            Some((joint, "angle")) => ("angle θ (rad): the turn of its second marker about the first one's axis from its x-axis", joint),
-            Some((joint, _)) => ("stroke s (m): the slide of its second marker along the first one's axis", joint),
-            None => ("coordinate", accessor.as_str()),
+    let (nq, nv) = (usize_lit(f.nq), usize_lit(f.nv));
+    let coordinates = f.joint_coordinates.iter().map(|(accessor, node, rate)| {
+        let (what, unit, joint) = match accessor.rsplit_once('_') {
+            Some((joint, "angle")) => {
+                ("angle θ (rad): the turn of its second marker about the first one's axis from its x-axis", "rad/s", joint)
+            }
+            Some((joint, _)) => ("stroke s (m): the slide of its second marker along the first one's axis", "m/s", joint),
+            None => ("coordinate", "", accessor.as_str()),
         };
         let doc = format!(" The {what}, of joint `{joint}` at q (valid within (−π, π) for an angle).");
+        let rate_doc = format!(" The rate ({unit}) of `{accessor}`, at (q, v): its derivative along q̇ = B(q) v.");
+        let rate_accessor = format_ident!("{}_rate", accessor);
         let accessor = format_ident!("{}", accessor);
         let (body, _) = e.body(&[Output { target: quote!(out[0]), node: *node }]);
+        let (rate_body, _) = e.body(&[Output { target: quote!(out[0]), node: *rate }]);
         let zero = e.literal(0.0);
         quote! {
             #[doc = #doc]
@@ -585,9 +590,93 @@ fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
                 #body
                 out[0]
             }
+            #[doc = #rate_doc]
+            #[allow(unused_parens, unused_variables, clippy::approx_constant)]
+            pub fn #rate_accessor(&self, q: &[#real; #nq], v: &[#real; #nv]) -> #real {
+                let mut out = [#zero; 1];
+                #rate_body
+                out[0]
+            }
         }
     });
-    quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)*)
+    let inertia = body_inertia(m, f, e);
+    quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)* #inertia)
+}
+
+/// `mass_of(Name::BODY)` (kg) and `inertia_of(Name::BODY)`: J (kg·m²) about the centre of mass
+/// in the plane, the 3×3 tensor J′ in the body frame in space — read from the model, so a
+/// parameter-dependent mass reads the parameters' current values.
+fn body_inertia(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
+    let real = real(m.scalar);
+    let n = m.bodies.len();
+    let per_body = f.nv / n.max(1);
+    let masses: Vec<Output> = (0..n)
+        .map(|k| {
+            let kl = usize_lit(k);
+            Output { target: quote!(out[#kl]), node: f.mass[per_body * k] }
+        })
+        .collect();
+    let (mass_body, _) = e.body(&masses);
+    let zero = e.literal(0.0);
+    let nb = usize_lit(n);
+    let (body_type, inertia_of) = match m.space {
+        crate::model::Space::Planar => {
+            let js: Vec<Output> = (0..n)
+                .map(|k| {
+                    let kl = usize_lit(k);
+                    Output { target: quote!(out[#kl]), node: f.mass[3 * k + 2] }
+                })
+                .collect();
+            let (j_body, _) = e.body(&js);
+            let inertia_of = quote! {
+                /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
+                #[allow(unused_parens, clippy::approx_constant)]
+                pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> #real {
+                    let mut out = [#zero; #nb];
+                    #j_body
+                    out[body.index]
+                }
+            };
+            (quote!(::mbd::PlanarBody), inertia_of)
+        }
+        crate::model::Space::Spatial => {
+            // out[k][r][c] = J′_rc of body k: the diagonal from M's, the products from its coupling.
+            let mut js: Vec<Output> = Vec::new();
+            for k in 0..n {
+                let kl = usize_lit(k);
+                for r in 0..3 {
+                    let rl = usize_lit(r);
+                    js.push(Output { target: quote!(out[#kl][#rl][#rl]), node: f.mass[6 * k + 3 + r] });
+                }
+            }
+            for &(r, c, node) in &f.mass_coupling {
+                let (kl, rl, cl) = (usize_lit(r / 6), usize_lit(r % 6 - 3), usize_lit(c % 6 - 3));
+                js.push(Output { target: quote!(out[#kl][#rl][#cl]), node });
+            }
+            let (j_body, _) = e.body(&js);
+            let inertia_of = quote! {
+                /// The inertia tensor J′ (kg·m²) of a body (`Name::BODY`) about its centre of mass,
+                /// in body-frame components.
+                #[allow(unused_parens, clippy::approx_constant)]
+                pub fn inertia_of(&self, body: ::mbd::SpatialBody) -> ::mbd::nalgebra::Matrix3<#real> {
+                    let mut out = [[[#zero; 3]; 3]; #nb];
+                    #j_body
+                    ::mbd::nalgebra::Matrix3::from_fn(|r, c| out[body.index][r][c])
+                }
+            };
+            (quote!(::mbd::SpatialBody), inertia_of)
+        }
+    };
+    let mass_of = quote! {
+        /// The mass (kg) of a body (`Name::BODY`).
+        #[allow(unused_parens, clippy::approx_constant)]
+        pub fn mass_of(&self, body: #body_type) -> #real {
+            let mut out = [#zero; #nb];
+            #mass_body
+            out[body.index]
+        }
+    };
+    quote!(#mass_of #inertia_of)
 }
 
 /// The accessor of a named point on ground, `ground_o()`: its fixed position (global).

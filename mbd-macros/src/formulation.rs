@@ -72,8 +72,9 @@ pub struct Formulation {
     pub points: Vec<Vec<Id>>,
     /// The joint coordinates of each labelled spatial joint that has them — the angle θ_J of a
     /// revolute or cylindrical joint, the stroke s_J of a translational or cylindrical one — as
-    /// (accessor name `hinge_angle`, node), for the generated accessors.
-    pub joint_coordinates: Vec<(String, Id)>,
+    /// (accessor name `hinge_angle`, its value, its rate along q̇ = B(q) v), for the generated
+    /// accessors.
+    pub joint_coordinates: Vec<(String, Id, Id)>,
 }
 
 impl Formulation {
@@ -236,7 +237,8 @@ pub fn formulate(model: &Model) -> Formulation {
         for (what, kinds) in crate::model::JOINT_COORDINATES {
             if kinds.contains(&c.kind.kind()) {
                 let node = if *what == "angle" { b.joint_angle(i, j) } else { b.joint_stroke(i, j) };
-                joint_coordinates.push((format!("{}_{what}", c.name), node));
+                let rate = b.rate(node);
+                joint_coordinates.push((format!("{}_{what}", c.name), node, rate));
             }
         }
     }

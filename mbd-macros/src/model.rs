@@ -631,6 +631,8 @@ const GENERATED_ITEMS: &[&str] = &[
     "from_params",
     "workspace",
     "generalized_alpha",
+    "mass_of",
+    "inertia_of",
     "jacobian_values",
     "full_eval_values",
     "schur_factor",
@@ -958,7 +960,15 @@ fn constraints(
             }
             let coordinates = JOINT_COORDINATES.iter().filter(|(_, kinds)| r.space == Space::Spatial && kinds.contains(&kind.kind()));
             for (what, _) in coordinates {
-                if !claim_item(generated, r.errors, format!("{name}_{what}"), format!("the {what} of joint `{name}`"), l.span()) {
+                if !claim_item(generated, r.errors, format!("{name}_{what}"), format!("the {what} of joint `{name}`"), l.span())
+                    || !claim_item(
+                        generated,
+                        r.errors,
+                        format!("{name}_{what}_rate"),
+                        format!("the {what} rate of joint `{name}`"),
+                        l.span(),
+                    )
+                {
                     *ok = false;
                 }
             }
