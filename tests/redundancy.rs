@@ -208,3 +208,41 @@ fn a_nan_in_the_jacobian_is_named() {
         other => panic!("expected a non-finite Jacobian row, got {other:?}"),
     }
 }
+
+/// Statics with a redundant row (a new user's third crank stopped with "singular" before): the
+/// row that depends on those declared before it is dropped with λ = 0, as in forward dynamics,
+/// and the solver finds the hanging pose from a guess 0.7 rad away with the stability of the
+/// one-degree-of-freedom linkage: V(θ) = g sin θ (3 m_c r/2 + m_k r) about θ = −π/2, and the
+/// inertia of three cranks about their pins plus the coupler's translation, so
+/// ω² = g (3 · 0.15 + 2 · 0.3) / (3 (0.0075 + 0.0225) + 2 · 0.09) = 10.3005 / 0.27.
+#[test]
+fn statics_drops_the_redundant_row() {
+    let m = ThreeCranks::default();
+    let mut ws = ThreeCranks::workspace();
+    let mut q = [0.0; 12];
+    let (s, c, r) = (0.7f64.sin(), 0.7f64.cos(), m.r);
+    for (k, x) in [0.0, 0.5, 1.0].into_iter().enumerate() {
+        q[3 * k..3 * k + 3].copy_from_slice(&[x + 0.5 * r * c, 0.5 * r * s, 0.7]);
+    }
+    q[9..12].copy_from_slice(&[0.5 + r * c, r * s, 0.0]);
+    let mut lambda = [0.0; 12];
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("a redundant mechanism has an equilibrium");
+    let down = -std::f64::consts::FRAC_PI_2;
+    for crank in [ThreeCranks::C1, ThreeCranks::C2, ThreeCranks::C3] {
+        // the solver's tolerance 1e-9 (N·m over a stiffness of 10 N·m/rad), with margin
+        assert!((crank.phi(&q) - down).abs() < 1e-9, "{}: {}", crank.name, crank.phi(&q));
+    }
+    let expected = 9.81 * (3.0 * 0.15 + 2.0 * 0.3) / 0.27;
+    match report.stability {
+        Stability::Stable { omega_squared } => assert!((omega_squared - expected).abs() < 1e-6 * expected, "ω² = {omega_squared}"),
+        other => panic!("{other:?}"),
+    }
+    // The dropped row (the last one: `third`'s second, which the parallel cranks repeat)
+    // carries nothing; the ground pins carry the weight, 5 kg × g, between them.
+    assert_eq!(lambda[11], 0.0, "λ = {lambda:?}");
+    let mut d = [[0.0; 12]; 12];
+    m.jacobian(&q, 0.0, &mut d);
+    let lift: f64 =
+        [0usize, 1, 2].into_iter().filter_map(|j| joint_reaction(&m, &q, &d, &lambda, j).and_then(|r| r.on_j)).map(|w| w.force[1]).sum();
+    assert!((lift.abs() - 5.0 * 9.81).abs() < 1e-8, "ground pins carry {lift} N");
+}

@@ -115,16 +115,18 @@ fn free_rotation_is_neutral() {
     }
 }
 
-/// A NaN parameter is an error naming the row where it shows (the torsion spring's torque on
-/// the rod's angle) and the time, never a NaN result.
+/// A NaN parameter is an error naming the force element that gives it (the torsion spring),
+/// the velocity it acts on (the rod's angle) and the time, never a NaN result.
 #[test]
-fn a_nan_load_names_its_row() {
+fn a_nan_load_names_its_element() {
     let m = SpringRod { k: f64::NAN };
     let mut q = m.initial_positions();
     let mut ws = SpringRod::workspace();
     let err = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.25, &mut [0.0; 2]).unwrap_err();
-    assert_eq!(err, StaticError::NonFinite { t: 0.25, row: "rod.phi" });
-    assert!(err.to_string().contains("t = 0.25 s") && err.to_string().contains("rod.phi"), "{err}");
+    assert_eq!(err, StaticError::NonFiniteForce { t: 0.25, element: SpringRod::FORCE_ELEMENTS[1].name, others: 0, velocity: "rod.phi" });
+    assert!(SpringRod::FORCE_ELEMENTS[1].name.contains("rotational_spring"), "{:?}", SpringRod::FORCE_ELEMENTS);
+    let text = err.to_string();
+    assert!(text.contains("t = 0.25 s") && text.contains("rod.phi") && text.contains("rotational_spring"), "{text}");
 }
 
 mechanism! {

@@ -71,6 +71,7 @@
 
 use crate::kinematics::{first_non_finite, name};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError, Permutation};
+use crate::redundancy::orthogonalize;
 use crate::{ConstraintForces, Dynamics, Mechanism, Real, Workspace};
 use core::fmt;
 
@@ -150,6 +151,10 @@ pub struct StaticOptions {
     /// On reaching an unstable equilibrium, step off it along its most unstable mode and keep
     /// going downhill (`true`, the default), or return it with [`Stability::Unstable`].
     pub leave_unstable: bool,
+    /// A constraint row whose sine of angle to the rows declared before it is at most this is
+    /// dropped (redundant, or dependent at a singular pose; its multiplier is 0). Default
+    /// [`crate::DEFAULT_RANK_TOLERANCE`], as the kinematic solver's.
+    pub rank_tolerance: f64,
 }
 
 impl Default for StaticOptions {
@@ -162,6 +167,7 @@ impl Default for StaticOptions {
             neutral_tolerance: DEFAULT_STATIC_NEUTRAL_TOLERANCE,
             initial_step: DEFAULT_STATIC_INITIAL_STEP,
             leave_unstable: true,
+            rank_tolerance: crate::DEFAULT_RANK_TOLERANCE,
         }
     }
 }
@@ -200,6 +206,11 @@ impl StaticOptions {
     /// Whether to step off an unstable equilibrium (default) or return it.
     pub const fn with_leave_unstable(mut self, leave_unstable: bool) -> Self {
         self.leave_unstable = leave_unstable;
+        self
+    }
+    /// See [`StaticOptions::rank_tolerance`].
+    pub const fn with_rank_tolerance(mut self, rank_tolerance: f64) -> Self {
+        self.rank_tolerance = rank_tolerance;
         self
     }
 }
@@ -287,14 +298,29 @@ pub enum StaticError {
         /// Its value.
         residual: f64,
     },
-    /// [[M, Dᵀ], [D, 0]] has no pivot: a singular pose (links collinear — e.g. every angle 0
-    /// where `at:` angles were left out — where the constraint rows named depend on each
-    /// other), redundant constraints, or a velocity without mass.
+    /// [[M, Dᵀ], [D, 0]] has no pivot: a velocity without mass, or constraint rows nearly but
+    /// not quite dependent (sine of their angle above [`StaticOptions::rank_tolerance`] yet
+    /// below the pivot tolerance). Redundant rows and singular poses are not this error: their
+    /// dependent rows are dropped.
     Singular {
         /// Time (s).
         t: f64,
         /// The velocity or constraint row without a pivot.
         row: &'static str,
+    },
+    /// A force element gives a NaN or infinite generalized force (or stiffness) at the iterate:
+    /// a law undefined there (a square root of a negative stretch, a division by a zero
+    /// length).
+    NonFiniteForce {
+        /// Time (s).
+        t: f64,
+        /// The first force element (declaration order, gravity first) reaching that velocity,
+        /// from [`crate::Mechanism::FORCE_ELEMENTS`].
+        element: &'static str,
+        /// How many other elements reach it too (0: `element` is the one).
+        others: u16,
+        /// The velocity whose generalized force or stiffness is not finite.
+        velocity: &'static str,
     },
     /// NaN or infinity in t, the state, the forces, the constraints or their derivatives.
     NonFinite {
@@ -321,8 +347,15 @@ impl fmt::Display for StaticError {
                 "static equilibrium not found at t = {t} s after {iterations} iterations: worst residual {residual:.3e} in '{worst_row}'"
             ),
             StaticError::Singular { t, row } => {
-                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (a singular start pose such as collinear links — give `at:` angles near the equilibrium —, redundant constraints, or a velocity without mass)")
+                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (a velocity without mass, or constraint rows nearly but not quite dependent)")
             }
+            StaticError::NonFiniteForce { t, element, others: 0, velocity } => {
+                write!(f, "static equilibrium at t = {t} s: the force element `{element}` gives a NaN or infinite force on `{velocity}`")
+            }
+            StaticError::NonFiniteForce { t, element, others, velocity } => write!(
+                f,
+                "static equilibrium at t = {t} s: NaN or infinite force on `{velocity}`, from `{element}` or one of {others} other elements acting there"
+            ),
             StaticError::NonFinite { t, row } => write!(f, "static equilibrium at t = {t} s: non-finite value in '{row}'"),
         }
     }
@@ -332,9 +365,12 @@ impl core::error::Error for StaticError {}
 
 /// The saddle-point part of the [`Workspace`]: the (NV + NC)-square matrix and its right-hand
 /// side.
-struct Saddle<'w, T, const N: usize> {
+struct Saddle<'w, T, const NV: usize, const NC: usize, const N: usize> {
     matrix: &'w mut [[T; N]; N],
     rhs: &'w mut [T; N],
+    /// Scratch of the rank-revealing orthogonalization of D's rows.
+    rows: &'w mut [[T; NV]; NC],
+    gram: &'w mut [[T; NC]; NC],
 }
 
 /// Static-equilibrium solver that finds stable equilibria (the algorithm: [the `statics`
@@ -346,6 +382,16 @@ pub struct StaticSolver {
 }
 
 /// Name of row `i` of the stacked system: a velocity (force balance) or a constraint.
+/// A non-finite generalized force or stiffness at velocity `i`: named by the force element that
+/// reaches it (else by the velocity: the constraint stiffness K(λ) or a gyroscopic term).
+fn non_finite_force<M: Mechanism>(t: f64, i: usize) -> StaticError {
+    let velocity = name(M::VELOCITY_NAMES, i);
+    match crate::dynamics::force_element::<M>(i) {
+        Some((element, others)) => StaticError::NonFiniteForce { t, element, others, velocity },
+        None => StaticError::NonFinite { t, row: velocity },
+    }
+}
+
 fn row_name<M: Mechanism>(i: usize, nv: usize) -> &'static str {
     if i < nv {
         name(M::VELOCITY_NAMES, i)
@@ -511,6 +557,8 @@ fn wrap_angle(phi: f64) -> f64 {
 /// The factorization of [[M, Dᵀ], [D, 0]] at one configuration.
 struct SaddleFactors<const N: usize> {
     permutation: Permutation<N>,
+    /// The rank of D: NV − rank is the mobility at q, the null space's dimension.
+    rank: usize,
 }
 
 impl StaticSolver {
@@ -530,8 +578,8 @@ impl StaticSolver {
     ///
     /// # Errors
     /// [`StaticError::WorkspaceSize`]; [`StaticError::NonFinite`] (t, q, Φ, D, h, its
-    /// derivatives); [`StaticError::NotAssembled`]; [`StaticError::Singular`] (redundant
-    /// constraints); [`StaticError::NotConverged`], naming the velocity or constraint row with
+    /// derivatives); [`StaticError::NotAssembled`]; [`StaticError::Singular`] (a velocity
+    /// without mass); [`StaticError::NotConverged`], naming the velocity or constraint row with
     /// the largest residual.
     pub fn solve<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
@@ -558,12 +606,12 @@ impl StaticSolver {
         let options = &self.options;
         let tol = T::from_f64(options.tolerance);
         let half = T::from_f64(0.5);
-        let dof = NV.saturating_sub(NC);
         let zero_v = [T::ZERO; NV];
         let mut phi = [T::ZERO; NC];
         // D; H = (∂h/∂q)B + K(λ) and then Z in two NV × NV arrays; the saddle-point system.
-        let Workspace { jacobian: d, velocity_squares: [stiffness, basis, _], saddle, saddle_rhs, .. } = ws;
-        let ws = &mut Saddle { matrix: saddle, rhs: saddle_rhs };
+        let Workspace { jacobian: d, jacobian_scratch, constraint_square, velocity_squares: [stiffness, basis, _], saddle, saddle_rhs } =
+            ws;
+        let ws = &mut Saddle { matrix: saddle, rhs: saddle_rhs, rows: jacobian_scratch, gram: constraint_square };
         let (mut h, mut r, mut mass_diagonal) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
         // Per mode: ω², the force along it, its largest entry, the largest entry of M z.
         let (mut omega2, mut f, mut reach, mut force_scale) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
@@ -588,9 +636,11 @@ impl StaticSolver {
                 return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
             }
             if let Some(i) = first_non_finite(&h) {
-                return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
+                return Err(non_finite_force::<M>(time, i));
             }
             let factors = self.factor_saddle(m, q, t, d, ws, &mut mass_diagonal)?;
+            // The mobility at q: NV − NC, or more where rows are redundant or the pose singular.
+            let dof = NV - factors.rank;
             ws.rhs[..NV].copy_from_slice(&h);
             ws.rhs[NV..].fill(T::ZERO);
             lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
@@ -621,7 +671,7 @@ impl StaticSolver {
             }
             for (i, row) in stiffness.iter().enumerate() {
                 if first_non_finite(row).is_some() {
-                    return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
+                    return Err(non_finite_force::<M>(time, i));
                 }
             }
             self.null_space_basis(m, q, t, &factors, ws, dof, basis)?;
@@ -755,7 +805,7 @@ impl StaticSolver {
         trial: &mut [T; NQ],
         phi: &mut [T; NC],
         d: &mut [[T; NV]; NC],
-        ws: &mut Saddle<'_, T, N>,
+        ws: &mut Saddle<'_, T, NV, NC, N>,
     ) -> Option<T>
     where
         T: Real,
@@ -791,13 +841,18 @@ impl StaticSolver {
     }
 
     /// [[M, Dᵀ], [D, 0]] into the workspace, factored; M's diagonal into `mass_diagonal`.
+    /// A constraint row that depends on the rows declared before it (sine of its angle to
+    /// their span ≤ [`StaticOptions::rank_tolerance`], as [`crate::KinematicSolver::redundancy`]
+    /// decides: a redundant constraint, or a singular pose) is dropped: its row and column of
+    /// the matrix become the identity's, so its multiplier is 0 (the dropped row carries no
+    /// load, the rule forward dynamics follows) and what it imposes is met through the others.
     fn factor_saddle<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         t: T,
         d: &[[T; NV]; NC],
-        ws: &mut Saddle<'_, T, N>,
+        ws: &mut Saddle<'_, T, NV, NC, N>,
         mass_diagonal: &mut [T; NV],
     ) -> Result<SaddleFactors<N>, StaticError>
     where
@@ -819,7 +874,13 @@ impl StaticSolver {
             }
             mass_diagonal[j] = column_j[j];
         }
+        let mut redundant = [false; NC];
+        let split = orthogonalize(d, T::from_f64(self.options.rank_tolerance), ws.rows, ws.gram, &mut redundant);
         for (r, row) in d.iter().enumerate() {
+            if redundant[r] {
+                ws.matrix[NV + r][NV + r] = T::ONE;
+                continue;
+            }
             for (c, &value) in row.iter().enumerate() {
                 ws.matrix[c][NV + r] = value;
                 ws.matrix[NV + r][c] = value;
@@ -833,7 +894,7 @@ impl StaticSolver {
                 StaticError::WorkspaceSize { expected: NV + NC, found: N }
             }
         })?;
-        Ok(SaddleFactors { permutation })
+        Ok(SaddleFactors { permutation, rank: split.rank })
     }
 
     /// Newton onto Φ(q, t) = 0 with steps of least kinetic-energy norm,
@@ -847,7 +908,7 @@ impl StaticSolver {
         t: T,
         phi: &mut [T; NC],
         d: &mut [[T; NV]; NC],
-        ws: &mut Saddle<'_, T, N>,
+        ws: &mut Saddle<'_, T, NV, NC, N>,
         correction: &mut [T; NV],
     ) -> Result<u32, RestoreFailure>
     where
@@ -902,7 +963,7 @@ impl StaticSolver {
         q: &[T; NQ],
         t: T,
         factors: &SaddleFactors<N>,
-        ws: &mut Saddle<'_, T, N>,
+        ws: &mut Saddle<'_, T, NV, NC, N>,
         dof: usize,
         basis: &mut [[T; NV]; NV],
     ) -> Result<(), StaticError>
@@ -1021,12 +1082,12 @@ impl StaticSolver {
 
 /// A = −Zᵀ H Z (symmetric part) into the leading `dof` block of the workspace; returns
 /// s = max |H_ij| / √(M_ii M_jj), the scale of the neutral verdict (1/s²).
-fn reduced_stiffness<T: Real, const NV: usize, const N: usize>(
+fn reduced_stiffness<T: Real, const NV: usize, const NC: usize, const N: usize>(
     stiffness: &[[T; NV]; NV],
     basis: &[[T; NV]; NV],
     dof: usize,
     mass_diagonal: &[T; NV],
-    ws: &mut Saddle<'_, T, N>,
+    ws: &mut Saddle<'_, T, NV, NC, N>,
 ) -> T {
     let mut scale = T::ZERO;
     for (i, row) in stiffness.iter().enumerate() {
