@@ -168,12 +168,11 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
             return Err(LinalgError::Singular { column: k, candidate_row: permutation.original_rows[best_row] });
         }
         if best_row != k {
-            // Element by element: `a.swap` moves whole rows through a `memcpy` call, which took
-            // a tenth of a small generalized-α step (17 × 17 saddle matrix, a swap per λ column).
+            // `swap_with_slice`, not `a.swap`: the latter moved whole rows through three `memcpy`
+            // calls even for k = best_row, a tenth of a small generalized-α step (17 × 17 saddle
+            // matrix, a swap per λ column).
             let (upper, lower) = a.split_at_mut(best_row);
-            for (x, y) in upper[k].iter_mut().zip(lower[0].iter_mut()) {
-                core::mem::swap(x, y);
-            }
+            upper[k].swap_with_slice(&mut lower[0]);
             permutation.original_rows.swap(k, best_row);
         }
         let (done, remaining) = a.split_at_mut(k + 1);
