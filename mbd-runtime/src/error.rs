@@ -83,9 +83,9 @@ pub enum KinematicError {
         /// The constraint row that held the best (largest) candidate pivot for it.
         constraint: &'static str,
     },
-    /// A square kinematic analysis (position, velocity, acceleration) needs exactly as many
-    /// constraint rows, drivers included, as velocities (planar: coordinates): degrees of
-    /// freedom DOF = NV − NC = 0.
+    /// A kinematic analysis (position, velocity, acceleration) needs at least as many constraint
+    /// rows, drivers included, as velocities (planar: coordinates): degrees of freedom
+    /// DOF = NV − NC ≤ 0 (below 0 only with redundant rows).
     NotDriven {
         /// Velocities minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
         dof: i32,

@@ -12,6 +12,7 @@
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::mechanism::{coordinates_per_body, velocities_per_body};
+use crate::redundancy::orthogonalize;
 use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
 
 /// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
@@ -108,8 +109,13 @@ pub struct JointReaction<T> {
 /// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
 /// joint's reaction in N and N·m.
 ///
-/// Errors: `NotDriven` unless DOF = 0; `SingularJacobian` (naming a velocity and the dependent
-/// constraint) at a singular position or with redundant constraints, where λ is not unique;
+/// With redundant constraints (NC > NV) the loads are not unique; they are solved over the rows
+/// independent of the rows declared before them (sine of the angle to their span above
+/// [`crate::DEFAULT_RANK_TOLERANCE`]), and each row left out carries none (λ = 0) — the rule
+/// of forward dynamics and statics.
+///
+/// Errors: `NotDriven` while degrees of freedom are left (NV > NC); `SingularJacobian` (naming
+/// a velocity and the dependent constraint) at a singular position, where λ is not unique;
 /// `NonFinite` for NaN or infinite inputs or forces.
 pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     m: &M,
@@ -134,37 +140,85 @@ where
             return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
         }
     }
-    let Workspace { jacobian: d, velocity_squares: [dt, ..], .. } = ws;
+    let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_squares: [dt, ..], .. } = ws;
     m.jacobian(q, t, d);
     let mut h = [T::ZERO; NV];
     m.forces(q, v, t, &mut h);
     let mut inertia = [T::ZERO; NV];
     m.mass_times(q, vd, &mut inertia);
-    // Dᵀ, square because NV = NC: row k is velocity k, column r is constraint r.
-    for (r, row) in d.iter().enumerate() {
-        for (c, &value) in row.iter().enumerate() {
-            dt[c][r] = value;
-        }
-    }
-    let mut rhs: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
-    if let Some(i) = first_non_finite(&rhs) {
+    let base: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
+    if let Some(i) = first_non_finite(&base) {
         return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::VELOCITY_NAMES, i) });
     }
-    let permutation = lu_factor(dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
-        // Column r of Dᵀ is constraint r; the candidate row is a velocity.
-        LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
-            t: time,
-            coordinate: name(M::VELOCITY_NAMES, candidate_row),
-            constraint: name(M::CONSTRAINT_NAMES, column),
-        },
-        LinalgError::NonFinite { column, .. } => {
-            KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, column) }
+    // Dᵀ λ = b: with NV = NC by the LU of Dᵀ (square: row k is velocity k, column r constraint
+    // r); with redundant rows (NC > NV) over the rows independent of those declared before them,
+    // D_I = R Q (`redundancy::orthogonalize`), λ_I = R⁻ᵀ Q b and λ = 0 on the rows left out —
+    // the rule forward dynamics and statics follow: the dropped row carries no load.
+    let solver = if NV == NC {
+        for (r, row) in d.iter().enumerate() {
+            for (c, &value) in row.iter().enumerate() {
+                dt[c][r] = value;
+            }
         }
-        LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NV as i32 - NC as i32 },
-    })?;
-    let base = rhs;
-    lu_solve_in_place(dt, &permutation, &mut rhs);
-    lambda.copy_from_slice(&rhs);
+        let permutation = lu_factor(dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
+            // Column r of Dᵀ is constraint r; the candidate row is a velocity.
+            LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
+                t: time,
+                coordinate: name(M::VELOCITY_NAMES, candidate_row),
+                constraint: name(M::CONSTRAINT_NAMES, column),
+            },
+            LinalgError::NonFinite { column, .. } => {
+                KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, column) }
+            }
+            LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NV as i32 - NC as i32 },
+        })?;
+        Solver::Lu(permutation)
+    } else {
+        if let Some(i) = d.iter().position(|row| first_non_finite(row).is_some()) {
+            return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, i) });
+        }
+        let mut redundant = [false; NC];
+        let split = orthogonalize(d, T::from_f64(crate::DEFAULT_RANK_TOLERANCE), basis, r, &mut redundant);
+        if split.rank < NV {
+            let constraint = redundant.iter().position(|&x| x).unwrap_or(0);
+            return Err(KinematicError::SingularJacobian {
+                t: time,
+                coordinate: name(M::VELOCITY_NAMES, split.rank),
+                constraint: name(M::CONSTRAINT_NAMES, constraint),
+            });
+        }
+        Solver::Orthogonal(redundant)
+    };
+    let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
+        Solver::Lu(permutation) => {
+            let mut x = [T::ZERO; NV];
+            x.copy_from_slice(b);
+            lu_solve_in_place(dt, permutation, &mut x);
+            lambda.copy_from_slice(&x[..NC]);
+        }
+        Solver::Orthogonal(redundant) => {
+            // Q b, then Rᵀ y = Q b by back substitution (Rᵀ upper triangular), over the kept rows.
+            let qb: [T; NV] = core::array::from_fn(|j| basis[j].iter().zip(b.iter()).fold(T::ZERO, |s, (x, y)| s + *x * *y));
+            let mut y = [T::ZERO; NV];
+            for j in (0..NV).rev() {
+                let mut value = qb[j];
+                for k in j + 1..NV {
+                    value -= r[k][j] * y[k];
+                }
+                y[j] = value / r[j][j];
+            }
+            let mut kept = 0;
+            for (l, &dropped) in lambda.iter_mut().zip(redundant.iter()) {
+                *l = if dropped {
+                    T::ZERO
+                } else {
+                    kept += 1;
+                    y[kept - 1]
+                };
+            }
+        }
+    };
+    solve(&base, lambda);
     // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
     // to do for a mechanism without it, whose friction forces are all zero).
     for _ in 0..INVERSE_FRICTION_ITERATIONS {
@@ -173,11 +227,12 @@ where
         if friction.iter().all(|f| *f == T::ZERO) {
             return Ok(());
         }
-        let mut rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
-        lu_solve_in_place(dt, &permutation, &mut rhs);
+        let rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
+        let mut next = [T::ZERO; NC];
+        solve(&rhs, &mut next);
         let mut change = T::ZERO;
         let mut size = T::ONE;
-        for (l, x) in lambda.iter_mut().zip(rhs.iter()) {
+        for (l, x) in lambda.iter_mut().zip(next.iter()) {
             change = change.max((*l - *x).abs());
             size = size.max(x.abs());
             *l = *x;
@@ -192,6 +247,13 @@ where
         worst_row: name(M::CONSTRAINT_NAMES, 0),
         residual: f64::NAN,
     })
+}
+
+/// How [`inverse_dynamics`] solves Dᵀ λ = b: the LU of the square Dᵀ, or over D's independent
+/// rows (the flags mark the rows left out).
+enum Solver<const N: usize, const NC: usize> {
+    Lu(crate::linalg::Permutation<N>),
+    Orthogonal([bool; NC]),
 }
 
 /// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].

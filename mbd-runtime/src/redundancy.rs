@@ -197,20 +197,33 @@ pub(crate) fn rank_revealing_step<T: Real, const NV: usize, const NC: usize>(
 ) {
     let mut redundant = [false; NC];
     let split = orthogonalize(d, tolerance, basis, r, &mut redundant);
-    // R y = −Φ over the kept rows (forward substitution), then Δv = Qᵀ y.
+    solve_orthogonalized(basis, r, &redundant, split.rank, negative_residual, step);
+}
+
+/// x = Qᵀ y with R y = b over the kept rows (forward substitution): the minimum-norm solution of
+/// D_I x = b_I from what [`orthogonalize`] left in `basis` (Q) and `r` (R); the unique one when
+/// the kept rows number NV.
+pub(crate) fn solve_orthogonalized<T: Real, const NV: usize, const NC: usize>(
+    basis: &[[T; NV]; NC],
+    r: &[[T; NC]; NC],
+    redundant: &[bool; NC],
+    rank: usize,
+    b: &[T; NC],
+    x: &mut [T; NV],
+) {
     let mut y = [T::ZERO; NC];
     let kept = (0..NC).filter(|&i| !redundant[i]);
     for (j, i) in kept.enumerate() {
-        let mut value = negative_residual[i];
+        let mut value = b[i];
         for k in 0..j {
             value -= r[j][k] * y[k];
         }
         y[j] = value / r[j][j];
     }
-    *step = [T::ZERO; NV];
-    for (b, &yj) in basis.iter().take(split.rank).zip(y.iter()) {
-        for (s, &bi) in step.iter_mut().zip(b.iter()) {
-            *s += yj * bi;
+    *x = [T::ZERO; NV];
+    for (q, &yj) in basis.iter().take(rank).zip(y.iter()) {
+        for (s, &qi) in x.iter_mut().zip(q.iter()) {
+            *s += yj * qi;
         }
     }
 }
