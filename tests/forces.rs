@@ -160,3 +160,27 @@ fn undeclared_effects_cost_nothing() {
     assert_eq!(ops.total(), 0);
     assert!(common::slider_crank::SliderCrank::EFFECTS.is_empty());
 }
+
+mbd::mechanism! {
+    /// Integer powers as the macro rewrites and emits them: (−x)ⁿ folded to ±xⁿ, x³ and x⁻³
+    /// written as products, x⁵ and x⁻⁴ through `powi`, (x²)³ folded to x⁶, a negative base with an odd
+    /// and an even power.
+    pub Powers {
+        body b { mass: 1.0, inertia: 0.1, at: [0.7, -0.4, 0.3] }
+        torque b = (-b.x)^3 + b.x^(-3) + (-b.y)^2 + b.y^3 + b.x^5 + b.y^(-4) + (b.x^2)^3 + (-b.phi)^(-1);
+    }
+}
+
+/// Each power rule against f64 evaluation of the same expression at several states (a sign
+/// lost in (−x)ⁿ or a wrong exponent in the emitted products would show at the first).
+#[test]
+fn integer_powers_evaluate_as_written() {
+    let m = Powers::default();
+    for &(x, y, phi) in &[(0.7, -0.4, 0.3), (-1.3, 2.1, -0.8), (0.2, 0.9, 1.7)] {
+        let q = [x, y, phi];
+        let mut h = [0.0; 3];
+        m.forces(&q, &[0.0; 3], 0.0, &mut h);
+        let expected = (-x).powi(3) + x.powi(-3) + (-y).powi(2) + y.powi(3) + x.powi(5) + y.powi(-4) + x.powi(6) + (-phi).powi(-1);
+        assert!((h[2] - expected).abs() <= 1e-12 * expected.abs().max(1.0), "at {q:?}: {} vs {expected}", h[2]);
+    }
+}

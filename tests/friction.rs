@@ -311,3 +311,45 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
         assert!((moved - expected).abs() < tolerance, "from {v0} m/s: slid {moved} m, expected {expected}");
     }
 }
+
+mechanism! {
+    /// The block on the 30° incline pushed up it by a horizontal driver, x = 0.1 t: the normal
+    /// load then depends on the driver's own force, which depends on the friction.
+    pub PushedUpIncline {
+        params { mu: 0.3, theta: PI / 6.0 }
+        gravity [0.0, -9.81];
+        body block { mass: 2.0, inertia: 0.05, at: [0.0, 0.0, theta] }
+        translational ground[0.0, 0.0] along [cos(theta), sin(theta)] ~ block[0.0, 0.0] along [1.0, 0.0]
+            { coulomb: mu, slip_velocity: 1.0e-6 };
+        drive push: block.x = 0.1 * t;
+    }
+}
+
+/// Inverse dynamics with Coulomb friction (a path no test reached before): pushed horizontally
+/// by F at constant speed, the block needs F cos θ = m g sin θ + μ N along the slope, with the
+/// normal load N = m g cos θ + F sin θ raised by the push itself, so
+/// F = m g (sin θ + μ cos θ)/(cos θ − μ sin θ) — what the fixed-point iteration on the loads
+/// must converge to. Tolerance: the regularized law is short of μN by 1 − ṡ/√(ṡ² + v_s²) ≈ 4e-11
+/// at ṡ = 0.115 m/s and v_s = 1e-6; the iteration stops at 1e-12 relative.
+#[test]
+fn inverse_dynamics_with_coulomb_friction_matches_the_closed_form() {
+    let m = PushedUpIncline::default();
+    let (sin, cos) = m.theta.sin_cos();
+    let expected = 2.0 * 9.81 * (sin + m.mu * cos) / (cos - m.mu * sin);
+    let mut ws = PushedUpIncline::workspace();
+    let mut inverse_ws = PushedUpIncline::workspace();
+    let mut q = m.initial_positions();
+    let mut checked = 0;
+    KinematicSolver::default()
+        .sweep(&m, &mut ws, &mut q, [0.5, 1.0, 1.5], |t, q, v, vd| {
+            let mut lambda = [0.0; 3];
+            inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).unwrap();
+            let push = joint_reaction(&m, q, inverse_ws.jacobian(), &lambda, PushedUpIncline::PUSH).and_then(|r| r.on_i).unwrap();
+            assert!((push.force[0] - expected).abs() < 1e-9 * expected, "t = {t}: F = {} N, closed form {expected} N", push.force[0]);
+            // without friction the push would be m g tan θ: the test sees the friction
+            assert!((push.force[0] - 2.0 * 9.81 * sin / cos).abs() > 1.0);
+            checked += 1;
+        })
+        .unwrap();
+    assert_eq!(checked, 3);
+}

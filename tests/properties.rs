@@ -348,3 +348,23 @@ proptest! {
         }
     }
 }
+
+/// Near (not at) a dead centre the Jacobian is near-singular: the slider driven at 0.1 m/s,
+/// crank and rod 1e-13 rad from collinear. Its smallest pivot is then about 1e-13 of its
+/// column, below the default relative pivot tolerance 1e-12, so the velocity solve says
+/// "singular" instead of returning the crank rate ẋ/(r sin θ) ≈ 1e12 rad/s that the
+/// arithmetic gives (which it does with the tolerance set to 0 — the reason for the default).
+#[test]
+fn a_near_singular_jacobian_is_refused_at_the_default_pivot_tolerance() {
+    let m = SliderDriven { r: 0.1, l: 0.3, e: 0.0, x0: 0.4, u: 0.1 };
+    let theta: f64 = 1e-13;
+    let b = (m.r * theta.cos(), m.r * theta.sin());
+    let c = (b.0 + (m.l * m.l - b.1 * b.1).sqrt(), 0.0);
+    let q = slider_crank_q(b, c);
+    let mut v = [0.0; 9];
+    let refused = KinematicSolver::default().solve_velocity(&m, &mut SliderDriven::workspace(), &q, 0.0, &mut v);
+    assert!(matches!(refused, Err(KinematicError::SingularJacobian { .. })), "{refused:?} with v = {v:?}");
+    let careless = KinematicSolver::new(KinematicOptions::default().with_pivot_tolerance(0.0));
+    careless.solve_velocity(&m, &mut SliderDriven::workspace(), &q, 0.0, &mut v).expect("no tolerance, no refusal");
+    assert!(SliderDriven::CRANK.omega(&v).abs() > 1e10, "the crank rate without the tolerance: {v:?}");
+}

@@ -6,27 +6,32 @@
 //! others stay); velocities from D_d v_d = ν − D_i v_i.
 //!
 //! The split is chosen by Gaussian elimination with full pivoting on D: each step takes the
-//! largest remaining entry, whose column becomes dependent. It is chosen again when D_d's LU
-//! meets a pivot below 1e-4 of its column's largest entry, i.e. when the independent
-//! velocities stop determining the others well (Nikravesh: "when the dependent Jacobian
-//! becomes ill-conditioned").
+//! largest remaining entry, whose column becomes dependent. It is chosen again when D_d has
+//! become ill-conditioned against what the choice achieved (Nikravesh: "when the dependent
+//! Jacobian becomes ill-conditioned"): the measure is the smallest pivot of D_d's LU relative
+//! to the largest entry of its row of D, which is scale-free per row (N and m rows alike) and
+//! sees a dependent velocity whose column has no other entry (a bead on a circle at
+//! x = 0, where D_d = 2x alone: a pivot relative to its own column would be 1 there). The
+//! partition is chosen anew when that measure falls below 1e-2 of its value at the choice.
 
 use crate::integrate::SimulationError;
 use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::{DynamicsError, Kinematics, Mechanism, Real, Workspace};
 
-/// Pivot ratio below which D_d is chosen anew.
-const REPARTITION_PIVOT: f64 = 1e-4;
+/// Fraction of the chosen partition's conditioning below which D_d is chosen anew.
+const REPARTITION_RATIO: f64 = 1e-2;
 /// Pivot ratio below which even a fresh partition is singular.
 const SINGULAR_PIVOT: f64 = 1e-12;
 
 /// A choice of dependent velocities (planar: coordinates).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Partition<const NV: usize, const NC: usize> {
     /// The dependent velocities, one per constraint row.
     dependent: [usize; NC],
     chosen: bool,
+    /// The conditioning measure (module docs) of D_d when it was chosen.
+    chosen_measure: f64,
     /// How many times a partition was chosen.
     pub choices: u32,
 }
@@ -40,7 +45,7 @@ impl<const NV: usize, const NC: usize> Default for Partition<NV, NC> {
 impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     /// No partition yet: the first correction chooses one.
     pub fn new() -> Self {
-        Self { dependent: [0; NC], chosen: false, choices: 0 }
+        Self { dependent: [0; NC], chosen: false, chosen_measure: 0.0, choices: 0 }
     }
 
     /// The dependent velocities (indices into v; planar: into q), once chosen.
@@ -96,7 +101,8 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         block: &mut [[T; NC]; NC],
     ) -> Result<crate::linalg::Permutation<NC>, SimulationError> {
         for attempt in 0..2 {
-            if !self.chosen || attempt == 1 {
+            let fresh = !self.chosen || attempt == 1;
+            if fresh {
                 if let Err(row) = self.choose(d, scratch) {
                     return Err(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, row) }.into());
                 }
@@ -106,9 +112,22 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                     *entry = d[r][self.dependent[k]];
                 }
             }
-            let tolerance = if attempt == 0 { REPARTITION_PIVOT } else { SINGULAR_PIVOT };
-            match lu_factor(block, T::from_f64(tolerance)) {
-                Ok(p) => return Ok(p),
+            match lu_factor(block, T::from_f64(SINGULAR_PIVOT)) {
+                Ok(p) => {
+                    // The smallest pivot against the largest entry of its row of D.
+                    let measure = (0..NC).fold(f64::INFINITY, |m, k| {
+                        let row = p.original_rows()[k];
+                        let scale = d[row].iter().fold(T::ZERO, |s, x| s.max(x.abs()));
+                        m.min((block[k][k].abs() / scale).to_f64())
+                    });
+                    if fresh {
+                        self.chosen_measure = measure;
+                        return Ok(p);
+                    }
+                    if measure >= REPARTITION_RATIO * self.chosen_measure {
+                        return Ok(p);
+                    }
+                }
                 Err(LinalgError::Singular { candidate_row, .. }) if attempt == 1 => {
                     return Err(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, candidate_row) }.into())
                 }
@@ -182,5 +201,42 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
             v[c] = rhs[k];
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_support::UnitPendulum;
+
+    /// The partition is chosen again when its block's smallest pivot, against its row of D,
+    /// falls below 1e-2 of its value at the choice — also when that pivot is alone in its
+    /// column (a bead on a circle at x → 0: D_d = 2x, 1 against its own column at any x).
+    #[test]
+    fn an_ill_conditioned_block_is_chosen_again() {
+        let mut partition = Partition::<3, 2>::new();
+        let (mut scratch, mut block) = ([[0.0; 3]; 2], [[0.0; 2]; 2]);
+        // D of the bead at (1, 0): rows (2x, 2y, 0) and the held turn (0, 0, 1).
+        let at_side = [[2.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        partition.factor::<f64, UnitPendulum>(0.0, &at_side, &mut scratch, &mut block).unwrap();
+        assert_eq!((partition.dependent(), partition.choices), (Some(&[0, 2]), 1));
+        // Still well conditioned at x = 0.1 (measure 0.1 of 1 at the choice: kept).
+        let near = [[0.2, 1.99, 0.0], [0.0, 0.0, 1.0]];
+        partition.factor::<f64, UnitPendulum>(0.1, &near, &mut scratch, &mut block).unwrap();
+        assert_eq!((partition.dependent(), partition.choices), (Some(&[0, 2]), 1));
+        // At x = 0.005 (measure 2.5e-3): y becomes dependent.
+        let bottom = [[0.01, -2.0, 0.0], [0.0, 0.0, 1.0]];
+        partition.factor::<f64, UnitPendulum>(0.2, &bottom, &mut scratch, &mut block).unwrap();
+        assert_eq!((partition.dependent(), partition.choices), (Some(&[1, 2]), 2));
+    }
+
+    /// Rows that depend on each other leave no partition: the error names the row.
+    #[test]
+    fn dependent_rows_are_named() {
+        let mut partition = Partition::<3, 2>::new();
+        let (mut scratch, mut block) = ([[0.0; 3]; 2], [[0.0; 2]; 2]);
+        let twice = [[2.0, 0.0, 0.0], [4.0, 0.0, 0.0]];
+        let err = partition.factor::<f64, UnitPendulum>(0.3, &twice, &mut scratch, &mut block).unwrap_err();
+        assert!(matches!(err, SimulationError::Dynamics(DynamicsError::DependentConstraint { t, .. }) if t == 0.3), "{err:?}");
     }
 }
