@@ -47,3 +47,88 @@ fn f32_slider_crank_sweeps_with_the_default_tolerance() {
         .expect("every point converges in f32");
     assert_eq!(points, 100);
 }
+
+mechanism! {
+    /// The same slider-crank without its driver, free under gravity, in single precision.
+    pub FreeSliderCrank32 {
+        scalar f32;
+        params { r: 0.1, l: 0.3 }
+        gravity [0.0, -9.81];
+        body crank  { mass: 1.0, inertia: 0.002, at: [0.0433, 0.025, 0.5236] }
+        body rod    { mass: 2.0, inertia: 0.015, at: [0.2345, 0.025, -0.1674] }
+        body slider { mass: 0.5, inertia: 0.001, at: [0.3823, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ crank[-r / 2.0, 0.0];
+        revolute crank[r / 2.0, 0.0] ~ rod[-l / 2.0, 0.0];
+        revolute rod[l / 2.0, 0.0] ~ slider[0.0, 0.0];
+        translational slider[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+    }
+}
+
+include!("../benches/free_slider_crank.rs");
+
+/// Forward dynamics in f32 with every integrator's defaults and the default drift correction:
+/// each runs 2 s (before, the projection's 1e-10, DOPRI5's rtol 1e-8 and generalized-α's
+/// 1e-10 could not be met in f32 and every run stopped with "did not converge" or a vanishing
+/// step), held on the constraints to f32's resolution and following the f64 motion (DOPRI5 at
+/// rtol 1e-12) to the bounds below.
+#[test]
+fn f32_simulations_run_with_the_default_options() {
+    let m = FreeSliderCrank32::default();
+    let mut ws = FreeSliderCrank32::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
+    let times: Vec<f32> = (1..=20).map(|k| 0.1 * k as f32).collect();
+    let options = SimulationOptions::default();
+    // The f64 reference: the same mechanism (benches/free_slider_crank.rs), the crank angle at
+    // each output.
+    let reference: Vec<f64> = {
+        let m64 = FreeSliderCrank::default();
+        let mut q64 = m64.initial_positions();
+        KinematicSolver::default().assemble(&m64, &mut FreeSliderCrank::workspace(), &mut q64, 0.0).unwrap();
+        let times64: Vec<f64> = times.iter().map(|&t| t as f64).collect();
+        let mut out = Vec::new();
+        let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-12, ..Dopri5Options::default() });
+        simulate(&m64, &mut FreeSliderCrank::workspace(), &mut dopri, 0.0, &q64, &[0.0; 9], &times64, &SimulationOptions::default(), |s| {
+            out.push(FreeSliderCrank::CRANK.phi(&s.point.q))
+        })
+        .unwrap();
+        out
+    };
+    let mut run = |name: &str,
+                   integrator: &mut dyn FnMut(
+        &mut Workspace<f32, 9, 8, 17>,
+        &mut dyn FnMut(&Sample<f32, 9, 9, 8>),
+    ) -> Result<Statistics, SimulationError>| {
+        let (mut worst_phi, mut worst_angle, mut k) = (0.0f32, 0.0f64, 0);
+        let result = integrator(&mut ws, &mut |s| {
+            let mut phi = [0.0f32; 8];
+            m.constraints(&s.point.q, s.point.t, &mut phi);
+            worst_phi = phi.iter().fold(worst_phi, |a, x| a.max(x.abs()));
+            worst_angle = worst_angle.max((FreeSliderCrank32::CRANK.phi(&s.point.q) as f64 - reference[k]).abs());
+            k += 1;
+        });
+        eprintln!("{name} in f32: {result:?}, ‖Φ‖ {worst_phi:e}, crank angle off the f64 motion by up to {worst_angle:.1e} rad");
+        result.map(|_| (worst_phi, worst_angle))
+    };
+    let rk4 = run("RK4", &mut |ws, f| simulate(&m, ws, &mut Rk4::default(), 0.0, &q, &[0.0; 9], &times, &options, f));
+    let dopri = run("DOPRI5", &mut |ws, f| simulate(&m, ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 9], &times, &options, f));
+    let alpha = run("generalized-α", &mut |ws, f| {
+        simulate(
+            &m,
+            ws,
+            &mut FreeSliderCrank32::generalized_alpha(GeneralizedAlphaOptions::default()),
+            0.0,
+            &q,
+            &[0.0; 9],
+            &times,
+            &options,
+            f,
+        )
+    });
+    // ‖Φ‖ within the resolution 64 ε ≈ 7.6e-6; the angle within BOUND rad of the f64 motion
+    for (name, result, bound) in [("RK4", rk4, 1e-3), ("DOPRI5", dopri, 1e-3), ("generalized-α", alpha, 1e-2)] {
+        let (phi, angle) = result.unwrap_or_else(|e| panic!("{name} in f32: {e}"));
+        assert!(phi < 7.7e-6, "{name}: ‖Φ‖ = {phi}");
+        assert!(angle < bound, "{name}: crank angle off the f64 motion by {angle} rad");
+    }
+}

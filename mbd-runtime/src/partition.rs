@@ -158,6 +158,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
         let mut phi = [T::ZERO; NC];
+        let tolerance = tolerance.max(crate::kinematics::resolution(q));
         let Workspace { jacobian: d, jacobian_scratch: scratch, constraint_square: block, .. } = ws;
         let mut iterations = 0;
         loop {

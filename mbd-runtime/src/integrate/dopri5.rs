@@ -15,9 +15,10 @@ use crate::{ForwardDynamics, Real, Workspace};
 /// Options of [`Dopri5`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dopri5Options<T> {
-    /// Relative tolerance on each coordinate and velocity. Default 1e-8.
+    /// Relative tolerance on each coordinate and velocity. Default 1e-8; raised to 16 ε of the
+    /// scalar type where it is below (f32: 1.9e-6), since no step resolves less.
     pub rtol: T,
-    /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-10.
+    /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-10; raised likewise to 16 ε.
     pub atol: T,
     /// First step size (s); 0 chooses one from the initial derivatives (Hairer's rule). Default 0.
     pub initial_step: T,
@@ -146,7 +147,10 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             return Ok(());
         }
         let mech = system.mechanism;
-        let scale = |y0: T, y1: T| o.atol + o.rtol * y0.abs().max(y1.abs());
+        // Tolerances below the scalar's rounding cannot be met (f32 with the f64 defaults).
+        let floor = T::from_f64(16.0) * T::EPSILON;
+        let (rtol, atol) = (o.rtol.max(floor), o.atol.max(floor));
+        let scale = |y0: T, y1: T| atol + rtol * y0.abs().max(y1.abs());
         // Stage derivatives: (q̇ = B(q) v, v̇) and powers.
         let mut kq = [[T::ZERO; NQ]; 7];
         let mut kv = [[T::ZERO; NV]; 7];

@@ -52,7 +52,8 @@ impl<T: Real> Correction<T> {
 /// q ⊕ (−M⁻¹DᵀS⁻¹Φ), [`ForwardDynamics::project_positions_step`]).
 ///
 /// # Errors
-/// [`SimulationError::NotConverged`] if ‖Φ‖∞ stays above `tolerance`; dynamics errors of the solve.
+/// [`SimulationError::NotConverged`] if ‖Φ‖∞ stays above `tolerance` (raised to what the scalar
+/// type resolves at q, see [`crate::RESOLUTION_ULPS`]); dynamics errors of the solve.
 pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     t: T,
@@ -62,6 +63,7 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
     tolerance: T,
     max_iterations: u32,
 ) -> Result<(), SimulationError> {
+    let tolerance = tolerance.max(crate::kinematics::resolution(q));
     let mut iterations = 0;
     loop {
         let residual = mechanism.project_positions_step(q, t, options)?;
