@@ -78,7 +78,6 @@ fn f32_simulations_run_with_the_default_options() {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
     let times: Vec<f32> = (1..=20).map(|k| 0.1 * k as f32).collect();
-    let options = SimulationOptions::default();
     // The f64 reference: the same mechanism (benches/free_slider_crank.rs), the crank angle at
     // each output.
     let reference: Vec<f64> = {
@@ -94,41 +93,39 @@ fn f32_simulations_run_with_the_default_options() {
         .unwrap();
         out
     };
-    let mut run = |name: &str,
-                   integrator: &mut dyn FnMut(
-        &mut Workspace<f32, 9, 8, 17>,
-        &mut dyn FnMut(&Sample<f32, 9, 9, 8>),
-    ) -> Result<Statistics, SimulationError>| {
-        let (mut worst_phi, mut worst_angle, mut k) = (0.0f32, 0.0f64, 0);
-        let result = integrator(&mut ws, &mut |s| {
-            let mut phi = [0.0f32; 8];
-            m.constraints(&s.point.q, s.point.t, &mut phi);
-            worst_phi = phi.iter().fold(worst_phi, |a, x| a.max(x.abs()));
-            worst_angle = worst_angle.max((FreeSliderCrank32::CRANK.phi(&s.point.q) as f64 - reference[k]).abs());
-            k += 1;
-        });
-        eprintln!("{name} in f32: {result:?}, ‖Φ‖ {worst_phi:e}, crank angle off the f64 motion by up to {worst_angle:.1e} rad");
-        result.map(|_| (worst_phi, worst_angle))
+    let run = |name: &str, outcome: Result<(f32, f64), SimulationError>| {
+        eprintln!("{name} in f32: {outcome:?} (‖Φ‖, crank angle off the f64 motion)");
+        outcome
     };
-    let rk4 = run("RK4", &mut |ws, f| simulate(&m, ws, &mut Rk4::default(), 0.0, &q, &[0.0; 9], &times, &options, f));
-    let dopri = run("DOPRI5", &mut |ws, f| simulate(&m, ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 9], &times, &options, f));
-    let alpha = run("generalized-α", &mut |ws, f| {
-        simulate(
-            &m,
-            ws,
-            &mut FreeSliderCrank32::generalized_alpha(GeneralizedAlphaOptions::default()),
-            0.0,
-            &q,
-            &[0.0; 9],
-            &times,
-            &options,
-            f,
-        )
-    });
+    let rk4 = run("RK4", run32(&m, &mut ws, &mut Rk4::default(), &q, &times, &reference));
+    let dopri = run("DOPRI5", run32(&m, &mut ws, &mut Dopri5::default(), &q, &times, &reference));
+    let mut alpha = FreeSliderCrank32::generalized_alpha(GeneralizedAlphaOptions::default());
+    let alpha = run("generalized-α", run32(&m, &mut ws, &mut alpha, &q, &times, &reference));
     // ‖Φ‖ within the resolution 64 ε ≈ 7.6e-6; the angle within BOUND rad of the f64 motion
     for (name, result, bound) in [("RK4", rk4, 1e-3), ("DOPRI5", dopri, 1e-3), ("generalized-α", alpha, 1e-2)] {
         let (phi, angle) = result.unwrap_or_else(|e| panic!("{name} in f32: {e}"));
         assert!(phi < 7.7e-6, "{name}: ‖Φ‖ = {phi}");
         assert!(angle < bound, "{name}: crank angle off the f64 motion by {angle} rad");
     }
+}
+
+/// Runs the f32 slider-crank with the default options: the largest ‖Φ‖∞ and the largest
+/// distance of the crank angle from `reference` at the outputs.
+fn run32<I: Integrator<f32, FreeSliderCrank32, 9, 9, 8, 17>>(
+    m: &FreeSliderCrank32,
+    ws: &mut Workspace<f32, 9, 8, 17>,
+    integrator: &mut I,
+    q: &[f32; 9],
+    times: &[f32],
+    reference: &[f64],
+) -> Result<(f32, f64), SimulationError> {
+    let (mut worst_phi, mut worst_angle, mut k) = (0.0f32, 0.0f64, 0);
+    simulate(m, ws, integrator, 0.0, q, &[0.0; 9], times, &SimulationOptions::default(), |s| {
+        let mut phi = [0.0f32; 8];
+        m.constraints(&s.point.q, s.point.t, &mut phi);
+        worst_phi = phi.iter().fold(worst_phi, |a, x| a.max(x.abs()));
+        worst_angle = worst_angle.max((FreeSliderCrank32::CRANK.phi(&s.point.q) as f64 - reference[k]).abs());
+        k += 1;
+    })?;
+    Ok((worst_phi, worst_angle))
 }
