@@ -39,6 +39,13 @@ pub struct GeneralizedAlphaOptions<T> {
     pub lambda_tolerance: T,
     /// Newton iterations per step before failing. Default 12.
     pub max_iterations: u32,
+    /// Reuse the iteration matrix's factors within a step (modified Newton): the matrix factored
+    /// at a step's first iteration serves the next ones while each correction is below a
+    /// quarter of the one before (else it is evaluated and factored again). Default true: most
+    /// steps then factor once instead of once per iteration — the iterate converges to the same
+    /// tolerances, linearly instead of quadratically, which at these corrections (the
+    /// predictor's error, O(h²)) costs no extra iteration in most steps.
+    pub reuse_factors: bool,
     /// Relative pivot tolerance of the LU of the iteration matrix. Default 1e-13. A multiplier's
     /// column without a pivot is a dependent constraint row: with
     /// [`DynamicsOptions::allow_redundant`](crate::DynamicsOptions::allow_redundant) (the
@@ -61,6 +68,7 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
             tolerance: T::from_f64(1e-10),
             lambda_tolerance: T::from_f64(1e-6),
             max_iterations: 12,
+            reuse_factors: true,
             pivot_tolerance: T::from_f64(1e-13),
             project_velocities: true,
         }
@@ -173,6 +181,11 @@ where
         let mut iteration = 0;
         let mut dropped = [false; NC];
         let mut last_change = [T::ZERO; 2];
+        // The iteration matrix's factors, the rounding floor of the force change and whether a
+        // multiplier's pivot is near singular, from the last factorization; and whether the next
+        // iteration must factor again (modified Newton, `reuse_factors`).
+        let mut factors: Option<crate::linalg::Permutation<N>> = None;
+        let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
         // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
         let (mut base_vd, mut base_lambda) = (vd, lambda);
@@ -245,70 +258,72 @@ where
                     residual: residual.to_f64(),
                 });
             }
-            mech.forces_q(&q, &v, t1, hq);
-            mech.forces_v(&q, &v, t1, hv);
-            mech.friction_derivatives(&q, &v, t1, &lambda, hq, hv);
-            mech.constraint_force_q(&q, t1, &lambda, kc);
-            // The velocity block M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + K), built in `hq`.
-            for i in 0..NV {
-                for j in 0..NV {
-                    hq[i][j] = -gamma_p * h * hv[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
-                }
-            }
-            mech.add_mass_matrix(&q, one, hq);
-            // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
-            // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
-            // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
-            // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
-            let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(hq[i][i].abs()));
-            let rounding_floor = mass_scale * resolution / (beta_p * h * h);
-            // A multiplier whose column has no pivot belongs to a row that depends on the others
-            // (a singular position, a redundant constraint): with `allow_redundant` its row and
-            // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
-            // load, as forward dynamics drops such a row.
-            let permutation = loop {
+            if refactor || !o.reuse_factors || factors.is_none() {
+                mech.forces_q(&q, &v, t1, hq);
+                mech.forces_v(&q, &v, t1, hv);
+                mech.friction_derivatives(&q, &v, t1, &lambda, hq, hv);
+                mech.constraint_force_q(&q, t1, &lambda, kc);
+                // The velocity block M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + K), built in `hq`.
                 for i in 0..NV {
-                    a[i][..NV].copy_from_slice(&hq[i]);
-                    for r in 0..NC {
-                        a[i][NV + r] = if dropped[r] { T::ZERO } else { -d[r][i] };
+                    for j in 0..NV {
+                        hq[i][j] = -gamma_p * h * hv[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
                     }
                 }
-                for r in 0..NC {
-                    if dropped[r] {
-                        a[NV + r] = [T::ZERO; N];
-                    } else {
-                        a[NV + r][..NV].copy_from_slice(&d[r]);
-                        for k in 0..NC {
-                            a[NV + r][NV + k] = T::ZERO;
+                mech.add_mass_matrix(&q, one, hq);
+                // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
+                // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
+                // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
+                // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
+                let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(hq[i][i].abs()));
+                rounding_floor = mass_scale * resolution / (beta_p * h * h);
+                // A multiplier whose column has no pivot belongs to a row that depends on the others
+                // (a singular position, a redundant constraint): with `allow_redundant` its row and
+                // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
+                // load, as forward dynamics drops such a row.
+                let permutation = loop {
+                    for i in 0..NV {
+                        a[i][..NV].copy_from_slice(&hq[i]);
+                        for r in 0..NC {
+                            a[i][NV + r] = if dropped[r] { T::ZERO } else { -d[r][i] };
                         }
                     }
-                    a[NV + r][NV + r] = if dropped[r] { one } else { T::ZERO };
-                }
-                match lu_factor(a, o.pivot_tolerance) {
-                    Ok(permutation) => break permutation,
-                    Err(LinalgError::Singular { column, .. })
-                        if column >= NV && system.dynamics.allow_redundant && !dropped[column - NV] =>
-                    {
-                        dropped[column - NV] = true;
+                    for r in 0..NC {
+                        if dropped[r] {
+                            a[NV + r] = [T::ZERO; N];
+                        } else {
+                            a[NV + r][..NV].copy_from_slice(&d[r]);
+                            for k in 0..NC {
+                                a[NV + r][NV + k] = T::ZERO;
+                            }
+                        }
+                        a[NV + r][NV + r] = if dropped[r] { one } else { T::ZERO };
                     }
-                    Err(e) => return Err(factorization_error::<M, T>(e, t1, NV)),
+                    match lu_factor(a, o.pivot_tolerance) {
+                        Ok(permutation) => break permutation,
+                        Err(LinalgError::Singular { column, .. })
+                            if column >= NV && system.dynamics.allow_redundant && !dropped[column - NV] =>
+                        {
+                            dropped[column - NV] = true;
+                        }
+                        Err(e) => return Err(factorization_error::<M, T>(e, t1, NV)),
+                    }
+                };
+                // The largest entry of each row of D, over its structural non-zeros.
+                let mut row_scale = [T::ZERO; NC];
+                for &(r, c) in M::JACOBIAN_PATTERN {
+                    let r = r as usize;
+                    row_scale[r] = row_scale[r].max(d[r][c as usize].abs());
                 }
-            };
-            // The largest entry of each row of D, over its structural non-zeros.
-            let mut row_scale = [T::ZERO; NC];
-            for &(r, c) in M::JACOBIAN_PATTERN {
-                let r = r as usize;
-                row_scale[r] = row_scale[r].max(d[r][c as usize].abs());
+                near_singular = (0..NC).any(|r| !dropped[r] && a[NV + r][NV + r].abs() < T::from_f64(1e-3) * row_scale[r]);
+                factors = Some(permutation);
             }
-            let mut near_singular = false;
+            let Some(permutation) = factors.as_ref() else { unreachable!("factored above when missing") };
             for r in 0..NC {
                 if dropped[r] {
                     rhs[NV + r] = T::ZERO;
-                } else {
-                    near_singular |= a[NV + r][NV + r].abs() < T::from_f64(1e-3) * row_scale[r];
                 }
             }
-            lu_solve_in_place(a, &permutation, &mut rhs);
+            lu_solve_in_place(a, permutation, &mut rhs);
             if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
                 return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
             }
@@ -333,6 +348,8 @@ where
                 total[c] += d[r][c] * lambda[r];
             }
             let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
+            // Modified Newton: keep the factors while each correction shrinks at least 4×.
+            refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
             force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
             iteration += 1;
             // Converged when Φ, the position correction and the force change are all below
