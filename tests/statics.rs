@@ -658,3 +658,43 @@ fn geometric_stiffness_matches_central_differences() {
     check_k(&common::double_a_arm::DoubleAArm::default(), 36);
     check_k(&common::macpherson::MacPherson::default(), 37);
 }
+
+mechanism! {
+    /// A four-bar under gravity, its crank held by a torsion spring, with every `at:` left out:
+    /// all bodies at the origin, every angle 0 — a start where the links lie collinear and
+    /// constraint rows depend on each other.
+    pub CollinearStart {
+        gravity [0.0, -9.81];
+        body crank { mass: 1.0, inertia: 0.003 }
+        body coupler { mass: 1.0, inertia: 0.02 }
+        body rocker { mass: 1.0, inertia: 0.008 }
+        revolute ground[0.0, 0.0] ~ crank[-0.1, 0.0];
+        revolute crank[0.1, 0.0] ~ coupler[-0.25, 0.0];
+        revolute coupler[0.25, 0.0] ~ rocker[-0.2, 0.0];
+        revolute rocker[0.2, 0.0] ~ ground[0.5, 0.0];
+        rotational_spring ground ~ crank { k: 5.0, angle: 1.0 };
+    }
+}
+
+/// From that start no Newton step can leave the ground line (by symmetry every step stays on
+/// it, and the loop cannot close along it): the error names the unmet row that depends on the
+/// others and says to give `at:` angles; a rough guess off the line finds the stable
+/// equilibrium.
+#[test]
+fn statics_from_a_collinear_pose_says_what_to_do() {
+    let m = CollinearStart::default();
+    let mut ws = CollinearStart::workspace();
+    let solver = StaticSolver::default();
+    let mut from_zero = m.initial_positions();
+    let err = solver.solve(&m, &mut ws, &mut from_zero, 0.0, &mut [0.0; 8]).unwrap_err();
+    assert!(matches!(err, StaticError::Singular { row: "revolute rocker~ground: x", .. }), "{err:?}");
+    assert!(err.to_string().contains("give `at:` angles"), "{err}");
+    // A guess off the line: the crank at 1 rad, the others roughly.
+    let mut guess = m.initial_positions();
+    let (s, c) = 1.0f64.sin_cos();
+    guess[..3].copy_from_slice(&[0.1 * c, 0.1 * s, 1.0]);
+    guess[3..6].copy_from_slice(&[0.35, 0.25, 0.0]);
+    guess[6..9].copy_from_slice(&[0.45, 0.2, 1.6]);
+    let report = solver.solve(&m, &mut ws, &mut guess, 0.0, &mut [0.0; 8]).expect("statics from a guess");
+    assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");
+}

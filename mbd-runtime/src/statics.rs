@@ -298,10 +298,12 @@ pub enum StaticError {
         /// Its value.
         residual: f64,
     },
-    /// [[M, Dᵀ], [D, 0]] has no pivot: a velocity without mass, or constraint rows nearly but
-    /// not quite dependent (sine of their angle above [`StaticOptions::rank_tolerance`] yet
-    /// below the pivot tolerance). Redundant rows and singular poses are not this error: their
-    /// dependent rows are dropped.
+    /// [[M, Dᵀ], [D, 0]] has no pivot: a velocity without mass, constraint rows nearly but not
+    /// quite dependent (sine of their angle above [`StaticOptions::rank_tolerance`] yet below
+    /// the pivot tolerance), or a singular start pose that cannot be assembled (links lying
+    /// collinear, e.g. every angle 0 where `at:` was left out: the row named depends on the
+    /// others there and is not met). Consistent redundant rows and singular poses met on the
+    /// way are not this error: their dependent rows are dropped.
     Singular {
         /// Time (s).
         t: f64,
@@ -347,7 +349,7 @@ impl fmt::Display for StaticError {
                 "static equilibrium not found at t = {t} s after {iterations} iterations: worst residual {residual:.3e} in '{worst_row}'"
             ),
             StaticError::Singular { t, row } => {
-                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (a velocity without mass, or constraint rows nearly but not quite dependent)")
+                write!(f, "static equilibrium at t = {t} s: no pivot for '{row}' (a singular start pose such as collinear links — give `at:` angles near the equilibrium —, a velocity without mass, or constraint rows nearly but not quite dependent)")
             }
             StaticError::NonFiniteForce { t, element, others: 0, velocity } => {
                 write!(f, "static equilibrium at t = {t} s: the force element `{element}` gives a NaN or infinite force on `{velocity}`")
@@ -555,10 +557,12 @@ fn wrap_angle(phi: f64) -> f64 {
 }
 
 /// The factorization of [[M, Dᵀ], [D, 0]] at one configuration.
-struct SaddleFactors<const N: usize> {
+struct SaddleFactors<const N: usize, const NC: usize> {
     permutation: Permutation<N>,
     /// The rank of D: NV − rank is the mobility at q, the null space's dimension.
     rank: usize,
+    /// The constraint rows dropped as dependent on the rows before them.
+    redundant: [bool; NC],
 }
 
 impl StaticSolver {
@@ -854,7 +858,7 @@ impl StaticSolver {
         d: &[[T; NV]; NC],
         ws: &mut Saddle<'_, T, NV, NC, N>,
         mass_diagonal: &mut [T; NV],
-    ) -> Result<SaddleFactors<N>, StaticError>
+    ) -> Result<SaddleFactors<N, NC>, StaticError>
     where
         T: Real,
         M: Dynamics<T, NQ, NV, NC>,
@@ -894,7 +898,7 @@ impl StaticSolver {
                 StaticError::WorkspaceSize { expected: NV + NC, found: N }
             }
         })?;
-        Ok(SaddleFactors { permutation, rank: split.rank })
+        Ok(SaddleFactors { permutation, rank: split.rank, redundant })
     }
 
     /// Newton onto Φ(q, t) = 0 with steps of least kinetic-energy norm,
@@ -919,6 +923,7 @@ impl StaticSolver {
         let tol = T::from_f64(self.options.tolerance);
         let mut diagonal = [T::ZERO; NV];
         let mut iterations = 0;
+        let mut dropped = [false; NC];
         loop {
             m.position_eval(q, t, phi, d);
             if let Some(i) = first_non_finite(phi) {
@@ -929,9 +934,15 @@ impl StaticSolver {
                 return Ok(iterations);
             }
             if iterations >= self.options.assembly_iterations {
+                // The worst row unmet and dependent on the others: a singular pose whose
+                // linearization cannot see that row (links lying collinear from `at:` left out).
+                if dropped[worst] {
+                    return Err(RestoreFailure::Static(StaticError::Singular { t: time, row: name(M::CONSTRAINT_NAMES, worst) }));
+                }
                 return Err(RestoreFailure::NotConverged { iterations, worst, residual: norm.to_f64() });
             }
             let factors = self.factor_saddle(m, q, t, d, ws, &mut diagonal).map_err(RestoreFailure::Static)?;
+            dropped = factors.redundant;
             ws.rhs[..NV].fill(T::ZERO);
             for (x, &p) in ws.rhs[NV..].iter_mut().zip(phi.iter()) {
                 *x = -p;
@@ -962,7 +973,7 @@ impl StaticSolver {
         m: &M,
         q: &[T; NQ],
         t: T,
-        factors: &SaddleFactors<N>,
+        factors: &SaddleFactors<N, NC>,
         ws: &mut Saddle<'_, T, NV, NC, N>,
         dof: usize,
         basis: &mut [[T; NV]; NV],
