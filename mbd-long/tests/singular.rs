@@ -270,24 +270,9 @@ fn an_isosceles_slider_crank_passes_its_crossing() {
         r * r / 3.0 + r * r * (9.0 * s * s + c * c) / 4.0 + r * r / 12.0 + 0.5 * 4.0 * r * r * s * s
     };
     let energy = 0.5 * inertia(0.0) * ISOSCELES_OMEGA0 * ISOSCELES_OMEGA0;
-    let exact = {
-        let f = |th: f64| (2.0 * energy / inertia(th)).sqrt();
-        let (h, mut th) = (1e-5, 0.0_f64);
-        for _ in 0..(20.0_f64 / h).round() as usize {
-            let k1 = f(th);
-            let k2 = f(th + h / 2.0 * k1);
-            let k3 = f(th + h / 2.0 * k2);
-            let k4 = f(th + h * k3);
-            th += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        }
-        th
-    };
-    let check = |label: &str, (branch, drift, last): (f64, f64, f64), error_bound: f64, energy_bound: f64| {
-        let error = wrap(last - exact).abs();
-        eprintln!("isosceles slider-crank, {label}: branch {branch:.1e}, |ΔE| {drift:.1e} J of {energy} J, θ(20 s) off by {error:.1e} rad");
-        assert!(branch < 1e-6, "{label}: left the branch by {branch}");
-        assert!(error < error_bound, "{label}: θ(20 s) off by {error} rad (bound {error_bound})");
-        assert!(drift < energy_bound, "{label}: |ΔE| = {drift} J (bound {energy_bound})");
+    let exact = free_spin(energy, inertia, 1e-5, 20.0);
+    let check = |label: &str, kept: (f64, f64, f64), error_bound: f64, energy_bound: f64| {
+        check_spin(&format!("isosceles slider-crank, {label}"), kept, exact, energy, error_bound, energy_bound)
     };
     // Measured: DOPRI5 3.3e-5 rad and 2.0e-6 J at rtol 1e-8, 2.3e-9 and 1.4e-10 at 1e-12; RK4
     // 3.2e-7 and 1.4e-8; generalized-α (ρ∞ = 0.8, dissipative, second order) 8.3e-3 and 3.1e-4
@@ -306,6 +291,31 @@ fn an_isosceles_slider_crank_passes_its_crossing() {
 
 /// Its crank's speed at θ = 0 (rad/s).
 const ISOSCELES_OMEGA0: f64 = 10.0;
+
+/// A free spin's run — (largest distance from its branch, largest |T − E| (J), θ(20 s)) —
+/// against its branch (1e-6), the exact θ(20 s) and its energy E, with its bounds.
+fn check_spin(label: &str, (branch, drift, last): (f64, f64, f64), exact: f64, energy: f64, error_bound: f64, energy_bound: f64) {
+    let error = wrap(last - exact).abs();
+    eprintln!("{label}: branch {branch:.1e}, |ΔE| {drift:.1e} J of {energy:.3} J, θ(20 s) off by {error:.1e} rad");
+    assert!(branch < 1e-6, "{label}: left the branch by {branch}");
+    assert!(error < error_bound, "{label}: θ(20 s) off by {error} rad (bound {error_bound})");
+    assert!(drift < energy_bound, "{label}: |ΔE| = {drift} J (bound {energy_bound})");
+}
+
+/// θ(t_end) of a free 1-DOF mechanism with energy ½ I(θ) θ̇² = E from θ = 0 spinning forward:
+/// θ̇ = √(2E/I(θ)) by RK4 at step h.
+fn free_spin(energy: f64, inertia: impl Fn(f64) -> f64, h: f64, t_end: f64) -> f64 {
+    let f = |th: f64| (2.0 * energy / inertia(th)).sqrt();
+    let mut th = 0.0_f64;
+    for _ in 0..(t_end / h).round() as usize {
+        let k1 = f(th);
+        let k2 = f(th + h / 2.0 * k1);
+        let k3 = f(th + h / 2.0 * k2);
+        let k4 = f(th + h * k3);
+        th += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    th
+}
 
 /// Runs the isosceles slider-crank 20 s from θ = 0 with the default options: the largest
 /// deviation from its branch (rad, m), the largest |T − E| (J) and θ(20 s).
@@ -402,25 +412,10 @@ fn change_point_inertia(theta: f64) -> f64 {
 #[test]
 fn a_change_point_four_bar_passes_its_flat_position() {
     let energy = 0.5 * change_point_inertia(0.0) * CHANGE_POINT_OMEGA0 * CHANGE_POINT_OMEGA0;
-    let exact = {
-        let f = |th: f64| (2.0 * energy / change_point_inertia(th)).sqrt();
-        let (h, mut th) = (1e-4, 0.0_f64);
-        for _ in 0..(20.0_f64 / h).round() as usize {
-            let k1 = f(th);
-            let k2 = f(th + h / 2.0 * k1);
-            let k3 = f(th + h / 2.0 * k2);
-            let k4 = f(th + h * k3);
-            th += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        }
-        th
-    };
+    let exact = free_spin(energy, change_point_inertia, 1e-4, 20.0);
     let crossings = ((exact - std::f64::consts::PI) / std::f64::consts::TAU).floor() + 1.0;
-    let check = |label: &str, (branch, drift, last): (f64, f64, f64), error_bound: f64, energy_bound: f64| {
-        let error = (last - exact).abs();
-        eprintln!("change-point four-bar, {label}: branch {branch:.1e} m, |ΔE| {drift:.1e} J of {energy:.3} J, θ(20 s) off by {error:.1e} rad ({crossings} flat positions)");
-        assert!(branch < 1e-6, "{label}: left the branch by {branch} m");
-        assert!(error < error_bound, "{label}: θ(20 s) off by {error} rad (bound {error_bound})");
-        assert!(drift < energy_bound, "{label}: |ΔE| = {drift} J (bound {energy_bound})");
+    let check = |label: &str, kept: (f64, f64, f64), error_bound: f64, energy_bound: f64| {
+        check_spin(&format!("change-point four-bar ({crossings} flat positions), {label}"), kept, exact, energy, error_bound, energy_bound)
     };
     // Measured (bounds 2-10× above): DOPRI5 2.1e-5 rad and 1.5e-6 J at rtol 1e-8, 2.6e-8 and
     // 7.1e-11 at 1e-12 (which also bounds the reference's own error); RK4 5.8e-3 and 1.9e-4 at
