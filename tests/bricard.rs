@@ -206,4 +206,13 @@ fn bricard_statics_finds_its_hanging_pose() {
     m.jacobian(&q, 0.0, &mut d);
     let residual = (0..30).map(|i| (h[i] + (0..30).map(|r| d[r][i] * lambda[r]).sum::<f64>()).abs()).fold(0.0, f64::max);
     assert!(residual < 1e-8, "‖h + Dᵀλ‖ = {residual}");
+    // The reactions of least norm for the same load, against nalgebra's pseudo-inverse.
+    let before = lambda;
+    KinematicSolver::default().minimum_norm_reactions(&m, &mut ws, &q, 0.0, &mut lambda).unwrap();
+    let dt = mbd::nalgebra::DMatrix::from_fn(30, 30, |i, j| d[j][i]);
+    let expected = dt.clone().pseudo_inverse(1e-10).unwrap() * (&dt * mbd::nalgebra::DVector::from_row_slice(&before));
+    for i in 0..30 {
+        // loads of ~50 N, rounding of the two computations: 1e-9 N
+        assert!((lambda[i] - expected[i]).abs() < 1e-9, "row {i}: {} vs pseudo-inverse {}", lambda[i], expected[i]);
+    }
 }

@@ -304,3 +304,36 @@ fn a_driven_redundant_mechanism_sweeps_and_gives_its_driver_torque() {
         .expect("a driven mechanism with a redundant row sweeps");
     assert_eq!(points, 41);
 }
+
+/// Minimum-norm reactions: from statics' λ (the dropped row carrying nothing), the reactions of
+/// least norm with the same generalized constraint force, against an independent pseudo-inverse
+/// (nalgebra's SVD): λ* = (Dᵀ)⁺ Dᵀ λ. The third crank then carries its share.
+#[test]
+fn minimum_norm_reactions_match_the_pseudo_inverse() {
+    use mbd::nalgebra::{DMatrix, DVector};
+    let m = ThreeCranks::default();
+    let mut ws = ThreeCranks::workspace();
+    let mut q = [0.0; 12];
+    let (s, c, r) = (0.7f64.sin(), 0.7f64.cos(), m.r);
+    for (k, x) in [0.0, 0.5, 1.0].into_iter().enumerate() {
+        q[3 * k..3 * k + 3].copy_from_slice(&[x + 0.5 * r * c, 0.5 * r * s, 0.7]);
+    }
+    q[9..12].copy_from_slice(&[0.5 + r * c, r * s, 0.0]);
+    let mut lambda = [0.0; 12];
+    StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).unwrap();
+    let before = lambda;
+    KinematicSolver::default().minimum_norm_reactions(&m, &mut ws, &q, 0.0, &mut lambda).unwrap();
+    let mut d = [[0.0; 12]; 12];
+    m.jacobian(&q, 0.0, &mut d);
+    let dt = DMatrix::from_fn(12, 12, |i, j| d[j][i]);
+    let load = &dt * DVector::from_row_slice(&before);
+    let expected = dt.clone().pseudo_inverse(1e-10).unwrap() * &load;
+    // the same load (to rounding of ~50 N loads), the pseudo-inverse's λ to 1e-9 N
+    let after = &dt * DVector::from_row_slice(&lambda);
+    assert!((after - &load).amax() < 1e-10, "the load changed");
+    for i in 0..12 {
+        assert!((lambda[i] - expected[i]).abs() < 1e-9, "row {i}: {} vs pseudo-inverse {}", lambda[i], expected[i]);
+    }
+    let norm = |x: &[f64; 12]| x.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(norm(&lambda) < norm(&before) && lambda[11] != 0.0, "{before:?} → {lambda:?}");
+}

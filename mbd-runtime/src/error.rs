@@ -33,6 +33,8 @@ pub enum NonFiniteQuantity {
     Gamma,
     /// A Newton correction Δv (overflow of a nearly singular solve). The row is a velocity name.
     Step,
+    /// A Lagrange multiplier λ given to the solver (N or N·m). The row is a constraint name.
+    Multiplier,
 }
 
 impl fmt::Display for NonFiniteQuantity {
@@ -47,6 +49,7 @@ impl fmt::Display for NonFiniteQuantity {
             NonFiniteQuantity::VelocityRhs => "velocity right-hand side ν = −Φ_t, row",
             NonFiniteQuantity::Gamma => "acceleration right-hand side γ, row",
             NonFiniteQuantity::Step => "Newton step Δv, velocity",
+            NonFiniteQuantity::Multiplier => "multiplier λ, row",
         })
     }
 }

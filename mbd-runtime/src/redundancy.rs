@@ -129,6 +129,123 @@ impl KinematicSolver {
     }
 }
 
+impl KinematicSolver {
+    /// The reactions of least Euclidean norm that exert the same generalized constraint force
+    /// as `lambda`: with redundant rows (as [`redundancy`](Self::redundancy) decides at (q, t))
+    /// the multipliers are not unique — any λ + n with Dᵀn = 0 balances the same load — and the
+    /// solvers return the one whose redundant rows carry nothing. This replaces `lambda` by
+    /// argmin ‖λ‖ subject to Dᵀλ = Dᵀλ₀: the load shared among the joints that repeat each other
+    /// (for a parallelogram with a third crank, across all three) as a pseudo-inverse would,
+    /// with N and N·m rows weighted alike. Without redundant rows `lambda` is left as it is.
+    ///
+    /// With D's kept rows D_K = R Q and each redundant row d_i = c_iᵀ D_K (C = R⁻ᵀ Q Dᵀ_R), every
+    /// valid λ has λ_K = μ − Cᵀ λ_R for the μ of `lambda` with its redundant rows folded in, so
+    /// the least norm is λ_R = (I + C Cᵀ)⁻¹ C μ, λ_K = μ − Cᵀ λ_R. Cost: the orthogonalization
+    /// (NC² NV) and a Cholesky factorization of the p × p matrix of the p redundant rows, in the
+    /// caller's work space; nothing allocates.
+    ///
+    /// # Errors
+    /// [`KinematicError::NonFinite`] for a NaN or infinite t, q, D or λ.
+    pub fn minimum_norm_reactions<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+        &self,
+        m: &M,
+        ws: &mut Workspace<T, NV, NC, N>,
+        q: &[T; NQ],
+        t: T,
+        lambda: &mut [T; NC],
+    ) -> Result<(), KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NV, NC>,
+    {
+        check_time(t)?;
+        check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
+        check_finite(lambda, t, NonFiniteQuantity::Multiplier, M::CONSTRAINT_NAMES)?;
+        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, saddle, .. } = ws;
+        m.jacobian(q, t, d);
+        check_rows_finite::<T, M, NV, NC>(d, t)?;
+        let mut redundant = [false; NC];
+        let split = orthogonalize(d, T::from_f64(self.options.rank_tolerance), basis, r, &mut redundant);
+        let rank = split.rank;
+        let p = NC - rank;
+        if p == 0 {
+            return Ok(());
+        }
+        let kept: [usize; NC] = {
+            let mut kept = [0; NC];
+            for (slot, i) in kept.iter_mut().zip((0..NC).filter(|&i| !redundant[i])) {
+                *slot = i;
+            }
+            kept
+        };
+        // C (p × rank) in saddle[j][0..rank]: for redundant row i, solve Rᵀ c = Q d_i (R lower
+        // triangular, so Rᵀ upper: back substitution).
+        let dropped = (0..NC).filter(|&i| redundant[i]);
+        for (j, i) in dropped.clone().enumerate() {
+            let coef: [T; NC] = core::array::from_fn(|k| if k < rank { dot(&basis[k], &d[i]) } else { T::ZERO });
+            for k in (0..rank).rev() {
+                let mut value = coef[k];
+                for l in k + 1..rank {
+                    value -= r[l][k] * saddle[j][l];
+                }
+                saddle[j][k] = value / r[k][k];
+            }
+        }
+        // μ: λ with each redundant row's load moved onto the kept rows it repeats
+        // (D_Rᵀ λ_R = D_Kᵀ Cᵀ λ_R), so that D_Kᵀ μ = Dᵀ λ.
+        let mut mu = [T::ZERO; NC];
+        for k in 0..rank {
+            mu[k] = lambda[kept[k]];
+        }
+        for (j, i) in dropped.clone().enumerate() {
+            for k in 0..rank {
+                mu[k] += saddle[j][k] * lambda[i];
+            }
+        }
+        // I + C Cᵀ (p × p, symmetric positive definite) in saddle[a][rank..rank + p], then its
+        // Cholesky factor in place (lower triangle), then λ_R = (I + C Cᵀ)⁻¹ C μ.
+        for a in 0..p {
+            for b in 0..=a {
+                let value = (0..rank).fold(if a == b { T::ONE } else { T::ZERO }, |s, k| s + saddle[a][k] * saddle[b][k]);
+                saddle[a][rank + b] = value;
+            }
+        }
+        for a in 0..p {
+            for b in 0..=a {
+                let mut value = saddle[a][rank + b];
+                for k in 0..b {
+                    value -= saddle[a][rank + k] * saddle[b][rank + k];
+                }
+                saddle[a][rank + b] = if a == b { value.sqrt() } else { value / saddle[b][rank + b] };
+            }
+        }
+        let mut y = [T::ZERO; NC];
+        for a in 0..p {
+            let mut value = (0..rank).fold(T::ZERO, |s, k| s + saddle[a][k] * mu[k]);
+            for k in 0..a {
+                value -= saddle[a][rank + k] * y[k];
+            }
+            y[a] = value / saddle[a][rank + a];
+        }
+        for a in (0..p).rev() {
+            let mut value = y[a];
+            for k in a + 1..p {
+                value -= saddle[k][rank + a] * y[k];
+            }
+            y[a] = value / saddle[a][rank + a];
+        }
+        // λ_K = μ − Cᵀ λ_R.
+        for k in 0..rank {
+            let folded = (0..p).fold(T::ZERO, |s, a| s + saddle[a][k] * y[a]);
+            lambda[kept[k]] = mu[k] - folded;
+        }
+        for (j, i) in dropped.enumerate() {
+            lambda[i] = y[j];
+        }
+        Ok(())
+    }
+}
+
 /// What [`orthogonalize`] found: the rank and the margins of its decisions.
 pub(crate) struct Split<T> {
     pub rank: usize,
