@@ -384,9 +384,10 @@ impl KinematicSolver {
         self.newton(m, q, t, ws, StepRule::RankRevealing)
     }
 
-    /// Velocity solve for a driven mechanism (NV = NC, or NC > NV with redundant rows): D(q, t) v = ν(q, t), ν = −Φ_t, written
-    /// to `v` (m/s, rad/s). `q` must already satisfy Φ(q, t) = 0 (it is not checked). ν is not
-    /// evaluated when [`Mechanism::PHI_T_IS_ZERO`]. `v` is unspecified on error.
+    /// Velocity solve for a driven mechanism (NV = NC, or NC > NV with redundant rows):
+    /// D(q, t) v = ν(q, t), ν = −Φ_t, written to `v` (m/s, rad/s). `q` must already satisfy
+    /// Φ(q, t) = 0 (it is not checked). ν is not evaluated when [`Mechanism::PHI_T_IS_ZERO`].
+    /// `v` is unspecified on error.
     ///
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, D, ν or v;
@@ -411,9 +412,9 @@ impl KinematicSolver {
         velocity_from_factors(m, q, t, ws, &factors, v)
     }
 
-    /// Acceleration solve for a driven mechanism (NV = NC, or NC > NV with redundant rows): D(q, t) v̇ = γ(q, v, t), written to
-    /// `vd` (m/s², rad/s²). `q` and `v` must already satisfy Φ = 0 and D v = ν (not checked).
-    /// `vd` is unspecified on error.
+    /// Acceleration solve for a driven mechanism (NV = NC, or NC > NV with redundant rows):
+    /// D(q, t) v̇ = γ(q, v, t), written to `vd` (m/s², rad/s²). `q` and `v` must already satisfy
+    /// Φ = 0 and D v = ν (not checked). `vd` is unspecified on error.
     ///
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, v, D, γ or v̇;
