@@ -337,3 +337,18 @@ fn minimum_norm_reactions_match_the_pseudo_inverse() {
     let norm = |x: &[f64; 12]| x.iter().map(|v| v * v).sum::<f64>().sqrt();
     assert!(norm(&lambda) < norm(&before) && lambda[11] != 0.0, "{before:?} → {lambda:?}");
 }
+
+/// More rows than velocities is not enough: the slider on two collinear guides has 4 rows for 3
+/// velocities but only 2 independent ones, so its slide is not determined. The kinematic and
+/// inverse-dynamic solves say which velocity is left free (`slider.x`) instead of solving.
+#[test]
+fn redundant_rows_that_leave_a_velocity_free_are_named() {
+    let m = TwoGuides::default();
+    let mut ws = TwoGuides::workspace();
+    let q = m.initial_positions();
+    let mut v = [0.0; 3];
+    let err = KinematicSolver::default().solve_velocity(&m, &mut ws, &q, 0.0, &mut v).unwrap_err();
+    assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
+    let err = inverse_dynamics(&m, &mut ws, &q, &[0.0; 3], &[0.0; 3], 0.0, &mut [0.0; 4]).unwrap_err();
+    assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
+}

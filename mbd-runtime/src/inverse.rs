@@ -12,7 +12,7 @@
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::mechanism::{coordinates_per_body, velocities_per_body};
-use crate::redundancy::orthogonalize;
+use crate::redundancy::{least_determined, orthogonalize};
 use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
 
 /// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
@@ -183,7 +183,7 @@ where
             let constraint = redundant.iter().position(|&x| x).unwrap_or(0);
             return Err(KinematicError::SingularJacobian {
                 t: time,
-                coordinate: name(M::VELOCITY_NAMES, split.rank),
+                coordinate: name(M::VELOCITY_NAMES, least_determined(basis, split.rank)),
                 constraint: name(M::CONSTRAINT_NAMES, constraint),
             });
         }

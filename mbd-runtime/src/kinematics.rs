@@ -18,7 +18,7 @@
 
 use crate::error::{KinematicError, NonFiniteQuantity};
 use crate::linalg::{self, LinalgError, Permutation};
-use crate::redundancy::{orthogonalize, rank_revealing_step, solve_orthogonalized};
+use crate::redundancy::{least_determined, orthogonalize, rank_revealing_step, solve_orthogonalized};
 use crate::{Kinematics, Mechanism, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
@@ -573,11 +573,7 @@ impl KinematicSolver {
         let mut redundant = [false; NC];
         let split = orthogonalize(jacobian, T::from_f64(self.options.rank_tolerance), basis, r, &mut redundant);
         if split.rank < NV {
-            // The velocity least in the span of the kept rows: largest 1 − Σ_k Q_kj².
-            let coordinate = (0..NV)
-                .map(|j| (j, T::ONE - basis.iter().take(split.rank).fold(T::ZERO, |s, row| s + row[j] * row[j])))
-                .fold((0, T::ZERO - T::ONE), |best, (j, left)| if left > best.1 { (j, left) } else { best })
-                .0;
+            let coordinate = least_determined(basis, split.rank);
             let constraint = redundant.iter().position(|&x| x).unwrap_or(0);
             return Err(KinematicError::SingularJacobian {
                 t: t.to_f64(),

@@ -345,6 +345,15 @@ pub(crate) fn solve_orthogonalized<T: Real, const NV: usize, const NC: usize>(
     }
 }
 
+/// The velocity least in the span of the first `rank` orthonormal rows of `basis`: the largest
+/// 1 − Σ_k Q_kj² — what independent rows fewer than NV leave undetermined, for an error to name.
+pub(crate) fn least_determined<T: Real, const NV: usize, const NC: usize>(basis: &[[T; NV]; NC], rank: usize) -> usize {
+    (0..NV)
+        .map(|j| (j, T::ONE - basis.iter().take(rank).fold(T::ZERO, |s, row| s + row[j] * row[j])))
+        .fold((0, T::ZERO - T::ONE), |best, (j, left)| if left > best.1 { (j, left) } else { best })
+        .0
+}
+
 fn norm<T: Real, const N: usize>(a: &[T; N]) -> T {
     dot(a, a).sqrt()
 }
