@@ -56,6 +56,26 @@ impl Emitter<'_> {
 
     /// A literal of the scalar type. Non-finite constants are rejected before emission.
     pub fn literal(&self, v: f64) -> TokenStream {
+        // `Literal::f32_suffixed` and `f64_suffixed` panic on a non-finite value; `check_finite`
+        // reports those as errors first, and this keeps the macro from panicking regardless.
+        let scalar = match self.scalar {
+            Scalar::F32 => quote!(f32),
+            Scalar::F64 => quote!(f64),
+        };
+        let representable = match self.scalar {
+            Scalar::F32 => (v as f32).is_finite(),
+            Scalar::F64 => v.is_finite(),
+        };
+        if !representable {
+            let constant = if v.is_nan() {
+                quote!(NAN)
+            } else if v > 0.0 {
+                quote!(INFINITY)
+            } else {
+                quote!(NEG_INFINITY)
+            };
+            return quote!(::core::primitive::#scalar::#constant);
+        }
         let lit = match self.scalar {
             Scalar::F32 => Literal::f32_suffixed(v.abs() as f32),
             Scalar::F64 => Literal::f64_suffixed(v.abs()),
@@ -298,9 +318,22 @@ impl Emitter<'_> {
     }
 }
 
-/// Rejects constants that are not finite (e.g. `ln(0)` folded at compile time): they would
-/// make every evaluation NaN or infinite.
-pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
+/// Rejects constants that are not finite in the scalar type (e.g. `ln(0)` folded at compile
+/// time, or 1e39 in f32): they would make every evaluation NaN or infinite. A parameter's
+/// default is reported on the parameter.
+pub fn check_finite(model: &Model, f: &Formulation, span: Span) -> syn::Result<()> {
+    let fits = |v: f64| match model.scalar {
+        Scalar::F32 => (v as f32).is_finite(),
+        Scalar::F64 => v.is_finite(),
+    };
+    for p in &model.params {
+        if !fits(p.default) {
+            return Err(syn::Error::new(
+                p.name.span(),
+                format!("the default of `{}` is {:e}, beyond the range of f32 (±3.4e38)", p.name, p.default),
+            ));
+        }
+    }
     let jac = f.jacobian.iter().map(|e| &e.2);
     let h_q = f.h_q.iter().chain(&f.h_qd).chain(&f.constraint_force_q).map(|e| &e.2);
     let roots = f.phi.iter().chain(jac).chain(&f.nu).chain(&f.gamma).chain(&f.q0).chain(&f.qd0);
@@ -317,6 +350,12 @@ pub fn check_finite(f: &Formulation, span: Span) -> syn::Result<()> {
                     return Err(syn::Error::new(
                         span,
                         format!("an expression of this mechanism evaluates to {v} for every state (a constant such as ln(0) or 1/0)"),
+                    ));
+                }
+                if !fits(v) {
+                    return Err(syn::Error::new(
+                        span,
+                        format!("an expression of this mechanism evaluates to {v:e}, beyond the range of f32 (±3.4e38)"),
                     ));
                 }
             }

@@ -72,7 +72,7 @@ fn matrix_outputs(name: &str, entries: &[(usize, usize, u32)]) -> Vec<Output> {
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let f = formulate(m);
-    emit::check_finite(&f, m.name.span())?;
+    emit::check_finite(m, &f, m.name.span())?;
     let e: Emitter = emit::emitter(m, &f);
     let real = real(m.scalar);
     let name = &m.name;

@@ -434,13 +434,31 @@ impl Parse for Item {
                 }
             }
             other => {
-                let hint = closest(other, STATEMENTS, &[]);
+                let hint = match SYNONYMS.iter().find(|(word, _)| *word == other) {
+                    Some((_, ours)) => format!(" (the same joint is called `{ours}` here)"),
+                    None => closest(other, STATEMENTS, &[]),
+                };
                 return Err(syn::Error::new(kw.span(), format!("unknown statement `{other}`{hint}")));
             }
         };
         Ok(item)
     }
 }
+
+/// Other programs' and textbooks' names of the joints and elements the DSL names otherwise.
+const SYNONYMS: &[(&str, &str)] = &[
+    ("prismatic", "translational"),
+    ("slider", "translational"),
+    ("pin", "revolute"),
+    ("hinge", "revolute"),
+    ("ball", "spherical"),
+    ("ball_joint", "spherical"),
+    ("cardan", "universal"),
+    ("hooke", "universal"),
+    ("fixed", "rigid"),
+    ("weld", "rigid"),
+    ("spring_damper", "spring"),
+];
 
 /// " (did you mean `x`?)" when a known word is one or two edits away.
 pub fn closest(word: &str, a: &[&str], b: &[&str]) -> String {
@@ -743,10 +761,15 @@ mod tests {
         assert!(matches!(inner.kind, ExprKind::Bin(BinOp::Pow, ..)));
     }
 
-    /// An unknown statement names the closest keyword.
+    /// An unknown statement names the closest keyword, or the DSL's name of a joint another
+    /// program calls otherwise.
     #[test]
     fn unknown_statement_hint() {
         let err = syn::parse_str::<Item>("revolut a[0.0, 0.0] ~ b[0.0, 0.0];").err().unwrap().to_string();
         assert!(err.contains("did you mean `revolute`"), "{err}");
+        // another program's name of a joint: ours
+        let err =
+            syn::parse_str::<Item>("prismatic a[0.0, 0.0] along [1.0, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0];").err().unwrap().to_string();
+        assert!(err.contains("unknown statement `prismatic` (the same joint is called `translational` here)"), "{err}");
     }
 }

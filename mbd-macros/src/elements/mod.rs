@@ -195,7 +195,10 @@ pub fn joint_options(
                     if let Some(what) = positive {
                         check_positive(r.errors, &m, e, what);
                     }
-                    options.insert(key, m);
+                    if options.insert(key.clone(), m).is_some() {
+                        r.errors.push(f.name.span(), format!("duplicate option `{key}`"));
+                        bad = true;
+                    }
                 }
                 None => bad = true,
             },

@@ -51,6 +51,10 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
             FieldValue::List(v) => {
                 let items: Option<Vec<MExpr>> = v.items.iter().map(|e| r.expr(e, Scope::Params)).collect();
                 match items {
+                    Some(_) if lists[slot].is_some() => {
+                        r.errors.push(field.name.span(), format!("duplicate option `{key}`"));
+                        bad = true;
+                    }
                     Some(items) => lists[slot] = Some(items),
                     None => bad = true,
                 }
