@@ -501,6 +501,15 @@ fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
         let value = if content.peek(syn::token::Bracket) { Value::List(content.parse()?) } else { Value::Expr(content.parse()?) };
         fields.push(Field { name, value });
         if !content.is_empty() {
+            // `mass: 2.0 kg`: a unit after a number gets its own message, not "expected `,`"
+            // (a next field's name, followed by `:`, is a missing comma instead).
+            if content.peek(Ident::peek_any) && !content.peek2(Token![:]) {
+                let unit: Ident = content.call(Ident::parse_any)?;
+                return Err(syn::Error::new(
+                    unit.span(),
+                    format!("unexpected `{unit}` after a value: numbers are in SI units (kg, m, s, rad, N) and are written without one"),
+                ));
+            }
             content.parse::<Token![,]>()?;
         }
     }
