@@ -12,7 +12,7 @@
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::mechanism::{coordinates_per_body, velocities_per_body};
-use crate::redundancy::{least_determined, orthogonalize};
+use crate::redundancy::independent_rows;
 use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
 
 /// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
@@ -177,17 +177,7 @@ where
         if let Some(i) = d.iter().position(|row| first_non_finite(row).is_some()) {
             return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, i) });
         }
-        let mut redundant = [false; NC];
-        let split = orthogonalize(d, T::from_f64(crate::DEFAULT_RANK_TOLERANCE), basis, r, &mut redundant);
-        if split.rank < NV {
-            let constraint = redundant.iter().position(|&x| x).unwrap_or(0);
-            return Err(KinematicError::SingularJacobian {
-                t: time,
-                coordinate: name(M::VELOCITY_NAMES, least_determined(basis, split.rank)),
-                constraint: name(M::CONSTRAINT_NAMES, constraint),
-            });
-        }
-        Solver::Orthogonal(redundant)
+        Solver::Orthogonal(independent_rows::<T, M, NV, NC>(d, T::from_f64(crate::DEFAULT_RANK_TOLERANCE), basis, r, t)?)
     };
     let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
         Solver::Lu(permutation) => {

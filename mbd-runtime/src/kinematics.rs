@@ -18,7 +18,7 @@
 
 use crate::error::{KinematicError, NonFiniteQuantity};
 use crate::linalg::{self, LinalgError, Permutation};
-use crate::redundancy::{least_determined, orthogonalize, rank_revealing_step, solve_orthogonalized};
+use crate::redundancy::{independent_rows, rank_revealing_step, solve_orthogonalized};
 use crate::{Kinematics, Mechanism, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
@@ -570,17 +570,7 @@ impl KinematicSolver {
         }
         let Workspace { jacobian, jacobian_scratch: basis, constraint_square: r, .. } = ws;
         check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
-        let mut redundant = [false; NC];
-        let split = orthogonalize(jacobian, T::from_f64(self.options.rank_tolerance), basis, r, &mut redundant);
-        if split.rank < NV {
-            let coordinate = least_determined(basis, split.rank);
-            let constraint = redundant.iter().position(|&x| x).unwrap_or(0);
-            return Err(KinematicError::SingularJacobian {
-                t: t.to_f64(),
-                coordinate: name(M::VELOCITY_NAMES, coordinate),
-                constraint: name(M::CONSTRAINT_NAMES, constraint),
-            });
-        }
+        let redundant = independent_rows::<T, M, NV, NC>(jacobian, T::from_f64(self.options.rank_tolerance), basis, r, t)?;
         Ok(Factors::Orthogonal { redundant })
     }
 

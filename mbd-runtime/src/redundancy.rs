@@ -25,9 +25,9 @@
 //! [`DEFAULT_RANK_TOLERANCE`]: crate::DEFAULT_RANK_TOLERANCE
 
 use crate::error::NonFiniteQuantity;
-use crate::kinematics::{check_finite, check_rows_finite, check_time};
+use crate::kinematics::{check_finite, check_rows_finite, check_time, name};
 use crate::linalg::dot;
-use crate::{KinematicError, KinematicSolver, Kinematics, Real, Workspace};
+use crate::{KinematicError, KinematicSolver, Kinematics, Mechanism, Real, Workspace};
 use core::fmt;
 
 /// Which constraint rows are redundant at a configuration, and the mobility that follows: the
@@ -345,9 +345,31 @@ pub(crate) fn solve_orthogonalized<T: Real, const NV: usize, const NC: usize>(
     }
 }
 
+/// The rows of a driven mechanism's D with redundant ones (NC > NV): orthogonalized as in
+/// [`orthogonalize`], the redundant rows marked; `Err` — a singular Jacobian naming the velocity
+/// least determined and the first row left out — when the independent rows number fewer than NV.
+pub(crate) fn independent_rows<T: Real, M: Mechanism, const NV: usize, const NC: usize>(
+    d: &[[T; NV]; NC],
+    tolerance: T,
+    basis: &mut [[T; NV]; NC],
+    r: &mut [[T; NC]; NC],
+    t: T,
+) -> Result<[bool; NC], KinematicError> {
+    let mut redundant = [false; NC];
+    let split = orthogonalize(d, tolerance, basis, r, &mut redundant);
+    if split.rank < NV {
+        return Err(KinematicError::SingularJacobian {
+            t: t.to_f64(),
+            coordinate: name(M::VELOCITY_NAMES, least_determined(basis, split.rank)),
+            constraint: name(M::CONSTRAINT_NAMES, redundant.iter().position(|&x| x).unwrap_or(0)),
+        });
+    }
+    Ok(redundant)
+}
+
 /// The velocity least in the span of the first `rank` orthonormal rows of `basis`: the largest
 /// 1 − Σ_k Q_kj² — what independent rows fewer than NV leave undetermined, for an error to name.
-pub(crate) fn least_determined<T: Real, const NV: usize, const NC: usize>(basis: &[[T; NV]; NC], rank: usize) -> usize {
+fn least_determined<T: Real, const NV: usize, const NC: usize>(basis: &[[T; NV]; NC], rank: usize) -> usize {
     (0..NV)
         .map(|j| (j, T::ONE - basis.iter().take(rank).fold(T::ZERO, |s, row| s + row[j] * row[j])))
         .fold((0, T::ZERO - T::ONE), |best, (j, left)| if left > best.1 { (j, left) } else { best })
