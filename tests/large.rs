@@ -324,6 +324,9 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
             let mut dopri = Dopri5::new(Dopri5Options::default());
             simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOPRI5");
             check("DOPRI5", &last);
+            let mut dop853 = Dop853::new(Dop853Options::default());
+            simulate(&m, &mut ws, &mut dop853, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOP853");
+            check("DOP853", &last);
             let mut alpha = Chain120::generalized_alpha(GeneralizedAlphaOptions { step: 2.5e-3, ..GeneralizedAlphaOptions::default() });
             simulate(&m, &mut ws, &mut alpha, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("generalized-α");
             check("generalized-α", &last);

@@ -30,8 +30,8 @@ pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
 pub use error::{KinematicError, NonFiniteQuantity};
 pub use integrate::{
-    project, simulate, Correction, Dopri5, Dopri5Options, Energy, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4,
-    Sample, SimulationError, SimulationOptions, Statistics, System,
+    project, simulate, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, GeneralizedAlpha, GeneralizedAlphaOptions,
+    Integrator, Point, Rk4, Sample, SimulationError, SimulationOptions, Statistics, System,
 };
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use kinematics::{

@@ -167,7 +167,9 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             if h > o.max_step {
                 h = o.max_step;
             }
-            let last = from.t + h >= t_max;
+            // Hairer's rule: a step within 1 % of the end goes all the way, so that a run never
+            // ends on a sliver left by rounding (ten steps of 0.1 s sum to 0.9999999999999999).
+            let last = from.t + T::from_f64(1.01) * h >= t_max;
             if last {
                 h = span;
             }
@@ -298,7 +300,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
 /// `max_step`.
 // One index runs over q and v together (see the loop).
 #[allow(clippy::needless_range_loop)]
-fn initial_step<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
+pub(super) fn initial_step<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
     p: &Point<T, NQ, NV, NC>,
     qdot: &[T; NQ],
     scale: &impl Fn(T, T) -> T,
@@ -326,7 +328,7 @@ fn initial_step<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
 }
 
 /// The smaller of two values (NaN-propagating like `max`'s twin).
-trait MinExt {
+pub(super) trait MinExt {
     fn min_(self, other: Self) -> Self;
 }
 

@@ -3,11 +3,13 @@
 //!
 //! The state is (t, q, v) with q̇ = B(q) v ([`Kinematics::position_rates`]; planar v = q̇); each
 //! step ends at a [`Point`] that also holds v̇, λ and, when asked for, the work of
-//! non-conservative forces and of constraint forces. Three integrators:
+//! non-conservative forces and of constraint forces. Four integrators:
 //!
 //! * [`Rk4`]: classical Runge–Kutta, fixed step, 4 evaluations of v̇ per step.
 //! * [`Dopri5`]: Dormand–Prince 5(4) with error control (mixed absolute/relative tolerance on q
 //!   and v), PI step-size control and 4th-order dense output; 6 evaluations per accepted step.
+//! * [`Dop853`]: Dormand–Prince 8(5,3), for tight tolerances: 12 evaluations per accepted step,
+//!   7th-order dense output (3 more, only in steps holding an output time).
 //! * [`GeneralizedAlpha`]: the implicit generalized-α method on the index-3 equations
 //!   M v̇ − Dᵀλ = h, Φ = 0, solved by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v
 //!   and ∂(Dᵀλ)/∂q·B: second-order accurate, numerical damping set by ρ∞, fit for stiff springs
@@ -26,8 +28,9 @@
 //! This file holds what they share: the [`Point`] a step ends at, its [`Sample`] and [`Energy`],
 //! the [`System`] of equations an [`Integrator`] advances, [`SimulationError`], cubic Hermite
 //! interpolation and the end-of-step finiteness check. Each integrator has its own file
-//! (`rk4.rs`, `dopri5.rs`, `generalized_alpha.rs`), and the driver its own (`simulate.rs`).
+//! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own (`simulate.rs`).
 
+mod dop853;
 mod dopri5;
 mod generalized_alpha;
 mod rk4;
@@ -35,6 +38,7 @@ mod simulate;
 #[cfg(test)]
 mod tests;
 
+pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::Rk4;
@@ -320,6 +324,22 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError>;
+
+    /// Readies the dense output of the last step from `from` to `to` before the first
+    /// [`interpolate`](Integrator::interpolate) inside it: a method whose interpolant needs more
+    /// evaluations of v̇ (DOP853's three) makes them here, only for steps that hold an output
+    /// time. By default nothing.
+    ///
+    /// # Errors
+    /// Those of forward dynamics at the extra stages.
+    fn prepare_interpolation(
+        &mut self,
+        _system: &System<'_, M, T>,
+        _from: &Point<T, NQ, NV, NC>,
+        _to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        Ok(())
+    }
 
     /// q and v at `t` within the last step from `from` to `to` (its dense output); `mechanism`
     /// gives the rates q̇ = B(q) v the interpolation of q needs. q is not normalized.

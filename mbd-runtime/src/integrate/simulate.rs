@@ -194,6 +194,9 @@ where
             correct(mechanism, ws, &mut partition, options, to.t, &mut q, &mut v)?;
             to = integrator.after_correction(&system, &end, q, v)?;
         }
+        if next < times.len() && times[next] < end.t {
+            integrator.prepare_interpolation(&system, &from, &end)?;
+        }
         while next < times.len() && times[next] <= end.t {
             if times[next] == end.t {
                 output(&sample(mechanism, &to));
