@@ -428,3 +428,67 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
 }
 
 use mbd::{Integrator, Point, System};
+
+/// The CSV writer: a header of named columns (t, q, v, v̇, λ per row, energies), one row per
+/// sample whose values read back exactly (`{:e}` prints the shortest form that round-trips), and
+/// the first I/O error returned by `finish`, with no row counted from it on.
+#[test]
+fn the_csv_writer_writes_every_sample_with_named_columns() {
+    let m = DoublePendulum::default();
+    let times = [0.1, 0.2, 0.3];
+    let mut samples = Vec::new();
+    let mut buffer = Vec::new();
+    let mut csv = CsvWriter::new::<DoublePendulum>(&mut buffer);
+    let options = SimulationOptions::default();
+    simulate(&m, &mut DoublePendulum::workspace(), &mut Rk4::new(1e-2), 0.0, &m.initial_positions(), &[0.0; 6], &times, &options, |s| {
+        csv.write(s);
+        samples.push(*s);
+    })
+    .unwrap();
+    assert_eq!(csv.finish().unwrap(), 3);
+    let text = String::from_utf8(buffer).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 4, "{text}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    assert_eq!(header.len(), 1 + 6 + 6 + 6 + 4 + 4, "{}", lines[0]);
+    assert_eq!(header[..3], ["t", "a.x", "a.y"]);
+    assert_eq!(header[7], "d/dt a.x");
+    assert_eq!(header[13], "d2/dt2 a.x");
+    assert!(header[19].starts_with("lambda "), "{}", header[19]);
+    assert_eq!(header[23..], ["kinetic", "potential", "nonconservative_work", "constraint_work"]);
+    for (line, s) in lines[1..].iter().zip(&samples) {
+        let values: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        let p = &s.point;
+        let e = &s.energy;
+        let expected: Vec<f64> = [p.t]
+            .iter()
+            .chain(&p.q)
+            .chain(&p.v)
+            .chain(&p.vd)
+            .chain(&p.lambda)
+            .chain(&[e.kinetic, e.potential, e.nonconservative_work, e.constraint_work])
+            .copied()
+            .collect();
+        assert_eq!(values, expected);
+    }
+
+    /// Accepts the header, then fails.
+    struct Full(usize);
+    impl std::io::Write for Full {
+        fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+            if self.0 == 0 {
+                return Err(std::io::Error::other("disk full"));
+            }
+            self.0 -= 1;
+            Ok(b.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut csv = CsvWriter::new::<DoublePendulum>(Full(2));
+    for s in &samples {
+        csv.write(s);
+    }
+    assert_eq!(csv.finish().unwrap_err().to_string(), "disk full");
+}

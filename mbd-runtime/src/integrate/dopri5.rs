@@ -53,6 +53,8 @@ pub struct Dopri5<T, const NQ: usize, const NV: usize> {
     pub accepted: u64,
     /// Rejected steps so far.
     pub rejected: u64,
+    /// Evaluations of v̇ so far (the stages of every step tried).
+    pub evaluations: u64,
     previous_error: T,
     // Dense output of the last step: y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))) for q
     // and for v.
@@ -68,6 +70,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
             next_step: T::ZERO,
             accepted: 0,
             rejected: 0,
+            evaluations: 0,
             previous_error: T::from_f64(1e-4),
             dense_q: [[T::ZERO; NQ]; 5],
             dense_v: [[T::ZERO; NV]; 5],
@@ -192,6 +195,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 }
                 mech.position_rates(&q, &v, &mut kq[s]);
                 let t_s = if s == 6 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
+                self.evaluations += 1;
                 match system.derivatives(t_s, &q, &v, &mut kv[s], &mut lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:

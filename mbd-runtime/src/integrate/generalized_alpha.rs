@@ -104,6 +104,8 @@ pub struct GeneralizedAlpha<T, const NV: usize> {
     pub options: GeneralizedAlphaOptions<T>,
     /// Newton iterations of the last step.
     pub iterations: u32,
+    /// Newton iterations of every step so far (each evaluates the residual once).
+    pub total_iterations: u64,
     // Pseudo-acceleration a of the last point, and whether it is valid.
     a: [T; NV],
     started: bool,
@@ -112,7 +114,7 @@ pub struct GeneralizedAlpha<T, const NV: usize> {
 impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
     /// A generalized-α integrator for a mechanism with NV velocities.
     pub fn new(options: GeneralizedAlphaOptions<T>) -> Self {
-        Self { options, iterations: 0, a: [T::ZERO; NV], started: false }
+        Self { options, iterations: 0, total_iterations: 0, a: [T::ZERO; NV], started: false }
     }
 
     /// Forget the pseudo-accelerations: the next step starts from v̇ of its initial point (call
@@ -376,6 +378,7 @@ where
             mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
         }
         self.iterations = iteration;
+        self.total_iterations += u64::from(iteration);
         self.a = a1;
         self.started = true;
         to.t = t1;

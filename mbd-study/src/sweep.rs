@@ -1,0 +1,310 @@
+//! One case's sweep: every integrator over its settings, each with every drift control, timed
+//! and checked against the case's reference run.
+
+use std::time::Instant;
+
+use indicatif::ProgressBar;
+use mbd::prelude::*;
+
+/// A mechanism, its start and its horizon.
+pub struct Case<'a, M, const NQ: usize, const NV: usize> {
+    /// Short name (file names, CSV).
+    pub name: &'static str,
+    pub mechanism: &'a M,
+    pub q0: [f64; NQ],
+    pub v0: [f64; NV],
+    /// End time (s).
+    pub t_end: f64,
+    /// Non-conservative forces: the energy error is then that of the balance T + V − W
+    /// (work tracked, which costs one more evaluation of h per stage).
+    pub track_work: bool,
+}
+
+/// The integrators of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    Rk4,
+    Dopri5,
+    Dop853,
+    GeneralizedAlpha { rho_infinity: f64 },
+}
+
+impl Method {
+    pub fn label(self) -> String {
+        match self {
+            Method::Rk4 => "RK4".into(),
+            Method::Dopri5 => "DOPRI5".into(),
+            Method::Dop853 => "DOP853".into(),
+            Method::GeneralizedAlpha { rho_infinity } => format!("gen-α ρ∞={rho_infinity}"),
+        }
+    }
+    /// What the setting is: a step (s) or a relative tolerance.
+    pub fn setting_name(self) -> &'static str {
+        match self {
+            Method::Dopri5 | Method::Dop853 => "rtol",
+            _ => "h (s)",
+        }
+    }
+}
+
+/// The drift controls of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Drift {
+    None,
+    Baumgarte,
+    Projection,
+    Partitioning,
+}
+
+pub const DRIFTS: [Drift; 4] = [Drift::None, Drift::Baumgarte, Drift::Projection, Drift::Partitioning];
+
+impl Drift {
+    pub fn label(self) -> &'static str {
+        match self {
+            Drift::None => "none",
+            Drift::Baumgarte => "Baumgarte α=β=5",
+            Drift::Projection => "projection",
+            Drift::Partitioning => "partitioning",
+        }
+    }
+    fn options(self, track_work: bool) -> SimulationOptions<f64> {
+        let (dynamics, correction) = match self {
+            Drift::None => (DynamicsOptions::without_stabilization(), Correction::None),
+            Drift::Baumgarte => (DynamicsOptions::default(), Correction::None),
+            Drift::Projection => (DynamicsOptions::without_stabilization(), Correction::projection()),
+            Drift::Partitioning => (DynamicsOptions::without_stabilization(), Correction::partitioning()),
+        };
+        SimulationOptions { dynamics, correction, track_work, ..SimulationOptions::default() }
+    }
+}
+
+/// The settings swept, cheapest first: RK4's steps (s), DOPRI5's and DOP853's relative
+/// tolerances (absolute: 1e-2 of it), generalized-α's steps and ρ∞ (1: no numerical damping).
+pub const STEPS_RK4: [f64; 8] = [2e-2, 1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
+pub const TOLERANCES_DOPRI5: [f64; 10] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
+pub const TOLERANCES_DOP853: [f64; 8] = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
+pub const STEPS_GENERALIZED_ALPHA: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
+pub const RHO_INFINITY: [f64; 3] = [0.5, 0.8, 1.0];
+
+/// The methods with their settings.
+pub fn methods() -> Vec<(Method, Vec<f64>)> {
+    let mut list =
+        vec![(Method::Rk4, STEPS_RK4.to_vec()), (Method::Dopri5, TOLERANCES_DOPRI5.to_vec()), (Method::Dop853, TOLERANCES_DOP853.to_vec())];
+    for rho_infinity in RHO_INFINITY {
+        list.push((Method::GeneralizedAlpha { rho_infinity }, STEPS_GENERALIZED_ALPHA.to_vec()));
+    }
+    list
+}
+
+/// Runs per case (for the progress bar).
+pub fn runs_per_case() -> u64 {
+    methods().iter().map(|(_, s)| s.len() as u64).sum::<u64>() * DRIFTS.len() as u64
+}
+
+/// A setting whose run takes longer than this (s) ends its series: the smaller steps or
+/// tighter tolerances after it would take longer still.
+pub const RUN_BUDGET_S: f64 = 2.0;
+/// Output times per run (where the constraint and energy errors are sampled).
+pub const OUTPUTS: usize = 50;
+
+/// What one run measured.
+#[derive(Clone, Debug)]
+pub struct Measured {
+    /// max_i |q_i(t_end) − q_ref,i| (m, rad; spatial: m and Euler parameters).
+    pub error: f64,
+    /// Largest ‖Φ‖∞ at the outputs (m).
+    pub constraint: f64,
+    /// Largest |E(t) − E(0)| at the outputs (J), E = T + V (− W with work tracked).
+    pub energy: f64,
+    /// Median wall time of the repeats (s).
+    pub seconds: f64,
+    pub repeats: usize,
+    pub steps: u64,
+    /// Evaluations of v̇ (explicit) or of the Newton residual (generalized-α).
+    pub evaluations: u64,
+    /// Newton iterations (generalized-α; 0 for explicit methods).
+    pub newton: u64,
+}
+
+/// One row of the study.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub case: &'static str,
+    pub method: Method,
+    pub setting: f64,
+    pub drift: Drift,
+    /// The measurement, or why there is none (the run's error, or the budget).
+    pub outcome: Result<Measured, String>,
+}
+
+/// The reference end state and how far a second, independent reference is from it.
+pub struct Reference<const NQ: usize> {
+    pub q: [f64; NQ],
+    /// max |q_DOP853 − q_DOPRI5| at t_end: the floor below which errors are not resolved.
+    pub uncertainty: f64,
+    pub seconds: f64,
+}
+
+/// A consistent start (the mass-weighted projection to 1e-13), shared by every run.
+pub fn consistent_start<M, const NQ: usize, const NV: usize, const NC: usize>(m: &M, q: &mut [f64; NQ], v: &mut [f64; NV])
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+{
+    project(m, 0.0, q, v, &DynamicsOptions::without_stabilization(), 1e-13, 30).expect("the case's start projects onto its constraints");
+}
+
+/// DOP853 at rtol 1e-13 and DOPRI5 at 1e-12, neither corrected: the first is the reference, their
+/// difference its uncertainty.
+pub fn reference<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N>,
+) -> Reference<NQ>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let options = SimulationOptions {
+        dynamics: DynamicsOptions::without_stabilization(),
+        correction: Correction::None,
+        ..SimulationOptions::default()
+    };
+    let fail = |e: SimulationError| -> ! { panic!("{}: the reference run fails: {e}", case.name) };
+    let start = Instant::now();
+    let (mut q, mut q2) = ([0.0; NQ], [0.0; NQ]);
+    let tight = Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() };
+    simulate(case.mechanism, ws, &mut Dop853::new(tight), 0.0, &case.q0, &case.v0, &[case.t_end], &options, |s| q = s.point.q)
+        .unwrap_or_else(|e| fail(e));
+    let seconds = start.elapsed().as_secs_f64();
+    let check = Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() };
+    simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &[case.t_end], &options, |s| q2 = s.point.q)
+        .unwrap_or_else(|e| fail(e));
+    Reference { q, uncertainty: max_difference(&q, &q2), seconds }
+}
+
+fn max_difference<const NQ: usize>(a: &[f64; NQ], b: &[f64; NQ]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+/// Every method, setting and drift control on `case`.
+pub fn sweep<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N>,
+    reference: &Reference<NQ>,
+    progress: &ProgressBar,
+) -> Vec<Row>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+{
+    let mut rows = Vec::new();
+    for (method, settings) in methods() {
+        for drift in DRIFTS {
+            let mut over_budget = false;
+            for &setting in &settings {
+                progress.set_message(format!(
+                    "{}: {} {} = {setting:e}, {}",
+                    case.name,
+                    method.label(),
+                    method.setting_name(),
+                    drift.label()
+                ));
+                let outcome = if over_budget {
+                    Err(format!("skipped: a cheaper setting took over {RUN_BUDGET_S} s"))
+                } else {
+                    let measured = one(case, ws, reference, method, setting, drift);
+                    if let Ok(m) = &measured {
+                        over_budget = m.seconds > RUN_BUDGET_S;
+                    }
+                    measured
+                };
+                rows.push(Row { case: case.name, method, setting, drift, outcome });
+                progress.inc(1);
+            }
+        }
+    }
+    rows
+}
+
+fn one<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N>,
+    reference: &Reference<NQ>,
+    method: Method,
+    setting: f64,
+    drift: Drift,
+) -> Result<Measured, String>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+{
+    match method {
+        Method::Rk4 => timed(case, ws, reference, drift, || Rk4::new(setting), |_, stats| (4 * stats.steps, 0)),
+        Method::Dopri5 => {
+            let options = Dopri5Options { rtol: setting, atol: setting * 1e-2, ..Dopri5Options::default() };
+            timed(case, ws, reference, drift, || Dopri5::new(options), |i, _| (i.evaluations, 0))
+        }
+        Method::Dop853 => {
+            let options = Dop853Options { rtol: setting, atol: setting * 1e-2, ..Dop853Options::default() };
+            timed(case, ws, reference, drift, || Dop853::new(options), |i, _| (i.evaluations, 0))
+        }
+        Method::GeneralizedAlpha { rho_infinity } => {
+            let options = GeneralizedAlphaOptions { step: setting, rho_infinity, ..GeneralizedAlphaOptions::default() };
+            timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
+        }
+    }
+}
+
+/// Runs `make()` to the end time, repeated while cheap (5 runs under 0.05 s, 3 under 0.5 s),
+/// and measures the last one against the reference; the time is the median.
+fn timed<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N>,
+    reference: &Reference<NQ>,
+    drift: Drift,
+    make: impl Fn() -> I,
+    counts: impl Fn(&I, &Statistics) -> (u64, u64),
+) -> Result<Measured, String>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+    I: Integrator<f64, M, NQ, NV, NC, N>,
+{
+    let options = drift.options(case.track_work);
+    let times: Vec<f64> = (1..=OUTPUTS).map(|k| case.t_end * k as f64 / OUTPUTS as f64).collect();
+    let m = case.mechanism;
+    let energy = |s: &Sample<f64, NQ, NV, NC>| if case.track_work { s.energy.balance() } else { s.energy.kinetic + s.energy.potential };
+    let e0 = kinetic_energy(m, &case.q0, &case.v0) + m.potential_energy(&case.q0, 0.0);
+    let mut seconds = Vec::new();
+    loop {
+        let mut integrator = make();
+        let (mut constraint, mut energy_error, mut last) = (0.0f64, 0.0f64, [0.0; NQ]);
+        let start = Instant::now();
+        let stats = simulate(m, ws, &mut integrator, 0.0, &case.q0, &case.v0, &times, &options, |s| {
+            let mut phi = [0.0; NC];
+            m.constraints(&s.point.q, s.point.t, &mut phi);
+            constraint = phi.iter().fold(constraint, |a, x| a.max(x.abs()));
+            energy_error = energy_error.max((energy(s) - e0).abs());
+            last = s.point.q;
+        })
+        .map_err(|e| e.to_string())?;
+        seconds.push(start.elapsed().as_secs_f64());
+        let total: f64 = seconds.iter().sum();
+        let wanted = if total < 0.05 {
+            5
+        } else if total < 0.5 {
+            3
+        } else {
+            1
+        };
+        if seconds.len() >= wanted {
+            seconds.sort_by(f64::total_cmp);
+            let (evaluations, newton) = counts(&integrator, &stats);
+            return Ok(Measured {
+                error: max_difference(&last, &reference.q),
+                constraint,
+                energy: energy_error,
+                seconds: seconds[seconds.len() / 2],
+                repeats: seconds.len(),
+                steps: stats.steps,
+                evaluations,
+                newton,
+            });
+        }
+    }
+}
