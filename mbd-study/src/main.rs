@@ -10,8 +10,9 @@
 //!
 //! The reference of each case is DOP853 at rtol 1e-13 without drift correction, checked against
 //! DOPRI5 at rtol 1e-12: their difference is reported as the reference's uncertainty, and errors
-//! below it are not resolved. (A cross-check against CasADi's IDAS on the oracle's rebuild is
-//! not made yet.)
+//! below it are not resolved; and against CasADi's CVODES (Adams, rtol 1e-12) on the oracle's
+//! independent rebuild of the model (`tests/oracle/mbd_oracle/integrate.py`, in the oracle's
+//! pinned Python environment, made on first use).
 
 mod cases;
 mod report;
@@ -61,6 +62,8 @@ impl Study {
             t_end,
             reference_seconds: reference.seconds,
             uncertainty: reference.uncertainty,
+            dopri5: reference.dopri5,
+            casadi: reference.casadi.clone(),
         };
         if let Err(e) = report::plot(&summary, &rows, &self.out.join(format!("{name}.svg"))) {
             self.progress.println(format!("{name}: the plot failed: {e}"));

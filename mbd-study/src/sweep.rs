@@ -1,6 +1,7 @@
 //! One case's sweep: every integrator over its settings, each with every drift control, timed
 //! and checked against the case's reference run.
 
+use std::process::Command;
 use std::time::Instant;
 
 use indicatif::ProgressBar;
@@ -137,12 +138,18 @@ pub struct Row {
     pub outcome: Result<Measured, String>,
 }
 
-/// The reference end state and how far a second, independent reference is from it.
+/// The reference end state and how far two independent integrations are from it.
 pub struct Reference<const NQ: usize> {
     pub q: [f64; NQ],
-    /// max |q_DOP853 − q_DOPRI5| at t_end: the floor below which errors are not resolved.
+    /// The larger of max |q_DOP853 − q_DOPRI5| and max |q_DOP853 − q_CVODES| at t_end: the
+    /// floor below which errors are not resolved.
     pub uncertainty: f64,
+    /// max |q_DOP853 − q_DOPRI5| at t_end (DOPRI5 at rtol 1e-12).
+    pub dopri5: f64,
     pub seconds: f64,
+    /// max |q_DOP853 − q_CVODES| at t_end, CasADi's CVODES (Adams, rtol 1e-12) on the oracle's
+    /// rebuild of the model; or why it was not run.
+    pub casadi: Result<f64, String>,
 }
 
 /// A consistent start (the mass-weighted projection to 1e-13), shared by every run.
@@ -177,7 +184,41 @@ where
     let check = Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() };
     simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &[case.t_end], &options, |s| q2 = s.point.q)
         .unwrap_or_else(|e| fail(e));
-    Reference { q, uncertainty: max_difference(&q, &q2), seconds }
+    let casadi = casadi_end(case).map(|theirs| max_difference(&q, &theirs));
+    let dopri5 = max_difference(&q, &q2);
+    let uncertainty = dopri5.max(*casadi.as_ref().unwrap_or(&0.0));
+    Reference { q, uncertainty, dopri5, seconds, casadi }
+}
+
+/// q(t_end) by CasADi's CVODES at rtol 1e-12 on the oracle's independent rebuild of the model
+/// (`tests/oracle/mbd_oracle/integrate.py`), in the oracle's pinned Python environment (made by
+/// `tests/oracle/ensure_env.sh` on first use).
+fn casadi_end<M: Mechanism, const NQ: usize, const NV: usize>(case: &Case<'_, M, NQ, NV>) -> Result<[f64; NQ], String> {
+    let oracle = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/oracle");
+    let setup = Command::new("bash").arg(oracle.join("ensure_env.sh")).output().map_err(|e| format!("bash: {e}"))?;
+    let stdout = String::from_utf8_lossy(&setup.stdout);
+    let python = stdout.lines().rev().find(|l| !l.trim().is_empty()).map(str::trim).unwrap_or_default();
+    if !setup.status.success() || python.is_empty() {
+        return Err(format!("the oracle's Python environment could not be set up: {}", String::from_utf8_lossy(&setup.stderr)));
+    }
+    let input = std::env::temp_dir().join(format!("mbd-study-{}.json", case.name));
+    let data = format!(
+        "{{\"model\": {}, \"q0\": {:?}, \"v0\": {:?}, \"t_end\": {:?}, \"rtol\": 1e-12, \"atol\": 1e-14}}",
+        M::MODEL_JSON,
+        case.q0,
+        case.v0,
+        case.t_end
+    );
+    std::fs::write(&input, data).map_err(|e| e.to_string())?;
+    let out =
+        Command::new(python).args(["-m", "mbd_oracle.integrate"]).arg(&input).current_dir(&oracle).output().map_err(|e| e.to_string())?;
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let line = text.lines().find_map(|l| l.strip_prefix("q_end ")).ok_or_else(|| {
+        // CasADi's last line says why (e.g. CV_TOO_MUCH_WORK where the Schur complement turns singular).
+        format!("CVODES failed: {}", text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("no output"))
+    })?;
+    let values: Vec<f64> = line.split_whitespace().map(|x| x.parse().unwrap_or(f64::NAN)).collect();
+    values.try_into().map_err(|v: Vec<f64>| format!("CVODES gave {} coordinates, not {NQ}", v.len()))
 }
 
 fn max_difference<const NQ: usize>(a: &[f64; NQ], b: &[f64; NQ]) -> f64 {
