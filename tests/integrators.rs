@@ -492,3 +492,28 @@ fn the_csv_writer_writes_every_sample_with_named_columns() {
     }
     assert_eq!(csv.finish().unwrap_err().to_string(), "disk full");
 }
+
+/// A drift correction that cannot reach its tolerance in its iterations stops with
+/// `NotConverged`, naming the worst constraint row and its residual, instead of going on: here
+/// the start is 1 cm off and no Newton step is allowed, for partitioning and for projection.
+#[test]
+fn a_correction_out_of_iterations_names_its_worst_row() {
+    let m = DoublePendulum::default();
+    let mut q = m.initial_positions();
+    q[0] += 0.01;
+    for correction in
+        [Correction::Partitioning { tolerance: 1e-10, max_iterations: 0 }, Correction::Projection { tolerance: 1e-10, max_iterations: 0 }]
+    {
+        let options = SimulationOptions { correction, ..SimulationOptions::default() };
+        let err =
+            simulate(&m, &mut DoublePendulum::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 6], &[0.01], &options, |_| {}).unwrap_err();
+        match err {
+            SimulationError::NotConverged { t, worst_row, residual, .. } => {
+                assert_eq!(t, 0.0, "{correction:?}");
+                assert!(DoublePendulum::CONSTRAINT_NAMES.contains(&worst_row), "{correction:?}: {worst_row}");
+                assert!((residual - 0.01).abs() < 1e-12, "{correction:?}: residual {residual:e}");
+            }
+            e => panic!("{correction:?}: {e}"),
+        }
+    }
+}

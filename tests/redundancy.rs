@@ -351,4 +351,9 @@ fn redundant_rows_that_leave_a_velocity_free_are_named() {
     assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
     let err = inverse_dynamics(&m, &mut ws, &q, &[0.0; 3], &[0.0; 3], 0.0, &mut [0.0; 4]).unwrap_err();
     assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
+    // The position solve meets Φ = 0 (the slider is on both guides) but the position along them
+    // is not determined either.
+    let mut q = m.initial_positions();
+    let err = KinematicSolver::default().solve_position(&m, &mut ws, &mut q, 0.0).unwrap_err();
+    assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
 }

@@ -10,6 +10,7 @@
 mod csv;
 mod dynamics;
 mod error;
+mod finite_differences;
 mod integrate;
 mod inverse;
 mod kinematics;
@@ -29,6 +30,7 @@ pub mod workspace;
 pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
 pub use error::{KinematicError, NonFiniteQuantity};
+pub use finite_differences::FiniteDifferences;
 pub use integrate::{
     project, simulate, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, GeneralizedAlpha, GeneralizedAlphaOptions,
     Integrator, Point, Rk4, Sample, SimulationError, SimulationOptions, Statistics, System,

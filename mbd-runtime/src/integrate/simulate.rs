@@ -66,16 +66,14 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
     let tolerance = tolerance.max(crate::kinematics::resolution(q));
     let mut iterations = 0;
     loop {
-        let residual = mechanism.project_positions_step(q, t, options)?;
-        if residual <= tolerance {
-            // The step just taken was below tolerance too: keep it (it only helps).
-            break;
-        }
-        iterations += 1;
-        if iterations > max_iterations {
+        if iterations == max_iterations {
+            // No step left: measure where the last one ended.
             let mut phi = [T::ZERO; NC];
             mechanism.constraints(q, t, &mut phi);
             let worst = phi.iter().enumerate().fold((0, T::ZERO), |w, (i, v)| if v.abs() > w.1 { (i, v.abs()) } else { w });
+            if worst.1 <= tolerance {
+                break;
+            }
             return Err(SimulationError::NotConverged {
                 t: t.to_f64(),
                 iterations,
@@ -83,6 +81,12 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
                 residual: worst.1.to_f64(),
             });
         }
+        let residual = mechanism.project_positions_step(q, t, options)?;
+        if residual <= tolerance {
+            // The step just taken was below tolerance too: keep it (it only helps).
+            break;
+        }
+        iterations += 1;
     }
     mechanism.project_velocities(q, v, t, options)?;
     Ok(())

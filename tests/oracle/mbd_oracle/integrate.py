@@ -57,7 +57,7 @@ def main(argv):
         "abstol": data.get("atol", 1e-14),
         "linear_multistep_method": "adams",
         "nonlinear_solver_iteration": "functional",
-        "max_num_steps": 10_000_000,
+        "max_num_steps": 200_000,
     }
     dae = {"x": y, "t": t, "p": p, "ode": ydot}
     solver = ca.integrator("reference", "cvodes", dae, 0.0, float(data["t_end"]), options)
