@@ -2,6 +2,7 @@
 """Mutation testing of mbd-runtime on a systematic sample, judged by the tests that use it.
 
     python3 .ci/mutants_sample.py 0/80      # shard 0 of 80: every 80th of cargo-mutants' list
+    python3 .ci/mutants_sample.py 0/80 --retest-missed   # only the shard's mutants missed before
 
 cargo-mutants generates the mutants (`cargo mutants -p mbd-runtime --list --diff`); this script
 applies each one in a git worktree of HEAD and runs the tests that exercise the runtime. Those
@@ -32,19 +33,24 @@ LIMIT_S = 900
 
 def main():
     shard = sys.argv[1] if len(sys.argv) > 1 else "0/80"
+    retest = "--retest-missed" in sys.argv[2:]
     out_dir = ROOT / "target" / "mutants-sample"
     out_dir.mkdir(parents=True, exist_ok=True)
     listing = subprocess.run(
         ["cargo", "mutants", "-p", "mbd-runtime", "--list", "--json", "--diff", "--shard", shard, "--sharding", "round-robin"],
         cwd=ROOT, check=True, capture_output=True, text=True).stdout
     mutants = json.loads(listing)
+    results = out_dir / f"results-{shard.replace('/', 'of')}.tsv"
+    if retest:
+        missed = {line.split("\t")[2] for line in results.read_text().splitlines()[1:] if line.startswith("missed")}
+        mutants = [m for m in mutants if m["name"] in missed]
+        results = out_dir / f"retest-{shard.replace('/', 'of')}.tsv"
     tests = sorted(p.stem for p in (ROOT / "tests").glob("*.rs") if p.stem not in EXCLUDED_TESTS)
     command = ["cargo", "test", "-q", "-p", "mbd", "-p", "mbd-runtime", "--lib"]
     command += [f"--test={t}" for t in tests]
     tree = pathlib.Path(tempfile.mkdtemp()) / "tree"
     subprocess.run(["git", "worktree", "add", "--detach", str(tree), "HEAD"], cwd=ROOT, check=True)
     env = dict(os.environ, CARGO_PROFILE_DEV_DEBUG="0", CARGO_TARGET_DIR=str(out_dir / "target"))
-    results = out_dir / f"results-{shard.replace('/', 'of')}.tsv"
     try:
         baseline = subprocess.run(command, cwd=tree, env=env, capture_output=True, text=True)
         if baseline.returncode != 0:

@@ -1,8 +1,8 @@
 //! What accuracy costs in time: every integrator (RK4 over steps, DOPRI5 and DOP853 over
 //! tolerances, generalized-α over steps and ρ∞) with every drift control (none, Baumgarte,
-//! projection, partitioning) on mechanisms of several kinds, each run's error at the end time
-//! against a tight reference, its constraint and energy errors, CPU time (median of repeats),
-//! evaluations and Newton iterations.
+//! projection, partitioning) on mechanisms of several kinds: each run's largest error over 50
+//! output times against a tight reference, its constraint and energy errors, CPU time (median of
+//! repeats), evaluations and Newton iterations.
 //!
 //! Run: `cargo run --release -p mbd-study` (about 10 minutes on 2 cores). Writes
 //! `mbd-study/results/study.csv` (every run), `study.md` (the tables) and one `<case>.svg`
@@ -15,6 +15,7 @@
 //! pinned Python environment, made on first use).
 
 mod cases;
+mod exactness;
 mod report;
 mod sweep;
 
@@ -25,17 +26,21 @@ use mbd::prelude::*;
 
 use cases::*;
 use report::CaseSummary;
-use sweep::{Case, Row};
+use sweep::{Case, Reference, Row};
 
 struct Study {
     rows: Vec<Row>,
+    exactness: Vec<exactness::Row>,
     summaries: Vec<CaseSummary>,
     progress: ProgressBar,
     out: PathBuf,
 }
 
 impl Study {
-    /// Assembles `m`, makes its start consistent, runs the reference and the sweep, and plots.
+    /// Assembles `m`, makes its start consistent, runs the reference and the sweep, plots, and
+    /// (with `exact`) compares exact and finite-difference derivatives; returns the start and
+    /// the reference.
+    #[allow(clippy::too_many_arguments)]
     fn case<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &mut self,
         name: &'static str,
@@ -44,7 +49,9 @@ impl Study {
         ws: &mut Workspace<f64, NV, NC, N>,
         t_end: f64,
         track_work: bool,
-    ) where
+        exact: bool,
+    ) -> ([f64; NQ], [f64; NV], Reference<NQ>)
+    where
         M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
     {
         let mut q0 = m.initial_positions();
@@ -70,6 +77,12 @@ impl Study {
         }
         self.rows.extend(rows);
         self.summaries.push(summary);
+        if exact {
+            self.progress.set_message(format!("{name}: exact against finite-difference derivatives"));
+            let start = exactness::Start { case: name, q0: &q0, v0: &v0, t_end, reference: &reference };
+            self.exactness.extend(exactness::compare(m, ws, &start));
+        }
+        (q0, v0, reference)
     }
 }
 
@@ -81,7 +94,7 @@ fn main() {
     progress.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs  {msg}").expect("template").progress_chars("=> "),
     );
-    let mut study = Study { rows: Vec::new(), summaries: Vec::new(), progress, out: out.clone() };
+    let mut study = Study { rows: Vec::new(), exactness: Vec::new(), summaries: Vec::new(), progress, out: out.clone() };
 
     let m = FlywheelSliderCrank::default();
     study.case(
@@ -91,15 +104,21 @@ fn main() {
         &mut FlywheelSliderCrank::workspace(),
         2.0,
         false,
+        true,
     );
     let m = DoublePendulum::default();
-    study.case("double_pendulum", "double pendulum released horizontal (chaotic)", &m, &mut DoublePendulum::workspace(), 1.0, false);
+    study.case("double_pendulum", "double pendulum released horizontal (chaotic)", &m, &mut DoublePendulum::workspace(), 1.0, false, true);
     let m = Chain4::default();
-    study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false);
+    study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true);
     let m = Chain16::default();
-    study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false);
+    let (q0, v0, reference) =
+        study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true);
+    let m32 = Chain16F32::default();
+    study.progress.set_message("chain16: f32 against f64");
+    let start = exactness::Start { case: "chain16", q0: &q0, v0: &v0, t_end: 2.0, reference: &reference };
+    study.exactness.extend(exactness::precision((&m32, &mut Chain16F32::workspace()), (&m, &mut Chain16::workspace()), &start));
     let m = Chain64::default();
-    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false);
+    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false);
     let m = Suspension::default();
     study.case(
         "suspension",
@@ -107,6 +126,7 @@ fn main() {
         &m,
         &mut Suspension::workspace(),
         1.0,
+        true,
         true,
     );
     let m = ChangePointFourBar::default();
@@ -117,9 +137,10 @@ fn main() {
         &mut ChangePointFourBar::workspace(),
         2.0,
         false,
+        true,
     );
     let m = HeavyTop::default();
-    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut HeavyTop::workspace(), 1.0, false);
+    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut HeavyTop::workspace(), 1.0, false, true);
     let m = FreeSpatialSliderCrank::default();
     study.case(
         "spatial_slider_crank",
@@ -128,17 +149,20 @@ fn main() {
         &mut FreeSpatialSliderCrank::workspace(),
         2.0,
         false,
+        true,
     );
     study.progress.finish();
 
     report::csv(&study.rows, &out.join("study.csv")).expect("write study.csv");
     let header = format!(
-        "# What accuracy costs in time\n\n`cargo run --release -p mbd-study`, {} on {} ({} runs). Error: max |Δq| at the end time over the coordinates (m, rad; spatial Euler parameters) against the case's reference. CPU: median wall time of up to 5 repeats, one thread, 50 output times per run where ‖Φ‖∞ and the energy error (T + V, or the balance T + V − W with work tracked for the damped suspension) are sampled. All runs: `study.csv`.",
+        "# What accuracy costs in time\n\n`cargo run --release -p mbd-study`, {} on {} ({} runs). Error: max |Δq| over the coordinates (m, rad; spatial Euler parameters) and the run's 50 output times, against the case's reference at the same times. CPU: median wall time of up to 5 repeats, one thread, 50 output times per run where ‖Φ‖∞ and the energy error (T + V, or the balance T + V − W with work tracked for the damped suspension) are sampled. All runs: `study.csv`.",
         today(),
         machine(),
         study.rows.len()
     );
-    std::fs::write(out.join("study.md"), report::markdown(&study.summaries, &study.rows, &header)).expect("write study.md");
+    let mut markdown = report::markdown(&study.summaries, &study.rows, &header);
+    markdown.push_str(&exactness::markdown(&study.exactness));
+    std::fs::write(out.join("study.md"), markdown).expect("write study.md");
     println!("wrote {}", out.display());
 }
 

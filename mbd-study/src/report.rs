@@ -21,7 +21,7 @@ pub struct CaseSummary {
     pub casadi: Result<f64, String>,
 }
 
-/// The accuracy targets of the summary tables (max |Δq| at t_end, m and rad).
+/// The accuracy targets of the summary tables (max |Δq| over the output times, m and rad).
 pub const TARGETS: [f64; 4] = [1e-3, 1e-6, 1e-9, 1e-11];
 
 pub fn csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
@@ -104,7 +104,7 @@ pub fn plot(summary: &CaseSummary, rows: &[Row], path: &Path) -> Result<(), Box<
         chart
             .configure_mesh()
             .x_desc("CPU time (s, median)")
-            .y_desc("max |Δq| at t_end (m, rad)")
+            .y_desc("max |Δq| over the outputs (m, rad)")
             .x_label_formatter(&|x| format!("{x:.0e}"))
             .y_label_formatter(&|y| format!("{y:.0e}"))
             .draw()?;

@@ -105,13 +105,19 @@ pub fn runs_per_case() -> u64 {
 /// A setting whose run takes longer than this (s) ends its series: the smaller steps or
 /// tighter tolerances after it would take longer still.
 pub const RUN_BUDGET_S: f64 = 2.0;
-/// Output times per run (where the constraint and energy errors are sampled).
+/// Output times per run (where the errors in q, Φ and energy are sampled).
 pub const OUTPUTS: usize = 50;
+
+/// [`OUTPUTS`] times evenly spaced over (0, t_end].
+pub fn output_times(t_end: f64) -> Vec<f64> {
+    (1..=OUTPUTS).map(|k| t_end * k as f64 / OUTPUTS as f64).collect()
+}
 
 /// What one run measured.
 #[derive(Clone, Debug)]
 pub struct Measured {
-    /// max_i |q_i(t_end) − q_ref,i| (m, rad; spatial: m and Euler parameters).
+    /// max over the output times and the coordinates of |q_i(t) − q_ref,i(t)| (m, rad; spatial:
+    /// m and Euler parameters).
     pub error: f64,
     /// Largest ‖Φ‖∞ at the outputs (m).
     pub constraint: f64,
@@ -138,13 +144,15 @@ pub struct Row {
     pub outcome: Result<Measured, String>,
 }
 
-/// The reference end state and how far two independent integrations are from it.
+/// The reference motion at the output times and how far two independent integrations are from
+/// it.
 pub struct Reference<const NQ: usize> {
-    pub q: [f64; NQ],
-    /// The larger of max |q_DOP853 − q_DOPRI5| and max |q_DOP853 − q_CVODES| at t_end: the
-    /// floor below which errors are not resolved.
+    /// q at each of the [`OUTPUTS`] output times ([`output_times`]).
+    pub q: Vec<[f64; NQ]>,
+    /// The larger of max |q_DOP853 − q_DOPRI5| over the output times and max |q_DOP853 −
+    /// q_CVODES| at t_end: the floor below which errors are not resolved.
     pub uncertainty: f64,
-    /// max |q_DOP853 − q_DOPRI5| at t_end (DOPRI5 at rtol 1e-12).
+    /// max |q_DOP853 − q_DOPRI5| over the output times (DOPRI5 at rtol 1e-12).
     pub dopri5: f64,
     pub seconds: f64,
     /// max |q_DOP853 − q_CVODES| at t_end, CasADi's CVODES (Adams, rtol 1e-12) on the oracle's
@@ -175,17 +183,19 @@ where
         ..SimulationOptions::default()
     };
     let fail = |e: SimulationError| -> ! { panic!("{}: the reference run fails: {e}", case.name) };
+    let times = output_times(case.t_end);
     let start = Instant::now();
-    let (mut q, mut q2) = ([0.0; NQ], [0.0; NQ]);
+    let (mut q, mut q2) = (Vec::new(), Vec::new());
     let tight = Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() };
-    simulate(case.mechanism, ws, &mut Dop853::new(tight), 0.0, &case.q0, &case.v0, &[case.t_end], &options, |s| q = s.point.q)
+    simulate(case.mechanism, ws, &mut Dop853::new(tight), 0.0, &case.q0, &case.v0, &times, &options, |s| q.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
     let seconds = start.elapsed().as_secs_f64();
     let check = Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() };
-    simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &[case.t_end], &options, |s| q2 = s.point.q)
+    simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &times, &options, |s| q2.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
-    let casadi = casadi_end(case).map(|theirs| max_difference(&q, &theirs));
-    let dopri5 = max_difference(&q, &q2);
+    let end = q.last().expect("OUTPUTS > 0");
+    let casadi = casadi_end(case).map(|theirs| max_difference(end, &theirs));
+    let dopri5 = q.iter().zip(&q2).map(|(a, b)| max_difference(a, b)).fold(0.0, f64::max);
     let uncertainty = dopri5.max(*casadi.as_ref().unwrap_or(&0.0));
     Reference { q, uncertainty, dopri5, seconds, casadi }
 }
@@ -307,21 +317,22 @@ where
     I: Integrator<f64, M, NQ, NV, NC, N>,
 {
     let options = drift.options(case.track_work);
-    let times: Vec<f64> = (1..=OUTPUTS).map(|k| case.t_end * k as f64 / OUTPUTS as f64).collect();
+    let times = output_times(case.t_end);
     let m = case.mechanism;
     let energy = |s: &Sample<f64, NQ, NV, NC>| if case.track_work { s.energy.balance() } else { s.energy.kinetic + s.energy.potential };
     let e0 = kinetic_energy(m, &case.q0, &case.v0) + m.potential_energy(&case.q0, 0.0);
     let mut seconds = Vec::new();
     loop {
         let mut integrator = make();
-        let (mut constraint, mut energy_error, mut last) = (0.0f64, 0.0f64, [0.0; NQ]);
+        let (mut constraint, mut energy_error, mut error, mut k) = (0.0f64, 0.0f64, 0.0f64, 0);
         let start = Instant::now();
         let stats = simulate(m, ws, &mut integrator, 0.0, &case.q0, &case.v0, &times, &options, |s| {
             let mut phi = [0.0; NC];
             m.constraints(&s.point.q, s.point.t, &mut phi);
             constraint = phi.iter().fold(constraint, |a, x| a.max(x.abs()));
             energy_error = energy_error.max((energy(s) - e0).abs());
-            last = s.point.q;
+            error = error.max(max_difference(&s.point.q, &reference.q[k]));
+            k += 1;
         })
         .map_err(|e| e.to_string())?;
         seconds.push(start.elapsed().as_secs_f64());
@@ -337,7 +348,7 @@ where
             seconds.sort_by(f64::total_cmp);
             let (evaluations, newton) = counts(&integrator, &stats);
             return Ok(Measured {
-                error: max_difference(&last, &reference.q),
+                error,
                 constraint,
                 energy: energy_error,
                 seconds: seconds[seconds.len() / 2],

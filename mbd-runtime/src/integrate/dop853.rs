@@ -12,6 +12,10 @@
 //! three more evaluations of v̇, made only for steps with an output time strictly inside
 //! ([`Integrator::prepare_interpolation`]).
 
+// The coefficients are quoted with the 30 digits Hairer publishes (so they can be checked
+// against the source); the compiler rounds them to f64.
+#![allow(clippy::excessive_precision)]
+
 use super::dopri5::{initial_step, MinExt};
 use super::{check_step, hermite_state, non_finite, Integrator, Point, SimulationError, System};
 use crate::{Dopri5Options, ForwardDynamics, Real, Workspace};
@@ -263,6 +267,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    // One index runs over q (or v) and its stage derivatives, or over a stage's node and row.
+    #[allow(clippy::needless_range_loop)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
@@ -394,6 +400,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     /// The three extra stages and the 7th-order interpolant of the last step (Hairer's
     /// `DOP853` with dense output), from the stages and the step's unnormalized end (the flow
     /// the stages followed).
+    #[allow(clippy::needless_range_loop)] // s indexes the nodes C and the stage arrays alike
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
