@@ -11,6 +11,9 @@ use crate::formulation::Formulation;
 use crate::model::Model;
 use crate::schur::Schur;
 
+/// Constraint rows up to which the LDLᵀ of S and its solve are inlined into their callers.
+const INLINE_SCHUR_ROWS: usize = 64;
+
 /// The generated forward dynamics: private helpers (the LDLᵀ of S and its solve) and the
 /// `ForwardDynamics` implementation.
 pub struct ForwardCode {
@@ -276,9 +279,13 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
 
+    // Inlined into small mechanisms' solves (a call's cost matters there); kept apart in large
+    // ones, where LLVM's optimization of the factor's straight-line, branchy code inlined into
+    // each caller grew superlinearly (a 60-link chain's RK4 build took 166 s, a 30-link one 6 s).
+    let helper_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline(always)]) } else { quote!(#[inline(never)]) };
     let helpers = quote! {
         /// LDLᵀ of S = D M⁻¹ Dᵀ over its compile-time pattern; `Err(row)` for a dependent row.
-        #[inline(always)]
+        #helper_inline
         fn schur_factor(
             jv: &[#real; #nnz_l],
             minv: &[#real; #nv_l],
@@ -292,7 +299,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
 
         /// b ← S⁻¹ b with the factors of `schur_factor`.
-        #[inline(always)]
+        #helper_inline
         fn schur_solve(l: &[#real; #nl_l], dinv: &[#real; #nc_l], b: &mut [#real; #nc_l]) {
             #solve
         }

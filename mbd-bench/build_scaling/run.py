@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Build time and peak memory of a user's crate holding one mechanism of N bodies.
+
+    python3 mbd-bench/build_scaling/run.py            # N = 10, 30, 60, 120, 240
+
+For each N it writes a crate under target/build-scaling/ whose binary declares a pendulum chain
+of N links with a torsion spring at every pin, assembles it and simulates it with RK4, DOPRI5,
+DOP853 and generalized-α, and solves its statics — every solver instantiated, as a user's
+program would — then times `cargo build --release` of that binary alone (its dependencies built
+beforehand) and reads the peak resident memory of the largest process of the build (rustc).
+Prints a markdown table. Targets (issue 11): at most 30 s and 1 GB at 120 bodies, no cliff.
+"""
+import os
+import pathlib
+import resource
+import subprocess
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CRATE = ROOT / "target" / "build-scaling"
+
+
+def chain(n):
+    lines = ["use mbd::prelude::*;", "", "mechanism! {", f"    /// A pendulum chain of {n} links with torsion springs.", "    pub Chain {",
+             "        gravity [0.0, -9.81];"]
+    for i in range(n):
+        lines.append(f"        body l{i} {{ mass: 0.1, inertia: 8.3333e-5, at: [{0.05 + 0.1 * i:.2f}, 0.0, 0.0] }}")
+    lines.append("        revolute ground[0.0, 0.0] ~ l0[-0.05, 0.0];")
+    for i in range(1, n):
+        lines.append(f"        revolute l{i - 1}[0.05, 0.0] ~ l{i}[-0.05, 0.0];")
+        lines.append(f"        rotational_spring l{i - 1} ~ l{i} {{ k: 1.0, angle: 0.0, c: 0.01 }};")
+    lines += ["    }", "}", "", """fn main() {
+    let m = Chain::default();
+    let mut ws = Chain::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let v = [0.0; Chain::NV];
+    let o: SimulationOptions<f64> = SimulationOptions::default();
+    let times = [0.01];
+    simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q, &v, &times, &o, |_| {}).expect("RK4");
+    simulate(&m, &mut ws, &mut Dopri5::new(Dopri5Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOPRI5");
+    simulate(&m, &mut ws, &mut Dop853::new(Dop853Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOP853");
+    let mut alpha = Chain::generalized_alpha(GeneralizedAlphaOptions::default());
+    simulate(&m, &mut ws, &mut alpha, 0.0, &q, &v, &times, &o, |_| {}).expect("generalized-α");
+    StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; Chain::NC]).expect("statics");
+    println!("{}", q[0]);
+}
+"""]
+    return "\n".join(lines)
+
+
+def main():
+    sizes = [int(a) for a in sys.argv[1:]] or [10, 30, 60, 120, 240]
+    (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
+    (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
+                                      f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
+    for n in sizes:
+        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(chain(n))
+    env = dict(os.environ, CARGO_TARGET_DIR=str(CRATE / "target"))
+    # Dependencies first (mbd, nalgebra, the macro crate), so each timing is the mechanism's crate alone.
+    (CRATE / "src" / "bin" / "deps.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
+    subprocess.run(["cargo", "build", "--release", "--bin", "deps"], cwd=CRATE, env=env, check=True)
+    print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
+    for n in sizes:
+        (CRATE / "src" / "bin" / f"chain{n}.rs").touch()
+        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        start = time.monotonic()
+        subprocess.run(["cargo", "build", "--release", "--bin", f"chain{n}"], cwd=CRATE, env=env, check=True, capture_output=True)
+        seconds = time.monotonic() - start
+        peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        # ru_maxrss of the children is the largest so far: a build smaller than an earlier one
+        # cannot be read this way, so the sizes go up.
+        print(f"| {n} | {seconds:.1f} | {peak / 1024:.0f}{'' if peak > before else ' (≤ earlier)'} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
