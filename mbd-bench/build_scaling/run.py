@@ -7,7 +7,7 @@ For each N it writes a crate under target/build-scaling/ whose binary declares a
 of N links with a torsion spring at every pin, assembles it and simulates it with RK4, DOPRI5,
 DOP853 and generalized-α, and solves its statics — every solver instantiated, as a user's
 program would — then times `cargo build --release` of that binary alone (its dependencies built
-beforehand) and reads the peak resident memory of the largest process of the build (rustc).
+beforehand) and reads the peak resident memory of the largest process of that build (rustc).
 Prints a markdown table. Targets (issue 11): at most 30 s and 1 GB at 120 bodies, no cliff.
 """
 import os
@@ -51,6 +51,8 @@ def chain(n):
 
 
 def main():
+    if sys.argv[1:2] == ["--measure"]:
+        return measure(int(sys.argv[2]))
     sizes = [int(a) for a in sys.argv[1:]] or [10, 30, 60, 120, 240]
     (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
     (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
@@ -59,20 +61,23 @@ def main():
         (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(chain(n))
     env = dict(os.environ, CARGO_TARGET_DIR=str(CRATE / "target"))
     # Dependencies first (mbd, nalgebra, the macro crate), so each timing is the mechanism's crate alone.
-    (CRATE / "src" / "bin" / "deps.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
-    subprocess.run(["cargo", "build", "--release", "--bin", "deps"], cwd=CRATE, env=env, check=True)
+    (CRATE / "src" / "bin" / "dependencies.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
+    subprocess.run(["cargo", "build", "--release", "--bin", "dependencies"], cwd=CRATE, env=env, check=True)
     print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
     for n in sizes:
         (CRATE / "src" / "bin" / f"chain{n}.rs").touch()
-        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-        start = time.monotonic()
-        subprocess.run(["cargo", "build", "--release", "--bin", f"chain{n}"], cwd=CRATE, env=env, check=True, capture_output=True)
-        seconds = time.monotonic() - start
-        peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-        # ru_maxrss of the children is the largest so far: a build smaller than an earlier one
-        # cannot be read this way, so the sizes go up.
-        print(f"| {n} | {seconds:.1f} | {peak / 1024:.0f}{'' if peak > before else ' (≤ earlier)'} |", flush=True)
+        # In a process of its own, so that its children's peak memory is this build's alone.
+        out = subprocess.run([sys.executable, __file__, "--measure", str(n)], env=env, check=True, capture_output=True, text=True)
+        seconds, peak_kb = out.stdout.split()
+        print(f"| {n} | {float(seconds):.1f} | {int(peak_kb) / 1024:.0f} |", flush=True)
 
+
+def measure(n):
+    """Builds chain{n}; prints the seconds and the largest child's peak resident memory (KB)."""
+    start = time.monotonic()
+    subprocess.run(["cargo", "build", "--release", "--bin", f"chain{n}"], cwd=CRATE, check=True, capture_output=True)
+    seconds = time.monotonic() - start
+    print(seconds, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
 
 if __name__ == "__main__":
     main()
