@@ -119,12 +119,12 @@ fn main() {
     study.exactness.extend(exactness::precision((&m32, &mut Chain16F32::workspace()), (&m, &mut Chain16::workspace()), &start));
     let m = Chain64::default();
     study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false);
-    let m = Suspension::default();
+    let m = suspension::DoubleAArmRide::default();
     study.case(
         "suspension",
         "double A-arm corner on a 200 kN/m tyre over a 3 cm bump (damped)",
         &m,
-        &mut Suspension::workspace(),
+        &mut suspension::DoubleAArmRide::workspace(),
         1.0,
         true,
         true,
@@ -139,8 +139,8 @@ fn main() {
         false,
         true,
     );
-    let m = HeavyTop::default();
-    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut HeavyTop::workspace(), 1.0, false, true);
+    let m = gyroscope::Gyroscope { wz: 100.0 * PI, ..gyroscope::Gyroscope::default() };
+    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true);
     let m = FreeSpatialSliderCrank::default();
     study.case(
         "spatial_slider_crank",

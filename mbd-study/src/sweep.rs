@@ -203,6 +203,8 @@ where
 /// q(t_end) by CasADi's CVODES at rtol 1e-12 on the oracle's independent rebuild of the model
 /// (`tests/oracle/mbd_oracle/integrate.py`), in the oracle's pinned Python environment (made by
 /// `tests/oracle/ensure_env.sh` on first use).
+/// The rebuild takes the parameters at their defaults: a case may set only parameters that
+/// start it (the top's spin), never ones of its dynamics.
 fn casadi_end<M: Mechanism, const NQ: usize, const NV: usize>(case: &Case<'_, M, NQ, NV>) -> Result<[f64; NQ], String> {
     let oracle = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/oracle");
     let setup = Command::new("bash").arg(oracle.join("ensure_env.sh")).output().map_err(|e| format!("bash: {e}"))?;

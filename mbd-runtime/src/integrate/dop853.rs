@@ -278,12 +278,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         let o = self.options;
-        if !(o.rtol >= T::ZERO && o.atol >= T::ZERO && o.rtol + o.atol > T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Dop853 tolerances must be non-negative, not both zero" });
-        }
-        if !(o.max_step > T::ZERO && o.min_step >= T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Dop853::max_step must be positive, min_step non-negative" });
-        }
+        o.check()?;
         self.dense_ready = false;
         let span = t_max - from.t;
         if !(span > T::ZERO) {

@@ -28,6 +28,22 @@ pub struct Dopri5Options<T> {
     pub min_step: T,
 }
 
+impl<T: Real> Dopri5Options<T> {
+    /// The tolerances non-negative and not both zero, `max_step` positive, `min_step`
+    /// non-negative (NaN fails each).
+    // `!(x >= y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    pub(super) fn check(&self) -> Result<(), SimulationError> {
+        if !(self.rtol >= T::ZERO && self.atol >= T::ZERO && self.rtol + self.atol > T::ZERO) {
+            return Err(SimulationError::InvalidOptions { what: "rtol and atol (Dopri5Options) must be non-negative, not both zero" });
+        }
+        if !(self.max_step > T::ZERO && self.min_step >= T::ZERO) {
+            return Err(SimulationError::InvalidOptions { what: "Dopri5Options::max_step must be positive, min_step non-negative" });
+        }
+        Ok(())
+    }
+}
+
 impl<T: Real> Default for Dopri5Options<T> {
     fn default() -> Self {
         Self {
@@ -138,12 +154,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         let o = self.options;
-        if !(o.rtol >= T::ZERO && o.atol >= T::ZERO && o.rtol + o.atol > T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Dopri5 tolerances must be non-negative, not both zero" });
-        }
-        if !(o.max_step > T::ZERO && o.min_step >= T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Dopri5::max_step must be positive, min_step non-negative" });
-        }
+        o.check()?;
         let span = t_max - from.t;
         if !(span > T::ZERO) {
             *to = *from;
