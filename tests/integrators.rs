@@ -173,7 +173,10 @@ fn dop853_meets_tight_tolerances_in_fewer_steps_than_dopri5() {
     let (mut dop, mut dopri) = (Dop853::new(options), Dopri5::new(options));
     let e853 = max_diff(&double_pendulum_at_1s(&mut dop, Correction::None), &exact);
     let e5 = max_diff(&double_pendulum_at_1s(&mut dopri, Correction::None), &exact);
-    eprintln!("rtol 1e-11: DOP853 {e853:e} in {} steps ({} rejected), DOPRI5 {e5:e} in {} steps", dop.accepted, dop.rejected, dopri.accepted);
+    eprintln!(
+        "rtol 1e-11: DOP853 {e853:e} in {} steps ({} rejected), DOPRI5 {e5:e} in {} steps",
+        dop.accepted, dop.rejected, dopri.accepted
+    );
     assert!(e853 < 1e-8 && e5 < 1e-8, "DOP853 {e853:e}, DOPRI5 {e5:e}");
     assert!(2 * dop.accepted < dopri.accepted, "DOP853 {} steps, DOPRI5 {}", dop.accepted, dopri.accepted);
     // Hairer's controller (safety 0.9, exponent 1/8) rejects under a third of its steps here
