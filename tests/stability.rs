@@ -506,3 +506,32 @@ fn a_rod_spinning_at_1000_rad_per_s_keeps_its_speed_and_pin() {
     assert!(worst[2] < 1e-9, "the pin opened by {} m", worst[2]);
     assert!(worst[3] < 1e-8, "pin force off by {} relative", worst[3]);
 }
+
+mechanism! {
+    /// A free block on a stiff spring to ground: no constraint rows at all.
+    pub FreeBlock {
+        body block { mass: 1.0, inertia: 0.01, at: [0.3, 0.1, 0.0] }
+        spring ground[0.0, 0.0] ~ block[0.0, 0.0] { k: 1.0e4, length: 0.1 };
+    }
+}
+
+/// Generalized-α out of Newton iterations on a mechanism without constraints names the velocity
+/// whose correction did not settle and gives that correction as a position change, Δv̇ β'h²
+/// (m): one iteration allowed at h = 1 ms, so the second correction is O(β'h² k Δq) ≈ 1e-4 m
+/// at most — not a velocity (m/s) or an acceleration.
+#[test]
+fn generalized_alpha_out_of_iterations_reports_a_position_correction() {
+    let m = FreeBlock::default();
+    let options = GeneralizedAlphaOptions { step: 1e-3, max_iterations: 1, ..GeneralizedAlphaOptions::default() };
+    let mut alpha = FreeBlock::generalized_alpha(options);
+    let run = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+    let err =
+        simulate(&m, &mut FreeBlock::workspace(), &mut alpha, 0.0, &m.initial_positions(), &[0.0; 3], &[0.01], &run, |_| {}).unwrap_err();
+    match err {
+        SimulationError::NotConverged { worst_row, residual, .. } => {
+            assert!(worst_row.starts_with("block."), "{worst_row}");
+            assert!(residual > 0.0 && residual < 1e-4, "residual {residual:e} m");
+        }
+        e => panic!("{e}"),
+    }
+}

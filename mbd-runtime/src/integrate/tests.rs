@@ -94,3 +94,23 @@ fn integrators_follow_the_unit_pendulum() {
         assert!(energy < energy_tolerance, "{name}: |Δ(T + V)| = {energy:e} J");
     }
 }
+
+/// DOPRI5's first step is Hairer's estimate h = 0.01 · ‖y‖ / ‖y'‖ in the tolerance's norm (y =
+/// (q, v), y' = (q̇, v̇)), accepted at a loose tolerance: from horizontal rest q̇ = 0, so
+/// ‖y'‖ is ‖v̇‖ = the gravity-driven accelerations, each entry scaled by atol + rtol·|y|.
+#[test]
+fn dopri5_first_step_is_hairers_estimate() {
+    let m = UnitPendulum;
+    let system = System { mechanism: &m, dynamics: crate::DynamicsOptions::without_stabilization(), track_work: false };
+    let from = system.point(0.0, m.initial_positions(), [0.0; 3], [0.0; 2]).unwrap();
+    let (rtol, atol) = (1e-3, 1e-6);
+    let mut dopri = Dopri5::<f64, 4, 3>::new(Dopri5Options { rtol, atol, ..Dopri5Options::default() });
+    let mut to = from;
+    Integrator::<f64, UnitPendulum, 4, 3, 2, 5>::step(&mut dopri, &system, &mut Workspace::new(), &from, 10.0, &mut to).unwrap();
+    let scale = |y: f64| atol + rtol * y.abs();
+    let d0: f64 = from.q.iter().map(|q| (q / scale(*q)).powi(2)).sum();
+    let d1: f64 = from.vd.iter().zip(&from.v).map(|(a, v)| (a / scale(*v)).powi(2)).sum();
+    let expected = 0.01 * (d0 / d1).sqrt();
+    assert_eq!(dopri.rejected, 0);
+    assert!((to.t - expected).abs() <= 1e-15 * expected, "first step {} s, Hairer's {expected} s", to.t);
+}
