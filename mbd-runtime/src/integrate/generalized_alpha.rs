@@ -8,7 +8,7 @@
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::kinematics::name;
-use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
+use crate::linalg::{band_lu_factor, band_lu_solve, bandwidths, lu_factor, lu_solve_in_place, BandFactors, LinalgError, Permutation};
 use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Mechanism, Real, Workspace};
 
 /// Options of [`GeneralizedAlpha`].
@@ -186,7 +186,7 @@ where
         // The iteration matrix's factors, the rounding floor of the force change and whether a
         // multiplier's pivot is near singular, from the last factorization; and whether the next
         // iteration must factor again (modified Newton, `reuse_factors`).
-        let mut factors: Option<crate::linalg::Permutation<N>> = None;
+        let mut factors: Option<Factors<N>> = None;
         // Where each unknown (v̇ entries, then λ rows) sits in the factored matrix: body by body,
         // each constraint row after the last body it couples (`saddle_order`).
         let (position, unknown) = saddle_order::<M, NV, NC, N>();
@@ -285,7 +285,7 @@ where
                 // (a singular position, a redundant constraint): with `allow_redundant` its row and
                 // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
                 // load, as forward dynamics drops such a row.
-                let permutation = loop {
+                let band = loop {
                     for i in 0..NV {
                         let row = &mut a[position[i]];
                         for j in 0..NV {
@@ -310,8 +310,8 @@ where
                         row[position[NV + r]] = if dropped[r] { one } else { T::ZERO };
                     }
                     // Errors name positions; the unknowns are what they mean.
-                    match lu_factor(a, o.pivot_tolerance).map_err(|e| unpermuted(e, &unknown)) {
-                        Ok(permutation) => break permutation,
+                    match Factors::of(a, o.pivot_tolerance).map_err(|e| unpermuted(e, &unknown)) {
+                        Ok(band) => break band,
                         Err(LinalgError::Singular { column, .. })
                             if column >= NV && system.dynamics.allow_redundant && !dropped[column - NV] =>
                         {
@@ -328,9 +328,9 @@ where
                 }
                 near_singular =
                     (0..NC).any(|r| !dropped[r] && a[position[NV + r]][position[NV + r]].abs() < T::from_f64(1e-3) * row_scale[r]);
-                factors = Some(permutation);
+                factors = Some(band);
             }
-            let Some(permutation) = factors.as_ref() else { unreachable!("factored above when missing") };
+            let Some(factored) = factors.as_ref() else { unreachable!("factored above when missing") };
             for r in 0..NC {
                 if dropped[r] {
                     rhs[NV + r] = T::ZERO;
@@ -340,7 +340,7 @@ where
             for (i, &p) in position.iter().enumerate() {
                 b[p] = rhs[i];
             }
-            lu_solve_in_place(a, permutation, &mut b);
+            factored.solve(a, &mut b);
             for (i, &p) in position.iter().enumerate() {
                 rhs[i] = b[p];
             }
@@ -472,11 +472,10 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
 /// The order in which the iteration matrix's unknowns are factored: the velocities of each body
 /// in declaration order, each constraint row right after the last body it couples (from
 /// `JACOBIAN_PATTERN`). Declared in order, a chain or a linkage gives a banded matrix whose LU
-/// (with partial pivoting, which skips exact zeros) fills only within the band, where v̇ first
-/// and λ after filled the whole λ block: the 16-link chain's step took 37 µs instead of 54
-/// (`cargo bench --bench dynamics -- generalized`, same machine and load, 2026-11-24); what is
-/// left is the O(N²) of a dense matrix's scans and substitutions. Returns (position of each
-/// unknown, unknown at each position).
+/// (with partial pivoting, factored as a band: [`band_lu_factor`]) costs O(N b²) for a band of
+/// width b, where v̇ first and λ after filled the whole λ block (the 16-link chain's step: 54 µs
+/// with that order, 36 µs ordered and factored dense, 25 µs as a band). Returns (position of
+/// each unknown, unknown at each position).
 fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>() -> ([usize; N], [usize; N]) {
     let per_body = crate::mechanism::velocities_per_body::<M>();
     // The last body (by its first velocity) each row couples.
@@ -507,6 +506,36 @@ fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>(
         position[u] = p;
     }
     (position, unknown)
+}
+
+/// Iteration matrices up to this size are factored dense ([`lu_factor`]); larger ones as a band
+/// ([`band_lu_factor`]). Measured on 2026-11-24 (`cargo bench --bench dynamics -- generalized`,
+/// quiet machine): the band form took the free slider-crank's step (17 × 17) from 2.55 to
+/// 2.93 µs — finding the band and its bookkeeping cost more than they save — and the 16-link
+/// chain's (80 × 80) from 36.4 to 25.5 µs.
+const DENSE_ITERATION_MATRIX: usize = 32;
+
+/// The iteration matrix's LU factors, dense or banded by its size.
+enum Factors<const N: usize> {
+    Dense(Permutation<N>),
+    Band(BandFactors<N>),
+}
+
+impl<const N: usize> Factors<N> {
+    fn of<T: Real>(a: &mut [[T; N]; N], pivot_tolerance: T) -> Result<Self, LinalgError> {
+        if N <= DENSE_ITERATION_MATRIX {
+            lu_factor(a, pivot_tolerance).map(Factors::Dense)
+        } else {
+            band_lu_factor(a, pivot_tolerance, bandwidths(a)).map(Factors::Band)
+        }
+    }
+
+    fn solve<T: Real>(&self, lu: &[[T; N]; N], b: &mut [T; N]) {
+        match self {
+            Factors::Dense(permutation) => lu_solve_in_place(lu, permutation, b),
+            Factors::Band(band) => band_lu_solve(lu, band, b),
+        }
+    }
 }
 
 /// A factorization error of the reordered matrix in terms of the unknowns (v̇ entries, then λ
