@@ -535,3 +535,32 @@ fn generalized_alpha_out_of_iterations_reports_a_position_correction() {
         e => panic!("{e}"),
     }
 }
+
+/// Out of Newton iterations with Φ and the position correction met, generalized-α names the
+/// multiplier whose force change has not settled, with that change (N): one iteration allowed at
+/// a 1e-5 tolerance, which its first correction meets in Φ (quadratic from the predictor's
+/// O(h² v̇) ≈ 1e-5 m) and in q (β'h²|Δv̇| ≈ 3e-7 |Δv̇|), while the force-change test (1e-12 of
+/// the forces) is not met after one iteration. The velocity correction itself, |Δv̇| β' in
+/// m/s², is larger than 1e-5 — naming a velocity would misplace the failure.
+#[test]
+fn generalized_alpha_out_of_iterations_names_an_unsettled_multiplier() {
+    let m = Pendulum::default();
+    let options = GeneralizedAlphaOptions {
+        step: 1e-3,
+        tolerance: 1e-5,
+        lambda_tolerance: 1e-12,
+        max_iterations: 1,
+        ..GeneralizedAlphaOptions::default()
+    };
+    let mut alpha = Pendulum::generalized_alpha(options);
+    let run = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+    let (q0, v0) = (m.initial_positions(), m.initial_velocities());
+    let err = simulate(&m, &mut Pendulum::workspace(), &mut alpha, 0.0, &q0, &v0, &[0.01], &run, |_| {}).unwrap_err();
+    match err {
+        SimulationError::NotConverged { worst_row, residual, .. } => {
+            assert!(Pendulum::CONSTRAINT_NAMES.contains(&worst_row), "{worst_row}");
+            assert!(residual > 0.0, "Δλ {residual:e} N");
+        }
+        e => panic!("{e}"),
+    }
+}

@@ -478,7 +478,7 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
 /// each unknown, unknown at each position).
 fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>() -> ([usize; N], [usize; N]) {
     let per_body = crate::mechanism::velocities_per_body::<M>();
-    // The last body (by its first velocity) each row couples.
+    // The last body each row couples (the body of its last velocity column).
     let mut last = [0usize; NC];
     for &(r, c) in M::JACOBIAN_PATTERN {
         let (r, c) = (r as usize, c as usize);

@@ -28,7 +28,8 @@
 //! This file holds what they share: the [`Point`] a step ends at, its [`Sample`] and [`Energy`],
 //! the [`System`] of equations an [`Integrator`] advances, [`SimulationError`], cubic Hermite
 //! interpolation and the end-of-step finiteness check. Each integrator has its own file
-//! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own (`simulate.rs`).
+//! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own
+//! (`simulate.rs`).
 
 mod dop853;
 mod dopri5;
