@@ -189,7 +189,7 @@ where
         let mut factors: Option<Factors<N>> = None;
         // Where each unknown (v̇ entries, then λ rows) sits in the factored matrix: body by body,
         // each constraint row after the last body it couples (`saddle_order`).
-        let (position, unknown) = saddle_order::<M, NV, NC, N>();
+        let (position, unknown) = const { saddle_order::<M, NV, NC, N>() };
         let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
         // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
@@ -476,34 +476,51 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
 /// width b, where v̇ first and λ after filled the whole λ block (the 16-link chain's step: 54 µs
 /// with that order, 36 µs ordered and factored dense, 25 µs as a band). Returns (position of
 /// each unknown, unknown at each position).
-fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>() -> ([usize; N], [usize; N]) {
+///
+/// A `const fn`, evaluated once per mechanism at compile time (`const { … }` where it is used),
+/// not at every step.
+const fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>() -> ([usize; N], [usize; N]) {
+    let mut position = [0usize; N];
+    let mut unknown = [0usize; N];
+    if N != NV + NC {
+        // A work space of the wrong size: `step` reports it; the order is never used.
+        return (position, unknown);
+    }
     let per_body = crate::mechanism::velocities_per_body::<M>();
     // The last body each row couples (the body of its last velocity column).
     let mut last = [0usize; NC];
-    for &(r, c) in M::JACOBIAN_PATTERN {
-        let (r, c) = (r as usize, c as usize);
-        if r < NC {
-            last[r] = last[r].max(c / per_body);
+    let pattern = M::JACOBIAN_PATTERN;
+    let mut k = 0;
+    while k < pattern.len() {
+        let (r, c) = (pattern[k].0 as usize, pattern[k].1 as usize);
+        if r < NC && c / per_body > last[r] {
+            last[r] = c / per_body;
         }
+        k += 1;
     }
-    let mut unknown = [0usize; N];
     let mut next = 0;
-    let bodies = NV.div_ceil(per_body.max(1));
-    for body in 0..bodies {
-        for i in body * per_body..((body + 1) * per_body).min(NV) {
+    let mut body = 0;
+    while body * per_body < NV {
+        let mut i = body * per_body;
+        while i < (body + 1) * per_body && i < NV {
             unknown[next] = i;
             next += 1;
+            i += 1;
         }
-        for (r, &b) in last.iter().enumerate() {
-            if b == body {
+        let mut r = 0;
+        while r < NC {
+            if last[r] == body {
                 unknown[next] = NV + r;
                 next += 1;
             }
+            r += 1;
         }
+        body += 1;
     }
-    let mut position = [0usize; N];
-    for (p, &u) in unknown.iter().enumerate() {
-        position[u] = p;
+    let mut p = 0;
+    while p < N {
+        position[unknown[p]] = p;
+        p += 1;
     }
     (position, unknown)
 }
