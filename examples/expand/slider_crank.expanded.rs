@@ -385,6 +385,13 @@ impl ::mbd::Mechanism for SliderCrank {
             div: 2u32,
             call: 3u32,
         },
+        ::mbd::OpCount {
+            function: "newton_matrix (generalized-α, before the factorization)",
+            add: 8u32,
+            mul: 18u32,
+            div: 2u32,
+            call: 3u32,
+        },
     ];
     const JOINTS: &'static [::mbd::JointInfo] = &[
         ::mbd::JointInfo {
@@ -1278,6 +1285,192 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         v[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
         v[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
         ::core::result::Result::Ok(worst)
+    }
+}
+#[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
+impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
+    type NewtonStorage = [f64; 135];
+    const NEWTON_PATTERN: ::mbd::SparsePattern = ::mbd::SparsePattern {
+        unknown: &[0, 1, 3, 4, 6, 7, 5, 8, 15, 16, 13, 14, 2, 9, 10, 11, 12, 17],
+        position: &[0, 1, 12, 2, 3, 6, 4, 5, 7, 13, 14, 15, 16, 10, 11, 8, 9, 17],
+        row_start: &[
+            0, 3, 6, 9, 12, 16, 20, 25, 32, 39, 44, 54, 64, 70, 77, 84, 95, 106, 112,
+        ],
+        columns: &[
+            0, 13, 15, 1, 14, 16, 2, 10, 15, 3, 11, 16, 4, 7, 8, 10, 5, 7, 8, 11, 6, 10,
+            11, 15, 16, 4, 5, 7, 8, 9, 10, 11, 4, 5, 7, 8, 9, 10, 11, 7, 8, 9, 10, 11, 2,
+            4, 6, 7, 8, 9, 10, 11, 15, 16, 3, 5, 6, 7, 8, 9, 10, 11, 15, 16, 12, 13, 14,
+            15, 16, 17, 0, 12, 13, 14, 15, 16, 17, 1, 12, 13, 14, 15, 16, 17, 0, 2, 6,
+            10, 11, 12, 13, 14, 15, 16, 17, 1, 3, 6, 10, 11, 12, 13, 14, 15, 16, 17, 12,
+            13, 14, 15, 16, 17,
+        ],
+        diagonal: &[0, 3, 6, 9, 12, 16, 20, 27, 35, 41, 50, 61, 64, 72, 80, 92, 104, 111],
+    };
+    #[inline]
+    fn newton_storage() -> [f64; 135] {
+        [0f64; 135]
+    }
+    #[inline]
+    fn newton_jacobian(
+        &self,
+        q: &[f64; 9],
+        t: f64,
+        phi: &mut [f64; 9],
+        s: &mut [f64; 135],
+    ) {
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v13: f64 = (-v12);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let v32: f64 = (-v31);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v81: f64 = (-c_slider);
+        phi[0] = (-(q[0] - v10));
+        phi[1] = (-(q[1] - v12));
+        phi[2] = ((v10 + q[0]) - (q[3] - v29));
+        phi[3] = ((v12 + q[1]) - (q[4] - v31));
+        phi[4] = ((v29 + q[3]) - q[6]);
+        phi[5] = ((v31 + q[4]) - q[7]);
+        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+        phi[7] = (-s_slider);
+        phi[8] = (q[2] - (self.omega * t));
+        s[0] = (-1f64);
+        s[1] = v13;
+        s[2] = (-1f64);
+        s[3] = v10;
+        s[4] = 1f64;
+        s[5] = v13;
+        s[6] = (-1f64);
+        s[7] = v32;
+        s[8] = 1f64;
+        s[9] = v10;
+        s[10] = (-1f64);
+        s[11] = v29;
+        s[12] = 1f64;
+        s[13] = v32;
+        s[14] = (-1f64);
+        s[15] = 1f64;
+        s[16] = v29;
+        s[17] = (-1f64);
+        s[18] = s_slider;
+        s[19] = v81;
+        s[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        s[21] = v81;
+        s[22] = 1f64;
+    }
+    #[inline]
+    fn newton_matrix(
+        &self,
+        q: &[f64; 9],
+        v: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+        c_v: f64,
+        c_q: f64,
+        s: &mut [f64; 135],
+    ) {
+        for x in s[23..].iter_mut() {
+            *x = 0f64;
+        }
+        let mut m = [0f64; 9usize];
+        let mut kc = [0f64; 7];
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v203: f64 = (s_slider * lambda[6]);
+        let v205: f64 = (c_slider * lambda[6]);
+        m[0] = 1f64;
+        m[1] = 1f64;
+        m[2] = 0.002f64;
+        m[3] = 2f64;
+        m[4] = 2f64;
+        m[5] = 0.015f64;
+        m[6] = 0.5f64;
+        m[7] = 0.5f64;
+        m[8] = 0.001f64;
+        kc[0] = (-((v12 * lambda[3])
+            + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
+        kc[1] = (-((v31 * lambda[5])
+            + ((v29 * lambda[4]) + ((v31 * lambda[3]) + (v29 * lambda[2])))));
+        kc[2] = v205;
+        kc[3] = v203;
+        kc[4] = v205;
+        kc[5] = v203;
+        kc[6] = ((s_slider * lambda[7])
+            + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
+        s[23] += m[0];
+        s[26] += m[1];
+        s[87] += m[2];
+        s[29] += m[3];
+        s[32] += m[4];
+        s[43] += m[5];
+        s[35] += m[6];
+        s[39] += m[7];
+        s[50] += m[8];
+        s[87] -= c_q * kc[0];
+        s[43] -= c_q * kc[1];
+        s[36] -= c_q * kc[2];
+        s[40] -= c_q * kc[3];
+        s[48] -= c_q * kc[4];
+        s[49] -= c_q * kc[5];
+        s[50] -= c_q * kc[6];
+        s[24] = -s[0];
+        s[93] = s[0];
+        s[88] = -s[1];
+        s[94] = s[1];
+        s[27] = -s[2];
+        s[100] = s[2];
+        s[89] = -s[3];
+        s[101] = s[3];
+        s[25] = -s[4];
+        s[107] = s[4];
+        s[90] = -s[5];
+        s[112] = s[5];
+        s[31] = -s[6];
+        s[108] = s[6];
+        s[46] = -s[7];
+        s[109] = s[7];
+        s[28] = -s[8];
+        s[118] = s[8];
+        s[91] = -s[9];
+        s[123] = s[9];
+        s[34] = -s[10];
+        s[119] = s[10];
+        s[47] = -s[11];
+        s[120] = s[11];
+        s[30] = -s[12];
+        s[67] = s[12];
+        s[44] = -s[13];
+        s[69] = s[13];
+        s[38] = -s[14];
+        s[68] = s[14];
+        s[33] = -s[15];
+        s[77] = s[15];
+        s[45] = -s[16];
+        s[79] = s[16];
+        s[42] = -s[17];
+        s[78] = s[17];
+        s[37] = -s[18];
+        s[55] = s[18];
+        s[41] = -s[19];
+        s[56] = s[19];
+        s[51] = -s[20];
+        s[57] = s[20];
+        s[52] = -s[21];
+        s[62] = s[21];
+        s[92] = -s[22];
+        s[129] = s[22];
     }
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]

@@ -141,7 +141,7 @@ enum Method {
 /// relative to the starting kinetic energy E = ½ J ω₀² (4.1 J for 4 loops, 39 J for 40).
 fn check<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(m: &M, n: usize, methods: &[Method], t_end: f64)
 where
-    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     let theta = exact(n, t_end);
     let e = 0.5 * inertia(n) * OMEGA0 * OMEGA0;

@@ -145,6 +145,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
     let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
     let forward = forward_dynamics(m, &f, &e);
+    let newton = crate::newton::newton_matrix(&f, &e, name);
     let friction = friction_outputs(&f);
     let friction_fn = if friction.is_empty() {
         quote!()
@@ -239,8 +240,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("constraint_force_q", cfq_ops),
         op_count("nonconservative_power", power_ops),
         op_count("accelerations (evaluation, before the solve)", forward.eval_ops),
+        op_count("newton_matrix (generalized-α, before the factorization)", newton.matrix_ops),
     ];
     let ForwardCode { helpers, impl_block, .. } = forward;
+    let newton_impl = newton.impl_block;
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
     let coordinate_names = m.coordinate_names();
@@ -465,6 +468,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         }
 
         #impl_block
+        #newton_impl
 
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, clippy::approx_constant)]

@@ -18,6 +18,7 @@ mod forward;
 mod frames;
 mod json;
 mod model;
+mod newton;
 mod parse;
 mod schur;
 mod sym;

@@ -637,6 +637,10 @@ const GENERATED_ITEMS: &[&str] = &[
     "full_eval_values",
     "schur_factor",
     "schur_solve",
+    "NEWTON_PATTERN",
+    "newton_storage",
+    "newton_jacobian",
+    "newton_matrix",
 ];
 
 /// The joint coordinates a labelled spatial joint gets an accessor for (`hinge_angle(&q)`), by

@@ -24,7 +24,8 @@
 //! into the caller's matrix.
 
 use crate::{
-    ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics, Mechanism, OpCount, Real,
+    ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount,
+    Real,
 };
 
 /// A mechanism with finite-difference derivatives (module docs).
@@ -265,5 +266,18 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     }
     fn project_velocities(&self, q: &[T; NQ], v: &mut [T; NV], t: T, options: &DynamicsOptions<T>) -> Result<T, DynamicsError> {
         self.mechanism.project_velocities(q, v, t, options)
+    }
+}
+
+/// The mechanism's planned pattern, filled from the differences (the provided methods: dense
+/// derivatives on the stack, then the pattern's entries; a difference's noise off the pattern
+/// is left out).
+impl<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> NewtonMatrix<T, NQ, NV, NC>
+    for FiniteDifferences<'_, M>
+{
+    type NewtonStorage = M::NewtonStorage;
+    const NEWTON_PATTERN: crate::SparsePattern = M::NEWTON_PATTERN;
+    fn newton_storage() -> M::NewtonStorage {
+        M::newton_storage()
     }
 }

@@ -21,6 +21,7 @@ mod partition;
 mod planar;
 mod real;
 pub mod redundancy;
+pub mod sparse;
 pub mod statics;
 #[cfg(test)]
 mod test_support;
@@ -40,7 +41,7 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
     DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
-pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, OpCount};
+pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;
@@ -49,6 +50,7 @@ pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 pub use real::Real;
 pub use redundancy::Redundancy;
+pub use sparse::SparsePattern;
 pub use workspace::Workspace;
 
 /// Its items when the runtime has `std`, nothing without (the generated code's `workspace()`,

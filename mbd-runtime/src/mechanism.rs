@@ -232,3 +232,78 @@ pub trait ConstraintForces<T: Real, const NQ: usize, const NV: usize, const NC: 
     /// Writes K(q, t, λ) whole (structural zeros included).
     fn constraint_force_q(&self, q: &[T; NQ], t: T, lambda: &[T; NC], k: &mut [[T; NV]; NV]);
 }
+
+/// Generalized-α's Newton matrix in sparse storage planned at compile time
+/// ([`crate::sparse`]): D's structural non-zeros and the entries of
+///
+/// ```text
+/// [ M − c_v ∂h/∂v − c_q (∂h/∂q·B + K)   −Dᵀ ]
+/// [ D                                     0  ]
+/// ```
+///
+/// over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN), fill-in included (c_v = γ'h, c_q = β'h²;
+/// ∂h/∂q and ∂h/∂v with Coulomb friction's at fixed λ; K from [`ConstraintForces`]).
+/// `mechanism!` generates all of it, straight-line over the structural non-zeros only. The
+/// provided methods build the same storage from the dense derivatives, for mechanisms that are
+/// not generated (a wrapper such as [`crate::FiniteDifferences`], a hand-written test model):
+/// they put O(NV²) on the stack.
+pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usize>:
+    crate::ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>
+{
+    /// `[T; NNZ + entries]`: D's non-zeros in [`Mechanism::JACOBIAN_PATTERN`] order, then the
+    /// matrix's entries over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN).
+    type NewtonStorage: Copy + AsRef<[T]> + AsMut<[T]>;
+    /// Elimination order and fill of the Newton matrix's LU factors.
+    const NEWTON_PATTERN: crate::SparsePattern;
+    /// Storage of zeros.
+    fn newton_storage() -> Self::NewtonStorage;
+    /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`.
+    fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {
+        let mut d = [[T::ZERO; NV]; NC];
+        self.position_eval(q, t, phi, &mut d);
+        for (value, &(r, c)) in s.as_mut().iter_mut().zip(Self::JACOBIAN_PATTERN) {
+            *value = d[r as usize][c as usize];
+        }
+    }
+    /// The matrix's entries at (q, v, t, λ) after the D values [`newton_jacobian`](Self::newton_jacobian)
+    /// left in `s`, fill-in zeroed, ready for the factorization.
+    #[allow(clippy::too_many_arguments)]
+    fn newton_matrix(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], c_v: T, c_q: T, s: &mut Self::NewtonStorage) {
+        let (mut a, mut scratch) = ([[T::ZERO; NV]; NV], [[T::ZERO; NV]; NV]);
+        self.forces_q(q, v, t, &mut a);
+        self.forces_v(q, v, t, &mut scratch);
+        self.friction_derivatives(q, v, t, lambda, &mut a, &mut scratch);
+        for (row, damping) in a.iter_mut().zip(&scratch) {
+            for (x, &d) in row.iter_mut().zip(damping) {
+                *x = -c_q * *x - c_v * d;
+            }
+        }
+        self.constraint_force_q(q, t, lambda, &mut scratch);
+        for (row, stiffness) in a.iter_mut().zip(&scratch) {
+            for (x, &k) in row.iter_mut().zip(stiffness) {
+                *x -= c_q * k;
+            }
+        }
+        self.add_mass_matrix(q, T::ONE, &mut a);
+        // D from the front of the storage, densely.
+        let nnz = Self::JACOBIAN_PATTERN.len();
+        let mut d = [[T::ZERO; NV]; NC];
+        for (&value, &(r, c)) in s.as_ref().iter().zip(Self::JACOBIAN_PATTERN) {
+            d[r as usize][c as usize] = value;
+        }
+        let pattern = Self::NEWTON_PATTERN;
+        let values = &mut s.as_mut()[nnz..];
+        for i in 0..pattern.size() {
+            let u = pattern.unknown[i] as usize;
+            for p in pattern.row_start[i] as usize..pattern.row_start[i + 1] as usize {
+                let w = pattern.unknown[pattern.columns[p] as usize] as usize;
+                values[p] = match (u < NV, w < NV) {
+                    (true, true) => a[u][w],
+                    (true, false) => -d[w - NV][u],
+                    (false, true) => d[u - NV][w],
+                    (false, false) => T::ZERO,
+                };
+            }
+        }
+    }
+}

@@ -330,3 +330,18 @@ impl Kinematics<f64, 4, 3, 3> for DrivenUnitPendulum {
         self.gamma(q, v, t, gamma);
     }
 }
+
+/// The Newton matrix dense, in the order v̇ then λ (every multiplier after the velocities).
+impl crate::NewtonMatrix<f64, 4, 3, 2> for UnitPendulum {
+    type NewtonStorage = [f64; 4 + 25];
+    const NEWTON_PATTERN: crate::SparsePattern = crate::SparsePattern {
+        unknown: &[0, 1, 2, 3, 4],
+        position: &[0, 1, 2, 3, 4],
+        row_start: &[0, 5, 10, 15, 20, 25],
+        columns: &[0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4, 0, 1, 2, 3, 4],
+        diagonal: &[0, 6, 12, 18, 24],
+    };
+    fn newton_storage() -> Self::NewtonStorage {
+        [0.0; 29]
+    }
+}

@@ -91,7 +91,7 @@ fn alpha<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     s: &Start<'_, NQ, NV>,
 ) -> (f64, Solved<NQ>)
 where
-    K: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    K: NewtonMatrix<f64, NQ, NV, NC>,
 {
     let options = GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.8, ..GeneralizedAlphaOptions::default() };
     timed(|| {
@@ -111,7 +111,7 @@ pub fn compare<M, const NQ: usize, const NV: usize, const NC: usize, const N: us
     s: &Start<'_, NQ, NV>,
 ) -> Vec<Row>
 where
-    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     let fd = FiniteDifferences::new(m);
     let all = FiniteDifferences::with_constraint_jacobian(m);

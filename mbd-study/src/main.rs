@@ -52,7 +52,7 @@ impl Study {
         exact: bool,
     ) -> ([f64; NQ], [f64; NV], Reference<NQ>)
     where
-        M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+        M: NewtonMatrix<f64, NQ, NV, NC>,
     {
         let mut q0 = m.initial_positions();
         KinematicSolver::default().assemble(m, ws, &mut q0, 0.0).unwrap_or_else(|e| panic!("{name} assembles: {e}"));

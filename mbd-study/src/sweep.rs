@@ -245,7 +245,7 @@ pub fn sweep<M, const NQ: usize, const NV: usize, const NC: usize, const N: usiz
     progress: &ProgressBar,
 ) -> Vec<Row>
 where
-    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     let mut rows = Vec::new();
     for (method, settings) in methods() {
@@ -285,7 +285,7 @@ fn one<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     drift: Drift,
 ) -> Result<Measured, String>
 where
-    M: ForwardDynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     match method {
         Method::Rk4 => timed(case, ws, reference, drift, || Rk4::new(setting), |_, stats| (4 * stats.steps, 0)),

@@ -8,8 +8,8 @@
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::kinematics::name;
-use crate::linalg::{band_lu_factor, band_lu_solve, bandwidths, lu_factor, lu_solve_in_place, BandFactors, LinalgError, Permutation};
-use crate::{ConstraintForces, DynamicsError, ForwardDynamics, Kinematics, Mechanism, Real, Workspace};
+use crate::linalg::LinalgError;
+use crate::{DynamicsError, Kinematics, Mechanism, NewtonMatrix, Real, Workspace};
 
 /// Options of [`GeneralizedAlpha`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -127,14 +127,14 @@ impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
 impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NV, NC, N>
     for GeneralizedAlpha<T, NV>
 where
-    M: ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>,
+    M: NewtonMatrix<T, NQ, NV, NC>,
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N>,
+        _ws: &mut Workspace<T, NV, NC, N>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -175,21 +175,22 @@ where
         let mut q = [T::ZERO; NQ];
         let mut v = [T::ZERO; NV];
         let mut a1 = [T::ZERO; NV];
-        let (mut phi, mut nu, mut gam) = ([T::ZERO; NC], [T::ZERO; NC], [T::ZERO; NC]);
-        let Workspace { jacobian: d, velocity_squares: [hq, hv, kc], saddle: a, .. } = ws;
+        let mut phi = [T::ZERO; NC];
+        // D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
+        // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix.
+        let mut s = M::newton_storage();
+        let pattern = M::NEWTON_PATTERN;
+        let nnz = M::JACOBIAN_PATTERN.len();
         let mut force = [T::ZERO; NV];
         let mut inertia = [T::ZERO; NV];
         let mut rhs = [T::ZERO; N];
         let mut iteration = 0;
         let mut dropped = [false; NC];
         let mut last_change = [T::ZERO; 2];
-        // The iteration matrix's factors, the rounding floor of the force change and whether a
-        // multiplier's pivot is near singular, from the last factorization; and whether the next
-        // iteration must factor again (modified Newton, `reuse_factors`).
-        let mut factors: Option<Factors<N>> = None;
-        // Where each unknown (v̇ entries, then λ rows) sits in the factored matrix: body by body,
-        // each constraint row after the last body it couples (`saddle_order`).
-        let (position, unknown) = const { saddle_order::<M, NV, NC, N>() };
+        // Whether the iteration matrix has been factored, the rounding floor of the force change
+        // and whether a kept multiplier's pivot is near singular, from the last factorization;
+        // and whether the next iteration must factor again (modified Newton, `reuse_factors`).
+        let mut factored = false;
         let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
         // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
         // taken, the residual it started from and the size of the full correction.
@@ -200,7 +201,7 @@ where
         let mut correction = T::ZERO;
         loop {
             state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-            mech.full_eval(&q, &v, t1, &mut phi, d, &mut nu, &mut gam);
+            mech.newton_jacobian(&q, t1, &mut phi, &mut s);
             mech.forces(&q, &v, t1, &mut force);
             // Coulomb friction with the iterate's loads (its exact derivatives enter the
             // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
@@ -210,11 +211,10 @@ where
             // Residuals: r = M v̇ − Dᵀλ − h, Φ/(β'h²).
             let mut worst = (T::ZERO, 0usize);
             for i in 0..NV {
-                let mut r = inertia[i] - force[i];
-                for (row, &l) in d.iter().zip(lambda.iter()) {
-                    r -= row[i] * l;
-                }
-                rhs[i] = -r;
+                rhs[i] = force[i] - inertia[i];
+            }
+            for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+                rhs[c as usize] += value * lambda[r as usize];
             }
             for (r, &p) in phi.iter().enumerate() {
                 rhs[NV + r] = -p / (beta_p * h * h);
@@ -263,86 +263,36 @@ where
                     residual: residual.to_f64(),
                 });
             }
-            if refactor || !o.reuse_factors || factors.is_none() {
-                mech.forces_q(&q, &v, t1, hq);
-                mech.forces_v(&q, &v, t1, hv);
-                mech.friction_derivatives(&q, &v, t1, &lambda, hq, hv);
-                mech.constraint_force_q(&q, t1, &lambda, kc);
-                // The velocity block M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + K), built in `hq`.
-                for i in 0..NV {
-                    for j in 0..NV {
-                        hq[i][j] = -gamma_p * h * hv[i][j] - beta_p * h * h * (hq[i][j] + kc[i][j]);
-                    }
-                }
-                mech.add_mass_matrix(&q, one, hq);
+            if refactor || !o.reuse_factors || !factored {
+                mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut s);
+                let lu = &mut s.as_mut()[nnz..];
                 // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
                 // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
                 // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
                 // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
-                let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(hq[i][i].abs()));
+                let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
                 rounding_floor = mass_scale * resolution / (beta_p * h * h);
-                // A multiplier whose column has no pivot belongs to a row that depends on the others
-                // (a singular position, a redundant constraint): with `allow_redundant` its row and
+                // A multiplier without a pivot belongs to a row that depends on the others (a
+                // singular position, a redundant constraint): with `allow_redundant` its row and
                 // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
                 // load, as forward dynamics drops such a row.
-                let band = loop {
-                    for i in 0..NV {
-                        let row = &mut a[position[i]];
-                        for j in 0..NV {
-                            row[position[j]] = hq[i][j];
-                        }
-                        for r in 0..NC {
-                            row[position[NV + r]] = if dropped[r] { T::ZERO } else { -d[r][i] };
-                        }
-                    }
-                    for r in 0..NC {
-                        let row = &mut a[position[NV + r]];
-                        if dropped[r] {
-                            *row = [T::ZERO; N];
-                        } else {
-                            for j in 0..NV {
-                                row[position[j]] = d[r][j];
-                            }
-                            for k in 0..NC {
-                                row[position[NV + k]] = T::ZERO;
-                            }
-                        }
-                        row[position[NV + r]] = if dropped[r] { one } else { T::ZERO };
-                    }
-                    // Errors name positions; the unknowns are what they mean.
-                    match Factors::of(a, o.pivot_tolerance).map_err(|e| unpermuted(e, &unknown)) {
-                        Ok(band) => break band,
-                        Err(LinalgError::Singular { column, .. })
-                            if column >= NV && system.dynamics.allow_redundant && !dropped[column - NV] =>
-                        {
-                            dropped[column - NV] = true;
-                        }
-                        Err(e) => return Err(factorization_error::<M, T>(e, t1, NV)),
-                    }
-                };
-                // The largest entry of each row of D, over its structural non-zeros.
-                let mut row_scale = [T::ZERO; NC];
-                for &(r, c) in M::JACOBIAN_PATTERN {
-                    let r = r as usize;
-                    row_scale[r] = row_scale[r].max(d[r][c as usize].abs());
-                }
-                near_singular =
-                    (0..NC).any(|r| !dropped[r] && a[position[NV + r]][position[NV + r]].abs() < T::from_f64(1e-3) * row_scale[r]);
-                factors = Some(band);
+                let pivots = crate::sparse::factor(&pattern, lu, NV, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
+                    .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
+                near_singular = pivots.smallest_ratio < T::from_f64(1e-3);
+                factored = true;
             }
-            let Some(factored) = factors.as_ref() else { unreachable!("factored above when missing") };
             for r in 0..NC {
                 if dropped[r] {
                     rhs[NV + r] = T::ZERO;
                 }
             }
             let mut b = [T::ZERO; N];
-            for (i, &p) in position.iter().enumerate() {
-                b[p] = rhs[i];
+            for (i, &p) in pattern.position.iter().enumerate() {
+                b[p as usize] = rhs[i];
             }
-            factored.solve(a, &mut b);
-            for (i, &p) in position.iter().enumerate() {
-                rhs[i] = b[p];
+            crate::sparse::solve(&pattern, &s.as_ref()[nnz..], &mut b);
+            for (i, &p) in pattern.position.iter().enumerate() {
+                rhs[i] = b[p as usize];
             }
             if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
                 return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
@@ -362,10 +312,10 @@ where
             // near a singular position the part of λ along D's (near-)null space is not
             // determined — rounding moves it by ε/σ² — and exerts no force.
             let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
-            for &(r, c) in M::JACOBIAN_PATTERN {
+            for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
                 let (r, c) = (r as usize, c as usize);
-                change[c] += d[r][c] * rhs[NV + r];
-                total[c] += d[r][c] * lambda[r];
+                change[c] += value * rhs[NV + r];
+                total[c] += value * lambda[r];
             }
             let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
             // Modified Newton: keep the factors while each correction shrinks at least 4×.
@@ -462,108 +412,10 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
             SimulationError::SingularIterationMatrix { t: t.to_f64(), velocity: name(M::VELOCITY_NAMES, column) }
         }
         LinalgError::NonFinite { row, .. } => SimulationError::NonFinite { t: t.to_f64(), coordinate: row_name::<M>(row, nv) },
-        // Not returned for the square matrix `lu_factor` is given here.
+        // Not returned by the sparse factorization.
         LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
             SimulationError::WorkspaceSize { expected: rows, found: columns }
         }
-    }
-}
-
-/// The order in which the iteration matrix's unknowns are factored: the velocities of each body
-/// in declaration order, each constraint row right after the last body it couples (from
-/// `JACOBIAN_PATTERN`). Declared in order, a chain or a linkage gives a banded matrix whose LU
-/// (with partial pivoting, factored as a band: [`band_lu_factor`]) costs O(N b²) for a band of
-/// width b, where v̇ first and λ after filled the whole λ block (the 16-link chain's step: 54 µs
-/// with that order, 36 µs ordered and factored dense, 25 µs as a band). Returns (position of
-/// each unknown, unknown at each position).
-///
-/// A `const fn`, evaluated once per mechanism at compile time (`const { … }` where it is used),
-/// not at every step.
-const fn saddle_order<M: Mechanism, const NV: usize, const NC: usize, const N: usize>() -> ([usize; N], [usize; N]) {
-    let mut position = [0usize; N];
-    let mut unknown = [0usize; N];
-    if N != NV + NC {
-        // A work space of the wrong size: `step` reports it; the order is never used.
-        return (position, unknown);
-    }
-    let per_body = crate::mechanism::velocities_per_body::<M>();
-    // The last body each row couples (the body of its last velocity column).
-    let mut last = [0usize; NC];
-    let pattern = M::JACOBIAN_PATTERN;
-    let mut k = 0;
-    while k < pattern.len() {
-        let (r, c) = (pattern[k].0 as usize, pattern[k].1 as usize);
-        if r < NC && c / per_body > last[r] {
-            last[r] = c / per_body;
-        }
-        k += 1;
-    }
-    let mut next = 0;
-    let mut body = 0;
-    while body * per_body < NV {
-        let mut i = body * per_body;
-        while i < (body + 1) * per_body && i < NV {
-            unknown[next] = i;
-            next += 1;
-            i += 1;
-        }
-        let mut r = 0;
-        while r < NC {
-            if last[r] == body {
-                unknown[next] = NV + r;
-                next += 1;
-            }
-            r += 1;
-        }
-        body += 1;
-    }
-    let mut p = 0;
-    while p < N {
-        position[unknown[p]] = p;
-        p += 1;
-    }
-    (position, unknown)
-}
-
-/// Iteration matrices up to this size are factored dense ([`lu_factor`]); larger ones as a band
-/// ([`band_lu_factor`]). Measured on 2026-11-24 (`cargo bench --bench dynamics -- generalized`,
-/// quiet machine): the band form took the free slider-crank's step (17 × 17) from 2.55 to
-/// 2.93 µs — finding the band and its bookkeeping cost more than they save — and the 16-link
-/// chain's (80 × 80) from 36.4 to 25.5 µs.
-const DENSE_ITERATION_MATRIX: usize = 32;
-
-/// The iteration matrix's LU factors, dense or banded by its size.
-enum Factors<const N: usize> {
-    Dense(Permutation<N>),
-    Band(BandFactors<N>),
-}
-
-impl<const N: usize> Factors<N> {
-    fn of<T: Real>(a: &mut [[T; N]; N], pivot_tolerance: T) -> Result<Self, LinalgError> {
-        if N <= DENSE_ITERATION_MATRIX {
-            lu_factor(a, pivot_tolerance).map(Factors::Dense)
-        } else {
-            band_lu_factor(a, pivot_tolerance, bandwidths(a)).map(Factors::Band)
-        }
-    }
-
-    fn solve<T: Real>(&self, lu: &[[T; N]; N], b: &mut [T; N]) {
-        match self {
-            Factors::Dense(permutation) => lu_solve_in_place(lu, permutation, b),
-            Factors::Band(band) => band_lu_solve(lu, band, b),
-        }
-    }
-}
-
-/// A factorization error of the reordered matrix in terms of the unknowns (v̇ entries, then λ
-/// rows).
-fn unpermuted<const N: usize>(error: LinalgError, unknown: &[usize; N]) -> LinalgError {
-    match error {
-        LinalgError::Singular { column, candidate_row } => {
-            LinalgError::Singular { column: unknown[column], candidate_row: unknown[candidate_row] }
-        }
-        LinalgError::NonFinite { row, column } => LinalgError::NonFinite { row: unknown[row], column: unknown[column] },
-        other => other,
     }
 }
 

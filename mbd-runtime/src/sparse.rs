@@ -1,0 +1,236 @@
+//! The sparse LU factorization of generalized-α's Newton matrix
+//!
+//! ```text
+//! [ A   −Dᵀ ]      A = M − γ'h ∂h/∂v − β'h² (∂h/∂q·B + ∂(Dᵀλ)/∂q·B)
+//! [ D    0  ]
+//! ```
+//!
+//! on a pattern that `mechanism!` plans at compile time ([`SparsePattern`]): the elimination
+//! order and every fill-in entry are fixed from the structure of M, of the force and constraint
+//! derivatives and of D, so a step stores and touches only the structural non-zeros of the
+//! factors — O(bodies) for a chain — and never a dense (NV + NC)² matrix.
+//!
+//! # Why no pivoting is needed
+//!
+//! The order puts each multiplier λ_r after every velocity its row of D touches. Then each
+//! leading block of the reordered matrix is itself a saddle matrix [[A₁₁, −D₁ᵀ], [D₁, 0]] whose
+//! rows D₁ lie entirely within its own velocities, and it is regular whenever A₁₁ is (A is M plus
+//! O(h) terms) and D₁ has full row rank: Gaussian elimination in that order meets no zero pivot
+//! at a regular position. A multiplier's pivot is then the Schur complement D_r A⁻¹ D_rᵀ
+//! restricted to what came before, positive, and it is compared with its own scale
+//! Σ_c D_rc² / a_cc: a ratio at most the pivot tolerance means row r is, to that tolerance, a
+//! combination of the rows eliminated before it (a singular position or a redundant
+//! constraint), and the row is dropped (Δλ_r = 0) or reported — what partial pivoting found
+//! before, without moving rows.
+
+use crate::linalg::LinalgError;
+use crate::Real;
+
+/// The pattern of a Newton matrix's LU factors, planned by `mechanism!` at compile time.
+///
+/// Unknowns are numbered v̇ entries first (0..NV), then multipliers (NV..NV + NC); they are
+/// factored in the order `unknown`. Row p of the factors (position p) holds its entries at
+/// `row_start[p]..row_start[p + 1]` of the value array, columns (positions) ascending, fill-in
+/// included: the part left of `diagonal[p]` is L (unit diagonal, not stored), the rest U.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SparsePattern {
+    /// The unknown factored at each position.
+    pub unknown: &'static [u32],
+    /// The position of each unknown.
+    pub position: &'static [u32],
+    /// Where each row's entries start; one more than the positions, the last is the total.
+    pub row_start: &'static [u32],
+    /// The column (a position) of each entry.
+    pub columns: &'static [u32],
+    /// The index of each row's diagonal entry.
+    pub diagonal: &'static [u32],
+}
+
+impl SparsePattern {
+    /// Rows (and columns) of the matrix: NV + NC.
+    pub const fn size(&self) -> usize {
+        self.unknown.len()
+    }
+
+    /// Stored entries of L and U together, fill-in included.
+    pub const fn entries(&self) -> usize {
+        self.columns.len()
+    }
+}
+
+/// What a factorization found about the multipliers' pivots.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pivots<T> {
+    /// The smallest ratio pivot / scale of a multiplier that was kept (1 without multipliers):
+    /// how close the kept rows of D are to depending on each other.
+    pub(crate) smallest_ratio: T,
+}
+
+/// Factors `a` (the values over `pattern`, L and U overwriting them) without row exchanges.
+///
+/// `nv` is the number of velocity unknowns. A velocity whose pivot is at most `tolerance` times
+/// the largest entry of its original row fails with [`LinalgError::Singular`] (its unknown as
+/// the column). A multiplier whose pivot ratio (module docs) is at most `tolerance`, or that is
+/// already marked in `dropped`, is dropped when `allow_redundant` (its row becomes the identity,
+/// so with a zero right-hand side Δλ_r = 0, and `dropped[r]` is set) and fails otherwise. A
+/// non-finite entry or pivot fails with [`LinalgError::NonFinite`] naming its row's unknown.
+pub(crate) fn factor<T: Real>(
+    pattern: &SparsePattern,
+    a: &mut [T],
+    nv: usize,
+    tolerance: T,
+    allow_redundant: bool,
+    dropped: &mut [bool],
+) -> Result<Pivots<T>, LinalgError> {
+    let SparsePattern { unknown, row_start, columns, diagonal, .. } = *pattern;
+    let mut smallest_ratio = T::ONE;
+    for i in 0..unknown.len() {
+        let (start, diag, end) = (row_start[i] as usize, diagonal[i] as usize, row_start[i + 1] as usize);
+        let u = unknown[i] as usize;
+        // The row's scale from its original entries: for a multiplier Σ D_rc²/|u_cc| over the
+        // velocities before it, for a velocity its largest entry.
+        let mut scale = T::ZERO;
+        for p in start..end {
+            let x = a[p];
+            if !x.is_finite() {
+                return Err(LinalgError::NonFinite { row: u, column: unknown[columns[p] as usize] as usize });
+            }
+            if u >= nv {
+                if p < diag {
+                    scale += x * x / a[diagonal[columns[p] as usize] as usize].abs();
+                }
+            } else {
+                scale = scale.max(x.abs());
+            }
+        }
+        // Eliminate with each row k before this one that the row reaches: l_ik = a_ik / u_kk,
+        // then a_ij −= l_ik u_kj for k's entries right of its diagonal (all in this row's
+        // pattern, by the planned fill).
+        for p in start..diag {
+            let k = columns[p] as usize;
+            let l = a[p] / a[diagonal[k] as usize];
+            a[p] = l;
+            if l == T::ZERO {
+                continue;
+            }
+            let mut target = p + 1;
+            for s in diagonal[k] as usize + 1..row_start[k + 1] as usize {
+                let j = columns[s];
+                while columns[target] != j {
+                    target += 1;
+                }
+                a[target] -= l * a[s];
+            }
+        }
+        let pivot = a[diag];
+        if !pivot.is_finite() {
+            return Err(LinalgError::NonFinite { row: u, column: u });
+        }
+        if u < nv {
+            if !(pivot.abs() > tolerance * scale) {
+                return Err(LinalgError::Singular { column: u, candidate_row: u });
+            }
+            continue;
+        }
+        let r = u - nv;
+        let ratio = pivot.abs() / scale;
+        if dropped[r] || !(ratio > tolerance) {
+            if !allow_redundant {
+                return Err(LinalgError::Singular { column: u, candidate_row: u });
+            }
+            dropped[r] = true;
+            for x in &mut a[start..end] {
+                *x = T::ZERO;
+            }
+            a[diag] = T::ONE;
+        } else {
+            if ratio < smallest_ratio {
+                smallest_ratio = ratio;
+            }
+        }
+    }
+    Ok(Pivots { smallest_ratio })
+}
+
+/// Solves L U x = b in place with the factors from [`factor`]; `b` in positions.
+pub(crate) fn solve<T: Real>(pattern: &SparsePattern, lu: &[T], b: &mut [T]) {
+    let SparsePattern { row_start, columns, diagonal, .. } = *pattern;
+    let n = diagonal.len();
+    for i in 0..n {
+        let mut x = b[i];
+        for p in row_start[i] as usize..diagonal[i] as usize {
+            x -= lu[p] * b[columns[p] as usize];
+        }
+        b[i] = x;
+    }
+    for i in (0..n).rev() {
+        let diag = diagonal[i] as usize;
+        let mut x = b[i];
+        for p in diag + 1..row_start[i + 1] as usize {
+            x -= lu[p] * b[columns[p] as usize];
+        }
+        b[i] = x / lu[diag];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [[2, 0, −1], [0, 3, −2], [1, 2, 0]]: two velocities and one multiplier, identity order,
+    /// dense pattern.
+    const PATTERN: SparsePattern = SparsePattern {
+        unknown: &[0, 1, 2],
+        position: &[0, 1, 2],
+        row_start: &[0, 3, 6, 9],
+        columns: &[0, 1, 2, 0, 1, 2, 0, 1, 2],
+        diagonal: &[0, 4, 8],
+    };
+
+    fn matrix() -> [f64; 9] {
+        [2.0, 0.0, -1.0, 0.0, 3.0, -2.0, 1.0, 2.0, 0.0]
+    }
+
+    #[test]
+    fn solves_a_saddle_system() {
+        let mut a = matrix();
+        let pivots = factor(&PATTERN, &mut a, 2, 1e-13, false, &mut [false]).unwrap();
+        // The multiplier's pivot: D A⁻¹ Dᵀ = 1/2 + 4/3 against its scale, the same sum.
+        assert_eq!(pivots.smallest_ratio, 1.0);
+        let x = [1.0, -2.0, 0.5];
+        let a0 = matrix();
+        let mut b: [f64; 3] = core::array::from_fn(|i| (0..3).map(|j| a0[3 * i + j] * x[j]).sum());
+        solve(&PATTERN, &a, &mut b);
+        for i in 0..3 {
+            assert!((b[i] - x[i]).abs() < 1e-14, "{b:?}");
+        }
+    }
+
+    #[test]
+    fn a_dependent_multiplier_is_dropped_or_named() {
+        // D = 0: the multiplier's row has no pivot at all.
+        let zero_d = || [2.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0, 0.0];
+        let mut dropped = [false];
+        let mut a = zero_d();
+        assert!(matches!(factor(&PATTERN, &mut a, 2, 1e-13, false, &mut dropped), Err(LinalgError::Singular { column: 2, .. })));
+        // Its scale is 0, so the ratio is NaN, which is not above the tolerance either.
+        let mut a = zero_d();
+        factor(&PATTERN, &mut a, 2, 1e-13, true, &mut dropped).unwrap();
+        assert_eq!(dropped, [true]);
+        let mut b = [2.0, 3.0, 0.0];
+        solve(&PATTERN, &a, &mut b);
+        assert_eq!(b, [1.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn a_velocity_without_pivot_is_named() {
+        let mut a = matrix();
+        a[4] = 0.0;
+        a[5] = 0.0;
+        a[7] = 0.0;
+        assert_eq!(factor(&PATTERN, &mut a, 2, 1e-13, true, &mut [false]), Err(LinalgError::Singular { column: 1, candidate_row: 1 }));
+        let mut a = matrix();
+        a[7] = f64::NAN;
+        assert_eq!(factor(&PATTERN, &mut a, 2, 1e-13, true, &mut [false]), Err(LinalgError::NonFinite { row: 2, column: 1 }));
+    }
+}
