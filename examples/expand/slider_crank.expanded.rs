@@ -386,9 +386,9 @@ impl ::mbd::Mechanism for SliderCrank {
             call: 3u32,
         },
         ::mbd::OpCount {
-            function: "newton_matrix (generalized-α, before the factorization)",
-            add: 8u32,
-            mul: 18u32,
+            function: "newton_matrix (Φ, D and generalized-α's matrix, before the factorization)",
+            add: 23u32,
+            mul: 21u32,
             div: 2u32,
             call: 3u32,
         },
@@ -1372,6 +1372,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         lambda: &[f64; 9],
         c_v: f64,
         c_q: f64,
+        phi: &mut [f64; 9],
         s: &mut [f64; 135],
     ) {
         for x in s[23..].iter_mut() {
@@ -1383,13 +1384,50 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);
         let v12: f64 = (v5 * s_crank);
+        let v13: f64 = (-v12);
         let v24: f64 = (self.l / 2f64);
         let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
         let v29: f64 = (v24 * c_rod);
         let v31: f64 = (v24 * s_rod);
+        let v32: f64 = (-v31);
         let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v53: f64 = (s_slider * q[6]);
+        let v54: f64 = (c_slider * q[7]);
+        let v81: f64 = (-c_slider);
         let v203: f64 = (s_slider * lambda[6]);
         let v205: f64 = (c_slider * lambda[6]);
+        phi[0] = (-(q[0] - v10));
+        phi[1] = (-(q[1] - v12));
+        phi[2] = ((v10 + q[0]) - (q[3] - v29));
+        phi[3] = ((v12 + q[1]) - (q[4] - v31));
+        phi[4] = ((v29 + q[3]) - q[6]);
+        phi[5] = ((v31 + q[4]) - q[7]);
+        phi[6] = (v53 - v54);
+        phi[7] = (-s_slider);
+        phi[8] = (q[2] - (self.omega * t));
+        s[0] = (-1f64);
+        s[1] = v13;
+        s[2] = (-1f64);
+        s[3] = v10;
+        s[4] = 1f64;
+        s[5] = v13;
+        s[6] = (-1f64);
+        s[7] = v32;
+        s[8] = 1f64;
+        s[9] = v10;
+        s[10] = (-1f64);
+        s[11] = v29;
+        s[12] = 1f64;
+        s[13] = v32;
+        s[14] = (-1f64);
+        s[15] = 1f64;
+        s[16] = v29;
+        s[17] = (-1f64);
+        s[18] = s_slider;
+        s[19] = v81;
+        s[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        s[21] = v81;
+        s[22] = 1f64;
         m[0] = 1f64;
         m[1] = 1f64;
         m[2] = 0.002f64;
@@ -1407,8 +1445,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         kc[3] = v203;
         kc[4] = v205;
         kc[5] = v203;
-        kc[6] = ((s_slider * lambda[7])
-            + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
+        kc[6] = ((s_slider * lambda[7]) + (lambda[6] * (v54 - v53)));
         s[23] += m[0];
         s[26] += m[1];
         s[87] += m[2];
@@ -1471,6 +1508,872 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[62] = s[21];
         s[92] = -s[22];
         s[129] = s[22];
+    }
+    fn newton_factor(
+        s: &mut [f64; 135],
+        tolerance: f64,
+        allow_redundant: bool,
+        dropped: &mut [bool; 9],
+    ) -> ::core::result::Result<f64, ::mbd::linalg::LinalgError> {
+        let mut smallest = 1f64;
+        let mut inverse = [0f64; 18];
+        {
+            let scale = 0f64.max(s[23].abs()).max(s[24].abs()).max(s[25].abs());
+            let pivot = s[23];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                0,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[0] = 1f64 / pivot;
+                s[23] = inverse[0];
+            } else {
+                for x in s[23..26].iter_mut() {
+                    *x = 0f64;
+                }
+                s[23] = 1f64;
+                inverse[0] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64.max(s[26].abs()).max(s[27].abs()).max(s[28].abs());
+            let pivot = s[26];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                1,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[1] = 1f64 / pivot;
+                s[26] = inverse[1];
+            } else {
+                for x in s[26..29].iter_mut() {
+                    *x = 0f64;
+                }
+                s[26] = 1f64;
+                inverse[1] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64.max(s[29].abs()).max(s[30].abs()).max(s[31].abs());
+            let pivot = s[29];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                3,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[2] = 1f64 / pivot;
+                s[29] = inverse[2];
+            } else {
+                for x in s[29..32].iter_mut() {
+                    *x = 0f64;
+                }
+                s[29] = 1f64;
+                inverse[2] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64.max(s[32].abs()).max(s[33].abs()).max(s[34].abs());
+            let pivot = s[32];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                4,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[3] = 1f64 / pivot;
+                s[32] = inverse[3];
+            } else {
+                for x in s[32..35].iter_mut() {
+                    *x = 0f64;
+                }
+                s[32] = 1f64;
+                inverse[3] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64
+                .max(s[35].abs())
+                .max(s[36].abs())
+                .max(s[37].abs())
+                .max(s[38].abs());
+            let pivot = s[35];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                6,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[4] = 1f64 / pivot;
+                s[35] = inverse[4];
+            } else {
+                for x in s[35..39].iter_mut() {
+                    *x = 0f64;
+                }
+                s[35] = 1f64;
+                inverse[4] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64
+                .max(s[39].abs())
+                .max(s[40].abs())
+                .max(s[41].abs())
+                .max(s[42].abs());
+            let pivot = s[39];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                7,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[5] = 1f64 / pivot;
+                s[39] = inverse[5];
+            } else {
+                for x in s[39..43].iter_mut() {
+                    *x = 0f64;
+                }
+                s[39] = 1f64;
+                inverse[5] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64
+                .max(s[43].abs())
+                .max(s[44].abs())
+                .max(s[45].abs())
+                .max(s[46].abs())
+                .max(s[47].abs());
+            let pivot = s[43];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                5,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[6] = 1f64 / pivot;
+                s[43] = inverse[6];
+            } else {
+                for x in s[43..48].iter_mut() {
+                    *x = 0f64;
+                }
+                s[43] = 1f64;
+                inverse[6] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64
+                .max(s[48].abs())
+                .max(s[49].abs())
+                .max(s[50].abs())
+                .max(s[51].abs())
+                .max(s[52].abs());
+            {
+                let l = s[48] * inverse[4];
+                s[48] = l;
+                s[50] -= l * s[36];
+                s[51] -= l * s[37];
+                s[53] -= l * s[38];
+            }
+            {
+                let l = s[49] * inverse[5];
+                s[49] = l;
+                s[50] -= l * s[40];
+                s[51] -= l * s[41];
+                s[54] -= l * s[42];
+            }
+            let pivot = s[50];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                8,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[7] = 1f64 / pivot;
+                s[50] = inverse[7];
+            } else {
+                for x in s[48..55].iter_mut() {
+                    *x = 0f64;
+                }
+                s[50] = 1f64;
+                inverse[7] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[55] * s[55] / s[35].abs() + s[56] * s[56] / s[39].abs()
+                + s[57] * s[57] / s[50].abs();
+            {
+                let l = s[55] * inverse[4];
+                s[55] = l;
+                s[57] -= l * s[36];
+                s[58] -= l * s[37];
+                s[60] -= l * s[38];
+            }
+            {
+                let l = s[56] * inverse[5];
+                s[56] = l;
+                s[57] -= l * s[40];
+                s[58] -= l * s[41];
+                s[61] -= l * s[42];
+            }
+            {
+                let l = s[57] * inverse[7];
+                s[57] = l;
+                s[58] -= l * s[51];
+                s[59] -= l * s[52];
+                s[60] -= l * s[53];
+                s[61] -= l * s[54];
+            }
+            let pivot = s[58];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                15,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[8] = 1f64 / pivot;
+                s[58] = inverse[8];
+            } else {
+                for x in s[55..62].iter_mut() {
+                    *x = 0f64;
+                }
+                s[58] = 1f64;
+                inverse[8] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[62] * s[62] / s[50].abs();
+            {
+                let l = s[62] * inverse[7];
+                s[62] = l;
+                s[63] -= l * s[51];
+                s[64] -= l * s[52];
+                s[65] -= l * s[53];
+                s[66] -= l * s[54];
+            }
+            {
+                let l = s[63] * inverse[8];
+                s[63] = l;
+                s[64] -= l * s[59];
+                s[65] -= l * s[60];
+                s[66] -= l * s[61];
+            }
+            let pivot = s[64];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                16,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[9] = 1f64 / pivot;
+                s[64] = inverse[9];
+            } else {
+                for x in s[62..67].iter_mut() {
+                    *x = 0f64;
+                }
+                s[64] = 1f64;
+                inverse[9] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[67] * s[67] / s[29].abs() + s[68] * s[68] / s[35].abs()
+                + s[69] * s[69] / s[43].abs();
+            {
+                let l = s[67] * inverse[2];
+                s[67] = l;
+                s[73] -= l * s[30];
+                s[75] -= l * s[31];
+            }
+            {
+                let l = s[68] * inverse[4];
+                s[68] = l;
+                s[70] -= l * s[36];
+                s[71] -= l * s[37];
+                s[73] -= l * s[38];
+            }
+            {
+                let l = s[69] * inverse[6];
+                s[69] = l;
+                s[73] -= l * s[44];
+                s[74] -= l * s[45];
+                s[75] -= l * s[46];
+                s[76] -= l * s[47];
+            }
+            {
+                let l = s[70] * inverse[7];
+                s[70] = l;
+                s[71] -= l * s[51];
+                s[72] -= l * s[52];
+                s[73] -= l * s[53];
+                s[74] -= l * s[54];
+            }
+            {
+                let l = s[71] * inverse[8];
+                s[71] = l;
+                s[72] -= l * s[59];
+                s[73] -= l * s[60];
+                s[74] -= l * s[61];
+            }
+            {
+                let l = s[72] * inverse[9];
+                s[72] = l;
+                s[73] -= l * s[65];
+                s[74] -= l * s[66];
+            }
+            let pivot = s[73];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                13,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[10] = 1f64 / pivot;
+                s[73] = inverse[10];
+            } else {
+                for x in s[67..77].iter_mut() {
+                    *x = 0f64;
+                }
+                s[73] = 1f64;
+                inverse[10] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[77] * s[77] / s[32].abs() + s[78] * s[78] / s[39].abs()
+                + s[79] * s[79] / s[43].abs();
+            {
+                let l = s[77] * inverse[3];
+                s[77] = l;
+                s[84] -= l * s[33];
+                s[86] -= l * s[34];
+            }
+            {
+                let l = s[78] * inverse[5];
+                s[78] = l;
+                s[80] -= l * s[40];
+                s[81] -= l * s[41];
+                s[84] -= l * s[42];
+            }
+            {
+                let l = s[79] * inverse[6];
+                s[79] = l;
+                s[83] -= l * s[44];
+                s[84] -= l * s[45];
+                s[85] -= l * s[46];
+                s[86] -= l * s[47];
+            }
+            {
+                let l = s[80] * inverse[7];
+                s[80] = l;
+                s[81] -= l * s[51];
+                s[82] -= l * s[52];
+                s[83] -= l * s[53];
+                s[84] -= l * s[54];
+            }
+            {
+                let l = s[81] * inverse[8];
+                s[81] = l;
+                s[82] -= l * s[59];
+                s[83] -= l * s[60];
+                s[84] -= l * s[61];
+            }
+            {
+                let l = s[82] * inverse[9];
+                s[82] = l;
+                s[83] -= l * s[65];
+                s[84] -= l * s[66];
+            }
+            {
+                let l = s[83] * inverse[10];
+                s[83] = l;
+                s[84] -= l * s[74];
+                s[85] -= l * s[75];
+                s[86] -= l * s[76];
+            }
+            let pivot = s[84];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                14,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[11] = 1f64 / pivot;
+                s[84] = inverse[11];
+            } else {
+                for x in s[77..87].iter_mut() {
+                    *x = 0f64;
+                }
+                s[84] = 1f64;
+                inverse[11] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64
+                .max(s[87].abs())
+                .max(s[88].abs())
+                .max(s[89].abs())
+                .max(s[90].abs())
+                .max(s[91].abs())
+                .max(s[92].abs());
+            let pivot = s[87];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                2,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[12] = 1f64 / pivot;
+                s[87] = inverse[12];
+            } else {
+                for x in s[87..93].iter_mut() {
+                    *x = 0f64;
+                }
+                s[87] = 1f64;
+                inverse[12] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[93] * s[93] / s[23].abs() + s[94] * s[94] / s[87].abs();
+            {
+                let l = s[93] * inverse[0];
+                s[93] = l;
+                s[95] -= l * s[24];
+                s[97] -= l * s[25];
+            }
+            {
+                let l = s[94] * inverse[12];
+                s[94] = l;
+                s[95] -= l * s[88];
+                s[96] -= l * s[89];
+                s[97] -= l * s[90];
+                s[98] -= l * s[91];
+                s[99] -= l * s[92];
+            }
+            let pivot = s[95];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                9,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[13] = 1f64 / pivot;
+                s[95] = inverse[13];
+            } else {
+                for x in s[93..100].iter_mut() {
+                    *x = 0f64;
+                }
+                s[95] = 1f64;
+                inverse[13] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[100] * s[100] / s[26].abs()
+                + s[101] * s[101] / s[87].abs();
+            {
+                let l = s[100] * inverse[1];
+                s[100] = l;
+                s[103] -= l * s[27];
+                s[105] -= l * s[28];
+            }
+            {
+                let l = s[101] * inverse[12];
+                s[101] = l;
+                s[102] -= l * s[88];
+                s[103] -= l * s[89];
+                s[104] -= l * s[90];
+                s[105] -= l * s[91];
+                s[106] -= l * s[92];
+            }
+            {
+                let l = s[102] * inverse[13];
+                s[102] = l;
+                s[103] -= l * s[96];
+                s[104] -= l * s[97];
+                s[105] -= l * s[98];
+                s[106] -= l * s[99];
+            }
+            let pivot = s[103];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                10,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[14] = 1f64 / pivot;
+                s[103] = inverse[14];
+            } else {
+                for x in s[100..107].iter_mut() {
+                    *x = 0f64;
+                }
+                s[103] = 1f64;
+                inverse[14] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[107] * s[107] / s[23].abs()
+                + s[108] * s[108] / s[29].abs() + s[109] * s[109] / s[43].abs()
+                + s[112] * s[112] / s[87].abs();
+            {
+                let l = s[107] * inverse[0];
+                s[107] = l;
+                s[113] -= l * s[24];
+                s[115] -= l * s[25];
+            }
+            {
+                let l = s[108] * inverse[2];
+                s[108] = l;
+                s[110] -= l * s[30];
+                s[115] -= l * s[31];
+            }
+            {
+                let l = s[109] * inverse[6];
+                s[109] = l;
+                s[110] -= l * s[44];
+                s[111] -= l * s[45];
+                s[115] -= l * s[46];
+                s[116] -= l * s[47];
+            }
+            {
+                let l = s[110] * inverse[10];
+                s[110] = l;
+                s[111] -= l * s[74];
+                s[115] -= l * s[75];
+                s[116] -= l * s[76];
+            }
+            {
+                let l = s[111] * inverse[11];
+                s[111] = l;
+                s[115] -= l * s[85];
+                s[116] -= l * s[86];
+            }
+            {
+                let l = s[112] * inverse[12];
+                s[112] = l;
+                s[113] -= l * s[88];
+                s[114] -= l * s[89];
+                s[115] -= l * s[90];
+                s[116] -= l * s[91];
+                s[117] -= l * s[92];
+            }
+            {
+                let l = s[113] * inverse[13];
+                s[113] = l;
+                s[114] -= l * s[96];
+                s[115] -= l * s[97];
+                s[116] -= l * s[98];
+                s[117] -= l * s[99];
+            }
+            {
+                let l = s[114] * inverse[14];
+                s[114] = l;
+                s[115] -= l * s[104];
+                s[116] -= l * s[105];
+                s[117] -= l * s[106];
+            }
+            let pivot = s[115];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                11,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[15] = 1f64 / pivot;
+                s[115] = inverse[15];
+            } else {
+                for x in s[107..118].iter_mut() {
+                    *x = 0f64;
+                }
+                s[115] = 1f64;
+                inverse[15] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[118] * s[118] / s[26].abs()
+                + s[119] * s[119] / s[32].abs() + s[120] * s[120] / s[43].abs()
+                + s[123] * s[123] / s[87].abs();
+            {
+                let l = s[118] * inverse[1];
+                s[118] = l;
+                s[125] -= l * s[27];
+                s[127] -= l * s[28];
+            }
+            {
+                let l = s[119] * inverse[3];
+                s[119] = l;
+                s[122] -= l * s[33];
+                s[127] -= l * s[34];
+            }
+            {
+                let l = s[120] * inverse[6];
+                s[120] = l;
+                s[121] -= l * s[44];
+                s[122] -= l * s[45];
+                s[126] -= l * s[46];
+                s[127] -= l * s[47];
+            }
+            {
+                let l = s[121] * inverse[10];
+                s[121] = l;
+                s[122] -= l * s[74];
+                s[126] -= l * s[75];
+                s[127] -= l * s[76];
+            }
+            {
+                let l = s[122] * inverse[11];
+                s[122] = l;
+                s[126] -= l * s[85];
+                s[127] -= l * s[86];
+            }
+            {
+                let l = s[123] * inverse[12];
+                s[123] = l;
+                s[124] -= l * s[88];
+                s[125] -= l * s[89];
+                s[126] -= l * s[90];
+                s[127] -= l * s[91];
+                s[128] -= l * s[92];
+            }
+            {
+                let l = s[124] * inverse[13];
+                s[124] = l;
+                s[125] -= l * s[96];
+                s[126] -= l * s[97];
+                s[127] -= l * s[98];
+                s[128] -= l * s[99];
+            }
+            {
+                let l = s[125] * inverse[14];
+                s[125] = l;
+                s[126] -= l * s[104];
+                s[127] -= l * s[105];
+                s[128] -= l * s[106];
+            }
+            {
+                let l = s[126] * inverse[15];
+                s[126] = l;
+                s[127] -= l * s[116];
+                s[128] -= l * s[117];
+            }
+            let pivot = s[127];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                12,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[16] = 1f64 / pivot;
+                s[127] = inverse[16];
+            } else {
+                for x in s[118..129].iter_mut() {
+                    *x = 0f64;
+                }
+                s[127] = 1f64;
+                inverse[16] = 1f64;
+            }
+        }
+        {
+            let scale = 0f64 + s[129] * s[129] / s[87].abs();
+            {
+                let l = s[129] * inverse[12];
+                s[129] = l;
+                s[130] -= l * s[88];
+                s[131] -= l * s[89];
+                s[132] -= l * s[90];
+                s[133] -= l * s[91];
+                s[134] -= l * s[92];
+            }
+            {
+                let l = s[130] * inverse[13];
+                s[130] = l;
+                s[131] -= l * s[96];
+                s[132] -= l * s[97];
+                s[133] -= l * s[98];
+                s[134] -= l * s[99];
+            }
+            {
+                let l = s[131] * inverse[14];
+                s[131] = l;
+                s[132] -= l * s[104];
+                s[133] -= l * s[105];
+                s[134] -= l * s[106];
+            }
+            {
+                let l = s[132] * inverse[15];
+                s[132] = l;
+                s[133] -= l * s[116];
+                s[134] -= l * s[117];
+            }
+            {
+                let l = s[133] * inverse[16];
+                s[133] = l;
+                s[134] -= l * s[128];
+            }
+            let pivot = s[134];
+            if ::mbd::sparse::pivot(
+                pivot,
+                scale,
+                17,
+                9,
+                tolerance,
+                allow_redundant,
+                dropped,
+                &mut smallest,
+            )? {
+                inverse[17] = 1f64 / pivot;
+                s[134] = inverse[17];
+            } else {
+                for x in s[129..135].iter_mut() {
+                    *x = 0f64;
+                }
+                s[134] = 1f64;
+                inverse[17] = 1f64;
+            }
+        }
+        ::core::result::Result::Ok(smallest)
+    }
+    fn newton_solve(s: &[f64; 135], b: &mut [f64]) {
+        if let ::core::result::Result::Ok(b) = <&mut [f64; 18]>::try_from(&mut *b) {
+            b[8] -= s[48] * b[6];
+            b[8] -= s[49] * b[7];
+            b[15] -= s[55] * b[6];
+            b[15] -= s[56] * b[7];
+            b[15] -= s[57] * b[8];
+            b[16] -= s[62] * b[8];
+            b[16] -= s[63] * b[15];
+            b[13] -= s[67] * b[3];
+            b[13] -= s[68] * b[6];
+            b[13] -= s[69] * b[5];
+            b[13] -= s[70] * b[8];
+            b[13] -= s[71] * b[15];
+            b[13] -= s[72] * b[16];
+            b[14] -= s[77] * b[4];
+            b[14] -= s[78] * b[7];
+            b[14] -= s[79] * b[5];
+            b[14] -= s[80] * b[8];
+            b[14] -= s[81] * b[15];
+            b[14] -= s[82] * b[16];
+            b[14] -= s[83] * b[13];
+            b[9] -= s[93] * b[0];
+            b[9] -= s[94] * b[2];
+            b[10] -= s[100] * b[1];
+            b[10] -= s[101] * b[2];
+            b[10] -= s[102] * b[9];
+            b[11] -= s[107] * b[0];
+            b[11] -= s[108] * b[3];
+            b[11] -= s[109] * b[5];
+            b[11] -= s[110] * b[13];
+            b[11] -= s[111] * b[14];
+            b[11] -= s[112] * b[2];
+            b[11] -= s[113] * b[9];
+            b[11] -= s[114] * b[10];
+            b[12] -= s[118] * b[1];
+            b[12] -= s[119] * b[4];
+            b[12] -= s[120] * b[5];
+            b[12] -= s[121] * b[13];
+            b[12] -= s[122] * b[14];
+            b[12] -= s[123] * b[2];
+            b[12] -= s[124] * b[9];
+            b[12] -= s[125] * b[10];
+            b[12] -= s[126] * b[11];
+            b[17] -= s[129] * b[2];
+            b[17] -= s[130] * b[9];
+            b[17] -= s[131] * b[10];
+            b[17] -= s[132] * b[11];
+            b[17] -= s[133] * b[12];
+            b[17] = (b[17]) * s[134];
+            b[12] = (b[12] - s[128] * b[17]) * s[127];
+            b[11] = (b[11] - s[116] * b[12] - s[117] * b[17]) * s[115];
+            b[10] = (b[10] - s[104] * b[11] - s[105] * b[12] - s[106] * b[17]) * s[103];
+            b[9] = (b[9] - s[96] * b[10] - s[97] * b[11] - s[98] * b[12] - s[99] * b[17])
+                * s[95];
+            b[2] = (b[2] - s[88] * b[9] - s[89] * b[10] - s[90] * b[11] - s[91] * b[12]
+                - s[92] * b[17]) * s[87];
+            b[14] = (b[14] - s[85] * b[11] - s[86] * b[12]) * s[84];
+            b[13] = (b[13] - s[74] * b[14] - s[75] * b[11] - s[76] * b[12]) * s[73];
+            b[16] = (b[16] - s[65] * b[13] - s[66] * b[14]) * s[64];
+            b[15] = (b[15] - s[59] * b[16] - s[60] * b[13] - s[61] * b[14]) * s[58];
+            b[8] = (b[8] - s[51] * b[15] - s[52] * b[16] - s[53] * b[13] - s[54] * b[14])
+                * s[50];
+            b[5] = (b[5] - s[44] * b[13] - s[45] * b[14] - s[46] * b[11] - s[47] * b[12])
+                * s[43];
+            b[7] = (b[7] - s[40] * b[8] - s[41] * b[15] - s[42] * b[14]) * s[39];
+            b[6] = (b[6] - s[36] * b[8] - s[37] * b[15] - s[38] * b[13]) * s[35];
+            b[4] = (b[4] - s[33] * b[14] - s[34] * b[12]) * s[32];
+            b[3] = (b[3] - s[30] * b[13] - s[31] * b[11]) * s[29];
+            b[1] = (b[1] - s[27] * b[10] - s[28] * b[12]) * s[26];
+            b[0] = (b[0] - s[24] * b[9] - s[25] * b[11]) * s[23];
+        } else {
+            ::mbd::sparse::solve(&Self::NEWTON_PATTERN, &s[23..], b);
+        }
     }
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]

@@ -240,7 +240,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("constraint_force_q", cfq_ops),
         op_count("nonconservative_power", power_ops),
         op_count("accelerations (evaluation, before the solve)", forward.eval_ops),
-        op_count("newton_matrix (generalized-α, before the factorization)", newton.matrix_ops),
+        op_count("newton_matrix (Φ, D and generalized-α's matrix, before the factorization)", newton.matrix_ops),
     ];
     let ForwardCode { helpers, impl_block, .. } = forward;
     let newton_impl = newton.impl_block;

@@ -257,6 +257,18 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
     const NEWTON_PATTERN: crate::SparsePattern;
     /// Storage of zeros.
     fn newton_storage() -> Self::NewtonStorage;
+    /// Factors the matrix in `s` in place ([`crate::sparse::factor`], whose arguments and errors
+    /// these are; unknowns as errors name them: v̇ entries, then multipliers). `mechanism!`
+    /// generates it straight-line for small mechanisms; larger ones run the planned pattern.
+    fn newton_factor(s: &mut Self::NewtonStorage, tolerance: T, allow_redundant: bool, dropped: &mut [bool; NC]) -> Result<T, crate::linalg::LinalgError> {
+        let nnz = Self::JACOBIAN_PATTERN.len();
+        crate::sparse::factor(&Self::NEWTON_PATTERN, &mut s.as_mut()[nnz..], NV, tolerance, allow_redundant, dropped)
+    }
+    /// Solves with the factors in `s`, in place: `b` holds NV + NC entries, v̇'s then λ's.
+    fn newton_solve(s: &Self::NewtonStorage, b: &mut [T]) {
+        let nnz = Self::JACOBIAN_PATTERN.len();
+        crate::sparse::solve(&Self::NEWTON_PATTERN, &s.as_ref()[nnz..], b);
+    }
     /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`.
     fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {
         let mut d = [[T::ZERO; NV]; NC];
@@ -265,10 +277,12 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
             *value = d[r as usize][c as usize];
         }
     }
-    /// The matrix's entries at (q, v, t, λ) after the D values [`newton_jacobian`](Self::newton_jacobian)
-    /// left in `s`, fill-in zeroed, ready for the factorization.
+    /// What [`newton_jacobian`](Self::newton_jacobian) writes, and the matrix's entries at
+    /// (q, v, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
+    /// evaluation for both.
     #[allow(clippy::too_many_arguments)]
-    fn newton_matrix(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], c_v: T, c_q: T, s: &mut Self::NewtonStorage) {
+    fn newton_matrix(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], c_v: T, c_q: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {
+        self.newton_jacobian(q, t, phi, s);
         let (mut a, mut scratch) = ([[T::ZERO; NV]; NV], [[T::ZERO; NV]; NV]);
         self.forces_q(q, v, t, &mut a);
         self.forces_v(q, v, t, &mut scratch);

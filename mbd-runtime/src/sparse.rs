@@ -58,15 +58,48 @@ impl SparsePattern {
     }
 }
 
-/// What a factorization found about the multipliers' pivots.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Pivots<T> {
-    /// The smallest ratio pivot / scale of a multiplier that was kept (1 without multipliers):
-    /// how close the kept rows of D are to depending on each other.
-    pub(crate) smallest_ratio: T,
+/// The decision at one pivot, shared by [`factor`] and the factorizations `mechanism!`
+/// generates: `Ok(true)` keeps it; `Ok(false)` drops the multiplier (the caller makes its row
+/// the identity); an error names the unknown. `smallest_ratio` tracks the smallest ratio
+/// pivot/scale of a kept multiplier. Velocities fail at |pivot| ≤ `tolerance` · `scale`,
+/// multipliers at a ratio ≤ `tolerance` or when already marked in `dropped` (module docs).
+#[doc(hidden)]
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn pivot<T: Real>(
+    pivot: T,
+    scale: T,
+    unknown: usize,
+    nv: usize,
+    tolerance: T,
+    allow_redundant: bool,
+    dropped: &mut [bool],
+    smallest_ratio: &mut T,
+) -> Result<bool, LinalgError> {
+    if !pivot.is_finite() {
+        return Err(LinalgError::NonFinite { row: unknown, column: unknown });
+    }
+    if unknown < nv {
+        return if pivot.abs() > tolerance * scale { Ok(true) } else { Err(LinalgError::Singular { column: unknown, candidate_row: unknown }) };
+    }
+    let r = unknown - nv;
+    let ratio = pivot.abs() / scale;
+    if !dropped[r] && ratio > tolerance {
+        if ratio < *smallest_ratio {
+            *smallest_ratio = ratio;
+        }
+        return Ok(true);
+    }
+    if !allow_redundant {
+        return Err(LinalgError::Singular { column: unknown, candidate_row: unknown });
+    }
+    dropped[r] = true;
+    Ok(false)
 }
 
-/// Factors `a` (the values over `pattern`, L and U overwriting them) without row exchanges.
+/// Factors `a` (the values over `pattern`, L and U overwriting them) without row exchanges;
+/// returns the smallest pivot ratio of a kept multiplier (1 without multipliers): how close the
+/// kept rows of D are to depending on each other.
 ///
 /// `nv` is the number of velocity unknowns. A velocity whose pivot is at most `tolerance` times
 /// the largest entry of its original row fails with [`LinalgError::Singular`] (its unknown as
@@ -74,14 +107,14 @@ pub(crate) struct Pivots<T> {
 /// already marked in `dropped`, is dropped when `allow_redundant` (its row becomes the identity,
 /// so with a zero right-hand side Δλ_r = 0, and `dropped[r]` is set) and fails otherwise. A
 /// non-finite entry or pivot fails with [`LinalgError::NonFinite`] naming its row's unknown.
-pub(crate) fn factor<T: Real>(
+pub fn factor<T: Real>(
     pattern: &SparsePattern,
     a: &mut [T],
     nv: usize,
     tolerance: T,
     allow_redundant: bool,
     dropped: &mut [bool],
-) -> Result<Pivots<T>, LinalgError> {
+) -> Result<T, LinalgError> {
     let SparsePattern { unknown, row_start, columns, diagonal, .. } = *pattern;
     let mut smallest_ratio = T::ONE;
     for i in 0..unknown.len() {
@@ -122,54 +155,35 @@ pub(crate) fn factor<T: Real>(
                 a[target] -= l * a[s];
             }
         }
-        let pivot = a[diag];
-        if !pivot.is_finite() {
-            return Err(LinalgError::NonFinite { row: u, column: u });
-        }
-        if u < nv {
-            if !(pivot.abs() > tolerance * scale) {
-                return Err(LinalgError::Singular { column: u, candidate_row: u });
-            }
-            continue;
-        }
-        let r = u - nv;
-        let ratio = pivot.abs() / scale;
-        if dropped[r] || !(ratio > tolerance) {
-            if !allow_redundant {
-                return Err(LinalgError::Singular { column: u, candidate_row: u });
-            }
-            dropped[r] = true;
+        if !pivot(a[diag], scale, u, nv, tolerance, allow_redundant, dropped, &mut smallest_ratio)? {
             for x in &mut a[start..end] {
                 *x = T::ZERO;
             }
             a[diag] = T::ONE;
-        } else {
-            if ratio < smallest_ratio {
-                smallest_ratio = ratio;
-            }
         }
     }
-    Ok(Pivots { smallest_ratio })
+    Ok(smallest_ratio)
 }
 
-/// Solves L U x = b in place with the factors from [`factor`]; `b` in positions.
-pub(crate) fn solve<T: Real>(pattern: &SparsePattern, lu: &[T], b: &mut [T]) {
-    let SparsePattern { row_start, columns, diagonal, .. } = *pattern;
+/// Solves L U x = b in place with the factors from [`factor`]; `b` indexed by unknown (v̇
+/// entries, then multipliers), as the residuals are, so nothing is permuted.
+pub fn solve<T: Real>(pattern: &SparsePattern, lu: &[T], b: &mut [T]) {
+    let SparsePattern { unknown, row_start, columns, diagonal, .. } = *pattern;
     let n = diagonal.len();
     for i in 0..n {
-        let mut x = b[i];
+        let mut x = b[unknown[i] as usize];
         for p in row_start[i] as usize..diagonal[i] as usize {
-            x -= lu[p] * b[columns[p] as usize];
+            x -= lu[p] * b[unknown[columns[p] as usize] as usize];
         }
-        b[i] = x;
+        b[unknown[i] as usize] = x;
     }
     for i in (0..n).rev() {
         let diag = diagonal[i] as usize;
-        let mut x = b[i];
+        let mut x = b[unknown[i] as usize];
         for p in diag + 1..row_start[i + 1] as usize {
-            x -= lu[p] * b[columns[p] as usize];
+            x -= lu[p] * b[unknown[columns[p] as usize] as usize];
         }
-        b[i] = x / lu[diag];
+        b[unknown[i] as usize] = x / lu[diag];
     }
 }
 
@@ -194,9 +208,9 @@ mod tests {
     #[test]
     fn solves_a_saddle_system() {
         let mut a = matrix();
-        let pivots = factor(&PATTERN, &mut a, 2, 1e-13, false, &mut [false]).unwrap();
+        let smallest_ratio = factor(&PATTERN, &mut a, 2, 1e-13, false, &mut [false]).unwrap();
         // The multiplier's pivot: D A⁻¹ Dᵀ = 1/2 + 4/3 against its scale, the same sum.
-        assert_eq!(pivots.smallest_ratio, 1.0);
+        assert_eq!(smallest_ratio, 1.0);
         let x = [1.0, -2.0, 0.5];
         let a0 = matrix();
         let mut b: [f64; 3] = core::array::from_fn(|i| (0..3).map(|j| a0[3 * i + j] * x[j]).sum());

@@ -201,7 +201,14 @@ where
         let mut correction = T::ZERO;
         loop {
             state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-            mech.newton_jacobian(&q, t1, &mut phi, &mut s);
+            // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
+            // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
+            let factor = refactor || !o.reuse_factors || !factored;
+            if factor {
+                mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, &mut s);
+            } else {
+                mech.newton_jacobian(&q, t1, &mut phi, &mut s);
+            }
             mech.forces(&q, &v, t1, &mut force);
             // Coulomb friction with the iterate's loads (its exact derivatives enter the
             // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
@@ -263,9 +270,8 @@ where
                     residual: residual.to_f64(),
                 });
             }
-            if refactor || !o.reuse_factors || !factored {
-                mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut s);
-                let lu = &mut s.as_mut()[nnz..];
+            if factor {
+                let lu = &s.as_ref()[nnz..];
                 // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
                 // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
                 // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
@@ -276,9 +282,9 @@ where
                 // singular position, a redundant constraint): with `allow_redundant` its row and
                 // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
                 // load, as forward dynamics drops such a row.
-                let pivots = crate::sparse::factor(&pattern, lu, NV, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
+                let smallest_ratio = M::newton_factor(&mut s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
                     .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
-                near_singular = pivots.smallest_ratio < T::from_f64(1e-3);
+                near_singular = smallest_ratio < T::from_f64(1e-3);
                 factored = true;
             }
             for r in 0..NC {
@@ -286,14 +292,7 @@ where
                     rhs[NV + r] = T::ZERO;
                 }
             }
-            let mut b = [T::ZERO; N];
-            for (i, &p) in pattern.position.iter().enumerate() {
-                b[p as usize] = rhs[i];
-            }
-            crate::sparse::solve(&pattern, &s.as_ref()[nnz..], &mut b);
-            for (i, &p) in pattern.position.iter().enumerate() {
-                rhs[i] = b[p as usize];
-            }
+            M::newton_solve(&s, &mut rhs);
             if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
                 return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
             }

@@ -1,0 +1,186 @@
+//! Generalized-α's Newton matrix in the sparse storage planned at compile time
+//! (`NewtonMatrix`, `mbd::sparse`): its entries equal the dense matrix built from the generated
+//! dense functions, nothing lies outside the planned pattern, and the generated straight-line
+//! factorization and the runtime's loop over the pattern solve it alike — dropping a redundant
+//! constraint's multiplier in both.
+mod common;
+
+use common::Rng;
+use mbd::prelude::*;
+
+mechanism! {
+    /// A slider-crank with a spring-damper on the slider: ∂h/∂q and ∂h/∂v off the diagonal.
+    pub SpringCrank {
+        gravity [0.0, -9.81];
+        body crank  { mass: 1.0, inertia: 0.02, at: [0.05, 0.0, 0.0] }
+        body rod    { mass: 2.0, inertia: 0.10, at: [0.3, 0.0, 0.0] }
+        body slider { mass: 0.5, inertia: 0.001, at: [0.5, 0.0, 0.0] }
+        revolute  ground[0.0, 0.0]  ~ crank[-0.05, 0.0];
+        revolute  crank[0.05, 0.0]  ~ rod[-0.2, 0.0];
+        revolute  rod[0.2, 0.0]     ~ slider[0.0, 0.0];
+        translational slider[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+        spring slider[0.0, 0.0] ~ crank[0.0, 0.02] { k: 2.0e3, length: 0.3, c: 5.0 };
+    }
+}
+
+mechanism! {
+    /// A rod on a pin with Coulomb friction: the friction's derivatives in the matrix.
+    pub PinFriction {
+        gravity [0.0, -9.81];
+        body rod { mass: 1.5, inertia: 0.125, at: [0.5, 0.0, 0.0] }
+        body bob { mass: 0.5, inertia: 0.01, at: [1.2, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ rod[-0.5, 0.0] { coulomb: 0.2, radius: 0.01, slip_velocity: 1.0e-3 };
+        revolute rod[0.5, 0.0] ~ bob[-0.2, 0.0];
+        rotational_spring rod ~ bob { k: 30.0, c: 0.4 };
+    }
+}
+
+mechanism! {
+    /// A spatial gyroscope-like rotor on a spherical joint, with products of inertia (M's
+    /// off-diagonal entries) and the gyroscopic term in ∂h/∂v.
+    pub Top {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        body rotor { mass: 2.0, inertia: [0.02, 0.03, 0.05, 0.001, -0.002, 0.003], at: [0.0, 0.0, 0.3], angles: [0.1, 0.2, 0.0] }
+        spherical ground[0.0, 0.0, 0.0] ~ rotor[0.0, 0.0, -0.3];
+    }
+}
+
+mechanism! {
+    /// A rod pinned twice at the same point: two rows that repeat two others.
+    pub TwicePinned {
+        gravity [0.0, -9.81];
+        body rod { mass: 1.0, inertia: 0.083, at: [0.5, 0.0, 0.0] }
+        revolute first: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+        revolute second: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+    }
+}
+
+/// The dense Newton matrix from the dense generated functions, unknowns v̇ then λ.
+#[allow(clippy::too_many_arguments)]
+fn dense<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    m: &M,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    t: f64,
+    lambda: &[f64; NC],
+    c_v: f64,
+    c_q: f64,
+) -> [[f64; N]; N]
+where
+    M: NewtonMatrix<f64, NQ, NV, NC>,
+{
+    let (mut hq, mut hv, mut k) = ([[0.0; NV]; NV], [[0.0; NV]; NV], [[0.0; NV]; NV]);
+    m.forces_q(q, v, t, &mut hq);
+    m.forces_v(q, v, t, &mut hv);
+    m.friction_derivatives(q, v, t, lambda, &mut hq, &mut hv);
+    m.constraint_force_q(q, t, lambda, &mut k);
+    let mut a = [[0.0; NV]; NV];
+    m.add_mass_matrix(q, 1.0, &mut a);
+    let mut d = [[0.0; NV]; NC];
+    m.jacobian(q, t, &mut d);
+    let mut full = [[0.0; N]; N];
+    for i in 0..NV {
+        for j in 0..NV {
+            full[i][j] = a[i][j] - c_v * hv[i][j] - c_q * (hq[i][j] + k[i][j]);
+        }
+        for r in 0..NC {
+            full[i][NV + r] = -d[r][i];
+            full[NV + r][i] = d[r][i];
+        }
+    }
+    full
+}
+
+/// At random states: the planned storage holds the dense matrix's entries and nothing of it
+/// lies outside the pattern; then the generated factorization and `mbd::sparse::factor` both
+/// solve A x = b for a known x. Returns how many multipliers were dropped.
+fn check<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(m: &M, seed: u64) -> usize
+where
+    M: NewtonMatrix<f64, NQ, NV, NC>,
+{
+    let mut rng = Rng::new(seed);
+    let pattern = M::NEWTON_PATTERN;
+    let nnz = M::JACOBIAN_PATTERN.len();
+    let mut dropped_rows = 0;
+    for _ in 0..20 {
+        let mut q = m.initial_positions();
+        for x in q.iter_mut() {
+            *x += rng.uniform(-0.1, 0.1);
+        }
+        m.normalize_positions(&mut q);
+        let v: [f64; NV] = core::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+        let lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-20.0, 20.0));
+        let t = rng.uniform(0.0, 1.0);
+        // h = 1 ms, ρ∞ = 0.8: c_v = γ'h, c_q = β'h² of that size.
+        let (c_v, c_q) = (1.2e-3, 4.0e-7);
+        let mut s = M::newton_storage();
+        let mut phi = [0.0; NC];
+        m.newton_matrix(&q, &v, t, &lambda, c_v, c_q, &mut phi, &mut s);
+        let a = dense::<M, NQ, NV, NC, N>(m, &q, &v, t, &lambda, c_v, c_q);
+        // Every entry: planned ones equal (same expressions, another CSE: rounding only), the
+        // rest exactly zero.
+        let mut planned = [[false; N]; N];
+        for i in 0..N {
+            let u = pattern.unknown[i] as usize;
+            for p in pattern.row_start[i] as usize..pattern.row_start[i + 1] as usize {
+                let w = pattern.unknown[pattern.columns[p] as usize] as usize;
+                planned[u][w] = true;
+                let (got, want) = (s.as_ref()[nnz + p], a[u][w]);
+                assert!((got - want).abs() <= 1e-12 * want.abs().max(1.0), "{}: entry ({u}, {w}) {got} ≠ {want}", M::NAME);
+            }
+        }
+        for u in 0..N {
+            for w in 0..N {
+                assert!(planned[u][w] || a[u][w] == 0.0, "{}: ({u}, {w}) = {} outside the pattern", M::NAME, a[u][w]);
+            }
+        }
+        // A known solution, without components along dropped multipliers (checked below).
+        let x: [f64; N] = core::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+        let (mut generated, mut runtime) = (s, s);
+        let mut dropped = [false; NC];
+        M::newton_factor(&mut generated, 1e-13, true, &mut dropped).expect("regular velocities");
+        let mut dropped_runtime = [false; NC];
+        mbd::sparse::factor(&pattern, &mut runtime.as_mut()[nnz..], NV, 1e-13, true, &mut dropped_runtime).expect("regular velocities");
+        assert_eq!(dropped, dropped_runtime, "{}: both drop the same rows", M::NAME);
+        dropped_rows = dropped.iter().filter(|&&d| d).count();
+        let mut x = x;
+        for r in 0..NC {
+            if dropped[r] {
+                x[NV + r] = 0.0;
+            }
+        }
+        let mut b: [f64; N] = core::array::from_fn(|i| (0..N).map(|j| a[i][j] * x[j]).sum());
+        for r in 0..NC {
+            if dropped[r] {
+                b[NV + r] = 0.0;
+            }
+        }
+        let mut b_runtime = b;
+        M::newton_solve(&generated, &mut b);
+        mbd::sparse::solve(&pattern, &runtime.as_ref()[nnz..], &mut b_runtime);
+        // The matrix's condition here is O(1e4) (masses against β'h²-scaled stiffness and unit
+        // rows of D): 1e-9 leaves a margin of 1e3 over rounding, while a wrong entry or update
+        // is O(1).
+        // A dropped multiplier comes out 0, as x has it.
+        for i in 0..N {
+            assert!((b[i] - x[i]).abs() < 1e-9, "{}: generated solve x[{i}] = {} ≠ {}", M::NAME, b[i], x[i]);
+            assert!((b_runtime[i] - x[i]).abs() < 1e-9, "{}: runtime solve x[{i}] = {} ≠ {}", M::NAME, b_runtime[i], x[i]);
+        }
+    }
+    dropped_rows
+}
+
+#[test]
+fn the_planned_matrix_is_the_dense_one_and_both_factorizations_solve_it() {
+    assert_eq!(check::<_, 9, 9, 8, 17>(&SpringCrank::default(), 1), 0);
+    assert_eq!(check::<_, 6, 6, 4, 10>(&PinFriction::default(), 2), 0);
+    assert_eq!(check::<_, 7, 6, 3, 9>(&Top::default(), 3), 0);
+}
+
+/// The repeated pin's two rows have no pivot of their own: both factorizations drop them (Δλ = 0
+/// for them) and solve with the first pin carrying the load.
+#[test]
+fn both_factorizations_drop_a_repeated_pin() {
+    assert_eq!(check::<_, 3, 3, 4, 7>(&TwicePinned::default(), 4), 2);
+}
