@@ -62,7 +62,9 @@ macro_rules! bench_dynamics {
         let mut alpha = <$ty>::generalized_alpha(GeneralizedAlphaOptions::default());
         alpha.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("generalized-α step");
         println!("{}: generalized-α takes {} Newton iterations for the timed step", $label, alpha.iterations);
-        g.bench_function("generalized-α step, h = 1 ms", |b| b.iter(|| alpha.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
+        g.bench_function("generalized-α step, h = 1 ms", |b| {
+            b.iter(|| alpha.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next))
+        });
         g.finish();
     }};
 }

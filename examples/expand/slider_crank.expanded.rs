@@ -1363,7 +1363,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[21] = v81;
         s[22] = 1f64;
     }
-    #[inline]
+    #[inline(never)]
     fn newton_matrix(
         &self,
         q: &[f64; 9],
@@ -1379,7 +1379,6 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             *x = 0f64;
         }
         let mut m = [0f64; 9usize];
-        let mut kc = [0f64; 7];
         let v5: f64 = (self.r / 2f64);
         let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
         let v10: f64 = (v5 * c_crank);
@@ -1437,31 +1436,28 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         m[6] = 0.5f64;
         m[7] = 0.5f64;
         m[8] = 0.001f64;
-        kc[0] = (-((v12 * lambda[3])
+        s[87] = (-((v12 * lambda[3])
             + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
-        kc[1] = (-((v31 * lambda[5])
+        s[43] = (-((v31 * lambda[5])
             + ((v29 * lambda[4]) + ((v31 * lambda[3]) + (v29 * lambda[2])))));
-        kc[2] = v205;
-        kc[3] = v203;
-        kc[4] = v205;
-        kc[5] = v203;
-        kc[6] = ((s_slider * lambda[7]) + (lambda[6] * (v54 - v53)));
-        s[23] += m[0];
-        s[26] += m[1];
-        s[87] += m[2];
-        s[29] += m[3];
-        s[32] += m[4];
-        s[43] += m[5];
-        s[35] += m[6];
-        s[39] += m[7];
-        s[50] += m[8];
-        s[87] -= c_q * kc[0];
-        s[43] -= c_q * kc[1];
-        s[36] -= c_q * kc[2];
-        s[40] -= c_q * kc[3];
-        s[48] -= c_q * kc[4];
-        s[49] -= c_q * kc[5];
-        s[50] -= c_q * kc[6];
+        s[36] = v205;
+        s[40] = v203;
+        s[48] = v205;
+        s[49] = v203;
+        s[50] = ((s_slider * lambda[7]) + (lambda[6] * (v54 - v53)));
+        s[23] = m[0];
+        s[26] = m[1];
+        s[87] = m[2] - c_q * s[87];
+        s[29] = m[3];
+        s[32] = m[4];
+        s[43] = m[5] - c_q * s[43];
+        s[35] = m[6];
+        s[36] *= -c_q;
+        s[39] = m[7];
+        s[40] *= -c_q;
+        s[48] *= -c_q;
+        s[49] *= -c_q;
+        s[50] = m[8] - c_q * s[50];
         s[24] = -s[0];
         s[93] = s[0];
         s[88] = -s[1];
@@ -2349,7 +2345,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             b[17] -= s[131] * b[10];
             b[17] -= s[132] * b[11];
             b[17] -= s[133] * b[12];
-            b[17] = (b[17]) * s[134];
+            b[17] *= s[134];
             b[12] = (b[12] - s[128] * b[17]) * s[127];
             b[11] = (b[11] - s[116] * b[12] - s[117] * b[17]) * s[115];
             b[10] = (b[10] - s[104] * b[11] - s[105] * b[12] - s[106] * b[17]) * s[103];

@@ -67,6 +67,10 @@ pub struct Formulation {
     /// Structural non-zeros of ∂(Φ_qᵀλ)/∂q (the constraints' geometric stiffness), with λ as
     /// variables.
     pub constraint_force_q: Vec<(usize, usize, Id)>,
+    /// ∂h/∂q·B + K + friction's ∂/∂q·B, and ∂h/∂v + friction's ∂/∂v, summed by entry (the
+    /// structural non-zeros of either), for generalized-α's Newton matrix.
+    pub stiffness: Vec<(usize, usize, Id)>,
+    pub damping: Vec<(usize, usize, Id)>,
     /// The body-frame coordinates of each named point (`model.points`), functions of the
     /// parameters, for the generated point accessors.
     pub points: Vec<Vec<Id>>,
@@ -230,6 +234,21 @@ pub fn formulate(model: &Model) -> Formulation {
         constraint_force[c] = b.g.add(constraint_force[c], term);
     }
     let constraint_force_q = tangent(&mut b, &constraint_force);
+    // Generalized-α's Newton matrix takes them summed by entry: the stiffness part
+    // ∂h/∂q·B + K + friction's, the damping part ∂h/∂v + friction's.
+    let mut sum = |parts: [&[(usize, usize, Id)]; 3]| -> Vec<(usize, usize, Id)> {
+        let mut by_entry: std::collections::BTreeMap<(usize, usize), Id> = std::collections::BTreeMap::new();
+        for &(r, c, node) in parts.into_iter().flatten() {
+            let total = match by_entry.get(&(r, c)) {
+                Some(&before) => b.g.add(before, node),
+                None => node,
+            };
+            by_entry.insert((r, c), total);
+        }
+        by_entry.into_iter().map(|((r, c), node)| (r, c, node)).collect()
+    };
+    let stiffness = sum([&h_q, &constraint_force_q, &friction_q]);
+    let damping = sum([&h_qd, &friction_qd, &[]]);
     let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
     let mut joint_coordinates = Vec::new();
     for c in &model.constraints {
@@ -269,6 +288,8 @@ pub fn formulate(model: &Model) -> Formulation {
         friction_q,
         friction_qd,
         constraint_force_q,
+        stiffness,
+        damping,
         points,
         joint_coordinates,
     }

@@ -97,7 +97,11 @@ impl NewtonPlan {
     /// Multiply-subtract updates of one factorization: the straight-line code's length.
     pub fn updates(&self) -> usize {
         (0..self.unknown.len())
-            .map(|i| (self.row_start[i]..self.diagonal[i]).map(|p| self.row_start[self.columns[p] + 1] - self.diagonal[self.columns[p]] - 1).sum::<usize>())
+            .map(|i| {
+                (self.row_start[i]..self.diagonal[i])
+                    .map(|p| self.row_start[self.columns[p] + 1] - self.diagonal[self.columns[p]] - 1)
+                    .sum::<usize>()
+            })
             .sum()
     }
 
@@ -184,11 +188,17 @@ impl NewtonPlan {
         });
         let backward = (0..n).rev().map(|i| {
             let (il, dl) = (usize_lit(i), at(self.diagonal[i]));
-            let terms = (self.diagonal[i] + 1..self.row_start[i + 1]).map(|p| {
-                let (pl, j) = (at(p), usize_lit(self.columns[p]));
-                quote!(- s[#pl] * b[#j])
-            });
-            quote!(b[#il] = (b[#il] #(#terms)*) * s[#dl];)
+            let terms: Vec<TokenStream> = (self.diagonal[i] + 1..self.row_start[i + 1])
+                .map(|p| {
+                    let (pl, j) = (at(p), usize_lit(self.columns[p]));
+                    quote!(- s[#pl] * b[#j])
+                })
+                .collect();
+            if terms.is_empty() {
+                quote!(b[#il] *= s[#dl];)
+            } else {
+                quote!(b[#il] = (b[#il] #(#terms)*) * s[#dl];)
+            }
         });
         quote! {
             #(#forward)*
@@ -254,10 +264,15 @@ fn constrained_minimum_degree(adjacency: &[BTreeSet<usize>], nv: usize) -> Vec<u
     order
 }
 
-/// Updates (multiply-subtracts) up to which the factorization is emitted straight-line: the
-/// 16-link chain's 80 unknowns take 1 000 (measured: 2.7 µs of a 7.5 µs step factored by the
-/// runtime's loop over the pattern, 0.? µs straight-line).
-const GENERATED_UPDATES: usize = 4000;
+/// Updates (multiply-subtracts) up to which the factorization and solve are emitted
+/// straight-line; larger mechanisms run the same plan through `mbd_runtime::sparse`. Measured on
+/// 2026-11-24 (`cargo bench --bench dynamics -- generalized`, `python3
+/// mbd-bench/build_scaling/run.py`): the 16-link chain (562 updates) steps in 4.8 µs
+/// straight-line against 7.4 µs through the loop, and the free slider-crank in 0.82 against
+/// 1.42 µs; but straight-line code is slow to compile (the 30-link chain with torsion springs
+/// of the build-scaling crate took 13.8 s to build straight-line, 8.2 s through the loop), so
+/// the line sits where chains of about 20 links stop.
+const GENERATED_UPDATES: usize = 1000;
 
 /// The generated `NewtonMatrix` implementation and its operation counts.
 pub struct NewtonCode {
@@ -269,67 +284,78 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     let real = real(e.scalar);
     let zero = e.literal(0.0);
     let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
-    // A's structure: M (its diagonal and products of inertia) and every derivative term.
-    let derivatives: [(&str, &[(usize, usize, u32)], bool); 5] = [
-        ("hq", &f.h_q, true),
-        ("kc", &f.constraint_force_q, true),
-        ("fq", &f.friction_q, true),
-        ("hv", &f.h_qd, false),
-        ("fv", &f.friction_qd, false),
-    ];
+    // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
     let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
-    velocity.extend(f.mass_coupling.iter().map(|&(r, c, _)| (r, c)));
-    for (_, entries, _) in &derivatives {
+    for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
         velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
     }
     let jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
     let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
     let at = |u: usize, w: usize| usize_lit(nnz + plan.slot(u, w));
 
-    // One body for every term, so common subexpressions are shared among them.
-    let mut outputs = Vec::new();
+    // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
+    // are computed once: the stiffness straight into its slot of `s`, the damping and the
+    // masses into small locals; then each slot of A is M − c_v (damping) − c_q (stiffness).
+    let mut outputs = vector_outputs("phi", &f.phi);
+    outputs.extend(jacobian_values_outputs(f, "s"));
+    let (position_body, _) = e.body(&outputs);
+    let mut terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>> = BTreeMap::new();
     let mut locals = Vec::new();
-    let mut sums = Vec::new();
     let mass_entries: Vec<usize> = (0..nv).filter(|&i| !f.graph.is_zero(f.mass[i])).collect();
+    if !mass_entries.is_empty() {
+        locals.push(quote!(let mut m = [#zero; #nv];));
+    }
     for &i in &mass_entries {
         let il = usize_lit(i);
         outputs.push(Output { target: quote!(m[#il]), node: f.mass[i] });
-        let slot = at(i, i);
-        sums.push(quote!(s[#slot] += m[#il];));
+        terms.entry((i, i)).or_default().push((false, quote!(m[#il])));
     }
-    locals.push(quote!(let mut m = [#zero; #nv];));
-    if !f.mass_coupling.is_empty() {
-        let n = usize_lit(f.mass_coupling.len());
-        locals.push(quote!(let mut mc = [#zero; #n];));
-        for (k, &(r, c, node)) in f.mass_coupling.iter().enumerate() {
-            let k = usize_lit(k);
-            outputs.push(Output { target: quote!(mc[#k]), node });
-            let slot = at(r, c);
-            sums.push(quote!(s[#slot] += mc[#k];));
-        }
-    }
-    for (local, entries, by_q) in derivatives {
+    let mut local = |name: &str, entries: &[(usize, usize, u32)], coefficient: Option<TokenStream>| {
         if entries.is_empty() {
-            continue;
+            return;
         }
-        let ident = syn::Ident::new(local, proc_macro2::Span::call_site());
+        let ident = syn::Ident::new(name, proc_macro2::Span::call_site());
         let n = usize_lit(entries.len());
         locals.push(quote!(let mut #ident = [#zero; #n];));
-        let coefficient = if by_q { quote!(c_q) } else { quote!(c_v) };
         for (k, &(r, c, node)) in entries.iter().enumerate() {
             let k = usize_lit(k);
             outputs.push(Output { target: quote!(#ident[#k]), node });
-            let slot = at(r, c);
-            sums.push(quote!(s[#slot] -= #coefficient * #ident[#k];));
+            let term = match &coefficient {
+                Some(coefficient) => (true, quote!(#coefficient * #ident[#k])),
+                None => (false, quote!(#ident[#k])),
+            };
+            terms.entry((r, c)).or_default().push(term);
         }
+    };
+    local("mc", &f.mass_coupling, None);
+    local("damping", &f.damping, Some(quote!(c_v)));
+    for &(r, c, node) in &f.stiffness {
+        let slot = at(r, c);
+        outputs.push(Output { target: quote!(s[#slot]), node });
+        terms.entry((r, c)).or_default().push((true, quote!(c_q * s[#slot])));
     }
-    let mut position = vector_outputs("phi", &f.phi);
-    position.extend(jacobian_values_outputs(f, "s"));
-    let (position_body, _) = e.body(&position);
-    // Φ and D first in the same body: the matrix shares their subexpressions (sin and cos of
-    // every angle, once).
-    position.extend(outputs);
-    let (body, matrix_ops) = e.body(&position);
+    let (body, matrix_ops) = e.body(&outputs);
+    let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).collect();
+    let sums: Vec<TokenStream> = terms
+        .into_iter()
+        .map(|((r, c), terms)| {
+            let slot = at(r, c);
+            if terms.len() == 1 && stiffness.contains(&(r, c)) {
+                // The stiffness alone, already in its slot.
+                return quote!(s[#slot] *= -c_q;);
+            }
+            let mut sum = TokenStream::new();
+            for (k, (negative, term)) in terms.into_iter().enumerate() {
+                sum.extend(match (k, negative) {
+                    (0, false) => term,
+                    (0, true) => quote!(-#term),
+                    (_, false) => quote!(+ #term),
+                    (_, true) => quote!(- #term),
+                });
+            }
+            quote!(s[#slot] = #sum;)
+        })
+        .collect();
     let d_entries: Vec<TokenStream> = f
         .jacobian
         .iter()
@@ -385,7 +411,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             fn newton_jacobian(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]) {
                 #position_body
             }
-            #[inline]
+            #[inline(never)]
             fn newton_matrix(
                 &self,
                 q: &[#real; #nq_l],

@@ -24,8 +24,8 @@
 //! into the caller's matrix.
 
 use crate::{
-    ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount,
-    Real,
+    ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix,
+    OpCount, Real,
 };
 
 /// A mechanism with finite-difference derivatives (module docs).

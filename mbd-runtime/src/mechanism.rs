@@ -260,7 +260,12 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
     /// Factors the matrix in `s` in place ([`crate::sparse::factor`], whose arguments and errors
     /// these are; unknowns as errors name them: v̇ entries, then multipliers). `mechanism!`
     /// generates it straight-line for small mechanisms; larger ones run the planned pattern.
-    fn newton_factor(s: &mut Self::NewtonStorage, tolerance: T, allow_redundant: bool, dropped: &mut [bool; NC]) -> Result<T, crate::linalg::LinalgError> {
+    fn newton_factor(
+        s: &mut Self::NewtonStorage,
+        tolerance: T,
+        allow_redundant: bool,
+        dropped: &mut [bool; NC],
+    ) -> Result<T, crate::linalg::LinalgError> {
         let nnz = Self::JACOBIAN_PATTERN.len();
         crate::sparse::factor(&Self::NEWTON_PATTERN, &mut s.as_mut()[nnz..], NV, tolerance, allow_redundant, dropped)
     }
@@ -281,7 +286,17 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
     /// (q, v, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
     /// evaluation for both.
     #[allow(clippy::too_many_arguments)]
-    fn newton_matrix(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], c_v: T, c_q: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {
+    fn newton_matrix(
+        &self,
+        q: &[T; NQ],
+        v: &[T; NV],
+        t: T,
+        lambda: &[T; NC],
+        c_v: T,
+        c_q: T,
+        phi: &mut [T; NC],
+        s: &mut Self::NewtonStorage,
+    ) {
         self.newton_jacobian(q, t, phi, s);
         let (mut a, mut scratch) = ([[T::ZERO; NV]; NV], [[T::ZERO; NV]; NV]);
         self.forces_q(q, v, t, &mut a);
@@ -309,9 +324,10 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         let values = &mut s.as_mut()[nnz..];
         for i in 0..pattern.size() {
             let u = pattern.unknown[i] as usize;
-            for p in pattern.row_start[i] as usize..pattern.row_start[i + 1] as usize {
-                let w = pattern.unknown[pattern.columns[p] as usize] as usize;
-                values[p] = match (u < NV, w < NV) {
+            let row = pattern.row_start[i] as usize..pattern.row_start[i + 1] as usize;
+            for (value, &column) in values[row.clone()].iter_mut().zip(&pattern.columns[row]) {
+                let w = pattern.unknown[column as usize] as usize;
+                *value = match (u < NV, w < NV) {
                     (true, true) => a[u][w],
                     (true, false) => -d[w - NV][u],
                     (false, true) => d[u - NV][w],

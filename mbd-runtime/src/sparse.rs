@@ -80,7 +80,11 @@ pub fn pivot<T: Real>(
         return Err(LinalgError::NonFinite { row: unknown, column: unknown });
     }
     if unknown < nv {
-        return if pivot.abs() > tolerance * scale { Ok(true) } else { Err(LinalgError::Singular { column: unknown, candidate_row: unknown }) };
+        return if pivot.abs() > tolerance * scale {
+            Ok(true)
+        } else {
+            Err(LinalgError::Singular { column: unknown, candidate_row: unknown })
+        };
     }
     let r = unknown - nv;
     let ratio = pivot.abs() / scale;
