@@ -50,6 +50,9 @@ macro_rules! bench_mechanism {
             b.iter(|| m.full_eval(black_box(&q), black_box(&qd), black_box(t0), &mut phi, &mut d, &mut nu, &mut gamma))
         });
         // One step of a kinematic sweep: Newton from the previous position at t + 1 ms.
+        let mut qn = q;
+        let convergence = solver.solve_position(&m, &mut ws, &mut qn, t0 + 1e-3).expect("converges");
+        println!("{}: the position solve takes {} Newton steps", $label, convergence.iterations);
         g.bench_function("position solve, t → t + 1 ms", |b| {
             b.iter(|| {
                 let mut qn = q;

@@ -2514,6 +2514,90 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         gamma[8] = 0f64;
     }
     #[inline]
+    fn sparse_position_step(
+        &self,
+        q: &[f64; 9],
+        t: f64,
+        tolerance: f64,
+        pivot_tolerance: f64,
+        phi: &mut [f64; 9],
+        step: &mut [f64; 9],
+    ) -> ::core::option::Option<::mbd::PositionStep> {
+        let mut jv = [0f64; 23];
+        let v5: f64 = (self.r / 2f64);
+        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        let v10: f64 = (v5 * c_crank);
+        let v12: f64 = (v5 * s_crank);
+        let v13: f64 = (-v12);
+        let v24: f64 = (self.l / 2f64);
+        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        let v29: f64 = (v24 * c_rod);
+        let v31: f64 = (v24 * s_rod);
+        let v32: f64 = (-v31);
+        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let v81: f64 = (-c_slider);
+        phi[0] = (-(q[0] - v10));
+        phi[1] = (-(q[1] - v12));
+        phi[2] = ((v10 + q[0]) - (q[3] - v29));
+        phi[3] = ((v12 + q[1]) - (q[4] - v31));
+        phi[4] = ((v29 + q[3]) - q[6]);
+        phi[5] = ((v31 + q[4]) - q[7]);
+        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+        phi[7] = (-s_slider);
+        phi[8] = (q[2] - (self.omega * t));
+        jv[0] = (-1f64);
+        jv[1] = v13;
+        jv[2] = (-1f64);
+        jv[3] = v10;
+        jv[4] = 1f64;
+        jv[5] = v13;
+        jv[6] = (-1f64);
+        jv[7] = v32;
+        jv[8] = 1f64;
+        jv[9] = v10;
+        jv[10] = (-1f64);
+        jv[11] = v29;
+        jv[12] = 1f64;
+        jv[13] = v32;
+        jv[14] = (-1f64);
+        jv[15] = 1f64;
+        jv[16] = v29;
+        jv[17] = (-1f64);
+        jv[18] = s_slider;
+        jv[19] = v81;
+        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        jv[21] = v81;
+        jv[22] = 1f64;
+        let mut worst = 0f64;
+        for x in phi.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
+        }
+        if worst <= tolerance {
+            return ::core::option::Option::Some(::mbd::PositionStep::Converged);
+        }
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if Self::schur_factor(&jv, &[1f64; 9], pivot_tolerance, false, &mut l, &mut dinv)
+            .is_err()
+        {
+            return ::core::option::Option::Some(::mbd::PositionStep::Singular);
+        }
+        let mut b = *phi;
+        Self::schur_solve(&l, &dinv, &mut b);
+        *step = [0f64; 9];
+        step[0] = -(jv[0] * b[0] + jv[4] * b[2]);
+        step[1] = -(jv[2] * b[1] + jv[8] * b[3]);
+        step[2] = -(jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
+            + jv[22] * b[8]);
+        step[3] = -(jv[6] * b[2] + jv[12] * b[4]);
+        step[4] = -(jv[10] * b[3] + jv[15] * b[5]);
+        step[5] = -(jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
+        step[6] = -(jv[14] * b[4] + jv[18] * b[6]);
+        step[7] = -(jv[17] * b[5] + jv[19] * b[6]);
+        step[8] = -(jv[20] * b[6] + jv[21] * b[7]);
+        ::core::option::Option::Some(::mbd::PositionStep::Step)
+    }
+    #[inline]
     fn position_eval(
         &self,
         q: &[f64; 9],

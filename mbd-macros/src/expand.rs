@@ -242,7 +242,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         op_count("accelerations (evaluation, before the solve)", forward.eval_ops),
         op_count("newton_matrix (Φ, D and generalized-α's matrix, before the factorization)", newton.matrix_ops),
     ];
-    let ForwardCode { helpers, impl_block, .. } = forward;
+    let ForwardCode { helpers, impl_block, position_step, .. } = forward;
     let newton_impl = newton.impl_block;
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
@@ -505,6 +505,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             fn gamma(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l]) {
                 #gamma_body
             }
+            #position_step
             #[inline]
             fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
                 for row in d.iter_mut() {

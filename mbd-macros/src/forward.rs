@@ -18,6 +18,8 @@ const INLINE_SCHUR_ROWS: usize = 64;
 /// `ForwardDynamics` implementation.
 pub struct ForwardCode {
     pub helpers: TokenStream,
+    /// `Kinematics::sparse_position_step`, for the `Kinematics` implementation.
+    pub position_step: TokenStream,
     pub impl_block: TokenStream,
     pub eval_ops: Ops,
 }
@@ -279,6 +281,51 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
 
+    // The kinematic position solve's Newton step, −Dᵀ(D Dᵀ)⁻¹Φ: the same factorization with unit
+    // weights (the step is D⁻¹(−Φ) for any weights when D is square and regular).
+    let mut kinematic = vector_outputs("phi", &f.phi);
+    kinematic.extend(jacobian_values_outputs(f, "jv"));
+    let (kinematic_body, _) = e.body(&kinematic);
+    let unit_off = if coupled { quote!(&[#zero; #n_off],) } else { quote!() };
+    let step_columns: Vec<TokenStream> = (0..nv)
+        .filter_map(|c| {
+            let cl = usize_lit(c);
+            transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
+        })
+        .collect();
+    let position_step = quote! {
+        #[inline]
+        fn sparse_position_step(
+            &self,
+            q: &[#real; #nq_l],
+            t: #real,
+            tolerance: #real,
+            pivot_tolerance: #real,
+            phi: &mut [#real; #nc_l],
+            step: &mut [#real; #nv_l],
+        ) -> ::core::option::Option<::mbd::PositionStep> {
+            let mut jv = [#zero; #nnz_l];
+            #kinematic_body
+            let mut worst = #zero;
+            for x in phi.iter() {
+                worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
+            }
+            if worst <= tolerance {
+                return ::core::option::Option::Some(::mbd::PositionStep::Converged);
+            }
+            let mut l = [#zero; #nl_l];
+            let mut dinv = [#zero; #nc_l];
+            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                return ::core::option::Option::Some(::mbd::PositionStep::Singular);
+            }
+            let mut b = *phi;
+            Self::schur_solve(&l, &dinv, &mut b);
+            *step = [#zero; #nv_l];
+            #(#step_columns)*
+            ::core::option::Option::Some(::mbd::PositionStep::Step)
+        }
+    };
+
     // Inlined into small mechanisms' solves (a call's cost matters there); kept apart in large
     // ones, where LLVM's optimization of the factor's straight-line, branchy code inlined into
     // each caller grew superlinearly (a 60-link chain's RK4 build took 166 s, a 30-link one 6 s).
@@ -381,7 +428,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             }
         }
     };
-    ForwardCode { helpers, impl_block, eval_ops }
+    ForwardCode { helpers, position_step, impl_block, eval_ops }
 }
 
 /// Outputs `mi[k]` = the k-th structural non-zero of the coupled blocks of M⁻¹ (none for a

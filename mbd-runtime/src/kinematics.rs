@@ -19,7 +19,7 @@
 use crate::error::{KinematicError, NonFiniteQuantity};
 use crate::linalg::{self, LinalgError, Permutation};
 use crate::redundancy::{independent_rows, rank_revealing_step, solve_orthogonalized};
-use crate::{Kinematics, Mechanism, Real, Workspace};
+use crate::{Kinematics, Mechanism, PositionStep, Real, Workspace};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
 /// coordinate in f64. Below what f32 resolves (its ulp at 1 m is 1.2e-7): every tolerance is
@@ -542,7 +542,10 @@ impl KinematicSolver {
         M: Kinematics<T, NQ, NV, NC>,
     {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
-        // `newton` returns D evaluated at the converged q, not yet factored.
+        // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
+        if NV == NC {
+            m.jacobian(q, t, &mut ws.jacobian);
+        }
         let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
         velocity_from_factors(m, q, t, ws, &factors, v)?;
         acceleration_from_factors(m, q, v, t, ws, &factors, vd)?;
@@ -575,8 +578,10 @@ impl KinematicSolver {
     }
 
     /// Newton iteration on Φ(q, t) = 0 with the given step rule, each step Δv applied as
-    /// q ⊕ Δv. On success `jacobian` holds D(q, t) at the returned q (unfactored): the
-    /// convergence test comes after each evaluation, so the last evaluation is at the solution.
+    /// q ⊕ Δv. A square D takes [`Kinematics::sparse_position_step`] and leaves `jacobian`
+    /// alone; otherwise, on success, `jacobian` holds D(q, t) at the returned q (unfactored):
+    /// the convergence test comes after each evaluation, so the last evaluation is at the
+    /// solution.
     fn newton<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
@@ -601,7 +606,17 @@ impl KinematicSolver {
         let mut previous_norm = T::from_f64(f64::INFINITY);
         let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
         loop {
-            m.position_eval(q, t, &mut residual, jacobian);
+            // A square D: the step over the sparse factorization planned at compile time; the
+            // dense LU where none is generated or it found no pivot (the LU then names the
+            // coordinate without one, or finds one: D Dᵀ's pivots are D's squared).
+            let sparse = match rule {
+                StepRule::Square => m.sparse_position_step(q, t, tolerance, pivot_tolerance, &mut residual, &mut step),
+                StepRule::RankRevealing => None,
+            };
+            let dense = !matches!(sparse, Some(PositionStep::Converged | PositionStep::Step));
+            if dense {
+                m.position_eval(q, t, &mut residual, jacobian);
+            }
             check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
             let (norm, worst) = max_abs(&residual);
             if norm <= tolerance {
@@ -619,6 +634,7 @@ impl KinematicSolver {
                 *negated = -value;
             }
             match rule {
+                StepRule::Square if !dense => Ok(()),
                 StepRule::Square => linalg::lu_factor(jacobian, pivot_tolerance)
                     .and_then(|permutation| linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step))
                     .map_err(|e| jacobian_error::<M>(e, time)),

@@ -41,7 +41,7 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
     DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
-pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount};
+pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, PositionStep};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;
