@@ -197,7 +197,15 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// `pivot_tolerance` times its diagonal: the solver then takes the dense LU, which names the
     /// coordinate without a pivot. `None` (the provided method) where nothing is generated: the
     /// dense path.
-    fn sparse_position_step(&self, q: &[T; NQ], t: T, tolerance: T, pivot_tolerance: T, phi: &mut [T; NC], step: &mut [T; NV]) -> Option<PositionStep> {
+    fn sparse_position_step(
+        &self,
+        q: &[T; NQ],
+        t: T,
+        tolerance: T,
+        pivot_tolerance: T,
+        phi: &mut [T; NC],
+        step: &mut [T; NV],
+    ) -> Option<PositionStep> {
         let _ = (q, t, tolerance, pivot_tolerance, phi, step);
         None
     }
