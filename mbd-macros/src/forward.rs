@@ -293,8 +293,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
         })
         .collect();
+    let step_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
     let position_step = quote! {
-        #[inline]
+        #step_inline
         fn sparse_position_step(
             &self,
             q: &[#real; #nq_l],

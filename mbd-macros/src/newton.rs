@@ -369,6 +369,9 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
         })
         .collect();
     let pattern = plan.pattern();
+    // Inlined into the step of small mechanisms; kept apart in large ones (build time, as for
+    // the Schur complement's helpers).
+    let jacobian_inline = if plan.updates() <= GENERATED_UPDATES { quote!(#[inline]) } else { quote!(#[inline(never)]) };
     // Straight-line factorization and solve up to a size; beyond, the code would cost more to
     // compile than it saves (the runtime runs the same plan from `NEWTON_PATTERN`).
     let solver = if plan.updates() <= GENERATED_UPDATES {
@@ -407,7 +410,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             fn newton_storage() -> [#real; #total] {
                 [#zero; #total]
             }
-            #[inline]
+            #jacobian_inline
             fn newton_jacobian(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]) {
                 #position_body
             }
