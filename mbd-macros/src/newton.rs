@@ -230,7 +230,7 @@ impl NewtonPlan {
 
 /// Minimum degree (ties to the lower index) over the unknowns that may go next: every velocity,
 /// and a multiplier once all velocities of its row are eliminated.
-fn constrained_minimum_degree(adjacency: &[BTreeSet<usize>], nv: usize) -> Vec<usize> {
+pub fn constrained_minimum_degree(adjacency: &[BTreeSet<usize>], nv: usize) -> Vec<usize> {
     let n = adjacency.len();
     let mut graph = adjacency.to_vec();
     let mut waiting: Vec<usize> = (0..n).map(|u| if u < nv { 0 } else { adjacency[u].len() }).collect();

@@ -235,26 +235,9 @@ impl Schur {
 
 /// Minimum-degree ordering of a graph given by adjacency sets (exact elimination-graph degrees;
 /// ties go to the lowest index, so a chain is ordered from its ends and never fills).
-fn minimum_degree(mut adjacency: Vec<BTreeSet<usize>>) -> Vec<usize> {
-    let n = adjacency.len();
-    let mut eliminated = vec![false; n];
-    let mut order = Vec::with_capacity(n);
-    for _ in 0..n {
-        let v = (0..n).filter(|&v| !eliminated[v]).min_by_key(|&v| (adjacency[v].len(), v)).expect("a vertex is left");
-        eliminated[v] = true;
-        order.push(v);
-        let neighbours: Vec<usize> = adjacency[v].iter().copied().collect();
-        for &a in &neighbours {
-            adjacency[a].remove(&v);
-            for &b in &neighbours {
-                if a != b {
-                    adjacency[a].insert(b);
-                }
-            }
-        }
-        adjacency[v].clear();
-    }
-    order
+fn minimum_degree(adjacency: Vec<BTreeSet<usize>>) -> Vec<usize> {
+    // Every row may go at any time: no "multipliers" waiting for their velocities.
+    crate::newton::constrained_minimum_degree(&adjacency, adjacency.len())
 }
 
 #[cfg(test)]

@@ -46,10 +46,13 @@ pub struct GeneralizedAlphaOptions<T> {
     /// tolerances, linearly instead of quadratically, which at these corrections (the
     /// predictor's error, O(h²)) costs no extra iteration in most steps.
     pub reuse_factors: bool,
-    /// Relative pivot tolerance of the LU of the iteration matrix. Default 1e-13. A multiplier's
-    /// column without a pivot is a dependent constraint row: with
+    /// Relative pivot tolerance of the LU of the iteration matrix ([`crate::sparse`]). Default
+    /// 1e-13. A multiplier whose pivot is at most this times its scale Σ_c D_rc²/|u_cc| belongs
+    /// to a dependent constraint row: with
     /// [`DynamicsOptions::allow_redundant`](crate::DynamicsOptions::allow_redundant) (the
     /// default) its Δλ is set to 0 for the rest of the step, otherwise the step fails naming it.
+    /// A velocity whose pivot is at most this times its row's largest entry fails the step
+    /// naming it ([`SimulationError::SingularIterationMatrix`]).
     pub pivot_tolerance: T,
     /// Project each step's velocities onto D v = ν in the metric of M
     /// ([`ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
@@ -92,8 +95,9 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
 /// ([`Dynamics::friction_derivatives`]; friction's slope in λ, at most μ, is left out). Where a
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
-/// The iteration matrix, ∂h/∂q, ∂h/∂v, D and ∂(Dᵀλ)/∂q live in the [`Workspace`] that
-/// [`simulate`](super::simulate()) passes to each step; the integrator itself holds O(NV).
+/// The iteration matrix is built and factored in the sparse storage whose order and fill
+/// `mechanism!` planned ([`NewtonMatrix`], [`crate::sparse`]), on the stack: O(its non-zeros),
+/// no dense matrix, and the [`Workspace`] is not used; the integrator itself holds O(NV).
 ///
 /// [`Kinematics::integrate_positions`]: crate::Kinematics::integrate_positions
 ///
