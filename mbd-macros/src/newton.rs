@@ -49,27 +49,7 @@ impl NewtonPlan {
             adjacency[c].insert(nv + r);
         }
         let unknown = constrained_minimum_degree(&adjacency, nv);
-        let mut position = vec![0; n];
-        for (p, &u) in unknown.iter().enumerate() {
-            position[u] = p;
-        }
-        // Symbolic elimination in positions: eliminating p connects all its later neighbours.
-        let mut graph: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
-        for (u, neighbours) in adjacency.iter().enumerate() {
-            for &w in neighbours {
-                graph[position[u]].insert(position[w]);
-            }
-        }
-        for p in 0..n {
-            let later: Vec<usize> = graph[p].iter().copied().filter(|&i| i > p).collect();
-            for &a in &later {
-                for &b in &later {
-                    if a != b {
-                        graph[a].insert(b);
-                    }
-                }
-            }
-        }
+        let (position, mut graph) = filled_graph(&adjacency, &unknown);
         let (mut row_start, mut columns, mut diagonal, mut index) = (vec![0], Vec::new(), Vec::new(), BTreeMap::new());
         for (p, neighbours) in graph.iter_mut().enumerate() {
             neighbours.insert(p);
@@ -262,6 +242,34 @@ pub fn constrained_minimum_degree(adjacency: &[BTreeSet<usize>], nv: usize) -> V
         }
     }
     order
+}
+
+/// The symbolic factorization for an elimination `order` of a graph: (the position of each
+/// vertex, the graph in positions with every fill-in edge), eliminating a vertex connecting all
+/// its later neighbours.
+pub fn filled_graph(adjacency: &[BTreeSet<usize>], order: &[usize]) -> (Vec<usize>, Vec<BTreeSet<usize>>) {
+    let n = adjacency.len();
+    let mut position = vec![0; n];
+    for (p, &u) in order.iter().enumerate() {
+        position[u] = p;
+    }
+    let mut graph: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
+    for (u, neighbours) in adjacency.iter().enumerate() {
+        for &w in neighbours {
+            graph[position[u]].insert(position[w]);
+        }
+    }
+    for p in 0..n {
+        let later: Vec<usize> = graph[p].iter().copied().filter(|&i| i > p).collect();
+        for &a in &later {
+            for &b in &later {
+                if a != b {
+                    graph[a].insert(b);
+                }
+            }
+        }
+    }
+    (position, graph)
 }
 
 /// Updates (multiply-subtracts) up to which the factorization and solve are emitted

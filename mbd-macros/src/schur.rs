@@ -87,31 +87,14 @@ impl Schur {
                 adjacency[j].insert(i);
             }
         }
-        let order = minimum_degree(adjacency.clone());
-        let mut position = vec![0; nc];
-        for (k, &r) in order.iter().enumerate() {
-            position[r] = k;
-        }
+        let order = minimum_degree(&adjacency);
         // Symbolic factorization on the elimination graph, in positions.
-        let mut graph: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); nc];
-        for (r, neighbours) in adjacency.iter().enumerate() {
-            for &n in neighbours {
-                graph[position[r]].insert(position[n]);
-            }
-        }
+        let (_, graph) = crate::newton::filled_graph(&adjacency, &order);
         let mut l = BTreeMap::new();
-        for k in 0..nc {
-            let later: Vec<usize> = graph[k].iter().copied().filter(|&i| i > k).collect();
-            for &i in &later {
+        for (k, neighbours) in graph.iter().enumerate() {
+            for &i in neighbours.iter().filter(|&&i| i > k) {
                 let next = l.len();
                 l.insert((i, k), next);
-            }
-            for &a in &later {
-                for &b in &later {
-                    if a != b {
-                        graph[a].insert(b);
-                    }
-                }
             }
         }
         Schur { nc, order, s, l }
@@ -235,9 +218,9 @@ impl Schur {
 
 /// Minimum-degree ordering of a graph given by adjacency sets (exact elimination-graph degrees;
 /// ties go to the lowest index, so a chain is ordered from its ends and never fills).
-fn minimum_degree(adjacency: Vec<BTreeSet<usize>>) -> Vec<usize> {
+fn minimum_degree(adjacency: &[BTreeSet<usize>]) -> Vec<usize> {
     // Every row may go at any time: no "multipliers" waiting for their velocities.
-    crate::newton::constrained_minimum_degree(&adjacency, adjacency.len())
+    crate::newton::constrained_minimum_degree(adjacency, adjacency.len())
 }
 
 #[cfg(test)]
