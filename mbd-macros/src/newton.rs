@@ -275,9 +275,9 @@ pub fn filled_graph(adjacency: &[BTreeSet<usize>], order: &[usize]) -> (Vec<usiz
 /// Updates (multiply-subtracts) up to which the factorization and solve are emitted
 /// straight-line; larger mechanisms run the same plan through `mbd_runtime::sparse`. Measured on
 /// 2026-11-24 (`cargo bench --bench dynamics -- generalized`, `python3
-/// mbd-bench/build_scaling/run.py`): the 16-link chain (562 updates) steps in 4.8 µs
-/// straight-line against 7.4 µs through the loop, and the free slider-crank in 0.82 against
-/// 1.42 µs; but straight-line code is slow to compile (the 30-link chain with torsion springs
+/// mbd-bench/build_scaling/run.py`): the 16-link chain (about 560 updates on the pattern of the
+/// chain test below) steps in 4.8 µs straight-line against 7.4 µs through the loop, and the free
+/// slider-crank in 0.82 against 1.42 µs; but straight-line code is slow to compile (the 30-link chain with torsion springs
 /// of the build-scaling crate took 13.8 s to build straight-line, 8.2 s through the loop), so
 /// the line sits where chains of about 20 links stop.
 const GENERATED_UPDATES: usize = 1000;
