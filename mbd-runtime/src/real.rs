@@ -75,6 +75,8 @@ pub trait Real:
     fn is_finite(self) -> bool;
     /// The larger of two values (NaN-ignoring, like `f64::max`).
     fn max(self, other: Self) -> Self;
+    /// The smaller of two values (NaN-ignoring, like `f64::min`).
+    fn min(self, other: Self) -> Self;
 }
 
 macro_rules! impl_real {
@@ -196,6 +198,14 @@ macro_rules! impl_real {
             #[inline(always)]
             fn max(self, other: Self) -> Self {
                 if self >= other || other != other {
+                    self
+                } else {
+                    other
+                }
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                if self <= other || other != other {
                     self
                 } else {
                     other

@@ -61,6 +61,63 @@ pub struct GeneralizedAlphaOptions<T> {
     /// per second from t = 1 s until Newton failed at 5–9 s), and a coordinate-partitioning
     /// correction turns it into a first-order error. Default true.
     pub project_velocities: bool,
+    /// Step-size control by a local error estimate: `None` (the default) takes fixed steps of
+    /// [`step`](Self::step); `Some` makes `step` the first step tried and adapts the rest to
+    /// the tolerances ([`ErrorControl`]).
+    pub error_control: Option<ErrorControl<T>>,
+}
+
+/// Tolerances and step limits of the variable-step generalized-α method
+/// ([`GeneralizedAlphaOptions::error_control`]).
+///
+/// The local error of a step is estimated from the pseudo-accelerations: with δ = α_m − α_f,
+/// q₊'s Taylor expansion leaves e = (1/12 + δ²/4) h³ q⃛ + O(h⁴), and a₊ − a = h q⃛ + O(h²), so
+///
+/// ```text
+/// e ≈ (1/12 + δ²/4) h² (a₊ − a)
+/// ```
+///
+/// (for Newmark's scheme, δ = 0 and β free, this is Zienkiewicz & Xie's (1991) estimate
+/// (β − 1/6) h² (a₊ − a); here β = ¼(1 − δ)²), measured on the coordinates (q₊ ⊕ e − q₊) in the RMS of the mixed tolerance
+/// atol + rtol·max(|q|, |q₊|), as [`Dopri5`](crate::Dopri5) measures its error (only the
+/// positions: the method's velocity error is of the same order but has no estimate this cheap).
+/// A step is accepted when that RMS is at most 1, and the next one is
+/// h · clamp(0.9 err^(−1/3), 0.2, 2). A step whose Newton iteration fails to converge is retried
+/// at a quarter of its size. On a step-size change the pseudo-acceleration's lag a − v̇ ≈ δ h q⃛
+/// is rescaled to the new step (a ← v̇ + (h₊/h)(a − v̇)), so the method stays second-order: the
+/// global error falls like rtol^(2/3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorControl<T> {
+    /// Relative tolerance on each coordinate. Default 1e-6.
+    pub rtol: T,
+    /// Absolute tolerance (m, rad). Default 1e-8.
+    pub atol: T,
+    /// Largest step size (s). Default 0.1 s.
+    pub max_step: T,
+    /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
+    /// 1e-12 s.
+    pub min_step: T,
+}
+
+impl<T: Real> Default for ErrorControl<T> {
+    fn default() -> Self {
+        Self { rtol: T::from_f64(1e-6), atol: T::from_f64(1e-8), max_step: T::from_f64(0.1), min_step: T::from_f64(1e-12) }
+    }
+}
+
+impl<T: Real> ErrorControl<T> {
+    /// Tolerances non-negative and not both zero, `max_step` positive, `min_step` non-negative.
+    // `!(x >= y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn check(&self) -> Result<(), SimulationError> {
+        if !(self.rtol >= T::ZERO && self.atol >= T::ZERO && self.rtol + self.atol > T::ZERO) {
+            return Err(SimulationError::InvalidOptions { what: "rtol and atol (ErrorControl) must be non-negative, not both zero" });
+        }
+        if !(self.max_step > T::ZERO && self.min_step >= T::ZERO) {
+            return Err(SimulationError::InvalidOptions { what: "ErrorControl::max_step must be positive, min_step non-negative" });
+        }
+        Ok(())
+    }
 }
 
 impl<T: Real> Default for GeneralizedAlphaOptions<T> {
@@ -74,6 +131,7 @@ impl<T: Real> Default for GeneralizedAlphaOptions<T> {
             reuse_factors: true,
             pivot_tolerance: T::from_f64(1e-13),
             project_velocities: true,
+            error_control: None,
         }
     }
 }
@@ -108,23 +166,56 @@ pub struct GeneralizedAlpha<T, const NV: usize> {
     pub options: GeneralizedAlphaOptions<T>,
     /// Newton iterations of the last step.
     pub iterations: u32,
-    /// Newton iterations of every step so far (each evaluates the residual once).
+    /// Newton iterations of every step so far, rejected ones included (each evaluates the
+    /// residual once).
     pub total_iterations: u64,
-    // Pseudo-acceleration a of the last point, and whether it is valid.
+    /// Steps accepted so far.
+    pub accepted: u64,
+    /// Steps rejected so far by the error control (too large an error, or Newton failing).
+    pub rejected: u64,
+    /// With error control, the step size the next step will try (s); 0 before the first.
+    pub next_step: T,
+    // Pseudo-acceleration a of the last point, the step that produced it, and whether it is valid.
     a: [T; NV],
+    last_step: T,
     started: bool,
 }
 
 impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
     /// A generalized-α integrator for a mechanism with NV velocities.
     pub fn new(options: GeneralizedAlphaOptions<T>) -> Self {
-        Self { options, iterations: 0, total_iterations: 0, a: [T::ZERO; NV], started: false }
+        Self {
+            options,
+            iterations: 0,
+            total_iterations: 0,
+            accepted: 0,
+            rejected: 0,
+            next_step: T::ZERO,
+            a: [T::ZERO; NV],
+            last_step: T::ZERO,
+            started: false,
+        }
     }
 
-    /// Forget the pseudo-accelerations: the next step starts from v̇ of its initial point (call
-    /// after changing the state by hand).
+    /// Forget the pseudo-accelerations and the step size: the next step starts from v̇ of its
+    /// initial point and from [`GeneralizedAlphaOptions::step`] (call after changing the state
+    /// by hand).
     pub fn restart(&mut self) {
         self.started = false;
+        self.next_step = T::ZERO;
+    }
+
+    /// The pseudo-acceleration a to step from with a step of h: v̇ at the start; after a step
+    /// of h₀, a − v̇ ≈ δ h₀ q⃛ rescaled to δ h q⃛ (a no-op at a constant step).
+    fn pseudo_acceleration(&self, vd: &[T; NV], h: T) -> [T; NV] {
+        if !self.started {
+            return *vd;
+        }
+        if h == self.last_step {
+            return self.a;
+        }
+        let ratio = h / self.last_step;
+        core::array::from_fn(|i| vd[i] + ratio * (self.a[i] - vd[i]))
     }
 }
 
@@ -165,211 +256,61 @@ where
         let alpha_f = rho / (rho + one);
         let gamma = half + alpha_f - alpha_m;
         let beta = T::from_f64(0.25) * (gamma + half) * (gamma + half);
-        let (h, t1) = fixed_step(from.t, o.step, t_max);
-        if !(h > T::ZERO) {
-            *to = *from;
-            return Ok(());
-        }
-        let beta_p = beta * (one - alpha_f) / (one - alpha_m);
-        let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
-        let a_n = if self.started { self.a } else { from.vd };
-        // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
-        let mut vd = from.vd;
-        let mut lambda = from.lambda;
-        let mut q = [T::ZERO; NQ];
-        let mut v = [T::ZERO; NV];
-        let mut a1 = [T::ZERO; NV];
-        let mut phi = [T::ZERO; NC];
-        // D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
-        // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix.
-        let mut s = M::newton_storage();
-        let pattern = M::NEWTON_PATTERN;
-        let nnz = M::JACOBIAN_PATTERN.len();
-        let mut force = [T::ZERO; NV];
-        let mut inertia = [T::ZERO; NV];
-        let mut rhs = [T::ZERO; N];
-        let mut iteration = 0;
-        let mut dropped = [false; NC];
-        let mut last_change = [T::ZERO; 2];
-        // Whether the iteration matrix has been factored, the rounding floor of the force change
-        // and whether a kept multiplier's pivot is near singular, from the last factorization;
-        // and whether the next iteration must factor again (modified Newton, `reuse_factors`).
-        let mut factored = false;
-        let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
-        // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
-        // taken, the residual it started from and the size of the full correction.
-        let (mut base_vd, mut base_lambda) = (vd, lambda);
-        let mut step = [T::ZERO; N];
-        let mut theta = one;
-        let mut norm_before = T::ZERO;
-        let mut correction = T::ZERO;
-        loop {
-            state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-            // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
-            // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
-            let factor = refactor || !o.reuse_factors || !factored;
-            if factor {
-                mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, &mut s);
-            } else {
-                mech.newton_jacobian(&q, t1, &mut phi, &mut s);
+        let coefficients = [alpha_m, alpha_f, beta, gamma];
+        let Some(control) = o.error_control else {
+            let (h, t1) = fixed_step(from.t, o.step, t_max);
+            if !(h > T::ZERO) {
+                *to = *from;
+                return Ok(());
             }
-            mech.forces(&q, &v, t1, &mut force);
-            // Coulomb friction with the iterate's loads (its exact derivatives enter the
-            // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
-            // slope ≤ μ).
-            mech.friction_forces(&q, &v, t1, &lambda, &mut force);
-            mech.mass_times(&q, &vd, &mut inertia);
-            // Residuals: r = M v̇ − Dᵀλ − h, Φ/(β'h²).
-            let mut worst = (T::ZERO, 0usize);
-            for i in 0..NV {
-                rhs[i] = force[i] - inertia[i];
-            }
-            for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-                rhs[c as usize] += value * lambda[r as usize];
-            }
-            for (r, &p) in phi.iter().enumerate() {
-                rhs[NV + r] = -p / (beta_p * h * h);
-                if p.abs() > worst.0 {
-                    worst = (p.abs(), r);
-                }
-            }
-            // A NaN or infinity in a force: name the force element; in Φ or the state: the row
-            // it surfaced in.
-            if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-                return Err(match crate::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
-                    force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
-                    _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
-                });
-            }
-            // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
-            // Newton steps overshoot and cycle; where the step made the residual grow, take half
-            // of it instead (at most six times, then go on from there).
-            let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
-            if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
-                theta *= half;
-                for i in 0..NV {
-                    vd[i] = base_vd[i] + theta * step[i];
-                }
-                for r in 0..NC {
-                    lambda[r] = base_lambda[r] + theta * step[NV + r];
-                }
-                continue;
-            }
-            if iteration >= o.max_iterations {
-                // Name the violated constraint, or, with every constraint met, the velocity or
-                // multiplier whose correction would not settle.
-                let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
-                let (worst_row, residual) = if worst.0 > o.tolerance {
-                    (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
-                } else if (step[k] * beta_p * h * h).abs() > o.tolerance || NC == 0 {
-                    (name(M::VELOCITY_NAMES, k), (step[k] * beta_p * h * h).abs())
-                } else {
-                    let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
-                    (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
-                };
-                return Err(SimulationError::NotConverged {
-                    t: t1.to_f64(),
-                    iterations: iteration,
-                    worst_row,
-                    residual: residual.to_f64(),
-                });
-            }
-            if factor {
-                let lu = &s.as_ref()[nnz..];
-                // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
-                // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
-                // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
-                // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
-                let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
-                rounding_floor = mass_scale * resolution / (beta_p * h * h);
-                // A multiplier without a pivot belongs to a row that depends on the others (a
-                // singular position, a redundant constraint): with `allow_redundant` its row and
-                // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
-                // load, as forward dynamics drops such a row.
-                let smallest_ratio = M::newton_factor(&mut s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
-                    .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
-                near_singular = smallest_ratio < T::from_f64(1e-3);
-                factored = true;
-            }
-            for r in 0..NC {
-                if dropped[r] {
-                    rhs[NV + r] = T::ZERO;
-                }
-            }
-            M::newton_solve(&s, &mut rhs);
-            if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-                return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
-            }
-            (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
-            correction = T::ZERO;
-            let mut force_scale = T::ZERO;
-            for i in 0..NV {
-                vd[i] += rhs[i];
-                correction = correction.max((rhs[i] * beta_p * h * h).abs());
-                force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
-            }
-            for r in 0..NC {
-                lambda[r] += rhs[NV + r];
-            }
-            // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
-            // near a singular position the part of λ along D's (near-)null space is not
-            // determined — rounding moves it by ε/σ² — and exerts no force.
-            let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
-            for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-                let (r, c) = (r as usize, c as usize);
-                change[c] += value * rhs[NV + r];
-                total[c] += value * lambda[r];
-            }
-            let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
-            // Modified Newton: keep the factors while each correction shrinks at least 4×.
-            refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
-            force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
-            iteration += 1;
-            // Converged when Φ, the position correction and the force change are all below
-            // tolerance. With Φ met, a correction or force change that stopped shrinking (not
-            // smaller than the last iteration's) counts as met too near a singular position (a
-            // multiplier's pivot below 1e-3 of its column), and a force change within 100× its
-            // tolerance anywhere: it is the rounding of an ill-conditioned solve — ε/σ in λ and
-            // v̇, and Φ's rounding amplified by the 1/(β'h²) of the constraint rows at small
-            // steps — which no further iteration removes. Beyond that band the test stays
-            // strict: Coulomb friction's loads converge linearly and not always monotonically.
-            let stalled = |now: T, before: T, band: bool| (near_singular || band) && iteration > 1 && !(now < before);
-            let correction_met = correction <= o.tolerance || stalled(correction, last_change[0], false);
-            let force_tolerance = (o.lambda_tolerance * force_scale).max(rounding_floor);
-            let force_met = lambda_change <= force_tolerance
-                || stalled(lambda_change, last_change[1], lambda_change <= T::from_f64(100.0) * force_tolerance);
-            if worst.0 <= o.tolerance && correction_met && force_met {
-                break;
-            }
-            last_change = [correction, lambda_change];
-        }
-        // The state of the converged iterate (the last correction is below tolerance).
-        state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-        if o.project_velocities {
-            mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
-        }
-        self.iterations = iteration;
-        self.total_iterations += u64::from(iteration);
-        self.a = a1;
-        self.started = true;
-        to.t = t1;
-        to.q = q;
-        to.v = v;
-        to.vd = vd;
-        to.lambda = lambda;
-        check_step::<T, M, NQ, NV, NC>(from, to)?;
-        to.power = if system.track_work {
-            let mut scratch_vd = [T::ZERO; NV];
-            let mut scratch_lambda = [T::ZERO; NC];
-            system.derivatives(t1, &q, &v, &mut scratch_vd, &mut scratch_lambda)?
-        } else {
-            [T::ZERO; 2]
+            let a_n = self.pseudo_acceleration(&from.vd, h);
+            self.iterations = 0;
+            let result = attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h, t1, to, &mut self.iterations);
+            self.total_iterations += u64::from(self.iterations);
+            self.accept(result?, h);
+            return finish(system, from, to, h);
         };
-        // Trapezoidal rule for the work: second order, like the method.
-        for k in 0..2 {
-            to.work[k] = from.work[k] + half * h * (from.power[k] + to.power[k]);
+        control.check()?;
+        // δ = α_m − α_f: the local error constant of the positions is 1/12 + δ²/4.
+        let delta = alpha_m - alpha_f;
+        let constant = T::from_f64(1.0 / 12.0) + T::from_f64(0.25) * delta * delta;
+        let mut h = if self.next_step > T::ZERO { self.next_step } else { o.step };
+        loop {
+            let (h_try, t1) = fixed_step(from.t, h.min(control.max_step), t_max);
+            if !(h_try > T::ZERO) {
+                *to = *from;
+                return Ok(());
+            }
+            let a_n = self.pseudo_acceleration(&from.vd, h_try);
+            self.iterations = 0;
+            let result = attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations);
+            self.total_iterations += u64::from(self.iterations);
+            let factor = match result {
+                Ok(a1) => {
+                    let error = local_error(mech, &control, constant, h_try, &a_n, &a1, &from.q, &to.q);
+                    if !error.is_finite() {
+                        T::from_f64(0.25)
+                    } else if error <= one {
+                        // 0.9 err^(−1/3): the step that would have met the tolerance, with a margin.
+                        let factor = (T::from_f64(0.9) * error.powf(T::from_f64(-1.0 / 3.0))).min(T::from_f64(2.0)).max(T::from_f64(0.2));
+                        // A step shortened to land on the end keeps the size it would have had.
+                        self.next_step = h.min(control.max_step).max(h_try) * factor;
+                        self.accept(a1, h_try);
+                        return finish(system, from, to, h_try);
+                    } else {
+                        (T::from_f64(0.9) * error.powf(T::from_f64(-1.0 / 3.0))).max(T::from_f64(0.2))
+                    }
+                }
+                // A Newton iteration that does not settle or that diverges: a smaller step.
+                Err(SimulationError::NotConverged { .. } | SimulationError::NonFinite { .. }) => T::from_f64(0.25),
+                Err(e) => return Err(e),
+            };
+            self.rejected += 1;
+            h = h_try * factor;
+            if !(h >= control.min_step) {
+                return Err(SimulationError::StepSizeTooSmall { t: from.t.to_f64(), step: h.to_f64() });
+            }
         }
-        Ok(())
     }
 
     fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
@@ -377,7 +318,7 @@ where
     }
 
     fn restart(&mut self) {
-        self.started = false;
+        GeneralizedAlpha::restart(self);
     }
 
     /// v̇ and λ are unknowns of the method: the corrected point keeps them (and the powers of the
@@ -391,6 +332,277 @@ where
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
         Ok(Point { q, v, ..*end })
     }
+}
+
+impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
+    /// Takes an accepted step of h ending with pseudo-acceleration a₊.
+    fn accept(&mut self, a1: [T; NV], h: T) {
+        self.a = a1;
+        self.last_step = h;
+        self.started = true;
+        self.accepted += 1;
+    }
+}
+
+/// The powers at the end point and the work integrals of a step of h.
+fn finish<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    system: &System<'_, M, T>,
+    from: &Point<T, NQ, NV, NC>,
+    to: &mut Point<T, NQ, NV, NC>,
+    h: T,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    to.power = if system.track_work {
+        let mut scratch_vd = [T::ZERO; NV];
+        let mut scratch_lambda = [T::ZERO; NC];
+        system.derivatives(to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
+    } else {
+        [T::ZERO; 2]
+    };
+    // Trapezoidal rule for the work: second order, like the method.
+    for k in 0..2 {
+        to.work[k] = from.work[k] + T::from_f64(0.5) * h * (from.power[k] + to.power[k]);
+    }
+    Ok(())
+}
+
+/// The RMS of the estimated local position error (1/12 + δ²/4) h² (a₊ − a), mapped to the
+/// coordinates at q₊ (q₊ ⊕ e − q₊), in the mixed tolerance atol + rtol·max(|q|, |q₊|).
+#[allow(clippy::too_many_arguments)]
+fn local_error<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    mech: &M,
+    control: &ErrorControl<T>,
+    constant: T,
+    h: T,
+    a_n: &[T; NV],
+    a1: &[T; NV],
+    q0: &[T; NQ],
+    q1: &[T; NQ],
+) -> T {
+    let e: [T; NV] = core::array::from_fn(|i| constant * h * h * (a1[i] - a_n[i]));
+    let mut shifted = *q1;
+    mech.integrate_positions(&mut shifted, &e, T::ONE);
+    let mut sum = T::ZERO;
+    for i in 0..NQ {
+        let scale = control.atol + control.rtol * q0[i].abs().max(q1[i].abs());
+        let r = (shifted[i] - q1[i]) / scale;
+        sum += r * r;
+    }
+    (sum / T::from_f64(NQ.max(1) as f64)).sqrt()
+}
+
+/// One generalized-α step of size h from `from` (pseudo-acceleration `a_n`) to t1: Newton on
+/// (v̇₊, λ₊) with the planned Newton matrix, then the velocity projection. Writes q₊, v₊, v̇₊
+/// and λ₊ to `to` and returns a₊; counts the Newton iterations in `iterations`.
+// `!(x > y)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord, clippy::too_many_arguments)]
+fn attempt<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    system: &System<'_, M, T>,
+    o: &GeneralizedAlphaOptions<T>,
+    resolution: T,
+    [alpha_m, alpha_f, beta, gamma]: [T; 4],
+    a_n: &[T; NV],
+    from: &Point<T, NQ, NV, NC>,
+    h: T,
+    t1: T,
+    to: &mut Point<T, NQ, NV, NC>,
+    iterations: &mut u32,
+) -> Result<[T; NV], SimulationError>
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    let mech = system.mechanism;
+    let one = T::ONE;
+    let half = T::from_f64(0.5);
+    let beta_p = beta * (one - alpha_f) / (one - alpha_m);
+    let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
+        // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
+    let mut vd = from.vd;
+    let mut lambda = from.lambda;
+    let mut q = [T::ZERO; NQ];
+    let mut v = [T::ZERO; NV];
+    let mut a1 = [T::ZERO; NV];
+    let mut phi = [T::ZERO; NC];
+    // D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
+    // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix.
+    let mut s = M::newton_storage();
+    let pattern = M::NEWTON_PATTERN;
+    let nnz = M::JACOBIAN_PATTERN.len();
+    let mut force = [T::ZERO; NV];
+    let mut inertia = [T::ZERO; NV];
+    let mut rhs = [T::ZERO; N];
+    let mut iteration = 0;
+    let mut dropped = [false; NC];
+    let mut last_change = [T::ZERO; 2];
+    // Whether the iteration matrix has been factored, the rounding floor of the force change
+    // and whether a kept multiplier's pivot is near singular, from the last factorization;
+    // and whether the next iteration must factor again (modified Newton, `reuse_factors`).
+    let mut factored = false;
+    let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
+    // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
+    // taken, the residual it started from and the size of the full correction.
+    let (mut base_vd, mut base_lambda) = (vd, lambda);
+    let mut step = [T::ZERO; N];
+    let mut theta = one;
+    let mut norm_before = T::ZERO;
+    let mut correction = T::ZERO;
+    loop {
+        state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+        // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
+        // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
+        let factor = refactor || !o.reuse_factors || !factored;
+        if factor {
+            mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, &mut s);
+        } else {
+            mech.newton_jacobian(&q, t1, &mut phi, &mut s);
+        }
+        mech.forces(&q, &v, t1, &mut force);
+        // Coulomb friction with the iterate's loads (its exact derivatives enter the
+        // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
+        // slope ≤ μ).
+        mech.friction_forces(&q, &v, t1, &lambda, &mut force);
+        mech.mass_times(&q, &vd, &mut inertia);
+        // Residuals: r = M v̇ − Dᵀλ − h, Φ/(β'h²).
+        let mut worst = (T::ZERO, 0usize);
+        for i in 0..NV {
+            rhs[i] = force[i] - inertia[i];
+        }
+        for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+            rhs[c as usize] += value * lambda[r as usize];
+        }
+        for (r, &p) in phi.iter().enumerate() {
+            rhs[NV + r] = -p / (beta_p * h * h);
+            if p.abs() > worst.0 {
+                worst = (p.abs(), r);
+            }
+        }
+        // A NaN or infinity in a force: name the force element; in Φ or the state: the row
+        // it surfaced in.
+        if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
+            return Err(match crate::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
+                force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
+                _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
+            });
+        }
+        // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
+        // Newton steps overshoot and cycle; where the step made the residual grow, take half
+        // of it instead (at most six times, then go on from there).
+        let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
+        if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
+            theta *= half;
+            for i in 0..NV {
+                vd[i] = base_vd[i] + theta * step[i];
+            }
+            for r in 0..NC {
+                lambda[r] = base_lambda[r] + theta * step[NV + r];
+            }
+            continue;
+        }
+        if iteration >= o.max_iterations {
+            // Name the violated constraint, or, with every constraint met, the velocity or
+            // multiplier whose correction would not settle.
+            let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
+            let (worst_row, residual) = if worst.0 > o.tolerance {
+                (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
+            } else if (step[k] * beta_p * h * h).abs() > o.tolerance || NC == 0 {
+                (name(M::VELOCITY_NAMES, k), (step[k] * beta_p * h * h).abs())
+            } else {
+                let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
+                (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
+            };
+            return Err(SimulationError::NotConverged {
+                t: t1.to_f64(),
+                iterations: iteration,
+                worst_row,
+                residual: residual.to_f64(),
+            });
+        }
+        if factor {
+            let lu = &s.as_ref()[nnz..];
+            // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
+            // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
+            // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
+            // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
+            let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
+            rounding_floor = mass_scale * resolution / (beta_p * h * h);
+            // A multiplier without a pivot belongs to a row that depends on the others (a
+            // singular position, a redundant constraint): with `allow_redundant` its row and
+            // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
+            // load, as forward dynamics drops such a row.
+            let smallest_ratio = M::newton_factor(&mut s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
+                .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
+            near_singular = smallest_ratio < T::from_f64(1e-3);
+            factored = true;
+        }
+        for r in 0..NC {
+            if dropped[r] {
+                rhs[NV + r] = T::ZERO;
+            }
+        }
+        M::newton_solve(&s, &mut rhs);
+        if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
+            return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
+        }
+        (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
+        correction = T::ZERO;
+        let mut force_scale = T::ZERO;
+        for i in 0..NV {
+            vd[i] += rhs[i];
+            correction = correction.max((rhs[i] * beta_p * h * h).abs());
+            force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
+        }
+        for r in 0..NC {
+            lambda[r] += rhs[NV + r];
+        }
+        // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
+        // near a singular position the part of λ along D's (near-)null space is not
+        // determined — rounding moves it by ε/σ² — and exerts no force.
+        let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
+        for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+            let (r, c) = (r as usize, c as usize);
+            change[c] += value * rhs[NV + r];
+            total[c] += value * lambda[r];
+        }
+        let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
+        // Modified Newton: keep the factors while each correction shrinks at least 4×.
+        refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
+        force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
+        iteration += 1;
+        *iterations = iteration;
+        // Converged when Φ, the position correction and the force change are all below
+        // tolerance. With Φ met, a correction or force change that stopped shrinking (not
+        // smaller than the last iteration's) counts as met too near a singular position (a
+        // multiplier's pivot below 1e-3 of its column), and a force change within 100× its
+        // tolerance anywhere: it is the rounding of an ill-conditioned solve — ε/σ in λ and
+        // v̇, and Φ's rounding amplified by the 1/(β'h²) of the constraint rows at small
+        // steps — which no further iteration removes. Beyond that band the test stays
+        // strict: Coulomb friction's loads converge linearly and not always monotonically.
+        let stalled = |now: T, before: T, band: bool| (near_singular || band) && iteration > 1 && !(now < before);
+        let correction_met = correction <= o.tolerance || stalled(correction, last_change[0], false);
+        let force_tolerance = (o.lambda_tolerance * force_scale).max(rounding_floor);
+        let force_met = lambda_change <= force_tolerance
+            || stalled(lambda_change, last_change[1], lambda_change <= T::from_f64(100.0) * force_tolerance);
+        if worst.0 <= o.tolerance && correction_met && force_met {
+            break;
+        }
+        last_change = [correction, lambda_change];
+    }
+    // The state of the converged iterate (the last correction is below tolerance).
+    state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+    if o.project_velocities {
+        mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
+    }
+    to.t = t1;
+    to.q = q;
+    to.v = v;
+    to.vd = vd;
+    to.lambda = lambda;
+    check_step::<T, M, NQ, NV, NC>(from, to)?;
+    Ok(a1)
 }
 
 /// Name of row `i` of the iteration matrix: a velocity (the momentum rows) or a constraint.

@@ -41,7 +41,7 @@ mod tests;
 
 pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
-pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
+pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::Rk4;
 pub use simulate::{project, simulate, Correction, SimulationOptions, Statistics};
 
