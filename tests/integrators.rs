@@ -542,14 +542,21 @@ fn a_correction_out_of_iterations_names_its_worst_row() {
 /// reject first order (slope 1/2 in error at twice the steps' slope) and third.
 #[test]
 fn adaptive_generalized_alpha_error_falls_like_tolerance_to_two_thirds() {
-    let exact = double_pendulum_at_1s(&mut Dop853::new(Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() }), Correction::None);
+    let exact =
+        double_pendulum_at_1s(&mut Dop853::new(Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() }), Correction::None);
     let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
     let (mut errors, mut steps) = (vec![], vec![]);
     for rtol in tolerances {
         let control = ErrorControl { rtol, atol: rtol, ..ErrorControl::default() };
-        let mut alpha = DoublePendulum::generalized_alpha(GeneralizedAlphaOptions { error_control: Some(control), ..GeneralizedAlphaOptions::default() });
+        let mut alpha = DoublePendulum::generalized_alpha(GeneralizedAlphaOptions {
+            error_control: Some(control),
+            ..GeneralizedAlphaOptions::default()
+        });
         let e = max_diff(&double_pendulum_at_1s(&mut alpha, Correction::None), &exact);
-        eprintln!("rtol {rtol:e}: error {e:e}, {} steps, {} rejected, {} iterations", alpha.accepted, alpha.rejected, alpha.total_iterations);
+        eprintln!(
+            "rtol {rtol:e}: error {e:e}, {} steps, {} rejected, {} iterations",
+            alpha.accepted, alpha.rejected, alpha.total_iterations
+        );
         // Rejections are the exception: the controller's 0.9 margin and err^(−1/3) rule.
         assert!(4 * alpha.rejected < alpha.accepted, "rtol {rtol:e}: {} rejected of {}", alpha.rejected, alpha.accepted);
         errors.push(e);
@@ -590,7 +597,8 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     let mut dopri = Dopri5::new(Dopri5Options { rtol, atol, ..Dopri5Options::default() });
     let e5 = run(&m, &q, &mut dopri);
     let control = ErrorControl { rtol, atol, ..ErrorControl::default() };
-    let mut alpha = StiffPendulum::generalized_alpha(GeneralizedAlphaOptions { error_control: Some(control), ..GeneralizedAlphaOptions::default() });
+    let mut alpha =
+        StiffPendulum::generalized_alpha(GeneralizedAlphaOptions { error_control: Some(control), ..GeneralizedAlphaOptions::default() });
     let ea = run(&m, &q, &mut alpha);
     let error = |q: [f64; 3]| (q[0] - exact[0]).abs().max((q[1] - exact[1]).abs());
     eprintln!(

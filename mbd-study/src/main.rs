@@ -1,10 +1,11 @@
 //! What accuracy costs in time: every integrator (RK4 over steps, DOPRI5 and DOP853 over
-//! tolerances, generalized-α over steps and ρ∞) with every drift control (none, Baumgarte,
-//! projection, partitioning) on mechanisms of several kinds: each run's largest error over 50
-//! output times against a tight reference, its constraint and energy errors, CPU time (median of
-//! repeats), evaluations and Newton iterations.
+//! tolerances, generalized-α over steps and ρ∞, and variable-step over tolerances) with every
+//! drift control (none, Baumgarte, projection, partitioning) on mechanisms of several kinds: each
+//! run's largest error over 50 output times against a tight reference, its constraint and energy
+//! errors, CPU time (median of repeats), evaluations and Newton iterations. On the chains,
+//! MuJoCo's RK4 in the same run against the same reference (`peers.rs`).
 //!
-//! Run: `cargo run --release -p mbd-study` (about 10 minutes on 2 cores). Writes
+//! Run: `cargo run --release -p mbd-study` (about 3–4 minutes on 2 cores). Writes
 //! `mbd-study/results/study.csv` (every run), `study.md` (the tables) and one `<case>.svg`
 //! per case (log-log error against CPU time, a panel per drift control).
 //!
@@ -16,6 +17,7 @@
 
 mod cases;
 mod exactness;
+mod peers;
 mod report;
 mod sweep;
 
@@ -37,9 +39,9 @@ struct Study {
 }
 
 impl Study {
-    /// Assembles `m`, makes its start consistent, runs the reference and the sweep, plots, and
-    /// (with `exact`) compares exact and finite-difference derivatives; returns the start and
-    /// the reference.
+    /// Assembles `m`, makes its start consistent, runs the reference and the sweep (and, for a
+    /// chain of `mujoco` links, MuJoCo's RK4 on it), plots, and (with `exact`) compares exact and
+    /// finite-difference derivatives; returns the start and the reference.
     #[allow(clippy::too_many_arguments)]
     fn case<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &mut self,
@@ -50,6 +52,7 @@ impl Study {
         t_end: f64,
         track_work: bool,
         exact: bool,
+        mujoco: Option<usize>,
     ) -> ([f64; NQ], [f64; NV], Reference<NQ>)
     where
         M: NewtonMatrix<f64, NQ, NV, NC>,
@@ -61,7 +64,12 @@ impl Study {
         let case = Case { name, mechanism: m, q0, v0, t_end, track_work };
         self.progress.set_message(format!("{name}: reference"));
         let reference = sweep::reference(&case, ws);
-        let rows = sweep::sweep(&case, ws, &reference, &self.progress);
+        let mut rows = sweep::sweep(&case, ws, &reference, &self.progress);
+        if let Some(links) = mujoco {
+            self.progress.set_message(format!("{name}: MuJoCo's RK4"));
+            rows.extend(peers::mujoco_chain(&case, links, &reference));
+            self.progress.inc(sweep::STEPS_RK4.len() as u64);
+        }
         let summary = CaseSummary {
             name,
             title,
@@ -90,7 +98,8 @@ fn main() {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results");
     std::fs::create_dir_all(&out).expect("create mbd-study/results");
     let cases = 9;
-    let progress = ProgressBar::new(cases * sweep::runs_per_case());
+    let mujoco_cases = 3;
+    let progress = ProgressBar::new(cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64);
     progress.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs  {msg}").expect("template").progress_chars("=> "),
     );
@@ -105,20 +114,30 @@ fn main() {
         2.0,
         false,
         true,
+        None,
     );
     let m = DoublePendulum::default();
-    study.case("double_pendulum", "double pendulum released horizontal (chaotic)", &m, &mut DoublePendulum::workspace(), 1.0, false, true);
+    study.case(
+        "double_pendulum",
+        "double pendulum released horizontal (chaotic)",
+        &m,
+        &mut DoublePendulum::workspace(),
+        1.0,
+        false,
+        true,
+        None,
+    );
     let m = Chain4::default();
-    study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true);
+    study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true, Some(4));
     let m = Chain16::default();
     let (q0, v0, reference) =
-        study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true);
+        study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true, Some(16));
     let m32 = Chain16F32::default();
     study.progress.set_message("chain16: f32 against f64");
     let start = exactness::Start { case: "chain16", q0: &q0, v0: &v0, t_end: 2.0, reference: &reference };
     study.exactness.extend(exactness::precision((&m32, &mut Chain16F32::workspace()), (&m, &mut Chain16::workspace()), &start));
     let m = Chain64::default();
-    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false);
+    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false, Some(64));
     let m = suspension::DoubleAArmRide::default();
     study.case(
         "suspension",
@@ -128,6 +147,7 @@ fn main() {
         1.0,
         true,
         true,
+        None,
     );
     let m = ChangePointFourBar::default();
     study.case(
@@ -138,9 +158,10 @@ fn main() {
         2.0,
         false,
         true,
+        None,
     );
     let m = gyroscope::Gyroscope { wz: 100.0 * PI, ..gyroscope::Gyroscope::default() };
-    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true);
+    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true, None);
     let m = FreeSpatialSliderCrank::default();
     study.case(
         "spatial_slider_crank",
@@ -150,6 +171,7 @@ fn main() {
         2.0,
         false,
         true,
+        None,
     );
     study.progress.finish();
 

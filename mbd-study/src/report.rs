@@ -30,11 +30,12 @@ pub fn csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
     );
     for r in rows {
         let rho = match r.method {
-            Method::GeneralizedAlpha { rho_infinity } => rho_infinity.to_string(),
+            Method::GeneralizedAlpha { rho_infinity } | Method::AdaptiveGeneralizedAlpha { rho_infinity } => rho_infinity.to_string(),
             _ => String::new(),
         };
         let name = match r.method {
             Method::GeneralizedAlpha { .. } => "GeneralizedAlpha".to_string(),
+            Method::AdaptiveGeneralizedAlpha { .. } => "AdaptiveGeneralizedAlpha".to_string(),
             m => m.label(),
         };
         let head = format!(
@@ -68,7 +69,14 @@ fn colour(method: Method) -> RGBColor {
         Method::GeneralizedAlpha { rho_infinity } if rho_infinity < 0.7 => RGBColor(140, 86, 75),
         Method::GeneralizedAlpha { rho_infinity } if rho_infinity < 0.9 => RGBColor(255, 127, 14),
         Method::GeneralizedAlpha { .. } => RGBColor(148, 103, 189),
+        Method::AdaptiveGeneralizedAlpha { .. } => RGBColor(23, 190, 207),
+        Method::MuJoCoRk4 => RGBColor(0, 0, 0),
     }
+}
+
+/// Every method of the sweep, then the peer.
+fn plotted() -> impl Iterator<Item = Method> {
+    methods().into_iter().map(|(m, _)| m).chain([Method::MuJoCoRk4])
 }
 
 /// Log-log error against CPU time, a panel per drift control, a series per method.
@@ -109,7 +117,7 @@ pub fn plot(summary: &CaseSummary, rows: &[Row], path: &Path) -> Result<(), Box<
             .y_label_formatter(&|y| format!("{y:.0e}"))
             .draw()?;
         chart.draw_series(LineSeries::new([(x0, summary.uncertainty.max(floor)), (x1, summary.uncertainty.max(floor))], BLACK.mix(0.3)))?;
-        for (method, _) in methods() {
+        for method in plotted() {
             let points: Vec<(f64, f64)> =
                 ok.iter().filter(|(r, _)| r.method == method && r.drift == drift).map(|(_, m)| (m.seconds, m.error.max(floor))).collect();
             if points.is_empty() {
@@ -144,7 +152,7 @@ fn cheapest<'a>(rows: &'a [Row], case: &str, target: f64, drift: Option<Drift>) 
 
 fn describe(r: &Row, m: &Measured) -> String {
     let setting = match r.method {
-        Method::Dopri5 | Method::Dop853 => format!("rtol {:.0e}", r.setting),
+        Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } => format!("rtol {:.0e}", r.setting),
         _ => format!("h {:.0e}", r.setting),
     };
     format!("{} ({setting}, {}): {}", r.method.label(), r.drift.label(), time(m.seconds))
@@ -183,6 +191,7 @@ pub fn markdown(summaries: &[CaseSummary], rows: &[Row], header: &str) -> String
         }
         writeln!(out).unwrap();
     }
+    peers(&mut out, summaries, rows);
     for s in summaries {
         writeln!(
             out,
@@ -239,4 +248,36 @@ pub fn markdown(summaries: &[CaseSummary], rows: &[Row], header: &str) -> String
         }
     }
     out
+}
+
+/// mbd's RK4 (no drift control, like MuJoCo's joint coordinates need none) against MuJoCo's RK4
+/// at the same steps on the same chains: time per step and error against the same reference.
+fn peers(out: &mut String, summaries: &[CaseSummary], rows: &[Row]) {
+    let cases: Vec<&CaseSummary> =
+        summaries.iter().filter(|s| rows.iter().any(|r| r.case == s.name && r.method == Method::MuJoCoRk4)).collect();
+    if cases.is_empty() {
+        return;
+    }
+    writeln!(out, "\n## Against MuJoCo's RK4 on the chains (same run, same reference)\n").unwrap();
+    writeln!(out, "MuJoCo in joint coordinates (hinges), mbd in body coordinates with the joints as constraints (RK4, no drift control); time per step from each run's CPU time; ‖Φ‖∞ is mbd's constraints at MuJoCo's coordinates (zero up to rounding: joint coordinates hold the joints exactly). Where both runs are stable their errors agree to about ten digits, and should: in a planar chain the links' absolute angles are a linear function of the joint angles, and mbd's angular accelerations depend on the angles and rates alone (D and γ of a pin chain do not involve x and y), so both integrate the same ODE in linearly related variables, and RK4 is invariant under linear changes of variables. The same physics, then, and the difference is the time per step (and mbd's uncorrected drift in x and y, in its own rows above).\n").unwrap();
+    writeln!(out, "| case | h (s) | mbd: µs/step | mbd: error | MuJoCo: µs/step | MuJoCo: error | time ratio mbd/MuJoCo |").unwrap();
+    writeln!(out, "|---|---|---|---|---|---|---|").unwrap();
+    for s in cases {
+        let find = |method: Method, h: f64| {
+            rows.iter().find(|r| r.case == s.name && r.method == method && r.drift == Drift::None && r.setting == h)
+        };
+        for h in crate::sweep::STEPS_RK4 {
+            let cell = |r: Option<&Row>| match r.map(|r| &r.outcome) {
+                Some(Ok(m)) => (format!("{:.2}", m.seconds / m.steps as f64 * 1e6), format!("{:.1e}", m.error), Some(m.seconds)),
+                Some(Err(e)) => ("—".into(), format!("failed: {}", e.replace('|', "/")), None),
+                None => ("—".into(), "—".into(), None),
+            };
+            let (ours, theirs) = (cell(find(Method::Rk4, h)), cell(find(Method::MuJoCoRk4, h)));
+            let ratio = match (ours.2, theirs.2) {
+                (Some(a), Some(b)) => format!("{:.2}", a / b),
+                _ => "—".into(),
+            };
+            writeln!(out, "| {} | {h:.0e} | {} | {} | {} | {} | {ratio} |", s.name, ours.0, ours.1, theirs.0, theirs.1).unwrap();
+        }
+    }
 }

@@ -27,7 +27,15 @@ pub enum Method {
     Rk4,
     Dopri5,
     Dop853,
-    GeneralizedAlpha { rho_infinity: f64 },
+    GeneralizedAlpha {
+        rho_infinity: f64,
+    },
+    /// Variable-step generalized-α ([`ErrorControl`]) over relative tolerances.
+    AdaptiveGeneralizedAlpha {
+        rho_infinity: f64,
+    },
+    /// MuJoCo's RK4 in joint coordinates, on the chains only (`peers.rs`).
+    MuJoCoRk4,
 }
 
 impl Method {
@@ -37,12 +45,14 @@ impl Method {
             Method::Dopri5 => "DOPRI5".into(),
             Method::Dop853 => "DOP853".into(),
             Method::GeneralizedAlpha { rho_infinity } => format!("gen-α ρ∞={rho_infinity}"),
+            Method::AdaptiveGeneralizedAlpha { rho_infinity } => format!("adaptive gen-α ρ∞={rho_infinity}"),
+            Method::MuJoCoRk4 => "MuJoCo RK4".into(),
         }
     }
     /// What the setting is: a step (s) or a relative tolerance.
     pub fn setting_name(self) -> &'static str {
         match self {
-            Method::Dopri5 | Method::Dop853 => "rtol",
+            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } => "rtol",
             _ => "h (s)",
         }
     }
@@ -86,6 +96,8 @@ pub const TOLERANCES_DOPRI5: [f64; 10] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e
 pub const TOLERANCES_DOP853: [f64; 8] = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
 pub const STEPS_GENERALIZED_ALPHA: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
 pub const RHO_INFINITY: [f64; 3] = [0.5, 0.8, 1.0];
+/// Variable-step generalized-α's relative tolerances (absolute: 1e-2 of it), at the default ρ∞.
+pub const TOLERANCES_GENERALIZED_ALPHA: [f64; 7] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9];
 
 /// The methods with their settings.
 pub fn methods() -> Vec<(Method, Vec<f64>)> {
@@ -94,6 +106,7 @@ pub fn methods() -> Vec<(Method, Vec<f64>)> {
     for rho_infinity in RHO_INFINITY {
         list.push((Method::GeneralizedAlpha { rho_infinity }, STEPS_GENERALIZED_ALPHA.to_vec()));
     }
+    list.push((Method::AdaptiveGeneralizedAlpha { rho_infinity: 0.8 }, TOLERANCES_GENERALIZED_ALPHA.to_vec()));
     list
 }
 
@@ -207,12 +220,7 @@ where
 /// start it (the top's spin), never ones of its dynamics.
 fn casadi_end<M: Mechanism, const NQ: usize, const NV: usize>(case: &Case<'_, M, NQ, NV>) -> Result<[f64; NQ], String> {
     let oracle = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/oracle");
-    let setup = Command::new("bash").arg(oracle.join("ensure_env.sh")).output().map_err(|e| format!("bash: {e}"))?;
-    let stdout = String::from_utf8_lossy(&setup.stdout);
-    let python = stdout.lines().rev().find(|l| !l.trim().is_empty()).map(str::trim).unwrap_or_default();
-    if !setup.status.success() || python.is_empty() {
-        return Err(format!("the oracle's Python environment could not be set up: {}", String::from_utf8_lossy(&setup.stderr)));
-    }
+    let python = pinned_python(&oracle.join("ensure_env.sh"))?;
     let input = std::env::temp_dir().join(format!("mbd-study-{}.json", case.name));
     let data = format!(
         "{{\"model\": {}, \"q0\": {:?}, \"v0\": {:?}, \"t_end\": {:?}, \"rtol\": 1e-12, \"atol\": 1e-14}}",
@@ -233,7 +241,23 @@ fn casadi_end<M: Mechanism, const NQ: usize, const NV: usize>(case: &Case<'_, M,
     values.try_into().map_err(|v: Vec<f64>| format!("CVODES gave {} coordinates, not {NQ}", v.len()))
 }
 
-fn max_difference<const NQ: usize>(a: &[f64; NQ], b: &[f64; NQ]) -> f64 {
+/// Runs a pinned environment's `ensure_env.sh` (which creates it on first use) and returns the
+/// interpreter it prints on its last line, or why there is none.
+pub fn pinned_python(ensure_env: &std::path::Path) -> Result<String, String> {
+    let setup = Command::new("bash").arg(ensure_env).output().map_err(|e| format!("bash: {e}"))?;
+    let stdout = String::from_utf8_lossy(&setup.stdout);
+    let python = stdout.lines().rev().find(|l| !l.trim().is_empty()).map(str::trim).unwrap_or_default();
+    if !setup.status.success() || python.is_empty() {
+        return Err(format!(
+            "{} could not set up its Python environment: {}",
+            ensure_env.display(),
+            String::from_utf8_lossy(&setup.stderr)
+        ));
+    }
+    Ok(python.to_string())
+}
+
+pub fn max_difference<const NQ: usize>(a: &[f64; NQ], b: &[f64; NQ]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 
@@ -301,6 +325,12 @@ where
             let options = GeneralizedAlphaOptions { step: setting, rho_infinity, ..GeneralizedAlphaOptions::default() };
             timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
         }
+        Method::AdaptiveGeneralizedAlpha { rho_infinity } => {
+            let control = ErrorControl { rtol: setting, atol: setting * 1e-2, ..ErrorControl::default() };
+            let options = GeneralizedAlphaOptions { rho_infinity, error_control: Some(control), ..GeneralizedAlphaOptions::default() };
+            timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
+        }
+        Method::MuJoCoRk4 => Err("MuJoCo runs in peers.rs".into()),
     }
 }
 

@@ -283,7 +283,8 @@ where
             }
             let a_n = self.pseudo_acceleration(&from.vd, h_try);
             self.iterations = 0;
-            let result = attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations);
+            let result =
+                attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations);
             self.total_iterations += u64::from(self.iterations);
             let factor = match result {
                 Ok(a1) => {
@@ -420,7 +421,7 @@ where
     let half = T::from_f64(0.5);
     let beta_p = beta * (one - alpha_f) / (one - alpha_m);
     let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
-        // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
+    // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
     let mut vd = from.vd;
     let mut lambda = from.lambda;
     let mut q = [T::ZERO; NQ];
@@ -451,7 +452,7 @@ where
     let mut norm_before = T::ZERO;
     let mut correction = T::ZERO;
     loop {
-        state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+        state(mech, from, a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
         // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
@@ -514,12 +515,7 @@ where
                 let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
                 (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
             };
-            return Err(SimulationError::NotConverged {
-                t: t1.to_f64(),
-                iterations: iteration,
-                worst_row,
-                residual: residual.to_f64(),
-            });
+            return Err(SimulationError::NotConverged { t: t1.to_f64(), iterations: iteration, worst_row, residual: residual.to_f64() });
         }
         if factor {
             let lu = &s.as_ref()[nnz..];
@@ -592,7 +588,7 @@ where
         last_change = [correction, lambda_change];
     }
     // The state of the converged iterate (the last correction is below tolerance).
-    state(mech, from, &a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
+    state(mech, from, a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
     if o.project_velocities {
         mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
     }

@@ -123,7 +123,8 @@ fn dopri5_first_step_is_hairers_estimate() {
 fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options() {
     use crate::ErrorControl;
     let control = ErrorControl { rtol: 1e-8, atol: 1e-8, ..ErrorControl::default() };
-    let options = GeneralizedAlphaOptions { step: 0.5, max_iterations: 3, error_control: Some(control), ..GeneralizedAlphaOptions::default() };
+    let options =
+        GeneralizedAlphaOptions { step: 0.5, max_iterations: 3, error_control: Some(control), ..GeneralizedAlphaOptions::default() };
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options);
     let [angle, ..] = run(&mut alpha, Correction::None);
     // Measured: 2.5e-5 rad in 700 steps at rtol 1e-8 (a second-order method's global error
@@ -136,11 +137,13 @@ fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options
     let q0 = m.initial_positions();
     let min_step = ErrorControl { min_step: 0.2, ..control };
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(GeneralizedAlphaOptions { error_control: Some(min_step), ..options });
-    let error = simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
+    let error =
+        simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
     assert!(matches!(error, Err(SimulationError::StepSizeTooSmall { t: 0.0, .. })), "{error:?}");
 
     let negative = ErrorControl { rtol: -1.0, ..control };
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(GeneralizedAlphaOptions { error_control: Some(negative), ..options });
-    let error = simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
+    let error =
+        simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
     assert!(matches!(error, Err(SimulationError::InvalidOptions { .. })), "{error:?}");
 }
