@@ -15,6 +15,10 @@ use crate::parse::MechanismDef;
 /// stub of the mechanism's type (its struct and parameters), so code that names the type or its
 /// parameters does not add follow-up errors.
 pub fn expand(input: TokenStream) -> TokenStream {
+    let input = match crate::repeat::unroll(input) {
+        Ok(unrolled) => unrolled,
+        Err(e) => return e.to_compile_error(),
+    };
     let def: MechanismDef = match syn::parse2(input) {
         Ok(d) => d,
         Err(e) => return e.to_compile_error(),

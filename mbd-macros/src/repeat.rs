@@ -1,0 +1,389 @@
+//! Stage 0: repeated structure, unrolled on the tokens before [`crate::parse`] sees them.
+//!
+//! ```text
+//! for i in a..b { statements }     (also a..=b; nested loops; a, b integer expressions)
+//! name[index]                      (an indexed name: the body, point or joint `name_index`)
+//! ```
+//!
+//! Inside a loop's statements the loop variable stands for its value: in expressions it is the
+//! number (`at: [0.1 * i, 0.0, 0.0]`), and in an indexed name `crank[i + 1]` the index. Integer
+//! expressions (bounds and indices) take integer literals, enclosing loop variables, `+ − * / %`
+//! and parentheses. An indexed name is an identifier followed by brackets holding one such
+//! expression; it becomes the identifier `name_index` (`crank[3]` is `crank_3`, `cell[1][2]` is
+//! `cell_1_2`), which names the same thing anywhere, inside a loop or not. Brackets holding
+//! anything else (a point's coordinates `crank[0.05, 0.0]`) are left alone. A name after `.`
+//! (a point or coordinate, `crank.x`) is never replaced by a loop variable.
+//!
+//! Every produced token keeps the span of the token it came from, so a mistake inside a loop is
+//! reported on the statement that made it (once per repetition that makes it).
+
+use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenStream, TokenTree};
+
+/// The most statements one mechanism may unroll to: a typo such as `0..100000000` is an error
+/// here, not an expansion that exhausts the compiler's memory.
+const MAX_REPETITIONS: usize = 100_000;
+
+/// Unrolls every `for` loop and indexed name of a `mechanism!` input.
+pub fn unroll(input: TokenStream) -> syn::Result<TokenStream> {
+    let mut out = TokenStream::new();
+    let mut done = false;
+    let mut count = 0;
+    for tt in input {
+        match tt {
+            // The mechanism's body: the first brace group (attributes are `#[...]`, brackets).
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace && !done => {
+                done = true;
+                let body = statements(g.stream(), &mut Vec::new(), &mut count)?;
+                let mut group = Group::new(Delimiter::Brace, body);
+                group.set_span(g.span());
+                out.extend([TokenTree::Group(group)]);
+            }
+            other => out.extend([other]),
+        }
+    }
+    Ok(out)
+}
+
+/// Loop variables in scope, innermost last.
+type Scope = Vec<(String, i64)>;
+
+/// A statement list: each `for` at a statement's start unrolled, every other token transformed.
+fn statements(input: TokenStream, scope: &mut Scope, count: &mut usize) -> syn::Result<TokenStream> {
+    let tokens: Vec<TokenTree> = input.into_iter().collect();
+    let mut out = Vec::new();
+    let mut at_start = true;
+    let mut i = 0;
+    while i < tokens.len() {
+        if at_start && matches!(&tokens[i], TokenTree::Ident(id) if id == "for") {
+            let (end, expanded) = unroll_for(&tokens, i, scope, count)?;
+            out.extend(expanded);
+            i = end;
+            at_start = true;
+            continue;
+        }
+        let tt = &tokens[i];
+        // A statement ends at `;` or at a brace group at its own level (`body b { ... }`).
+        at_start = matches!(tt, TokenTree::Punct(p) if p.as_char() == ';')
+            || matches!(tt, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace);
+        i = transform_one(&tokens, i, scope, &mut out)?;
+    }
+    Ok(out.into_iter().collect())
+}
+
+/// Unrolls the loop `for var in a..b { body }` starting at `tokens[start]`; returns the index
+/// after it and its statements.
+fn unroll_for(tokens: &[TokenTree], start: usize, scope: &mut Scope, count: &mut usize) -> syn::Result<(usize, TokenStream)> {
+    let keyword = tokens[start].span();
+    let shape = "expected `for i in a..b { statements }`";
+    let var = match tokens.get(start + 1) {
+        Some(TokenTree::Ident(v)) => v.clone(),
+        other => return Err(syn::Error::new(other.map_or(keyword, TokenTree::span), format!("{shape}: a loop variable after `for`"))),
+    };
+    match tokens.get(start + 2) {
+        Some(TokenTree::Ident(k)) if k == "in" => {}
+        other => return Err(syn::Error::new(other.map_or(var.span(), TokenTree::span), format!("{shape}: `in` after `{var}`"))),
+    }
+    let body_at = (start + 3..tokens.len())
+        .find(|&k| matches!(&tokens[k], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace))
+        .ok_or_else(|| syn::Error::new(var.span(), format!("{shape}: the loop's statements in braces")))?;
+    let range = &tokens[start + 3..body_at];
+    let range_span = range.first().map_or(var.span(), TokenTree::span);
+    // Split the range at `..` or `..=`.
+    let dots = (0..range.len().saturating_sub(1))
+        .find(|&k| is_punct(&range[k], '.') && is_punct(&range[k + 1], '.'))
+        .ok_or_else(|| syn::Error::new(range_span, format!("{shape}: a range `a..b` or `a..=b` after `in`")))?;
+    let inclusive = range.get(dots + 2).is_some_and(|t| is_punct(t, '='));
+    let upper = &range[dots + if inclusive { 3 } else { 2 }..];
+    let bound = |part: &[TokenTree], which: &str| -> syn::Result<i64> {
+        let span = part.first().map_or(range_span, TokenTree::span);
+        integer(part, scope).map_err(|why| {
+            syn::Error::new(
+                span,
+                format!("the {which} bound of a `for` must be an integer expression of numbers and enclosing loop variables: {why}"),
+            )
+        })
+    };
+    let (a, b) = (bound(&range[..dots], "lower")?, bound(upper, "upper")?);
+    let b = if inclusive { b + 1 } else { b };
+    let TokenTree::Group(body) = &tokens[body_at] else { unreachable!("found as a brace group") };
+    let mut out = TokenStream::new();
+    for k in a..b {
+        *count += 1;
+        if *count > MAX_REPETITIONS {
+            return Err(syn::Error::new(range_span, format!("more than {MAX_REPETITIONS} repetitions: is the range what you meant?")));
+        }
+        scope.push((var.to_string(), k));
+        let unrolled = statements(body.stream(), scope, count);
+        scope.pop();
+        out.extend(unrolled?);
+    }
+    Ok((body_at + 1, out))
+}
+
+/// Transforms `tokens[i]` (and, for an indexed name, the brackets after it) into `out`; returns
+/// the index of the next token.
+fn transform_one(tokens: &[TokenTree], i: usize, scope: &Scope, out: &mut Vec<TokenTree>) -> syn::Result<usize> {
+    let after_dot = i > 0 && is_punct(&tokens[i - 1], '.');
+    match &tokens[i] {
+        TokenTree::Ident(id) => {
+            // `name[index]...`: one identifier, `name_index...`.
+            let mut name = id.to_string();
+            let mut k = i + 1;
+            while let Some(TokenTree::Group(g)) = tokens.get(k) {
+                if g.delimiter() != Delimiter::Bracket {
+                    break;
+                }
+                let inner: Vec<TokenTree> = g.stream().into_iter().collect();
+                match integer(&inner, scope) {
+                    Ok(index) if index >= 0 => name = format!("{name}_{index}"),
+                    Ok(index) => {
+                        return Err(syn::Error::new(g.span(), format!("an index must not be negative; `{id}[…]` is {index} here")))
+                    }
+                    Err(_) => break,
+                }
+                k += 1;
+            }
+            if k > i + 1 {
+                out.push(TokenTree::Ident(Ident::new(&name, id.span())));
+                return Ok(k);
+            }
+            match scope.iter().rev().find(|(v, _)| id == v) {
+                Some(&(_, value)) if !after_dot => out.extend(number(value, id.span())),
+                _ => out.push(tokens[i].clone()),
+            }
+            Ok(i + 1)
+        }
+        TokenTree::Group(g) => {
+            let inner: Vec<TokenTree> = g.stream().into_iter().collect();
+            let mut transformed = Vec::new();
+            let mut k = 0;
+            while k < inner.len() {
+                k = transform_one(&inner, k, scope, &mut transformed)?;
+            }
+            let mut group = Group::new(g.delimiter(), transformed.into_iter().collect());
+            group.set_span(g.span());
+            out.push(TokenTree::Group(group));
+            Ok(i + 1)
+        }
+        other => {
+            out.push(other.clone());
+            Ok(i + 1)
+        }
+    }
+}
+
+/// The loop variable's value as tokens: a literal, or `(-n)` for a negative one.
+fn number(value: i64, span: Span) -> Vec<TokenTree> {
+    let mut literal = Literal::i64_unsuffixed(value.abs());
+    literal.set_span(span);
+    if value >= 0 {
+        return vec![TokenTree::Literal(literal)];
+    }
+    let mut minus = Punct::new('-', Spacing::Alone);
+    minus.set_span(span);
+    let mut group = Group::new(Delimiter::Parenthesis, [TokenTree::Punct(minus), TokenTree::Literal(literal)].into_iter().collect());
+    group.set_span(span);
+    vec![TokenTree::Group(group)]
+}
+
+fn is_punct(tt: &TokenTree, c: char) -> bool {
+    matches!(tt, TokenTree::Punct(p) if p.as_char() == c)
+}
+
+/// Evaluates an integer expression (`+ − * / %`, unary minus, parentheses, integer literals and
+/// loop variables in scope); the error says what is not one.
+fn integer(tokens: &[TokenTree], scope: &Scope) -> Result<i64, String> {
+    let mut at = 0;
+    let value = sum(tokens, &mut at, scope)?;
+    if at != tokens.len() {
+        return Err(format!("unexpected `{}`", tokens[at]));
+    }
+    Ok(value)
+}
+
+fn sum(t: &[TokenTree], at: &mut usize, scope: &Scope) -> Result<i64, String> {
+    let mut value = product(t, at, scope)?;
+    while let Some(op) = t.get(*at).filter(|x| is_punct(x, '+') || is_punct(x, '-')) {
+        let minus = is_punct(op, '-');
+        *at += 1;
+        let rhs = product(t, at, scope)?;
+        value = if minus { value.checked_sub(rhs) } else { value.checked_add(rhs) }.ok_or("overflow")?;
+    }
+    Ok(value)
+}
+
+fn product(t: &[TokenTree], at: &mut usize, scope: &Scope) -> Result<i64, String> {
+    let mut value = unary(t, at, scope)?;
+    while let Some(op) = t.get(*at).filter(|x| is_punct(x, '*') || is_punct(x, '/') || is_punct(x, '%')) {
+        let op = if let TokenTree::Punct(p) = op { p.as_char() } else { unreachable!("filtered") };
+        *at += 1;
+        let rhs = unary(t, at, scope)?;
+        value = match op {
+            '*' => value.checked_mul(rhs),
+            _ if rhs == 0 => return Err("division by zero".into()),
+            '/' => value.checked_div(rhs),
+            _ => value.checked_rem(rhs),
+        }
+        .ok_or("overflow")?;
+    }
+    Ok(value)
+}
+
+fn unary(t: &[TokenTree], at: &mut usize, scope: &Scope) -> Result<i64, String> {
+    let token = t.get(*at).ok_or("an expression is missing")?;
+    *at += 1;
+    match token {
+        TokenTree::Punct(p) if p.as_char() == '-' => unary(t, at, scope)?.checked_neg().ok_or_else(|| "overflow".into()),
+        TokenTree::Literal(l) => l.to_string().parse::<i64>().map_err(|_| format!("`{l}` is not an integer")),
+        TokenTree::Ident(id) => {
+            scope.iter().rev().find(|(v, _)| id == v).map(|&(_, value)| value).ok_or_else(|| format!("`{id}` is not a loop variable"))
+        }
+        TokenTree::Group(g) if g.delimiter() == Delimiter::Parenthesis => integer(&g.stream().into_iter().collect::<Vec<_>>(), scope),
+        other => Err(format!("unexpected `{other}`")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use quote::quote;
+
+    fn unrolled(input: TokenStream) -> String {
+        unroll(input).unwrap_or_else(|e| panic!("{e}")).to_string()
+    }
+
+    #[test]
+    fn a_loop_repeats_its_statements_with_the_variable_replaced() {
+        let got = unrolled(quote!(M {
+            body l[0] { at: [0.05, 0.0, 0.0] }
+            for i in 1..3 {
+                body l[i] { at: [0.05 + 0.1 * i, 0.0, 0.0] }
+                revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
+            }
+        }));
+        let want = quote!(M {
+            body l_0 { at: [0.05, 0.0, 0.0] }
+            body l_1 { at: [0.05 + 0.1 * 1, 0.0, 0.0] }
+            revolute l_0[0.05, 0.0] ~ l_1[-0.05, 0.0];
+            body l_2 { at: [0.05 + 0.1 * 2, 0.0, 0.0] }
+            revolute l_1[0.05, 0.0] ~ l_2[-0.05, 0.0];
+        });
+        assert_eq!(got, want.to_string());
+    }
+
+    #[test]
+    fn nested_loops_inclusive_ranges_and_two_indices() {
+        let got = unrolled(quote!(M {
+            for i in 0..=1 { for j in i..2 { point cell[i][j].p = [i, -j]; } }
+        }));
+        let want = quote!(M {
+            point cell_0_0.p = [0, -0]; point cell_0_1.p = [0, -1]; point cell_1_1.p = [1, -1];
+        });
+        assert_eq!(got, want.to_string());
+    }
+
+    #[test]
+    fn names_after_a_dot_and_point_brackets_are_left_alone() {
+        let got = unrolled(quote!(M { for x in 0..1 { fix b.x = x; revolute ground[0.0, 0.0] ~ b[x, 0.0]; gravity [0.0, -9.81]; } }));
+        let want = quote!(M { fix b.x = 0; revolute ground[0.0, 0.0] ~ b[0, 0.0]; gravity [0.0, -9.81]; });
+        assert_eq!(got, want.to_string());
+    }
+
+    #[test]
+    fn malformed_loops_are_errors_that_say_what_is_expected() {
+        let cases = [
+            (quote!(M { for 3 in 0..2 {} }), "a loop variable after `for`"),
+            (quote!(M { for i of 0..2 {} }), "`in` after `i`"),
+            (quote!(M { for i in 0..2; }), "the loop's statements in braces"),
+            (quote!(M { for i in 0 to 2 {} }), "a range `a..b`"),
+            (
+                quote!(M { for i in 0..n {} }),
+                "upper bound of a `for` must be an integer expression of numbers and enclosing loop variables: `n` is not a loop variable",
+            ),
+            (quote!(M { for i in 0.5..2 {} }), "`0.5` is not an integer"),
+            (quote!(M { for i in 0..2 { body l[i - 1] {} } }), "an index must not be negative; `l[…]` is -1 here"),
+            (quote!(M { for i in 0..1000000 {} }), "more than 100000 repetitions"),
+        ];
+        for (input, want) in cases {
+            let e = unroll(input).expect_err(want).to_string();
+            assert!(e.contains(want), "{e}\n  wanted: {want}");
+        }
+    }
+
+    /// The repeated and the written-out declarations of a chain of 4 parallelogram loops (those of
+    /// `mbd-long/tests/singular.rs`) expand to the same code, token for token — every generated
+    /// function, constant and name — once the temporaries `v<n>` are numbered in order of
+    /// appearance (the loop's `0.5 * k` folds to the written-out `1.0`, but its constants took
+    /// node numbers in the expression graph first), with `MODEL_JSON` set aside: it describes each
+    /// expression as written.
+    #[test]
+    fn a_repeated_chain_generates_what_the_written_out_chain_generates() {
+        let repeated = quote!(pub Parallelograms4 {
+            gravity [0.0, -9.81];
+            for k in 0..=4 {
+                body crank[k] { mass: 1.0, inertia: 0.0075, at: [0.5 * k + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+                revolute ground[0.5 * k, 0.0] ~ crank[k][-0.15, 0.0];
+            }
+            for k in 0..4 {
+                body coupler[k] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.5 * k + 0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+                revolute crank[k][0.15, 0.0] ~ coupler[k][-0.25, 0.0];
+                revolute crank[k + 1][0.15, 0.0] ~ coupler[k][0.25, 0.0];
+            }
+        });
+        let written = quote!(pub Parallelograms4 {
+            gravity [0.0, -9.81];
+            body crank_0 { mass: 1.0, inertia: 0.0075, at: [0.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[0.0, 0.0] ~ crank_0[-0.15, 0.0];
+            body crank_1 { mass: 1.0, inertia: 0.0075, at: [0.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[0.5, 0.0] ~ crank_1[-0.15, 0.0];
+            body crank_2 { mass: 1.0, inertia: 0.0075, at: [1.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[1.0, 0.0] ~ crank_2[-0.15, 0.0];
+            body crank_3 { mass: 1.0, inertia: 0.0075, at: [1.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[1.5, 0.0] ~ crank_3[-0.15, 0.0];
+            body crank_4 { mass: 1.0, inertia: 0.0075, at: [2.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[2.0, 0.0] ~ crank_4[-0.15, 0.0];
+            body coupler_0 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank_0[0.15, 0.0] ~ coupler_0[-0.25, 0.0];
+            revolute crank_1[0.15, 0.0] ~ coupler_0[0.25, 0.0];
+            body coupler_1 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank_1[0.15, 0.0] ~ coupler_1[-0.25, 0.0];
+            revolute crank_2[0.15, 0.0] ~ coupler_1[0.25, 0.0];
+            body coupler_2 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank_2[0.15, 0.0] ~ coupler_2[-0.25, 0.0];
+            revolute crank_3[0.15, 0.0] ~ coupler_2[0.25, 0.0];
+            body coupler_3 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank_3[0.15, 0.0] ~ coupler_3[-0.25, 0.0];
+            revolute crank_4[0.15, 0.0] ~ coupler_3[0.25, 0.0];
+        });
+        // Temporaries renumbered v0, v1, … in order of first appearance.
+        let canonical = |mut code: String| {
+            // The model description keeps each expression as written (`0.5 * 1` against `0.5`).
+            let json = code.find("const MODEL_JSON").expect("the model JSON");
+            let end = json + code[json..].find("\" ;").expect("its end");
+            code.replace_range(json..end, "");
+            let mut seen = std::collections::HashMap::new();
+            let (mut out, mut word) = (String::new(), String::new());
+            for c in code.chars().chain([' ']) {
+                if c.is_ascii_alphanumeric() || c == '_' {
+                    word.push(c);
+                    continue;
+                }
+                if word.len() > 1 && word.starts_with('v') && word[1..].bytes().all(|b| b.is_ascii_digit()) {
+                    let next = seen.len();
+                    word = format!("v{}", seen.entry(word.clone()).or_insert(next));
+                }
+                out.push_str(&word);
+                out.push(c);
+                word.clear();
+            }
+            out
+        };
+        let (a, b) = (canonical(crate::expand::expand(repeated).to_string()), canonical(crate::expand::expand(written).to_string()));
+        assert!(!a.contains("compile_error"), "{a}");
+        assert!(a.contains("\"crank_4.phi\""), "coordinate names carry the index");
+        if let Some(at) = a.chars().zip(b.chars()).position(|(x, y)| x != y).or((a.len() != b.len()).then_some(a.len().min(b.len()))) {
+            let around = |s: &str| s.chars().skip(at.saturating_sub(150)).take(300).collect::<String>();
+            panic!("the expansions differ at character {at}:\nrepeated: …{}…\nwritten:  …{}…", around(&a), around(&b));
+        }
+    }
+}

@@ -1,0 +1,16 @@
+use mbd::prelude::*;
+
+// A loop that pins each link to the next one reaches one past the last link: `l[i + 1]` is the
+// body `l_3` at i = 2, which does not exist. The error points at `l` inside the loop and names
+// the body as the loop made it.
+mechanism! {
+    Chain {
+        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+        for i in 0..3 {
+            body l[i] { mass: 0.1, inertia: 8.3e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
+            revolute l[i][0.05, 0.0] ~ l[i + 1][-0.05, 0.0];
+        }
+    }
+}
+
+fn main() {}
