@@ -11,24 +11,43 @@ use crate::json::model_json;
 use crate::model::{Model, Partial};
 use crate::parse::MechanismDef;
 
-/// Expands a `mechanism!` invocation. Never fails: mistakes become `compile_error!`s next to a
-/// stub of the mechanism's type (its struct and parameters), so code that names the type or its
-/// parameters does not add follow-up errors.
+/// Expands a `mechanism!` invocation: its loops unrolled ([`crate::repeat`]), then the base
+/// mechanism and each of its scenes ([`crate::scene`]). Never fails: mistakes become
+/// `compile_error!`s next to a stub of the mechanism's type (its struct and parameters), so code
+/// that names the type or its parameters does not add follow-up errors. A mistake in the base
+/// is reported once: its scenes, which share it, are then only stubs.
 pub fn expand(input: TokenStream) -> TokenStream {
     let input = match crate::repeat::unroll(input) {
         Ok(unrolled) => unrolled,
         Err(e) => return e.to_compile_error(),
     };
-    let def: MechanismDef = match syn::parse2(input) {
-        Ok(d) => d,
+    let (base, scenes) = match crate::scene::split(input) {
+        Ok(split) => split,
         Err(e) => return e.to_compile_error(),
     };
+    let (mut out, ok) = expand_one(base);
+    for scene in scenes {
+        if ok {
+            out.extend(expand_one(scene).0);
+        } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
+            out.extend(stub(&def.partial()));
+        }
+    }
+    out
+}
+
+/// Expands one mechanism; whether it had no mistakes.
+fn expand_one(input: TokenStream) -> (TokenStream, bool) {
+    let def: MechanismDef = match syn::parse2(input) {
+        Ok(d) => d,
+        Err(e) => return (e.to_compile_error(), false),
+    };
     match def.validate().and_then(|m| generate(&m)) {
-        Ok(ts) => ts,
+        Ok(ts) => (ts, true),
         Err(e) => {
             let errors = e.to_compile_error();
             let stub = stub(&def.partial());
-            quote!(#errors #stub)
+            (quote!(#errors #stub), false)
         }
     }
 }
@@ -771,6 +790,48 @@ fn position_updates(m: &Model, e: &Emitter) -> TokenStream {
                 }
             }
         }
+    }
+}
+
+/// The expansion of `input` as text, with the temporaries `v<n>` renumbered v0, v1, … in order
+/// of first appearance and `MODEL_JSON` set aside (it describes each expression as written): two
+/// declarations that generate the same functions give the same text.
+#[cfg(test)]
+pub fn canonical(input: TokenStream) -> String {
+    canonical_text(expand(input).to_string())
+}
+
+/// [`canonical`] of an expansion's text.
+#[cfg(test)]
+pub fn canonical_text(mut code: String) -> String {
+    assert!(!code.contains("compile_error"), "{code}");
+    let json = code.find("const MODEL_JSON").expect("the model JSON");
+    let end = json + code[json..].find("\" ;").expect("its end");
+    code.replace_range(json..end, "");
+    let mut seen = std::collections::HashMap::new();
+    let (mut out, mut word) = (String::new(), String::new());
+    for c in code.chars().chain([' ']) {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            word.push(c);
+            continue;
+        }
+        if word.len() > 1 && word.starts_with('v') && word[1..].bytes().all(|b| b.is_ascii_digit()) {
+            let next = seen.len();
+            word = format!("v{}", seen.entry(word.clone()).or_insert(next));
+        }
+        out.push_str(&word);
+        out.push(c);
+        word.clear();
+    }
+    out
+}
+
+/// Panics with the first difference of two canonical expansions and its surroundings.
+#[cfg(test)]
+pub fn assert_same_code(a: &str, b: &str) {
+    if let Some(at) = a.chars().zip(b.chars()).position(|(x, y)| x != y).or((a.len() != b.len()).then_some(a.len().min(b.len()))) {
+        let around = |s: &str| s.chars().skip(at.saturating_sub(150)).take(300).collect::<String>();
+        panic!("the expansions differ at character {at}:\nfirst:  …{}…\nsecond: …{}…", around(a), around(b));
     }
 }
 

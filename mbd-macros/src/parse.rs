@@ -264,6 +264,7 @@ pub const STATEMENTS: &[&str] = &[
     "rotational_spring",
     "rotational_damper",
     "torque_actuator",
+    "scene",
 ];
 
 impl Parse for MechanismDef {
@@ -303,9 +304,9 @@ impl Parse for Item {
                 "expected a statement: `scalar`, `params`, `body`, `point`, `vector`, a joint \
                  (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`; \
                  in space also `spherical`, `universal`, `cylindrical`, `planar`, `point_on_line`, `point_on_plane`, \
-                 `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial` or a force element (`spring`, `damper`, \
+                 `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial`, a force element (`spring`, `damper`, \
                  `actuator`, `bushing`, `rotational_spring`, `rotational_damper`, `torque_actuator`, `force`, `local_force`, \
-                 `torque`, `local_torque`)",
+                 `torque`, `local_torque`), a `for` loop or a `scene`",
             )
         })?;
         let item = match kw.to_string().as_str() {

@@ -355,35 +355,8 @@ mod tests {
             revolute crank_3[0.15, 0.0] ~ coupler_3[-0.25, 0.0];
             revolute crank_4[0.15, 0.0] ~ coupler_3[0.25, 0.0];
         });
-        // Temporaries renumbered v0, v1, … in order of first appearance.
-        let canonical = |mut code: String| {
-            // The model description keeps each expression as written (`0.5 * 1` against `0.5`).
-            let json = code.find("const MODEL_JSON").expect("the model JSON");
-            let end = json + code[json..].find("\" ;").expect("its end");
-            code.replace_range(json..end, "");
-            let mut seen = std::collections::HashMap::new();
-            let (mut out, mut word) = (String::new(), String::new());
-            for c in code.chars().chain([' ']) {
-                if c.is_ascii_alphanumeric() || c == '_' {
-                    word.push(c);
-                    continue;
-                }
-                if word.len() > 1 && word.starts_with('v') && word[1..].bytes().all(|b| b.is_ascii_digit()) {
-                    let next = seen.len();
-                    word = format!("v{}", seen.entry(word.clone()).or_insert(next));
-                }
-                out.push_str(&word);
-                out.push(c);
-                word.clear();
-            }
-            out
-        };
-        let (a, b) = (canonical(crate::expand::expand(repeated).to_string()), canonical(crate::expand::expand(written).to_string()));
-        assert!(!a.contains("compile_error"), "{a}");
+        let (a, b) = (crate::expand::canonical(repeated), crate::expand::canonical(written));
         assert!(a.contains("\"crank_4.phi\""), "coordinate names carry the index");
-        if let Some(at) = a.chars().zip(b.chars()).position(|(x, y)| x != y).or((a.len() != b.len()).then_some(a.len().min(b.len()))) {
-            let around = |s: &str| s.chars().skip(at.saturating_sub(150)).take(300).collect::<String>();
-            panic!("the expansions differ at character {at}:\nrepeated: …{}…\nwritten:  …{}…", around(&a), around(&b));
-        }
+        crate::expand::assert_same_code(&a, &b);
     }
 }
