@@ -5,6 +5,8 @@
 mod double_a_arm;
 #[path = "double_wishbone_3d.rs"]
 mod double_wishbone_3d;
+#[path = "excavator.rs"]
+mod excavator;
 #[path = "filmstrip.rs"]
 mod filmstrip;
 #[path = "flywheel_engine.rs"]
@@ -39,7 +41,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 17] = [
+    let runs: [(&str, Run); 18] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -57,6 +59,7 @@ fn main() {
         ("spatial_slider_crank", || Ok(spatial_slider_crank::run(true).map(drop)?)),
         ("double_wishbone_3d", || Ok(double_wishbone_3d::run(true).map(drop)?)),
         ("stewart_platform", || Ok(stewart_platform::run(true).map(drop)?)),
+        ("excavator", || excavator::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

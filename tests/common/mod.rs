@@ -5,6 +5,8 @@
 pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
 pub mod double_wishbone_3d;
+#[path = "../../examples/excavator.rs"]
+pub mod excavator;
 #[path = "../../examples/filmstrip.rs"]
 pub mod filmstrip;
 #[path = "../../examples/flywheel_engine.rs"]
