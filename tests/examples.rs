@@ -302,8 +302,8 @@ fn excavator_scenes_agree_on_the_cylinder_forces() {
     assert!(r.disagreement < 1e-8, "{r:?}");
     assert!(r.held_tensions[0] < -5e4 && r.held_tensions[0] > -1.5e5, "boom cylinder pushes: {r:?}");
     let design = [40.0, -75.0, -130.0];
-    for i in 0..3 {
-        assert!((r.held_angles[i] - design[i]).abs() < 1.5, "angle {i} within 1.5° of the design: {r:?}");
+    for (angle, design) in r.held_angles.iter().zip(design) {
+        assert!((angle - design).abs() < 1.5, "within 1.5° of the design angle {design}: {r:?}");
     }
     // Lifting changes the boom cylinder's force smoothly (a few percent over 2 s at 0.1 m/s).
     assert!(r.lifting.iter().all(|f| (f / r.lifting[0] - 1.0).abs() < 0.1), "{r:?}");
