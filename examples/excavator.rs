@@ -76,7 +76,9 @@ pub fn lengths(q: &[f64; 9]) -> [f64; 3] {
     })
 }
 
+/// What the two scenes give.
 #[derive(Debug, Clone, Copy)]
+#[allow(dead_code)] // read by the tests
 pub struct Report {
     /// The held arm's joint angles at equilibrium (deg) and how far they are from the design.
     pub held_angles: [f64; 3],
