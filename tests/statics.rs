@@ -288,37 +288,11 @@ fn driven_pendulum_holds_its_angle() {
     assert!((torque.abs() - 2.0 * 9.81 * 0.5 * 0.3f64.cos()).abs() < 1e-9, "motor torque {torque}");
 }
 
-mechanism! {
-    /// An excavator-like arm (SI units, a 20 t class machine's proportions): boom, stick and
-    /// bucket on revolute joints, each turned by a hydraulic cylinder modelled as a stiff
-    /// point-to-point spring (k = 2e7 N/m, the oil column's stiffness) whose rest length is its
-    /// length at the design pose (boom 40° up, stick 75° and bucket 130° below the horizontal);
-    /// the boom cylinder also pushes with a constant 60 kN (an actuator force, which the
-    /// potential energy V of the generated code does not include).
-    pub Excavator {
-        params { k_cyl: 2.0e7, boom_push: 60000.0, boom_rest: 2.38, stick_rest: 3.04, bucket_rest: 2.63 }
-        gravity [0.0, -9.81];
-        body boom   { mass: 1800.0, inertia: 4500.0, at: [2.11, 1.77, 0.698] }
-        body stick  { mass: 900.0, inertia: 640.0, at: [4.42, 2.76, -1.309] }
-        body bucket { mass: 700.0, inertia: 90.0, at: [4.67, 0.39, -2.269] }
-        point boom.foot = [-2.75, 0.0];
-        point boom.tip = [2.75, 0.0];
-        point boom.lug = [-0.4, -0.45];
-        point boom.stick_base = [0.2, 0.45];
-        point stick.pin = [-0.8, 0.0];
-        point stick.tip = [2.1, 0.0];
-        point stick.lever = [-1.3, 0.3];
-        point stick.bucket_base = [-0.3, 0.3];
-        point bucket.pin = [-0.45, 0.0];
-        point bucket.lug = [-0.55, 0.35];
-        revolute ground[0.0, 0.0] ~ boom.foot;
-        revolute boom.tip ~ stick.pin;
-        revolute stick.tip ~ bucket.pin;
-        spring boom_cylinder: ground[0.9, -0.9] ~ boom.lug { k: k_cyl, length: boom_rest, force: -boom_push };
-        spring stick_cylinder: boom.stick_base ~ stick.lever { k: k_cyl, length: stick_rest };
-        spring bucket_cylinder: stick.bucket_base ~ bucket.lug { k: k_cyl, length: bucket_rest };
-    }
-}
+/// The excavator arm of `examples/excavator.rs` in its scene held by its cylinders as stiff
+/// springs (k = 2e7 N/m, the oil column's stiffness, rest lengths at the design pose: boom 40°
+/// up, stick 75° and bucket 130° below the horizontal; the boom cylinder also pushes with a
+/// constant 60 kN, an actuator force the generated potential energy V does not include).
+use common::excavator::ExcavatorHeld as Excavator;
 
 /// The excavator's geometry in joint angles (absolute, rad), written independently of the
 /// generated code: the centres of mass and the three cylinder lengths.

@@ -22,57 +22,32 @@
 //! 40 loops over 20 s.
 use mbd::prelude::*;
 
-// Loop k is ground, crank k, coupler k and crank k + 1 (`for`, README: The DSL).
-mechanism! {
-    /// 1 parallelogram loop in a row: 2 equal cranks (0.3 m, 1 kg) pinned to ground 0.5 m
-    /// apart, their tips joined by 1 coupler (0.5 m, 1 kg); posed at θ = π/2 (cranks up).
-    pub Parallelograms1 {
-        gravity [0.0, -9.81];
-        for k in 0..=1 {
-            body crank[k] { mass: 1.0, inertia: 0.0075, at: [0.5 * k + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[0.5 * k, 0.0] ~ crank[k][-0.15, 0.0];
+/// `$n` parallelogram loops in a row: `$n` + 1 equal cranks (0.3 m, 1 kg) pinned to ground
+/// 0.5 m apart, their tips joined by `$n` couplers (0.5 m, 1 kg); posed at θ = π/2 (cranks up).
+/// Loop k is ground, crank k, coupler k and crank k + 1.
+macro_rules! parallelograms {
+    ($name:ident, $n:literal) => {
+        mechanism! {
+            #[doc = concat!(stringify!($n), " parallelogram loops in a row, cranks up.")]
+            pub $name {
+                gravity [0.0, -9.81];
+                for k in 0..=$n {
+                    body crank[k] { mass: 1.0, inertia: 0.0075, at: [0.5 * k + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+                    revolute ground[0.5 * k, 0.0] ~ crank[k][-0.15, 0.0];
+                }
+                for k in 0..$n {
+                    body coupler[k] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.5 * k + 0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+                    revolute crank[k][0.15, 0.0] ~ coupler[k][-0.25, 0.0];
+                    revolute crank[k + 1][0.15, 0.0] ~ coupler[k][0.25, 0.0];
+                }
+            }
         }
-        for k in 0..1 {
-            body coupler[k] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.5 * k + 0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank[k][0.15, 0.0] ~ coupler[k][-0.25, 0.0];
-            revolute crank[k + 1][0.15, 0.0] ~ coupler[k][0.25, 0.0];
-        }
-    }
+    };
 }
 
-mechanism! {
-    /// 4 parallelogram loops in a row: 5 equal cranks (0.3 m, 1 kg) pinned to ground 0.5 m
-    /// apart, their tips joined by 4 couplers (0.5 m, 1 kg); posed at θ = π/2 (cranks up).
-    pub Parallelograms4 {
-        gravity [0.0, -9.81];
-        for k in 0..=4 {
-            body crank[k] { mass: 1.0, inertia: 0.0075, at: [0.5 * k + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[0.5 * k, 0.0] ~ crank[k][-0.15, 0.0];
-        }
-        for k in 0..4 {
-            body coupler[k] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.5 * k + 0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank[k][0.15, 0.0] ~ coupler[k][-0.25, 0.0];
-            revolute crank[k + 1][0.15, 0.0] ~ coupler[k][0.25, 0.0];
-        }
-    }
-}
-
-mechanism! {
-    /// 40 parallelogram loops in a row: 41 equal cranks (0.3 m, 1 kg) pinned to ground 0.5 m
-    /// apart, their tips joined by 40 couplers (0.5 m, 1 kg); posed at θ = π/2 (cranks up).
-    pub Parallelograms40 {
-        gravity [0.0, -9.81];
-        for k in 0..=40 {
-            body crank[k] { mass: 1.0, inertia: 0.0075, at: [0.5 * k + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[0.5 * k, 0.0] ~ crank[k][-0.15, 0.0];
-        }
-        for k in 0..40 {
-            body coupler[k] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.5 * k + 0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank[k][0.15, 0.0] ~ coupler[k][-0.25, 0.0];
-            revolute crank[k + 1][0.15, 0.0] ~ coupler[k][0.25, 0.0];
-        }
-    }
-}
+parallelograms!(Parallelograms1, 1);
+parallelograms!(Parallelograms4, 4);
+parallelograms!(Parallelograms40, 40);
 
 const R: f64 = 0.3;
 const OMEGA0: f64 = 4.0;

@@ -238,7 +238,10 @@ fn unary(t: &[TokenTree], at: &mut usize, scope: &Scope) -> Result<i64, String> 
         TokenTree::Ident(id) => {
             scope.iter().rev().find(|(v, _)| id == v).map(|&(_, value)| value).ok_or_else(|| format!("`{id}` is not a loop variable"))
         }
-        TokenTree::Group(g) if g.delimiter() == Delimiter::Parenthesis => integer(&g.stream().into_iter().collect::<Vec<_>>(), scope),
+        // Parentheses, and the invisible group around a `macro_rules!` fragment (`0..$n`).
+        TokenTree::Group(g) if matches!(g.delimiter(), Delimiter::Parenthesis | Delimiter::None) => {
+            integer(&g.stream().into_iter().collect::<Vec<_>>(), scope)
+        }
         other => Err(format!("unexpected `{other}`")),
     }
 }
@@ -280,6 +283,15 @@ mod tests {
             point cell_0_0.p = [0, -0]; point cell_0_1.p = [0, -1]; point cell_1_1.p = [1, -1];
         });
         assert_eq!(got, want.to_string());
+    }
+
+    /// A `macro_rules!` fragment reaches the macro wrapped in an invisible group: a bound or an
+    /// index passed as `$n` still counts.
+    #[test]
+    fn bounds_and_indices_from_a_macro_rules_fragment() {
+        let n = Group::new(Delimiter::None, quote!(2));
+        let got = unrolled(quote!(M { for i in 0..#n { body l[i + #n] {} } }));
+        assert_eq!(got, quote!(M { body l_2 {} body l_3 {} }).to_string());
     }
 
     #[test]

@@ -216,7 +216,7 @@ mod tests {
     /// gravity and the joints' friction — the same generated code, token for token.
     #[test]
     fn a_scene_generates_what_its_mechanism_written_without_the_effects_generates() {
-        let with_scene = quote!(Crank {
+        let items = quote! {
             params { k: 50.0 }
             gravity [0.0, -9.81];
             body crank { mass: 1.0, inertia: 0.01, at: [0.05, 0.0, 0.0] }
@@ -226,8 +226,8 @@ mod tests {
             translational slide: ground[0.0, 0.0] along [1.0, 0.0] ~ slider[0.0, 0.0] along [1.0, 0.0] { coulomb: 0.2 };
             spring return_spring: ground[0.3, 0.0] ~ slider[0.0, 0.0] { k: k, length: 0.1 };
             torque motor: crank = 0.5;
-            scene Bare without return_spring, gravity, friction;
-        });
+        };
+        let with_scene = quote!(Crank { #items scene Bare without return_spring, gravity, friction; });
         let written = quote!(Bare {
             params { k: 50.0 }
             body crank { mass: 1.0, inertia: 0.01, at: [0.05, 0.0, 0.0] }
@@ -240,18 +240,7 @@ mod tests {
         let both = expand(with_scene).to_string();
         assert!(both.contains("struct Crank") && both.contains("struct Bare"), "the base and the scene are two types");
         // The scene's part of the expansion: expand the base alone and take what follows it.
-        let base = expand(quote!(Crank {
-            params { k: 50.0 }
-            gravity [0.0, -9.81];
-            body crank { mass: 1.0, inertia: 0.01, at: [0.05, 0.0, 0.0] }
-            body slider { mass: 0.5, inertia: 1.0e-4, at: [0.2, 0.0, 0.0] }
-            revolute pin: ground[0.0, 0.0] ~ crank[-0.05, 0.0] { viscous: 0.02, coulomb: 0.1, radius: 0.01 };
-            revolute_revolute rod: crank[0.05, 0.0] ~ slider[0.0, 0.0] { length: 0.15 };
-            translational slide: ground[0.0, 0.0] along [1.0, 0.0] ~ slider[0.0, 0.0] along [1.0, 0.0] { coulomb: 0.2 };
-            spring return_spring: ground[0.3, 0.0] ~ slider[0.0, 0.0] { k: k, length: 0.1 };
-            torque motor: crank = 0.5;
-        }))
-        .to_string();
+        let base = expand(quote!(Crank { #items })).to_string();
         let scene = both.strip_prefix(base.as_str()).expect("the base comes first, as it expands alone");
         let scene = scene.replace(
             "# [doc = \"\"] # [doc = \"Scene of [`Crank`]: the same mechanism without `return_spring`, `gravity`, `friction`.\"] ",

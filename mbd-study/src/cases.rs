@@ -4,66 +4,31 @@
 
 use mbd::prelude::*;
 
-mechanism! {
-    /// A free pendulum chain of 4 links (0.1 m, 0.1 kg each), pinned end to end and to ground,
-    /// horizontal at the start.
-    pub Chain4 {
-        gravity [0.0, -9.81];
-        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
-        for i in 0..4 {
-            body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
+/// A free pendulum chain of `$n` links (0.1 m, 0.1 kg each), pinned end to end and to ground,
+/// horizontal at the start; `$scalar` is an optional `scalar f32;`.
+macro_rules! chain {
+    ($name:ident, $n:literal $(, $scalar:ident)?) => {
+        mechanism! {
+            #[doc = concat!("A free pendulum chain of ", stringify!($n), " links, horizontal at the start.")]
+            pub $name {
+                $(scalar $scalar;)?
+                gravity [0.0, -9.81];
+                revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+                for i in 0..$n {
+                    body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
+                }
+                for i in 1..$n {
+                    revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
+                }
+            }
         }
-        for i in 1..4 {
-            revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
-        }
-    }
+    };
 }
 
-mechanism! {
-    /// A free pendulum chain of 16 links (0.1 m, 0.1 kg each), pinned end to end and to ground,
-    /// horizontal at the start.
-    pub Chain16 {
-        gravity [0.0, -9.81];
-        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
-        for i in 0..16 {
-            body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
-        }
-        for i in 1..16 {
-            revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
-        }
-    }
-}
-
-mechanism! {
-    /// A free pendulum chain of 64 links (0.1 m, 0.1 kg each), pinned end to end and to ground,
-    /// horizontal at the start.
-    pub Chain64 {
-        gravity [0.0, -9.81];
-        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
-        for i in 0..64 {
-            body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
-        }
-        for i in 1..64 {
-            revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
-        }
-    }
-}
-
-mechanism! {
-    /// A free pendulum chain of 16 links (0.1 m, 0.1 kg each), pinned end to end and to ground,
-    /// horizontal at the start.
-    pub Chain16F32 {
-        scalar f32;
-        gravity [0.0, -9.81];
-        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
-        for i in 0..16 {
-            body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] }
-        }
-        for i in 1..16 {
-            revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0];
-        }
-    }
-}
+chain!(Chain4, 4);
+chain!(Chain16, 16);
+chain!(Chain64, 64);
+chain!(Chain16F32, 16, f32);
 include!("../../mbd-bench/mechanisms/free_spatial_slider_crank.rs");
 
 /// The suspension of the examples: a double A-arm corner on its coil-over and a stiff tyre
