@@ -37,15 +37,15 @@ pub fn split(input: TokenStream) -> syn::Result<(TokenStream, Vec<TokenStream>)>
     let (scenes, kept): (Vec<_>, Vec<_>) = statements.into_iter().partition(|s| keyword(s).is_some_and(|k| k == "scene"));
     let labels: Vec<String> = kept.iter().filter_map(|s| label(s)).map(|l| l.to_string()).collect();
     let has_gravity = kept.iter().any(|s| keyword(s).is_some_and(|k| k == "gravity"));
+    let has_friction = kept.iter().any(|s| has_friction_options(s));
+    // The scene's doc line goes after the mechanism's own doc comments, before its visibility.
+    let vis_at = (0..body_at - 1).find(|&k| !is_attribute(&tokens, k)).unwrap_or(body_at - 1);
     let rebuild = |name: &Ident, body_tokens: TokenStream, doc: Option<String>| -> TokenStream {
-        let mut out: TokenStream = tokens[..body_at - 1].iter().cloned().collect();
+        let mut out: TokenStream = tokens[..vis_at].iter().cloned().collect();
         if let Some(doc) = doc {
-            // After the mechanism's own doc comments, before its visibility.
-            let vis_at = (0..body_at - 1).find(|&k| !is_attribute(&tokens, k)).unwrap_or(body_at - 1);
-            out = tokens[..vis_at].iter().cloned().collect();
             out.extend(quote!(#[doc = ""] #[doc = #doc]));
-            out.extend(tokens[vis_at..body_at - 1].iter().cloned());
         }
+        out.extend(tokens[vis_at..body_at - 1].iter().cloned());
         out.extend([TokenTree::Ident(name.clone())]);
         let mut group = Group::new(Delimiter::Brace, body_tokens);
         group.set_span(body.span());
@@ -67,7 +67,7 @@ pub fn split(input: TokenStream) -> syn::Result<(TokenStream, Vec<TokenStream>)>
         seen.push(scene_name.to_string());
         for item in &left_out {
             let word = item.to_string();
-            let known = labels.contains(&word) || word == "friction" || (word == "gravity" && has_gravity);
+            let known = labels.contains(&word) || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
             if !known {
                 let names: Vec<&str> = labels.iter().map(String::as_str).collect();
                 let hint = crate::parse::closest(&word, &names, EFFECTS);
@@ -178,21 +178,40 @@ fn parse_scene(s: &[TokenTree]) -> syn::Result<(Ident, Vec<Ident>)> {
     }
 }
 
-/// The statement with its joint options' friction fields (`name: value` up to the next comma)
-/// removed.
+/// Whether a statement's options braces hold fields (joints and force elements; not a body's
+/// fields or the parameters).
+fn has_options(s: &[TokenTree]) -> bool {
+    keyword(s).is_some_and(|k| k != "params" && k != "body")
+}
+
+/// Whether an option field (`name: value`) is one of a joint's friction options.
+fn is_friction_field(field: &[TokenTree]) -> bool {
+    matches!(field.first(), Some(TokenTree::Ident(n)) if FRICTION_OPTIONS.contains(&n.to_string().as_str()))
+}
+
+/// The option fields of a brace group, split at commas.
+fn fields(g: &Group) -> Vec<Vec<TokenTree>> {
+    let tokens: Vec<TokenTree> = g.stream().into_iter().collect();
+    tokens.split(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ',')).map(<[TokenTree]>::to_vec).collect()
+}
+
+fn has_friction_options(s: &[TokenTree]) -> bool {
+    has_options(s)
+        && s.iter().any(
+            |tt| matches!(tt, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace && fields(g).iter().any(|f| is_friction_field(f))),
+        )
+}
+
+/// The statement with its friction option fields removed.
 fn strip_friction(s: &[TokenTree]) -> Vec<TokenTree> {
-    // Options braces of joints and force elements; not a body's fields or the parameters.
-    let is_joint = keyword(s).is_some_and(|k| k != "params" && k != "body");
+    if !has_options(s) {
+        return s.to_vec();
+    }
     s.iter()
         .map(|tt| match tt {
-            TokenTree::Group(g) if is_joint && g.delimiter() == Delimiter::Brace => {
-                let fields: Vec<TokenTree> = g.stream().into_iter().collect();
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
                 let mut kept: Vec<TokenTree> = Vec::new();
-                for field in fields.split(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ',')) {
-                    let drop = matches!(field.first(), Some(TokenTree::Ident(n)) if FRICTION_OPTIONS.contains(&n.to_string().as_str()));
-                    if drop || field.is_empty() {
-                        continue;
-                    }
+                for field in fields(g).iter().filter(|f| !f.is_empty() && !is_friction_field(f)) {
                     if !kept.is_empty() {
                         kept.push(TokenTree::Punct(Punct::new(',', Spacing::Alone)));
                     }
@@ -257,7 +276,8 @@ mod tests {
                 "scene `S` leaves out `pn`, which `M` does not have (did you mean `pin`?): a scene leaves out labelled statements (`actuator lift: ...`; here: pin) and the effects `gravity` and `friction`",
             ),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without gravity; }), "leaves out `gravity`, which `M` does not have"),
-            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene M without friction; }), "`M` is already the name of the mechanism or of another scene"),
+            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without friction; }), "leaves out `friction`, which `M` does not have"),
+            (quote!(M { gravity [0.0, -9.81]; body b { mass: 1.0, inertia: 0.1 } scene M without gravity; }), "`M` is already the name of the mechanism or of another scene"),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S with friction; }), "expected `scene Name without item, item, ...;`"),
         ];
         for (input, want) in cases {

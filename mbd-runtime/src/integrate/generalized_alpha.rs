@@ -78,9 +78,10 @@ pub struct GeneralizedAlphaOptions<T> {
 /// ```
 ///
 /// (for Newmark's scheme, δ = 0 and β free, this is Zienkiewicz & Xie's (1991) estimate
-/// (β − 1/6) h² (a₊ − a); here β = ¼(1 − δ)²), measured on the coordinates (q₊ ⊕ e − q₊) in the RMS of the mixed tolerance
-/// atol + rtol·max(|q|, |q₊|), as [`Dopri5`](crate::Dopri5) measures its error (only the
-/// positions: the method's velocity error is of the same order but has no estimate this cheap).
+/// (β − 1/6) h² (a₊ − a); here β = ¼(1 − δ)²), measured on the coordinates (q₊ ⊕ e − q₊) in
+/// the RMS of the mixed tolerance atol + rtol·max(|q|, |q₊|), as [`Dopri5`](crate::Dopri5)
+/// measures its error (only the positions: the method's velocity error is of the same order but
+/// has no estimate this cheap).
 /// A step is accepted when that RMS is at most 1, and the next one is
 /// h · clamp(0.9 err^(−1/3), 0.2, 2). A step whose Newton iteration fails to converge is retried
 /// at a quarter of its size. On a step-size change the pseudo-acceleration's lag a − v̇ ≈ δ h q⃛

@@ -13,7 +13,7 @@
 //! * [`GeneralizedAlpha`]: the implicit generalized-α method on the index-3 equations
 //!   M v̇ − Dᵀλ = h, Φ = 0, solved by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v
 //!   and ∂(Dᵀλ)/∂q·B: second-order accurate, numerical damping set by ρ∞, fit for stiff springs
-//!   and dampers.
+//!   and dampers; fixed steps, or variable ones from a local error estimate ([`ErrorControl`]).
 //!
 //! Each accepted step ends with [`Kinematics::normalize_positions`] (spatial: unit Euler
 //! parameters; planar: nothing).
