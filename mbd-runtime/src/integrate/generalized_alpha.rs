@@ -258,26 +258,20 @@ where
         let gamma = half + alpha_f - alpha_m;
         let beta = T::from_f64(0.25) * (gamma + half) * (gamma + half);
         let coefficients = [alpha_m, alpha_f, beta, gamma];
-        let Some(control) = o.error_control else {
-            let (h, t1) = fixed_step(from.t, o.step, t_max);
-            if !(h > T::ZERO) {
-                *to = *from;
-                return Ok(());
-            }
-            let a_n = self.pseudo_acceleration(&from.vd, h);
-            self.iterations = 0;
-            let result = attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h, t1, to, &mut self.iterations);
-            self.total_iterations += u64::from(self.iterations);
-            self.accept(result?, h);
-            return finish(system, from, to, h);
-        };
-        control.check()?;
         // δ = α_m − α_f: the local error constant of the positions is 1/12 + δ²/4.
         let delta = alpha_m - alpha_f;
         let constant = T::from_f64(1.0 / 12.0) + T::from_f64(0.25) * delta * delta;
-        let mut h = if self.next_step > T::ZERO { self.next_step } else { o.step };
+        // Fixed steps: one attempt of `step`. With error control: from the step the last one
+        // chose, retried smaller until its error estimate meets the tolerance.
+        let mut h = match &o.error_control {
+            None => o.step,
+            Some(control) => {
+                control.check()?;
+                if self.next_step > T::ZERO { self.next_step } else { o.step }.min(control.max_step)
+            }
+        };
         loop {
-            let (h_try, t1) = fixed_step(from.t, h.min(control.max_step), t_max);
+            let (h_try, t1) = fixed_step(from.t, h, t_max);
             if !(h_try > T::ZERO) {
                 *to = *from;
                 return Ok(());
@@ -287,21 +281,27 @@ where
             let result =
                 attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations);
             self.total_iterations += u64::from(self.iterations);
+            let Some(control) = o.error_control else {
+                self.accept(result?, h_try);
+                return finish(system, from, to, h_try);
+            };
             let factor = match result {
                 Ok(a1) => {
                     let error = local_error(mech, &control, constant, h_try, &a_n, &a1, &from.q, &to.q);
-                    if !error.is_finite() {
+                    // 0.9 err^(−1/3): the step that would have met the tolerance, with a margin
+                    // (a quarter where the estimate is not finite).
+                    let factor = if error.is_finite() {
+                        (T::from_f64(0.9) * error.powf(T::from_f64(-1.0 / 3.0))).max(T::from_f64(0.2))
+                    } else {
                         T::from_f64(0.25)
-                    } else if error <= one {
-                        // 0.9 err^(−1/3): the step that would have met the tolerance, with a margin.
-                        let factor = (T::from_f64(0.9) * error.powf(T::from_f64(-1.0 / 3.0))).min(T::from_f64(2.0)).max(T::from_f64(0.2));
+                    };
+                    if error <= one {
                         // A step shortened to land on the end keeps the size it would have had.
-                        self.next_step = h.min(control.max_step).max(h_try) * factor;
+                        self.next_step = h.max(h_try) * factor.min(T::from_f64(2.0));
                         self.accept(a1, h_try);
                         return finish(system, from, to, h_try);
-                    } else {
-                        (T::from_f64(0.9) * error.powf(T::from_f64(-1.0 / 3.0))).max(T::from_f64(0.2))
                     }
+                    factor
                 }
                 // A Newton iteration that does not settle or that diverges: a smaller step.
                 Err(SimulationError::NotConverged { .. } | SimulationError::NonFinite { .. }) => T::from_f64(0.25),
