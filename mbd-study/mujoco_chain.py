@@ -20,12 +20,14 @@ For each step h (stdout, one JSON object, "runs": [...]):
 """
 
 import json
+import os
 import sys
-import time
 
 import mujoco
-import mujoco.rollout
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "mbd-bench", "peers"))
+from mujoco_timing import SPEC, initial_state, timed_rollout  # noqa: E402  (shared with the peer benchmark)
 
 LENGTH, MASS, INERTIA, AXIAL = 0.1, 0.1, 8.3333e-5, 1.0e-9
 
@@ -66,19 +68,10 @@ def energy(model, data):
 def run(n, t_end, outputs, h, repeats):
     model = mujoco.MjModel.from_xml_string(chain_xml(n, h))
     data = mujoco.MjData(model)
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    x0 = np.empty(mujoco.mj_stateSize(model, spec))
-    mujoco.mj_resetData(model, data)
-    mujoco.mj_getState(model, data, x0, spec)
+    x0 = initial_state(model, data)
     e0 = energy(model, data)
     nstep = round(t_end / h)
-    state = np.empty((1, nstep, x0.size))
-    mujoco.rollout.rollout(model, data, x0, nstep=nstep, state=state)
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        mujoco.rollout.rollout(model, data, x0, nstep=nstep, state=state)
-        times.append(time.perf_counter() - start)
+    seconds, state = timed_rollout(model, data, x0, nstep, repeats)
     # The state after each step carries its time first (mjSTATE_TIME). MuJoCo resets a run whose
     # velocities become NaN, infinite or huge (warning "the simulation is unstable"): its clock
     # then jumps back.
@@ -87,17 +80,17 @@ def run(n, t_end, outputs, h, repeats):
     q, e = [], []
     if not finite:  # a run that blew up has no outputs to compare (and JSON has no NaN)
         first = int(np.argmax(np.diff(stamps) <= 0)) if np.isfinite(stamps).all() else 0
-        return {"h": h, "steps": nstep, "seconds": float(np.median(times)), "repeats": repeats,
+        return {"h": h, "steps": nstep, "seconds": seconds, "repeats": repeats,
                 "failure": f"MuJoCo reset the unstable simulation (NaN, Inf or huge velocity) at t = {stamps[first]:.4g} s"}
     for j in range(1, outputs + 1):
         t = t_end * j / outputs
         i = int(np.argmin(np.abs(stamps - t)))
         if abs(stamps[i] - t) > 1e-9 * max(1.0, t):
             raise SystemExit(f"no state at t = {t} s with h = {h} s (steps must divide the output interval)")
-        mujoco.mj_setState(model, data, state[0, i], spec)
+        mujoco.mj_setState(model, data, state[0, i], SPEC)
         q.append(coordinates(model, data))
         e.append(energy(model, data))
-    return {"h": h, "steps": nstep, "seconds": float(np.median(times)), "repeats": repeats,
+    return {"h": h, "steps": nstep, "seconds": seconds, "repeats": repeats,
             "q": q, "energy": e, "energy0": e0, "finite": finite}
 
 

@@ -24,11 +24,11 @@ Usage: python mujoco_chain.py [N ...]   (default: 4 16)
 
 import json
 import sys
-import time
 
 import mujoco
-import mujoco.rollout
 import numpy as np
+
+from mujoco_timing import initial_state, timed_rollout
 
 LENGTH, MASS = 0.1, 0.1
 TRANSVERSE = MASS * LENGTH * LENGTH / 12.0  # m L²/12 of a thin rod about its centre
@@ -60,10 +60,7 @@ def chain_xml(n):
 def measure(n):
     model = mujoco.MjModel.from_xml_string(chain_xml(n))
     data = mujoco.MjData(model)
-    mujoco.mj_resetData(model, data)
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    x0 = np.empty(mujoco.mj_stateSize(model, spec))
-    mujoco.mj_getState(model, data, x0, spec)
+    x0 = initial_state(model, data)
 
     # Same motion: 0.5 s from the start, then the tip's position, at two step sizes.
     tips = []
@@ -78,18 +75,12 @@ def measure(n):
     mujoco.mj_resetData(model, data)
 
     # Timing: rollout's C loop; the first call sets up and is discarded.
-    state = np.empty((1, NSTEP, x0.size))
-    mujoco.rollout.rollout(model, data, x0, nstep=NSTEP, state=state)
-    times = []
-    for _ in range(REPEATS):
-        start = time.perf_counter()
-        mujoco.rollout.rollout(model, data, x0, nstep=NSTEP, state=state)
-        times.append(time.perf_counter() - start)
+    seconds, state = timed_rollout(model, data, x0, NSTEP, REPEATS)
     return {
         "links": n,
         "nq": int(model.nq),
         "nv": int(model.nv),
-        "step_seconds": float(np.median(times)) / NSTEP,
+        "step_seconds": seconds / NSTEP,
         "steps_timed": NSTEP,
         "repeats": REPEATS,
         "tips": tips,
