@@ -11,29 +11,26 @@ use crate::json::model_json;
 use crate::model::{Model, Partial};
 use crate::parse::MechanismDef;
 
-/// Expands a `mechanism!` invocation: its loops unrolled ([`crate::repeat`]), then the base
-/// mechanism and each of its scenes ([`crate::scene`]). Never fails: mistakes become
+/// Expands a `mechanism!` invocation: its parts and loops expanded ([`crate::part`],
+/// [`crate::repeat`]), then the base mechanism and each of its scenes ([`crate::scene`]); every
+/// name in its texts as the user wrote it ([`crate::names`]). Never fails: mistakes become
 /// `compile_error!`s next to a stub of the mechanism's type (its struct and parameters), so code
 /// that names the type or its parameters does not add follow-up errors. A mistake in the base
 /// is reported once: its scenes, which share it, are then only stubs.
 pub fn expand(input: TokenStream) -> TokenStream {
-    let input = match crate::repeat::unroll(input) {
-        Ok(unrolled) => unrolled,
-        Err(e) => return e.to_compile_error(),
-    };
-    let (base, scenes) = match crate::scene::split(input) {
-        Ok(split) => split,
-        Err(e) => return e.to_compile_error(),
-    };
-    let (mut out, ok) = expand_one(base);
-    for scene in scenes {
-        if ok {
-            out.extend(expand_one(scene).0);
-        } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
-            out.extend(stub(&def.partial()));
+    let mut names = crate::names::Names::default();
+    let out = crate::part::expand(input, &mut names).and_then(crate::scene::split).map(|(base, scenes)| {
+        let (mut out, ok) = expand_one(base);
+        for scene in scenes {
+            if ok {
+                out.extend(expand_one(scene).0);
+            } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
+                out.extend(stub(&def.partial()));
+            }
         }
-    }
-    out
+        out
+    });
+    names.rewrite_strings(out.unwrap_or_else(|e| e.to_compile_error()))
 }
 
 /// Expands one mechanism; whether it had no mistakes.

@@ -1,7 +1,8 @@
 //! The `mechanism!` macro of mbd.
 //!
 //! Data flows one way through plain-Rust stages, each unit-tested without a compiler in the loop:
-//! [`repeat`] (`for` loops and indexed names unrolled on the tokens) → [`scene`] (the base
+//! [`part`] (sub-assemblies instantiated) and [`repeat`] (`for` loops and indexed names unrolled on
+//! the tokens; [`names`] keeps each made identifier's written form for every text) → [`scene`] (the base
 //! mechanism and each scene's statements, expanded one by one) → [`parse`] (tokens → syntax tree with spans) → [`model`] (names resolved, rules checked, every
 //! mistake reported at once; each joint, driver and force kind resolved by its own file in
 //! [`elements`] and [`forces`]) → [`formulation`] (symbolic Φ, Φ_q, ν, γ, M, h on the [`sym`]
@@ -19,8 +20,10 @@ mod forward;
 mod frames;
 mod json;
 mod model;
+mod names;
 mod newton;
 mod parse;
+mod part;
 mod repeat;
 mod scene;
 mod schur;

@@ -19,43 +19,39 @@
 
 use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenStream, TokenTree};
 
+use crate::names::Names;
+
 /// The most statements one mechanism may unroll to: a typo such as `0..100000000` is an error
 /// here, not an expansion that exhausts the compiler's memory.
 const MAX_REPETITIONS: usize = 100_000;
 
-/// Unrolls every `for` loop and indexed name of a `mechanism!` input.
-pub fn unroll(input: TokenStream) -> syn::Result<TokenStream> {
-    let mut out = TokenStream::new();
-    let mut done = false;
-    let mut count = 0;
-    for tt in input {
-        match tt {
-            // The mechanism's body: the first brace group (attributes are `#[...]`, brackets).
-            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace && !done => {
-                done = true;
-                let body = statements(g.stream(), &mut Vec::new(), &mut count)?;
-                let mut group = Group::new(Delimiter::Brace, body);
-                group.set_span(g.span());
-                out.extend([TokenTree::Group(group)]);
-            }
-            other => out.extend([other]),
-        }
-    }
-    Ok(out)
+/// Unrolls every `for` loop and indexed name of a statement list (a mechanism's or a part's,
+/// see [`crate::part::expand`]); each indexed name's identifier is recorded in `names` with its
+/// written form.
+pub fn unroll_statements(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream> {
+    statements(input, &mut Unroll { scope: Vec::new(), count: 0, names })
 }
 
 /// Loop variables in scope, innermost last.
 type Scope = Vec<(String, i64)>;
 
+/// The state of one unrolling: the loop variables in scope, the repetitions so far and the
+/// indexed names made.
+struct Unroll<'a> {
+    scope: Scope,
+    count: usize,
+    names: &'a mut Names,
+}
+
 /// A statement list: each `for` at a statement's start unrolled, every other token transformed.
-fn statements(input: TokenStream, scope: &mut Scope, count: &mut usize) -> syn::Result<TokenStream> {
+fn statements(input: TokenStream, u: &mut Unroll) -> syn::Result<TokenStream> {
     let tokens: Vec<TokenTree> = input.into_iter().collect();
     let mut out = Vec::new();
     let mut at_start = true;
     let mut i = 0;
     while i < tokens.len() {
         if at_start && matches!(&tokens[i], TokenTree::Ident(id) if id == "for") {
-            let (end, expanded) = unroll_for(&tokens, i, scope, count)?;
+            let (end, expanded) = unroll_for(&tokens, i, u)?;
             out.extend(expanded);
             i = end;
             at_start = true;
@@ -65,14 +61,14 @@ fn statements(input: TokenStream, scope: &mut Scope, count: &mut usize) -> syn::
         // A statement ends at `;` or at a brace group at its own level (`body b { ... }`).
         at_start = matches!(tt, TokenTree::Punct(p) if p.as_char() == ';')
             || matches!(tt, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace);
-        i = transform_one(&tokens, i, scope, &mut out)?;
+        i = transform_one(&tokens, i, u, &mut out)?;
     }
     Ok(out.into_iter().collect())
 }
 
 /// Unrolls the loop `for var in a..b { body }` starting at `tokens[start]`; returns the index
 /// after it and its statements.
-fn unroll_for(tokens: &[TokenTree], start: usize, scope: &mut Scope, count: &mut usize) -> syn::Result<(usize, TokenStream)> {
+fn unroll_for(tokens: &[TokenTree], start: usize, u: &mut Unroll) -> syn::Result<(usize, TokenStream)> {
     let keyword = tokens[start].span();
     let shape = "expected `for i in a..b { statements }`";
     let var = match tokens.get(start + 1) {
@@ -96,7 +92,7 @@ fn unroll_for(tokens: &[TokenTree], start: usize, scope: &mut Scope, count: &mut
     let upper = &range[dots + if inclusive { 3 } else { 2 }..];
     let bound = |part: &[TokenTree], which: &str| -> syn::Result<i64> {
         let span = part.first().map_or(range_span, TokenTree::span);
-        integer(part, scope).map_err(|why| {
+        integer(part, &u.scope).map_err(|why| {
             syn::Error::new(
                 span,
                 format!("the {which} bound of a `for` must be an integer expression of numbers and enclosing loop variables: {why}"),
@@ -108,13 +104,13 @@ fn unroll_for(tokens: &[TokenTree], start: usize, scope: &mut Scope, count: &mut
     let TokenTree::Group(body) = &tokens[body_at] else { unreachable!("found as a brace group") };
     let mut out = TokenStream::new();
     for k in a..b {
-        *count += 1;
-        if *count > MAX_REPETITIONS {
+        u.count += 1;
+        if u.count > MAX_REPETITIONS {
             return Err(syn::Error::new(range_span, format!("more than {MAX_REPETITIONS} repetitions: is the range what you meant?")));
         }
-        scope.push((var.to_string(), k));
-        let unrolled = statements(body.stream(), scope, count);
-        scope.pop();
+        u.scope.push((var.to_string(), k));
+        let unrolled = statements(body.stream(), u);
+        u.scope.pop();
         out.extend(unrolled?);
     }
     Ok((body_at + 1, out))
@@ -122,20 +118,24 @@ fn unroll_for(tokens: &[TokenTree], start: usize, scope: &mut Scope, count: &mut
 
 /// Transforms `tokens[i]` (and, for an indexed name, the brackets after it) into `out`; returns
 /// the index of the next token.
-fn transform_one(tokens: &[TokenTree], i: usize, scope: &Scope, out: &mut Vec<TokenTree>) -> syn::Result<usize> {
+fn transform_one(tokens: &[TokenTree], i: usize, u: &mut Unroll, out: &mut Vec<TokenTree>) -> syn::Result<usize> {
     let after_dot = i > 0 && is_punct(&tokens[i - 1], '.');
     match &tokens[i] {
         TokenTree::Ident(id) => {
             // `name[index]...`: one identifier, `name_index...`.
             let mut name = id.to_string();
+            let mut written = u.names.written(&name);
             let mut k = i + 1;
             while let Some(TokenTree::Group(g)) = tokens.get(k) {
                 if g.delimiter() != Delimiter::Bracket {
                     break;
                 }
                 let inner: Vec<TokenTree> = g.stream().into_iter().collect();
-                match integer(&inner, scope) {
-                    Ok(index) if index >= 0 => name = format!("{name}_{index}"),
+                match integer(&inner, &u.scope) {
+                    Ok(index) if index >= 0 => {
+                        name = format!("{name}_{index}");
+                        written = format!("{written}[{index}]");
+                    }
                     Ok(index) => {
                         return Err(syn::Error::new(g.span(), format!("an index must not be negative; `{id}[…]` is {index} here")))
                     }
@@ -144,10 +144,11 @@ fn transform_one(tokens: &[TokenTree], i: usize, scope: &Scope, out: &mut Vec<To
                 k += 1;
             }
             if k > i + 1 {
+                u.names.record(&name, written);
                 out.push(TokenTree::Ident(Ident::new(&name, id.span())));
                 return Ok(k);
             }
-            match scope.iter().rev().find(|(v, _)| id == v) {
+            match u.scope.iter().rev().find(|(v, _)| id == v) {
                 Some(&(_, value)) if !after_dot => out.extend(number(value, id.span())),
                 _ => out.push(tokens[i].clone()),
             }
@@ -158,7 +159,7 @@ fn transform_one(tokens: &[TokenTree], i: usize, scope: &Scope, out: &mut Vec<To
             let mut transformed = Vec::new();
             let mut k = 0;
             while k < inner.len() {
-                k = transform_one(&inner, k, scope, &mut transformed)?;
+                k = transform_one(&inner, k, u, &mut transformed)?;
             }
             let mut group = Group::new(g.delimiter(), transformed.into_iter().collect());
             group.set_span(g.span());
@@ -252,7 +253,7 @@ mod tests {
     use quote::quote;
 
     fn unrolled(input: TokenStream) -> String {
-        unroll(input).unwrap_or_else(|e| panic!("{e}")).to_string()
+        crate::part::expand(input, &mut Names::default()).unwrap_or_else(|e| panic!("{e}")).to_string()
     }
 
     #[test]
@@ -317,13 +318,13 @@ mod tests {
             (quote!(M { for i in 0..1000000 {} }), "more than 100000 repetitions"),
         ];
         for (input, want) in cases {
-            let e = unroll(input).expect_err(want).to_string();
+            let e = crate::part::expand(input, &mut Names::default()).expect_err(want).to_string();
             assert!(e.contains(want), "{e}\n  wanted: {want}");
         }
     }
 
-    /// The repeated and the written-out declarations of a chain of 4 parallelogram loops (those of
-    /// `mbd-long/tests/singular.rs`) expand to the same code, token for token — every generated
+    /// The repeated and the written-out declarations (indexed names without loops) of a chain of 4
+    /// parallelogram loops (those of `mbd-long/tests/singular.rs`) expand to the same code, token for token — every generated
     /// function, constant and name — once the temporaries `v<n>` are numbered in order of
     /// appearance (the loop's `0.5 * k` folds to the written-out `1.0`, but its constants took
     /// node numbers in the expression graph first), with `MODEL_JSON` set aside: it describes each
@@ -344,31 +345,31 @@ mod tests {
         });
         let written = quote!(pub Parallelograms4 {
             gravity [0.0, -9.81];
-            body crank_0 { mass: 1.0, inertia: 0.0075, at: [0.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[0.0, 0.0] ~ crank_0[-0.15, 0.0];
-            body crank_1 { mass: 1.0, inertia: 0.0075, at: [0.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[0.5, 0.0] ~ crank_1[-0.15, 0.0];
-            body crank_2 { mass: 1.0, inertia: 0.0075, at: [1.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[1.0, 0.0] ~ crank_2[-0.15, 0.0];
-            body crank_3 { mass: 1.0, inertia: 0.0075, at: [1.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[1.5, 0.0] ~ crank_3[-0.15, 0.0];
-            body crank_4 { mass: 1.0, inertia: 0.0075, at: [2.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
-            revolute ground[2.0, 0.0] ~ crank_4[-0.15, 0.0];
-            body coupler_0 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank_0[0.15, 0.0] ~ coupler_0[-0.25, 0.0];
-            revolute crank_1[0.15, 0.0] ~ coupler_0[0.25, 0.0];
-            body coupler_1 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank_1[0.15, 0.0] ~ coupler_1[-0.25, 0.0];
-            revolute crank_2[0.15, 0.0] ~ coupler_1[0.25, 0.0];
-            body coupler_2 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank_2[0.15, 0.0] ~ coupler_2[-0.25, 0.0];
-            revolute crank_3[0.15, 0.0] ~ coupler_2[0.25, 0.0];
-            body coupler_3 { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
-            revolute crank_3[0.15, 0.0] ~ coupler_3[-0.25, 0.0];
-            revolute crank_4[0.15, 0.0] ~ coupler_3[0.25, 0.0];
+            body crank[0] { mass: 1.0, inertia: 0.0075, at: [0.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[0.0, 0.0] ~ crank[0][-0.15, 0.0];
+            body crank[1] { mass: 1.0, inertia: 0.0075, at: [0.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[0.5, 0.0] ~ crank[1][-0.15, 0.0];
+            body crank[2] { mass: 1.0, inertia: 0.0075, at: [1.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[1.0, 0.0] ~ crank[2][-0.15, 0.0];
+            body crank[3] { mass: 1.0, inertia: 0.0075, at: [1.5 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[1.5, 0.0] ~ crank[3][-0.15, 0.0];
+            body crank[4] { mass: 1.0, inertia: 0.0075, at: [2.0 + 0.15 * cos(PI / 2.0), 0.15, PI / 2.0] }
+            revolute ground[2.0, 0.0] ~ crank[4][-0.15, 0.0];
+            body coupler[0] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank[0][0.15, 0.0] ~ coupler[0][-0.25, 0.0];
+            revolute crank[1][0.15, 0.0] ~ coupler[0][0.25, 0.0];
+            body coupler[1] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [0.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank[1][0.15, 0.0] ~ coupler[1][-0.25, 0.0];
+            revolute crank[2][0.15, 0.0] ~ coupler[1][0.25, 0.0];
+            body coupler[2] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.25 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank[2][0.15, 0.0] ~ coupler[2][-0.25, 0.0];
+            revolute crank[3][0.15, 0.0] ~ coupler[2][0.25, 0.0];
+            body coupler[3] { mass: 1.0, inertia: 0.020_833_333_333_333_33, at: [1.75 + 0.3 * cos(PI / 2.0), 0.3, 0.0] }
+            revolute crank[3][0.15, 0.0] ~ coupler[3][-0.25, 0.0];
+            revolute crank[4][0.15, 0.0] ~ coupler[3][0.25, 0.0];
         });
         let (a, b) = (crate::expand::canonical(repeated), crate::expand::canonical(written));
-        assert!(a.contains("\"crank_4.phi\""), "coordinate names carry the index");
+        assert!(a.contains("\"crank[4].phi\""), "coordinate names carry the index as written");
         crate::expand::assert_same_code(&a, &b);
     }
 }

@@ -107,7 +107,7 @@ fn is_attribute(tokens: &[TokenTree], k: usize) -> bool {
 }
 
 /// Statements at the mechanism's level: each ends at `;` or at a brace group.
-fn statements(input: TokenStream) -> Vec<Vec<TokenTree>> {
+pub(crate) fn statements(input: TokenStream) -> Vec<Vec<TokenTree>> {
     let mut out = Vec::new();
     let mut current = Vec::new();
     for tt in input {
@@ -140,7 +140,7 @@ fn keyword(s: &[TokenTree]) -> Option<&Ident> {
 }
 
 /// A statement's label: `kind label: ...` (not `::`).
-fn label(s: &[TokenTree]) -> Option<&Ident> {
+pub(crate) fn label(s: &[TokenTree]) -> Option<&Ident> {
     match (s.get(1), s.get(2), s.get(3)) {
         (Some(TokenTree::Ident(l)), Some(TokenTree::Punct(colon)), next)
             if colon.as_char() == ':' && !matches!(next, Some(TokenTree::Punct(p)) if p.as_char() == ':') =>
