@@ -1,8 +1,8 @@
 use mbd::prelude::*;
 
 // A loop that pins each link to the next one reaches one past the last link: `l[i + 1]` is the
-// body `l_3` at i = 2, which does not exist. The error points at `l` inside the loop and names
-// the body as the loop made it.
+// body `l[3]` at i = 2, which does not exist. The error points at `l` inside the loop and names
+// the body as the loop made it, as it would be written.
 mechanism! {
     Chain {
         revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];

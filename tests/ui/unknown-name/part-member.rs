@@ -1,0 +1,18 @@
+use mbd::prelude::*;
+
+// A reference into a part's instance names something the part does not declare: the error is on
+// the name after the instance's, says what the instance has, and names the instance as written.
+mechanism! {
+    Axle {
+        part corner(side) {
+            body wheel { mass: 10.0, inertia: 0.4, at: [side, 0.3, 0.0] }
+            revolute hub: ground[side, 0.3] ~ wheel[0.0, 0.0];
+        }
+        for i in 0..2 {
+            corner c[i](side: 2.0 * i - 1.0);
+        }
+        fix c[1].whel.y;
+    }
+}
+
+fn main() {}
