@@ -19,7 +19,7 @@ use crate::parse::MechanismDef;
 /// is reported once: its scenes, which share it, are then only stubs.
 pub fn expand(input: TokenStream) -> TokenStream {
     let mut names = crate::names::Names::default();
-    let out = crate::part::expand(input, &mut names).and_then(crate::scene::split).map(|(base, scenes)| {
+    let out = crate::part::expand(input, &mut names).and_then(|input| crate::scene::split(input, &names)).map(|(base, scenes)| {
         let (mut out, ok) = expand_one(base);
         for scene in scenes {
             if ok {

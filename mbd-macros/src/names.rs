@@ -16,12 +16,27 @@ use proc_macro2::{Group, Literal, TokenStream, TokenTree};
 #[derive(Default)]
 pub struct Names {
     written: HashMap<String, String>,
+    /// Each label a part's instance made, with the label as the part declares it.
+    labels: HashMap<String, String>,
 }
 
 impl Names {
     /// Records that the identifier `made` stands for `written`.
     pub fn record(&mut self, made: &str, written: String) {
         self.written.insert(made.to_string(), written);
+    }
+
+    /// Records that an instance made the label `made` from its part's label `from` (itself made
+    /// when the part is inside another part).
+    pub fn record_label(&mut self, made: &str, from: &str) {
+        let root = self.labels.get(from).cloned().unwrap_or_else(|| from.to_string());
+        self.labels.insert(made.to_string(), root);
+    }
+
+    /// Every label made from a part's label `label`, in every instance: the group a scene leaves
+    /// out by that label.
+    pub fn made_from(&self, label: &str) -> Vec<String> {
+        self.labels.iter().filter(|(_, root)| *root == label).map(|(made, _)| made.clone()).collect()
     }
 
     /// How the user wrote the identifier `name` (the identifier itself when it was not made).

@@ -300,7 +300,9 @@ fn own(inner: Level, instance: &str, names: &mut Names) -> (Vec<TokenTree>, Name
                 tokens.push(tt.clone());
             } else if labelled && k == 1 {
                 let TokenTree::Ident(l) = tt else { unreachable!("a label is an identifier") };
-                tokens.push(TokenTree::Ident(Ident::new(&made(&l.to_string(), names), l.span())));
+                let id = made(&l.to_string(), names);
+                names.record_label(&id, &l.to_string());
+                tokens.push(TokenTree::Ident(Ident::new(&id, l.span())));
             } else {
                 tokens.push(rename(s, k, &declared, &outer_points, &made, names));
             }
@@ -452,6 +454,9 @@ mod tests {
         let order = |s: &str| s.replace("body chassis { mass : 10.0 , inertia : 1.0 } ", "");
         assert_eq!(order(&got), order(&want.to_string()));
         assert_eq!(names.rewrite("right_t_mass_.x, chassis.left_mount, left_pivot"), "right.t.mass_.x, chassis.left.mount, left.pivot");
+        let mut group = names.made_from("pivot");
+        group.sort();
+        assert_eq!(group, ["left_pivot", "right_pivot"], "a part's label names its element in every instance");
     }
 
     #[test]

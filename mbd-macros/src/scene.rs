@@ -7,13 +7,16 @@
 //! Split on the (unrolled) tokens before parsing: the mechanism without its `scene` statements is
 //! the base; each scene is the same token stream under the scene's name with the statements it
 //! leaves out removed — a labelled joint, driver, constraint or force element (`actuator lift:
-//! ...`), every `gravity` statement, or with `friction` every joint's friction options
+//! ...`; `front_left.shock` in a part's instance; a part's label `shock`, that element in
+//! every instance of the part), every `gravity` statement, or with `friction` every joint's friction options
 //! (`viscous`, `coulomb`, `radius`, `slip_velocity`, `bearing`). Each is then expanded on its
 //! own, so what a scene leaves out is absent from its generated code, and what it keeps is
 //! generated exactly as the base generates it.
 
 use proc_macro2::{Delimiter, Group, Ident, Punct, Spacing, TokenStream, TokenTree};
 use quote::quote;
+
+use crate::names::Names;
 
 /// The effects a scene can leave out besides labelled statements.
 const EFFECTS: &[&str] = &["gravity", "friction"];
@@ -22,7 +25,7 @@ const EFFECTS: &[&str] = &["gravity", "friction"];
 const FRICTION_OPTIONS: &[&str] = &["viscous", "coulomb", "radius", "slip_velocity", "bearing"];
 
 /// The base mechanism's tokens and each scene's.
-pub fn split(input: TokenStream) -> syn::Result<(TokenStream, Vec<TokenStream>)> {
+pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec<TokenStream>)> {
     let tokens: Vec<TokenTree> = input.into_iter().collect();
     let Some(body_at) = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)) else {
         // Not a mechanism's shape: the parser will say what is missing.
@@ -65,25 +68,32 @@ pub fn split(input: TokenStream) -> syn::Result<(TokenStream, Vec<TokenStream>)>
             ));
         }
         seen.push(scene_name.to_string());
+        // Each item's labels: its own, or those its instances made of a part's label.
+        let mut left_out_labels: Vec<String> = Vec::new();
         for item in &left_out {
             let word = item.to_string();
-            let known = labels.contains(&word) || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
+            let group: Vec<String> = names.made_from(&word).into_iter().filter(|l| labels.contains(l)).collect();
+            let known = labels.contains(&word) || !group.is_empty() || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
             if !known {
-                let names: Vec<&str> = labels.iter().map(String::as_str).collect();
+                let written: Vec<String> = labels.iter().map(|l| names.written(l)).collect();
+                let names: Vec<&str> = written.iter().map(String::as_str).collect();
                 let hint = crate::parse::closest(&word, &names, EFFECTS);
                 return Err(syn::Error::new(
                     item.span(),
                     format!(
                         "scene `{scene_name}` leaves out `{word}`, which `{name}` does not have{hint}: a scene leaves out labelled \
-                         statements (`actuator lift: ...`; here: {}) and the effects `gravity` and `friction`",
+                         statements (`actuator lift: ...`; here: {}), a part's label in every instance, and the effects `gravity` and \
+                         `friction`",
                         if names.is_empty() { "none is labelled".to_string() } else { names.join(", ") }
                     ),
                 ));
             }
+            left_out_labels.push(word);
+            left_out_labels.extend(group);
         }
+        let no_gravity = left_out.iter().any(|i| i == "gravity");
         let without = |s: &Vec<TokenTree>| {
-            let leaves_out = |w: &str| left_out.iter().any(|i| i == w);
-            !(label(s).is_some_and(|l| leaves_out(&l.to_string())) || keyword(s).is_some_and(|k| k == "gravity" && leaves_out("gravity")))
+            !(label(s).is_some_and(|l| left_out_labels.contains(&l.to_string())) || (no_gravity && keyword(s).is_some_and(|k| k == "gravity")))
         };
         let friction = left_out.iter().any(|i| i == "friction");
         let body_tokens: TokenStream =
@@ -268,12 +278,33 @@ mod tests {
         assert_same_code(&canonical_text(scene.trim().to_string()), &canonical(written));
     }
 
+    /// A part's label leaves out that element in every instance; an instance's label only there.
+    #[test]
+    fn a_scene_leaves_out_a_parts_element_in_every_instance_or_in_one() {
+        let out = expand(quote!(Car {
+            part corner(x0) {
+                body wheel { mass: 10.0, inertia: 0.4, at: [x0, 0.3, 0.0] }
+                spring coil: ground[x0, 1.0] ~ wheel[0.0, 0.0] { k: 1.0e4, length: 0.7 };
+            }
+            corner front(x0: 1.2);
+            corner rear(x0: -1.3);
+            scene Bare without coil;
+            scene FrontOnly without rear.coil;
+        }))
+        .to_string();
+        let (base, scenes) = out.split_once("struct Bare").expect("the scene Bare");
+        let (bare, front_only) = scenes.split_once("struct FrontOnly").expect("the scene FrontOnly");
+        assert!(base.contains("\"front.coil\"") && base.contains("\"rear.coil\""), "{base}");
+        assert!(!bare.contains("\"front.coil\"") && !bare.contains("\"rear.coil\""), "{bare}");
+        assert!(front_only.contains("\"front.coil\"") && !front_only.contains("\"rear.coil\""), "{front_only}");
+    }
+
     #[test]
     fn a_scene_that_leaves_out_what_is_not_there_is_an_error_naming_what_is() {
         let cases = [
             (
                 quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute pin: ground[0.0, 0.0] ~ b[0.0, 0.0]; scene S without pn; }),
-                "scene `S` leaves out `pn`, which `M` does not have (did you mean `pin`?): a scene leaves out labelled statements (`actuator lift: ...`; here: pin) and the effects `gravity` and `friction`",
+                "scene `S` leaves out `pn`, which `M` does not have (did you mean `pin`?): a scene leaves out labelled statements (`actuator lift: ...`; here: pin), a part's label in every instance, and the effects `gravity` and `friction`",
             ),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without gravity; }), "leaves out `gravity`, which `M` does not have"),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without friction; }), "leaves out `friction`, which `M` does not have"),
