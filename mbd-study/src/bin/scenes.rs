@@ -1,0 +1,278 @@
+//! What each effect costs: a suspension and a vehicle built from four corners, each declared once
+//! with scenes that leave out one effect at a time (and one that leaves out all of them), timed
+//! in the same run. Per scene: the operations of the generated force functions and of one
+//! evaluation of the accelerations (from the mechanism's `OP_COUNTS`), the CPU time of that
+//! evaluation, and of an RK4 step of 1 ms without and with projection onto the constraints
+//! (medians of 7; from the assembled design position at rest).
+//!
+//! Run: `cargo run --release -p mbd-study --bin scenes` (about 2 s once built; the build, 12
+//! generated types of which 5 are the 13-body vehicle, takes about 6 minutes). Writes
+//! `mbd-study/results/scenes.md`.
+
+use std::time::Instant;
+
+use mbd::prelude::*;
+
+mechanism! {
+    /// A planar double A-arm corner on a rig (the chassis is ground; Nikravesh ch. 8 style, the
+    /// linkage of `examples/suspension_dynamics.rs`): coil spring and shock absorber from the lower
+    /// arm to the chassis, a linear tyre at the contact patch, viscous friction in the arm pivots.
+    pub QuarterCar {
+        params { k_s: 30000.0, free_length: 0.61, c_s: 1500.0, k_t: 200000.0, c_t: 100.0, c_pivot: 2.0 }
+        gravity [0.0, -9.81];
+        body lower   { mass: 4.0, inertia: 0.05, at: [0.375, 0.14, 0.0] }
+        body upper   { mass: 2.5, inertia: 0.02, at: [0.41, 0.46, 0.0] }
+        body knuckle { mass: 18.0, inertia: 0.60, at: [0.62, 0.30, 0.0] }
+        revolute lower_pivot: ground[0.20, 0.15] ~ lower[-0.175, 0.01] { viscous: c_pivot };
+        revolute upper_pivot: ground[0.30, 0.45] ~ upper[-0.11, -0.01] { viscous: c_pivot };
+        revolute lower_ball: lower[0.175, -0.01] ~ knuckle[-0.07, -0.17];
+        revolute upper_ball: upper[0.11, 0.01] ~ knuckle[-0.10, 0.17];
+        spring coil: lower[0.1, 0.0] ~ ground[0.45, 0.60] { k: k_s, length: free_length };
+        damper shock: lower[0.1, 0.0] ~ ground[0.45, 0.60] { c: c_s };
+        force tyre: knuckle[0.0, -0.30] = [0.0, k_t * (0.0 - (knuckle.y - 0.3 * cos(knuckle.phi))) - c_t * knuckle.vy];
+        scene QuarterCarNoFriction without friction;
+        scene QuarterCarNoShock without shock;
+        scene QuarterCarNoCoil without coil;
+        scene QuarterCarNoTyre without tyre;
+        scene QuarterCarNoGravity without gravity;
+        scene QuarterCarBare without friction, shock, coil, tyre, gravity;
+    }
+}
+
+mechanism! {
+    /// A vehicle of four double-wishbone corners (the corner of `examples/double_wishbone_3d.rs`,
+    /// its y mirrored by `side` on the right) on a free chassis: lower and upper arms hinged to the
+    /// chassis with viscous pivot friction, ball joints to the upright, a tie rod to the chassis,
+    /// coil spring and shock absorber from the lower arm to the chassis, and a vertical linear
+    /// tyre at the wheel centre. Chassis frame at its centre of mass, 0.55 m above the road.
+    pub Vehicle {
+        spatial;
+        params { k_s: 35000.0, free_length: 0.67, c_s: 3000.0, k_t: 250000.0, c_t: 200.0, radius: 0.3126, c_pivot: 5.0 }
+        gravity [0.0, 0.0, -9.81];
+        body chassis { mass: 1200.0, inertia: [450.0, 1700.0, 1900.0], at: [0.0, 0.0, 0.55] }
+        part corner(x0, side) {
+            body lower { mass: 3.0, inertia: [0.06, 0.01, 0.06], at: [x0, side * 0.475, 0.14] }
+            body upper { mass: 2.0, inertia: [0.02, 0.005, 0.02], at: [x0 - 0.009, side * 0.505, 0.46] }
+            body upright { mass: 15.0, inertia: [0.5, 0.8, 0.5], at: [x0, side * 0.76, 0.30] }
+            revolute lower_pivot: chassis[x0, side * 0.25, 0.15 - 0.55] along [1.0, 0.0, 0.0]
+                ~ lower[0.0, side * (0.25 - 0.475), 0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
+            revolute upper_pivot: chassis[x0, side * 0.35, 0.45 - 0.55] along [1.0, 0.0, 0.0]
+                ~ upper[0.009, side * (0.35 - 0.505), -0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
+            spherical lower_ball: lower[0.0, side * (0.70 - 0.475), -0.01] ~ upright[0.0, side * (0.70 - 0.76), -0.17];
+            spherical upper_ball: upper[-0.009, side * (0.66 - 0.505), 0.01] ~ upright[-0.018, side * (0.66 - 0.76), 0.17];
+            distance tie_rod: chassis[x0 - 0.13, side * 0.25, 0.15 - 0.55] ~ upright[-0.13, side * (0.70 - 0.76), -0.17]
+                { length: sqrt(0.45^2 + 0.02^2) };
+            spring coil: lower[0.0, side * (0.60 - 0.475), 0.0] ~ chassis[x0, side * 0.55, 0.70 - 0.55] { k: k_s, length: free_length };
+            damper shock: lower[0.0, side * (0.60 - 0.475), 0.0] ~ chassis[x0, side * 0.55, 0.70 - 0.55] { c: c_s };
+            force tyre: upright[0.0, 0.0, 0.0] = [0.0, 0.0, k_t * (radius - upright.z) - c_t * upright.vz];
+        }
+        corner front_left(x0: 1.3, side: 1.0);
+        corner front_right(x0: 1.3, side: -1.0);
+        corner rear_left(x0: -1.4, side: 1.0);
+        corner rear_right(x0: -1.4, side: -1.0);
+        scene VehicleNoFriction without friction;
+        scene VehicleNoShock without shock;
+        scene VehicleNoTyre without tyre;
+        scene VehicleBare without friction, shock, coil, tyre, gravity;
+    }
+}
+
+/// One scene's costs.
+struct Row {
+    scene: &'static str,
+    leaves_out: &'static str,
+    ops: [u32; 4],
+    /// CPU time of one evaluation of the accelerations at the assembled design state (µs).
+    evaluation_us: f64,
+    /// CPU time of an RK4 step without drift correction (µs): four evaluations and the state
+    /// updates, the same work at every state.
+    step_us: f64,
+    /// CPU time of an RK4 step with the default projection onto the constraints (µs): its
+    /// Newton iterations depend on how fast the scene moves.
+    projected_us: f64,
+}
+
+/// The operations (+ − × ÷ and calls) of a generated function.
+fn ops(counts: &[OpCount], function: &str) -> u32 {
+    let c = counts.iter().find(|c| c.function.starts_with(function)).unwrap_or_else(|| panic!("no op count for {function}"));
+    c.add + c.mul + c.div + c.call
+}
+
+/// The functions whose operations a scene's row shows.
+const FUNCTIONS: [&str; 4] = ["forces", "forces_q", "forces_v", "accelerations"];
+
+/// Simulated time per timed run (s) and RK4's step (s).
+const RUN: f64 = 0.2;
+const STEP: f64 = 1e-3;
+
+fn measure<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    m: &M,
+    scene: &'static str,
+    leaves_out: &'static str,
+    ws: &mut Workspace<f64, NV, NC, N>,
+) -> Row
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(m, ws, &mut q, 0.0).unwrap_or_else(|e| panic!("{scene} assembles: {e}"));
+    let v = [0.0; NV];
+    let evaluation_us = median(|| {
+        let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
+        let start = Instant::now();
+        for _ in 0..EVALUATIONS {
+            m.accelerations(std::hint::black_box(&q), &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda)
+                .unwrap_or_else(|e| panic!("{scene}: {e}"));
+            std::hint::black_box(&vd);
+        }
+        start.elapsed().as_secs_f64() * 1e6 / EVALUATIONS as f64
+    });
+    let mut step = |correction: Correction<f64>| {
+        median(|| {
+            let options = SimulationOptions { correction, ..SimulationOptions::default() };
+            let mut rk4 = Rk4::new(STEP);
+            let start = Instant::now();
+            let stats = simulate(m, ws, &mut rk4, 0.0, &q, &v, &[RUN], &options, |s| {
+                assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
+            })
+            .unwrap_or_else(|e| panic!("{scene} runs: {e}"));
+            start.elapsed().as_secs_f64() * 1e6 / stats.steps as f64
+        })
+    };
+    let step_us = step(Correction::None);
+    let projected_us = step(SimulationOptions::default().correction);
+    Row { scene, leaves_out, ops: FUNCTIONS.map(|f| ops(M::OP_COUNTS, f)), evaluation_us, step_us, projected_us }
+}
+
+/// Evaluations per timed batch.
+const EVALUATIONS: u32 = 2000;
+
+/// The median of 7 timings.
+fn median(mut time: impl FnMut() -> f64) -> f64 {
+    let mut times: Vec<f64> = (0..7).map(|_| time()).collect();
+    times.sort_by(f64::total_cmp);
+    times[3]
+}
+
+fn quarter_car() -> Vec<Row> {
+    let mut ws = QuarterCar::workspace();
+    vec![
+        measure(&QuarterCar::default(), "QuarterCar", "—", &mut ws),
+        measure(&QuarterCarNoFriction::default(), "QuarterCarNoFriction", "friction", &mut ws),
+        measure(&QuarterCarNoShock::default(), "QuarterCarNoShock", "shock", &mut ws),
+        measure(&QuarterCarNoCoil::default(), "QuarterCarNoCoil", "coil", &mut ws),
+        measure(&QuarterCarNoTyre::default(), "QuarterCarNoTyre", "tyre", &mut ws),
+        measure(&QuarterCarNoGravity::default(), "QuarterCarNoGravity", "gravity", &mut ws),
+        measure(&QuarterCarBare::default(), "QuarterCarBare", "all five", &mut ws),
+    ]
+}
+
+fn vehicle() -> Vec<Row> {
+    let mut ws = Vehicle::workspace();
+    vec![
+        measure(&Vehicle::default(), "Vehicle", "—", &mut ws),
+        measure(&VehicleNoFriction::default(), "VehicleNoFriction", "friction", &mut ws),
+        measure(&VehicleNoShock::default(), "VehicleNoShock", "shock (×4)", &mut ws),
+        measure(&VehicleNoTyre::default(), "VehicleNoTyre", "tyre (×4)", &mut ws),
+        measure(&VehicleBare::default(), "VehicleBare", "all five", &mut ws),
+    ]
+}
+
+fn table(title: &str, rows: &[Row]) -> String {
+    let mut out = format!(
+        "**{title}**\n\n| scene | leaves out | forces | forces_q | forces_v | accelerations | evaluation (µs) | RK4 step (µs) | \
+         with projection (µs) |\n|---|---|---|---|---|---|---|---|---|\n"
+    );
+    for r in rows {
+        let [h, h_q, h_v, a] = r.ops;
+        out += &format!(
+            "| `{}` | {} | {h} | {h_q} | {h_v} | {a} | {:.2} | {:.2} | {:.2} |\n",
+            r.scene, r.leaves_out, r.evaluation_us, r.step_us, r.projected_us
+        );
+    }
+    out
+}
+
+fn main() {
+    let quarter = quarter_car();
+    let vehicle = vehicle();
+    let report = format!(
+        "{}\n{}\nOperations: + − × ÷ and calls of each generated function (`OP_COUNTS`); `accelerations` is the fused \
+         evaluation of Φ, D, γ, h and M before the sparse solve. Evaluation: one call of `accelerations` at the \
+         assembled design position at rest (median of 7 batches of {EVALUATIONS}). RK4 step: median of 7 runs of {RUN} s \
+         at {STEP} s from there, without drift correction and with the default projection (whose Newton iterations \
+         depend on how fast the scene moves).\n",
+        table(
+            &format!("Planar double A-arm corner ({} bodies, {} constraint rows)", QuarterCar::N_BODIES, QuarterCar::NC),
+            &quarter
+        ),
+        table(&format!("Vehicle of four double-wishbone corners ({} spatial bodies, {} constraint rows)", Vehicle::N_BODIES, Vehicle::NC), &vehicle),
+    );
+    print!("{report}");
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("results/scenes.md");
+    std::fs::write(&out, &report).unwrap_or_else(|e| panic!("writing {}: {e}", out.display()));
+    eprintln!("wrote {}", out.display());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The vehicle is a sane model: at rest under gravity its tyres carry its weight, its left and
+    /// right corners are mirror images, and its chassis sits within 2 cm of its design height.
+    #[test]
+    fn the_vehicle_rests_on_its_four_tyres_symmetrically() {
+        let m = Vehicle::default();
+        let mut ws = Vehicle::workspace();
+        let mut q = m.initial_positions();
+        let mut lambda = [0.0; Vehicle::NC];
+        StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("the vehicle has a rest state");
+        let z = |b: SpatialBody| b.position(&q).z;
+        let uprights = [Vehicle::FRONT_LEFT_UPRIGHT, Vehicle::FRONT_RIGHT_UPRIGHT, Vehicle::REAR_LEFT_UPRIGHT, Vehicle::REAR_RIGHT_UPRIGHT];
+        let tyres: f64 = uprights.iter().map(|&u| m.k_t * (m.radius - z(u))).sum();
+        let weight: f64 = (0..Vehicle::N_BODIES).map(|k| m.mass_of(SpatialBody::new(k, "")) * 9.81).sum();
+        // The tyre forces balance the weight to the static solver's tolerance (1e-10 relative).
+        assert!((tyres - weight).abs() <= 1e-6 * weight, "tyres {tyres} N, weight {weight} N");
+        // Mirror images: the same heights left and right, to the solver's tolerance.
+        assert!((z(uprights[0]) - z(uprights[1])).abs() < 1e-9 && (z(uprights[2]) - z(uprights[3])).abs() < 1e-9);
+        let chassis = z(Vehicle::CHASSIS);
+        assert!((chassis - 0.55).abs() < 0.02, "chassis at {chassis} m");
+        assert_eq!(Vehicle::BODY_NAMES[1], "front_left.lower", "names read as written");
+    }
+
+    /// Nothing is paid for what a scene leaves out: every function of every scene costs at most
+    /// the base's operations and at least those of the scene that leaves out everything, and
+    /// every effect costs something somewhere. (The costs do not add up exactly: effects share
+    /// subexpressions — a coil and a shock on the same points share the strut's length and
+    /// direction — and the additions that combine their terms; measured on the planar corner's
+    /// `forces_v`, friction and shock save 1 and 36 operations alone and 39 with the rest.)
+    /// The planar corner without its five effects has no force operations left.
+    #[test]
+    fn a_scene_costs_the_base_less_its_effects() {
+        let quarter = [
+            QuarterCarNoFriction::OP_COUNTS,
+            QuarterCarNoShock::OP_COUNTS,
+            QuarterCarNoCoil::OP_COUNTS,
+            QuarterCarNoTyre::OP_COUNTS,
+            QuarterCarNoGravity::OP_COUNTS,
+        ];
+        let vehicle = [VehicleNoFriction::OP_COUNTS, VehicleNoShock::OP_COUNTS, VehicleNoTyre::OP_COUNTS];
+        let cases: [(&[OpCount], &[&[OpCount]], &[OpCount]); 2] =
+            [(QuarterCar::OP_COUNTS, &quarter, QuarterCarBare::OP_COUNTS), (Vehicle::OP_COUNTS, &vehicle, VehicleBare::OP_COUNTS)];
+        for (base, singles, bare) in cases {
+            for f in FUNCTIONS {
+                let (all, none) = (ops(base, f), ops(bare, f));
+                for s in singles {
+                    assert!(none <= ops(s, f) && ops(s, f) <= all, "{f}: {none} ≤ {} ≤ {all}", ops(s, f));
+                }
+                assert!(none < all, "{f}: the effects cost something");
+            }
+            for (k, s) in singles.iter().enumerate() {
+                assert!(FUNCTIONS.iter().any(|f| ops(s, f) < ops(base, f)), "effect {k} costs something");
+            }
+        }
+        for f in ["forces", "forces_q", "forces_v"] {
+            assert_eq!(ops(QuarterCarBare::OP_COUNTS, f), 0, "{f}");
+        }
+    }
+}
