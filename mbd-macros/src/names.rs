@@ -116,8 +116,16 @@ mod tests {
         names.record("corner_2_upper_arm", "corner[2].upper_arm".into());
         assert_eq!(names.rewrite("unknown body `l_3` (did you mean `l_30`?)"), "unknown body `l[3]` (did you mean `l_30`?)");
         assert_eq!(names.rewrite("corner_2_upper_arm.phi"), "corner[2].upper_arm.phi");
-        let tokens = quote!(const N: &[&str] = &["l_3.x", "b.y"]; const K: usize = 3; fn l_3() {});
-        let want = quote!(const N: &[&str] = &["l[3].x", "b.y"]; const K: usize = 3; fn l_3() {});
+        let tokens = quote!(
+            const N: &[&str] = &["l_3.x", "b.y"];
+            const K: usize = 3;
+            fn l_3() {}
+        );
+        let want = quote!(
+            const N: &[&str] = &["l[3].x", "b.y"];
+            const K: usize = 3;
+            fn l_3() {}
+        );
         assert_eq!(names.rewrite_strings(tokens).to_string(), want.to_string());
     }
 }

@@ -98,7 +98,9 @@ fn definition(s: &[TokenTree]) -> syn::Result<Part> {
         _ => return Err(syn::Error::new(at(2), format!("{shape}: the parameters in parentheses, `()` for none"))),
     };
     let body = match (s.get(3), s.get(4), s.len()) {
-        (Some(TokenTree::Group(g)), _, 4) | (Some(TokenTree::Group(g)), Some(TokenTree::Punct(_)), 5) if g.delimiter() == Delimiter::Brace => {
+        (Some(TokenTree::Group(g)), _, 4) | (Some(TokenTree::Group(g)), Some(TokenTree::Punct(_)), 5)
+            if g.delimiter() == Delimiter::Brace =>
+        {
             g.stream()
         }
         _ => return Err(syn::Error::new(at(3), format!("{shape}: the part's statements in braces"))),
@@ -195,7 +197,10 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
         };
         if !part.params.contains(&param) {
             let hint = crate::parse::closest(&param.to_string(), &wanted, &[]);
-            return Err(syn::Error::new(param.span(), format!("part `{kind}` has no parameter `{param}`{hint}; it takes {}", list(&wanted))));
+            return Err(syn::Error::new(
+                param.span(),
+                format!("part `{kind}` has no parameter `{param}`{hint}; it takes {}", list(&wanted)),
+            ));
         }
         if given.iter().any(|(p, _)| *p == param) {
             return Err(syn::Error::new(param.span(), format!("parameter `{param}` is given twice")));
@@ -512,7 +517,10 @@ mod tests {
         let body = quote!(body b { mass: 1.0, inertia: 0.1 });
         let cases = [
             (quote!(M { part arm(x) { #body } arm a(y: 1.0); }), "part `arm` has no parameter `y` (did you mean `x`?); it takes `x`"),
-            (quote!(M { part arm(x, side) { #body } arm a(x: 1.0); }), "instance `a` of part `arm` needs a value for each parameter: add `side: ...`"),
+            (
+                quote!(M { part arm(x, side) { #body } arm a(x: 1.0); }),
+                "instance `a` of part `arm` needs a value for each parameter: add `side: ...`",
+            ),
             (quote!(M { part arm(x) { #body } arm a(x: 1.0, x: 2.0); }), "parameter `x` is given twice"),
             (quote!(M { part arm(x) { #body } arm a(x 1.0); }), "expected `parameter: value`; part `arm` takes `x`"),
             (quote!(M { part arm() { #body } arm a(); arm a(); }), "instance `a` is made twice"),

@@ -73,7 +73,8 @@ pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec
         for item in &left_out {
             let word = item.to_string();
             let group: Vec<String> = names.made_from(&word).into_iter().filter(|l| labels.contains(l)).collect();
-            let known = labels.contains(&word) || !group.is_empty() || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
+            let known =
+                labels.contains(&word) || !group.is_empty() || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
             if !known {
                 let written: Vec<String> = labels.iter().map(|l| names.written(l)).collect();
                 let names: Vec<&str> = written.iter().map(String::as_str).collect();
@@ -93,7 +94,8 @@ pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec
         }
         let no_gravity = left_out.iter().any(|i| i == "gravity");
         let without = |s: &Vec<TokenTree>| {
-            !(label(s).is_some_and(|l| left_out_labels.contains(&l.to_string())) || (no_gravity && keyword(s).is_some_and(|k| k == "gravity")))
+            !(label(s).is_some_and(|l| left_out_labels.contains(&l.to_string()))
+                || (no_gravity && keyword(s).is_some_and(|k| k == "gravity")))
         };
         let friction = left_out.iter().any(|i| i == "friction");
         let body_tokens: TokenStream =

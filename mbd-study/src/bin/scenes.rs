@@ -202,11 +202,11 @@ fn main() {
          assembled design position at rest (median of 7 batches of {EVALUATIONS}). RK4 step: median of 7 runs of {RUN} s \
          at {STEP} s from there, without drift correction and with the default projection (whose Newton iterations \
          depend on how fast the scene moves).\n",
+        table(&format!("Planar double A-arm corner ({} bodies, {} constraint rows)", QuarterCar::N_BODIES, QuarterCar::NC), &quarter),
         table(
-            &format!("Planar double A-arm corner ({} bodies, {} constraint rows)", QuarterCar::N_BODIES, QuarterCar::NC),
-            &quarter
+            &format!("Vehicle of four double-wishbone corners ({} spatial bodies, {} constraint rows)", Vehicle::N_BODIES, Vehicle::NC),
+            &vehicle
         ),
-        table(&format!("Vehicle of four double-wishbone corners ({} spatial bodies, {} constraint rows)", Vehicle::N_BODIES, Vehicle::NC), &vehicle),
     );
     print!("{report}");
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("results/scenes.md");
