@@ -257,7 +257,9 @@ mod tests {
             QuarterCarNoGravity::OP_COUNTS,
         ];
         let vehicle = [VehicleNoFriction::OP_COUNTS, VehicleNoShock::OP_COUNTS, VehicleNoTyre::OP_COUNTS];
-        let cases: [(&[OpCount], &[&[OpCount]], &[OpCount]); 2] =
+        // (the base's counts, each single-effect scene's, the bare scene's)
+        type Counts = &'static [OpCount];
+        let cases: [(Counts, &[Counts], Counts); 2] =
             [(QuarterCar::OP_COUNTS, &quarter, QuarterCarBare::OP_COUNTS), (Vehicle::OP_COUNTS, &vehicle, VehicleBare::OP_COUNTS)];
         for (base, singles, bare) in cases {
             for f in FUNCTIONS {
