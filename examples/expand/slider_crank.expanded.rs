@@ -92,16 +92,31 @@ impl SliderCrank {
     /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
     #[inline]
     pub fn jacobian_values(&self, q: &[f64; 9], t: f64, out: &mut [f64; 23]) {
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v13: f64 = (-(v5 * s_crank));
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v32: f64 = (-(v24 * s_rod));
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         out[0] = (-1f64);
         out[1] = v13;
         out[2] = (-1f64);
@@ -140,27 +155,78 @@ impl SliderCrank {
         nu: &mut [f64; 9],
         gamma: &mut [f64; 9],
     ) {
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * v[8]);
-        let v126: f64 = (c_slider * v[8]);
-        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
-        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
-        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
-        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
-        let v151: f64 = (v[6] * v126);
-        let v152: f64 = (v[8] * v119);
-        let v158: f64 = (v[7] * v119);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
+        v119 = (s_slider * v[8]);
+        v126 = (c_slider * v[8]);
+        v134 = (v5 * (v[2] * (c_crank * v[2])));
+        v138 = (v5 * (v[2] * (s_crank * v[2])));
+        v141 = (v24 * (v[5] * (c_rod * v[5])));
+        v147 = (v24 * (v[5] * (s_rod * v[5])));
+        v151 = (v[6] * v126);
+        v152 = (v[8] * v119);
+        v158 = (v[7] * v119);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -452,17 +518,33 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
         for row in k.iter_mut() {
             *row = [0f64; 9];
         }
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v203: f64 = (s_slider * lambda[6]);
-        let v205: f64 = (c_slider * lambda[6]);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            s_slider,
+            c_slider,
+            v203,
+            v205,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v203 = (s_slider * lambda[6]);
+        v205 = (c_slider * lambda[6]);
         k[2][2] = (-((v12 * lambda[3])
             + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
         k[5][5] = (-((v31 * lambda[5])
@@ -873,27 +955,78 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut gamma = [0f64; 9];
         let mut h = [0f64; 9];
         let mut m = [0f64; 9];
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * v[8]);
-        let v126: f64 = (c_slider * v[8]);
-        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
-        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
-        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
-        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
-        let v151: f64 = (v[6] * v126);
-        let v152: f64 = (v[8] * v119);
-        let v158: f64 = (v[7] * v119);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
+        v119 = (s_slider * v[8]);
+        v126 = (c_slider * v[8]);
+        v134 = (v5 * (v[2] * (c_crank * v[2])));
+        v138 = (v5 * (v[2] * (s_crank * v[2])));
+        v141 = (v24 * (v[5] * (c_rod * v[5])));
+        v147 = (v24 * (v[5] * (s_rod * v[5])));
+        v151 = (v[6] * v126);
+        v152 = (v[8] * v119);
+        v158 = (v[7] * v119);
         jv[0] = (-1f64);
         jv[1] = v13;
         jv[2] = (-1f64);
@@ -1060,18 +1193,51 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut m = [0f64; 9];
         {
             let q: &[f64; 9] = q;
-            let v5: f64 = (self.r / 2f64);
-            let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-            let v10: f64 = (v5 * c_crank);
-            let v12: f64 = (v5 * s_crank);
-            let v13: f64 = (-v12);
-            let v24: f64 = (self.l / 2f64);
-            let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-            let v29: f64 = (v24 * c_rod);
-            let v31: f64 = (v24 * s_rod);
-            let v32: f64 = (-v31);
-            let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-            let v81: f64 = (-c_slider);
+            let (
+                v5,
+                s_crank,
+                c_crank,
+                v10,
+                v12,
+                v13,
+                v24,
+                s_rod,
+                c_rod,
+                v29,
+                v31,
+                v32,
+                s_slider,
+                c_slider,
+                v81,
+            ): (
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+                f64,
+            );
+            v5 = (self.r / 2f64);
+            (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+            v10 = (v5 * c_crank);
+            v12 = (v5 * s_crank);
+            v13 = (-v12);
+            v24 = (self.l / 2f64);
+            (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+            v29 = (v24 * c_rod);
+            v31 = (v24 * s_rod);
+            v32 = (-v31);
+            (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+            v81 = (-c_slider);
             phi[0] = (-(q[0] - v10));
             phi[1] = (-(q[1] - v12));
             phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -1174,16 +1340,31 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut nu = [0f64; 9];
         let mut m = [0f64; 9];
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v13: f64 = (-(v5 * s_crank));
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v32: f64 = (-(v24 * s_rod));
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         jv[0] = (-1f64);
         jv[1] = v13;
         jv[2] = (-1f64);
@@ -1318,18 +1499,35 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         phi: &mut [f64; 9],
         s: &mut [f64; 135],
     ) {
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -1379,22 +1577,63 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             *x = 0f64;
         }
         let mut m = [0f64; 9usize];
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v53: f64 = (s_slider * q[6]);
-        let v54: f64 = (c_slider * q[7]);
-        let v81: f64 = (-c_slider);
-        let v203: f64 = (s_slider * lambda[6]);
-        let v205: f64 = (c_slider * lambda[6]);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v53,
+            v54,
+            v81,
+            v203,
+            v205,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v53 = (s_slider * q[6]);
+        v54 = (c_slider * q[7]);
+        v81 = (-c_slider);
+        v203 = (s_slider * lambda[6]);
+        v205 = (c_slider * lambda[6]);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -2416,15 +2655,29 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     fn normalize_positions(&self, q: &mut [f64; 9]) {}
     #[inline]
     fn constraints(&self, q: &[f64; 9], t: f64, phi: &mut [f64; 9]) {
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            s_slider,
+            c_slider,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -2440,16 +2693,31 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         for row in d.iter_mut() {
             *row = [0f64; 9];
         }
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v13: f64 = (-(v5 * s_crank));
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v32: f64 = (-(v24 * s_rod));
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         d[0][0] = (-1f64);
         d[0][2] = v13;
         d[1][1] = (-1f64);
@@ -2488,20 +2756,57 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     }
     #[inline]
     fn gamma(&self, q: &[f64; 9], v: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v119: f64 = (s_slider * v[8]);
-        let v126: f64 = (c_slider * v[8]);
-        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
-        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
-        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
-        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
-        let v151: f64 = (v[6] * v126);
-        let v152: f64 = (v[8] * v119);
-        let v158: f64 = (v[7] * v119);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v24,
+            s_rod,
+            c_rod,
+            s_slider,
+            c_slider,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v119 = (s_slider * v[8]);
+        v126 = (c_slider * v[8]);
+        v134 = (v5 * (v[2] * (c_crank * v[2])));
+        v138 = (v5 * (v[2] * (s_crank * v[2])));
+        v141 = (v24 * (v[5] * (c_rod * v[5])));
+        v147 = (v24 * (v[5] * (s_rod * v[5])));
+        v151 = (v[6] * v126);
+        v152 = (v[8] * v119);
+        v158 = (v[7] * v119);
         gamma[0] = v134;
         gamma[1] = v138;
         gamma[2] = (v134 + v141);
@@ -2524,18 +2829,35 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         step: &mut [f64; 9],
     ) -> ::core::option::Option<::mbd::PositionStep> {
         let mut jv = [0f64; 23];
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -2608,18 +2930,35 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         for row in d.iter_mut() {
             *row = [0f64; 9];
         }
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));
@@ -2667,27 +3006,78 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         for row in d.iter_mut() {
             *row = [0f64; 9];
         }
-        let v5: f64 = (self.r / 2f64);
-        let (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        let v10: f64 = (v5 * c_crank);
-        let v12: f64 = (v5 * s_crank);
-        let v13: f64 = (-v12);
-        let v24: f64 = (self.l / 2f64);
-        let (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        let v29: f64 = (v24 * c_rod);
-        let v31: f64 = (v24 * s_rod);
-        let v32: f64 = (-v31);
-        let (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        let v81: f64 = (-c_slider);
-        let v119: f64 = (s_slider * v[8]);
-        let v126: f64 = (c_slider * v[8]);
-        let v134: f64 = (v5 * (v[2] * (c_crank * v[2])));
-        let v138: f64 = (v5 * (v[2] * (s_crank * v[2])));
-        let v141: f64 = (v24 * (v[5] * (c_rod * v[5])));
-        let v147: f64 = (v24 * (v[5] * (s_rod * v[5])));
-        let v151: f64 = (v[6] * v126);
-        let v152: f64 = (v[8] * v119);
-        let v158: f64 = (v[7] * v119);
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v13 = (-v12);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        v32 = (-v31);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v81 = (-c_slider);
+        v119 = (s_slider * v[8]);
+        v126 = (c_slider * v[8]);
+        v134 = (v5 * (v[2] * (c_crank * v[2])));
+        v138 = (v5 * (v[2] * (s_crank * v[2])));
+        v141 = (v24 * (v[5] * (c_rod * v[5])));
+        v147 = (v24 * (v[5] * (s_rod * v[5])));
+        v151 = (v[6] * v126);
+        v152 = (v[8] * v119);
+        v158 = (v[7] * v119);
         phi[0] = (-(q[0] - v10));
         phi[1] = (-(q[1] - v12));
         phi[2] = ((v10 + q[0]) - (q[3] - v29));

@@ -282,6 +282,11 @@ impl Emitter<'_> {
     }
 
     /// Straight-line statements computing every output, and their operation count.
+    ///
+    /// The temporaries are declared first, [`DECLARED_TOGETHER`] to a `let`, and assigned after:
+    /// a `let` per temporary opens a debug-info scope inside the previous one, and LLVM recursed
+    /// through 27 000 of them until rustc's stack overflowed (a debug build of a 13-body spatial
+    /// vehicle, whose `forces_q` has that many).
     pub fn body(&self, outputs: &[Output]) -> (TokenStream, Ops) {
         let plan = self.plan(outputs);
         let real = self.real();
@@ -300,12 +305,12 @@ impl Emitter<'_> {
                         ops.call += 1;
                         let a = self.expr(arg, &plan, &mut ops);
                         let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
-                        stmts.push(quote!(let (#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
+                        stmts.push(quote!((#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
                     }
                 }
                 None => {
                     let def = self.definition(id, &plan, &mut ops);
-                    stmts.push(quote!(let #name: #real = #def;));
+                    stmts.push(quote!(#name = #def;));
                 }
             }
         }
@@ -314,9 +319,20 @@ impl Emitter<'_> {
             let value = self.expr(o.node, &plan, &mut ops);
             stmts.push(quote!(#target = #value;));
         }
-        (quote!(#(#stmts)*), ops)
+        let names: Vec<&Ident> = plan.bound.values().collect();
+        let declarations = names.chunks(DECLARED_TOGETHER).map(|chunk| match chunk {
+            [one] => quote!(let #one: #real;),
+            _ => {
+                let types = chunk.iter().map(|_| &real);
+                quote!(let (#(#chunk),*): (#(#types),*);)
+            }
+        });
+        (quote!(#(#declarations)* #(#stmts)*), ops)
     }
 }
+
+/// Temporaries declared by one `let` in [`Emitter::body`].
+const DECLARED_TOGETHER: usize = 64;
 
 /// Rejects constants that are not finite in the scalar type (e.g. `ln(0)` folded at compile
 /// time, or 1e39 in f32): they would make every evaluation NaN or infinite. A parameter's

@@ -2,11 +2,11 @@
 //! with scenes that leave out one effect at a time (and one that leaves out all of them), timed
 //! in the same run. Per scene: the operations of the generated force functions and of one
 //! evaluation of the accelerations (from the mechanism's `OP_COUNTS`), the CPU time of that
-//! evaluation, and of an RK4 step of 1 ms without and with projection onto the constraints
-//! (medians of 7; from the assembled design position at rest).
+//! evaluation, and of an RK4 step of 1 ms without and with projection onto the constraints (from
+//! the assembled design position at rest; medians of 15 rounds, each timing every scene once).
 //!
-//! Run: `cargo run --release -p mbd-study --bin scenes` (about 2 s once built; the build, 12
-//! generated types of which 5 are the 13-body vehicle, takes about 6 minutes). Writes
+//! Run: `cargo run --release -p mbd-study --bin scenes` (about 8 s once built; the release build
+//! of its 12 generated types, 5 of them the 13-body vehicle, took 5 min 25 s). Writes
 //! `mbd-study/results/scenes.md`.
 
 use std::time::Instant;
@@ -78,6 +78,7 @@ mechanism! {
 }
 
 /// One scene's costs.
+#[derive(Clone, Copy)]
 struct Row {
     scene: &'static str,
     leaves_out: &'static str,
@@ -117,7 +118,7 @@ where
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(m, ws, &mut q, 0.0).unwrap_or_else(|e| panic!("{scene} assembles: {e}"));
     let v = [0.0; NV];
-    let evaluation_us = median(|| {
+    let evaluation_us = {
         let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
         let start = Instant::now();
         for _ in 0..EVALUATIONS {
@@ -126,18 +127,16 @@ where
             std::hint::black_box(&vd);
         }
         start.elapsed().as_secs_f64() * 1e6 / EVALUATIONS as f64
-    });
+    };
     let mut step = |correction: Correction<f64>| {
-        median(|| {
-            let options = SimulationOptions { correction, ..SimulationOptions::default() };
-            let mut rk4 = Rk4::new(STEP);
-            let start = Instant::now();
-            let stats = simulate(m, ws, &mut rk4, 0.0, &q, &v, &[RUN], &options, |s| {
-                assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
-            })
-            .unwrap_or_else(|e| panic!("{scene} runs: {e}"));
-            start.elapsed().as_secs_f64() * 1e6 / stats.steps as f64
+        let options = SimulationOptions { correction, ..SimulationOptions::default() };
+        let mut rk4 = Rk4::new(STEP);
+        let start = Instant::now();
+        let stats = simulate(m, ws, &mut rk4, 0.0, &q, &v, &[RUN], &options, |s| {
+            assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
         })
+        .unwrap_or_else(|e| panic!("{scene} runs: {e}"));
+        start.elapsed().as_secs_f64() * 1e6 / stats.steps as f64
     };
     let step_us = step(Correction::None);
     let projected_us = step(SimulationOptions::default().correction);
@@ -147,11 +146,26 @@ where
 /// Evaluations per timed batch.
 const EVALUATIONS: u32 = 2000;
 
-/// The median of 7 timings.
-fn median(mut time: impl FnMut() -> f64) -> f64 {
-    let mut times: Vec<f64> = (0..7).map(|_| time()).collect();
-    times.sort_by(f64::total_cmp);
-    times[3]
+/// Rounds of timing: each round times every scene once, so that a slow phase of the machine
+/// falls on all scenes alike, and each time is the median over the rounds.
+const ROUNDS: usize = 15;
+
+/// Each scene's row with its times the medians of [`ROUNDS`] rounds of `round`.
+fn rounds(round: impl Fn() -> Vec<Row>) -> Vec<Row> {
+    let all: Vec<Vec<Row>> = (0..ROUNDS).map(|_| round()).collect();
+    let median = |k: usize, time: fn(&Row) -> f64| {
+        let mut times: Vec<f64> = all.iter().map(|r| time(&r[k])).collect();
+        times.sort_by(f64::total_cmp);
+        times[ROUNDS / 2]
+    };
+    (0..all[0].len())
+        .map(|k| Row {
+            evaluation_us: median(k, |r| r.evaluation_us),
+            step_us: median(k, |r| r.step_us),
+            projected_us: median(k, |r| r.projected_us),
+            ..all[0][k]
+        })
+        .collect()
 }
 
 fn quarter_car() -> Vec<Row> {
@@ -194,14 +208,14 @@ fn table(title: &str, rows: &[Row]) -> String {
 }
 
 fn main() {
-    let quarter = quarter_car();
-    let vehicle = vehicle();
+    let quarter = rounds(quarter_car);
+    let vehicle = rounds(vehicle);
     let report = format!(
         "{}\n{}\nOperations: + − × ÷ and calls of each generated function (`OP_COUNTS`); `accelerations` is the fused \
          evaluation of Φ, D, γ, h and M before the sparse solve. Evaluation: one call of `accelerations` at the \
-         assembled design position at rest (median of 7 batches of {EVALUATIONS}). RK4 step: median of 7 runs of {RUN} s \
-         at {STEP} s from there, without drift correction and with the default projection (whose Newton iterations \
-         depend on how fast the scene moves).\n",
+         assembled design position at rest (a batch of {EVALUATIONS}). RK4 step: a run of {RUN} s at {STEP} s from \
+         there, without drift correction and with the default projection (whose Newton iterations depend on how fast \
+         the scene moves). Each time is the median of {ROUNDS} rounds, each round timing every scene once.\n",
         table(&format!("Planar double A-arm corner ({} bodies, {} constraint rows)", QuarterCar::N_BODIES, QuarterCar::NC), &quarter),
         table(
             &format!("Vehicle of four double-wishbone corners ({} spatial bodies, {} constraint rows)", Vehicle::N_BODIES, Vehicle::NC),
