@@ -156,6 +156,17 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
             None => pieces.push((true, s)),
         }
     }
+    // An instance's name is its own: `front_left.x` cannot be both a body's coordinate and a member.
+    for (own_statement, piece) in &pieces {
+        let declared = match piece.as_slice() {
+            [TokenTree::Ident(k), TokenTree::Ident(b), ..] if *own_statement && k == "body" => Some(b),
+            _ if *own_statement => label(piece),
+            _ => None,
+        };
+        if let Some(d) = declared.filter(|d| namespaces.contains_key(&d.to_string())) {
+            return Err(syn::Error::new(d.span(), format!("`{}` is already the name of a part's instance", names.written(&d.to_string()))));
+        }
+    }
     let mut tokens = Vec::new();
     for (own_statement, piece) in pieces {
         if own_statement {
@@ -524,6 +535,10 @@ mod tests {
             (quote!(M { part arm(x) { #body } arm a(x: 1.0, x: 2.0); }), "parameter `x` is given twice"),
             (quote!(M { part arm(x) { #body } arm a(x 1.0); }), "expected `parameter: value`; part `arm` takes `x`"),
             (quote!(M { part arm() { #body } arm a(); arm a(); }), "instance `a` is made twice"),
+            (
+                quote!(M { part arm() { #body } arm a(); body a { mass: 1.0, inertia: 0.1 } }),
+                "`a` is already the name of a part's instance",
+            ),
             (quote!(M { part arm() { #body } amr a(); }), "unknown part `amr` (did you mean `arm`?): the parts are arm"),
             (quote!(M { part arm() { #body } arm a(); fix a.bb.x; }), "`a` has no `bb` (did you mean `b`?); it declares `b`"),
             (quote!(M { part arm() { arm inner(); } arm a(); }), "part `arm` uses itself (arm → arm)"),
