@@ -98,6 +98,27 @@ mbd::mechanism! {
     }
 }
 
+mbd::mechanism! {
+    /// Every non-smooth function and the conditional, in a driver (so in Φ, ν and γ) and in
+    /// forces of coordinates and velocities (so in h, ∂h/∂q, ∂h/∂q̇), with kinks the random samples
+    /// land on either side of. Three bodies, seven rows: two degrees of freedom.
+    pub EveryKink {
+        params { k: 400.0, c: 6.0, stop: 0.9, w: 2.0 }
+        gravity [0.0, -9.81];
+        body arm   { mass: 1.0, inertia: 0.1, at: [0.5, 0.0, 0.0] }
+        body block { mass: 0.5, inertia: 0.02, at: [1.0, 0.0, 0.0] }
+        body cam   { mass: 0.3, inertia: 0.01, at: [2.0, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ arm[-0.5, 0.0];
+        translational arm[0.0, 0.0] along [1.0, 0.0] ~ block[0.0, 0.0] along [1.0, 0.0];
+        revolute ground[2.0, 0.0] ~ cam[0.0, 0.0];
+        drive cam.phi = if t > 1.0 { deg(30.0) * (2.0 * t - 1.0) } else { deg(30.0) * t^2 } + 0.1 * clamp(sin(w * t), -0.5, 0.5);
+        force block[0.0, 0.0] = [-k * max(block.x - stop, 0.0)^1.5 - c * abs(block.vx) * sign(block.vx), 10.0 * clamp(arm.phi, -0.2, 0.2)];
+        torque arm = (if arm.omega > 0.0 { -c * arm.omega } else { -2.0 * c * arm.omega }) + min(arm.phi, cam.phi);
+        torque block = if block.y <= arm.y { 3.0 } else { -abs(block.omega)^3 } + max(block.phi, -block.phi);
+        spring arm[0.5, 0.0] ~ cam[0.2, 0.0] { k: 50.0, length: 0.3, force: 20.0 * min(cam.omega, 1.0) };
+    }
+}
+
 const SAMPLES: usize = 200;
 
 /// Runs the oracle's Python module `module` with `args`; returns (success, stdout + stderr).
@@ -216,6 +237,7 @@ fn casadi_oracle() {
         samples!(pendulum_chain16::PendulumChain16, 22),
         samples!(EveryFriction, 23),
         samples!(EveryForce, 20),
+        samples!(EveryKink, 24),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
     let (ok, text) = oracle(&py, "mbd_oracle.compare", &args);

@@ -13,7 +13,7 @@ use syn::Ident;
 
 use crate::formulation::Formulation;
 use crate::model::{Model, Scalar};
-use crate::sym::{Func, Graph, Id, Node, Var};
+use crate::sym::{Cmp, Func, Graph, Id, Node, Var};
 
 /// Operation counts of one emitted function (see `mbd_runtime::OpCount`).
 #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
@@ -277,6 +277,17 @@ impl Emitter<'_> {
                 let f = call("atan2");
                 let (y, x) = (self.expr(y, plan, ops), self.expr(x, plan, ops));
                 quote!(#f(#y, #x))
+            }
+            // A branch read only here is computed inside it; a shared one is a temporary. A
+            // comparison counts as an addition.
+            Node::Select(cmp, a, b, x, y) => {
+                ops.add += 1;
+                let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                let (x, y) = (self.expr(x, plan, ops), self.expr(y, plan, ops));
+                match cmp {
+                    Cmp::Gt => quote!((if #a > #b { #x } else { #y })),
+                    Cmp::Ge => quote!((if #a >= #b { #x } else { #y })),
+                }
             }
         }
     }

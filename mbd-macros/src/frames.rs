@@ -12,7 +12,7 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use crate::model::{BodyRef, Coord, Loc, MBin, MExpr, Model, Space, Vel};
+use crate::model::{BodyRef, Coord, Kink, Loc, MBin, MExpr, Model, Space, Vel};
 use crate::sym::{Func, Graph, Id, Node, Var};
 
 /// How body frames depend on the generalized coordinates.
@@ -114,6 +114,20 @@ impl<'m> Builder<'m> {
                 let y = self.expr(y);
                 let x = self.expr(x);
                 self.g.atan2(y, x)
+            }
+            MExpr::Kink(k, args) => {
+                let a: Vec<Id> = args.iter().map(|a| self.expr(a)).collect();
+                match k {
+                    Kink::Abs => self.g.abs(a[0]),
+                    Kink::Sign => self.g.sign(a[0]),
+                    Kink::Min => self.g.min(a[0], a[1]),
+                    Kink::Max => self.g.max(a[0], a[1]),
+                    Kink::Clamp => self.g.clamp(a[0], a[1], a[2]),
+                }
+            }
+            MExpr::If(cmp, e) => {
+                let [a, b, x, y] = [0, 1, 2, 3].map(|i| self.expr(&e[i]));
+                self.g.select(*cmp, a, b, x, y)
             }
         }
     }

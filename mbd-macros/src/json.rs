@@ -6,6 +6,7 @@
 use serde_json::{json, Value};
 
 use crate::model::{BodyRef, Inertia, Loc, MBin, MExpr, Model, Space};
+use crate::sym::Cmp;
 
 /// What a kind's JSON needs: the model (names) and the first row of each constraint.
 pub struct Ctx<'a> {
@@ -41,6 +42,20 @@ impl Ctx<'_> {
             }
             MExpr::Call(f, a) => json!([f.name(), self.expr(a)]),
             MExpr::Atan2(y, x) => json!(["atan2", self.expr(y), self.expr(x)]),
+            MExpr::Kink(k, args) => {
+                let mut v = vec![json!(k.name())];
+                v.extend(args.iter().map(|a| self.expr(a)));
+                Value::Array(v)
+            }
+            MExpr::If(cmp, e) => {
+                let op = match cmp {
+                    Cmp::Gt => "if_gt",
+                    Cmp::Ge => "if_ge",
+                };
+                let mut v = vec![json!(op)];
+                v.extend(e.iter().map(|a| self.expr(a)));
+                Value::Array(v)
+            }
         }
     }
 

@@ -10,8 +10,8 @@ use syn::{Attribute, Ident, Visibility};
 use crate::elements::spatial::{self, Marker};
 use crate::elements::{self, drive, drive_angle, drive_distance, fix, user, Constraint, Driven};
 use crate::forces::{applied, bushing, point_to_point, rotational, torque, ForceElement};
-use crate::parse::{self, AxisRef, BinOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
-use crate::sym::Func;
+use crate::parse::{self, AxisRef, BinOp, CmpOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
+use crate::sym::{Cmp, Func};
 
 /// The errors of one expansion, combined into one at the end.
 #[derive(Default)]
@@ -200,6 +200,80 @@ pub enum MExpr {
     Bin(MBin, Box<MExpr>, Box<MExpr>),
     Call(Func, Box<MExpr>),
     Atan2(Box<MExpr>, Box<MExpr>),
+    /// `abs`, `sign`, `min`, `max` or `clamp` of its arguments.
+    Kink(Kink, Vec<MExpr>),
+    /// `if a cmp b { x } else { y }`, `<` and `<=` written as `>` and `>=` with the operands
+    /// swapped: `[a, b, x, y]`.
+    If(Cmp, Box<[MExpr; 4]>),
+}
+
+/// The non-smooth functions (`sym::Graph::abs` … define them and their derivatives at the kink).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kink {
+    Abs,
+    Sign,
+    Min,
+    Max,
+    Clamp,
+}
+
+impl Kink {
+    pub const ALL: [Kink; 5] = [Kink::Abs, Kink::Sign, Kink::Min, Kink::Max, Kink::Clamp];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Kink::Abs => "abs",
+            Kink::Sign => "sign",
+            Kink::Min => "min",
+            Kink::Max => "max",
+            Kink::Clamp => "clamp",
+        }
+    }
+
+    pub fn arity(self) -> usize {
+        match self {
+            Kink::Abs | Kink::Sign => 1,
+            Kink::Min | Kink::Max => 2,
+            Kink::Clamp => 3,
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Kink> {
+        Kink::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// Its value, defined as the graph defines it (`sign(0) = 0`; `clamp` tests `lo` first).
+    pub fn apply(self, a: &[f64]) -> f64 {
+        match self {
+            Kink::Abs => a[0].abs(),
+            Kink::Sign if a[0] > 0.0 => 1.0,
+            Kink::Sign if a[0] < 0.0 => -1.0,
+            Kink::Sign => 0.0,
+            Kink::Min => {
+                if a[1] >= a[0] {
+                    a[0]
+                } else {
+                    a[1]
+                }
+            }
+            Kink::Max => {
+                if a[0] >= a[1] {
+                    a[0]
+                } else {
+                    a[1]
+                }
+            }
+            Kink::Clamp => {
+                if a[1] > a[0] {
+                    a[1]
+                } else if a[0] > a[2] {
+                    a[2]
+                } else {
+                    a[0]
+                }
+            }
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -255,6 +329,18 @@ impl MExpr {
                 }
             }
             MExpr::Atan2(y, x) => y.value_with(param)?.atan2(x.value_with(param)?),
+            MExpr::Kink(k, args) => {
+                let a: Option<Vec<f64>> = args.iter().map(|a| a.value_with(param)).collect();
+                k.apply(&a?)
+            }
+            MExpr::If(cmp, e) => {
+                let [a, b, x, y] = &**e;
+                if cmp.holds(a.value_with(param)?, b.value_with(param)?) {
+                    x.value_with(param)?
+                } else {
+                    y.value_with(param)?
+                }
+            }
         })
     }
 }
@@ -384,7 +470,8 @@ pub struct Resolver<'a> {
 
 const BODY_FIELDS: &[&str] = &["mass", "inertia", "at", "velocity"];
 const SPATIAL_BODY_FIELDS: &[&str] = &["mass", "inertia", "at", "quaternion", "axis_angle", "angles", "velocity", "omega"];
-const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "ln", "pow"];
+const FUNCTIONS: &[&str] =
+    &["sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "ln", "pow", "abs", "sign", "min", "max", "clamp", "deg"];
 
 impl Resolver<'_> {
     /// Whether a name is `ground` or a declared body (nothing reported).
@@ -481,15 +568,12 @@ impl Resolver<'_> {
                 let name = f.to_string();
                 let arity = match name.as_str() {
                     "atan2" | "pow" => 2,
+                    "deg" => 1,
                     n if Func::from_name(n).is_some() => 1,
+                    n if Kink::from_name(n).is_some() => Kink::from_name(n)?.arity(),
                     _ => {
                         let hint = parse::closest(&name, FUNCTIONS, &[]);
-                        self.errors.push(
-                            f.span(),
-                            format!(
-                                "unknown function `{name}`{hint}: available are sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, ln, pow"
-                            ),
-                        );
+                        self.errors.push(f.span(), format!("unknown function `{name}`{hint}: available are {}", FUNCTIONS.join(", ")));
                         return None;
                     }
                 };
@@ -499,13 +583,31 @@ impl Resolver<'_> {
                     return None;
                 }
                 let resolved: Vec<Option<MExpr>> = args.iter().map(|a| self.expr(a, scope)).collect();
-                let mut resolved = resolved.into_iter().collect::<Option<Vec<_>>>()?.into_iter();
+                let resolved = resolved.into_iter().collect::<Option<Vec<_>>>()?;
+                if let Some(k) = Kink::from_name(&name) {
+                    return Some(MExpr::Kink(k, resolved));
+                }
+                let mut resolved = resolved.into_iter();
                 let a = Box::new(resolved.next()?);
                 match name.as_str() {
                     "atan2" => MExpr::Atan2(a, Box::new(resolved.next()?)),
                     "pow" => MExpr::Bin(MBin::Pow, a, Box::new(resolved.next()?)),
+                    // degrees to radians
+                    "deg" => MExpr::Bin(MBin::Mul, a, Box::new(MExpr::Num(std::f64::consts::PI / 180.0))),
                     n => MExpr::Call(Func::from_name(n)?, a),
                 }
+            }
+            ExprKind::If(c, then, otherwise) => {
+                let (a, b) = (self.expr(&c.lhs, scope), self.expr(&c.rhs, scope));
+                let (x, y) = (self.expr(then, scope), self.expr(otherwise, scope));
+                let (a, b, x, y) = (a?, b?, x?, y?);
+                let (cmp, a, b) = match c.op {
+                    CmpOp::Gt => (Cmp::Gt, a, b),
+                    CmpOp::Ge => (Cmp::Ge, a, b),
+                    CmpOp::Lt => (Cmp::Gt, b, a),
+                    CmpOp::Le => (Cmp::Ge, b, a),
+                };
+                MExpr::If(cmp, Box::new([a, b, x, y]))
             }
         })
     }

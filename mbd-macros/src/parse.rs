@@ -210,6 +210,24 @@ pub enum ExprKind {
     Neg(Box<Expr>),
     Bin(BinOp, Box<Expr>, Box<Expr>),
     Call(Ident, Vec<Expr>),
+    /// `if a > b { x } else { y }` (`>`, `>=`, `<`, `<=`; `else if` chains).
+    If(Box<Condition>, Box<Expr>, Box<Expr>),
+}
+
+/// The comparison of an `if` expression.
+#[derive(Clone)]
+pub struct Condition {
+    pub lhs: Expr,
+    pub op: CmpOp,
+    pub rhs: Expr,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum CmpOp {
+    Gt,
+    Ge,
+    Lt,
+    Le,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -673,7 +691,69 @@ fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
     Ok(base)
 }
 
+/// `if a > b { x } else { y }`, after the `if`; `else if` chains. Both branches are required: an
+/// expression always has a value.
+fn parse_if(input: ParseStream, keyword: Span) -> syn::Result<Expr> {
+    let lhs = parse_sum(input)?;
+    let op = if input.peek(Token![>=]) {
+        input.parse::<Token![>=]>()?;
+        CmpOp::Ge
+    } else if input.peek(Token![<=]) {
+        input.parse::<Token![<=]>()?;
+        CmpOp::Le
+    } else if input.peek(Token![==]) || input.peek(Token![!=]) {
+        let tt: proc_macro2::TokenTree = input.parse()?;
+        return Err(syn::Error::new(
+            tt.span(),
+            format!("`{tt}` compares reals exactly, which a solver's rounding makes meaningless: compare with `>`, `>=`, `<` or `<=`"),
+        ));
+    } else if input.peek(Token![>]) {
+        input.parse::<Token![>]>()?;
+        CmpOp::Gt
+    } else if input.peek(Token![<]) {
+        input.parse::<Token![<]>()?;
+        CmpOp::Lt
+    } else {
+        return Err(input.error("expected a comparison `>`, `>=`, `<` or `<=` after `if`'s first operand"));
+    };
+    let rhs = parse_sum(input)?;
+    let then = parse_branch(input, "after the condition")?;
+    if !input.peek(Token![else]) {
+        return Err(input.error("expected `else { ... }`: an `if` expression needs a value in both cases"));
+    }
+    input.parse::<Token![else]>()?;
+    let otherwise = if input.peek(Token![if]) {
+        let kw: Token![if] = input.parse()?;
+        parse_if(input, kw.span)?
+    } else {
+        parse_branch(input, "after `else`")?
+    };
+    let end = otherwise.end;
+    let condition = Condition { lhs, op, rhs };
+    Ok(Expr::new(ExprKind::If(Box::new(condition), Box::new(then), Box::new(otherwise)), keyword, end))
+}
+
+/// `{ expression }` of an `if`.
+fn parse_branch(input: ParseStream, place: &str) -> syn::Result<Expr> {
+    if !input.peek(syn::token::Brace) {
+        return Err(input.error(format!("expected `{{ expression }}` {place}")));
+    }
+    let content;
+    let brace = braced!(content in input);
+    let mut inner: Expr = content.parse()?;
+    if !content.is_empty() {
+        return Err(content.error("expected `}`: an operator (+ - * / ^) is missing"));
+    }
+    inner.span = brace.span.open();
+    inner.end = brace.span.close();
+    Ok(inner)
+}
+
 fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(Token![if]) {
+        let kw: Token![if] = input.parse()?;
+        return parse_if(input, kw.span);
+    }
     if input.peek(syn::LitFloat) {
         let lit: syn::LitFloat = input.parse()?;
         if !lit.suffix().is_empty() {

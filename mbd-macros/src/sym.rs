@@ -104,6 +104,29 @@ pub enum Node {
     Call(Func, Id),
     /// `atan2(y, x)`.
     Atan2(Id, Id),
+    /// `if a > b { x } else { y }` (or `>=`): the one non-smooth node. `abs`, `sign`, `min`, `max`,
+    /// `clamp` and the DSL's `if` are built from it. Its derivative is the derivative of the branch
+    /// its value takes — at a tie, the `else` branch of `>` and the `then` branch of `>=` — so it is
+    /// one-sided at the kink and never NaN there.
+    Select(Cmp, Id, Id, Id, Id),
+}
+
+/// The comparison of a [`Node::Select`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Cmp {
+    /// `a > b`
+    Gt,
+    /// `a >= b`
+    Ge,
+}
+
+impl Cmp {
+    pub fn holds(self, a: f64, b: f64) -> bool {
+        match self {
+            Cmp::Gt => a > b,
+            Cmp::Ge => a >= b,
+        }
+    }
 }
 
 /// A hash-consed expression graph.
@@ -359,6 +382,47 @@ impl Graph {
         self.intern(Node::Atan2(y, x))
     }
 
+    /// `if a cmp b { x } else { y }`.
+    pub fn select(&mut self, cmp: Cmp, a: Id, b: Id, x: Id, y: Id) -> Id {
+        if x == y {
+            return x;
+        }
+        if let (Some(a), Some(b)) = (self.as_const(a), self.as_const(b)) {
+            return if cmp.holds(a, b) { x } else { y };
+        }
+        self.intern(Node::Select(cmp, a, b, x, y))
+    }
+
+    /// |a| = `if a >= 0 { a } else { −a }`: the derivative at 0 is +1 (right-sided).
+    pub fn abs(&mut self, a: Id) -> Id {
+        let zero = self.num(0.0);
+        let na = self.neg(a);
+        self.select(Cmp::Ge, a, zero, a, na)
+    }
+
+    /// 1 for a > 0, −1 for a < 0, 0 at 0; its derivative is 0 everywhere.
+    pub fn sign(&mut self, a: Id) -> Id {
+        let (zero, one, minus) = (self.num(0.0), self.num(1.0), self.num(-1.0));
+        let below = self.select(Cmp::Gt, zero, a, minus, zero);
+        self.select(Cmp::Gt, a, zero, one, below)
+    }
+
+    /// `if a >= b { a } else { b }`: at a tie, the derivative of `a`.
+    pub fn max(&mut self, a: Id, b: Id) -> Id {
+        self.select(Cmp::Ge, a, b, a, b)
+    }
+
+    /// `if b >= a { a } else { b }`: at a tie, the derivative of `a`.
+    pub fn min(&mut self, a: Id, b: Id) -> Id {
+        self.select(Cmp::Ge, b, a, a, b)
+    }
+
+    /// `if lo > x { lo } else if x > hi { hi } else { x }`: at either bound, the derivative of `x`.
+    pub fn clamp(&mut self, x: Id, lo: Id, hi: Id) -> Id {
+        let upper = self.select(Cmp::Gt, x, hi, hi, x);
+        self.select(Cmp::Gt, lo, x, lo, upper)
+    }
+
     /// The derivative of `root` along a direction: every variable `v` moves with speed
     /// `seed(v)` (an existing node id, or `None` for 0). With `seed = [v ↦ 1]` this is the partial
     /// derivative ∂root/∂v; with `seed(q_i) = q̇_i`, `seed(t) = 1` it is the total time
@@ -389,12 +453,13 @@ impl Graph {
         memo[&root]
     }
 
-    /// Children of a node (at most two).
-    pub fn children(&self, id: Id) -> [Option<Id>; 2] {
+    /// Children of a node (at most four).
+    pub fn children(&self, id: Id) -> [Option<Id>; 4] {
         match self.node(id) {
-            Node::Const(_) | Node::Var(_) => [None, None],
-            Node::Neg(a) | Node::PowI(a, _) | Node::Call(_, a) => [Some(a), None],
-            Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Pow(a, b) | Node::Atan2(a, b) => [Some(a), Some(b)],
+            Node::Const(_) | Node::Var(_) => [None; 4],
+            Node::Neg(a) | Node::PowI(a, _) | Node::Call(_, a) => [Some(a), None, None, None],
+            Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Pow(a, b) | Node::Atan2(a, b) => [Some(a), Some(b), None, None],
+            Node::Select(_, a, b, x, y) => [Some(a), Some(b), Some(x), Some(y)],
         }
     }
 
@@ -426,6 +491,15 @@ impl Graph {
                 let c = self.num(n as f64);
                 let cp = self.mul(c, p);
                 self.mul(cp, d(a))
+            }
+            // d(aᵇ) = b aᵇ⁻¹ da for a constant exponent: finite at a = 0 for b ≥ 1, where the
+            // general form below is 0·∞ (a contact force k·max(δ, 0)^1.5 at first touch)
+            Node::Pow(a, b) if self.is_zero(d(b)) => {
+                let one = self.num(1.0);
+                let b1 = self.sub(b, one);
+                let p = self.pow(a, b1);
+                let bp = self.mul(b, p);
+                self.mul(bp, d(a))
             }
             // d(aᵇ) = aᵇ (db ln a + b da / a)
             Node::Pow(a, b) => {
@@ -499,6 +573,8 @@ impl Graph {
                 let den = self.add(x2, y2);
                 self.div(n, den)
             }
+            // the derivative of the branch taken, under the same comparison
+            Node::Select(cmp, a, b, x, y) => self.select(cmp, a, b, d(x), d(y)),
         }
     }
 
@@ -542,6 +618,13 @@ impl Graph {
                 Node::Pow(a, b) => v(a).powf(v(b)),
                 Node::Call(f, a) => f.apply(v(a)),
                 Node::Atan2(y, x) => v(y).atan2(v(x)),
+                Node::Select(cmp, a, b, x, y) => {
+                    if cmp.holds(v(a), v(b)) {
+                        v(x)
+                    } else {
+                        v(y)
+                    }
+                }
             };
             memo.insert(id, x);
         }
@@ -672,6 +755,85 @@ mod tests {
             // Same arithmetic in another order: agreement to rounding (1e-12 relative).
             assert!((chain - direct).abs() <= 1e-12 * chain.abs().max(1.0), "{chain} vs {direct}");
         }
+    }
+
+    /// The non-smooth functions: values, and derivatives against central differences away from
+    /// their kinks (h = 1e-6 and points at least 1e-3 from a kink, so a difference never straddles
+    /// one; the functions are piecewise linear or polynomial there, so 1e-7 is a real check).
+    #[test]
+    fn kinks_away_from_the_kink() {
+        let mut g = Graph::new();
+        let x = g.var(Var::Q(0));
+        let y = g.var(Var::Q(1));
+        let (lo, hi) = (g.num(-0.5), g.num(0.5));
+        let x3 = g.powi(x, 3);
+        let xy = g.mul(x, y);
+        let fs = [g.abs(x3), g.sign(x), g.min(x3, xy), g.max(x3, xy), g.clamp(x3, lo, hi), g.select(Cmp::Gt, x, y, x3, xy)];
+        let value = |x: f64, y: f64| {
+            let (x3, xy) = (x.powi(3), x * y);
+            [x3.abs(), if x > 0.0 { 1.0 } else { -1.0 }, x3.min(xy), x3.max(xy), x3.clamp(-0.5, 0.5), if x > y { x3 } else { xy }]
+        };
+        let mut rng = Rng::new(5);
+        let mut checked = 0;
+        while checked < 300 {
+            let (px, py) = (rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2));
+            let kinks = [px, px.powi(3) - px * py, px.powi(3) - 0.5, px.powi(3) + 0.5, px - py];
+            if kinks.iter().any(|k| k.abs() < 1e-3) {
+                continue;
+            }
+            checked += 1;
+            let env = |x: f64, y: f64| move |v: Var| if v == Var::Q(0) { x } else { y };
+            for (k, &f) in fs.iter().enumerate() {
+                assert_eq!(g.eval(f, &env(px, py)), value(px, py)[k], "function {k} at ({px}, {py})");
+                let mut memo = HashMap::new();
+                let df = g.diff(f, Var::Q(0), &mut memo);
+                let h = 1e-6;
+                let fd = (value(px + h, py)[k] - value(px - h, py)[k]) / (2.0 * h);
+                let exact = g.eval(df, &env(px, py));
+                assert!((fd - exact).abs() <= 1e-7, "d/dx of function {k} at ({px}, {py}): exact {exact}, difference {fd}");
+            }
+        }
+    }
+
+    /// At the kink itself, every derivative is finite and is the documented one-sided value:
+    /// the derivative of the branch the value takes.
+    #[test]
+    fn kinks_at_the_kink() {
+        let mut g = Graph::new();
+        let x = g.var(Var::Q(0));
+        let zero = g.num(0.0);
+        let one = g.num(1.0);
+        let two_x = g.add(x, x);
+        let at_zero = |_: Var| 0.0;
+        let d = |g: &mut Graph, f: Id| {
+            let mut memo = HashMap::new();
+            let df = g.diff(f, Var::Q(0), &mut memo);
+            g.eval(df, &at_zero)
+        };
+        let cases = [
+            (g.abs(x), 1.0, "abs: x ≥ 0 takes x"),
+            (g.sign(x), 0.0, "sign: constant on each side"),
+            (g.max(two_x, x), 2.0, "max(a, b) at a tie: a"),
+            (g.min(two_x, x), 2.0, "min(a, b) at a tie: a"),
+            (g.clamp(two_x, zero, one), 2.0, "clamp at its lower bound: the inside"),
+            (g.select(Cmp::Gt, x, zero, two_x, x), 1.0, "`>` at a tie: else"),
+            (g.select(Cmp::Ge, x, zero, two_x, x), 2.0, "`>=` at a tie: then"),
+        ];
+        for (f, expected, what) in cases {
+            assert_eq!(d(&mut g, f), expected, "{what}");
+        }
+        // A Hertz-like contact force max(x, 0)^1.5: the constant-exponent rule gives 0 at first
+        // touch, where aᵇ(b·da/a) would be 0·∞ = NaN.
+        let m = g.max(x, zero);
+        let e = g.num(1.5);
+        let f = g.pow(m, e);
+        assert_eq!(d(&mut g, f), 0.0);
+        // and its second derivative 0.75·x^-0.5 is +∞ at 0 — honestly infinite, not NaN
+        let mut memo = HashMap::new();
+        let df = g.diff(f, Var::Q(0), &mut memo);
+        let mut memo = HashMap::new();
+        let ddf = g.diff(df, Var::Q(0), &mut memo);
+        assert_eq!(g.eval(ddf, &at_zero), f64::INFINITY);
     }
 
     #[test]

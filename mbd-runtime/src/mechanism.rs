@@ -22,7 +22,8 @@ use crate::Real;
 pub struct OpCount {
     /// Name of the generated function (`"jacobian"`).
     pub function: &'static str,
-    /// Additions and subtractions.
+    /// Additions and subtractions, and the comparisons of `abs`, `min`, `max`, `clamp`, `sign`
+    /// and `if`.
     pub add: u32,
     /// Multiplications (and negations, which are free in practice, are not counted).
     pub mul: u32,

@@ -13,7 +13,13 @@ import casadi as ca
 _BINARY = {"add": lambda x, y: x + y, "sub": lambda x, y: x - y, "mul": lambda x, y: x * y,
            "div": lambda x, y: x / y, "pow": lambda x, y: x ** y, "atan2": ca.atan2}
 _UNARY = {"neg": lambda x: -x, "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "asin": ca.asin,
-          "acos": ca.acos, "atan": ca.atan, "sqrt": ca.sqrt, "exp": ca.exp, "ln": ca.log}
+          "acos": ca.acos, "atan": ca.atan, "sqrt": ca.sqrt, "exp": ca.exp, "ln": ca.log,
+          "abs": ca.fabs, "sign": ca.sign}
+# the non-smooth functions, from CasADi's own primitives (docs/formulation.md, "Expressions")
+_BINARY.update({"min": ca.fmin, "max": ca.fmax})
+_OTHER = {"clamp": lambda x, lo, hi: ca.fmin(ca.fmax(x, lo), hi),
+          "if_gt": lambda a, b, x, y: ca.if_else(a > b, x, y),
+          "if_ge": lambda a, b, x, y: ca.if_else(a >= b, x, y)}
 
 
 def expression(model, e):
@@ -38,6 +44,8 @@ def expression(model, e):
         return _BINARY[op](a[0], a[1])
     if op in _UNARY:
         return _UNARY[op](a[0])
+    if op in _OTHER:
+        return _OTHER[op](*a)
     raise ValueError(f"{model.name}: unknown expression node {op!r}")
 
 
