@@ -201,7 +201,7 @@ pub enum MExpr {
     Call(Func, Box<MExpr>),
     Atan2(Box<MExpr>, Box<MExpr>),
     /// `abs`, `sign`, `min`, `max` or `clamp` of its arguments.
-    Kink(Kink, Vec<MExpr>),
+    Kink(Kink, Box<[MExpr]>),
     /// `if a cmp b { x } else { y }`, `<` and `<=` written as `>` and `>=` with the operands
     /// swapped: `[a, b, x, y]`.
     If(Cmp, Box<[MExpr; 4]>),
@@ -585,7 +585,7 @@ impl Resolver<'_> {
                 let resolved: Vec<Option<MExpr>> = args.iter().map(|a| self.expr(a, scope)).collect();
                 let resolved = resolved.into_iter().collect::<Option<Vec<_>>>()?;
                 if let Some(k) = Kink::from_name(&name) {
-                    return Some(MExpr::Kink(k, resolved));
+                    return Some(MExpr::Kink(k, resolved.into()));
                 }
                 let mut resolved = resolved.into_iter();
                 let a = Box::new(resolved.next()?);
