@@ -100,8 +100,9 @@ mbd::mechanism! {
 
 mbd::mechanism! {
     /// Every non-smooth function and the conditional, in a driver (so in Φ, ν and γ) and in
-    /// forces of coordinates and velocities (so in h, ∂h/∂q, ∂h/∂q̇), with kinks the random samples
-    /// land on either side of. Three bodies, seven rows: two degrees of freedom.
+    /// forces of coordinates and velocities (so in h, ∂h/∂q, ∂h/∂q̇), and the unilateral elements
+    /// (contact with an exponent, cable, tyre on a moving road), with kinks and contacts the
+    /// random samples land on either side of. Three bodies, seven rows: two degrees of freedom.
     pub EveryKink {
         params { k: 400.0, c: 6.0, stop: 0.9, w: 2.0 }
         gravity [0.0, -9.81];
@@ -116,6 +117,10 @@ mbd::mechanism! {
         torque arm = (if arm.omega > 0.0 { -c * arm.omega } else { -2.0 * c * arm.omega }) + min(arm.phi, cam.phi);
         torque block = if block.y <= arm.y { 3.0 } else { -abs(block.omega)^3 } + max(block.phi, -block.phi);
         spring arm[0.5, 0.0] ~ cam[0.2, 0.0] { k: 50.0, length: 0.3, force: 20.0 * min(cam.omega, 1.0) };
+        point block.tip = [0.1, 0.05];
+        contact stop: block.tip ~ ground[1.0, 0.0] along [-1.0, 0.2] { k: 1.0e4, exponent: 1.5, c: 30.0 };
+        cable arm[0.3, 0.0] ~ ground[0.5, 1.0] { k: 2000.0, length: 0.9, c: 5.0 };
+        tyre block[0.0, -0.1] ~ ground[0.0, -0.2] { radius: 0.15, k: 3000.0, c: 20.0, road: 0.05 * sin(3.0 * block.x - t) };
     }
 }
 

@@ -342,6 +342,18 @@ impl<'m> Builder<'m> {
         self.g.directional(s, &seed, &mut HashMap::new())
     }
 
+    /// ṡ = s_q q̇ + s_t for a function of q and t.
+    pub fn rate_with_time(&mut self, s: Id) -> Id {
+        let qd = self.coordinate_rates();
+        let one = self.g.num(1.0);
+        let seed = |v: Var| match v {
+            Var::Q(i) => Some(qd[i as usize]),
+            Var::T => Some(one),
+            _ => None,
+        };
+        self.g.directional(s, &seed, &mut HashMap::new())
+    }
+
     /// h += −f ∂ṡ/∂v: the generalized force of a force f that does work −f δs.
     pub fn add_along(&mut self, h: &mut [Id], s: Id, f: Id) {
         for (k, ds) in self.gradient(s) {

@@ -241,7 +241,7 @@ pub enum BinOp {
 
 /// Force elements between two points (and, `bushing`, between two markers): the keywords of the
 /// two-attachment force rule.
-pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator", "bushing"];
+pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator", "bushing", "contact", "cable", "tyre"];
 
 /// Force elements between two bodies' angles.
 pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_damper", "torque_actuator"];
@@ -279,6 +279,9 @@ pub const STATEMENTS: &[&str] = &[
     "spring",
     "damper",
     "actuator",
+    "contact",
+    "cable",
+    "tyre",
     "rotational_spring",
     "rotational_damper",
     "torque_actuator",
@@ -477,6 +480,9 @@ const SYNONYMS: &[(&str, &str)] = &[
     ("fixed", "rigid"),
     ("weld", "rigid"),
     ("spring_damper", "spring"),
+    ("tire", "tyre"),
+    ("rope", "cable"),
+    ("stop", "contact"),
 ];
 
 /// " (did you mean `x`?)" when a known word is one or two edits away.

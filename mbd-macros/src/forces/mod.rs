@@ -13,15 +13,18 @@ use serde_json::Value;
 use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::MExpr;
-use crate::sym::{Func, Id};
+use crate::sym::{Cmp, Func, Id};
 
 pub mod applied;
 pub mod bushing;
+pub mod cable;
+pub mod contact;
 pub mod friction;
 pub mod gravity;
 pub mod point_to_point;
 pub mod rotational;
 pub mod torque;
+pub mod tyre;
 
 /// What force elements add up to, one node per velocity (h, friction) and V.
 pub struct Generalized {
@@ -99,6 +102,51 @@ impl Builder<'_> {
                 self.g.add(v, e)
             }
         }
+    }
+
+    /// A force that only pushes, on an overlap δ(q, t) (a penetration, a cable's stretch):
+    /// F = max(δᵉ (k + c δ̇), 0) while δ > 0 and 0 otherwise, with V = k δᵉ⁺¹/(e + 1) while δ > 0.
+    /// With an exponent (Hunt & Crossley) the damping c δᵉ δ̇ vanishes at first touch; without
+    /// one the law is linear, F = max(k δ + c δ̇, 0). Either way the force never pulls, and its
+    /// derivatives at δ = 0 are those of the side δ ≤ 0: zero.
+    pub fn unilateral(&mut self, delta: Id, k: &MExpr, exponent: Option<&MExpr>, c: Option<&MExpr>) -> (Id, Id) {
+        let zero = self.g.num(0.0);
+        let k = self.expr(k);
+        let rate = self.rate_with_time(delta);
+        let (f, potential) = match exponent {
+            Some(e) => {
+                let e = self.expr(e);
+                let de = self.g.pow(delta, e);
+                let mut stiffness = k;
+                if let Some(c) = c {
+                    let c = self.expr(c);
+                    let cr = self.g.mul(c, rate);
+                    stiffness = self.g.add(k, cr);
+                }
+                let f = self.g.mul(de, stiffness);
+                let one = self.g.num(1.0);
+                let e1 = self.g.add(e, one);
+                let de1 = self.g.pow(delta, e1);
+                let kde1 = self.g.mul(k, de1);
+                (f, self.g.div(kde1, e1))
+            }
+            None => {
+                let mut f = self.g.mul(k, delta);
+                if let Some(c) = c {
+                    let c = self.expr(c);
+                    let cr = self.g.mul(c, rate);
+                    f = self.g.add(f, cr);
+                }
+                let d2 = self.g.powi(delta, 2);
+                let kd2 = self.g.mul(k, d2);
+                let half = self.g.num(0.5);
+                (f, self.g.mul(half, kd2))
+            }
+        };
+        let pushing = self.g.max(f, zero);
+        let f = self.g.select(Cmp::Gt, delta, zero, pushing, zero);
+        let potential = self.g.select(Cmp::Gt, delta, zero, potential, zero);
+        (f, potential)
     }
 
     /// Regularized Coulomb law μ N v / √(v² + v_s²): ±μN beyond the slip velocity v_s, linear

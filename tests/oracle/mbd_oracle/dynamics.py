@@ -175,6 +175,8 @@ class Dynamics:
             # The tension pulls the points together: δW = −f δl.
             v = 0.5 * k * (length - free) ** 2 if f["k"] is not None else ca.SX(0)
             return name, -tension * self.grad(length), v
+        if kind in ("contact", "cable", "tyre"):
+            return self.unilateral(f)
         if kind == "rotational":
             theta = m.coord(f["j"], "phi") - m.coord(f["i"], "phi")
             k, c = self.opt(f["k"]), self.opt(f["c"])
@@ -199,6 +201,32 @@ class Dynamics:
             s = m.dot(u, [pj[0] - pi[0], pj[1] - pi[1]])
             return name, -m.expr(f["c"]) * self.rate(s) * self.grad(s), ca.SX(0)
         raise ValueError(f"{self.name}: unknown force element kind {kind!r}")
+
+    def unilateral(self, f):
+        """(name, Q, V) of a contact, cable or tyre (docs/formulation.md): a force that pushes only
+        while its overlap s(q, t) is positive, and does work −F δs."""
+        m = self.model
+        kind = f["kind"]
+        pi, pj = m.point(f["i"]), m.point(f["j"])
+        k, c = m.expr(f["k"]), self.opt(f["c"])
+        if kind == "contact":
+            n = [m.expr(x) for x in f["normal"]]
+            norm = ca.sqrt(n[0] ** 2 + n[1] ** 2)
+            n = m.rotate(f["j"]["body"], [n[0] / norm, n[1] / norm])
+            s = n[0] * (pj[0] - pi[0]) + n[1] * (pj[1] - pi[1])
+            e = m.expr(f["exponent"])
+            push, v = s ** e * (k + c * self.rate(s)), k * s ** (e + 1) / (e + 1)
+        else:
+            if kind == "cable":
+                length = ca.sqrt((pj[0] - pi[0]) ** 2 + (pj[1] - pi[1]) ** 2)
+                s = length - m.expr(f["length"])
+            else:
+                s = pj[1] + m.expr(f["road"]) + m.expr(f["radius"]) - pi[1]
+            push, v = k * s + c * self.rate(s), 0.5 * k * s ** 2
+        force = ca.if_else(s > 0, ca.fmax(push, 0), 0)
+        # a cable's tension works on its length: δW = −F δl
+        works_on = length if kind == "cable" else s
+        return f["name"], -force * self.grad(works_on), ca.if_else(s > 0, v, 0)
 
     def coulomb(self, f):
         """(name, Q) of a joint's Coulomb friction, a function of q, q̇, t, p and lam."""

@@ -1,0 +1,71 @@
+//! `cable Pi ~ Pj { k, length, c };` — a rope or cable between two points: tension only. With
+//! l = |r^P_j − r^P_i| and the stretch δ = l − length, it pulls the points together with
+//! f = max(k δ + c l̇, 0) while δ > 0 and nothing while slack; V = ½ k δ² while taut.
+//! Q = −f (∂l̇/∂v)ᵀ. Units: k in N/m, length in m, c in N·s/m.
+
+use serde_json::{json, Value};
+
+use super::{Force, Generalized, Resolved};
+use crate::frames::Builder;
+use crate::json::Ctx;
+use crate::model::{BodyRef, Loc, MExpr, Resolver, Scope};
+use crate::parse::JointDef;
+use crate::sym::Func;
+
+#[derive(Debug)]
+pub struct Cable {
+    pub i: Loc,
+    pub j: Loc,
+    pub k: MExpr,
+    pub length: MExpr,
+    pub c: Option<MExpr>,
+}
+
+pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
+    let li = r.loc(&f.i.body, &f.i.point);
+    let lj = r.loc(&f.j.body, &f.j.point);
+    for side in [&f.i, &f.j] {
+        if let Some(a) = &side.along {
+            r.errors.push(a.keyword.span(), "a cable pulls along the line between its points: it takes no axis");
+            return None;
+        }
+    }
+    let known = [("k", Scope::Params), ("length", Scope::Params), ("c", Scope::Params)];
+    let mut o = super::options(r, &f.kind, &f.options, &known)?;
+    let (li, lj) = (li?, lj?);
+    if li.body == lj.body {
+        r.errors
+            .push(f.j.body.span(), format!("a cable from body `{}` to itself does nothing: it connects two different bodies", f.j.body));
+        return None;
+    }
+    let (Some(k), Some(length)) = (o.remove("k"), o.remove("length")) else {
+        r.errors.push(f.kind.span(), "a cable needs its stiffness and unstretched length: `{ k: 5.0e4, length: 1.2 }` (N/m, m)");
+        return None;
+    };
+    let name = format!("cable {}~{}", body_name(li.body), body_name(lj.body));
+    Some((f.label.as_ref(), name, f.kind.span(), Box::new(Cable { i: li, j: lj, k, length, c: o.remove("c") })))
+}
+
+impl Force for Cable {
+    fn effect(&self) -> &'static str {
+        "cable"
+    }
+    fn kind(&self) -> &'static str {
+        "cable"
+    }
+    fn apply(&self, b: &mut Builder, out: &mut Generalized) {
+        let pi = b.point_n(&self.i);
+        let pj = b.point_n(&self.j);
+        let d = b.diff_n(&pj, &pi);
+        let dd = b.dot(&d, &d);
+        let l = b.g.call(Func::Sqrt, dd);
+        let length = b.expr(&self.length);
+        let stretch = b.g.sub(l, length);
+        let (f, potential) = b.unilateral(stretch, &self.k, None, self.c.as_ref());
+        b.add_along(&mut out.h, l, f);
+        out.potential = b.g.add(out.potential, potential);
+    }
+    fn json(&self, cx: &Ctx) -> Value {
+        json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "k": cx.expr(&self.k), "length": cx.expr(&self.length), "c": cx.opt(&self.c)})
+    }
+}
