@@ -162,6 +162,30 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_v_body, h_v_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
     let (v_body, v_ops) = e.body(&[Output { target: quote!(energy[0]), node: f.potential }]);
+    let switching = if f.switches.is_empty() {
+        quote!()
+    } else {
+        let names = f.switches.iter().map(|(n, _)| n.as_str());
+        let cases = f.switches.iter().enumerate().map(|(k, &(_, node))| {
+            let (body, _) = e.body(&[Output { target: quote!(g[0]), node }]);
+            let k = usize_lit(k);
+            quote!(#k => {
+                let mut g = [#zero; 1];
+                #body
+                g[0]
+            })
+        });
+        quote! {
+            const SWITCH_NAMES: &'static [&'static str] = &[#(#names),*];
+            #[inline]
+            fn switching_function(&self, k: usize, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
+                match k {
+                    #(#cases)*
+                    _ => #zero,
+                }
+            }
+        }
+    };
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
     let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
     let forward = forward_dynamics(m, &f, &e);
@@ -457,6 +481,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #v_body
                 energy[0]
             }
+            #switching
             #[inline]
             fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
                 #friction_fn

@@ -54,6 +54,8 @@ pub struct Formulation {
     pub h_qd: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
+    /// The unilateral elements' switching functions of (q, v, t), by element name.
+    pub switches: Vec<(String, Id)>,
     /// Coulomb friction forces, one node per coordinate, functions of q, q̇ and the multipliers λ
     /// (the joints' normal loads); kept out of h, which does not depend on λ.
     pub friction: Vec<Id>,
@@ -147,22 +149,24 @@ pub fn formulate(model: &Model) -> Formulation {
         }
     }
     let zero = b.g.num(0.0);
-    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero };
+    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
     if b.coordinates == Coordinates::SpatialBody {
         gyroscopic(&mut b, &mut out.h);
     }
     if let Some(g) = &model.gravity {
         gravity::apply(&mut b, g, &mut out);
     }
+    let mut switch_names = Vec::new();
     for element in &model.forces {
         element.kind.apply(&mut b, &mut out);
+        switch_names.resize(out.switches.len(), element.name.clone());
     }
     // Which velocities each element's generalized force reaches (structurally), for naming the
     // element behind a NaN force at run time (`Mechanism::FORCE_ELEMENTS`). Applying an element
     // again only revisits nodes the graph already holds.
     let mut force_velocities = Vec::new();
     let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
-        let mut alone = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero };
+        let mut alone = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
         apply(b, &mut alone);
         let velocities: Vec<usize> = (0..nv).filter(|&i| !b.g.is_zero(alone.h[i]) || !b.g.is_zero(alone.friction[i])).collect();
         force_velocities.push((name.to_string(), velocities));
@@ -173,7 +177,8 @@ pub fn formulate(model: &Model) -> Formulation {
     for element in &model.forces {
         reach(&mut b, &element.name, &|b, out| element.kind.apply(b, out));
     }
-    let Generalized { h, friction, potential } = out;
+    let Generalized { h, friction, potential, switches } = out;
+    let switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
     let mut memo_v = HashMap::new();
@@ -283,6 +288,7 @@ pub fn formulate(model: &Model) -> Formulation {
         h_q,
         h_qd,
         potential,
+        switches,
         power,
         friction,
         friction_q,

@@ -208,6 +208,10 @@ impl<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, cons
     fn potential_energy(&self, q: &[T; NQ], t: T) -> T {
         self.mechanism.potential_energy(q, t)
     }
+    const SWITCH_NAMES: &'static [&'static str] = M::SWITCH_NAMES;
+    fn switching_function(&self, k: usize, q: &[T; NQ], v: &[T; NV], t: T) -> T {
+        self.mechanism.switching_function(k, q, v, t)
+    }
     fn friction_forces(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], h: &mut [T; NV]) {
         self.mechanism.friction_forces(q, v, t, lambda, h);
     }

@@ -254,6 +254,18 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// forces and friction put into the mechanism. The energy balance reads
     /// d(T + V)/dt = this + λᵀ D v (the second term is the power of drivers).
     fn nonconservative_power(&self, q: &[T; NQ], v: &[T; NV], t: T) -> T;
+    /// The names of the switching functions, one per unilateral force element (`contact`,
+    /// `cable`, `tyre`): the element's name. Empty for a mechanism without them.
+    const SWITCH_NAMES: &'static [&'static str] = &[];
+    /// Switching function `k` of [`Dynamics::SWITCH_NAMES`] at (q, v, t), positive exactly while
+    /// the element's force acts: its overlap δ (penetration, stretch, tyre compression; m) out of
+    /// contact, its unclamped force law (N) in contact. Where it changes sign within a step,
+    /// [`simulate`](crate::simulate) locates the instant and cuts the step there. 0 for k past
+    /// the end.
+    fn switching_function(&self, k: usize, q: &[T; NQ], v: &[T; NV], t: T) -> T {
+        let _ = (k, q, v, t);
+        T::ZERO
+    }
 }
 
 /// The derivative of the constraint forces Dᵀλ by q along B, for fixed multipliers λ:

@@ -61,9 +61,10 @@ impl Force for Cable {
         let l = b.g.call(Func::Sqrt, dd);
         let length = b.expr(&self.length);
         let stretch = b.g.sub(l, length);
-        let (f, potential) = b.unilateral(stretch, &self.k, None, self.c.as_ref());
+        let (f, potential, switch) = b.unilateral(stretch, &self.k, None, self.c.as_ref());
         b.add_along(&mut out.h, l, f);
         out.potential = b.g.add(out.potential, potential);
+        out.switches.push(switch);
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "k": cx.expr(&self.k), "length": cx.expr(&self.length), "c": cx.opt(&self.c)})

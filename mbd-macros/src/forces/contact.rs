@@ -76,9 +76,10 @@ impl Force for Contact {
         let n = b.rotate_n(self.j.body, unit);
         let d = b.diff_n(&pj, &pi);
         let delta = b.dot(&n, &d);
-        let (f, potential) = b.unilateral(delta, &self.k, Some(&self.exponent), self.c.as_ref());
+        let (f, potential, switch) = b.unilateral(delta, &self.k, Some(&self.exponent), self.c.as_ref());
         b.add_along(&mut out.h, delta, f);
         out.potential = b.g.add(out.potential, potential);
+        out.switches.push(switch);
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({

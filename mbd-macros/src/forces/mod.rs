@@ -32,6 +32,9 @@ pub struct Generalized {
     /// Coulomb friction forces: functions of q, v, t and λ, kept out of h (λ-free).
     pub friction: Vec<Id>,
     pub potential: Id,
+    /// The switching functions of unilateral elements (`Dynamics::switching_function`), positive
+    /// while they push.
+    pub switches: Vec<Id>,
 }
 
 /// A force element.
@@ -108,8 +111,10 @@ impl Builder<'_> {
     /// F = max(δᵉ (k + c δ̇), 0) while δ > 0 and 0 otherwise, with V = k δᵉ⁺¹/(e + 1) while δ > 0.
     /// With an exponent (Hunt & Crossley) the damping c δᵉ δ̇ vanishes at first touch; without
     /// one the law is linear, F = max(k δ + c δ̇, 0). Either way the force never pulls, and its
-    /// derivatives at δ = 0 are those of the side δ ≤ 0: zero.
-    pub fn unilateral(&mut self, delta: Id, k: &MExpr, exponent: Option<&MExpr>, c: Option<&MExpr>) -> (Id, Id) {
+    /// derivatives at δ = 0 are those of the side δ ≤ 0: zero. Also returns the switching
+    /// function, positive exactly while the force acts: the unclamped law where δ > 0, δ elsewhere
+    /// (a damped contact lets go where the law reaches 0, before δ does).
+    pub fn unilateral(&mut self, delta: Id, k: &MExpr, exponent: Option<&MExpr>, c: Option<&MExpr>) -> (Id, Id, Id) {
         let zero = self.g.num(0.0);
         let k = self.expr(k);
         let rate = self.rate_with_time(delta);
@@ -143,10 +148,11 @@ impl Builder<'_> {
                 (f, self.g.mul(half, kd2))
             }
         };
+        let switch = self.g.select(Cmp::Gt, delta, zero, f, delta);
         let pushing = self.g.max(f, zero);
         let f = self.g.select(Cmp::Gt, delta, zero, pushing, zero);
         let potential = self.g.select(Cmp::Gt, delta, zero, potential, zero);
-        (f, potential)
+        (f, potential, switch)
     }
 
     /// Regularized Coulomb law μ N v / √(v² + v_s²): ±μN beyond the slip velocity v_s, linear

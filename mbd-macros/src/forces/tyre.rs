@@ -1,4 +1,4 @@
-//! `tyre wheel.C ~ ground.O { radius, k, c, road };` — Nikravesh's point-follower tyre: a radial
+//! `tyre wheel.C ~ ground[0.0, 0.0] { radius, k, c, road };` — Nikravesh's point-follower tyre: a radial
 //! spring-damper between the wheel centre C and a road whose height above the ground point O is
 //! `road`, any function of coordinates (the wheel's `x`), `t` and parameters. The vertical is y in
 //! the plane and z in space. The tyre's compression is δ = (h_O + road + radius) − h_C; while
@@ -39,7 +39,7 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     if lj.body != BodyRef::Ground {
         r.errors.push(
             f.j.body.span(),
-            "a tyre rolls on the road, which is fixed: write `~ ground.O` (the road's height is measured from that point)",
+            "a tyre rolls on the road, which is fixed: write `~ ground[0.0, 0.0]` (the road's height is measured from that point)",
         );
         return None;
     }
@@ -72,9 +72,10 @@ impl Force for Tyre {
         let surface = b.g.add(datum[up], road);
         let top = b.g.add(surface, radius);
         let delta = b.g.sub(top, wheel[up]);
-        let (f, potential) = b.unilateral(delta, &self.k, None, self.c.as_ref());
+        let (f, potential, switch) = b.unilateral(delta, &self.k, None, self.c.as_ref());
         b.add_along(&mut out.h, delta, f);
         out.potential = b.g.add(out.potential, potential);
+        out.switches.push(switch);
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({

@@ -43,7 +43,7 @@ pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::Rk4;
-pub use simulate::{project, simulate, Correction, SimulationOptions, Statistics};
+pub use simulate::{project, simulate, simulate_with_events, Correction, Event, EventHit, SimulationOptions, Statistics};
 
 use core::fmt;
 
@@ -116,6 +116,9 @@ pub struct Sample<T, const NQ: usize, const NV: usize, const NC: usize> {
     pub point: Point<T, NQ, NV, NC>,
     /// Its energies.
     pub energy: Energy<T>,
+    /// `Some` for the extra sample [`simulate`](simulate()) delivers at a located event, at its
+    /// instant; `None` at the output times.
+    pub event: Option<EventHit>,
 }
 
 /// Why a simulation stopped.

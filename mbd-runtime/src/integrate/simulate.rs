@@ -5,6 +5,12 @@
 //! [`SimulationOptions`] and [`Statistics`].
 //!
 //! The initial state is corrected first (initial-condition correction, Nikravesh 14.3).
+//!
+//! Events: where a switching function changes sign within a step — a unilateral force element's
+//! overlap ([`Dynamics::switching_function`](crate::Dynamics::switching_function)) or a user's
+//! [`Event`] — the instant is located on the step's dense output (Illinois regula falsi) and the
+//! step is taken again from its start to land on that instant, so that no step straddles a
+//! switch and the force's kink is not smeared over a step ([`simulate_with_events`]).
 
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
 use crate::dynamics::kinetic_energy;
@@ -99,6 +105,35 @@ pub struct Statistics {
     pub steps: u64,
     /// Samples handed to the callback.
     pub samples: u64,
+    /// Events located (steps landed on a switch or a user's event).
+    pub events: u64,
+    /// The event that stopped the run, if one did.
+    pub stopped_by: Option<EventHit>,
+}
+
+/// Which switching function changed sign: one of the mechanism's
+/// ([`Dynamics::SWITCH_NAMES`](crate::Dynamics::SWITCH_NAMES)) or one of the user's events, by
+/// index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventHit {
+    /// Switching function `k` of the mechanism (a contact, cable or tyre touching or letting go).
+    Switch(usize),
+    /// The user's event `k` of [`simulate_with_events`]' list.
+    User(usize),
+}
+
+/// g(t, q, v) of an [`Event`].
+pub type EventFunction<'a, T, const NQ: usize, const NV: usize> = dyn FnMut(T, &[T; NQ], &[T; NV]) -> T + 'a;
+
+/// A user's event for [`simulate_with_events`]: a function g(t, q, v) whose change of sign
+/// (g > 0 on one side, g ≤ 0 on the other) within a step is located; a sample is delivered at
+/// that instant (its [`Sample::event`](super::Sample::event) says which), and with `stop` the run
+/// ends there (e.g. a ram reaching its stroke end: `g = stroke − 0.5`).
+pub struct Event<'a, T, const NQ: usize, const NV: usize> {
+    /// g(t, q, v); q and v are an interpolated state inside the step while the instant is sought.
+    pub function: &'a mut EventFunction<'a, T, NQ, NV>,
+    /// End the run at the event.
+    pub stop: bool,
 }
 
 /// Options of [`simulate`].
@@ -118,6 +153,10 @@ pub struct SimulationOptions<T> {
     pub track_work: bool,
     /// Step budget. Default 100 million.
     pub max_steps: u64,
+    /// Locate the instants where the mechanism's unilateral elements touch or let go and cut
+    /// the steps there. Default on (it costs two evaluations of the switching functions per
+    /// step, and nothing for a mechanism without unilateral elements).
+    pub locate_switches: bool,
 }
 
 impl<T: Real> Default for SimulationOptions<T> {
@@ -127,6 +166,7 @@ impl<T: Real> Default for SimulationOptions<T> {
             correction: Correction::projection(),
             track_work: false,
             max_steps: 100_000_000,
+            locate_switches: true,
         }
     }
 }
@@ -153,6 +193,35 @@ pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize, cons
     v0: &[T; NV],
     times: &[T],
     options: &SimulationOptions<T>,
+    output: impl FnMut(&Sample<T, NQ, NV, NC>),
+) -> Result<Statistics, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N>,
+{
+    simulate_with_events(mechanism, ws, integrator, t0, q0, v0, times, options, &mut [], output)
+}
+
+/// [`simulate`] with the user's `events` located too: at each event (and at each switch of the
+/// mechanism's unilateral elements, with [`SimulationOptions::locate_switches`]) the step is cut
+/// at the instant, a sample is delivered there with [`Sample::event`](super::Sample::event) set,
+/// and an event with `stop` ends the run ([`Statistics::stopped_by`]).
+///
+/// # Errors
+/// As [`simulate`].
+#[allow(clippy::too_many_arguments)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub fn simulate_with_events<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    mechanism: &M,
+    ws: &mut Workspace<T, NV, NC, N>,
+    integrator: &mut I,
+    t0: T,
+    q0: &[T; NQ],
+    v0: &[T; NV],
+    times: &[T],
+    options: &SimulationOptions<T>,
+    events: &mut [Event<'_, T, NQ, NV>],
     mut output: impl FnMut(&Sample<T, NQ, NV, NC>),
 ) -> Result<Statistics, SimulationError>
 where
@@ -190,6 +259,21 @@ where
             return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
         }
         integrator.step(&system, ws, &from, t_end, &mut to)?;
+        let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
+        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events)?;
+        if let Some((t, _)) = hit {
+            // The step straddles a switch, where the forces (or the user's event) change law:
+            // its dense output does not hold across it. Step again from the same start to land on
+            // the instant (an adaptive method may land short; the next step finds it again).
+            integrator.restart();
+            integrator.step(&system, ws, &from, t, &mut to)?;
+            // Landed short, or the interpolant (poor across the switch) put the instant early and
+            // the function has not changed sign yet: not the event; the next step finds it from
+            // nearer.
+            if to.t < t || hit.is_some_and(|(_, which)| !changed(mechanism, events, which, &from, &to)) {
+                hit = None;
+            }
+        }
         stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         let end = to;
@@ -201,8 +285,9 @@ where
         if next < times.len() && times[next] < end.t {
             integrator.prepare_interpolation(&system, &from, &end)?;
         }
-        while next < times.len() && times[next] <= end.t {
-            if times[next] == end.t {
+        let step_end = end.t;
+        while next < times.len() && times[next] <= step_end {
+            if times[next] == step_end {
                 output(&sample(mechanism, &to));
             } else {
                 let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
@@ -214,9 +299,111 @@ where
             stats.samples += 1;
             next += 1;
         }
+        if let Some((_, which)) = hit {
+            output(&Sample { event: Some(which), ..sample(mechanism, &to) });
+            stats.samples += 1;
+            stats.events += 1;
+            if matches!(which, EventHit::User(k) if events[k].stop) {
+                stats.stopped_by = Some(which);
+                return Ok(stats);
+            }
+        }
         from = to;
     }
     Ok(stats)
+}
+
+/// Whether event `which` is on different sides (g > 0 or not) at the two points.
+fn changed<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    events: &mut [Event<'_, T, NQ, NV>],
+    which: EventHit,
+    a: &Point<T, NQ, NV, NC>,
+    b: &Point<T, NQ, NV, NC>,
+) -> bool
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+{
+    let mut g = |p: &Point<T, NQ, NV, NC>| match which {
+        EventHit::Switch(k) => mechanism.switching_function(k, &p.q, &p.v, p.t),
+        EventHit::User(k) => (events[k].function)(p.t, &p.q, &p.v),
+    };
+    (g(a) > T::ZERO) != (g(b) > T::ZERO)
+}
+
+/// The earliest sign change within the step from `from` to `end` of the mechanism's first
+/// `switches` switching functions and of the user's `events`, located on the step's dense
+/// output: its instant (the first on the new side, to within a few ulps of t) and which.
+/// A change at the step's very start (a switch the last cut landed on, undone by rounding) is
+/// not one.
+fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    mechanism: &M,
+    integrator: &mut I,
+    system: &System<'_, M, T>,
+    from: &Point<T, NQ, NV, NC>,
+    end: &Point<T, NQ, NV, NC>,
+    switches: usize,
+    events: &mut [Event<'_, T, NQ, NV>],
+) -> Result<Option<(T, EventHit)>, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N>,
+{
+    let value = |events: &mut [Event<'_, T, NQ, NV>], which: EventHit, t: T, q: &[T; NQ], v: &[T; NV]| match which {
+        EventHit::Switch(k) => mechanism.switching_function(k, q, v, t),
+        EventHit::User(k) => (events[k].function)(t, q, v),
+    };
+    let h = end.t - from.t;
+    let resolution = T::EPSILON * T::from_f64(16.0) * end.t.abs().max(h);
+    let mut first: Option<(T, EventHit)> = None;
+    let mut prepared = false;
+    let candidates = (0..switches).map(EventHit::Switch).chain((0..events.len()).map(EventHit::User));
+    for which in candidates {
+        let (ga, gb) = (value(events, which, from.t, &from.q, &from.v), value(events, which, end.t, &end.q, &end.v));
+        if (ga > T::ZERO) == (gb > T::ZERO) {
+            continue;
+        }
+        if !prepared {
+            integrator.prepare_interpolation(system, from, end)?;
+            prepared = true;
+        }
+        // Illinois: regula falsi that halves the value kept twice in a row, on g(t) of the
+        // interpolated state; [a, b] always brackets the change, b on the new side.
+        let (mut a, mut b, mut fa, mut fb) = (from.t, end.t, ga, gb);
+        let mut kept = 0i8;
+        for _ in 0..100 {
+            if b - a <= resolution {
+                break;
+            }
+            let secant = b - fb * (b - a) / (fb - fa);
+            let t = if secant > a && secant < b { secant } else { (a + b) * T::from_f64(0.5) };
+            let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
+            integrator.interpolate(mechanism, from, end, t, &mut q, &mut v);
+            let g = value(events, which, t, &q, &v);
+            if (g > T::ZERO) == (gb > T::ZERO) {
+                (b, fb) = (t, g);
+                kept = if kept < 0 { kept - 1 } else { -1 };
+                if kept <= -2 {
+                    fa *= T::from_f64(0.5);
+                }
+            } else {
+                (a, fa) = (t, g);
+                kept = if kept > 0 { kept + 1 } else { 1 };
+                if kept >= 2 {
+                    fb *= T::from_f64(0.5);
+                }
+            }
+        }
+        if b - from.t <= resolution {
+            continue;
+        }
+        if first.is_none_or(|(t, _)| b < t) {
+            first = Some((b, which));
+        }
+    }
+    Ok(first)
 }
 
 fn interpolate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
@@ -240,7 +427,7 @@ fn sample<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV:
         nonconservative_work: p.work[0],
         constraint_work: p.work[1],
     };
-    Sample { point: *p, energy }
+    Sample { point: *p, energy, event: None }
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.
