@@ -708,10 +708,14 @@ fn parse_if(input: ParseStream, keyword: Span) -> syn::Result<Expr> {
         input.parse::<Token![<=]>()?;
         CmpOp::Le
     } else if input.peek(Token![==]) || input.peek(Token![!=]) {
-        let tt: proc_macro2::TokenTree = input.parse()?;
+        let (op, span) = if input.peek(Token![==]) {
+            ("==", input.parse::<Token![==]>()?.spans[0])
+        } else {
+            ("!=", input.parse::<Token![!=]>()?.spans[0])
+        };
         return Err(syn::Error::new(
-            tt.span(),
-            format!("`{tt}` compares reals exactly, which a solver's rounding makes meaningless: compare with `>`, `>=`, `<` or `<=`"),
+            span,
+            format!("`{op}` compares reals exactly, which a solver's rounding makes meaningless: compare with `>`, `>=`, `<` or `<=`"),
         ));
     } else if input.peek(Token![>]) {
         input.parse::<Token![>]>()?;
