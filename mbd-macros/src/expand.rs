@@ -19,18 +19,40 @@ use crate::parse::MechanismDef;
 /// is reported once: its scenes, which share it, are then only stubs.
 pub fn expand(input: TokenStream) -> TokenStream {
     let mut names = crate::names::Names::default();
-    let out = crate::part::expand(input, &mut names).and_then(|input| crate::scene::split(input, &names)).map(|(base, scenes)| {
-        let (mut out, ok) = expand_one(base);
-        for scene in scenes {
-            if ok {
-                out.extend(expand_one(scene).0);
-            } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
-                out.extend(stub(&def.partial()));
+    let out = refuse_raw_identifiers(&input)
+        .and_then(|()| crate::part::expand(input, &mut names))
+        .and_then(|input| crate::scene::split(input, &names))
+        .map(|(base, scenes)| {
+            let (mut out, ok) = expand_one(base);
+            for scene in scenes {
+                if ok {
+                    out.extend(expand_one(scene).0);
+                } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
+                    out.extend(stub(&def.partial()));
+                }
             }
-        }
-        out
-    });
+            out
+        });
     names.rewrite_strings(out.unwrap_or_else(|e| e.to_compile_error()))
+}
+
+/// A raw identifier (`r#type`) names nothing in a mechanism: the names it makes from names
+/// (`l_3`, `front_left_hub`, `CRANK`) would not be identifiers.
+fn refuse_raw_identifiers(input: &TokenStream) -> syn::Result<()> {
+    for tt in input.clone() {
+        match tt {
+            proc_macro2::TokenTree::Ident(id) if id.to_string().starts_with("r#") => {
+                let plain = id.to_string()[2..].to_string();
+                return Err(syn::Error::new(
+                    id.span(),
+                    format!("a raw identifier `{id}` cannot name a body, point or element here: write `{plain}_`"),
+                ));
+            }
+            proc_macro2::TokenTree::Group(g) => refuse_raw_identifiers(&g.stream())?,
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// Expands one mechanism; whether it had no mistakes.

@@ -19,6 +19,8 @@ mod forces;
 mod formulation;
 mod forward;
 mod frames;
+#[cfg(test)]
+mod fuzz;
 mod json;
 mod model;
 mod names;
