@@ -116,6 +116,19 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let f = formulate(m);
     emit::check_finite(m, &f, m.name.span())?;
     let e: Emitter = emit::emitter(m, &f);
+    // Warnings through the one channel stable Rust gives a macro: a deprecated item used on the
+    // span.
+    let warnings = m.warnings.iter().map(|(span, msg)| {
+        let use_ = quote::quote_spanned!(*span=> let _ = Warning;);
+        quote! {
+            const _: () = {
+                #[deprecated(note = #msg)]
+                struct Warning;
+                #use_
+            };
+        }
+    });
+    let warnings = quote!(#(#warnings)*);
     let real = real(m.scalar);
     let name = &m.name;
     let vis = &m.vis;
@@ -343,6 +356,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let zero_nu = if phi_t_zero { quote!(*nu = [#zero; #nc_l];) } else { nu_body };
 
     Ok(quote! {
+        #warnings
         #(#attrs)*
         ///
         #[doc = #summary]

@@ -13,11 +13,15 @@ use crate::forces::{applied, bushing, cable, contact, point_to_point, rotational
 use crate::parse::{self, AxisRef, BinOp, CmpOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::{Cmp, Func};
 
-/// The errors of one expansion, combined into one at the end.
+/// The errors of one expansion, combined into one at the end, and its warnings (a mechanism
+/// with warnings still generates; each becomes a deprecation warning on its span).
 #[derive(Default)]
-pub struct Errors(Vec<syn::Error>);
+pub struct Errors(Vec<syn::Error>, pub Vec<(Span, String)>);
 
 impl Errors {
+    pub fn warn(&mut self, span: Span, msg: impl std::fmt::Display) {
+        self.1.push((span, msg.to_string()));
+    }
     pub fn push(&mut self, span: Span, msg: impl std::fmt::Display) {
         self.0.push(syn::Error::new(span, msg));
     }
@@ -297,12 +301,19 @@ impl MExpr {
         self.value_with(&|k| defaults.get(k).copied())
     }
 
+    /// The value of a driver f(t) at time t with the parameters' default values.
+    pub fn value_at(&self, defaults: &[f64], t: f64) -> Option<f64> {
+        self.value_with(&|k| if k == usize::MAX { Some(t) } else { defaults.get(k).copied() })
+    }
+
+    /// The value for the parameters `param(k)`; `param(usize::MAX)` is t.
     fn value_with(&self, param: &dyn Fn(usize) -> Option<f64>) -> Option<f64> {
         Some(match self {
             MExpr::Num(v) => *v,
             MExpr::Pi => std::f64::consts::PI,
             MExpr::Param(k) => return param(*k),
-            MExpr::T | MExpr::Coord(..) | MExpr::Vel(..) => return None,
+            MExpr::T => return param(usize::MAX),
+            MExpr::Coord(..) | MExpr::Vel(..) => return None,
             MExpr::Neg(a) => -a.value_with(param)?,
             MExpr::Bin(op, a, b) => {
                 let (a, b) = (a.value_with(param)?, b.value_with(param)?);
@@ -426,6 +437,8 @@ pub struct Model {
     /// Gravitational acceleration (m/s²), if declared.
     pub gravity: Option<Components>,
     pub forces: Vec<ForceElement>,
+    /// What the macro can see is likely a mistake but is valid (an angle driver in degrees).
+    pub warnings: Vec<(Span, String)>,
 }
 
 impl Model {
@@ -805,8 +818,11 @@ impl MechanismDef {
     pub fn validate(&self) -> syn::Result<Model> {
         let mut errors = Errors::default();
         let model = self.build(&mut errors);
+        let warnings = std::mem::take(&mut errors.1);
         errors.into_result()?;
-        model.ok_or_else(|| syn::Error::new(self.name.span(), "invalid mechanism"))
+        let mut model = model.ok_or_else(|| syn::Error::new(self.name.span(), "invalid mechanism"))?;
+        model.warnings = warnings;
+        Ok(model)
     }
 
     fn build(&self, errors: &mut Errors) -> Option<Model> {
@@ -983,7 +999,40 @@ impl MechanismDef {
             constraints,
             gravity,
             forces,
+            warnings: Vec::new(),
         })
+    }
+}
+
+/// An angle driver whose rate, at the parameters' defaults, is above 100 rev/s or a whole
+/// multiple of 90 rad/s — degrees per second written as radians (`360 * t` turns at 57 rev/s) —
+/// gets a warning on its expression; `deg(360) * t` is one turn a second.
+fn angle_rate_check(r: &mut Resolver, written: &Expr, f: &MExpr) {
+    let rate = |t: f64| {
+        let h = 1e-6 * t.abs().max(1.0);
+        Some((f.value_at(&r.defaults, t + h)? - f.value_at(&r.defaults, t - h)?) / (2.0 * h))
+    };
+    let rates: Option<Vec<f64>> = [0.0, 0.25, 0.5, 1.0, 2.0].into_iter().map(rate).collect();
+    let Some(rates) = rates else { return };
+    let fastest = rates.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+    let whole = rates[0].round();
+    let rev = |w: f64| w / std::f64::consts::TAU;
+    if fastest > 100.0 * std::f64::consts::TAU && fastest.is_finite() {
+        r.errors.warn(
+            written.span,
+            format!(
+                "this angle driver turns at {:.0} rev/s ({fastest:.0} rad/s): angles are radians; for degrees write `deg(...)`",
+                rev(fastest)
+            ),
+        );
+    } else if whole.abs() >= 90.0 && whole % 90.0 == 0.0 && (rates[0] - whole).abs() < 1e-6 * whole.abs() {
+        r.errors.warn(
+            written.span,
+            format!(
+                "this angle driver turns at {whole} rad/s ({:.1} rev/s), which reads like degrees per second: angles are radians; for {whole}°/s write `deg({whole}) * t`",
+                rev(whole)
+            ),
+        );
     }
 }
 
@@ -1035,6 +1084,14 @@ fn constraints(
             Item::Fix(f) => fix::resolve(r, f, &mut driven, bodies),
             Item::Drive(d) => {
                 let f = r.expr(&d.f, Scope::Time);
+                let angle = match &d.target {
+                    DriveTarget::Coordinate { coordinate, .. } => coordinate == "phi" || coordinate == "angle",
+                    DriveTarget::Angle { .. } => true,
+                    DriveTarget::Distance { .. } => false,
+                };
+                if let (true, Some(f)) = (angle, &f) {
+                    angle_rate_check(r, &d.f, f);
+                }
                 match &d.target {
                     DriveTarget::Coordinate { body, coordinate } if r.space == Space::Spatial && !r.is_body(body) => {
                         spatial::drive_joint(r, d, body, coordinate, f, &joints, &mut driven)
