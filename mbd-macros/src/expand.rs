@@ -14,9 +14,9 @@ use crate::parse::MechanismDef;
 /// Expands a `mechanism!` invocation: its parts and loops expanded ([`crate::part`],
 /// [`crate::repeat`]), then the base mechanism and each of its scenes ([`crate::scene`]); every
 /// name in its texts as the user wrote it ([`crate::names`]). Never fails: mistakes become
-/// `compile_error!`s next to a stub of the mechanism's type (its struct and parameters), so code
-/// that names the type or its parameters does not add follow-up errors. A mistake in the base
-/// is reported once: its scenes, which share it, are then only stubs.
+/// `compile_error!`s next to a placeholder of the mechanism's type, generated from its statements
+/// without mistakes, so code that uses the type does not add follow-up errors. A mistake in the
+/// base is reported once: its scenes, which share it, are then only placeholders.
 pub fn expand(input: TokenStream) -> TokenStream {
     let mut names = crate::names::Names::default();
     let out = refuse_raw_identifiers(&input)
@@ -55,20 +55,60 @@ fn refuse_raw_identifiers(input: &TokenStream) -> syn::Result<()> {
     Ok(())
 }
 
-/// Expands one mechanism; whether it had no mistakes.
+/// Expands one mechanism; whether it had no mistakes. With mistakes: their errors, and a
+/// placeholder of the mechanism ([`placeholder`]).
 fn expand_one(input: TokenStream) -> (TokenStream, bool) {
-    let def: MechanismDef = match syn::parse2(input) {
-        Ok(d) => d,
+    let (def, parse_errors) = match syn::parse::Parser::parse2(MechanismDef::parse_recovering, input) {
+        Ok(parsed) => parsed,
         Err(e) => return (e.to_compile_error(), false),
     };
-    match def.validate().and_then(|m| generate(&m)) {
-        Ok(ts) => (ts, true),
-        Err(e) => {
-            let errors = e.to_compile_error();
-            let stub = stub(&def.partial());
-            (quote!(#errors #stub), false)
+    let errors = match parse_errors {
+        // The statements that did not parse are reported; the rest are not checked, since what
+        // they name may be in a statement that did not parse.
+        Some(e) => e,
+        None => match def.validate().and_then(|m| generate(&m)) {
+            Ok(ts) => return (ts, true),
+            Err(e) => e,
+        },
+    };
+    let errors = errors.to_compile_error();
+    let placeholder = placeholder(def);
+    (quote!(#errors #placeholder), false)
+}
+
+/// The type of a mechanism that has mistakes, generated in full from its statements without
+/// mistakes, so that the user's code using it — its constants, traits, accessors and solvers —
+/// adds no errors of its own: one mistake, one error. Statements are taken in order, each kept
+/// if it adds no error (a joint naming a body whose statement is wrong goes with it). If what is
+/// left still does not generate, the bare struct with its parameters.
+fn placeholder(mut def: MechanismDef) -> TokenStream {
+    let count = |def: &MechanismDef| def.validate().err().map_or(0, |e| e.into_iter().count());
+    let partial = def.partial();
+    let mut left = std::mem::take(&mut def.items);
+    let mut errors = count(&def);
+    // Passes until one keeps nothing more: a statement may name what a later one declares.
+    loop {
+        let kept = def.items.len();
+        let mut dropped = Vec::new();
+        for statement in left {
+            def.items.push(statement);
+            let now = count(&def);
+            if now > errors {
+                dropped.extend(def.items.pop());
+            } else {
+                errors = now;
+            }
         }
+        if dropped.is_empty() || def.items.len() == kept {
+            break;
+        }
+        left = dropped;
     }
+    let generated = def.validate().and_then(|mut m| {
+        m.warnings.clear();
+        generate(&m)
+    });
+    generated.unwrap_or_else(|_| stub(&partial))
 }
 
 /// The type of a mechanism whose description has mistakes: its name and parameters, `Default`,

@@ -290,20 +290,82 @@ pub const STATEMENTS: &[&str] = &[
 
 impl Parse for MechanismDef {
     fn parse(input: ParseStream) -> syn::Result<Self> {
+        let (def, errors) = MechanismDef::parse_recovering(input)?;
+        match errors {
+            Some(e) => Err(e),
+            None => Ok(def),
+        }
+    }
+}
+
+impl MechanismDef {
+    /// Parses the mechanism statement by statement: a statement that does not parse is
+    /// reported and skipped (to its `;`, or past its braces where the next statement begins), and
+    /// the others are kept, so that a placeholder of the mechanism can still be made of them.
+    /// Fails outright only where the name or the braces are wrong.
+    pub fn parse_recovering(input: ParseStream) -> syn::Result<(Self, Option<syn::Error>)> {
+        use syn::parse::discouraged::Speculative;
         let attrs = input.call(Attribute::parse_outer)?;
         let vis: Visibility = input.parse()?;
         let name: Ident = input.parse()?;
         let content;
         braced!(content in input);
         let mut items = Vec::new();
+        let mut errors: Option<syn::Error> = None;
+        let mut broken_bodies = Vec::new();
         while !content.is_empty() {
-            items.push(content.parse()?);
+            let fork = content.fork();
+            match fork.parse::<Item>() {
+                Ok(item) => {
+                    content.advance_to(&fork);
+                    items.push(item);
+                }
+                Err(e) => {
+                    match &mut errors {
+                        Some(all) => all.combine(e),
+                        None => errors = Some(e),
+                    }
+                    // A body stays, unit mass and inertia, for what names it.
+                    let head = content.fork();
+                    if head.parse::<Ident>().is_ok_and(|k| k == "body") {
+                        if let Ok(body) = head.parse::<Ident>() {
+                            broken_bodies.push(body);
+                        }
+                    }
+                    skip_statement(&content)?;
+                }
+            }
         }
         if !input.is_empty() {
             return Err(input.error("unexpected tokens after the mechanism's closing brace"));
         }
-        Ok(MechanismDef { attrs, vis, name, items })
+        let spatial = items.iter().any(|i| matches!(i, Item::Spatial(_)));
+        for body in broken_bodies {
+            let span = body.span();
+            let one = || Expr::new(ExprKind::Num(1.0), span, span);
+            let inertia = if spatial { Value::List(VecLit { items: vec![one(), one(), one()], span }) } else { Value::Expr(one()) };
+            let fields = vec![
+                Field { name: Ident::new("mass", span), value: Value::Expr(one()) },
+                Field { name: Ident::new("inertia", span), value: inertia },
+            ];
+            items.push(Item::Body(BodyDef { name: body, fields }));
+        }
+        Ok((MechanismDef { attrs, vis, name, items }, errors))
     }
+}
+
+/// Skips the rest of a statement that did not parse: through its `;`, or through a braced group
+/// not followed by `;` (`body b { ... }`, `params { ... }`).
+fn skip_statement(input: ParseStream) -> syn::Result<()> {
+    while !input.is_empty() {
+        let tt: proc_macro2::TokenTree = input.parse()?;
+        match tt {
+            proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => return Ok(()),
+            proc_macro2::TokenTree::Group(g) if g.delimiter() == proc_macro2::Delimiter::Brace && !input.peek(Token![;]) => return Ok(()),
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// An optional `label:` before a statement's body.
