@@ -508,7 +508,20 @@ impl Resolver<'_> {
         }
     }
 
+    /// An expression resolved in its scope; a constant part of it that is not finite (`ln(0)`,
+    /// `sqrt(-1)`, `1e999`) is an error on that part.
     pub fn expr(&mut self, e: &Expr, scope: Scope) -> Option<MExpr> {
+        let m = self.expr_unchecked(e, scope)?;
+        match m.constant_value() {
+            Some(v) if !v.is_finite() => {
+                self.errors.at_expr(e, format!("this is {v} for every state and time: a constant such as ln(0), 1/0 or sqrt(-1)"));
+                None
+            }
+            _ => Some(m),
+        }
+    }
+
+    fn expr_unchecked(&mut self, e: &Expr, scope: Scope) -> Option<MExpr> {
         Some(match &e.kind {
             ExprKind::Num(v) => MExpr::Num(*v),
             ExprKind::Ident(id) => {
