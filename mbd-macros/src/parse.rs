@@ -506,6 +506,12 @@ impl Parse for Item {
             k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Attach = input.parse()?;
+                if !input.peek(Token![~]) {
+                    let what = if POINT_FORCE_KINDS.contains(&k) { "acts between" } else { "joins" };
+                    return Err(input.error(format!(
+                        "expected `~` and a second attachment: a {k} {what} two bodies, `{k} a[x, y] ~ b.P` (the ground is one: `~ ground[x, y]`)"
+                    )));
+                }
                 input.parse::<Token![~]>()?;
                 let j: Attach = input.parse()?;
                 let options = if input.peek(syn::token::Brace) { parse_fields(input)? } else { Vec::new() };
