@@ -101,6 +101,9 @@ mbd::mechanism! {
         local_force arm[0.0, 0.1, 0.0] = [3.0, slider.wz, 0.2];
         torque slider = [0.5 * cos(t), 0.1, -0.2 * slider.wx];
         local_torque cap = [0.1, -c * cap.wy, atan2(arm.y, arm.x)];
+        contact stop: cap[0.0, 0.0, -0.1] ~ ground[0.0, 0.0, 1.0] along [0.1, 0.0, 1.0] { k: 1.0e4, exponent: 1.5, c: 30.0 };
+        cable arm[0.3, 0.0, 0.0] ~ ground[0.5, 1.0, 0.5] { k: 2000.0, length: 0.9, c: 5.0 };
+        tyre slider[0.0, 0.0, -0.1] ~ ground[0.0, 0.0, 0.2] { radius: 0.15, k: 3000.0, c: 20.0, road: 0.05 * sin(3.0 * slider.x - t) + max(slider.y, 0.0) };
     }
 }
 

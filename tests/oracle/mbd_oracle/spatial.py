@@ -374,6 +374,26 @@ class Spatial:
             v = 0.5 * k * (length - free) ** 2 if f["k"] is not None else ca.SX(0)
             # The tension pulls the points together: it works on l̇ as −f.
             return name, self.power(-tension, length), v, f["c"] is None and f["force"] is None
+        if kind in ("contact", "cable", "tyre"):
+            # docs/formulation.md: a force that pushes only while its overlap s is positive
+            pi, pj = self.point(f["i"]), self.point(f["j"])
+            k, c = self.expr(f["k"]), self.opt(f["c"])
+            if kind == "contact":
+                n = self.vec(f["normal"])
+                n = self.A(f["j"]["body"]) @ (n / ca.norm_2(n))
+                s = ca.dot(n, pj - pi)
+                e = self.expr(f["exponent"])
+                push, v, works = s ** e * (k + c * self.rate(s)), k * s ** (e + 1) / (e + 1), s
+            else:
+                if kind == "cable":
+                    length = ca.norm_2(pj - pi)
+                    s, works = length - self.expr(f["length"]), length
+                else:
+                    s = pj[2] + self.expr(f["road"]) + self.expr(f["radius"]) - pi[2]
+                    works = s
+                push, v = k * s + c * self.rate(s), 0.5 * k * s ** 2
+            force = ca.if_else(s > 0, ca.fmax(push, 0), 0)
+            return name, self.power(-force, works), ca.if_else(s > 0, v, 0), f["c"] is None
         if kind == "rotational":
             theta = self.joint_angle(f["joint"])
             k, c = self.opt(f["k"]), self.opt(f["c"])
