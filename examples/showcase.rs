@@ -1,6 +1,8 @@
 //! Runs every example of mbd in turn: the README's first command,
 //! `cargo run --release --example showcase`.
 
+#[path = "bump.rs"]
+mod bump;
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
 #[path = "double_wishbone_3d.rs"]
@@ -41,7 +43,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 18] = [
+    let runs: [(&str, Run); 19] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -60,6 +62,7 @@ fn main() {
         ("double_wishbone_3d", || Ok(double_wishbone_3d::run(true).map(drop)?)),
         ("stewart_platform", || Ok(stewart_platform::run(true).map(drop)?)),
         ("excavator", || excavator::run(true).map(drop)),
+        ("bump", || bump::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -308,3 +308,19 @@ fn excavator_scenes_agree_on_the_cylinder_forces() {
     // Lifting changes the boom cylinder's force smoothly (a few percent over 2 s at 0.1 m/s).
     assert!(r.lifting.iter().all(|f| (f / r.lifting[0] - 1.0).abs() < 0.1), "{r:?}");
 }
+
+/// The quarter car sits on the road with the tyre compressed by (m + M) g / k (statics to its
+/// 1e-10 residual: 1e-9 m). Over the bump, events come in the physical order: the road falls away
+/// after the bump's crest (x = 20.25 m, t = 1.0125 s) faster than the wheel follows, so the tyre
+/// lets go before the bump ends (t = 1.025 s); the wheel, thrown up, hits its bump stop, leaves
+/// it, and lands again. Nothing switches on the flat road before.
+#[test]
+fn the_quarter_car_leaves_the_road_and_hits_its_bump_stop() {
+    let r = bump::run(false).expect("the quarter car runs");
+    let (compression, expected) = r.static_compression;
+    assert!((compression - expected).abs() < 1e-9, "{r:?}");
+    let order: Vec<(&str, bool)> = r.events.iter().map(|e| (e.1, e.2)).collect();
+    assert_eq!(order, [("road", false), ("bump_stop", true), ("bump_stop", false), ("road", true)], "{r:?}");
+    assert!(r.events[0].0 > 1.0125 && r.events[0].0 < 1.025, "the tyre lets go at {} s", r.events[0].0);
+    assert!(r.airborne > 0.02 && r.airborne < 0.2, "{r:?}");
+}

@@ -1,6 +1,8 @@
 //! Shared by the integration tests: the examples' mechanisms and a reproducible generator.
 #![allow(dead_code)]
 
+#[path = "../../examples/bump.rs"]
+pub mod bump;
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
