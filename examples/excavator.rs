@@ -10,8 +10,8 @@
 //! driven arm held still at that pose's cylinder lengths needs, by inverse dynamics (the drivers'
 //! multipliers), the same forces.
 //!
-//! A distance driver's row is ½(|d|² − l²), so its multiplier λ is a force per metre: the force it
-//! exerts on its second point is λ d, and the cylinder's tension is −λ l.
+//! A distance driver's row is (|d|² − l²)/(2l), |d| − l to first order, so its multiplier λ is a
+//! force in N: the force it exerts on its second point is λ d/l, and the cylinder's tension is −λ.
 //!
 //! Run: `cargo run --release --example excavator`
 use mbd::prelude::*;
@@ -84,7 +84,7 @@ pub struct Report {
     pub held_angles: [f64; 3],
     /// Cylinder tensions at the held equilibrium: k (l − L) + force (N; negative = pushing).
     pub held_tensions: [f64; 3],
-    /// Cylinder tensions the driven arm needs to stand still at the held pose's lengths, −λ l (N).
+    /// Cylinder tensions the driven arm needs to stand still at the held pose's lengths, −λ (N).
     pub driven_tensions: [f64; 3],
     /// The largest relative difference between the two.
     pub disagreement: f64,
@@ -113,7 +113,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut multipliers = [0.0; 9];
     inverse_dynamics(&driven, &mut ws, &qd, &[0.0; 9], &[0.0; 9], 0.0, &mut multipliers)?;
     // Rows: three pins (2 each), then the three drivers.
-    let driven_tensions: [f64; 3] = core::array::from_fn(|i| -multipliers[6 + i] * l[i]);
+    let driven_tensions: [f64; 3] = core::array::from_fn(|i| -multipliers[6 + i]);
     let disagreement = (0..3).map(|i| ((driven_tensions[i] - held_tensions[i]) / held_tensions[i]).abs()).fold(0.0, f64::max);
 
     // Lifting: the boom cylinder extends at 0.1 m/s; its tension over 2 s (motion included).
@@ -124,13 +124,13 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         let s = solver.analyze(&driven, &mut ws, &guess, t)?;
         guess = s.q;
         inverse_dynamics(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut multipliers)?;
-        lifting[k] = -multipliers[6] * lengths(&s.q)[0];
+        lifting[k] = -multipliers[6];
     }
 
     if print {
         println!("Excavator arm: one declaration, scenes ExcavatorHeld (cylinders as springs) and ExcavatorDriven (as drivers)");
         println!("held equilibrium in {} iterations, {:?}", report.iterations, report.stability);
-        println!("{:>8} {:>12} {:>16} {:>18}", "cylinder", "length (m)", "held: tension (N)", "driven: −λ l (N)");
+        println!("{:>8} {:>12} {:>16} {:>18}", "cylinder", "length (m)", "held: tension (N)", "driven: −λ (N)");
         for i in 0..3 {
             println!("{:>8} {:>12.5} {:>16.1} {:>18.1}", CYLINDERS[i].0, l[i], held_tensions[i], driven_tensions[i]);
         }

@@ -242,16 +242,24 @@ impl<'m> Builder<'m> {
         [self.g.sub(a[0], b[0]), self.g.sub(a[1], b[1])]
     }
 
-    /// ½ (dᵀd − L²), d = r^P_j − r^P_i.
-    pub fn half_sq_distance(&mut self, i: &Loc, j: &Loc, length: Id) -> Id {
+    /// (dᵀd − L²)/(2L), d = r^P_j − r^P_i ([`Builder::distance_row`]).
+    pub fn distance_between(&mut self, i: &Loc, j: &Loc, length: Id) -> Id {
         let pi = self.point(i);
         let pj = self.point(j);
         let d = self.diff2(pj, pi);
-        let dd = self.dot(&d, &d);
+        self.distance_row(&d, length)
+    }
+
+    /// (dᵀd − L²)/(2L): zero where |d| = L, smooth where |d| is not (at d = 0), and equal to
+    /// |d| − L to first order there, so its gradient is the unit vector along d and its
+    /// multiplier a force in N (½(dᵀd − L²) would give N/m).
+    pub fn distance_row(&mut self, d: &[Id], length: Id) -> Id {
+        let dd = self.dot(d, d);
         let l2 = self.g.powi(length, 2);
         let r = self.g.sub(dd, l2);
-        let half = self.g.num(0.5);
-        self.g.mul(half, r)
+        let two = self.g.num(2.0);
+        let twice = self.g.mul(two, length);
+        self.g.div(r, twice)
     }
 
     /// u_iᵀ (r^P_j − r^P_i): the slide of P_j along the unit axis of body i through P_i.

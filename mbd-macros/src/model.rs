@@ -301,6 +301,11 @@ impl MExpr {
         self.value_with(&|k| defaults.get(k).copied())
     }
 
+    /// Whether f(t) is 0 at every time, whatever the parameters (tried at a few times).
+    pub fn is_zero_in_time(&self) -> bool {
+        [0.0, 0.37, 1.0, 2.9].iter().all(|&t| self.value_with(&|k| (k == usize::MAX).then_some(t)) == Some(0.0))
+    }
+
     /// The value of a driver f(t) at time t with the parameters' default values.
     pub fn value_at(&self, defaults: &[f64], t: f64) -> Option<f64> {
         self.value_with(&|k| if k == usize::MAX { Some(t) } else { defaults.get(k).copied() })

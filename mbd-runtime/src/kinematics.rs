@@ -60,8 +60,7 @@ const UNNAMED: &str = "<unnamed>";
 #[non_exhaustive]
 pub struct KinematicOptions {
     /// Convergence test of the position solve: ‖Φ(q, t)‖∞ ≤ `tolerance`, in the units of the
-    /// constraint rows (m for point coincidence, rad or dimensionless for angles, m² for
-    /// distance rows ½(dᵀd − L²)). Default [`DEFAULT_TOLERANCE`]; raised to what the scalar
+    /// constraint rows (m for points and distances, rad or dimensionless for angles). Default [`DEFAULT_TOLERANCE`]; raised to what the scalar
     /// type resolves, [`RESOLUTION_ULPS`] · ε · max(1, ‖q‖∞), where it is below that.
     pub tolerance: f64,
     /// Newton iterations allowed per position solve before [`KinematicError::NotConverged`].

@@ -1,6 +1,7 @@
 //! `drive distance(a.P, b.Q) = f(t);` — a relative-distance driver (Nikravesh 7.4).
 //!
-//! Row `distance`: ½ (dᵀd − f(t)²), d = r^P_j − r^P_i.
+//! Row `distance`: (dᵀd − f(t)²)/(2 f(t)), d = r^P_j − r^P_i: |d| − f to first order, so its
+//! multiplier is the driver's force in N. f must not reach 0.
 
 use serde_json::{json, Value};
 use syn::Ident;
@@ -32,6 +33,10 @@ pub fn resolve<'a>(
             r.errors.push(j.0.span(), "a distance driver needs points on two different bodies");
             None
         }
+        (Some(_), Some(_), Some(f)) if f.is_zero_in_time() => {
+            r.errors.at_expr(&d.f, "a distance driver to length 0 has no direction to pull along: drive the points' coordinates, or join them with a `revolute`");
+            None
+        }
         (Some(li), Some(lj), Some(f)) => {
             let name = format!("drive distance {}~{}", i.0, j.0);
             Some((d.label.as_ref(), name, d.keyword.span(), Box::new(DriveDistance { i: li, j: lj, f }) as Box<dyn Joint>, Vec::new()))
@@ -49,7 +54,7 @@ impl Joint for DriveDistance {
     }
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let f = b.expr(&self.f);
-        vec![Row { name: "distance", value: b.half_sq_distance(&self.i, &self.j, f) }]
+        vec![Row { name: "distance", value: b.distance_between(&self.i, &self.j, f) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "f": cx.expr(&self.f)})

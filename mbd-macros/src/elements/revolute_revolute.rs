@@ -1,7 +1,7 @@
 //! `revolute_revolute Pi ~ Pj { length: L };` — a massless link of length L between two pins
 //! (Nikravesh 7.3.3).
 //!
-//! Row `length`: ½ (dᵀd − L²), d = r^P_j − r^P_i.
+//! Row `length`: (dᵀd − L²)/(2L), d = r^P_j − r^P_i: its multiplier is the link's force in N.
 
 use serde_json::{json, Value};
 
@@ -16,6 +16,9 @@ pub const SPEC: JointSpec = JointSpec {
     axis_j: false,
     options: &[("length", Some("the length of a revolute-revolute link"))],
     build: |mut p: Parts| match p.options.remove("length") {
+        Some(length) if length.constant_value() == Some(0.0) => {
+            Err((p.keyword.span(), "a revolute_revolute link of length 0 is a pin: write `revolute`".to_string()))
+        }
         Some(length) => Ok(Box::new(RevoluteRevolute { i: p.i, j: p.j, length })),
         None => Err((p.keyword.span(), "a revolute_revolute link needs its length: `{ length: 0.3 }` (m)".to_string())),
     },
@@ -37,7 +40,7 @@ impl Joint for RevoluteRevolute {
     }
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let l = b.expr(&self.length);
-        vec![Row { name: "length", value: b.half_sq_distance(&self.i, &self.j, l) }]
+        vec![Row { name: "length", value: b.distance_between(&self.i, &self.j, l) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "length": cx.expr(&self.length)})

@@ -145,7 +145,8 @@ class Model:
         if kind == "revolute_revolute":
             pi, pj = self.point(c["i"]), self.point(c["j"])
             d = [pj[0] - pi[0], pj[1] - pi[1]]
-            return [0.5 * (self.dot(d, d) - self.expr(c["length"]) ** 2)]
+            length = self.expr(c["length"])
+            return [(self.dot(d, d) - length ** 2) / (2 * length)]
         if kind == "revolute_translational":
             pi, pj = self.point(c["i"]), self.point(c["j"])
             nj = self.perp(self.unit_axis(c["j"]))
@@ -163,7 +164,8 @@ class Model:
         if kind == "drive_distance":
             pi, pj = self.point(c["i"]), self.point(c["j"])
             d = [pj[0] - pi[0], pj[1] - pi[1]]
-            return [0.5 * (self.dot(d, d) - self.expr(c["f"]) ** 2)]
+            f = self.expr(c["f"])
+            return [(self.dot(d, d) - f ** 2) / (2 * f)]
         if kind == "constraint":
             return [self.expr(c["expr"])]
         raise ValueError(f"{self.name}: unknown constraint kind {kind!r}")

@@ -307,7 +307,8 @@ class Spatial:
             _, _, zj = self.triad(mj, "z")
             return list(ca.vertsplit(pi - pj)) + [dot(zi, zj)]
         if kind == "distance":
-            return [0.5 * (dot(d, d) - self.expr(c["length"]) ** 2)]
+            length = self.expr(c["length"])
+            return [(dot(d, d) - length ** 2) / (2 * length)]
         if kind == "point_on_plane":
             _, _, zi = self.triad(mi, "z")
             return [dot(zi, d) - self.expr(c["distance"])]

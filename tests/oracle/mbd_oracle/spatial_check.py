@@ -170,7 +170,7 @@ class Numeric:
                 "rigid": lambda: list(pi - pj) + [yi @ zj, zi @ xj, xi @ yj],
                 "point_on_line": lambda: [xi @ d, yi @ d],
                 "point_on_plane": lambda: [zi @ d - self.ev(c["distance"], q, t=t)],
-                "distance": lambda: [0.5 * (d @ d - self.ev(c["length"], q, t=t) ** 2)],
+                "distance": lambda: [(d @ d - self.ev(c["length"], q, t=t) ** 2) / (2 * self.ev(c["length"], q, t=t))],
             }
             out.extend(rows[k]())
         return np.array(out)

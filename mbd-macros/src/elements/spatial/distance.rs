@@ -1,9 +1,9 @@
 //! `distance Pi ~ Pj { length: L };` — a massless spherical–spherical link: the points stay L
-//! apart (row `length`: ½ (dᵀd − L²)).
+//! apart (row `length`: (dᵀd − L²)/(2L), whose multiplier is the link's force in N).
 
 use serde_json::{json, Value};
 
-use super::{half_sq, marker_json, Axis, Marker, Parts, Spec};
+use super::{marker_json, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
 use crate::frames::{Builder, Row};
 use crate::json::Ctx;
@@ -15,6 +15,9 @@ pub const SPEC: Spec = Spec {
     axis_j: Axis::None,
     options: &[("length", Some("a link length"))],
     build: |mut p: Parts| match p.options.remove("length") {
+        Some(length) if length.constant_value() == Some(0.0) => {
+            Err((p.keyword.span(), "a distance joint of length 0 is a ball joint: write `spherical`".to_string()))
+        }
         Some(length) => Ok(Box::new(Distance { i: p.i, j: p.j, length })),
         None => Err((p.keyword.span(), "a distance joint needs its length: `{ length: 0.3 }` (m)".to_string())),
     },
@@ -39,7 +42,7 @@ impl Joint for Distance {
         let pj = b.point3(&self.j.loc);
         let d: [_; 3] = std::array::from_fn(|k| b.g.sub(pj[k], pi[k]));
         let l = b.expr(&self.length);
-        vec![Row { name: "length", value: half_sq(b, &d, l) }]
+        vec![Row { name: "length", value: b.distance_row(&d, l) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": marker_json(cx, &self.i), "j": marker_json(cx, &self.j), "length": cx.expr(&self.length)})

@@ -256,14 +256,6 @@ pub fn pair_json(cx: &Ctx, i: &Marker, j: &Marker) -> Value {
     json!({"i": marker_json(cx, i), "j": marker_json(cx, j)})
 }
 
-/// ½ (dᵀd − L²) between two points: what `distance` and a driven distance share.
-pub fn half_sq(b: &mut Builder, d: &[Id; 3], length: Id) -> Id {
-    let dd = b.dot(d, d);
-    let l2 = b.g.powi(length, 2);
-    let r = b.g.sub(dd, l2);
-    let half = b.g.num(0.5);
-    b.g.mul(half, r)
-}
 
 /// `drive J.angle = f;` or `drive J.stroke = f;` on a spatial joint J, by its label.
 pub fn drive_joint<'a>(
