@@ -467,11 +467,11 @@ fn the_csv_writer_writes_every_sample_with_named_columns() {
     assert_eq!(lines.len(), 4, "{text}");
     let header: Vec<&str> = lines[0].split(',').collect();
     assert_eq!(header.len(), 1 + 6 + 6 + 6 + 4 + 4, "{}", lines[0]);
-    assert_eq!(header[..3], ["t", "a.x", "a.y"]);
-    assert_eq!(header[7], "d/dt a.x");
-    assert_eq!(header[13], "d2/dt2 a.x");
-    assert!(header[19].starts_with("lambda "), "{}", header[19]);
-    assert_eq!(header[23..], ["kinetic", "potential", "nonconservative_work", "constraint_work"]);
+    assert_eq!(header[..4], ["t (s)", "a.x (m)", "a.y (m)", "a.phi (rad)"]);
+    assert_eq!(header[7], "d/dt a.x (m/s)");
+    assert_eq!(header[15], "d2/dt2 a.phi (rad/s²)");
+    assert!(header[19].starts_with("lambda ") && header[19].ends_with(": x (N)"), "{}", header[19]);
+    assert_eq!(header[23..], ["kinetic (J)", "potential (J)", "nonconservative_work (J)", "constraint_work (J)"]);
     for (line, s) in lines[1..].iter().zip(&samples) {
         let values: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
         let p = &s.point;

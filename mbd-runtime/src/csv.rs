@@ -3,7 +3,10 @@
 //! nonconservative_work, constraint_work`, in SI units, named from the mechanism so a
 //! spreadsheet or pandas reads it without a legend: q from [`Mechanism::COORDINATE_NAMES`]; v
 //! and v̇ from [`Mechanism::VELOCITY_NAMES`], planar as `d/dt crank.x` and `d2/dt2 crank.x`
-//! (v = q̇), spatial as `top.wx` and `d/dt top.wx`.
+//! (v = q̇), spatial as `top.wx` and `d/dt top.wx`. Each header carries its unit: `crank.x (m)`,
+//! `d/dt crank.phi (rad/s)`, `lambda revolute crank~rod: x (N)`, `lambda drive crank.phi: phi
+//! (N·m)` (a user constraint's multiplier has the unit of force its row's unit calls for, which the
+//! header leaves out).
 
 use std::io::{self, Write};
 
@@ -20,21 +23,33 @@ pub struct CsvWriter<W: Write> {
 impl<W: Write> CsvWriter<W> {
     /// A writer that has written the header row for mechanism `M`.
     pub fn new<M: Mechanism>(mut out: W) -> Self {
-        let mut header = String::from("t");
+        let mut header = String::from("t (s)");
         // Planar velocities are the coordinates' rates; spatial ones have names of their own.
         let (velocity, acceleration) = if M::DIMENSION == 3 { ("", "d/dt ") } else { ("d/dt ", "d2/dt2 ") };
-        for (prefix, names) in [("", M::COORDINATE_NAMES), (velocity, M::VELOCITY_NAMES), (acceleration, M::VELOCITY_NAMES)] {
+        // The derivative order of each group, from the coordinates' (or velocities') own unit.
+        let groups = [("", M::COORDINATE_NAMES, 0), (velocity, M::VELOCITY_NAMES, 1), (acceleration, M::VELOCITY_NAMES, 2)];
+        for (prefix, names, order) in groups {
             for name in names {
                 header.push(',');
                 header.push_str(prefix);
                 header.push_str(name);
+                if let Some(unit) = coordinate_unit(name, order - usize::from(M::DIMENSION == 3 && order > 0)) {
+                    header.push_str(" (");
+                    header.push_str(unit);
+                    header.push(')');
+                }
             }
         }
         for name in M::CONSTRAINT_NAMES {
             header.push_str(",lambda ");
             header.push_str(&name.replace(',', ";"));
+            if let Some(unit) = multiplier_unit(name) {
+                header.push_str(" (");
+                header.push_str(unit);
+                header.push(')');
+            }
         }
-        header.push_str(",kinetic,potential,nonconservative_work,constraint_work\n");
+        header.push_str(",kinetic (J),potential (J),nonconservative_work (J),constraint_work (J)\n");
         let error = out.write_all(header.as_bytes()).err();
         Self { out, error, rows: 0 }
     }
@@ -73,5 +88,38 @@ impl<W: Write> CsvWriter<W> {
         }
         self.out.flush()?;
         Ok(self.rows)
+    }
+}
+
+/// The unit of a coordinate or velocity `body.c` differentiated `order` more times in time (a
+/// spatial velocity `top.vx` is already order 1): m, rad and Euler parameters (dimensionless,
+/// "1") per s, s².
+fn coordinate_unit(name: &str, order: usize) -> Option<&'static str> {
+    let c = name.rsplit('.').next()?;
+    let (length, angle, euler) = match (c, order) {
+        (_, 0) => ("m", "rad", "1"),
+        (_, 1) => ("m/s", "rad/s", "1/s"),
+        _ => ("m/s²", "rad/s²", "1/s²"),
+    };
+    Some(match c {
+        "x" | "y" | "z" => length,
+        "phi" => angle,
+        "e0" | "e1" | "e2" | "e3" => euler,
+        // spatial velocities: order counts from v and ω
+        "vx" | "vy" | "vz" => ["m/s", "m/s²", "m/s³"][order.min(2)],
+        "wx" | "wy" | "wz" => ["rad/s", "rad/s²", "rad/s³"][order.min(2)],
+        _ => return None,
+    })
+}
+
+/// The unit of the multiplier of constraint row `name` (`"revolute crank~rod: x"`): N for a row
+/// measured in metres (points, distances, strokes), N·m for an angle or a dimensionless
+/// orientation row; `None` for a user constraint, whose row's unit the mechanism does not know.
+pub fn multiplier_unit(name: &str) -> Option<&'static str> {
+    let row = name.rsplit(": ").next()?;
+    match row {
+        "x" | "y" | "z" | "normal" | "distance" | "length" | "stroke" | "offset" | "offset_x" | "offset_y" => Some("N"),
+        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" => Some("N·m"),
+        _ => None,
     }
 }

@@ -256,7 +256,6 @@ pub fn pair_json(cx: &Ctx, i: &Marker, j: &Marker) -> Value {
     json!({"i": marker_json(cx, i), "j": marker_json(cx, j)})
 }
 
-
 /// `drive J.angle = f;` or `drive J.stroke = f;` on a spatial joint J, by its label.
 pub fn drive_joint<'a>(
     r: &mut Resolver,
