@@ -395,6 +395,9 @@ pub struct Param {
 
 pub struct Body {
     pub name: Ident,
+    /// A point mass (`particle`): its inertia is its mass times 1 m² and its angle is held at 0
+    /// by a row of its own, so it neither rotates nor makes M singular.
+    pub particle: bool,
     pub mass: MExpr,
     pub inertia: Inertia,
     /// Initial guess of the coordinates: (x, y, φ), or (x, y, z, e0, e1, e2, e3).
@@ -1072,6 +1075,10 @@ fn constraints(
     let mut constraints = Vec::new();
     let mut forces = Vec::new();
     let mut driven = Driven::default();
+    // A particle's angle is held by a row of its own, after the declared ones.
+    for (k, b) in bodies.iter().enumerate().filter(|(_, b)| b.particle) {
+        driven.coords.insert((k, Coord::Phi), b.name.span());
+    }
     let mut spatial_joints = HashMap::new();
     let mut joints = SpatialJoints::new();
     if r.space == Space::Spatial {
@@ -1159,6 +1166,13 @@ fn constraints(
         }
         constraints.push(Constraint { name, kind });
     }
+    for (k, b) in bodies.iter().enumerate().filter(|(_, b)| b.particle) {
+        let Some(name) = claim_name(names, r.errors, None, format!("particle {}", b.name), b.name.span()) else {
+            *ok = false;
+            continue;
+        };
+        constraints.push(Constraint { name, kind: Box::new(fix::Fix { body: k, coord: Coord::Phi, value: MExpr::Num(0.0) }) });
+    }
     (constraints, forces, joints)
 }
 
@@ -1242,6 +1256,13 @@ fn positive_field(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String,
         }
         Some(Value::Expr(e)) => {
             let m = r.expr(e, Scope::Params)?;
+            if name == "inertia" && m.constant_value() == Some(0.0) {
+                r.errors.at_expr(
+                    e,
+                    format!("the inertia of body `{0}` must be positive, found 0: a point mass is a particle, `particle {0} {{ mass: ..., at: [x, y] }}`", b.name),
+                );
+                return None;
+            }
             check_positive(r.errors, &m, e, &format!("the {name} of body `{}`", b.name));
             Some(m)
         }
@@ -1274,6 +1295,32 @@ fn zeros(n: usize) -> Vec<MExpr> {
 /// A body statement, planar or spatial.
 fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
     match r.space {
+        Space::Planar if b.particle => {
+            let help = "a particle has `mass`, `at: [x, y]` and `velocity: [vx, vy]`";
+            let (fields, ok) = body_fields(r, b, &["mass", "at", "velocity"], help);
+            let mass = positive_field(r, b, &fields, "mass", "kg");
+            let q0 = list_field(r, &fields, "at", "x, y", &[2]);
+            let v0 = list_field(r, &fields, "velocity", "vx, vy", &[2]);
+            if !ok {
+                return None;
+            }
+            let mass = mass?;
+            let planar = |v: Option<Vec<MExpr>>| {
+                let mut v = v.unwrap_or_else(|| zeros(2));
+                v.push(MExpr::Num(0.0));
+                v
+            };
+            Some(Body {
+                name: b.name.clone(),
+                particle: true,
+                // J = m·(1 m)²: any positive value would do, since the angle is held; this one
+                // keeps the angle's row as well scaled as the positions'.
+                inertia: Inertia::Planar(mass.clone()),
+                mass,
+                q0: planar(q0?),
+                v0: planar(v0?),
+            })
+        }
         Space::Planar => {
             let help = "a body has `mass`, `inertia`, `at: [x, y, phi]` and `velocity: [vx, vy, omega]`";
             let (fields, ok) = body_fields(r, b, BODY_FIELDS, help);
@@ -1286,6 +1333,7 @@ fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
             }
             Some(Body {
                 name: b.name.clone(),
+                particle: false,
                 mass: mass?,
                 inertia: Inertia::Planar(inertia?),
                 q0: q0?.unwrap_or_else(|| zeros(3)),
@@ -1299,6 +1347,13 @@ fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
 /// A spatial body: mass, inertia tensor, initial pose (position and one of quaternion,
 /// axis-angle or z-y-x angles) and twist (velocity, body-frame angular velocity).
 fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
+    if b.particle {
+        r.errors.push(
+            b.name.span(),
+            "particles are planar for now: in space give the body a small inertia (`inertia: [j, j, j]`) and hold its orientation if it must not turn",
+        );
+        return None;
+    }
     let help = "a spatial body has `mass`, `inertia: [Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, `at: [x, y, z]`, \
                 one of `quaternion: [e0, e1, e2, e3]`, `axis_angle: [ax, ay, az, angle]`, `angles: [yaw, pitch, roll]`, \
                 `velocity: [vx, vy, vz]` and `omega: [wx, wy, wz]` (body frame)";
@@ -1326,7 +1381,7 @@ fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
     q0.extend(rotation?);
     let mut v0 = velocity?.unwrap_or_else(|| zeros(3));
     v0.extend(omega?.unwrap_or_else(|| zeros(3)));
-    Some(Body { name: b.name.clone(), mass: mass?, inertia: Inertia::Tensor(inertia?), q0, v0 })
+    Some(Body { name: b.name.clone(), particle: false, mass: mass?, inertia: Inertia::Tensor(inertia?), q0, v0 })
 }
 
 /// `[Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]` as the symmetric tensor; constant

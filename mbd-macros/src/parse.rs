@@ -89,6 +89,8 @@ pub struct TorqueDef {
 pub struct BodyDef {
     pub name: Ident,
     pub fields: Vec<Field>,
+    /// Declared with `particle`: a point mass, its angle held at 0.
+    pub particle: bool,
 }
 
 /// `name: value` inside a body or an option block.
@@ -253,6 +255,7 @@ pub const STATEMENTS: &[&str] = &[
     "spatial",
     "params",
     "body",
+    "particle",
     "point",
     "vector",
     "fix",
@@ -348,7 +351,7 @@ impl MechanismDef {
                 Field { name: Ident::new("mass", span), value: Value::Expr(one()) },
                 Field { name: Ident::new("inertia", span), value: inertia },
             ];
-            items.push(Item::Body(BodyDef { name: body, fields }));
+            items.push(Item::Body(BodyDef { name: body, fields, particle: false }));
         }
         Ok((MechanismDef { attrs, vis, name, items }, errors))
     }
@@ -418,11 +421,11 @@ impl Parse for Item {
                 eat_optional_semi(input)?;
                 Item::Params(params)
             }
-            "body" => {
+            "body" | "particle" => {
                 let name: Ident = input.parse()?;
                 let fields = parse_fields(input)?;
                 eat_optional_semi(input)?;
-                Item::Body(BodyDef { name, fields })
+                Item::Body(BodyDef { name, fields, particle: kw == "particle" })
             }
             "point" | "vector" => {
                 let body: Ident = input.call(Ident::parse_any)?;
