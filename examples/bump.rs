@@ -30,6 +30,7 @@ mbd::mechanism! {
 
 /// What the run gives.
 #[derive(Debug)]
+#[allow(dead_code)] // read by the tests
 pub struct Report {
     /// The tyre's static compression and the closed form (m + M) g / k (m).
     pub static_compression: (f64, f64),

@@ -19,6 +19,7 @@ use crate::parse::MechanismDef;
 /// base is reported once: its scenes, which share it, are then only placeholders.
 pub fn expand(input: TokenStream) -> TokenStream {
     let mut names = crate::names::Names::default();
+    let written = input.clone();
     let out = refuse_raw_identifiers(&input)
         .and_then(|()| crate::part::expand(input, &mut names))
         .and_then(|input| crate::scene::split(input, &names))
@@ -27,13 +28,19 @@ pub fn expand(input: TokenStream) -> TokenStream {
             for scene in scenes {
                 if ok {
                     out.extend(expand_one(scene).0);
-                } else if let Ok(def) = syn::parse2::<MechanismDef>(scene) {
-                    out.extend(stub(&def.partial()));
+                } else if let Ok((def, _)) = syn::parse::Parser::parse2(MechanismDef::parse_recovering, scene) {
+                    out.extend(placeholder(def));
                 }
             }
             out
         });
-    names.rewrite_strings(out.unwrap_or_else(|e| e.to_compile_error()))
+    // A mistake in a part, an instance or a scene: the placeholder of what parses as written.
+    let out = out.unwrap_or_else(|e| {
+        let errors = e.to_compile_error();
+        let placeholder = syn::parse::Parser::parse2(MechanismDef::parse_recovering, written).map(|(def, _)| placeholder(def)).ok();
+        quote!(#errors #placeholder)
+    });
+    names.rewrite_strings(out)
 }
 
 /// A raw identifier (`r#type`) names nothing in a mechanism: the names it makes from names

@@ -313,6 +313,25 @@ where
     Ok(stats)
 }
 
+/// The value of event `which` at (t, q, v).
+fn event_value<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    events: &mut [Event<'_, T, NQ, NV>],
+    which: EventHit,
+    t: T,
+    q: &[T; NQ],
+    v: &[T; NV],
+) -> T
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+{
+    match which {
+        EventHit::Switch(k) => mechanism.switching_function(k, q, v, t),
+        EventHit::User(k) => (events[k].function)(t, q, v),
+    }
+}
+
 /// Whether event `which` is on different sides (g > 0 or not) at the two points.
 fn changed<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
@@ -325,11 +344,9 @@ where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
 {
-    let mut g = |p: &Point<T, NQ, NV, NC>| match which {
-        EventHit::Switch(k) => mechanism.switching_function(k, &p.q, &p.v, p.t),
-        EventHit::User(k) => (events[k].function)(p.t, &p.q, &p.v),
-    };
-    (g(a) > T::ZERO) != (g(b) > T::ZERO)
+    let ga = event_value(mechanism, events, which, a.t, &a.q, &a.v);
+    let gb = event_value(mechanism, events, which, b.t, &b.q, &b.v);
+    (ga > T::ZERO) != (gb > T::ZERO)
 }
 
 /// The earliest sign change within the step from `from` to `end` of the mechanism's first
@@ -351,17 +368,14 @@ where
     M: ForwardDynamics<T, NQ, NV, NC>,
     I: Integrator<T, M, NQ, NV, NC, N>,
 {
-    let value = |events: &mut [Event<'_, T, NQ, NV>], which: EventHit, t: T, q: &[T; NQ], v: &[T; NV]| match which {
-        EventHit::Switch(k) => mechanism.switching_function(k, q, v, t),
-        EventHit::User(k) => (events[k].function)(t, q, v),
-    };
     let h = end.t - from.t;
     let resolution = T::EPSILON * T::from_f64(16.0) * end.t.abs().max(h);
     let mut first: Option<(T, EventHit)> = None;
     let mut prepared = false;
     let candidates = (0..switches).map(EventHit::Switch).chain((0..events.len()).map(EventHit::User));
     for which in candidates {
-        let (ga, gb) = (value(events, which, from.t, &from.q, &from.v), value(events, which, end.t, &end.q, &end.v));
+        let ga = event_value(mechanism, events, which, from.t, &from.q, &from.v);
+        let gb = event_value(mechanism, events, which, end.t, &end.q, &end.v);
         if (ga > T::ZERO) == (gb > T::ZERO) {
             continue;
         }
@@ -381,7 +395,7 @@ where
             let t = if secant > a && secant < b { secant } else { (a + b) * T::from_f64(0.5) };
             let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
             integrator.interpolate(mechanism, from, end, t, &mut q, &mut v);
-            let g = value(events, which, t, &q, &v);
+            let g = event_value(mechanism, events, which, t, &q, &v);
             if (g > T::ZERO) == (gb > T::ZERO) {
                 (b, fb) = (t, g);
                 kept = if kept < 0 { kept - 1 } else { -1 };
