@@ -429,6 +429,15 @@ impl Builder<'_> {
         }
     }
 
+    /// |r^P_j − r^P_i|, in the plane or in space.
+    pub fn length_between(&mut self, i: &Loc, j: &Loc) -> Id {
+        let pi = self.point_n(i);
+        let pj = self.point_n(j);
+        let d = self.diff_n(&pj, &pi);
+        let dd = self.dot(&d, &d);
+        self.g.call(Func::Sqrt, dd)
+    }
+
     /// a − b, any length.
     pub fn diff_n(&mut self, a: &[Id], b: &[Id]) -> Vec<Id> {
         a.iter().zip(b).map(|(&x, &y)| self.g.sub(x, y)).collect()

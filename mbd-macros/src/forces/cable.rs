@@ -10,7 +10,6 @@ use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr, Resolver, Scope};
 use crate::parse::JointDef;
-use crate::sym::Func;
 
 #[derive(Debug)]
 pub struct Cable {
@@ -54,11 +53,7 @@ impl Force for Cable {
         "cable"
     }
     fn apply(&self, b: &mut Builder, out: &mut Generalized) {
-        let pi = b.point_n(&self.i);
-        let pj = b.point_n(&self.j);
-        let d = b.diff_n(&pj, &pi);
-        let dd = b.dot(&d, &d);
-        let l = b.g.call(Func::Sqrt, dd);
+        let l = b.length_between(&self.i, &self.j);
         let length = b.expr(&self.length);
         let stretch = b.g.sub(l, length);
         let (f, potential, switch) = b.unilateral(stretch, &self.k, None, self.c.as_ref());

@@ -9,7 +9,6 @@ use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr, Resolver, Scope};
 use crate::parse::JointDef;
-use crate::sym::Func;
 
 #[derive(Debug)]
 pub struct PointToPoint {
@@ -71,11 +70,7 @@ impl Force for PointToPoint {
         "point_to_point"
     }
     fn apply(&self, b: &mut Builder, out: &mut Generalized) {
-        let pi = b.point_n(&self.i);
-        let pj = b.point_n(&self.j);
-        let d = b.diff_n(&pj, &pi);
-        let dd = b.dot(&d, &d);
-        let l = b.g.call(Func::Sqrt, dd);
+        let l = b.length_between(&self.i, &self.j);
         let ldot = b.rate(l);
         let (f, spring) = b.law(l, ldot, &self.k, &self.length, &self.c, &self.force);
         b.add_along(&mut out.h, l, f);
