@@ -170,6 +170,23 @@ mbd::mechanism! {
     }
 }
 
+mbd::mechanism! {
+    /// The same pendulum in space: a particle on a distance link, swinging in the x–z plane.
+    pub SpatialBob {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        particle bob { mass: 0.7, at: [0.0599750, 0.0, -1.1985003] }
+        distance ground[0.0, 0.0, 0.0] ~ bob[0.0, 0.0, 0.0] { length: 1.2 };
+    }
+}
+
+/// The simple pendulum's period for a release from θ₀ (series to θ₀⁴; the next term is 4e-12 at
+/// θ₀ = 0.05 rad).
+fn simple_pendulum_period(theta0: f64) -> f64 {
+    let (l, g): (f64, f64) = (1.2, 9.81);
+    2.0 * std::f64::consts::PI * (l / g).sqrt() * (1.0 + theta0.powi(2) / 16.0 + 11.0 * theta0.powi(4) / 3072.0)
+}
+
 /// A particle has no rotation to integrate: its angle is held at 0 by a row of its own, so its
 /// mass matrix stays regular. The simple pendulum's period from zero crossings against the
 /// series T = 2π√(L/g)(1 + θ₀²/16 + 11θ₀⁴/3072) (θ₀ = 0.05 rad; the next term, 173θ₀⁶/737280,
@@ -196,11 +213,38 @@ fn a_particle_pendulum_swings_with_the_simple_pendulums_period() {
     })
     .expect("swings");
     let (l, g): (f64, f64) = (1.2, 9.81);
-    let period = 2.0 * std::f64::consts::PI * (l / g).sqrt() * (1.0 + theta0.powi(2) / 16.0 + 11.0 * theta0.powi(4) / 3072.0);
+    let period = simple_pendulum_period(theta0);
     assert!(crossings.len() >= 3, "{crossings:?}");
     let measured = crossings[2] - crossings[0];
     assert!((measured - period).abs() < 1e-9 * period, "period {measured} s, series {period} s");
     let v2 = 2.0 * g * l * (1.0 - theta0.cos());
     let expected = 0.7 * g + 0.7 * v2 / l;
     assert!((tension_at_bottom.abs() - expected).abs() < 1e-6 * expected, "tension {tension_at_bottom} N, expected {expected} N");
+}
+
+/// In space a particle's orientation is held by three rows of its own: the spherical pendulum
+/// released in a plane stays in it and swings with the simple pendulum's period (1e-9 relative).
+#[test]
+fn a_spatial_particle_pendulum_swings_with_the_same_period() {
+    let m = SpatialBob::default();
+    let mut ws = SpatialBob::workspace();
+    assert_eq!(SpatialBob::CONSTRAINT_NAMES[1..], ["particle bob: rx", "particle bob: ry", "particle bob: rz"]);
+    let mut q = m.initial_positions();
+    mbd::KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let theta0 = q[0].atan2(-q[2]);
+    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let (mut crossings, mut off_plane) = (Vec::new(), 0.0f64);
+    let mut events = [Event { function: &mut |_t: f64, q: &[f64; 7], _v: &[f64; 6]| q[0], stop: false }];
+    simulate_with_events(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &[4.5], &SimulationOptions::default(), &mut events, |s| {
+        off_plane = off_plane.max(s.point.q[1].abs());
+        if s.event.is_some() {
+            crossings.push(s.point.t);
+        }
+    })
+    .expect("swings");
+    let period = simple_pendulum_period(theta0);
+    assert!(crossings.len() >= 3, "{crossings:?}");
+    let measured = crossings[2] - crossings[0];
+    assert!((measured - period).abs() < 1e-9 * period, "period {measured} s, series {period} s");
+    assert_eq!(off_plane, 0.0, "nothing pushes it out of its plane");
 }

@@ -395,8 +395,8 @@ pub struct Param {
 
 pub struct Body {
     pub name: Ident,
-    /// A point mass (`particle`): its inertia is its mass times 1 m² and its angle is held at 0
-    /// by a row of its own, so it neither rotates nor makes M singular.
+    /// A point mass (`particle`): its inertia is its mass times 1 m² and its angle (in space: its
+    /// orientation) is held by rows of its own, so it neither rotates nor makes M singular.
     pub particle: bool,
     pub mass: MExpr,
     pub inertia: Inertia,
@@ -1076,8 +1076,10 @@ fn constraints(
     let mut forces = Vec::new();
     let mut driven = Driven::default();
     // A particle's angle is held by a row of its own, after the declared ones.
-    for (k, b) in bodies.iter().enumerate().filter(|(_, b)| b.particle) {
-        driven.coords.insert((k, Coord::Phi), b.name.span());
+    if r.space == Space::Planar {
+        for (k, b) in bodies.iter().enumerate().filter(|(_, b)| b.particle) {
+            driven.coords.insert((k, Coord::Phi), b.name.span());
+        }
     }
     let mut spatial_joints = HashMap::new();
     let mut joints = SpatialJoints::new();
@@ -1171,7 +1173,11 @@ fn constraints(
             *ok = false;
             continue;
         };
-        constraints.push(Constraint { name, kind: Box::new(fix::Fix { body: k, coord: Coord::Phi, value: MExpr::Num(0.0) }) });
+        let kind: Box<dyn elements::Joint> = match r.space {
+            Space::Planar => Box::new(fix::Fix { body: k, coord: Coord::Phi, value: MExpr::Num(0.0) }),
+            Space::Spatial => Box::new(spatial::rigid::Orientation::held(k)),
+        };
+        constraints.push(Constraint { name, kind });
     }
     (constraints, forces, joints)
 }
@@ -1348,11 +1354,23 @@ fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
 /// axis-angle or z-y-x angles) and twist (velocity, body-frame angular velocity).
 fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
     if b.particle {
-        r.errors.push(
-            b.name.span(),
-            "particles are planar for now: in space give the body a small inertia (`inertia: [j, j, j]`) and hold its orientation if it must not turn",
-        );
-        return None;
+        let help = "a particle has `mass`, `at: [x, y, z]` and `velocity: [vx, vy, vz]`";
+        let (fields, ok) = body_fields(r, b, &["mass", "at", "velocity"], help);
+        let mass = positive_field(r, b, &fields, "mass", "kg");
+        let at = list_field(r, &fields, "at", "x, y, z", &[3]);
+        let velocity = list_field(r, &fields, "velocity", "vx, vy, vz", &[3]);
+        if !ok {
+            return None;
+        }
+        let mass = mass?;
+        let mut q0 = at?.unwrap_or_else(|| zeros(3));
+        q0.extend([1.0, 0.0, 0.0, 0.0].map(MExpr::Num));
+        let mut v0 = velocity?.unwrap_or_else(|| zeros(3));
+        v0.extend(zeros(3));
+        // J′ = m·(1 m)² I: any positive tensor would do, since the orientation is held.
+        let j = |a: usize, c: usize| if a == c { mass.clone() } else { MExpr::Num(0.0) };
+        let inertia = [[j(0, 0), j(0, 1), j(0, 2)], [j(1, 0), j(1, 1), j(1, 2)], [j(2, 0), j(2, 1), j(2, 2)]];
+        return Some(Body { name: b.name.clone(), particle: true, mass, inertia: Inertia::Tensor(inertia), q0, v0 });
     }
     let help = "a spatial body has `mass`, `inertia: [Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, `at: [x, y, z]`, \
                 one of `quaternion: [e0, e1, e2, e3]`, `axis_angle: [ax, ay, az, angle]`, `angles: [yaw, pitch, roll]`, \

@@ -249,6 +249,8 @@ where
         None => return Ok(stats),
     };
     let mut next = 0;
+    // The event delivered at `from`, if any: its own change at the next step's start is rounding.
+    let mut delivered: Option<EventHit> = None;
     while next < times.len() && times[next] <= from.t {
         output(&sample(mechanism, &from));
         stats.samples += 1;
@@ -260,7 +262,21 @@ where
         }
         integrator.step(&system, ws, &from, t_end, &mut to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
-        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events)?;
+        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events, delivered)?;
+        if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
+            // The change is at the step's start: an earlier landing stopped a hair short of it,
+            // so `from` is its instant. Deliver it there and take the step again.
+            output(&Sample { event: Some(which), ..sample(mechanism, &from) });
+            stats.samples += 1;
+            stats.events += 1;
+            delivered = Some(which);
+            integrator.restart();
+            if matches!(which, EventHit::User(k) if events[k].stop) {
+                stats.stopped_by = Some(which);
+                return Ok(stats);
+            }
+            continue;
+        }
         if let Some((t, _)) = hit {
             // The step straddles a switch, where the forces (or the user's event) change law:
             // its dense output does not hold across it. Step again from the same start to land on
@@ -299,10 +315,12 @@ where
             stats.samples += 1;
             next += 1;
         }
+        delivered = None;
         if let Some((_, which)) = hit {
             output(&Sample { event: Some(which), ..sample(mechanism, &to) });
             stats.samples += 1;
             stats.events += 1;
+            delivered = Some(which);
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
                 return Ok(stats);
@@ -351,9 +369,10 @@ where
 
 /// The earliest sign change within the step from `from` to `end` of the mechanism's first
 /// `switches` switching functions and of the user's `events`, located on the step's dense
-/// output: its instant (the first on the new side, to within a few ulps of t) and which.
-/// A change at the step's very start (a switch the last cut landed on, undone by rounding) is
-/// not one.
+/// output: its instant (the first on the new side, to within a few ulps of t) and which. A
+/// change within those ulps of the step's start is at `from.t`, unless it is the event just
+/// delivered at `from` (`delivered`), which rounding may undo and redo.
+#[allow(clippy::too_many_arguments)]
 fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
     integrator: &mut I,
@@ -362,6 +381,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
     end: &Point<T, NQ, NV, NC>,
     switches: usize,
     events: &mut [Event<'_, T, NQ, NV>],
+    delivered: Option<EventHit>,
 ) -> Result<Option<(T, EventHit)>, SimulationError>
 where
     T: Real,
@@ -411,7 +431,10 @@ where
             }
         }
         if b - from.t <= resolution {
-            continue;
+            if delivered == Some(which) {
+                continue;
+            }
+            b = from.t;
         }
         if first.is_none_or(|(t, _)| b < t) {
             first = Some((b, which));

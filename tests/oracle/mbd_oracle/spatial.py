@@ -39,6 +39,7 @@ JOINT_ROWS = {
     "translational": ("axis_x", "axis_y", "offset_x", "offset_y", "twist"),
     "planar": ("normal_x", "normal_y", "offset"),
     "rigid": ("x", "y", "z", "rx", "ry", "rz"),
+    "orientation": ("rx", "ry", "rz"),
     "point_on_line": ("offset_x", "offset_y"),
     "point_on_plane": ("offset",),
     "distance": ("length",),
@@ -327,6 +328,8 @@ class Spatial:
             return [dot(xi, zj), dot(yi, zj), dot(xi, d), dot(yi, d), dot(xi, yj)]
         if kind == "rigid":
             return list(ca.vertsplit(pi - pj)) + [dot(yi, zj), dot(zi, xj), dot(xi, yj)]
+        if kind == "orientation":
+            return [dot(yi, zj), dot(zi, xj), dot(xi, yj)]
         raise ValueError(f"{self.name}: unknown joint kind {kind!r}")
 
     # --- joint coordinates for force elements ------------------------------------------------

@@ -9,7 +9,7 @@ use super::{pair_json, spherical::coincide, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
 use crate::frames::{Builder, Row};
 use crate::json::Ctx;
-use crate::model::BodyRef;
+use crate::model::{BodyRef, Loc, MExpr};
 
 pub const SPEC: Spec = Spec {
     keyword: "rigid",
@@ -45,5 +45,46 @@ impl Joint for Rigid {
     }
     fn markers(&self) -> Option<[&Marker; 2]> {
         Some([&self.i, &self.j])
+    }
+}
+
+/// A spatial particle's orientation, held to the ground's (rows `rx`, `ry`, `rz` of a rigid
+/// joint between the ground's axes and the body's): a point mass has no rotation to integrate.
+#[derive(Debug)]
+pub struct Orientation {
+    pub i: Marker,
+    pub j: Marker,
+}
+
+impl Orientation {
+    /// Body `k`'s axes held to the ground's.
+    pub fn held(k: usize) -> Self {
+        let zero = || vec![MExpr::Num(0.0); 3];
+        let axes = |body| Marker {
+            loc: Loc { body, point: zero() },
+            axis: vec![MExpr::Num(0.0), MExpr::Num(0.0), MExpr::Num(1.0)],
+            reference: vec![MExpr::Num(1.0), MExpr::Num(0.0), MExpr::Num(0.0)],
+        };
+        Orientation { i: axes(BodyRef::Ground), j: axes(BodyRef::Body(k)) }
+    }
+}
+
+impl Joint for Orientation {
+    fn kind(&self) -> &'static str {
+        "orientation"
+    }
+    fn bodies(&self) -> (Option<BodyRef>, Option<BodyRef>) {
+        (None, Some(self.j.loc.body))
+    }
+    fn rows(&self, b: &mut Builder) -> Vec<Row> {
+        let (fi, fj) = (b.frame(&self.i), b.frame(&self.j));
+        vec![
+            Row { name: "rx", value: b.dot(&fi.y, &fj.z) },
+            Row { name: "ry", value: b.dot(&fi.z, &fj.x) },
+            Row { name: "rz", value: b.dot(&fi.x, &fj.y) },
+        ]
+    }
+    fn json(&self, cx: &Ctx) -> Value {
+        pair_json(cx, &self.i, &self.j)
     }
 }
