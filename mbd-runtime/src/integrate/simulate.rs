@@ -249,8 +249,9 @@ where
         None => return Ok(stats),
     };
     let mut next = 0;
-    // The event delivered at `from`, if any: its own change at the next step's start is rounding.
-    let mut delivered: Option<EventHit> = None;
+    // Whether `from` is an event's instant: a change within rounding of it is then that event's
+    // (or one simultaneous with it), not a new one.
+    let mut at_event = false;
     while next < times.len() && times[next] <= from.t {
         output(&sample(mechanism, &from));
         stats.samples += 1;
@@ -262,14 +263,14 @@ where
         }
         integrator.step(&system, ws, &from, t_end, &mut to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
-        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events, delivered)?;
+        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events, at_event)?;
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
             output(&Sample { event: Some(which), ..sample(mechanism, &from) });
             stats.samples += 1;
             stats.events += 1;
-            delivered = Some(which);
+            at_event = true;
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
@@ -315,12 +316,11 @@ where
             stats.samples += 1;
             next += 1;
         }
-        delivered = None;
+        at_event = hit.is_some();
         if let Some((_, which)) = hit {
             output(&Sample { event: Some(which), ..sample(mechanism, &to) });
             stats.samples += 1;
             stats.events += 1;
-            delivered = Some(which);
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
                 return Ok(stats);
@@ -370,8 +370,10 @@ where
 /// The earliest sign change within the step from `from` to `end` of the mechanism's first
 /// `switches` switching functions and of the user's `events`, located on the step's dense
 /// output: its instant (the first on the new side, to within a few ulps of t) and which. A
-/// change within those ulps of the step's start is at `from.t`, unless it is the event just
-/// delivered at `from` (`delivered`), which rounding may undo and redo.
+/// change within those ulps of the step's start is at `from.t`, unless `from` is an event's
+/// instant already (`at_event`): rounding may undo and redo that event, and a second event
+/// within rounding of it is taken as simultaneous (delivered once, so that two chattering
+/// switches cannot hold the run at one instant).
 #[allow(clippy::too_many_arguments)]
 fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
@@ -381,7 +383,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
     end: &Point<T, NQ, NV, NC>,
     switches: usize,
     events: &mut [Event<'_, T, NQ, NV>],
-    delivered: Option<EventHit>,
+    at_event: bool,
 ) -> Result<Option<(T, EventHit)>, SimulationError>
 where
     T: Real,
@@ -431,7 +433,7 @@ where
             }
         }
         if b - from.t <= resolution {
-            if delivered == Some(which) {
+            if at_event {
                 continue;
             }
             b = from.t;
