@@ -96,9 +96,9 @@ impl<W: Write> CsvWriter<W> {
 /// "1") per s, s².
 fn coordinate_unit(name: &str, order: usize) -> Option<&'static str> {
     let c = name.rsplit('.').next()?;
-    let (length, angle, euler) = match (c, order) {
-        (_, 0) => ("m", "rad", "1"),
-        (_, 1) => ("m/s", "rad/s", "1/s"),
+    let (length, angle, euler) = match order {
+        0 => ("m", "rad", "1"),
+        1 => ("m/s", "rad/s", "1/s"),
         _ => ("m/s²", "rad/s²", "1/s²"),
     };
     Some(match c {
@@ -119,7 +119,25 @@ pub fn multiplier_unit(name: &str) -> Option<&'static str> {
     let row = name.rsplit(": ").next()?;
     match row {
         "x" | "y" | "z" | "normal" | "distance" | "length" | "stroke" | "offset" | "offset_x" | "offset_y" => Some("N"),
-        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" => Some("N·m"),
+        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" | "normal_x" | "normal_y" => Some("N·m"),
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Every row name the generated joints use has its unit: a row in metres gives N, an angle or
+    /// a dimensionless orientation row N·m (docs/formulation.md's row tables).
+    #[test]
+    fn every_joint_row_has_a_unit() {
+        let metres = ["x", "y", "z", "normal", "distance", "length", "stroke", "offset", "offset_x", "offset_y"];
+        let turns = ["phi", "angle", "cross", "twist", "rx", "ry", "rz", "axis_x", "axis_y", "normal_x", "normal_y"];
+        for row in metres {
+            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), Some("N"), "{row}");
+        }
+        for row in turns {
+            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), Some("N·m"), "{row}");
+        }
+        assert_eq!(super::multiplier_unit("constraint c1: user"), None);
     }
 }
