@@ -23,11 +23,8 @@ pub struct Cable {
 pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
     let li = r.loc(&f.i.body, &f.i.point);
     let lj = r.loc(&f.j.body, &f.j.point);
-    for side in [&f.i, &f.j] {
-        if let Some(a) = &side.along {
-            r.errors.push(a.keyword.span(), "a cable pulls along the line between its points: it takes no axis");
-            return None;
-        }
+    if !super::no_axis(r, f, "a cable pulls along the line between its points: it takes no axis") {
+        return None;
     }
     let known = [("k", Scope::Params), ("length", Scope::Params), ("c", Scope::Params)];
     let mut o = super::options(r, &f.kind, &f.options, &known)?;

@@ -170,6 +170,18 @@ impl Builder<'_> {
     }
 }
 
+/// An element whose direction is its own (a spring's line, a tyre's vertical) takes no axis:
+/// false, with `why` reported on the first `along`, if a side has one.
+pub fn no_axis(r: &mut crate::model::Resolver, f: &crate::parse::JointDef, why: &str) -> bool {
+    match [&f.i, &f.j].into_iter().find_map(|side| side.along.as_ref()) {
+        Some(a) => {
+            r.errors.push(a.keyword.span(), why);
+            false
+        }
+        None => true,
+    }
+}
+
 /// The options of a force element: each known name at most once, each a number-valued
 /// expression of the given scope.
 pub fn options(

@@ -24,11 +24,8 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     let kind = f.kind.to_string();
     let li = r.loc(&f.i.body, &f.i.point);
     let lj = r.loc(&f.j.body, &f.j.point);
-    for side in [&f.i, &f.j] {
-        if let Some(a) = &side.along {
-            r.errors.push(a.keyword.span(), format!("a {kind} acts along the line between its points: it takes no axis"));
-            return None;
-        }
+    if !super::no_axis(r, f, &format!("a {kind} acts along the line between its points: it takes no axis")) {
+        return None;
     }
     let known = [("k", Scope::Params), ("length", Scope::Params), ("c", Scope::Params), ("force", Scope::Force)];
     let mut o = super::options(r, &f.kind, &f.options, &known)?;

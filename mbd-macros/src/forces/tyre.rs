@@ -27,11 +27,8 @@ pub struct Tyre {
 pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
     let li = r.loc(&f.i.body, &f.i.point);
     let lj = r.loc(&f.j.body, &f.j.point);
-    for side in [&f.i, &f.j] {
-        if let Some(a) = &side.along {
-            r.errors.push(a.keyword.span(), "a tyre pushes along the vertical: it takes no axis");
-            return None;
-        }
+    if !super::no_axis(r, f, "a tyre pushes along the vertical: it takes no axis") {
+        return None;
     }
     let known = [("radius", Scope::Params), ("k", Scope::Params), ("c", Scope::Params), ("road", Scope::State)];
     let mut o = super::options(r, &f.kind, &f.options, &known)?;
