@@ -269,6 +269,26 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         }
     };
     let (cfq_body, cfq_ops) = e.body(&matrix_outputs("k", &f.constraint_force_q));
+    let mut gamma_outputs = matrix_outputs("gamma_q", &f.gamma_q);
+    gamma_outputs.extend(matrix_outputs("gamma_v", &f.gamma_v));
+    let (gamma_derivatives_body, _) = e.body(&gamma_outputs);
+    let input_names: Vec<String> = f.inputs.iter().map(|&k| m.params[k].name.to_string()).collect();
+    let input_fields: Vec<&syn::Ident> = f.inputs.iter().map(|&k| &m.params[k].name).collect();
+    let input_indices: Vec<Literal> = (0..f.inputs.len()).map(usize_lit).collect();
+    let forces_input_cases = (0..f.inputs.len()).map(|k| {
+        let entries: Vec<Output> = f
+            .h_u
+            .iter()
+            .filter(|e| e.1 == k)
+            .map(|&(r, _, node)| {
+                let r = usize_lit(r);
+                Output { target: quote!(dh[#r]), node }
+            })
+            .collect();
+        let (body, _) = e.body(&entries);
+        let k = usize_lit(k);
+        quote!(#k => { #body })
+    });
     let (power_body, power_ops) = e.body(&[Output { target: quote!(power[0]), node: f.power }]);
     let forward = forward_dynamics(m, &f, &e);
     let newton = crate::newton::newton_matrix(&f, &e, name);
@@ -509,6 +529,45 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         }
 
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+        #[allow(unused_variables, unused_parens, clippy::approx_constant)]
+        impl ::mbd::Linearize<#real, #nq_l, #nv_l, #nc_l> for #name {
+            const INPUTS: &'static [&'static str] = &[#(#input_names),*];
+            #[inline]
+            fn gamma_derivatives(
+                &self,
+                q: &[#real; #nq_l],
+                v: &[#real; #nv_l],
+                t: #real,
+                gamma_q: &mut [[#real; #nv_l]; #nc_l],
+                gamma_v: &mut [[#real; #nv_l]; #nc_l],
+            ) {
+                for row in gamma_q.iter_mut().chain(gamma_v.iter_mut()) {
+                    *row = [#zero; #nv_l];
+                }
+                #gamma_derivatives_body
+            }
+            #[inline]
+            fn forces_input(&self, k: usize, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [#real; #nv_l]) {
+                *dh = [#zero; #nv_l];
+                match k {
+                    #(#forces_input_cases)*
+                    _ => {}
+                }
+            }
+            fn input(&self, k: usize) -> #real {
+                match k {
+                    #( #input_indices => self.#input_fields, )*
+                    _ => #zero,
+                }
+            }
+            fn set_input(&mut self, k: usize, value: #real) {
+                match k {
+                    #( #input_indices => self.#input_fields = value, )*
+                    _ => {}
+                }
+            }
+        }
+
         #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::ConstraintForces<#real, #nq_l, #nv_l, #nc_l> for #name {
             #[inline]

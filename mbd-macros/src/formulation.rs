@@ -52,6 +52,15 @@ pub struct Formulation {
     /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
     pub h_q: Vec<(usize, usize, Id)>,
     pub h_qd: Vec<(usize, usize, Id)>,
+    /// The parameters that are inputs of a linearization: those that enter h and nothing else
+    /// (not Φ, M or the friction forces), by index into `model.params`.
+    pub inputs: Vec<usize>,
+    /// Structural non-zeros of ∂h/∂u as (row, input, node), the input by its index into
+    /// `inputs`.
+    pub h_u: Vec<(usize, usize, Id)>,
+    /// Structural non-zeros of (∂γ/∂q) B and ∂γ/∂v as (row, column, node).
+    pub gamma_q: Vec<(usize, usize, Id)>,
+    pub gamma_v: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
     /// The unilateral elements' switching functions of (q, v, t), by element name.
@@ -254,6 +263,26 @@ pub fn formulate(model: &Model) -> Formulation {
     };
     let stiffness = sum([&h_q, &constraint_force_q, &friction_q]);
     let damping = sum([&h_qd, &friction_qd, &[]]);
+    // What a linearization needs beyond the rest: γ's derivatives (the forward dynamics' v̇
+    // moves with q and v through γ too) and h's by the inputs.
+    let gamma_q = tangent(&mut b, &gamma);
+    let gamma_v = sparse_derivative(&mut b.g, &gamma, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let mut not_inputs = BTreeSet::new();
+    let param = |v| if let Var::Param(k) = v { Some(k) } else { None };
+    for &node in phi.iter().chain(&mass).chain(mass_coupling.iter().map(|(_, _, n)| n)).chain(&friction) {
+        collect_vars(&b.g, node, &mut not_inputs, param);
+    }
+    let mut in_h = BTreeSet::new();
+    for &node in &h {
+        collect_vars(&b.g, node, &mut in_h, param);
+    }
+    let inputs: Vec<usize> = in_h.difference(&not_inputs).map(|&k| k as usize).collect();
+    let h_u = sparse_derivative(
+        &mut b.g,
+        &h,
+        |v| if let Var::Param(k) = v { inputs.iter().position(|&i| i == k as usize).map(|i| i as u16) } else { None },
+        |i| Var::Param(inputs[i as usize] as u16),
+    );
     let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
     let mut joint_coordinates = Vec::new();
     for c in &model.constraints {
@@ -287,6 +316,10 @@ pub fn formulate(model: &Model) -> Formulation {
         force_velocities,
         h_q,
         h_qd,
+        inputs,
+        h_u,
+        gamma_q,
+        gamma_v,
         potential,
         switches,
         power,

@@ -15,6 +15,8 @@ mod integrate;
 mod inverse;
 mod kinematics;
 pub mod linalg;
+#[cfg(feature = "std")]
+pub mod linearize;
 mod mechanism;
 mod named;
 mod partition;
@@ -42,7 +44,13 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
     DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
-pub use mechanism::{ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, PositionStep};
+#[cfg(feature = "std")]
+pub use linearize::{
+    linearize, linearize_finite_differences, LinearStability, Linearization, LinearizeError, LinearizeOptions, Mode, Output,
+};
+pub use mechanism::{
+    ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix, OpCount, PositionStep,
+};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;
