@@ -3,6 +3,8 @@
 
 #[path = "bump.rs"]
 mod bump;
+#[path = "linear_models.rs"]
+mod linear_models;
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
 #[path = "double_wishbone_3d.rs"]
@@ -63,6 +65,7 @@ fn main() {
         ("stewart_platform", || Ok(stewart_platform::run(true).map(drop)?)),
         ("excavator", || excavator::run(true).map(drop)),
         ("bump", || bump::run(true).map(drop)),
+        ("linear_models", || linear_models::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

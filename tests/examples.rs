@@ -324,3 +324,24 @@ fn the_quarter_car_leaves_the_road_and_hits_its_bump_stop() {
     assert!(r.events[0].0 > 1.0125 && r.events[0].0 < 1.025, "the tyre lets go at {} s", r.events[0].0);
     assert!(r.airborne > 0.02 && r.airborne < 0.2, "{r:?}");
 }
+
+/// The cart-pole's unstable pole and input column against their closed forms (1e-12: a 4 × 4
+/// eigenproblem and one saddle-point solve), the exact and finite-difference models to 1e-8 of
+/// the system's largest entry (measured 2e-11), and the quarter car's ride and wheel-hop
+/// frequencies and damping ratios against the 2-DOF model written out by hand (1e-9: the static
+/// equilibrium is found to 1e-9 N, and the tyre's stiffness is constant in contact).
+#[test]
+fn linear_models_match_their_closed_forms() {
+    let r = linear_models::run(false).expect("linear models run");
+    let close = |(a, b): (f64, f64), tol: f64| (a - b).abs() <= tol * b.abs();
+    assert!(close(r.cart_pole_growth, 1e-12), "{r:?}");
+    for k in 0..2 {
+        assert!(close((r.cart_pole_input.0[k], r.cart_pole_input.1[k]), 1e-12), "{r:?}");
+    }
+    assert!(r.exact_vs_differences < 1e-8, "{r:?}");
+    for pair in [r.ride, r.wheel_hop, r.ride_damping, r.wheel_hop_damping] {
+        assert!(close(pair, 1e-9), "{r:?}");
+    }
+    // A soft car: about 1.4 Hz ride, 12 Hz wheel hop.
+    assert!(r.ride.0 > 1.0 && r.ride.0 < 2.0 && r.wheel_hop.0 > 10.0 && r.wheel_hop.0 < 15.0, "{r:?}");
+}

@@ -3,6 +3,8 @@
 
 #[path = "../../examples/bump.rs"]
 pub mod bump;
+#[path = "../../examples/linear_models.rs"]
+pub mod linear_models;
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
