@@ -48,6 +48,8 @@ pub struct Report {
     /// Their damping ratios: mbd's, and the 2-DOF model's.
     pub ride_damping: (f64, f64),
     pub wheel_hop_damping: (f64, f64),
+    /// The velocity that dominates each mode (ride, wheel hop).
+    pub dominant: (&'static str, &'static str),
 }
 
 /// (natural frequency in Hz, damping ratio) of the eigenvalues of a 4 × 4 state matrix, the
@@ -130,6 +132,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         wheel_hop: (modes[1].natural_frequency, hand[1].0),
         ride_damping: (modes[0].damping_ratio, hand[0].1),
         wheel_hop_damping: (modes[1].damping_ratio, hand[1].1),
+        dominant: (modes[0].dominant, modes[1].dominant),
     };
     if print {
         println!("Inverted pendulum on a cart, linearized about upright (states {:?}, input push):", lin.state_names);
@@ -144,11 +147,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         for (mode, name) in modes.iter().zip(["ride", "wheel hop"]) {
             println!(
                 "  {name:9}: {:.4} Hz, damping ratio {:.4}, dominant {} (chassis {:+.3}, wheel {:+.3})",
-                mode.natural_frequency,
-                mode.damping_ratio,
-                mode.dominant,
-                mode.shape[1].re,
-                mode.shape[4].re
+                mode.natural_frequency, mode.damping_ratio, mode.dominant, mode.shape[1].re, mode.shape[4].re
             );
         }
         println!("  2-DOF model by hand: ride {:.4} Hz / {:.4}, wheel hop {:.4} Hz / {:.4}", hand[0].0, hand[0].1, hand[1].0, hand[1].1);

@@ -3,8 +3,6 @@
 
 #[path = "bump.rs"]
 mod bump;
-#[path = "linear_models.rs"]
-mod linear_models;
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
 #[path = "double_wishbone_3d.rs"]
@@ -21,6 +19,8 @@ mod four_bar;
 mod free_four_bar;
 #[path = "gyroscope.rs"]
 mod gyroscope;
+#[path = "linear_models.rs"]
+mod linear_models;
 #[path = "macpherson.rs"]
 mod macpherson;
 #[path = "pumped_pendulum.rs"]

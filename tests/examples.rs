@@ -342,6 +342,7 @@ fn linear_models_match_their_closed_forms() {
     for pair in [r.ride, r.wheel_hop, r.ride_damping, r.wheel_hop_damping] {
         assert!(close(pair, 1e-9), "{r:?}");
     }
+    assert_eq!(r.dominant, ("chassis.y", "wheel.y"));
     // A soft car: about 1.4 Hz ride, 12 Hz wheel hop.
     assert!(r.ride.0 > 1.0 && r.ride.0 < 2.0 && r.wheel_hop.0 > 10.0 && r.wheel_hop.0 < 15.0, "{r:?}");
 }

@@ -370,17 +370,23 @@ impl Chart {
             }
         }
         let (mut rows, mut dependent) = (Vec::new(), Vec::new());
+        let (mut row_used, mut column_used) = (vec![false; nc], vec![false; nv]);
+        for &c in forced {
+            column_used[c] = true;
+        }
         loop {
             let mut best = (tolerance, None);
-            for r in (0..nc).filter(|r| !rows.contains(r)) {
-                for c in (0..nv).filter(|c| !dependent.contains(c) && !forced.contains(c)) {
+            for r in (0..nc).filter(|&r| !row_used[r]) {
+                for c in (0..nv).filter(|&c| !column_used[c]) {
                     if work[(r, c)].abs() > best.0 {
                         best = (work[(r, c)].abs(), Some((r, c)));
                     }
                 }
             }
             let Some((pr, pc)) = best.1 else { break };
-            for r in (0..nc).filter(|r| !rows.contains(r) && *r != pr) {
+            row_used[pr] = true;
+            column_used[pc] = true;
+            for r in (0..nc).filter(|&r| !row_used[r]) {
                 let factor = work[(r, pc)] / work[(pr, pc)];
                 if factor != 0.0 {
                     for c in 0..nv {
@@ -546,22 +552,33 @@ where
     m.constraint_force_q(q, t, &lambda, &mut a1);
     h += dense(&a1);
     let (mut g1, mut g2) = (boxed::<NC, NV>(), boxed::<NC, NV>());
-    m.gamma_derivatives(q, &[0.0; NV], t, &mut g1, &mut g2);
-    let nu_q = dense(&g2) * 0.5;
-    m.gamma_derivatives(q, v, t, &mut g1, &mut g2);
-    let (gamma_q, gamma_v) = (dense(&g1), dense(&g2));
-    // Q(v₀) and Q(v̇₀), row by row: row r is aᵀ K(e_r).
-    let (mut q_v, mut q_a) = (DMatrix::zeros(NC, NV), DMatrix::zeros(NC, NV));
-    let (v0, a0) = (DVector::from_column_slice(v), DVector::from_column_slice(&vd));
-    for &r in &chart.rows {
-        let mut unit = [0.0; NC];
-        unit[r] = 1.0;
-        m.constraint_force_q(q, t, &unit, &mut a1);
-        let k = dense(&a1);
-        q_v.row_mut(r).copy_from(&(v0.transpose() * &k));
-        q_a.row_mut(r).copy_from(&(a0.transpose() * &k));
-    }
-    let g = q_v - nu_q;
+    let mut gamma_v_at = |a: &[f64; NV]| {
+        m.gamma_derivatives(q, a, t, &mut g1, &mut g2);
+        (dense(&g1), dense(&g2))
+    };
+    // ½ Γ_v(q₀, 0) = ν_q B, and Q(a) = ∂(D a)/∂q B for a = v₀ and v̇₀.
+    let (_, gamma_v0) = gamma_v_at(&[0.0; NV]);
+    let (gamma_q, gamma_v) = gamma_v_at(v);
+    let (q_v, q_a) = if M::DIMENSION == 2 {
+        // In the plane Q(a)b = Φ_qq(a, b) is symmetric in a and b, so Γ_v(a) = −2 Q(a) − 2 Φ_tq
+        // and Q(a) = −½ (Γ_v(a) − Γ_v(0)): two evaluations of γ's derivatives.
+        let (_, gamma_va) = gamma_v_at(&vd);
+        ((&gamma_v - &gamma_v0) * -0.5, (gamma_va - &gamma_v0) * -0.5)
+    } else {
+        // In space B(q) makes Q(a)b − Q(b)a = Φ_q [Bb, Ba] ≠ 0: row r is aᵀ K(e_r).
+        let (mut q_v, mut q_a) = (DMatrix::zeros(NC, NV), DMatrix::zeros(NC, NV));
+        let (v0, a0) = (DVector::from_column_slice(v), DVector::from_column_slice(&vd));
+        for &r in &chart.rows {
+            let mut unit = [0.0; NC];
+            unit[r] = 1.0;
+            m.constraint_force_q(q, t, &unit, &mut a1);
+            let k = dense(&a1);
+            q_v.row_mut(r).copy_from(&(v0.transpose() * &k));
+            q_a.row_mut(r).copy_from(&(a0.transpose() * &k));
+        }
+        (q_v, q_a)
+    };
+    let g = q_v - gamma_v0 * 0.5;
     let mut h_u = DMatrix::zeros(NV, inputs.len());
     for (j, &k) in inputs.iter().enumerate() {
         let mut column = [0.0; NV];
@@ -569,34 +586,38 @@ where
         h_u.column_mut(j).copy_from_slice(&column);
     }
 
-    // The saddle-point system over the independent rows, one right-hand side per state and input.
+    // The saddle-point system [[M, −Dᵀ], [D, 0]] [δv̇; δλ] = [top; bottom] over the independent
+    // rows, one column per state and input, solved in the null space: δv̇ = Z s + R bottom with
+    // s = M_r⁻¹ Zᵀ (top − M R bottom), and E δv̇ = s is A's row; δλ = Rᵀ (M δv̇ − top).
     let (f, nr, ni) = (chart.independent.len(), chart.rows.len(), inputs.len());
     let pick = |a: &DMatrix<f64>| DMatrix::from_fn(nr, a.ncols(), |i, c| a[(chart.rows[i], c)]);
-    let (d_r, g_r) = (pick(&d), pick(&g));
-    let mut kkt = DMatrix::zeros(NV + nr, NV + nr);
-    kkt.view_mut((0, 0), (NV, NV)).copy_from(&mass);
-    kkt.view_mut((0, NV), (NV, nr)).copy_from(&(-d_r.transpose()));
-    kkt.view_mut((NV, 0), (nr, NV)).copy_from(&d_r);
     let z = &chart.z;
-    let correction = &chart.r * &g_r * z; // δv = Z w − R G Z y
-    let mut rhs = DMatrix::zeros(NV + nr, 2 * f + ni);
-    rhs.view_mut((0, 0), (NV, f)).copy_from(&(&h * z - &h_v * &correction));
-    rhs.view_mut((NV, 0), (nr, f)).copy_from(&(pick(&(&gamma_q - &q_a)) * z - pick(&gamma_v) * &correction));
-    rhs.view_mut((0, f), (NV, f)).copy_from(&(&h_v * z));
-    rhs.view_mut((NV, f), (nr, f)).copy_from(&(pick(&gamma_v) * z));
-    rhs.view_mut((0, 2 * f), (NV, ni)).copy_from(&h_u);
-    let x = kkt.lu().solve(&rhs).ok_or(LinearizeError::Singular)?;
-    let e = |a: &DMatrix<f64>| DMatrix::from_fn(f, a.ncols(), |i, c| a[(chart.independent[i], c)]);
-    let accelerations = x.rows(0, NV).into_owned();
+    let correction = &chart.r * pick(&g) * z; // δv = Z w − R G Z y
+    let mut top = DMatrix::zeros(NV, 2 * f + ni);
+    let mut bottom = DMatrix::zeros(nr, 2 * f + ni);
+    top.view_mut((0, 0), (NV, f)).copy_from(&(&h * z - &h_v * &correction));
+    bottom.view_mut((0, 0), (nr, f)).copy_from(&(pick(&(&gamma_q - &q_a)) * z - pick(&gamma_v) * &correction));
+    top.view_mut((0, f), (NV, f)).copy_from(&(&h_v * z));
+    bottom.view_mut((0, f), (nr, f)).copy_from(&(pick(&gamma_v) * z));
+    top.view_mut((0, 2 * f), (NV, ni)).copy_from(&h_u);
+    let particular = &chart.r * &bottom;
+    let reduced_mass = z.transpose() * &mass * z;
+    let s = Cholesky::new(reduced_mass).ok_or(LinearizeError::Singular)?.solve(&(z.transpose() * (&top - &mass * &particular)));
     let mut a = DMatrix::zeros(2 * f, 2 * f);
-    a.view_mut((0, 0), (f, f)).copy_from(&e(&(omega::<M, NV>(v) * z)));
+    let omega_z = omega::<M, NV>(v) * z;
+    a.view_mut((0, 0), (f, f)).copy_from(&DMatrix::from_fn(f, f, |i, k| omega_z[(chart.independent[i], k)]));
     a.view_mut((0, f), (f, f)).fill_with_identity();
-    a.view_mut((f, 0), (f, 2 * f)).copy_from(&e(&accelerations.columns(0, 2 * f).into_owned()));
+    a.view_mut((f, 0), (f, 2 * f)).copy_from(&s.columns(0, 2 * f));
     let mut b = DMatrix::zeros(2 * f, ni);
-    b.view_mut((f, 0), (f, ni)).copy_from(&e(&accelerations.columns(2 * f, ni).into_owned()));
+    b.view_mut((f, 0), (f, ni)).copy_from(&s.columns(2 * f, ni));
+    let multipliers = if options.outputs.iter().any(|o| matches!(o, Output::Multiplier(_))) {
+        let accelerations = z * &s + particular;
+        chart.r.transpose() * (&mass * accelerations - &top)
+    } else {
+        DMatrix::zeros(nr, 2 * f + ni)
+    };
 
     // Outputs.
-    let multipliers = x.rows(NV, nr).into_owned();
     let no = options.outputs.len();
     let (mut c, mut dd) = (DMatrix::zeros(no, 2 * f), DMatrix::zeros(no, ni));
     for (o, output) in options.outputs.iter().enumerate() {
@@ -903,19 +924,24 @@ impl Linearization {
         let eigenvalues = self.eigenvalues();
         let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
         let ac = self.a.map(|x| Complex::new(x, 0.0));
+        let second_order = self.a.view((0, 0), (f, f)).amax() == 0.0;
+        let (a21, a22) = (ac.view((f, 0), (f, f)).into_owned(), ac.view((f, f), (f, f)).into_owned());
         for &s in &eigenvalues {
             if s.im < -ZERO_EIGENVALUE * scale || !s.re.is_finite() {
                 continue; // the conjugate's mode
             }
             let s = if s.im.abs() <= ZERO_EIGENVALUE * scale { Complex::new(s.re, 0.0) } else { s };
-            // Inverse iteration on A − s' I, s' a hair off s so that the matrix is regular.
+            // Inverse iteration, s' a hair off s so that the matrix is regular: on the pencil
+            // s'² − s' A₂₂ − A₂₁ (f × f) for y when A₁₁ = 0 (ẏ = w), else on A − s' (2f × 2f).
             let shift = s + Complex::new(1e-10 * scale.max(1e-300), 1e-10 * scale.max(1e-300));
-            let mut shifted = ac.clone();
-            for i in 0..2 * f {
-                shifted[(i, i)] -= shift;
+            let n = if second_order { f } else { 2 * f };
+            let mut shifted = if second_order { -(&a21 + &a22 * shift) } else { -ac.clone() };
+            let diagonal = if second_order { shift * shift } else { shift };
+            for i in 0..n {
+                shifted[(i, i)] += diagonal;
             }
             let lu = shifted.lu();
-            let mut x = DVector::from_element(2 * f, Complex::new(1.0, 0.0));
+            let mut x = DVector::from_element(n, Complex::new(1.0, 0.0));
             for _ in 0..3 {
                 if let Some(next) = lu.solve(&x) {
                     let norm = next.norm();

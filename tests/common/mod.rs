@@ -3,8 +3,6 @@
 
 #[path = "../../examples/bump.rs"]
 pub mod bump;
-#[path = "../../examples/linear_models.rs"]
-pub mod linear_models;
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
@@ -21,6 +19,8 @@ pub mod four_bar;
 pub mod free_four_bar;
 #[path = "../../examples/gyroscope.rs"]
 pub mod gyroscope;
+#[path = "../../examples/linear_models.rs"]
+pub mod linear_models;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[path = "../../examples/pumped_pendulum.rs"]
