@@ -144,11 +144,11 @@ fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
 /// "gamma". Dynamics: "mass" (the diagonal of M, read from `add_mass_matrix`), "h", "h_q" and
 /// "h_qd" (dense NQ×NQ, row r = h_r), "potential"; Coulomb friction at random loads:
 /// "friction_lambda", "friction", "friction_q", "friction_qd"; forward dynamics: "qdd",
-/// "lambda", "alpha", "beta". Planar mechanisms: v = q̇, so NV = NQ and every velocity-space
+/// "lambda", "alpha", "beta"; γ's derivatives "gamma_q", "gamma_v" (dense NC×NQ). Planar mechanisms: v = q̇, so NV = NQ and every velocity-space
 /// quantity is indexed by the coordinates.
 fn write_samples<M, const NQ: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
-    M: mbd::ForwardDynamics<f64, NQ, NQ, NC>,
+    M: mbd::ForwardDynamics<f64, NQ, NQ, NC> + mbd::Linearize<f64, NQ, NQ, NC>,
 {
     let mut forward = 0;
     let mut rng = Rng::new(seed);
@@ -183,6 +183,13 @@ where
                             "mass": mass_diagonal, "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
                             "potential": potential});
         // Coulomb friction at random loads λ (zeros for a mechanism without it).
+        // γ's derivatives (Linearize::gamma_derivatives), dense NC × NV.
+        let (mut gamma_q, mut gamma_v) = ([[0.0; NQ]; NC], [[0.0; NQ]; NC]);
+        m.gamma_derivatives(&q, &qd, t, &mut gamma_q, &mut gamma_v);
+        let rows = |a: &[[f64; NQ]; NC]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
+        let fields = sample.as_object_mut().expect("a sample is an object");
+        fields.insert("gamma_q".into(), json!(rows(&gamma_q)));
+        fields.insert("gamma_v".into(), json!(rows(&gamma_v)));
         let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
         let (mut friction, mut friction_q, mut friction_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
         m.friction_forces(&q, &qd, t, &friction_lambda, &mut friction);

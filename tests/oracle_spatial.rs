@@ -142,7 +142,7 @@ const SAMPLES: usize = 200;
 /// parameters within ±10 % — and writes the samples file (keys in tests/oracle/README.md).
 fn write_samples<M, const NQ: usize, const NV: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
-    M: ForwardDynamics<f64, NQ, NV, NC>,
+    M: ForwardDynamics<f64, NQ, NV, NC> + mbd::Linearize<f64, NQ, NV, NC>,
 {
     let mut forward = 0;
     let mut rng = Rng::new(seed);
@@ -177,6 +177,13 @@ where
         let mut sample = json!({"p": params, "t": t, "q": q.to_vec(), "v": v.to_vec(), "phi": phi.to_vec(), "nu": nu.to_vec(),
                                 "jacobian": jacobian, "gamma": gamma.to_vec(), "mass": dense(&mass), "h": h.to_vec(),
                                 "h_q": dense(&h_q), "h_v": dense(&h_v), "potential": m.potential_energy(&q, t)});
+        // γ's derivatives (Linearize::gamma_derivatives), dense NC × NV.
+        let (mut gamma_q, mut gamma_v) = ([[0.0; NV]; NC], [[0.0; NV]; NC]);
+        m.gamma_derivatives(&q, &v, t, &mut gamma_q, &mut gamma_v);
+        let rows = |a: &[[f64; NV]; NC]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
+        let fields = sample.as_object_mut().expect("a sample is an object");
+        fields.insert("gamma_q".into(), json!(rows(&gamma_q)));
+        fields.insert("gamma_v".into(), json!(rows(&gamma_v)));
         let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
         let (mut friction, mut friction_q, mut friction_v) = ([0.0; NV], [[0.0; NV]; NV], [[0.0; NV]; NV]);
         m.friction_forces(&q, &v, t, &friction_lambda, &mut friction);

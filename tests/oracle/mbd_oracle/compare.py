@@ -7,7 +7,8 @@ A samples file is {"model": <MODEL_JSON>, "samples": [{"params": {name: value}, 
 A sample may also hold the dynamics: "mass" (the diagonal of M), "h", "h_q", "h_qd" (dense
 NQ×NQ, row r = h_r) and "potential"; and a forward-dynamics solution: "qdd", "lambda" with the
 Baumgarte parameters "alpha", "beta" it was computed with; and Coulomb friction at given loads:
-"friction_lambda", "friction", "friction_q", "friction_qd". Each is compared when present.
+"friction_lambda", "friction", "friction_q", "friction_qd"; and γ's derivatives "gamma_q",
+"gamma_v" (dense NC×NQ; spatial: (∂γ/∂q) B and ∂γ/∂v, NC×NV). Each is compared when present.
 
 A SPATIAL model ("dimension": 3, docs/formulation.md "Spatial bodies") is rebuilt by spatial.py
 and compared by the same rules; its samples hold "q" (NQ, unit Euler parameters), "v" (NV),
@@ -205,6 +206,24 @@ def layout_of(model_json):
     return SpatialLayout(model_json) if is_spatial(model_json) else PlanarLayout(model_json)
 
 
+def compare_gamma_derivatives(data, lay, failures, worst):
+    """Compares "gamma_q" ((∂γ/∂q) B, dense NC×NV) and "gamma_v" (∂γ/∂v) where the samples hold
+    them, with the floor of the Jacobian's: ATOL_SCALE · max(1, ||f||_inf) — γ's derivatives are
+    sums of products of the same terms as γ, evaluated in different orders."""
+    rows = data["model"]["constraint_rows"]
+    cols = lay.columns
+    for k, s in enumerate(data["samples"]):
+        if "gamma_q" not in s:
+            continue
+        want = [np.array(x) for x in lay.model.f_gamma_derivatives(*lay.args(s))]
+        for function, w in zip(("gamma_q", "gamma_v"), want):
+            if w.size == 0:
+                continue
+            atol = ATOL_SCALE * max(1.0, float(np.max(np.abs(w))))
+            where = lambda i, function=function: f"{function}[{rows[i[0]]}][{cols[i[1]]}]"  # noqa: E731
+            check_values(failures, worst, lay.model.name, function, np.array(s[function]), w, atol, where, k)
+
+
 def compare_dynamics(data, lay, out, failures, worst):
     """Compares the samples' dynamics (lay.dynamics: "mass", "h", "h_q", "h_qd" or "h_v",
     "potential"), Coulomb friction and, where present, "qdd" and "lambda" with the CasADi
@@ -351,6 +370,7 @@ def compare_model(data, out=print):
     for r, c in sorted(missing - seen_nonzero_in_missing):
         out(f"note: {name}: jacobian[{rows[r]}][{cols[c]}] is structurally non-zero in CasADi but zero at every sample; mbd omits it")
     compare_dynamics(data, lay, out, failures, worst)
+    compare_gamma_derivatives(data, lay, failures, worst)
     columns = f"{model.nv} velocities" if lay.spatial else f"{model.nq} coordinates"
     out(
         f"{name}: {len(data['samples'])} samples, {model.nc} rows x {columns}, "

@@ -86,6 +86,10 @@ class Model:
         self.f_jac = ca.Function("jacobian", args, [self.jac], names, ["jacobian"])
         self.f_nu = ca.Function("nu", args, [self.nu], names, ["nu"])
         self.f_gamma = ca.Function("gamma", args, [self.gamma], names, ["gamma"])
+        # γ's derivatives, for the generated Linearize::gamma_derivatives.
+        self.f_gamma_derivatives = ca.Function("gamma_derivatives", args,
+                                               [ca.jacobian(self.gamma, self.q), ca.jacobian(self.gamma, self.qd)],
+                                               names, ["gamma_q", "gamma_v"])
 
     # --- expressions -----------------------------------------------------------------------
     def expr(self, e):

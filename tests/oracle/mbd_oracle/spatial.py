@@ -177,6 +177,9 @@ class Spatial:
         self.f_jac = F("jacobian", [self.D], ["jacobian"])
         self.f_nu = F("nu", [self.nu], ["nu"])
         self.f_gamma = F("gamma", [self.gamma], ["gamma"])
+        # γ's derivatives (∂γ/∂q) B and ∂γ/∂v, for the generated Linearize::gamma_derivatives.
+        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
+                                     ["gamma_q", "gamma_v"])
         self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
         self.f_B = F("B", [self.B], ["B"])
         self.f_mass = F("mass", [self.mass], ["mass"])
