@@ -98,6 +98,29 @@ mechanism! {
     }
 }
 
+mbd::mechanism! {
+    /// A rod hanging from a cart that a driver moves along x at 0.1 m/s: base excitation.
+    pub ShakenPendulum {
+        gravity [0.0, -9.81];
+        body cart { mass: 3.0, inertia: 0.1, at: [0.0, 0.0, 0.0], velocity: [0.1, 0.0, 0.0] }
+        body rod { mass: 2.0, inertia: 0.25, at: [0.0, -0.5, -1.5707963267948966], velocity: [0.1, 0.0, 0.0] }
+        translational ground[0.0, 0.0] along [1.0, 0.0] ~ cart[0.0, 0.0] along [1.0, 0.0];
+        revolute cart[0.0, 0.0] ~ rod[-0.5, 0.0];
+        drive carriage: cart.x = 0.1 * t;
+    }
+}
+
+mbd::mechanism! {
+    /// A rod whose length is a parameter, pushed at its tip.
+    pub LongRod {
+        params { len: 1.0, push: 0.0 }
+        gravity [0.0, -9.81];
+        body rod { mass: 2.0, inertia: 0.25, at: [0.0, -0.5 * len, -1.5707963267948966] }
+        revolute ground[0.0, 0.0] ~ rod[-0.5 * len, 0.0];
+        force rod[0.5 * len, 0.0] = [push, 0.0];
+    }
+}
+
 /// Relative difference against a scale.
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * b.abs().max(1e-300)
@@ -340,6 +363,27 @@ fn exact_against_finite_differences_at_moving_states() {
     agree("spinning top", &exact, &fd);
 }
 
+/// A driver's acceleration as input: the rod swings at ω² = m g c / J_o (J_o = J + m c²) and the
+/// carriage's acceleration a turns it by φ̈ = −m c a / J_o (a push to +x leaves the rod's lower
+/// end behind: it turns clockwise, from −π/2 towards −π); the driver's force
+/// per unit acceleration is the carriage's effective mass M + m − (m c)²/J_o. Closed forms to
+/// 1e-12; the finite-difference model agrees to 1e-7 as everywhere.
+#[test]
+fn driver_acceleration_as_input() {
+    let m = ShakenPendulum::default();
+    let (q, v) = (m.initial_positions(), m.initial_velocities());
+    let options = || LinearizeOptions::default().inputs(&["carriage"]).output(Output::Multiplier("carriage: x"));
+    let lin = linearize(&m, &q, &v, 0.0, &options()).expect("linearizes");
+    assert_eq!(lin.state_names, ["rod.phi", "rod.phi_dot"]);
+    let (mass, c, j) = (2.0, 0.5, 0.25);
+    let jo = j + mass * c * c;
+    assert!(close(-lin.a[(1, 0)], mass * G * c / jo, 1e-12), "{}", lin.a);
+    assert!(close(lin.b[(1, 0)], -mass * c / jo, 1e-12), "{}", lin.b);
+    assert!(close(lin.d[(0, 0)], 3.0 + mass - (mass * c).powi(2) / jo, 1e-12), "{}", lin.d);
+    let fd = linearize_finite_differences(&m, &q, &v, 0.0, &options()).expect("differences");
+    agree("shaken pendulum", &lin, &fd);
+}
+
 /// A state off the manifold, an unknown name, and the wrong number of independent velocities
 /// are errors that say what is wrong.
 #[test]
@@ -352,6 +396,13 @@ fn errors_name_what_is_wrong() {
     assert!(e.to_string().contains("velocities violate"), "{e}");
     let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().inputs(&["motor"])).unwrap_err();
     assert!(e.to_string().contains("unknown input `motor`"), "{e}");
+    // A parameter that also sets the geometry is not an input.
+    assert_eq!(LongRod::INPUTS, ["push"]);
+    let rod = LongRod::default();
+    let e = linearize(&rod, &rod.initial_positions(), &[0.0; 3], 0.0, &LinearizeOptions::default().inputs(&["len"])).unwrap_err();
+    assert!(e.to_string().contains("unknown input (a parameter that also sets the geometry, the masses or friction) `len`"), "{e}");
+    let e = linearize(&ShakenPendulum::default(), &[0.0; 6], &[0.0; 6], 0.0, &LinearizeOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("not assembled"), "{e}");
     let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().independent(&["rod.x", "rod.y"])).unwrap_err();
     assert!(e.to_string().contains("2 named, but the mechanism has 1 degrees of freedom"), "{e}");
 }

@@ -137,8 +137,11 @@ impl fmt::Debug for Output {
 #[derive(Debug)]
 #[non_exhaustive]
 pub struct LinearizeOptions {
-    /// The inputs u, by name from [`Linearize::INPUTS`] (parameters that enter only the applied
-    /// forces: an actuator's force, a motor's torque). Default none.
+    /// The inputs u, by name: a parameter from [`Linearize::INPUTS`] (one that enters only the
+    /// applied forces: an actuator's force, a motor's torque; N or N·m), or a driver from
+    /// [`Mechanism::JOINTS`] (`"drive crank.phi"`, or the label it was given), whose input is its
+    /// acceleration (m/s² or rad/s²) at the driven position and velocity of the state. Default
+    /// none.
     pub inputs: Vec<&'static str>,
     /// The outputs. Default none (C and D then have no rows).
     pub outputs: Vec<Output>,
@@ -206,7 +209,7 @@ pub enum LinearizeError {
         /// The name given.
         name: String,
         /// The names it can be.
-        choices: &'static [&'static str],
+        choices: Vec<&'static str>,
     },
     /// The independent velocities named are not as many as the degrees of freedom, or the
     /// others cannot follow from them (the constraints do not fix them).
@@ -340,7 +343,11 @@ fn boxed<const R: usize, const C: usize>() -> Box<[[f64; C]; R]> {
 }
 
 fn find(what: &'static str, name: &str, choices: &'static [&'static str]) -> Result<usize, LinearizeError> {
-    choices.iter().position(|&c| c == name).ok_or_else(|| LinearizeError::UnknownName { what, name: name.to_string(), choices })
+    choices.iter().position(|&c| c == name).ok_or_else(|| LinearizeError::UnknownName {
+        what,
+        name: name.to_string(),
+        choices: choices.to_vec(),
+    })
 }
 
 /// The chart at a state: which velocities are independent, and the basis that goes with them.
@@ -478,11 +485,39 @@ where
     Ok(d)
 }
 
-/// The inputs' indices into [`Linearize::INPUTS`].
-fn input_indices<M: Linearize<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+/// What an input is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Input {
+    /// A parameter, by index into [`Linearize::INPUTS`].
+    Load(usize),
+    /// A driver's acceleration, by its row of Φ.
+    Driver(usize),
+}
+
+/// The inputs the options name.
+fn input_kinds<M: Linearize<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     options: &LinearizeOptions,
-) -> Result<Vec<usize>, LinearizeError> {
-    options.inputs.iter().map(|n| find("input", n, M::INPUTS)).collect()
+) -> Result<Vec<Input>, LinearizeError> {
+    let is_driver = |j: &&crate::JointInfo| j.kind.starts_with("drive") && j.rows == 1;
+    options
+        .inputs
+        .iter()
+        .map(|&name| {
+            if let Some(k) = M::INPUTS.iter().position(|&n| n == name) {
+                return Ok(Input::Load(k));
+            }
+            if let Some(j) = M::JOINTS.iter().filter(is_driver).find(|j| j.name == name) {
+                return Ok(Input::Driver(j.first_row as usize));
+            }
+            let choices = M::INPUTS.iter().copied().chain(M::JOINTS.iter().filter(is_driver).map(|j| j.name)).collect();
+            let what = if M::PARAM_NAMES.contains(&name) {
+                "input (a parameter that also sets the geometry, the masses or friction)"
+            } else {
+                "input"
+            };
+            Err(LinearizeError::UnknownName { what, name: name.to_string(), choices })
+        })
+        .collect()
 }
 
 /// Ω = ∂δ̇/∂δ: −½[ω₀′×] on each spatial body's rotation, 0 elsewhere (module docs).
@@ -536,7 +571,7 @@ where
     M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
 {
     let d = check_state(m, q, v, t, options.consistency_tolerance)?;
-    let inputs = input_indices::<M, NQ, NV, NC>(options)?;
+    let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
     let chart = Chart::choose::<M>(&d, options)?;
     let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
     m.accelerations(q, v, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
@@ -580,10 +615,12 @@ where
     };
     let g = q_v - gamma_v0 * 0.5;
     let mut h_u = DMatrix::zeros(NV, inputs.len());
-    for (j, &k) in inputs.iter().enumerate() {
-        let mut column = [0.0; NV];
-        m.forces_input(k, q, v, t, &mut column);
-        h_u.column_mut(j).copy_from_slice(&column);
+    for (j, &input) in inputs.iter().enumerate() {
+        if let Input::Load(k) = input {
+            let mut column = [0.0; NV];
+            m.forces_input(k, q, v, t, &mut column);
+            h_u.column_mut(j).copy_from_slice(&column);
+        }
     }
 
     // The saddle-point system [[M, −Dᵀ], [D, 0]] [δv̇; δλ] = [top; bottom] over the independent
@@ -600,6 +637,12 @@ where
     top.view_mut((0, f), (NV, f)).copy_from(&(&h_v * z));
     bottom.view_mut((0, f), (nr, f)).copy_from(&(pick(&gamma_v) * z));
     top.view_mut((0, 2 * f), (NV, ni)).copy_from(&h_u);
+    for (j, &input) in inputs.iter().enumerate() {
+        // A driver's row reads D v̇ = γ_r + u: its acceleration input.
+        if let Some(i) = chart.rows.iter().position(|&r| Input::Driver(r) == input) {
+            bottom[(i, 2 * f + j)] = 1.0;
+        }
+    }
     let particular = &chart.r * &bottom;
     let reduced_mass = z.transpose() * &mass * z;
     let s = Cholesky::new(reduced_mass).ok_or(LinearizeError::Singular)?.solve(&(z.transpose() * (&top - &mass * &particular)));
@@ -701,24 +744,39 @@ where
     M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC> + Clone,
 {
     let d = check_state(m, q, v, t, options.consistency_tolerance)?;
-    let inputs = input_indices::<M, NQ, NV, NC>(options)?;
+    let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
     let chart = Chart::choose::<M>(&d, options)?;
     let f = chart.independent.len();
     let ni = inputs.len();
     let no = options.outputs.len();
     // The state (y, w) at (q, v): y = 0, w = E v.
     let x0: Vec<f64> = (0..f).map(|_| 0.0).chain(chart.independent.iter().map(|&i| v[i])).collect();
-    let u0: Vec<f64> = inputs.iter().map(|&k| m.input(k)).collect();
+    let u0: Vec<f64> = inputs
+        .iter()
+        .map(|&input| match input {
+            Input::Load(k) => m.input(k),
+            Input::Driver(_) => 0.0,
+        })
+        .collect();
     // ẋ and the outputs at (x, u).
     let evaluate = |x: &[f64], u: &[f64]| -> Result<(Vec<f64>, Vec<f64>), LinearizeError> {
         let mut model = m.clone();
-        for (&k, &value) in inputs.iter().zip(u) {
-            model.set_input(k, value);
+        let mut offsets = [0.0; NC];
+        for (&input, &value) in inputs.iter().zip(u) {
+            match input {
+                Input::Load(k) => model.set_input(k, value),
+                Input::Driver(row) => offsets[row] = value,
+            }
         }
         let (qx, delta) = chart.position::<M, NQ, NV, NC>(m, q, t, &x[..f])?;
         let vx = chart.velocity::<M, NQ, NV, NC>(m, &qx, t, &x[f..])?;
         let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
         model.accelerations(&qx, &vx, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
+        if offsets.iter().any(|&o| o != 0.0) {
+            // A driver's acceleration offset: the saddle-point system at this state with γ_r + u
+            // (and the joints' friction at the loads just found), solved densely.
+            driven_accelerations(&model, &chart, &qx, &vx, t, &offsets, &mut vd, &mut lambda)?;
+        }
         let rates = displacement_rates::<M, NQ, NV>(q, &qx, &vx);
         let xdot: Vec<f64> = chart.independent.iter().map(|&i| rates[i]).chain(chart.independent.iter().map(|&i| vd[i])).collect();
         let mut y = Vec::with_capacity(no);
@@ -764,6 +822,54 @@ where
     let mut mass = boxed::<NV, NV>();
     m.add_mass_matrix(q, 1.0, &mut mass);
     Ok(assemble::<M>(t, a, b, c, dd, dense(&mass), chart, options))
+}
+
+/// v̇ and λ from [[M, −Dᵀ], [D, 0]] [v̇; λ] = [h + h_f(λ); γ + offsets] over the chart's rows,
+/// the friction h_f at the λ passed in.
+#[allow(clippy::too_many_arguments)]
+fn driven_accelerations<M, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    chart: &Chart,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    t: f64,
+    offsets: &[f64; NC],
+    vd: &mut [f64; NV],
+    lambda: &mut [f64; NC],
+) -> Result<(), LinearizeError>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let (mut h, mut gamma) = ([0.0; NV], [0.0; NC]);
+    m.forces(q, v, t, &mut h);
+    m.friction_forces(q, v, t, lambda, &mut h);
+    m.gamma(q, v, t, &mut gamma);
+    let (mut mass, mut d) = (boxed::<NV, NV>(), boxed::<NC, NV>());
+    m.add_mass_matrix(q, 1.0, &mut mass);
+    m.jacobian(q, t, &mut d);
+    let nr = chart.rows.len();
+    let mut kkt = DMatrix::zeros(NV + nr, NV + nr);
+    let mut rhs = DVector::zeros(NV + nr);
+    for i in 0..NV {
+        rhs[i] = h[i];
+        for j in 0..NV {
+            kkt[(i, j)] = mass[i][j];
+        }
+    }
+    for (k, &r) in chart.rows.iter().enumerate() {
+        rhs[NV + k] = gamma[r] + offsets[r];
+        for j in 0..NV {
+            kkt[(NV + k, j)] = d[r][j];
+            kkt[(j, NV + k)] = -d[r][j];
+        }
+    }
+    let x = kkt.lu().solve(&rhs).ok_or(LinearizeError::Singular)?;
+    vd.copy_from_slice(x.rows(0, NV).as_slice());
+    *lambda = [0.0; NC];
+    for (k, &r) in chart.rows.iter().enumerate() {
+        lambda[r] = x[NV + k];
+    }
+    Ok(())
 }
 
 impl Chart {
