@@ -7,6 +7,8 @@
 #![warn(missing_docs)]
 
 #[cfg(feature = "std")]
+mod animation;
+#[cfg(feature = "std")]
 mod csv;
 mod dynamics;
 mod error;
@@ -29,6 +31,8 @@ pub mod statics;
 mod test_support;
 pub mod workspace;
 
+#[cfg(feature = "std")]
+pub use animation::Animation;
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};

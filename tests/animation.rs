@@ -1,0 +1,157 @@
+//! The animation page in a real browser: headless Chromium (Debian's package, installed by
+//! `.ci/ensure_chromium.sh`) loads each page with no network, runs its script, and the test
+//! reads the DOM it leaves (`<p id="status">`: "drew frame k of n", or the error that stopped
+//! it) and saves a screenshot under `target/animation/`. Pages: a four-bar's kinematic sweep with
+//! a coupler-point trace, the quarter car of `examples/bump.rs` simulated over its bump (tyre,
+//! bump stop, spring-damper), a spatial double pendulum; and a page asked to trace a point the
+//! mechanism does not have, which must say so.
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::bump::QuarterCar;
+use common::four_bar::FourBar;
+use mbd::prelude::*;
+use mbd::{Animation, Dopri5, Dopri5Options, StaticSolver};
+
+mechanism! {
+    /// Two bodies on ball joints hanging from the origin, released from a tilt.
+    pub SpatialDoublePendulum {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        body upper { mass: 1.0, inertia: [0.02, 0.02, 0.005], at: [0.15, 0.0, -0.26], axis_angle: [0.0, 1.0, 0.0, 0.52] }
+        body lower { mass: 0.5, inertia: [0.01, 0.01, 0.002], at: [0.3, 0.1, -0.7], axis_angle: [0.0, 1.0, 0.0, 0.2] }
+        spherical ground[0.0, 0.0, 0.0] ~ upper[0.0, 0.0, 0.3];
+        spherical upper[0.0, 0.0, -0.3] ~ lower[0.0, 0.0, 0.2];
+        point lower.tip = [0.0, 0.0, -0.2];
+    }
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Chromium's binary: installed by the project's script. Without CI a machine that cannot
+/// install it skips the browser checks, saying so; under CI that is a failure.
+fn chromium() -> Option<PathBuf> {
+    let out = Command::new("bash").arg(repo().join(".ci/ensure_chromium.sh")).output().expect("bash runs");
+    if out.status.success() {
+        return Some(PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()));
+    }
+    let why = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(std::env::var("CI").is_err(), "CI=true: Chromium could not be installed: {why}");
+    eprintln!("SKIPPED: the browser checks need Chromium, which could not be installed here: {why}");
+    None
+}
+
+/// Loads `page` headless; returns the DOM after its script ran, and writes a screenshot to
+/// `png`, which must hold a drawing unless the page is `blank`.
+fn load(browser: &Path, page: &Path, png: &Path, blank: bool) -> String {
+    let url = format!("file://{}", page.canonicalize().expect("the page exists").display());
+    let common =
+        ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars", "--window-size=860,720", "--virtual-time-budget=2000"];
+    let dom = Command::new(browser).args(common).arg("--dump-dom").arg(&url).output().expect("chromium runs");
+    assert!(dom.status.success(), "chromium failed: {}", String::from_utf8_lossy(&dom.stderr));
+    let shot = Command::new(browser).args(common).arg(format!("--screenshot={}", png.display())).arg(&url).output().expect("chromium runs");
+    assert!(shot.status.success(), "chromium failed: {}", String::from_utf8_lossy(&shot.stderr));
+    // A blank canvas compresses to ~10 kB; a drawn mechanism adds lines, fills and text.
+    let size = std::fs::metadata(png).map(|m| m.len()).unwrap_or(0);
+    assert!(blank || size > 15_000, "screenshot {} has {size} bytes: nothing drawn?", png.display());
+    String::from_utf8_lossy(&dom.stdout).to_string()
+}
+
+/// The status line the page leaves.
+fn status(dom: &str) -> String {
+    let start = dom.find("<p id=\"status\">").expect("the page has its status line") + "<p id=\"status\">".len();
+    let end = start + dom[start..].find("</p>").expect("closed");
+    dom[start..end].to_string()
+}
+
+fn out_dir() -> PathBuf {
+    let dir = repo().join("target/animation");
+    std::fs::create_dir_all(&dir).expect("target/animation");
+    dir
+}
+
+/// Asserts that the page drew its frames without an error.
+fn drew(dom: &str, frames: usize) {
+    let s = status(dom);
+    assert!(s.starts_with("drew frame ") && s.ends_with(&format!(" of {frames}")), "status: {s}");
+}
+
+fn four_bar_page() -> Animation {
+    let m = FourBar::default();
+    let mut ws = FourBar::workspace();
+    let mut q = m.initial_positions();
+    let solver = KinematicSolver::default();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let mut animation = Animation::new::<FourBar>(&m.params()).title("Four-bar, one crank turn").trace("coupler.P");
+    let period = 2.0 * std::f64::consts::PI / m.omega;
+    let times = (0..=120).map(|k| period * k as f64 / 120.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q)).expect("sweeps");
+    animation
+}
+
+#[test]
+fn pages_draw_in_a_browser() {
+    let Some(browser) = chromium() else { return };
+    let dir = out_dir();
+
+    let four_bar = four_bar_page();
+    assert_eq!(four_bar.len(), 121);
+    four_bar.write_html(dir.join("four_bar.html")).expect("writes");
+    drew(&load(&browser, &dir.join("four_bar.html"), &dir.join("four_bar.png"), false), 121);
+
+    // The quarter car over its bump: unilateral tyre and stop, spring-damper, sliders.
+    let m = QuarterCar::default();
+    let mut ws = QuarterCar::workspace();
+    let mut q = m.initial_positions();
+    StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 4]).expect("rests on its tyre");
+    let mut animation = Animation::new::<QuarterCar>(&m.params());
+    let times: Vec<f64> = (0..=150).map(|k| 0.9 + 0.002 * k as f64).collect();
+    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-8, ..Dopri5Options::default() });
+    let before: Vec<f64> = (0..90).map(|k| 0.01 * k as f64).collect();
+    let mut state = (0.0, q, [0.0; 6]);
+    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &before, &SimulationOptions::default(), |s| {
+        state = (s.point.t, s.point.q, s.point.v);
+    })
+    .expect("rolls to the bump");
+    simulate(&m, &mut ws, &mut dopri, state.0, &state.1, &state.2, &times, &SimulationOptions::default(), |s| {
+        animation.frame(s.point.t, &s.point.q)
+    })
+    .expect("rides the bump");
+    animation.write_html(dir.join("quarter_car.html")).expect("writes");
+    drew(&load(&browser, &dir.join("quarter_car.html"), &dir.join("quarter_car.png"), false), animation.len());
+
+    // A spatial page: the orthographic view.
+    let m = SpatialDoublePendulum::default();
+    let mut q = m.initial_positions();
+    let mut ws = SpatialDoublePendulum::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let mut animation = Animation::new::<SpatialDoublePendulum>(&m.params()).trace("lower.tip");
+    let times: Vec<f64> = (1..=100).map(|k| 0.02 * k as f64).collect();
+    simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 12], &times, &SimulationOptions::default(), |s| {
+        animation.frame(s.point.t, &s.point.q)
+    })
+    .expect("swings");
+    animation.write_html(dir.join("spatial_double_pendulum.html")).expect("writes");
+    drew(&load(&browser, &dir.join("spatial_double_pendulum.html"), &dir.join("spatial_double_pendulum.png"), false), 100);
+
+    // A trace of a point the mechanism does not have: the page says so instead of drawing.
+    let mut wrong = Animation::new::<FourBar>(&FourBar::default().params()).trace("coupler.Q");
+    wrong.frame(0.0, &FourBar::default().initial_positions());
+    wrong.write_html(dir.join("wrong_trace.html")).expect("writes");
+    let s = status(&load(&browser, &dir.join("wrong_trace.html"), &dir.join("wrong_trace.png"), true));
+    assert!(s.starts_with("error: no named point coupler.Q"), "status: {s}");
+}
+
+/// Everything is inline: no script, style or image is fetched.
+#[test]
+fn the_page_is_self_contained() {
+    let html = four_bar_page().to_html();
+    for needle in ["src=", "href=", "http:", "https:", "@MODEL@", "@DATA@", "@SCRIPT@"] {
+        assert!(!html.contains(needle), "the page contains {needle}");
+    }
+    assert!(html.contains("\"traces\": [\"coupler.P\"]"));
+}
