@@ -611,3 +611,51 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     assert!(error(e5) < 1e-6 && error(ea) < 1e-3, "DOPRI5 {:e}, generalized-α {:e}", error(e5), error(ea));
     assert!(20 * alpha.accepted < dopri.accepted, "generalized-α {} steps, DOPRI5 {}", alpha.accepted, dopri.accepted);
 }
+
+/// The output callback ends a run by returning `ControlFlow::Break`: the sample it was given is
+/// the last, the statistics say why, and no step is taken past it.
+#[test]
+fn the_output_callback_stops_a_run() {
+    use std::ops::ControlFlow;
+    let m = DoublePendulum::default();
+    let times: Vec<f64> = (1..=100).map(|k| 0.01 * k as f64).collect();
+    let mut seen = Vec::new();
+    let stats = simulate(
+        &m,
+        &mut DoublePendulum::workspace(),
+        &mut Dopri5::default(),
+        0.0,
+        &m.initial_positions(),
+        &[0.0; 6],
+        &times,
+        &SimulationOptions::default(),
+        |s| {
+            seen.push(s.point.t);
+            if s.point.t >= 0.25 {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        },
+    )
+    .expect("runs");
+    assert!(stats.stopped_by_output);
+    assert_eq!(seen.len(), 25, "{seen:?}");
+    assert_eq!(stats.samples, 25);
+    assert!((seen[24] - 0.25).abs() < 1e-12);
+    // DOPRI5 with its default tolerance takes steps of a few ms here: far fewer than a full run.
+    let full = simulate(
+        &m,
+        &mut DoublePendulum::workspace(),
+        &mut Dopri5::default(),
+        0.0,
+        &m.initial_positions(),
+        &[0.0; 6],
+        &times,
+        &SimulationOptions::default(),
+        |_| {},
+    )
+    .expect("runs");
+    assert!(!full.stopped_by_output && full.samples == 100);
+    assert!(stats.steps < full.steps / 2, "{stats:?} against {full:?}");
+}

@@ -477,33 +477,37 @@ impl KinematicSolver {
     ///    the steps are small against the motion (if Newton fails from the prediction, the
     ///    point is retried once from the previous q);
     /// 2. solve the position, velocity and acceleration as [`analyze`](Self::analyze) does;
-    /// 3. call `f(t, q, v, v̇)`.
+    /// 3. call `f(t, q, v, v̇)`; if it returns [`ControlFlow::Break`](core::ops::ControlFlow)
+    ///    rather than `()` or `Continue`, the sweep ends there ([`crate::Flow`]).
     ///
     /// The first point starts from the `q` given, which should be consistent (see
     /// [`assemble`](Self::assemble)) or close to it. On return `q` holds the last solution that
     /// was reached: the last point on success, the last good point before an error (the failed
     /// point's iterate is discarded), so a caller can inspect it or resume. Nothing is
-    /// allocated; `times` may be any iterator, in any order.
+    /// allocated; `times` may be any iterator of times or of references to them (`&times`, as
+    /// [`simulate`](crate::simulate) takes them), in any order.
     ///
     /// # Errors
     /// The first error of any point (each carries its t); the sweep stops there.
-    pub fn sweep<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn sweep<T, M, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
         q: &mut [T; NQ],
-        times: impl IntoIterator<Item = T>,
-        mut f: impl FnMut(T, &[T; NQ], &[T; NV], &[T; NV]),
+        times: impl IntoIterator<Item = impl core::borrow::Borrow<T>>,
+        mut f: impl FnMut(T, &[T; NQ], &[T; NV], &[T; NV]) -> R,
     ) -> Result<(), KinematicError>
     where
         T: Real,
         M: Kinematics<T, NQ, NV, NC>,
+        R: crate::Flow,
     {
         require_driven::<NV, NC>()?;
         let mut v = [T::ZERO; NV];
         let mut vd = [T::ZERO; NV];
         let mut previous_time: Option<T> = None;
         for t in times {
+            let t = *t.borrow();
             let mut trial = *q;
             let predicted = match previous_time {
                 Some(t_previous) if self.options.predictor => {
@@ -519,7 +523,9 @@ impl KinematicSolver {
             }
             result?;
             *q = trial;
-            f(t, q, &v, &vd);
+            if f(t, q, &v, &vd).stops() {
+                break;
+            }
             previous_time = Some(t);
         }
         Ok(())

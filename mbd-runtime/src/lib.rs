@@ -40,8 +40,8 @@ pub use error::{KinematicError, NonFiniteQuantity};
 pub use finite_differences::FiniteDifferences;
 pub use integrate::{
     project, simulate, simulate_with_events, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event,
-    EventHit, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Sample, SimulationError, SimulationOptions, Statistics,
-    System,
+    EventHit, Flow, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Sample, SimulationError, SimulationOptions,
+    Statistics, System,
 };
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use kinematics::{

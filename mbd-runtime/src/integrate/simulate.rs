@@ -17,6 +17,7 @@ use crate::dynamics::kinetic_energy;
 use crate::kinematics::name;
 use crate::partition::Partition;
 use crate::{DynamicsOptions, ForwardDynamics, Real, Workspace};
+use core::ops::ControlFlow;
 
 /// What brings the state back onto the constraint manifold after each step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,6 +110,29 @@ pub struct Statistics {
     pub events: u64,
     /// The event that stopped the run, if one did.
     pub stopped_by: Option<EventHit>,
+    /// Whether the output callback stopped the run (it returned [`ControlFlow::Break`]); the
+    /// sample it was given was the last.
+    pub stopped_by_output: bool,
+}
+
+/// What an output callback of [`simulate`] returns: `()` (go on), or a [`ControlFlow`] whose
+/// `Break` ends the run after the sample it was given — to stop on a condition, at a deadline,
+/// or when the user cancels ([`Statistics::stopped_by_output`]).
+pub trait Flow {
+    /// Whether the run should end here.
+    fn stops(&self) -> bool;
+}
+
+impl Flow for () {
+    fn stops(&self) -> bool {
+        false
+    }
+}
+
+impl<B, C> Flow for ControlFlow<B, C> {
+    fn stops(&self) -> bool {
+        self.is_break()
+    }
 }
 
 /// Which switching function changed sign: one of the mechanism's
@@ -177,14 +201,16 @@ impl<T: Real> Default for SimulationOptions<T> {
 /// The initial q is normalized ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions))
 /// and the initial state corrected when a [`Correction`] is set (initial-condition correction,
 /// Nikravesh 14.3); interpolated outputs are normalized too. Nothing allocates: storage for the
-/// samples is the caller's.
+/// samples is the caller's. `output` may return `()`, or a [`ControlFlow`] whose `Break` ends
+/// the run after that sample ([`Flow`], [`Statistics::stopped_by_output`]): a stop condition, a
+/// deadline, a user's cancel, a progress bar's tick.
 ///
 /// # Errors
 /// The first [`SimulationError`] met; the samples before it have been delivered.
 #[allow(clippy::too_many_arguments)]
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn simulate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
     ws: &mut Workspace<T, NV, NC, N>,
     integrator: &mut I,
@@ -193,12 +219,13 @@ pub fn simulate<T, M, I, const NQ: usize, const NV: usize, const NC: usize, cons
     v0: &[T; NV],
     times: &[T],
     options: &SimulationOptions<T>,
-    output: impl FnMut(&Sample<T, NQ, NV, NC>),
+    output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
 ) -> Result<Statistics, SimulationError>
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
     I: Integrator<T, M, NQ, NV, NC, N>,
+    R: Flow,
 {
     simulate_with_events(mechanism, ws, integrator, t0, q0, v0, times, options, &mut [], output)
 }
@@ -212,7 +239,7 @@ where
 /// As [`simulate`].
 #[allow(clippy::too_many_arguments)]
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate_with_events<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn simulate_with_events<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     mechanism: &M,
     ws: &mut Workspace<T, NV, NC, N>,
     integrator: &mut I,
@@ -222,12 +249,13 @@ pub fn simulate_with_events<T, M, I, const NQ: usize, const NV: usize, const NC:
     times: &[T],
     options: &SimulationOptions<T>,
     events: &mut [Event<'_, T, NQ, NV>],
-    mut output: impl FnMut(&Sample<T, NQ, NV, NC>),
+    mut output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
 ) -> Result<Statistics, SimulationError>
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
     I: Integrator<T, M, NQ, NV, NC, N>,
+    R: Flow,
 {
     for (i, &t) in times.iter().enumerate() {
         let before = if i == 0 { t0 } else { times[i - 1] };
@@ -244,6 +272,16 @@ where
     let mut to = from;
     integrator.restart();
     let mut stats = Statistics::default();
+    // Hands a sample to the callback; ends the run if it says so.
+    macro_rules! deliver {
+        ($sample:expr) => {
+            stats.samples += 1;
+            if output($sample).stops() {
+                stats.stopped_by_output = true;
+                return Ok(stats);
+            }
+        };
+    }
     let t_end = match times.last() {
         Some(&t) => t,
         None => return Ok(stats),
@@ -253,9 +291,8 @@ where
     // (or one simultaneous with it), not a new one.
     let mut at_event = false;
     while next < times.len() && times[next] <= from.t {
-        output(&sample(mechanism, &from));
-        stats.samples += 1;
         next += 1;
+        deliver!(&sample(mechanism, &from));
     }
     while next < times.len() {
         if stats.steps >= options.max_steps {
@@ -267,9 +304,8 @@ where
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
-            output(&Sample { event: Some(which), ..sample(mechanism, &from) });
-            stats.samples += 1;
             stats.events += 1;
+            deliver!(&Sample { event: Some(which), ..sample(mechanism, &from) });
             at_event = true;
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
@@ -304,23 +340,21 @@ where
         }
         let step_end = end.t;
         while next < times.len() && times[next] <= step_end {
-            if times[next] == step_end {
-                output(&sample(mechanism, &to));
+            next += 1;
+            if times[next - 1] == step_end {
+                deliver!(&sample(mechanism, &to));
             } else {
                 let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-                integrator.interpolate(mechanism, &from, &end, times[next], &mut q, &mut v);
+                integrator.interpolate(mechanism, &from, &end, times[next - 1], &mut q, &mut v);
                 mechanism.normalize_positions(&mut q);
-                let work = interpolate_work(&from, &end, times[next]);
-                output(&sample(mechanism, &system.point(times[next], q, v, work)?));
+                let work = interpolate_work(&from, &end, times[next - 1]);
+                deliver!(&sample(mechanism, &system.point(times[next - 1], q, v, work)?));
             }
-            stats.samples += 1;
-            next += 1;
         }
         at_event = hit.is_some();
         if let Some((_, which)) = hit {
-            output(&Sample { event: Some(which), ..sample(mechanism, &to) });
-            stats.samples += 1;
             stats.events += 1;
+            deliver!(&Sample { event: Some(which), ..sample(mechanism, &to) });
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
                 return Ok(stats);
