@@ -45,7 +45,7 @@ use flywheel_engine::slider_crank_inverse;
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 19] = [
+    let runs: [(&str, Run); 20] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),

@@ -423,8 +423,11 @@ fn export_with_names() {
     assert!(close(second[0], -400.0 / 2.5, 1e-12) && close(second[1], -6.0 / 2.5, 1e-12), "{second:?}");
     let b = std::fs::read_to_string(dir.join("B.csv")).expect("B.csv");
     assert!(b.starts_with("\"\",\"push\"\n"), "{b}");
+    let k = std::fs::read_to_string(dir.join("K_r.csv")).expect("K_r.csv");
+    assert_eq!(k, "\"\",\"block.x\"\n\"block.x\",4e2\n");
     std::fs::remove_dir_all(&dir).ok();
     let json = lin.to_json();
     assert!(json.contains(r#""states": ["block.x", "block.x_dot"]"#) && json.contains(r#""inputs": ["push"]"#), "{json}");
     assert!(json.contains(r#""A": [[0e0, 1e0], [-1.6e2, -2.4e0]]"#), "{json}");
+    assert!(json.contains(r#""independent": ["block.x"]"#) && json.contains(r#""K_r": [[4e2]]"#), "{json}");
 }

@@ -234,7 +234,11 @@ impl fmt::Display for LinearizeError {
                 write!(f, "the velocities violate constraint row `{row}` by {value:e} (solve the velocities first)")
             }
             LinearizeError::UnknownName { what, name, choices } => {
-                write!(f, "unknown {what} `{name}`; the mechanism's are: {}", choices.join(", "))
+                write!(
+                    f,
+                    "unknown {what} `{name}`; the mechanism has: {}",
+                    if choices.is_empty() { "none".to_string() } else { choices.join(", ") }
+                )
             }
             LinearizeError::BadIndependent { reason } => write!(f, "independent velocities: {reason}"),
             LinearizeError::Dynamics(e) => write!(f, "forward dynamics at the state: {e}"),
@@ -257,6 +261,10 @@ impl From<DynamicsError> for LinearizeError {
 pub struct Linearization {
     /// The instant (s).
     pub t: f64,
+    /// The coordinates linearized about (m, rad; spatial: m and Euler parameters).
+    pub q: Vec<f64>,
+    /// The velocities linearized about (m/s, rad/s).
+    pub v: Vec<f64>,
     /// State matrix A (2f × 2f): x = (positions y, velocities w).
     pub a: DMatrix<f64>,
     /// Input matrix B (2f × inputs).
@@ -444,7 +452,7 @@ impl Chart {
             let missing = free.rows.iter().find(|r| !chart.rows.contains(r)).copied().unwrap_or(0);
             return Err(LinearizeError::BadIndependent {
                 reason: format!(
-                    "with {} held, the constraint row `{}` cannot be satisfied by the other velocities",
+                    "{} cannot all be independent: with them given, the other velocities cannot satisfy the constraint row `{}`",
                     options.independent.join(", "),
                     M::CONSTRAINT_NAMES.get(missing).copied().unwrap_or("?")
                 ),
@@ -666,7 +674,7 @@ where
     for (o, output) in options.outputs.iter().enumerate() {
         match output {
             Output::Displacement(name) => {
-                let i = find("velocity", name, M::VELOCITY_NAMES)?;
+                let i = find("displacement (a velocity direction)", name, M::VELOCITY_NAMES)?;
                 c.view_mut((o, 0), (1, f)).copy_from(&z.row(i));
             }
             Output::Velocity(name) => {
@@ -688,13 +696,13 @@ where
             }
         }
     }
-    Ok(assemble::<M>(t, a, b, c, dd, mass, chart, options))
+    Ok(assemble::<M>((t, q, v), a, b, c, dd, mass, chart, options))
 }
 
 /// The model's matrices with the second-order form and the names.
 #[allow(clippy::too_many_arguments)]
 fn assemble<M: Mechanism>(
-    t: f64,
+    (t, q, v): (f64, &[f64], &[f64]),
     a: DMatrix<f64>,
     b: DMatrix<f64>,
     c: DMatrix<f64>,
@@ -712,6 +720,8 @@ fn assemble<M: Mechanism>(
     let input_names = options.inputs.iter().map(|n| n.to_string()).collect();
     Linearization {
         t,
+        q: q.to_vec(),
+        v: v.to_vec(),
         state_names: state_names::<M>(&chart.independent),
         a,
         b,
@@ -782,7 +792,7 @@ where
         let mut y = Vec::with_capacity(no);
         for output in &options.outputs {
             y.push(match output {
-                Output::Displacement(name) => delta[find("velocity", name, M::VELOCITY_NAMES)?],
+                Output::Displacement(name) => delta[find("displacement (a velocity direction)", name, M::VELOCITY_NAMES)?],
                 Output::Velocity(name) => vx[find("velocity", name, M::VELOCITY_NAMES)?],
                 Output::Multiplier(name) => lambda[find("constraint row", name, M::CONSTRAINT_NAMES)?],
                 Output::Rate { rate, .. } => rate(q, &delta),
@@ -821,7 +831,7 @@ where
     }
     let mut mass = boxed::<NV, NV>();
     m.add_mass_matrix(q, 1.0, &mut mass);
-    Ok(assemble::<M>(t, a, b, c, dd, dense(&mass), chart, options))
+    Ok(assemble::<M>((t, q, v), a, b, c, dd, dense(&mass), chart, options))
 }
 
 /// v̇ and λ from [[M, −Dᵀ], [D, 0]] [v̇; λ] = [h + h_f(λ); γ + offsets] over the chart's rows,
@@ -1004,65 +1014,84 @@ impl Linearization {
     /// The modes, by natural frequency (module docs): one per oscillation (a conjugate pair of
     /// eigenvalues) and one per real eigenvalue.
     pub fn modes(&self) -> Vec<Mode> {
-        let f = self.dof();
-        if f == 0 {
+        if self.dof() == 0 {
             return Vec::new();
         }
-        let mut modes = Vec::new();
-        if self.undamped() {
-            if let Some(l) = Cholesky::new(self.mass.clone()) {
-                // K φ = ω² M φ, M = L Lᵀ: (L⁻¹ K L⁻ᵀ) x = ω² x, φ = L⁻ᵀ x.
-                let l = l.l();
-                let li = l.clone().try_inverse().unwrap_or_else(|| DMatrix::identity(f, f));
-                let k = &li * &self.stiffness * li.transpose();
-                let k = (&k + k.transpose()) * 0.5;
-                let eigen = SymmetricEigen::new(k);
-                for (j, &w2) in eigen.eigenvalues.iter().enumerate() {
-                    let phi = li.transpose() * eigen.eigenvectors.column(j);
-                    let shape: Vec<Complex<f64>> = (&self.basis * &phi).iter().map(|&x| Complex::new(x, 0.0)).collect();
-                    let s = if w2 >= 0.0 { Complex::new(0.0, w2.sqrt()) } else { Complex::new((-w2).sqrt(), 0.0) };
-                    modes.push(self.mode(s, shape));
-                }
-                modes.sort_by(|a, b| a.natural_frequency.total_cmp(&b.natural_frequency));
-                return modes;
+        let mut modes = match self.undamped_modes() {
+            Some(modes) => modes,
+            None => {
+                let eigenvalues = self.eigenvalues();
+                let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
+                // one of each conjugate pair: Im s ≥ 0
+                eigenvalues
+                    .iter()
+                    .filter(|s| s.re.is_finite() && s.im >= -ZERO_EIGENVALUE * scale)
+                    .map(|&s| self.damped_mode(s, scale))
+                    .collect()
             }
-        }
-        let eigenvalues = self.eigenvalues();
-        let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
-        let ac = self.a.map(|x| Complex::new(x, 0.0));
-        let second_order = self.a.view((0, 0), (f, f)).amax() == 0.0;
-        let (a21, a22) = (ac.view((f, 0), (f, f)).into_owned(), ac.view((f, f), (f, f)).into_owned());
-        for &s in &eigenvalues {
-            if s.im < -ZERO_EIGENVALUE * scale || !s.re.is_finite() {
-                continue; // the conjugate's mode
-            }
-            let s = if s.im.abs() <= ZERO_EIGENVALUE * scale { Complex::new(s.re, 0.0) } else { s };
-            // Inverse iteration, s' a hair off s so that the matrix is regular: on the pencil
-            // s'² − s' A₂₂ − A₂₁ (f × f) for y when A₁₁ = 0 (ẏ = w), else on A − s' (2f × 2f).
-            let shift = s + Complex::new(1e-10 * scale.max(1e-300), 1e-10 * scale.max(1e-300));
-            let n = if second_order { f } else { 2 * f };
-            let mut shifted = if second_order { -(&a21 + &a22 * shift) } else { -ac.clone() };
-            let diagonal = if second_order { shift * shift } else { shift };
-            for i in 0..n {
-                shifted[(i, i)] += diagonal;
-            }
-            let lu = shifted.lu();
-            let mut x = DVector::from_element(n, Complex::new(1.0, 0.0));
-            for _ in 0..3 {
-                if let Some(next) = lu.solve(&x) {
-                    let norm = next.norm();
-                    if norm.is_finite() && norm > 0.0 {
-                        x = next / Complex::new(norm, 0.0);
-                    }
-                }
-            }
-            let y = x.rows(0, f).into_owned();
-            let shape: Vec<Complex<f64>> =
-                (0..self.basis.nrows()).map(|i| (0..f).fold(Complex::new(0.0, 0.0), |acc, k| acc + y[k] * self.basis[(i, k)])).collect();
-            modes.push(self.mode(s, shape));
-        }
+        };
         modes.sort_by(|a, b| a.natural_frequency.total_cmp(&b.natural_frequency));
         modes
+    }
+
+    /// Undamped modes from the symmetric problem K_r φ = ω² M_r φ, when the model is undamped
+    /// (`None` otherwise): M_r = L Lᵀ, (L⁻¹ K_r L⁻ᵀ) x = ω² x, φ = L⁻ᵀ x.
+    fn undamped_modes(&self) -> Option<Vec<Mode>> {
+        let f = self.dof();
+        if !self.undamped() {
+            return None;
+        }
+        let li = Cholesky::new(self.mass.clone())?.l().try_inverse()?;
+        let k = &li * &self.stiffness * li.transpose();
+        let eigen = SymmetricEigen::new((&k + k.transpose()) * 0.5);
+        let modes = eigen
+            .eigenvalues
+            .iter()
+            .enumerate()
+            .map(|(j, &w2)| {
+                let phi = li.transpose() * eigen.eigenvectors.column(j);
+                let shape: Vec<Complex<f64>> = (&self.basis * &phi).iter().map(|&x| Complex::new(x, 0.0)).collect();
+                let s = if w2 >= 0.0 { Complex::new(0.0, w2.sqrt()) } else { Complex::new((-w2).sqrt(), 0.0) };
+                self.mode(s, shape)
+            })
+            .collect::<Vec<_>>();
+        debug_assert_eq!(modes.len(), f);
+        Some(modes)
+    }
+
+    /// The mode of eigenvalue s of A (`scale` the largest |s|) by inverse iteration, s' a hair
+    /// off s so that the matrix is regular: on the pencil s'² − s' A₂₂ − A₂₁ (f × f) for y when
+    /// A₁₁ = 0 (ẏ = w), else on A − s' (2f × 2f).
+    fn damped_mode(&self, s: Complex<f64>, scale: f64) -> Mode {
+        let f = self.dof();
+        let s = if s.im.abs() <= ZERO_EIGENVALUE * scale { Complex::new(s.re, 0.0) } else { s };
+        let complex = |m: DMatrix<f64>| m.map(|x| Complex::new(x, 0.0));
+        let second_order = self.a.view((0, 0), (f, f)).amax() == 0.0;
+        let shift = s + Complex::new(1e-10 * scale.max(1e-300), 1e-10 * scale.max(1e-300));
+        let n = if second_order { f } else { 2 * f };
+        let mut shifted = if second_order {
+            let (a21, a22) = (complex(self.a.view((f, 0), (f, f)).into_owned()), complex(self.a.view((f, f), (f, f)).into_owned()));
+            -(a21 + a22 * shift)
+        } else {
+            -complex(self.a.clone())
+        };
+        let diagonal = if second_order { shift * shift } else { shift };
+        for i in 0..n {
+            shifted[(i, i)] += diagonal;
+        }
+        let lu = shifted.lu();
+        let mut x = DVector::from_element(n, Complex::new(1.0, 0.0));
+        for _ in 0..3 {
+            if let Some(next) = lu.solve(&x) {
+                let norm = next.norm();
+                if norm.is_finite() && norm > 0.0 {
+                    x = next / Complex::new(norm, 0.0);
+                }
+            }
+        }
+        let shape: Vec<Complex<f64>> =
+            (0..self.basis.nrows()).map(|i| (0..f).fold(Complex::new(0.0, 0.0), |acc, k| acc + x[k] * self.basis[(i, k)])).collect();
+        self.mode(s, shape)
     }
 
     /// A mode of eigenvalue s and (unscaled) shape.
@@ -1084,7 +1113,8 @@ impl Linearization {
             eigenvalue: s,
             natural_frequency: norm / tau,
             damped_frequency: s.im.abs() / tau,
-            damping_ratio: if norm > 0.0 { -s.re / norm } else { 0.0 },
+            // + 0.0: an undamped mode's −0 prints as 0
+            damping_ratio: if norm > 0.0 { -s.re / norm + 0.0 } else { 0.0 },
             shape,
             dominant: self.velocity_names.get(k).copied().unwrap_or("?"),
         }
@@ -1093,33 +1123,55 @@ impl Linearization {
     /// Whether the motion about the state is stable, from the eigenvalues of A: a real part
     /// within 1e-9 of the largest |s| counts as 0.
     pub fn stability(&self) -> LinearStability {
-        let modes = self.modes();
-        let scale = modes.iter().fold(0.0f64, |a, m| a.max(m.eigenvalue.norm()));
+        if self.dof() == 0 {
+            return LinearStability::Asymptotic { decay: f64::INFINITY };
+        }
+        let (eigenvalues, undamped) = match self.undamped_modes() {
+            Some(modes) => (modes.iter().map(|m| m.eigenvalue).collect::<Vec<_>>(), Some(modes)),
+            None => (self.eigenvalues(), None),
+        };
+        let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
         let band = ZERO_EIGENVALUE * scale;
-        match modes.iter().max_by(|a, b| a.eigenvalue.re.total_cmp(&b.eigenvalue.re)) {
-            None => LinearStability::Asymptotic { decay: f64::INFINITY },
-            Some(m) if m.eigenvalue.re > band => LinearStability::Unstable { growth: m.eigenvalue.re, direction: m.dominant },
-            Some(m) if m.eigenvalue.re >= -band => LinearStability::Marginal,
-            Some(m) => LinearStability::Asymptotic { decay: -m.eigenvalue.re },
+        let Some(&worst) = eigenvalues.iter().max_by(|a, b| a.re.total_cmp(&b.re)) else {
+            return LinearStability::Asymptotic { decay: f64::INFINITY };
+        };
+        if worst.re > band {
+            // The shape only of the mode that grows fastest.
+            let direction = match &undamped {
+                Some(modes) => modes.iter().find(|m| m.eigenvalue == worst).map_or("?", |m| m.dominant),
+                None => self.damped_mode(worst, scale).dominant,
+            };
+            LinearStability::Unstable { growth: worst.re, direction }
+        } else if worst.re >= -band {
+            LinearStability::Marginal
+        } else {
+            LinearStability::Asymptotic { decay: -worst.re }
         }
     }
 
-    /// A, B, C and D with their row and column names, as JSON:
-    /// `{"t", "states", "inputs", "outputs", "A", "B", "C", "D", "M_r", "D_r", "K_r"}`, matrices as
-    /// arrays of rows.
+    /// The model as JSON: `{"t", "q", "v", "states", "inputs", "outputs", "velocities",
+    /// "independent", "A", "B", "C", "D", "M_r", "D_r", "K_r", "B_r", "Z"}` — the state
+    /// linearized about, the names (`"independent"`: the velocities the states are), the matrices
+    /// as arrays of rows (Z: NV × f, rows named by `"velocities"`).
     pub fn to_json(&self) -> String {
-        let names = |n: &[String]| format!("[{}]", n.iter().map(|s| format!("{s:?}")).collect::<Vec<_>>().join(", "));
+        let names = |n: &mut dyn Iterator<Item = String>| format!("[{}]", n.map(|s| format!("{s:?}")).collect::<Vec<_>>().join(", "));
+        let numbers = |x: &[f64]| format!("[{}]", x.iter().map(|x| json_number(*x)).collect::<Vec<_>>().join(", "));
         let matrix = |m: &DMatrix<f64>| {
-            let rows: Vec<String> =
-                m.row_iter().map(|r| format!("[{}]", r.iter().map(|x| json_number(*x)).collect::<Vec<_>>().join(", "))).collect();
+            let rows: Vec<String> = m.row_iter().map(|r| numbers(&r.iter().copied().collect::<Vec<_>>())).collect();
             format!("[{}]", rows.join(", "))
         };
+        let strings = |n: &[String]| names(&mut n.iter().cloned());
         format!(
-            "{{\"t\": {}, \"states\": {}, \"inputs\": {}, \"outputs\": {}, \"A\": {}, \"B\": {}, \"C\": {}, \"D\": {}, \"M_r\": {}, \"D_r\": {}, \"K_r\": {}}}",
+            "{{\"t\": {}, \"q\": {}, \"v\": {}, \"states\": {}, \"inputs\": {}, \"outputs\": {}, \"velocities\": {}, \"independent\": {}, \
+             \"A\": {}, \"B\": {}, \"C\": {}, \"D\": {}, \"M_r\": {}, \"D_r\": {}, \"K_r\": {}, \"B_r\": {}, \"Z\": {}}}",
             json_number(self.t),
-            names(&self.state_names),
-            names(&self.input_names),
-            names(&self.output_names),
+            numbers(&self.q),
+            numbers(&self.v),
+            strings(&self.state_names),
+            strings(&self.input_names),
+            strings(&self.output_names),
+            names(&mut self.velocity_names.iter().map(|n| n.to_string())),
+            names(&mut self.independent.iter().map(|&i| self.velocity_names.get(i).copied().unwrap_or("?").to_string())),
             matrix(&self.a),
             matrix(&self.b),
             matrix(&self.c),
@@ -1127,12 +1179,16 @@ impl Linearization {
             matrix(&self.mass),
             matrix(&self.damping),
             matrix(&self.stiffness),
+            matrix(&self.input_forces),
+            matrix(&self.basis),
         )
     }
 
-    /// Writes `A.csv`, `B.csv`, `C.csv` and `D.csv` into `dir` (created if missing): a header
-    /// of column names (states or inputs) after an empty corner, then one row per state or
-    /// output, its name first. Full precision (`{:e}` round-trips).
+    /// Writes `A.csv`, `B.csv`, `C.csv`, `D.csv`, the second-order form's `M_r.csv`, `D_r.csv`,
+    /// `K_r.csv`, `B_r.csv` and the basis `Z.csv` into `dir` (created if missing): a header of
+    /// column names (states, inputs, independent displacements) after an empty corner, then one
+    /// row per state, output, displacement or velocity, its name first. Full precision (`{:e}`
+    /// round-trips).
     pub fn write_csv(&self, dir: &Path) -> io::Result<()> {
         std::fs::create_dir_all(dir)?;
         let write = |file: &str, m: &DMatrix<f64>, rows: &[String], columns: &[String]| -> io::Result<()> {
@@ -1143,10 +1199,18 @@ impl Linearization {
             }
             out.flush()
         };
+        let f = self.dof();
+        let positions = &self.state_names[..f];
+        let velocities: Vec<String> = self.velocity_names.iter().map(|n| n.to_string()).collect();
         write("A.csv", &self.a, &self.state_names, &self.state_names)?;
         write("B.csv", &self.b, &self.state_names, &self.input_names)?;
         write("C.csv", &self.c, &self.output_names, &self.state_names)?;
-        write("D.csv", &self.d, &self.output_names, &self.input_names)
+        write("D.csv", &self.d, &self.output_names, &self.input_names)?;
+        write("M_r.csv", &self.mass, positions, positions)?;
+        write("D_r.csv", &self.damping, positions, positions)?;
+        write("K_r.csv", &self.stiffness, positions, positions)?;
+        write("B_r.csv", &self.input_forces, positions, &self.input_names)?;
+        write("Z.csv", &self.basis, &velocities, positions)
     }
 }
 
