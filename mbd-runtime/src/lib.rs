@@ -23,6 +23,8 @@ mod mechanism;
 mod named;
 mod partition;
 mod planar;
+#[cfg(feature = "plots")]
+mod plot;
 mod real;
 pub mod redundancy;
 pub mod sparse;
@@ -61,6 +63,8 @@ pub use nalgebra;
 pub use named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
+#[cfg(feature = "plots")]
+pub use plot::{Plot, PlotError};
 pub use real::Real;
 pub use redundancy::Redundancy;
 pub use sparse::SparsePattern;
