@@ -22,8 +22,8 @@
 //!
 //! # The exact linearization
 //!
-//! Differentiating the equations of motion at fixed λ-free structure gives the saddle-point
-//! system for δv̇ and δλ
+//! Differentiating the equations of motion about (q₀, v₀, λ₀) gives the saddle-point system for
+//! δv̇ and δλ
 //!
 //! ```text
 //! [ M   −Dᵀ ] [δv̇]   [ (H + K) δ + H_v δv + H_u δu                        ]
@@ -35,7 +35,9 @@
 //! derivatives of γ ([`Linearize::gamma_derivatives`]) and Q(a) = ∂(D a)/∂q B, whose row r is
 //! aᵀ K(e_r). λ₀ and v̇₀ are the forward dynamics at the state, without Baumgarte terms.
 //! G = Q(v₀) − ½ Γ_v(q₀, 0) (γ is quadratic in v, and its part linear in v is −2 Φ_tq B v = 2 ν_q v).
-//! Then
+//! In the plane Q(a) = −½ (Γ_v(a) − Γ_v(0)), Q being symmetric there. The system is solved in
+//! the null space: δv̇ = Z s + R b (b its lower block), s = M_r⁻¹ Zᵀ (t − M R b) (t its upper
+//! block) by one f × f Cholesky, δλ = Rᵀ (M δv̇ − t). Then
 //!
 //! ```text
 //! ẋ = A x + B u,  A = [ E Ω Z        1     ],   B = [ 0       ]
