@@ -4,9 +4,10 @@
 //! Free pendulum chains of 4 and 64 links (12 and 192 coordinates, 4 and 64 degrees of freedom)
 //! 0.05 s into their fall from horizontal — a moving state, so every term of the exact path is
 //! evaluated. Timed: [`mbd::linearize`] (the generated derivatives, and the saddle-point system
-//! solved in the null space by one f × f Cholesky), [`mbd::linearize_finite_differences`] (central differences of the forward dynamics in
-//! the same chart: 4f forward-dynamics solves and projections), and the modes of the result
-//! (Schur decomposition of A and inverse iteration per eigenvalue).
+//! solved in the null space by one f × f Cholesky), [`mbd::linearize_finite_differences`]
+//! (central differences of the forward dynamics in the same chart: 4f forward-dynamics solves
+//! and projections), and the modes of the result (Schur decomposition of A and inverse
+//! iteration per eigenvalue).
 use criterion::{criterion_group, criterion_main, Criterion};
 use mbd::{
     linearize, linearize_finite_differences, DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, LinearizeOptions,
