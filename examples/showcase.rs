@@ -1,8 +1,6 @@
 //! Runs every example of mbd in turn: the README's first command,
 //! `cargo run --release --example showcase`.
 
-#[path = "bump.rs"]
-mod bump;
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
 #[path = "double_wishbone_3d.rs"]
@@ -21,6 +19,7 @@ mod free_four_bar;
 mod gyroscope;
 #[path = "linear_models.rs"]
 mod linear_models;
+use linear_models::bump;
 #[path = "macpherson.rs"]
 mod macpherson;
 #[path = "pumped_pendulum.rs"]

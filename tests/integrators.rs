@@ -619,43 +619,37 @@ fn the_output_callback_stops_a_run() {
     use std::ops::ControlFlow;
     let m = DoublePendulum::default();
     let times: Vec<f64> = (1..=100).map(|k| 0.01 * k as f64).collect();
-    let mut seen = Vec::new();
-    let stats = simulate(
-        &m,
-        &mut DoublePendulum::workspace(),
-        &mut Dopri5::default(),
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 6],
-        &times,
-        &SimulationOptions::default(),
-        |s| {
-            seen.push(s.point.t);
-            if s.point.t >= 0.25 {
-                ControlFlow::Break(())
-            } else {
-                ControlFlow::Continue(())
-            }
-        },
-    )
-    .expect("runs");
+    // A run whose callback stops at `stop` (s); the times it was given.
+    let run = |stop: f64| {
+        let mut seen = Vec::new();
+        let stats = simulate(
+            &m,
+            &mut DoublePendulum::workspace(),
+            &mut Dopri5::default(),
+            0.0,
+            &m.initial_positions(),
+            &[0.0; 6],
+            &times,
+            &SimulationOptions::default(),
+            |s| {
+                seen.push(s.point.t);
+                if s.point.t >= stop {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
+        .expect("runs");
+        (stats, seen)
+    };
+    let (stats, seen) = run(0.25);
     assert!(stats.stopped_by_output);
     assert_eq!(seen.len(), 25, "{seen:?}");
     assert_eq!(stats.samples, 25);
     assert!((seen[24] - 0.25).abs() < 1e-12);
     // DOPRI5 with its default tolerance takes steps of a few ms here: far fewer than a full run.
-    let full = simulate(
-        &m,
-        &mut DoublePendulum::workspace(),
-        &mut Dopri5::default(),
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 6],
-        &times,
-        &SimulationOptions::default(),
-        |_| {},
-    )
-    .expect("runs");
+    let (full, _) = run(f64::INFINITY);
     assert!(!full.stopped_by_output && full.samples == 100);
     assert!(stats.steps < full.steps / 2, "{stats:?} against {full:?}");
 }

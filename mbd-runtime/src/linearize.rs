@@ -802,35 +802,24 @@ where
         }
         Ok((xdot, y))
     };
-    let step = |x: f64| f64::EPSILON.cbrt() * x.abs().max(1.0);
-    let (mut a, mut c) = (DMatrix::zeros(2 * f, 2 * f), DMatrix::zeros(no, 2 * f));
-    for k in 0..2 * f {
-        let h = step(x0[k]);
-        let (mut plus, mut minus) = (x0.clone(), x0.clone());
-        plus[k] += h;
-        minus[k] -= h;
-        let ((fp, yp), (fm, ym)) = (evaluate(&plus, &u0)?, evaluate(&minus, &u0)?);
-        for i in 0..2 * f {
-            a[(i, k)] = (fp[i] - fm[i]) / (2.0 * h);
-        }
-        for i in 0..no {
-            c[(i, k)] = (yp[i] - ym[i]) / (2.0 * h);
-        }
+    // Central differences along each state, then each input: (ẋ, y) columns.
+    let mut columns = Vec::with_capacity(2 * f + ni);
+    for k in 0..2 * f + ni {
+        let (which, i) = if k < 2 * f { (0, k) } else { (1, k - 2 * f) };
+        let mut args = [x0.clone(), u0.clone()];
+        let at = args[which][i];
+        let h = f64::EPSILON.cbrt() * at.abs().max(1.0);
+        args[which][i] = at + h;
+        let plus = evaluate(&args[0], &args[1])?;
+        args[which][i] = at - h;
+        let minus = evaluate(&args[0], &args[1])?;
+        let difference = |p: &[f64], m: &[f64]| p.iter().zip(m).map(|(a, b)| (a - b) / (2.0 * h)).collect::<Vec<f64>>();
+        columns.push((difference(&plus.0, &minus.0), difference(&plus.1, &minus.1)));
     }
-    let (mut b, mut dd) = (DMatrix::zeros(2 * f, ni), DMatrix::zeros(no, ni));
-    for k in 0..ni {
-        let h = step(u0[k]);
-        let (mut plus, mut minus) = (u0.clone(), u0.clone());
-        plus[k] += h;
-        minus[k] -= h;
-        let ((fp, yp), (fm, ym)) = (evaluate(&x0, &plus)?, evaluate(&x0, &minus)?);
-        for i in 0..2 * f {
-            b[(i, k)] = (fp[i] - fm[i]) / (2.0 * h);
-        }
-        for i in 0..no {
-            dd[(i, k)] = (yp[i] - ym[i]) / (2.0 * h);
-        }
-    }
+    let a = DMatrix::from_fn(2 * f, 2 * f, |i, k| columns[k].0[i]);
+    let b = DMatrix::from_fn(2 * f, ni, |i, k| columns[2 * f + k].0[i]);
+    let c = DMatrix::from_fn(no, 2 * f, |i, k| columns[k].1[i]);
+    let dd = DMatrix::from_fn(no, ni, |i, k| columns[2 * f + k].1[i]);
     let mut mass = boxed::<NV, NV>();
     m.add_mass_matrix(q, 1.0, &mut mass);
     Ok(assemble::<M>((t, q, v), a, b, c, dd, dense(&mass), chart, options))

@@ -1,8 +1,6 @@
 //! Shared by the integration tests: the examples' mechanisms and a reproducible generator.
 #![allow(dead_code)]
 
-#[path = "../../examples/bump.rs"]
-pub mod bump;
 #[path = "../../examples/double_a_arm.rs"]
 pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
@@ -21,6 +19,7 @@ pub mod free_four_bar;
 pub mod gyroscope;
 #[path = "../../examples/linear_models.rs"]
 pub mod linear_models;
+pub use linear_models::bump;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[path = "../../examples/pumped_pendulum.rs"]
