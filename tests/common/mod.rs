@@ -19,6 +19,7 @@ pub mod free_four_bar;
 pub mod gyroscope;
 #[path = "../../examples/linear_models.rs"]
 pub mod linear_models;
+#[allow(unused_imports)] // not every test uses it
 pub use linear_models::bump;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
