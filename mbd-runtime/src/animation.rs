@@ -293,7 +293,6 @@ function screen(p) {
   const up = Math.cos(pitch) * d[2] - Math.sin(pitch) * y1;
   return [W / 2 + scale * x1, H / 2 - scale * up];
 }
-const unit = () => extent / 40;
 function line(a, b, style, width, dash) {
   const [p, q2] = [screen(a), screen(b)];
   g.strokeStyle = style; g.lineWidth = width || 1.5; g.setLineDash(dash || []);
