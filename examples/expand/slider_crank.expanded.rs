@@ -506,6 +506,169 @@ impl ::mbd::Mechanism for SliderCrank {
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]
+impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
+    const INPUTS: &'static [&'static str] = &[];
+    #[inline]
+    fn gamma_derivatives(
+        &self,
+        q: &[f64; 9],
+        v: &[f64; 9],
+        t: f64,
+        gamma_q: &mut [[f64; 9]; 9],
+        gamma_v: &mut [[f64; 9]; 9],
+    ) {
+        for row in gamma_q.iter_mut().chain(gamma_v.iter_mut()) {
+            *row = [0f64; 9];
+        }
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v24,
+            s_rod,
+            c_rod,
+            s_slider,
+            c_slider,
+            v87,
+            v93,
+            v98,
+            v106,
+            v119,
+            v126,
+            v134,
+            v139,
+            v141,
+            v148,
+            v152,
+            v160,
+            v251,
+            v254,
+            v259,
+            v268,
+            v270,
+            v272,
+            v274,
+            v275,
+            v277,
+            v278,
+            v280,
+            v285,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        v87 = (s_crank * v[2]);
+        v93 = (c_crank * v[2]);
+        v98 = (s_rod * v[5]);
+        v106 = (c_rod * v[5]);
+        v119 = (s_slider * v[8]);
+        v126 = (c_slider * v[8]);
+        v134 = (v5 * (v[2] * v93));
+        v139 = (-(v5 * (v[2] * v87)));
+        v141 = (v24 * (v[5] * v106));
+        v148 = (-(v24 * (v[5] * v98)));
+        v152 = (v[8] * v119);
+        v160 = (v[8] * v126);
+        v251 = (-v160);
+        v254 = (v[7] * v126);
+        v259 = (v[6] * v119);
+        v268 = (v5 * (2f64 * v93));
+        v270 = (v5 * (2f64 * v87));
+        v272 = (v24 * (2f64 * v106));
+        v274 = (v24 * (2f64 * v98));
+        v275 = (2f64 * v126);
+        v277 = (2f64 * v119);
+        v278 = (-v277);
+        v280 = (s_slider * v[7]);
+        v285 = (c_slider * v[6]);
+        gamma_q[0][2] = v139;
+        gamma_q[1][2] = v134;
+        gamma_q[2][2] = v139;
+        gamma_q[2][5] = v148;
+        gamma_q[3][2] = v134;
+        gamma_q[3][5] = v141;
+        gamma_q[4][5] = v148;
+        gamma_q[5][5] = v141;
+        gamma_q[6][6] = v152;
+        gamma_q[6][7] = v251;
+        gamma_q[6][8] = (-((v254 + (v254 - (q[7] * v152)))
+            - (v259 + ((q[6] * v160) + v259))));
+        gamma_q[7][8] = v251;
+        gamma_v[0][2] = v268;
+        gamma_v[1][2] = v270;
+        gamma_v[2][2] = v268;
+        gamma_v[2][5] = v272;
+        gamma_v[3][2] = v270;
+        gamma_v[3][5] = v274;
+        gamma_v[4][5] = v272;
+        gamma_v[5][5] = v274;
+        gamma_v[6][6] = (-v275);
+        gamma_v[6][7] = v278;
+        gamma_v[6][8] = (-((v280 + ((q[7] * v275) + v280))
+            + (v285 + (v285 - (q[6] * v277)))));
+        gamma_v[7][8] = v278;
+    }
+    #[inline]
+    fn forces_input(
+        &self,
+        k: usize,
+        q: &[f64; 9],
+        v: &[f64; 9],
+        t: f64,
+        dh: &mut [f64; 9],
+    ) {
+        *dh = [0f64; 9];
+        match k {
+            _ => {}
+        }
+    }
+    fn input(&self, k: usize) -> f64 {
+        match k {
+            _ => 0f64,
+        }
+    }
+    fn set_input(&mut self, k: usize, value: f64) {
+        match k {
+            _ => {}
+        }
+    }
+}
+#[allow(unused_variables, unused_parens, clippy::approx_constant)]
 impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn constraint_force_q(
