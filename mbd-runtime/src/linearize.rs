@@ -530,19 +530,18 @@ fn input_kinds<M: Linearize<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, 
         .collect()
 }
 
-/// Ω = ∂δ̇/∂δ: −½[ω₀′×] on each spatial body's rotation, 0 elsewhere (module docs).
-fn omega<M: Mechanism, const NV: usize>(v: &[f64; NV]) -> DMatrix<f64> {
+/// Ω = ∂δ̇/∂δ of spatial bodies: −½[ω₀′×] on each one's rotation, 0 on its translation
+/// (module docs; 0 in the plane).
+fn omega<const NV: usize>(v: &[f64; NV]) -> DMatrix<f64> {
     let mut o = DMatrix::zeros(NV, NV);
-    if M::DIMENSION == 3 {
-        for k in 0..NV / 6 {
-            let b = 6 * k + 3;
-            let w = [v[b], v[b + 1], v[b + 2]];
-            // −½ [w×]: [w×] = [[0, −w3, w2], [w3, 0, −w1], [−w2, w1, 0]]
-            let cross = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
-            for r in 0..3 {
-                for c in 0..3 {
-                    o[(b + r, b + c)] = -0.5 * cross[r][c];
-                }
+    for k in 0..NV / 6 {
+        let b = 6 * k + 3;
+        let w = [v[b], v[b + 1], v[b + 2]];
+        // −½ [w×]: [w×] = [[0, −w3, w2], [w3, 0, −w1], [−w2, w1, 0]]
+        let cross = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
+        for r in 0..3 {
+            for c in 0..3 {
+                o[(b + r, b + c)] = -0.5 * cross[r][c];
             }
         }
     }
@@ -568,6 +567,24 @@ fn state_names<M: Mechanism>(independent: &[usize]) -> Vec<String> {
     independent.iter().map(|&i| position(i)).chain(independent.iter().map(|&i| rate(i))).collect()
 }
 
+/// What both linearizations start from, at a state checked to be on the manifold: the inputs
+/// the options name, and the chart.
+fn prepare<M, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    t: f64,
+    options: &LinearizeOptions,
+) -> Result<(Vec<Input>, Chart), LinearizeError>
+where
+    M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
+{
+    let d = check_state(m, q, v, t, options.consistency_tolerance)?;
+    let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
+    let chart = Chart::choose::<M>(&d, options)?;
+    Ok((inputs, chart))
+}
+
 /// The exact linearization of `m`'s motion about (q, v) at t (module docs). The inputs are at
 /// the values `m` holds.
 pub fn linearize<M, const NQ: usize, const NV: usize, const NC: usize>(
@@ -580,9 +597,7 @@ pub fn linearize<M, const NQ: usize, const NV: usize, const NC: usize>(
 where
     M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
 {
-    let d = check_state(m, q, v, t, options.consistency_tolerance)?;
-    let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
-    let chart = Chart::choose::<M>(&d, options)?;
+    let (inputs, chart) = prepare(m, q, v, t, options)?;
     let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
     m.accelerations(q, v, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
 
@@ -657,8 +672,10 @@ where
     let reduced_mass = z.transpose() * &mass * z;
     let s = Cholesky::new(reduced_mass).ok_or(LinearizeError::Singular)?.solve(&(z.transpose() * (&top - &mass * &particular)));
     let mut a = DMatrix::zeros(2 * f, 2 * f);
-    let omega_z = omega::<M, NV>(v) * z;
-    a.view_mut((0, 0), (f, f)).copy_from(&DMatrix::from_fn(f, f, |i, k| omega_z[(chart.independent[i], k)]));
+    if M::DIMENSION == 3 {
+        let omega_z = omega(v) * z;
+        a.view_mut((0, 0), (f, f)).copy_from(&DMatrix::from_fn(f, f, |i, k| omega_z[(chart.independent[i], k)]));
+    }
     a.view_mut((0, f), (f, f)).fill_with_identity();
     a.view_mut((f, 0), (f, 2 * f)).copy_from(&s.columns(0, 2 * f));
     let mut b = DMatrix::zeros(2 * f, ni);
@@ -755,9 +772,7 @@ pub fn linearize_finite_differences<M, const NQ: usize, const NV: usize, const N
 where
     M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC> + Clone,
 {
-    let d = check_state(m, q, v, t, options.consistency_tolerance)?;
-    let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
-    let chart = Chart::choose::<M>(&d, options)?;
+    let (inputs, chart) = prepare(m, q, v, t, options)?;
     let f = chart.independent.len();
     let ni = inputs.len();
     let no = options.outputs.len();
