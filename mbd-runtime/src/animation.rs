@@ -91,7 +91,9 @@ impl Animation {
 
     /// The page.
     pub fn to_html(&self) -> String {
-        let number = |x: f64| if x.is_finite() { format!("{x}") } else { "null".to_string() };
+        // 9 significant digits (sub-micrometre at a kilometre) keep a long run's page small.
+        let number =
+            |x: f64| if x.is_finite() { format!("{}", format!("{x:.8e}").parse::<f64>().unwrap_or(x)) } else { "null".to_string() };
         let mut data = String::with_capacity(64 + 20 * self.coordinates.len());
         data.push_str("{\"params\": {");
         for (k, (name, value)) in self.param_names.iter().zip(&self.params).enumerate() {
@@ -333,6 +335,22 @@ function damper(a, b) {
   g.moveTo(p[0] + 0.65 * dx + nx, p[1] + 0.65 * dy + ny); g.lineTo(p[0] + 0.65 * dx - nx, p[1] + 0.65 * dy - ny);
   g.moveTo(p[0] + 0.65 * dx, p[1] + 0.65 * dy); g.lineTo(q2[0], q2[1]); g.stroke();
 }
+const traceColours = ["#555", "#c00", "#06c", "#080", "#a0a"];
+// Joint rings: 4 px, smaller where the bodies are short on screen (a chain of short links).
+let shortest = Infinity;
+if (frames > 0) {
+  for (const b of model.bodies) {
+    const pts = attach[b.name].map((s) => world(b.name, s, data.q[0]));
+    for (let i = 0; i < pts.length; i++) for (let j = i + 1; j < pts.length; j++) {
+      const d = Math.hypot(...pts[i].map((x, c) => x - pts[j][c]));
+      if (d > 0) shortest = Math.min(shortest, d);
+    }
+  }
+}
+function ringRadius() {
+  const px = zoom * 0.8 * Math.min(W, H) / extent * shortest;
+  return isFinite(px) ? Math.max(1.5, Math.min(4, 0.2 * px)) : 4;
+}
 const colours = ["#3465a4", "#c4a000", "#75507b", "#cc0000", "#4e9a06", "#ce5c00", "#204a87", "#8f5902"];
 // The convex hull of screen points (gift wrapping: few points per body).
 function hull(points) {
@@ -354,13 +372,16 @@ function draw(k) {
   }
   for (const s of groundPoints) hatch(s);
   // traces so far
-  for (const name of data.traces) {
+  data.traces.forEach((name, n) => {
     const p = named[name];
     if (!p) throw new Error("no named point " + name + " (declare it with `point " + name + " = [...]`)");
-    g.strokeStyle = "#888"; g.lineWidth = 1; g.beginPath();
+    const colour = traceColours[n % traceColours.length];
+    g.strokeStyle = colour; g.lineWidth = 1.2; g.beginPath();
     for (let m = 0; m <= k; m++) { const s = screen(world(p.body, p.s, data.q[m])); if (m) g.lineTo(s[0], s[1]); else g.moveTo(s[0], s[1]); }
     g.stroke();
-  }
+    // the legend, top left
+    g.fillStyle = colour; g.font = "13px sans-serif"; g.fillText("— " + name, 10, 18 + 16 * n);
+  });
   // slider guides
   for (const j of joints) {
     if ((j.kind === "translational" || j.kind === "revolute_translational" || j.kind === "cylindrical") && j.i.axis) {
@@ -387,8 +408,8 @@ function draw(k) {
   });
   for (const j of joints) {
     if (j.kind === "revolute_revolute" || j.kind === "distance") line(world(j.i.body, j.i.s, q), world(j.j.body, j.j.s, q), "#333", 2.5);
-    ring(world(j.i.body, j.i.s, q), 4, "#333");
-    if (j.kind === "revolute_revolute" || j.kind === "distance") ring(world(j.j.body, j.j.s, q), 4, "#333");
+    ring(world(j.i.body, j.i.s, q), ringRadius(), "#333");
+    if (j.kind === "revolute_revolute" || j.kind === "distance") ring(world(j.j.body, j.j.s, q), ringRadius(), "#333");
   }
   for (const e of elements) {
     const a = world(e.i.body, e.i.s, q), b = world(e.j.body, e.j.s, q);
@@ -411,6 +432,13 @@ function draw(k) {
       default: line(a, b, "#777", 1);
     }
   }
+  // the traced points now, marked and named
+  data.traces.forEach((name, n) => {
+    const p = named[name], c = screen(world(p.body, p.s, q));
+    g.fillStyle = traceColours[n % traceColours.length];
+    g.beginPath(); g.arc(c[0], c[1], 3.5, 0, 2 * Math.PI); g.fill();
+    g.font = "12px sans-serif"; g.fillText(name, c[0] + 6, c[1] - 6);
+  });
   document.getElementById("clock").textContent = "t = " + t.toFixed(3) + " s";
   status.textContent = "drew frame " + (k + 1) + " of " + frames;
 }

@@ -29,6 +29,8 @@ pub struct CsvWriter<W: Write> {
 
 impl<W: Write> CsvWriter<W> {
     /// A writer for a simulation's samples that has written the header row for mechanism `M`.
+    /// Its two work columns are 0 unless the run tracks work
+    /// ([`SimulationOptions::track_work`](crate::SimulationOptions::track_work)).
     pub fn new<M: Mechanism>(out: W) -> Self {
         Self::with_header::<M>(out, true)
     }
