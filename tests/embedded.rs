@@ -1,7 +1,8 @@
 //! The generated code runs on a microcontroller: `embedded/`, a `#![no_std]` crate holding the
 //! free slider-crank in `scalar f32`, is built for a Cortex-M4F (`thumbv7em-none-eabihf`, the
 //! target added by `.ci/ensure_embedded_target.sh`) and the size of its forward-dynamics function
-//! is read from the library's ELF symbol table and reported. (Its f32 results against f64 on the
+//! is read from the library's ELF symbol table and reported. The same library holds a modal
+//! analysis (`mbd::linearize` without std, feature `alloc`), compiled for the target. (Its f32 results against f64 on the
 //! host are `tests/scalar_f32.rs`'.) Runs cargo itself in a target directory of its own, like
 //! `tests/no_std.rs`.
 use std::path::Path;
@@ -41,6 +42,12 @@ fn a_mechanism_builds_for_a_cortex_m4f() {
     let step = size("mbd_accelerations").expect("the library exports mbd_accelerations");
     let sincos = size("sincosf").unwrap_or(0);
     println!("{TARGET}: mbd_accelerations is {step} bytes of code; libm's sincosf, which it calls, {sincos} bytes");
+    // The modal analysis without std: linearize and modes, monomorphized for a mechanism and
+    // compiled to Cortex-M code (not only type-checked).
+    let modal = size("mbd_pendulum_frequency").expect("the library exports mbd_pendulum_frequency");
+    let schur = sizes.iter().filter(|(n, _)| n.contains("Schur") || n.contains("SymmetricEigen")).map(|&(_, s)| s).sum::<u32>();
+    println!("{TARGET}: mbd_pendulum_frequency is {modal} bytes of code; nalgebra's eigensolvers {schur} bytes");
+    assert!(schur > 0, "nalgebra's eigensolvers are not in the library: the modal analysis was not compiled");
     // Not a size target (those live in benchmarks): a bound that only a build gone wrong (an
     // unoptimized or std-linked one) would break.
     assert!(step > 0 && step < 64 * 1024, "mbd_accelerations is {step} bytes");

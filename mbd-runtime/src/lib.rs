@@ -1,10 +1,14 @@
 //! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
 //!
 //! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
+//! Feature `alloc` (part of `std`) adds [`linearize`], which needs a heap but not `std`.
 //! No solver allocates: O(N²) work space is the caller's [`Workspace`] (made once, on the heap
 //! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
 
 #[cfg(feature = "std")]
 mod animation;
@@ -17,7 +21,7 @@ mod integrate;
 mod inverse;
 mod kinematics;
 pub mod linalg;
-#[cfg(feature = "std")]
+#[cfg(feature = "alloc")]
 pub mod linearize;
 mod mechanism;
 mod named;
@@ -50,7 +54,7 @@ pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_PIVOT_TOLERANCE, DEFAULT_PREDICTOR,
     DEFAULT_RANK_TOLERANCE, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
-#[cfg(feature = "std")]
+#[cfg(feature = "alloc")]
 pub use linearize::{
     linearize, linearize_finite_differences, LinearStability, Linearization, LinearizeError, LinearizeOptions, Mode, Output,
 };

@@ -70,13 +70,24 @@
 //! oscillation (a conjugate pair) or real eigenvalue, with the natural frequency |s|/2π (Hz),
 //! damping ratio −Re s/|s| and the shape over every velocity. Without damping (D_r = 0, K_r
 //! symmetric, Ω = 0) the generalized symmetric problem K_r φ = ω² M_r φ is solved instead, whose
-//! shapes are real. Needs `std` (nalgebra's dense matrices).
+//! shapes are real.
+//!
+//! Needs the heap (feature `alloc`, part of `std`) for nalgebra's dense matrices, not the
+//! standard library: without `std` the elementary functions come from `libm` and only
+//! [`Linearization::write_csv`], which writes files, is left out.
 
-use std::fmt;
+use alloc::boxed::Box;
+use alloc::format;
+use alloc::string::{String, ToString};
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt;
+#[cfg(feature = "std")]
 use std::io::{self, Write};
+#[cfg(feature = "std")]
 use std::path::Path;
 
-use nalgebra::{Cholesky, Complex, DMatrix, DVector, SymmetricEigen};
+use nalgebra::{Cholesky, Complex, ComplexField, DMatrix, DVector, SymmetricEigen};
 
 use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Linearize, Mechanism};
 
@@ -249,7 +260,7 @@ impl fmt::Display for LinearizeError {
     }
 }
 
-impl std::error::Error for LinearizeError {}
+impl core::error::Error for LinearizeError {}
 
 impl From<DynamicsError> for LinearizeError {
     fn from(e: DynamicsError) -> Self {
@@ -1027,7 +1038,7 @@ impl Linearization {
             Some(modes) => modes,
             None => {
                 let eigenvalues = self.eigenvalues();
-                let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
+                let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.modulus()));
                 // one of each conjugate pair: Im s ≥ 0
                 eigenvalues
                     .iter()
@@ -1103,18 +1114,19 @@ impl Linearization {
     /// A mode of eigenvalue s and (unscaled) shape.
     fn mode(&self, s: Complex<f64>, mut shape: Vec<Complex<f64>>) -> Mode {
         let weight = |i: usize| self.mass_diagonal.get(i).map_or(1.0, |m| m.abs().sqrt());
-        let (k, _) = shape
-            .iter()
-            .enumerate()
-            .fold((0, 0.0), |best, (i, &x)| if x.norm() * weight(i) > best.1 { (i, x.norm() * weight(i)) } else { best });
+        let (k, _) =
+            shape
+                .iter()
+                .enumerate()
+                .fold((0, 0.0), |best, (i, &x)| if x.modulus() * weight(i) > best.1 { (i, x.modulus() * weight(i)) } else { best });
         let largest = shape.get(k).copied().unwrap_or(Complex::new(0.0, 0.0));
-        if largest.norm() > 0.0 {
+        if largest.modulus() > 0.0 {
             for x in &mut shape {
                 *x /= largest;
             }
         }
-        let norm = s.norm();
-        let tau = 2.0 * std::f64::consts::PI;
+        let norm = s.modulus();
+        let tau = 2.0 * core::f64::consts::PI;
         Mode {
             eigenvalue: s,
             natural_frequency: norm / tau,
@@ -1136,7 +1148,7 @@ impl Linearization {
             Some(modes) => (modes.iter().map(|m| m.eigenvalue).collect::<Vec<_>>(), Some(modes)),
             None => (self.eigenvalues(), None),
         };
-        let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.norm()));
+        let scale = eigenvalues.iter().fold(0.0f64, |a, s| a.max(s.modulus()));
         let band = ZERO_EIGENVALUE * scale;
         let Some(&worst) = eigenvalues.iter().max_by(|a, b| a.re.total_cmp(&b.re)) else {
             return LinearStability::Asymptotic { decay: f64::INFINITY };
@@ -1194,7 +1206,8 @@ impl Linearization {
     /// `K_r.csv`, `B_r.csv` and the basis `Z.csv` into `dir` (created if missing): a header of
     /// column names (states, inputs, independent displacements) after an empty corner, then one
     /// row per state, output, displacement or velocity, its name first. Full precision (`{:e}`
-    /// round-trips).
+    /// round-trips). Needs `std`.
+    #[cfg(feature = "std")]
     pub fn write_csv(&self, dir: &Path) -> io::Result<()> {
         std::fs::create_dir_all(dir)?;
         let write = |file: &str, m: &DMatrix<f64>, rows: &[String], columns: &[String]| -> io::Result<()> {
