@@ -2,6 +2,51 @@
 /// Slider-crank driven at constant speed (Nikravesh, Planar Multibody Dynamics, ch. 7).
 ///
 /// 3 planar bodies, 9 coordinates and velocities, 9 constraint rows (0 degrees of freedom); D has 23 structural non-zeros of 81.
+/**
+# Coordinates and velocities
+
+`q[i]` in every `[f64; SliderCrank::NQ]`; planar velocities are their rates, `v[i]` = q̇ᵢ (m/s, rad/s), and v̇, h and the columns of D are indexed the same way.
+
+| i | coordinate | unit |
+|---:|---|---|
+| 0 | `crank.x` | m |
+| 1 | `crank.y` | m |
+| 2 | `crank.phi` | rad |
+| 3 | `rod.x` | m |
+| 4 | `rod.y` | m |
+| 5 | `rod.phi` | rad |
+| 6 | `slider.x` | m |
+| 7 | `slider.y` | m |
+| 8 | `slider.phi` | rad |
+
+# Joints, drivers and constraints
+
+In the order of `JOINTS` (the index `joint_reaction` takes) and of their rows in Φ.
+
+| index | joint | kind | rows of Φ |
+|---:|---|---|---|
+| 0 | `revolute ground~crank` | revolute | 0–1 |
+| 1 | `revolute crank~rod` | revolute | 2–3 |
+| 2 | `revolute rod~slider` | revolute | 4–5 |
+| 3 | `translational slider~ground` | translational | 6–7 |
+| 4 | `drive crank.phi` | drive | 8 |
+
+# Constraint rows
+
+`Φ[r]`, and the multiplier `λ[r]`: the reaction of the row, with the sign convention M v̇ − Dᵀλ = h.
+
+| r | row | λ unit |
+|---:|---|---|
+| 0 | `revolute ground~crank: x` | N |
+| 1 | `revolute ground~crank: y` | N |
+| 2 | `revolute crank~rod: x` | N |
+| 3 | `revolute crank~rod: y` | N |
+| 4 | `revolute rod~slider: x` | N |
+| 5 | `revolute rod~slider: y` | N |
+| 6 | `translational slider~ground: normal` | N |
+| 7 | `translational slider~ground: angle` | N·m |
+| 8 | `drive crank.phi: phi` | N·m |
+*/
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderCrank {
     ///Parameter `omega` (default 6.283185307179586).
@@ -503,6 +548,18 @@ impl ::mbd::Mechanism for SliderCrank {
     ];
     const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[];
     const EFFECTS: &'static [&'static str] = &[];
+    const CONSTRAINT_UNITS: &'static [&'static str] = &[
+        "N",
+        "N",
+        "N",
+        "N",
+        "N",
+        "N",
+        "N",
+        "N·m",
+        "N·m",
+    ];
+    #[doc(hidden)]
     const MODEL_JSON: &'static str = "{\"bodies\":[{\"inertia\":[\"num\",0.002],\"mass\":[\"num\",1.0],\"name\":\"crank\",\"q0\":[[\"num\",0.05],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.015],\"mass\":[\"num\",2.0],\"name\":\"rod\",\"q0\":[[\"num\",0.25],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]},{\"inertia\":[\"num\",0.001],\"mass\":[\"num\",0.5],\"name\":\"slider\",\"q0\":[[\"num\",0.4],[\"num\",0.0],[\"num\",0.0]],\"qd0\":[[\"num\",0.0],[\"num\",0.0],[\"num\",0.0]]}],\"constraint_rows\":[\"revolute ground~crank: x\",\"revolute ground~crank: y\",\"revolute crank~rod: x\",\"revolute crank~rod: y\",\"revolute rod~slider: x\",\"revolute rod~slider: y\",\"translational slider~ground: normal\",\"translational slider~ground: angle\",\"drive crank.phi: phi\"],\"constraints\":[{\"i\":{\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"body\":\"crank\",\"point\":[[\"div\",[\"neg\",[\"param\",\"r\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute ground~crank\"},{\"i\":{\"body\":\"crank\",\"point\":[[\"div\",[\"param\",\"r\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"rod\",\"point\":[[\"div\",[\"neg\",[\"param\",\"l\"]],[\"num\",2.0]],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute crank~rod\"},{\"i\":{\"body\":\"rod\",\"point\":[[\"div\",[\"param\",\"l\"],[\"num\",2.0]],[\"num\",0.0]]},\"j\":{\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"revolute\",\"name\":\"revolute rod~slider\"},{\"i\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"slider\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"j\":{\"axis\":[[\"num\",1.0],[\"num\",0.0]],\"body\":\"ground\",\"point\":[[\"num\",0.0],[\"num\",0.0]]},\"kind\":\"translational\",\"name\":\"translational slider~ground\"},{\"body\":\"crank\",\"coordinate\":\"phi\",\"f\":[\"mul\",[\"param\",\"omega\"],[\"t\"]],\"kind\":\"drive\",\"name\":\"drive crank.phi\"}],\"coordinates\":[\"crank.x\",\"crank.y\",\"crank.phi\",\"rod.x\",\"rod.y\",\"rod.phi\",\"slider.x\",\"slider.y\",\"slider.phi\"],\"forces\":[],\"gravity\":null,\"jacobian_pattern\":[[0,0],[0,2],[1,1],[1,2],[2,0],[2,2],[2,3],[2,5],[3,1],[3,2],[3,4],[3,5],[4,3],[4,5],[4,6],[5,4],[5,5],[5,7],[6,6],[6,7],[6,8],[7,8],[8,2]],\"name\":\"SliderCrank\",\"params\":[{\"default\":6.283185307179586,\"name\":\"omega\"},{\"default\":0.1,\"name\":\"r\"},{\"default\":0.3,\"name\":\"l\"}],\"points\":[],\"scalar\":\"f64\",\"vectors\":[]}";
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]
@@ -1632,6 +1689,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
+#[doc(hidden)]
 impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
     type NewtonStorage = [f64; 135];
     const NEWTON_PATTERN: ::mbd::SparsePattern = ::mbd::SparsePattern {

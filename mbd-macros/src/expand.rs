@@ -397,6 +397,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let velocity_names = if m.space == crate::model::Space::Planar { m.coordinate_names() } else { m.velocity_names() };
     let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
     let row_names = &f.row_names;
+    let row_units = f.row_names.iter().map(|r| crate::docs::multiplier_unit(r));
+    let tables = crate::docs::tables(m, &f);
     let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
     let pattern_tokens = pattern.iter().map(|&(r, c)| {
@@ -409,9 +411,12 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 
     let sizes = if nq == nv { format!("{nq} coordinates and velocities") } else { format!("{nq} coordinates, {nv} velocities") };
     let summary = format!(
-        " {nb} {} bodies, {sizes}, {nc} constraint rows ({dof} degrees of freedom); \
+        " {nb} {} {}, {sizes}, {nc} constraint row{} ({dof} degree{} of freedom); \
          D has {nnz} structural non-zeros of {}.",
         if m.space == crate::model::Space::Planar { "planar" } else { "spatial" },
+        if nb == 1 { "body" } else { "bodies" },
+        if nc == 1 { "" } else { "s" },
+        if dof == 1 { "" } else { "s" },
         nv * nc
     );
     let (per_body_q, per_body_v) = match m.space {
@@ -427,6 +432,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         #(#attrs)*
         ///
         #[doc = #summary]
+        #[doc = #tables]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #name {
             #( #[doc = #param_docs] pub #params: #real, )*
@@ -525,6 +531,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const JOINTS: &'static [::mbd::JointInfo] = &[#(#joints),*];
             const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[#(#force_elements),*];
             const EFFECTS: &'static [&'static str] = &[#(#effects),*];
+            const CONSTRAINT_UNITS: &'static [&'static str] = &[#(#row_units),*];
+            // the trait documents it; the type's page would show the whole JSON text
+            #[doc(hidden)]
             const MODEL_JSON: &'static str = #json;
         }
 

@@ -1,17 +1,18 @@
 //! The `mechanism!` macro of mbd.
 //!
 //! Data flows one way through plain-Rust stages, each unit-tested without a compiler in the loop:
-//! [`part`] (sub-assemblies instantiated) and [`repeat`] (`for` loops and indexed names unrolled
-//! on the tokens; [`names`] keeps each made identifier's written form for every text) →
-//! [`scene`] (the base mechanism and each scene's statements, expanded one by one) → [`parse`]
-//! (tokens → syntax tree with spans) → [`model`] (names resolved, rules checked, every
+//! `part` (sub-assemblies instantiated) and `repeat` (`for` loops and indexed names unrolled
+//! on the tokens; `names` keeps each made identifier's written form for every text) →
+//! `scene` (the base mechanism and each scene's statements, expanded one by one) → `parse`
+//! (tokens → syntax tree with spans) → `model` (names resolved, rules checked, every
 //! mistake reported at once; each joint, driver and force kind resolved by its own file in
-//! [`elements`] and [`forces`]) → [`formulation`] (symbolic Φ, Φ_q, ν, γ, M, h on the [`sym`]
-//! expression graph, written against the body frames of [`frames`], the seam where a
-//! formulation plugs in) → [`emit`] (straight-line Rust; [`forward`] and [`schur`] the sparse
-//! solve of the equations of motion) → [`expand`] (the mechanism's type and trait
-//! implementations; [`json`] its model description). `ARCHITECTURE.md` is the map.
+//! `elements` and `forces`) → `formulation` (symbolic Φ, Φ_q, ν, γ, M, h on the `sym`
+//! expression graph, written against the body frames of `frames`, the seam where a
+//! formulation plugs in) → `emit` (straight-line Rust; `forward` and `schur` the sparse
+//! solve of the equations of motion) → `expand` (the mechanism's type and trait
+//! implementations; `json` its model description). `ARCHITECTURE.md` is the map.
 
+mod docs;
 mod elements;
 mod emit;
 mod expand;

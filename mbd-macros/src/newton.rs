@@ -411,6 +411,8 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     let impl_block = quote! {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
+        // solver plumbing: left out of the type's documentation
+        #[doc(hidden)]
         impl ::mbd::NewtonMatrix<#real, #nq_l, #nv_l, #nc_l> for #name {
             type NewtonStorage = [#real; #total];
             const NEWTON_PATTERN: ::mbd::SparsePattern = #pattern;

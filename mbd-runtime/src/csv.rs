@@ -60,10 +60,10 @@ impl<W: Write> CsvWriter<W> {
                 }
             }
         }
-        for name in M::CONSTRAINT_NAMES {
+        for (i, name) in M::CONSTRAINT_NAMES.iter().enumerate() {
             header.push_str(",lambda ");
             header.push_str(&name.replace(',', ";"));
-            if let Some(unit) = multiplier_unit(name) {
+            if let Some(&unit) = M::CONSTRAINT_UNITS.get(i).filter(|unit| !unit.is_empty()) {
                 header.push_str(" (");
                 header.push_str(unit);
                 header.push(')');
@@ -147,34 +147,4 @@ fn coordinate_unit(name: &str, order: usize) -> Option<&'static str> {
         "wx" | "wy" | "wz" => ["rad/s", "rad/s²", "rad/s³"][order.min(2)],
         _ => return None,
     })
-}
-
-/// The unit of the multiplier of constraint row `name` (`"revolute crank~rod: x"`): N for a row
-/// measured in metres (points, distances, strokes), N·m for an angle or a dimensionless
-/// orientation row; `None` for a user constraint, whose row's unit the mechanism does not know.
-pub fn multiplier_unit(name: &str) -> Option<&'static str> {
-    let row = name.rsplit(": ").next()?;
-    match row {
-        "x" | "y" | "z" | "normal" | "distance" | "length" | "stroke" | "offset" | "offset_x" | "offset_y" => Some("N"),
-        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" | "normal_x" | "normal_y" => Some("N·m"),
-        _ => None,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    /// Every row name the generated joints use has its unit: a row in metres gives N, an angle or
-    /// a dimensionless orientation row N·m (docs/formulation.md's row tables).
-    #[test]
-    fn every_joint_row_has_a_unit() {
-        let metres = ["x", "y", "z", "normal", "distance", "length", "stroke", "offset", "offset_x", "offset_y"];
-        let turns = ["phi", "angle", "cross", "twist", "rx", "ry", "rz", "axis_x", "axis_y", "normal_x", "normal_y"];
-        for row in metres {
-            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), Some("N"), "{row}");
-        }
-        for row in turns {
-            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), Some("N·m"), "{row}");
-        }
-        assert_eq!(super::multiplier_unit("constraint c1: user"), None);
-    }
 }

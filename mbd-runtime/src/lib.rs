@@ -1,7 +1,7 @@
 //! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
 //!
 //! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
-//! Feature `alloc` (part of `std`) adds [`linearize`], which needs a heap but not `std`.
+//! Feature `alloc` (part of `std`) adds [`linearize()`], which needs a heap but not `std`.
 //! No solver allocates: O(N²) work space is the caller's [`Workspace`] (made once, on the heap
 //! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]

@@ -14,7 +14,7 @@
 //! ```
 //!
 //! E picking the independent entries, δ the displacement q = q₀ ⊕ δ in velocity space
-//! ([`Kinematics::integrate_positions`]; planar δ = q − q₀, spatial a rotation vector per body in
+//! ([`crate::Kinematics::integrate_positions`]; planar δ = q − q₀, spatial a rotation vector per body in
 //! its frame), the dependent entries following from Φ = 0 and D v = ν. To first order
 //! δ = Z y and δv = Z δw − R G Z y, with the null-space basis Z (Z_I = 1, Z_D = −D_D⁻¹ D_I; D Z = 0),
 //! the right inverse R (R_I = 0, R_D = D_D⁻¹) and G = ∂(D v₀ − ν)/∂q B, the change of the
@@ -30,8 +30,8 @@
 //! [ D    0  ] [δλ] = [ (Γ_q − Q(v̇₀)) δ + Γ_v δv                           ]
 //! ```
 //!
-//! with H = (∂h/∂q) B, H_v = ∂h/∂v, H_u = ∂h/∂u ([`Dynamics`], [`Linearize::forces_input`]),
-//! K = ∂(Dᵀλ₀)/∂q B the constraints' geometric stiffness ([`ConstraintForces`]), Γ_q, Γ_v the
+//! with H = (∂h/∂q) B, H_v = ∂h/∂v, H_u = ∂h/∂u ([`crate::Dynamics`], [`Linearize::forces_input`]),
+//! K = ∂(Dᵀλ₀)/∂q B the constraints' geometric stiffness ([`crate::ConstraintForces`]), Γ_q, Γ_v the
 //! derivatives of γ ([`Linearize::gamma_derivatives`]) and Q(a) = ∂(D a)/∂q B, whose row r is
 //! aᵀ K(e_r). λ₀ and v̇₀ are the forward dynamics at the state, without Baumgarte terms.
 //! G = Q(v₀) − ½ Γ_v(q₀, 0) (γ is quadratic in v, and its part linear in v is −2 Φ_tq B v = 2 ν_q v).

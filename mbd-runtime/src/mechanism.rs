@@ -104,6 +104,10 @@ pub trait Mechanism {
     const DIMENSION: u8 = 2;
     /// Constraint rows, `"revolute crank~rod: x"`, in the order of Φ.
     const CONSTRAINT_NAMES: &'static [&'static str];
+    /// The unit of each row's multiplier λ, in the order of Φ: `"N"` for a row measured in
+    /// metres (points, distances, strokes), `"N·m"` for an angle or orientation row, `""` for a
+    /// user constraint (whose row's unit the mechanism does not know). Empty: not known.
+    const CONSTRAINT_UNITS: &'static [&'static str] = &[];
     /// Runtime parameters, in declaration order.
     const PARAM_NAMES: &'static [&'static str];
     /// Degrees of freedom: velocities − constraints, NV − NC (drivers count as constraints).
@@ -198,6 +202,7 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// `pivot_tolerance` times its diagonal: the solver then takes the dense LU, which names the
     /// coordinate without a pivot. `None` (the provided method) where nothing is generated: the
     /// dense path.
+    #[doc(hidden)]
     fn sparse_position_step(
         &self,
         q: &[T; NQ],

@@ -55,7 +55,7 @@ pub struct GeneralizedAlphaOptions<T> {
     /// naming it ([`SimulationError::SingularIterationMatrix`]).
     pub pivot_tolerance: T,
     /// Project each step's velocities onto D v = ν in the metric of M
-    /// ([`ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
+    /// ([`crate::ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
     /// enforce Φ = 0 but leave D v − ν = O(h²); without damping (ρ∞ = 1) that error feeds an
     /// oscillation that grows with time at every step size (a pendulum's energy grew about 20×
     /// per second from t = 1 s until Newton failed at 5–9 s), and a coordinate-partitioning

@@ -1,0 +1,144 @@
+//! The generated type's rustdoc: what a user reads to find an index — its coordinates and
+//! velocities, named points, joints, constraint rows and force elements as tables, with the
+//! indices the arrays use and the units of every entry. And the unit of each constraint row's
+//! multiplier, which the runtime's CSV headers read from `Mechanism::CONSTRAINT_UNITS`.
+use std::fmt::Write;
+
+use crate::formulation::Formulation;
+use crate::model::{BodyRef, Coord, Model, Space, Vel};
+
+/// The unit of the multiplier of constraint row `name` (`"revolute crank~rod: x"`): N for a row
+/// measured in metres (points, distances, strokes), N·m for an angle or a dimensionless
+/// orientation row (docs/formulation.md's row tables); `""` for a user constraint, whose row's
+/// unit the mechanism does not know.
+pub fn multiplier_unit(name: &str) -> &'static str {
+    match name.rsplit(": ").next().unwrap_or("") {
+        "x" | "y" | "z" | "normal" | "distance" | "length" | "stroke" | "offset" | "offset_x" | "offset_y" => "N",
+        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" | "normal_x" | "normal_y" => "N·m",
+        _ => "",
+    }
+}
+
+fn coordinate_unit(c: Coord) -> &'static str {
+    match c {
+        Coord::X | Coord::Y | Coord::Z => "m",
+        Coord::Phi => "rad",
+        Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3 => "1",
+    }
+}
+
+fn velocity_unit(v: Vel) -> &'static str {
+    match v {
+        Vel::Vx | Vel::Vy | Vel::Vz => "m/s",
+        Vel::Omega | Vel::Wx | Vel::Wy | Vel::Wz => "rad/s",
+    }
+}
+
+/// The tables of the type's documentation, as markdown (one `#[doc]` string).
+pub fn tables(m: &Model, f: &Formulation) -> String {
+    let name = &m.name;
+    let mut out = String::new();
+    let w = &mut out;
+    let _ = writeln!(w, "\n# Coordinates and velocities\n");
+    match m.space {
+        Space::Planar => {
+            let _ = writeln!(
+                w,
+                "`q[i]` in every `[f64; {name}::NQ]`; planar velocities are their rates, `v[i]` = q̇ᵢ \
+                 (m/s, rad/s), and v̇, h and the columns of D are indexed the same way.\n"
+            );
+            let _ = writeln!(w, "| i | coordinate | unit |\n|---:|---|---|");
+            for (b, body) in m.bodies.iter().enumerate() {
+                for (k, c) in m.space.coordinates().iter().enumerate() {
+                    let _ = writeln!(w, "| {} | `{}.{}` | {} |", 3 * b + k, body.name, c.name(), coordinate_unit(*c));
+                }
+            }
+        }
+        Space::Spatial => {
+            let _ = writeln!(
+                w,
+                "`q[i]`: position and Euler parameters of each body (7 per body); `v[i]`: its velocity \
+                 and angular velocity in its own axes ω′ (6 per body), which also index v̇, h and the \
+                 columns of D.\n"
+            );
+            let _ = writeln!(w, "| i | coordinate q | unit |\n|---:|---|---|");
+            for (b, body) in m.bodies.iter().enumerate() {
+                for (k, c) in m.space.coordinates().iter().enumerate() {
+                    let _ = writeln!(w, "| {} | `{}.{}` | {} |", 7 * b + k, body.name, c.name(), coordinate_unit(*c));
+                }
+            }
+            let _ = writeln!(w, "\n| i | velocity v | unit |\n|---:|---|---|");
+            for (b, body) in m.bodies.iter().enumerate() {
+                for (k, v) in m.space.velocities().iter().enumerate() {
+                    let _ = writeln!(w, "| {} | `{}.{}` | {} |", 6 * b + k, body.name, v.name(), velocity_unit(*v));
+                }
+            }
+        }
+    }
+    let moving: Vec<_> = m.points.iter().filter(|p| p.body != BodyRef::Ground).collect();
+    if !moving.is_empty() {
+        let _ =
+            writeln!(w, "\n# Points\n\nEach named point has an accessor giving its position, velocity and acceleration in m, m/s, m/s².\n");
+        let _ = writeln!(w, "| point | accessor |\n|---|---|");
+        for p in moving {
+            let body = m.body_name(p.body);
+            let _ = writeln!(w, "| `{body}.{}` | [`{name}::{}`] |", p.name, crate::model::point_accessor(&body, &p.name));
+        }
+    }
+    if !m.constraints.is_empty() {
+        let _ = writeln!(
+            w,
+            "\n# Joints, drivers and constraints\n\nIn the order of `JOINTS` (the index `joint_reaction` takes) and of their rows in Φ.\n"
+        );
+        let _ = writeln!(w, "| index | joint | kind | rows of Φ |\n|---:|---|---|---|");
+        for (k, c) in m.constraints.iter().enumerate() {
+            let (first, end) = (f.first_rows[k], f.first_rows.get(k + 1).copied().unwrap_or(f.row_names.len()));
+            let rows = if end == first + 1 { first.to_string() } else { format!("{first}–{}", end - 1) };
+            let _ = writeln!(w, "| {k} | `{}` | {} | {rows} |", c.name, c.kind.kind());
+        }
+        let _ = writeln!(
+            w,
+            "\n# Constraint rows\n\n`Φ[r]`, and the multiplier `λ[r]`: the reaction of the row, with the sign \
+             convention M v̇ − Dᵀλ = h.\n"
+        );
+        let _ = writeln!(w, "| r | row | λ unit |\n|---:|---|---|");
+        for (r, row) in f.row_names.iter().enumerate() {
+            let unit = match multiplier_unit(row) {
+                "" => "J per unit of the row",
+                unit => unit,
+            };
+            let _ = writeln!(w, "| {r} | `{row}` | {unit} |");
+        }
+    }
+    if !f.force_velocities.is_empty() {
+        let _ = writeln!(w, "\n# Force elements\n\nIn the order of `FORCE_ELEMENTS`.\n");
+        let _ = writeln!(w, "| element | velocities it acts on |\n|---|---|");
+        for (element, velocities) in &f.force_velocities {
+            let list = if velocities.len() > 12 {
+                format!("{} of them", velocities.len())
+            } else {
+                velocities.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")
+            };
+            let _ = writeln!(w, "| `{element}` | {list} |");
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    /// Every row name the generated joints use has its unit: a row in metres gives N, an angle or
+    /// a dimensionless orientation row N·m (docs/formulation.md's row tables).
+    #[test]
+    fn every_joint_row_has_a_unit() {
+        let metres = ["x", "y", "z", "normal", "distance", "length", "stroke", "offset", "offset_x", "offset_y"];
+        let turns = ["phi", "angle", "cross", "twist", "rx", "ry", "rz", "axis_x", "axis_y", "normal_x", "normal_y"];
+        for row in metres {
+            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), "N", "{row}");
+        }
+        for row in turns {
+            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), "N·m", "{row}");
+        }
+        assert_eq!(super::multiplier_unit("constraint c1: user"), "");
+    }
+}
