@@ -653,3 +653,39 @@ fn the_output_callback_stops_a_run() {
     assert!(!full.stopped_by_output && full.samples == 100);
     assert!(stats.steps < full.steps / 2, "{stats:?} against {full:?}");
 }
+
+/// A progress bar over a run follows its samples' times, passes each sample on unchanged, and
+/// keeps the callback's `ControlFlow`: stopped at 0.25 s of 1 s, the bar stands at a quarter.
+#[test]
+fn a_progress_bar_follows_a_run() {
+    use std::ops::ControlFlow;
+    let m = DoublePendulum::default();
+    let times: Vec<f64> = (0..=100).map(|k| 0.01 * k as f64).collect();
+    let run = |stop: f64| {
+        let progress = Progress::over(&times).hidden();
+        let mut seen = 0;
+        simulate(
+            &m,
+            &mut DoublePendulum::workspace(),
+            &mut Dopri5::default(),
+            0.0,
+            &m.initial_positions(),
+            &[0.0; 6],
+            &times,
+            &SimulationOptions::default(),
+            progress.track(|s| {
+                seen += 1;
+                if s.point.t >= stop {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            }),
+        )
+        .expect("runs");
+        (progress.fraction(), seen)
+    };
+    assert_eq!(run(f64::INFINITY), (1.0, 101));
+    // 0.25 of the interval, in the bar's thousandths
+    assert_eq!(run(0.25), (0.25, 26));
+}

@@ -75,7 +75,7 @@ fn spinning_rod_pin_force_is_centripetal() {
 /// A sweep with inverse dynamics written as CSV ([`CsvWriter::states`]): named columns with
 /// units and no energy columns, one row per point, the motor's torque column reading back the
 /// multipliers exactly, and a sweep stopped by its callback (`ControlFlow::Break`) after the
-/// point it was given.
+/// point it was given, its progress bar counting the points done.
 #[test]
 fn inverse_dynamics_sweep_to_csv() {
     let m = DrivenRod { omega: 2.0, ..DrivenRod::default() };
@@ -88,8 +88,10 @@ fn inverse_dynamics_sweep_to_csv() {
     let mut csv = CsvWriter::states::<DrivenRod>(&mut buffer);
     let mut torques = Vec::new();
     let times: Vec<f64> = (0..50).map(|k| 0.02 * k as f64).collect();
+    let progress = Progress::count(times.len() as u64).hidden();
     solver
         .sweep(&m, &mut ws, &mut q, &times, |t, q, v, vd| {
+            progress.inc();
             let mut lambda = [0.0; 3];
             inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).expect("inverse dynamics");
             csv.write_state(t, q, v, vd, &lambda);
@@ -102,6 +104,7 @@ fn inverse_dynamics_sweep_to_csv() {
         })
         .expect("sweeps");
     assert_eq!(csv.finish().expect("written"), 26);
+    assert_eq!(progress.fraction(), 26.0 / 50.0);
     let text = String::from_utf8(buffer).expect("UTF-8");
     let header: Vec<&str> = text.lines().next().expect("header").split(',').collect();
     assert_eq!(header.len(), 1 + 3 + 3 + 3 + 3);

@@ -29,6 +29,8 @@ mod partition;
 mod planar;
 #[cfg(feature = "plots")]
 mod plot;
+#[cfg(feature = "progress")]
+mod progress;
 mod real;
 pub mod redundancy;
 pub mod sparse;
@@ -69,6 +71,8 @@ pub use partition::Partition;
 pub use planar::{point_acceleration, point_position, point_velocity};
 #[cfg(feature = "plots")]
 pub use plot::{Plot, PlotError};
+#[cfg(feature = "progress")]
+pub use progress::Progress;
 pub use real::Real;
 pub use redundancy::Redundancy;
 pub use sparse::SparsePattern;
