@@ -139,11 +139,91 @@ fn pages_draw_in_a_browser() {
     drew(&load(&browser, &dir.join("spatial_double_pendulum.html"), &dir.join("spatial_double_pendulum.png"), false), 100);
 
     // A trace of a point the mechanism does not have: the page says so instead of drawing.
+    // (written past `write_html`'s own check, which `a_misspelt_trace_is_an_error` tests)
     let mut wrong = Animation::new::<FourBar>(&FourBar::default().params()).trace("coupler.Q");
     wrong.frame(0.0, &FourBar::default().initial_positions());
-    wrong.write_html(dir.join("wrong_trace.html")).expect("writes");
+    std::fs::write(dir.join("wrong_trace.html"), wrong.to_html()).expect("writes");
     let s = status(&load(&browser, &dir.join("wrong_trace.html"), &dir.join("wrong_trace.png"), true));
     assert!(s.starts_with("error: no named point coupler.Q"), "status: {s}");
+
+    // `#t=` opens the page paused at that time: the four-bar's frame 61 of 121 is at half a turn.
+    let half = format!("{}#t={}", dir.join("four_bar.html").display(), std::f64::consts::PI / FourBar::default().omega + 1e-9);
+    let dom = Command::new(&browser)
+        .args(["--headless", "--no-sandbox", "--disable-gpu", "--virtual-time-budget=2000", "--dump-dom"])
+        .arg(format!("file://{half}"))
+        .output()
+        .expect("chromium runs");
+    assert_eq!(status(&String::from_utf8_lossy(&dom.stdout)), "drew frame 61 of 121");
+
+    // The animated SVG draws in the browser too.
+    four_bar.write_svg(dir.join("four_bar.svg")).expect("writes");
+    load(&browser, &dir.join("four_bar.svg"), &dir.join("four_bar_svg.png"), false);
+}
+
+/// A traced point the mechanism does not name is an error when the page or picture is written,
+/// naming it and the points there are.
+#[test]
+fn a_misspelt_trace_is_an_error() {
+    let mut wrong = Animation::new::<FourBar>(&FourBar::default().params()).trace("coupler.Q");
+    wrong.frame(0.0, &FourBar::default().initial_positions());
+    let path = out_dir().join("never_written.html");
+    let e = wrong.write_html(&path).expect_err("no point coupler.Q");
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(e.to_string().contains("no named point `coupler.Q`") && e.to_string().contains("coupler.P"), "{e}");
+    assert!(!path.exists());
+    assert_eq!(wrong.to_svg().expect_err("no point coupler.Q").to_string(), e.to_string());
+}
+
+/// The animated SVG: one group per frame, each shown in turn by a discrete SMIL animation at its
+/// own time; and what it draws is where the mechanism is — the traced coupler point's path in
+/// the picture is the generated accessor's path, up to the view's scale and offset.
+#[test]
+fn the_animated_svg_shows_each_frame_at_its_time() {
+    let animation = four_bar_page();
+    let svg = animation.to_svg().expect("draws");
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\"") && svg.trim_end().ends_with("</svg>"));
+    assert_eq!(svg.matches("<g visibility=").count(), 121);
+    assert_eq!(svg.matches("calcMode=\"discrete\"").count(), 121);
+    // three bodies in every frame, each drawn with its centre of mass marked
+    assert_eq!(svg.matches("stroke-width=\"3\"").count(), 3 * 121);
+    assert_eq!(svg.matches("r=\"2.5\"").count(), 3 * 121);
+    // frame 61 of 121 (half the turn) shows from 0.5 to 0.5 + 1/120 of the duration
+    let period = 2.0 * std::f64::consts::PI / FourBar::default().omega;
+    assert!(svg.contains(&format!("keyTimes=\"0;{:.6};{:.6}\" dur=\"{period:.6}s\"", 0.5, 0.5 + 1.0 / 120.0)), "no frame at half the turn");
+
+    // The trace: the first polyline after the legend's colour, 121 screen points.
+    let start = svg.find("<polyline points=\"").expect("the trace") + "<polyline points=\"".len();
+    let points: Vec<[f64; 2]> = svg[start..start + svg[start..].find('"').unwrap()]
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            [x.parse().unwrap(), y.parse().unwrap()]
+        })
+        .collect();
+    assert_eq!(points.len(), 121);
+    let m = FourBar::default();
+    let mut ws = FourBar::workspace();
+    let mut q = m.initial_positions();
+    let solver = KinematicSolver::default();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let mut path = Vec::new();
+    let times = (0..=120).map(|k| period * k as f64 / 120.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |_, q, _, _| path.push(m.coupler_p().position(q))).expect("sweeps");
+    // screen = offset + scale (x, −y): the scale from the path's extent in x
+    let (lo, hi) = path.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.x), h.max(p.x)));
+    let (slo, shi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p[0]), h.max(p[0])));
+    let scale = (shi - slo) / (hi - lo);
+    let offset = [points[0][0] - scale * path[0].x, points[0][1] + scale * path[0].y];
+    for (p, s) in path.iter().zip(&points) {
+        // the SVG's coordinates have 2 decimals: 0.005 px each, 0.02 px after the fit
+        assert!((offset[0] + scale * p.x - s[0]).abs() < 0.02 && (offset[1] - scale * p.y - s[1]).abs() < 0.02, "{p:?} drawn at {s:?}");
+    }
+
+    // A long run keeps at most `svg_frames` frames, its last among them.
+    let few = four_bar_page().svg_frames(50).to_svg().expect("draws");
+    let groups = few.matches("<g visibility=").count();
+    assert!((41..=50).contains(&groups), "{groups} frames");
+    assert!(few.contains(&format!("t = {period:.3} s")), "the last frame is kept");
 }
 
 /// Everything is inline: no script, style or image is fetched.

@@ -18,12 +18,39 @@
 //! are drawn in an orthographic view that the mouse turns (drag) and zooms (wheel). The page
 //! reports what it drew in `<p id="status">` (`drew frame k of n`), or the error that stopped
 //! it, which is what the browser test reads.
+//!
+//! [`Animation::to_svg`] draws the same picture as an animated SVG for a README or a report: one
+//! group per frame, shown in turn at the frames' own times by SMIL, no script (`drawing.rs`).
+//! The page opens with `#t=1.25` in its address at the frame of t = 1.25 s, paused.
 
 use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
 
+use crate::drawing::Drawing;
 use crate::Mechanism;
+
+/// Why an animation cannot be written: a traced point the mechanism does not name (the message
+/// lists those it does), or a model description the drawing cannot read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AnimationError(pub String);
+
+impl std::fmt::Display for AnimationError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for AnimationError {}
+
+impl From<AnimationError> for io::Error {
+    fn from(e: AnimationError) -> Self {
+        io::Error::new(io::ErrorKind::InvalidInput, e)
+    }
+}
+
+/// Default largest number of frames of an animated SVG: a README picture stays under ~1 MB.
+pub const DEFAULT_SVG_FRAMES: usize = 240;
 
 /// Frames of a mechanism's motion, written as a self-contained HTML page (module docs).
 #[derive(Clone, Debug)]
@@ -36,6 +63,7 @@ pub struct Animation {
     times: Vec<f64>,
     coordinates: Vec<f64>,
     traces: Vec<String>,
+    svg_frames: usize,
 }
 
 impl Animation {
@@ -51,6 +79,7 @@ impl Animation {
             times: Vec::new(),
             coordinates: Vec::new(),
             traces: Vec::new(),
+            svg_frames: DEFAULT_SVG_FRAMES,
         }
     }
 
@@ -63,6 +92,13 @@ impl Animation {
     /// With the path of a named point drawn (`"coupler.P"`, as declared by `point coupler.P`).
     pub fn trace(mut self, point: impl Into<String>) -> Self {
         self.traces.push(point.into());
+        self
+    }
+
+    /// With at most `n` frames in [`Animation::to_svg`] (default [`DEFAULT_SVG_FRAMES`]): a longer
+    /// animation keeps every k-th frame and its last.
+    pub fn svg_frames(mut self, n: usize) -> Self {
+        self.svg_frames = n.max(2);
         self
     }
 
@@ -122,9 +158,34 @@ impl Animation {
         PAGE.replace("@TITLE@", &title).replace("@MODEL@", &safe(self.model)).replace("@DATA@", &safe(&data)).replace("@SCRIPT@", SCRIPT)
     }
 
-    /// Writes [`Animation::to_html`] to `path`.
+    /// Writes [`Animation::to_html`] to `path`, after checking that every traced point exists
+    /// (an [`io::ErrorKind::InvalidInput`] error naming it and those there are).
     pub fn write_html(&self, path: impl AsRef<Path>) -> io::Result<()> {
+        self.drawing()?.check_traces(&self.traces).map_err(AnimationError)?;
         std::fs::write(path, self.to_html())
+    }
+
+    fn drawing(&self) -> Result<Drawing, AnimationError> {
+        Drawing::from_json(self.model, self.param_names, &self.params).map_err(AnimationError)
+    }
+
+    /// The animated SVG (module docs): at most [`Animation::svg_frames`] frames, played in real
+    /// time and looping (frames all at one time, such as a sequence of equilibria, 0.1 s each).
+    pub fn to_svg(&self) -> Result<String, AnimationError> {
+        let all: Vec<(f64, &[f64])> = self.times.iter().copied().zip(self.coordinates.chunks(self.nq.max(1))).collect();
+        let stride = all.len().div_ceil(self.svg_frames).max(1);
+        let mut kept: Vec<(f64, &[f64])> = all.iter().copied().step_by(stride).collect();
+        if let Some(&last) = all.last() {
+            if (all.len() - 1) % stride != 0 {
+                kept.push(last);
+            }
+        }
+        self.drawing()?.svg(&self.title, &kept, &self.traces).map_err(AnimationError)
+    }
+
+    /// Writes [`Animation::to_svg`] to `path`.
+    pub fn write_svg(&self, path: impl AsRef<Path>) -> io::Result<()> {
+        std::fs::write(path, self.to_svg()?)
     }
 }
 
@@ -384,8 +445,10 @@ function draw(k) {
   });
   // slider guides
   for (const j of joints) {
-    if ((j.kind === "translational" || j.kind === "revolute_translational" || j.kind === "cylindrical") && j.i.axis) {
-      const a = world(j.i.body, j.i.s, q), u = direction(j.i.body, j.i.axis, q);
+    // the guide along the ground's marker where it has one: it stays put while the slider moves
+    const m = j.j.body === "ground" && j.j.axis ? j.j : j.i;
+    if ((j.kind === "translational" || j.kind === "revolute_translational" || j.kind === "cylindrical") && m.axis) {
+      const a = world(m.body, m.s, q), u = direction(m.body, m.axis, q);
       line(a.map((x, i) => x - u[i] * extent * 0.6), a.map((x, i) => x + u[i] * extent * 0.6), "#999", 1, [6, 4]);
     }
   }
@@ -476,7 +539,14 @@ if (spatial) {
   });
 }
 canvas.addEventListener("wheel", (e) => { e.preventDefault(); zoom *= Math.exp(-e.deltaY * 0.001); draw(frame); });
-if (frames === 0) { status.textContent = "no frames"; } else { show(0); if (playing) requestAnimationFrame(tick); }
+// `#t=1.25` in the address opens the frame of t = 1.25 s (the last at or before it), paused.
+const seek = /[#&]t=([-+0-9.eE]+)/.exec(location.hash);
+if (frames === 0) { status.textContent = "no frames"; }
+else if (seek) {
+  let k = 0;
+  while (k + 1 < frames && data.t[k + 1] <= +seek[1]) k++;
+  playing = false; document.getElementById("play").textContent = "Play"; show(k);
+} else { show(0); if (playing) requestAnimationFrame(tick); }
 } catch (e) {
   status.textContent = "error: " + e.message;
 }

@@ -10,10 +10,12 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
-#[cfg(feature = "std")]
+#[cfg(feature = "animation")]
 mod animation;
 #[cfg(feature = "std")]
 mod csv;
+#[cfg(feature = "animation")]
+mod drawing;
 mod dynamics;
 mod error;
 mod finite_differences;
@@ -39,8 +41,8 @@ pub mod statics;
 mod test_support;
 pub mod workspace;
 
-#[cfg(feature = "std")]
-pub use animation::Animation;
+#[cfg(feature = "animation")]
+pub use animation::{Animation, AnimationError};
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
