@@ -127,6 +127,21 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// One cycle of ±80 mm wheel travel, for the showcase's pictures: a kinematic sweep of 64 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = DoubleAArm::default();
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    let mut ws = DoubleAArm::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut animation = mbd::Animation::new::<DoubleAArm>(&m.params()).title("Double A-arm, ±80 mm wheel travel").trace("knuckle.contact");
+    let period = 2.0 * PI / m.omega;
+    let times = (0..=64).map(|k| period * k as f64 / 64.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

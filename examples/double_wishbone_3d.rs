@@ -263,6 +263,28 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// Layout B (inclined pivot axes) through ±80 mm of travel, for the showcase's pictures: 65
+/// positions, travel 80 mm · sin 2πs over a nominal one-second cycle s ∈ [0, 1] (the sweep's t
+/// is the travel; the frames' times are s).
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = DoubleWishbone { lower_y: 0.05, lower_z: 0.10, upper_y: -0.04, upper_z: -0.06, ..DoubleWishbone::default() };
+    let mut q = m.initial_positions();
+    let mut ws = DoubleWishbone::workspace();
+    let mut animation = mbd::Animation::new::<DoubleWishbone>(&m.params())
+        .title("Double wishbone (inclined pivots), ±80 mm wheel travel")
+        .trace("upright.steering_arm");
+    let phases: Vec<f64> = (0..=64).map(|k| k as f64 / 64.0).collect();
+    let mut frame = phases.iter();
+    let travels = phases.iter().map(|s| TRAVEL * (2.0 * PI * s).sin());
+    KinematicSolver::default().sweep(&m, &mut ws, &mut q, travels, |_, q, _, _| {
+        if let Some(&s) = frame.next() {
+            animation.frame(s, q)
+        }
+    })?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

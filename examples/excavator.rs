@@ -144,6 +144,25 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     Ok(Report { held_angles, held_tensions, driven_tensions, disagreement, lifting })
 }
 
+/// The driven arm of `run`'s last part, from the held arm's equilibrium, its boom cylinder
+/// extending at 0.1 m/s for 2 s, for the showcase's pictures: a kinematic sweep of 40 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let held = ExcavatorHeld::default();
+    let mut q = held.initial_positions();
+    StaticSolver::default().solve(&held, &mut ExcavatorHeld::workspace(), &mut q, 0.0, &mut [0.0; 6])?;
+    let l = lengths(&q);
+    let driven = ExcavatorDriven { boom_stroke: l[0], stick_stroke: l[1], bucket_stroke: l[2], lift: 0.1, ..ExcavatorDriven::default() };
+    let solver = KinematicSolver::default();
+    let mut ws = ExcavatorDriven::workspace();
+    solver.assemble(&driven, &mut ws, &mut q, 0.0)?;
+    let mut animation = mbd::Animation::new::<ExcavatorDriven>(&driven.params())
+        .title("Excavator arm, boom cylinder extending at 0.1 m/s")
+        .trace("stick.tip");
+    solver.sweep(&driven, &mut ws, &mut q, (0..=40).map(|k| 0.05 * k as f64), |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

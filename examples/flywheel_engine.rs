@@ -48,8 +48,20 @@ pub struct Report {
     pub delta_predicted: f64,
 }
 
-pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
-    // Inverse dynamics at the design speed: drive torque over one revolution.
+/// What the inverse dynamics at the design speed predicts for the free engine.
+struct Design {
+    /// Design speed (rad/s).
+    omega0: f64,
+    /// Mean drive torque over a revolution (N·m).
+    mean_torque: f64,
+    /// Generator constant that absorbs the mean power at the design speed (N·m·s).
+    c_load: f64,
+    /// Predicted coefficient of speed fluctuation.
+    delta_predicted: f64,
+}
+
+/// Inverse dynamics at the design speed: drive torque over one revolution, and what follows.
+fn design() -> Result<Design, Box<dyn std::error::Error>> {
     let engine = Engine::default();
     let solver = KinematicSolver::default();
     let mut q = engine.initial_positions();
@@ -59,7 +71,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let n = 720;
     let period = 2.0 * PI / omega0;
     let mut torque = Vec::with_capacity(n);
-    let mut m = FreeEngine::default();
+    let m = FreeEngine::default();
     let mut reduced = 0.0;
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
     // The motor's row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is its λ, the drive torque.
@@ -86,9 +98,13 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         w_max = w_max.max(w);
     }
     let delta_predicted = (w_max - w_min) / (reduced * omega0 * omega0);
+    Ok(Design { omega0, mean_torque, c_load, delta_predicted })
+}
 
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
+    let Design { omega0, mean_torque, c_load, delta_predicted } = design()?;
     // Forward dynamics of the free engine with that generator.
-    m.c_load = c_load;
+    let m = FreeEngine { c_load, ..FreeEngine::default() };
     let mut q = m.initial_positions();
     let mut ws = FreeEngine::workspace();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
@@ -122,6 +138,24 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         );
     }
     Ok(r)
+}
+
+/// The free engine's first second (five revolutions) with the generator the inverse dynamics
+/// sizes, for the showcase's pictures: 200 frames, 5 ms apart.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = FreeEngine { c_load: design()?.c_load, ..FreeEngine::default() };
+    let mut q = m.initial_positions();
+    let mut ws = FreeEngine::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut qd = m.initial_velocities();
+    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
+    let times: Vec<f64> = (0..200).map(|k| 0.005 * k as f64).collect();
+    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+    let mut animation = mbd::Animation::new::<FreeEngine>(&m.params()).title("Free engine with flywheel and generator, first second");
+    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Ok(animation)
 }
 
 #[allow(dead_code)]

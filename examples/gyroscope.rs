@@ -260,6 +260,19 @@ fn print_report(r: &Report, a: f64, c: f64, epsilon: f64) {
     }
 }
 
+/// The top of `run`'s second part, released spinning with its axis at rest, nodding and
+/// precessing through about one turn, for the showcase's pictures: 201 frames, 16 ms apart.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let released = Gyroscope { wz: SPIN, ..Gyroscope::default() };
+    let (q0, v0) = (released.initial_positions(), released.initial_velocities());
+    let times: Vec<f64> = (0..=200).map(|k| k as f64 * 0.016).collect();
+    let mut animation = mbd::Animation::new::<Gyroscope>(&released.params()).title("Heavy symmetric top released at 50 rev/s");
+    let mut ws = Gyroscope::workspace();
+    simulate(&released, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| animation.frame(s.point.t, &s.point.q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

@@ -157,6 +157,24 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     Ok(report)
 }
 
+/// The cart-pole of part 1 released 0.01 rad off upright, for the showcase's pictures: the
+/// instability its linear model's pole predicts, simulated (nonlinear) over 2 s, 201 frames.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = CartPole::default();
+    // q: cart (x, y, φ), pole (x, y, φ), the pole's centre 0.3 m from the pin along its axis.
+    let mut q = m.initial_positions();
+    let phi = q[5] + 0.01;
+    (q[3], q[4], q[5]) = (q[0] + 0.3 * phi.cos(), q[1] + 0.3 * phi.sin(), phi);
+    let mut ws = CartPole::workspace();
+    let times: Vec<f64> = (0..=200).map(|k| 0.01 * k as f64).collect();
+    let mut animation = mbd::Animation::new::<CartPole>(&m.params()).title("Cart-pole released 0.01 rad off upright");
+    simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
+        animation.frame(s.point.t, &s.point.q)
+    })?;
+    Ok(animation)
+}
+
 #[allow(dead_code)] // the showcase includes this file and calls `run`
 fn main() {
     if let Err(e) = run(true) {

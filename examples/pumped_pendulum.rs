@@ -176,6 +176,30 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     Ok(r)
 }
 
+/// The swing pumped up over the 12 periods of `run`, for the showcase's pictures: 16 frames per
+/// period, 193 in all.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let mut m = PumpedPendulum::default();
+    let mut mass = [[0.0; PumpedPendulum::NV]; PumpedPendulum::NV];
+    m.add_mass_matrix(&m.initial_positions(), 1.0, &mut mass);
+    let (inertia, rod_mass) = (mass[2][2] + mass[5][5], mass[3][3]);
+    m.omega = (rod_mass * 9.81 * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
+    let mut q = m.initial_positions();
+    let mut ws = PumpedPendulum::workspace();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut qd = [0.0; PumpedPendulum::NQ];
+    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
+    let period = 2.0 * PI / m.omega;
+    let times: Vec<f64> = (0..=12 * 16).map(|k| k as f64 * period / 16.0).collect();
+    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut animation =
+        mbd::Animation::new::<PumpedPendulum>(&m.params()).title("Pumped pendulum: length driven at twice the swing frequency");
+    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

@@ -267,6 +267,21 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// One crank turn at 120 rpm, for the showcase's pictures: a kinematic sweep of 72 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = Rssr::default();
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    let mut ws = Rssr::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut animation = mbd::Animation::new::<Rssr>(&m.params()).title("RSSR spatial four-bar, one crank turn").trace("rocker.pin");
+    let period = 2.0 * PI / m.omega;
+    let times = (0..=72).map(|k| period * k as f64 / 72.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

@@ -1,5 +1,7 @@
 //! Runs every example of mbd in turn: the README's first command,
-//! `cargo run --release --example showcase`.
+//! `cargo run --release --example showcase`. Then writes an animation of each example's main
+//! mechanism to `target/showcase/<name>.html` (a page) and `<name>.svg` (an animated SVG),
+//! relative to the current directory.
 
 #[path = "double_a_arm.rs"]
 mod double_a_arm;
@@ -72,6 +74,49 @@ fn main() {
         if let Err(e) = run() {
             eprintln!("{name}: {e}");
             failed += 1;
+        }
+    }
+    // An animation of each example's main mechanism, as a page and as an animated SVG.
+    type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
+    let animations: [(&str, Animate); 20] = [
+        ("slider_crank", slider_crank::animation),
+        ("four_bar", four_bar::animation),
+        ("variable_pendulum", variable_pendulum::animation),
+        ("filmstrip", filmstrip::animation),
+        ("web_cutter", web_cutter::animation),
+        ("double_a_arm", double_a_arm::animation),
+        ("macpherson", macpherson::animation),
+        ("slider_crank_inverse", slider_crank_inverse::animation),
+        ("flywheel_engine", flywheel_engine::animation),
+        ("suspension_dynamics", suspension_dynamics::animation),
+        ("pumped_pendulum", pumped_pendulum::animation),
+        ("free_four_bar", free_four_bar::animation),
+        ("gyroscope", gyroscope::animation),
+        ("rssr", rssr::animation),
+        ("spatial_slider_crank", spatial_slider_crank::animation),
+        ("double_wishbone_3d", double_wishbone_3d::animation),
+        ("stewart_platform", stewart_platform::animation),
+        ("excavator", excavator::animation),
+        ("bump", bump::animation),
+        ("linear_models", linear_models::animation),
+    ];
+    let dir = std::path::Path::new("target/showcase");
+    println!("\n=== animations ===");
+    for (name, animate) in animations {
+        let (html, svg) = (dir.join(format!("{name}.html")), dir.join(format!("{name}.svg")));
+        let write = || -> Result<usize, Box<dyn std::error::Error>> {
+            let animation = animate()?;
+            std::fs::create_dir_all(dir)?;
+            animation.write_html(&html)?;
+            animation.write_svg(&svg)?;
+            Ok(animation.len())
+        };
+        match write() {
+            Ok(frames) => println!("{name}: {frames} frames → {} and {}", html.display(), svg.display()),
+            Err(e) => {
+                eprintln!("{name} (animation): {e}");
+                failed += 1;
+            }
         }
     }
     if failed > 0 {

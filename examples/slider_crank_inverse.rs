@@ -102,6 +102,21 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// One revolution at 300 rpm, for the showcase's pictures: a kinematic sweep of 72 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = Engine::default();
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    let mut ws = Engine::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut animation = mbd::Animation::new::<Engine>(&m.params()).title("Engine at 300 rpm (inverse dynamics), one revolution");
+    let period = 2.0 * PI / m.omega;
+    let times = (0..=72).map(|k| period * k as f64 / 72.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

@@ -396,6 +396,24 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// One period of the heave and roll, for the showcase's pictures: the kinematic sweep of `run`,
+/// 48 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = StewartPlatform::default();
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    let mut ws = StewartPlatform::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut animation = mbd::Animation::new::<StewartPlatform>(&m.params())
+        .title("Stewart platform, one period of heave and roll")
+        .trace("platform.payload");
+    let period = 2.0 * PI / m.w;
+    let times = (0..=SAMPLES).map(|k| period * k as f64 / SAMPLES as f64);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

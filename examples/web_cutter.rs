@@ -103,6 +103,22 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     Ok(r)
 }
 
+/// One oscillation of the input link, for the showcase's pictures: a kinematic sweep of 80 steps.
+#[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
+pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
+    let m = WebCutter::default();
+    let solver = KinematicSolver::default();
+    let mut q = m.initial_positions();
+    let mut ws = WebCutter::workspace();
+    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
+    let mut animation =
+        mbd::Animation::new::<WebCutter>(&m.params()).title("Web cutter (Chebyshev linkage), one oscillation").trace("coupler.knife");
+    let period = 2.0 * PI / m.omega;
+    let times = (0..=80).map(|k| period * k as f64 / 80.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.frame(t, q))?;
+    Ok(animation)
+}
+
 #[allow(dead_code)]
 fn main() {
     if let Err(e) = run(true) {

@@ -25,6 +25,12 @@ fn text(html: &str) -> String {
     out.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// Asserts that `page` holds the table row `row` ("| 2 | crank.phi | rad |").
+fn has_row(page: &str, row: &str) {
+    let cells = row.trim_matches('|').split('|').map(str::trim).collect::<Vec<_>>().join(" ");
+    assert!(page.contains(&cells), "the page lacks the row {row:?}");
+}
+
 #[test]
 fn generated_types_document_their_tables_without_warnings() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -57,8 +63,7 @@ fn generated_types_document_their_tables_without_warnings() {
         // force elements and the velocities they act on
         "| return_spring | 6, 7 |",
     ] {
-        let cells = row.trim_matches('|').split('|').map(str::trim).collect::<Vec<_>>().join(" ");
-        assert!(planar.contains(&cells), "the planar page lacks the row {row:?}");
+        has_row(&planar, row);
     }
     assert!(planar.contains("3 planar bodies, 9 coordinates and velocities, 8 constraint rows (1 degree of freedom)"));
     // internals stay out: the Newton matrix's plumbing and the model JSON's text
@@ -74,7 +79,6 @@ fn generated_types_document_their_tables_without_warnings() {
         "| 9 | guide: twist | N·m |",
         "| 10 | rod: length | N |",
     ] {
-        let cells = row.trim_matches('|').split('|').map(str::trim).collect::<Vec<_>>().join(" ");
-        assert!(spatial.contains(&cells), "the spatial page lacks the row {row:?}");
+        has_row(&spatial, row);
     }
 }

@@ -346,3 +346,39 @@ fn linear_models_match_their_closed_forms() {
     // A soft car: about 1.4 Hz ride, 12 Hz wheel hop.
     assert!(r.ride.0 > 1.0 && r.ride.0 < 2.0 && r.wheel_hop.0 > 10.0 && r.wheel_hop.0 < 15.0, "{r:?}");
 }
+
+/// Every example's animation (what the showcase writes to `target/showcase/`) holds a motion and
+/// draws as an animated SVG: one frame group per frame, up to the SVG's 240.
+#[test]
+fn every_example_animates() {
+    type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
+    let animations: [(&str, Animate); 20] = [
+        ("slider_crank", slider_crank::animation),
+        ("four_bar", four_bar::animation),
+        ("variable_pendulum", variable_pendulum::animation),
+        ("filmstrip", filmstrip::animation),
+        ("web_cutter", web_cutter::animation),
+        ("double_a_arm", double_a_arm::animation),
+        ("macpherson", macpherson::animation),
+        ("slider_crank_inverse", flywheel_engine::slider_crank_inverse::animation),
+        ("flywheel_engine", flywheel_engine::animation),
+        ("suspension_dynamics", suspension_dynamics::animation),
+        ("pumped_pendulum", pumped_pendulum::animation),
+        ("free_four_bar", free_four_bar::animation),
+        ("gyroscope", gyroscope::animation),
+        ("rssr", rssr::animation),
+        ("spatial_slider_crank", spatial_slider_crank::animation),
+        ("double_wishbone_3d", double_wishbone_3d::animation),
+        ("stewart_platform", stewart_platform::animation),
+        ("excavator", excavator::animation),
+        ("bump", bump::animation),
+        ("linear_models", linear_models::animation),
+    ];
+    for (name, animate) in animations {
+        let animation = animate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(animation.len() >= 2, "{name}: {} frames", animation.len());
+        let svg = animation.to_svg().unwrap_or_else(|e| panic!("{name}: {e}"));
+        let groups = svg.matches("<g visibility=").count();
+        assert!(if animation.len() <= 240 { groups == animation.len() } else { groups <= 240 }, "{name}: {groups} frames drawn");
+    }
+}

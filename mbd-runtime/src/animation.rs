@@ -173,7 +173,8 @@ impl Animation {
     /// time and looping (frames all at one time, such as a sequence of equilibria, 0.1 s each).
     pub fn to_svg(&self) -> Result<String, AnimationError> {
         let all: Vec<(f64, &[f64])> = self.times.iter().copied().zip(self.coordinates.chunks(self.nq.max(1))).collect();
-        let stride = all.len().div_ceil(self.svg_frames).max(1);
+        // every stride-th frame from the first, and the last: at most `svg_frames` in all
+        let stride = all.len().saturating_sub(1).div_ceil(self.svg_frames - 1).max(1);
         let mut kept: Vec<(f64, &[f64])> = all.iter().copied().step_by(stride).collect();
         if let Some(&last) = all.last() {
             if (all.len() - 1) % stride != 0 {
