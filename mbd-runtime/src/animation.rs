@@ -49,8 +49,11 @@ impl From<AnimationError> for io::Error {
     }
 }
 
-/// Default largest number of frames of an animated SVG: a README picture stays under ~1 MB.
+/// Default largest number of frames of an animated SVG.
 pub const DEFAULT_SVG_FRAMES: usize = 240;
+/// Default largest number of drawn shapes (bodies, joints and force elements, summed over the
+/// frames) of an animated SVG: about 2 MB. A 105-link chain keeps 68 frames of 240 (2.0 MB).
+pub const DEFAULT_SVG_SHAPES: usize = 20_000;
 
 /// Frames of a mechanism's motion, written as a self-contained HTML page (module docs).
 #[derive(Clone, Debug)]
@@ -63,7 +66,8 @@ pub struct Animation {
     times: Vec<f64>,
     coordinates: Vec<f64>,
     traces: Vec<String>,
-    svg_frames: usize,
+    /// Set by [`Animation::svg_frames`]; `None`: the defaults' budget.
+    svg_frames: Option<usize>,
 }
 
 impl Animation {
@@ -79,7 +83,7 @@ impl Animation {
             times: Vec::new(),
             coordinates: Vec::new(),
             traces: Vec::new(),
-            svg_frames: DEFAULT_SVG_FRAMES,
+            svg_frames: None,
         }
     }
 
@@ -95,10 +99,11 @@ impl Animation {
         self
     }
 
-    /// With at most `n` frames in [`Animation::to_svg`] (default [`DEFAULT_SVG_FRAMES`]): a longer
-    /// animation keeps every k-th frame and its last.
+    /// With at most `n` frames in [`Animation::to_svg`]: a longer animation keeps every k-th
+    /// frame and its last. By default at most [`DEFAULT_SVG_FRAMES`], and fewer for a big
+    /// mechanism, so that the frames hold at most [`DEFAULT_SVG_SHAPES`] shapes in all.
     pub fn svg_frames(mut self, n: usize) -> Self {
-        self.svg_frames = n.max(2);
+        self.svg_frames = Some(n.max(2));
         self
     }
 
@@ -173,15 +178,17 @@ impl Animation {
     /// time and looping (frames all at one time, such as a sequence of equilibria, 0.1 s each).
     pub fn to_svg(&self) -> Result<String, AnimationError> {
         let all: Vec<(f64, &[f64])> = self.times.iter().copied().zip(self.coordinates.chunks(self.nq.max(1))).collect();
-        // every stride-th frame from the first, and the last: at most `svg_frames` in all
-        let stride = all.len().saturating_sub(1).div_ceil(self.svg_frames - 1).max(1);
+        let drawing = self.drawing()?;
+        let budget = self.svg_frames.unwrap_or_else(|| DEFAULT_SVG_FRAMES.min(DEFAULT_SVG_SHAPES / drawing.shapes().max(1)).max(2));
+        // every stride-th frame from the first, and the last: at most `budget` in all
+        let stride = all.len().saturating_sub(1).div_ceil(budget - 1).max(1);
         let mut kept: Vec<(f64, &[f64])> = all.iter().copied().step_by(stride).collect();
         if let Some(&last) = all.last() {
             if (all.len() - 1) % stride != 0 {
                 kept.push(last);
             }
         }
-        self.drawing()?.svg(&self.title, &kept, &self.traces).map_err(AnimationError)
+        drawing.svg(&self.title, &kept, &self.traces).map_err(AnimationError)
     }
 
     /// Writes [`Animation::to_svg`] to `path`.

@@ -105,6 +105,11 @@ impl Drawing {
         Ok(d)
     }
 
+    /// How many shapes a frame draws: bodies, joints and force elements.
+    pub(crate) fn shapes(&self) -> usize {
+        self.bodies.len() + self.joints.len() + self.elements.len()
+    }
+
     /// The names of the points a trace may follow.
     pub(crate) fn point_names(&self) -> impl Iterator<Item = &str> {
         self.named.iter().map(|(n, _)| n.as_str())

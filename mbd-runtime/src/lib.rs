@@ -42,7 +42,7 @@ mod test_support;
 pub mod workspace;
 
 #[cfg(feature = "animation")]
-pub use animation::{Animation, AnimationError, DEFAULT_SVG_FRAMES};
+pub use animation::{Animation, AnimationError, DEFAULT_SVG_FRAMES, DEFAULT_SVG_SHAPES};
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
