@@ -82,20 +82,36 @@ fn reduced_energy(p: &PumpedPendulum, inertia: f64, mass: f64, g: f64, t: f64, y
     0.5 * (inertia + mass * l * l) * y[1] * y[1] + 0.5 * mass * ld * ld - mass * g * l * y[0].cos()
 }
 
-pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
+/// The swing pumped at twice its natural frequency, assembled at rest.
+struct Start {
+    m: PumpedPendulum,
+    q: [f64; PumpedPendulum::NQ],
+    qd: [f64; PumpedPendulum::NQ],
+    /// The collar's and rod's J (kg·m²) and the rod's mass (kg), which set the frequency.
+    inertia: f64,
+    rod_mass: f64,
+}
+
+fn start() -> Result<Start, Box<dyn std::error::Error>> {
     let mut m = PumpedPendulum::default();
     // M is constant and diagonal: (m, m, J) per body.
     let mut mass = [[0.0; PumpedPendulum::NV]; PumpedPendulum::NV];
     m.add_mass_matrix(&m.initial_positions(), 1.0, &mut mass);
-    let (inertia, rod_mass, g) = (mass[2][2] + mass[5][5], mass[3][3], 9.81);
+    let (inertia, rod_mass) = (mass[2][2] + mass[5][5], mass[3][3]);
     // Pump at twice the swing's natural frequency.
-    m.omega = (rod_mass * g * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
+    m.omega = (rod_mass * 9.81 * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
     let mut q = m.initial_positions();
-    let mut ws = PumpedPendulum::workspace();
-    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
+    KinematicSolver::default().assemble(&m, &mut PumpedPendulum::workspace(), &mut q, 0.0)?;
     // At rest in the swing; the rod's radial velocity is the driver's (L̇(0) = 0 here).
     let mut qd = [0.0; PumpedPendulum::NQ];
     mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
+    Ok(Start { m, q, qd, inertia, rod_mass })
+}
+
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
+    let Start { m, q, qd, inertia, rod_mass } = start()?;
+    let g = 9.81;
+    let mut ws = PumpedPendulum::workspace();
 
     let period = 2.0 * PI / m.omega;
     let cycles = 12.0;
@@ -180,16 +196,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
 /// period, 193 in all.
 #[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
 pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
-    let mut m = PumpedPendulum::default();
-    let mut mass = [[0.0; PumpedPendulum::NV]; PumpedPendulum::NV];
-    m.add_mass_matrix(&m.initial_positions(), 1.0, &mut mass);
-    let (inertia, rod_mass) = (mass[2][2] + mass[5][5], mass[3][3]);
-    m.omega = (rod_mass * 9.81 * m.l0 / (inertia + rod_mass * m.l0 * m.l0)).sqrt();
-    let mut q = m.initial_positions();
+    let Start { m, q, qd, .. } = start()?;
     let mut ws = PumpedPendulum::workspace();
-    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
-    let mut qd = [0.0; PumpedPendulum::NQ];
-    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
     let period = 2.0 * PI / m.omega;
     let times: Vec<f64> = (0..=12 * 16).map(|k| k as f64 * period / 16.0).collect();
     let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
