@@ -357,7 +357,7 @@ pub fn check_finite(model: &Model, f: &Formulation, span: Span) -> syn::Result<(
         if !fits(p.default) {
             return Err(syn::Error::new(
                 p.name.span(),
-                format!("the default of `{}` is {:e}, beyond the range of f32 (±3.4e38)", p.name, p.default),
+                format!("the default of `{}` is beyond the range of f32: expected at most ±3.4e38, found {:e}", p.name, p.default),
             ));
         }
     }
@@ -376,13 +376,13 @@ pub fn check_finite(model: &Model, f: &Formulation, span: Span) -> syn::Result<(
                 if !v.is_finite() {
                     return Err(syn::Error::new(
                         span,
-                        format!("an expression of this mechanism evaluates to {v} for every state (a constant such as ln(0) or 1/0)"),
+                        format!("an expression of this mechanism is not finite: expected a finite value, found {v} for every state (a constant such as ln(0) or 1/0)"),
                     ));
                 }
                 if !fits(v) {
                     return Err(syn::Error::new(
                         span,
-                        format!("an expression of this mechanism evaluates to {v:e}, beyond the range of f32 (±3.4e38)"),
+                        format!("an expression of this mechanism is beyond the range of f32: expected at most ±3.4e38, found {v:e}"),
                     ));
                 }
             }

@@ -36,7 +36,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
         });
     // A mistake in a part, an instance or a scene: the placeholder of what parses as written.
     let out = out.unwrap_or_else(|e| {
-        let errors = e.to_compile_error();
+        let errors = crate::wording::compile_errors(e);
         let placeholder = syn::parse::Parser::parse2(MechanismDef::parse_recovering, written).map(|(def, _)| placeholder(def)).ok();
         quote!(#errors #placeholder)
     });
@@ -52,7 +52,7 @@ fn refuse_raw_identifiers(input: &TokenStream) -> syn::Result<()> {
                 let plain = id.to_string()[2..].to_string();
                 return Err(syn::Error::new(
                     id.span(),
-                    format!("a raw identifier `{id}` cannot name a body, point or element here: write `{plain}_`"),
+                    format!("a raw identifier cannot name a body, point or element: expected a plain name, found `{id}`; write `{plain}_`"),
                 ));
             }
             proc_macro2::TokenTree::Group(g) => refuse_raw_identifiers(&g.stream())?,
@@ -67,7 +67,7 @@ fn refuse_raw_identifiers(input: &TokenStream) -> syn::Result<()> {
 fn expand_one(input: TokenStream) -> (TokenStream, bool) {
     let (def, parse_errors) = match syn::parse::Parser::parse2(MechanismDef::parse_recovering, input) {
         Ok(parsed) => parsed,
-        Err(e) => return (e.to_compile_error(), false),
+        Err(e) => return (crate::wording::compile_errors(e), false),
     };
     let errors = match parse_errors {
         // The statements that did not parse are reported; the rest are not checked, since what
@@ -78,7 +78,7 @@ fn expand_one(input: TokenStream) -> (TokenStream, bool) {
             Err(e) => e,
         },
     };
-    let errors = errors.to_compile_error();
+    let errors = crate::wording::compile_errors(errors);
     let placeholder = placeholder(def);
     (quote!(#errors #placeholder), false)
 }

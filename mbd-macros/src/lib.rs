@@ -32,6 +32,7 @@ mod repeat;
 mod scene;
 mod schur;
 mod sym;
+mod wording;
 
 use proc_macro::TokenStream;
 

@@ -377,12 +377,13 @@ pub enum Scope {
 }
 
 impl Scope {
+    /// What an expression of this scope may use, and why.
     fn describe(self) -> &'static str {
         match self {
-            Scope::Constant => "a parameter default is a constant: numbers, `PI` and functions of them",
-            Scope::Params => "geometry, masses and initial values may use numbers, `PI` and parameters, not `t` or coordinates",
-            Scope::Time => "a driver is a function of `t` and parameters, not of coordinates",
-            Scope::State => "a constraint is a function of coordinates, `t` and parameters, not of velocities",
+            Scope::Constant => "numbers, `PI` and functions of them (a parameter's default is a constant)",
+            Scope::Params => "numbers, `PI` and parameters (geometry, masses and initial values do not move)",
+            Scope::Time => "`t` and parameters (a driver is a function of time)",
+            Scope::State => "coordinates, `t` and parameters (a constraint does not depend on velocities)",
             Scope::Force => "",
         }
     }
@@ -510,7 +511,7 @@ impl Resolver<'_> {
                 let names: Vec<&str> = self.bodies.keys().map(|s| s.as_str()).collect();
                 let hint = parse::closest(&id.to_string(), &names, &["ground"]);
                 self.errors
-                    .push(id.span(), format!("unknown body `{id}`{hint}: declare it with `body {id} {{ mass: ..., inertia: ... }}`"));
+                    .push(id.span(), format!("unknown body: expected a declared body or `ground`, found `{id}`{hint}; declare it with `body {id} {{ mass: ..., inertia: ... }}`"));
                 None
             }
         }
@@ -522,7 +523,10 @@ impl Resolver<'_> {
         let m = self.expr_unchecked(e, scope)?;
         match m.constant_value() {
             Some(v) if !v.is_finite() => {
-                self.errors.at_expr(e, format!("this is {v} for every state and time: a constant such as ln(0), 1/0 or sqrt(-1)"));
+                self.errors.at_expr(
+                    e,
+                    format!("expected a finite value, found {v} for every state and time: a constant such as ln(0), 1/0 or sqrt(-1)"),
+                );
                 None
             }
             _ => Some(m),
@@ -538,13 +542,14 @@ impl Resolver<'_> {
                     MExpr::Pi
                 } else if s == "t" {
                     if matches!(scope, Scope::Constant | Scope::Params) {
-                        self.errors.push(id.span(), format!("time `t` is not allowed here: {}", scope.describe()));
+                        self.errors.push(id.span(), format!("time `t` is not allowed here: expected {}, found `t`", scope.describe()));
                         return None;
                     }
                     MExpr::T
                 } else if let Some(&k) = self.params.get(&s) {
                     if scope == Scope::Constant {
-                        self.errors.push(id.span(), format!("parameter `{s}` is not allowed here: {}", scope.describe()));
+                        self.errors
+                            .push(id.span(), format!("parameter `{s}` is not allowed here: expected {}, found `{s}`", scope.describe()));
                         return None;
                     }
                     MExpr::Param(k)
@@ -553,7 +558,7 @@ impl Resolver<'_> {
                     let hint = parse::closest(&s, &names, &["t", "PI"]);
                     self.errors.push(
                         id.span(),
-                        format!("unknown identifier `{s}`{hint}: an expression may use numbers, parameters declared in `params {{ }}`, `t`, `PI` and coordinates like `crank.phi`"),
+                        format!("unknown identifier: expected a number, a parameter declared in `params {{ }}`, `t`, `PI` or a coordinate like `crank.phi`, found `{s}`{hint}"),
                     );
                     return None;
                 }
@@ -565,7 +570,7 @@ impl Resolver<'_> {
                     self.errors.push(
                         c.span(),
                         format!(
-                            "unknown coordinate `{c}`: a body has {} and, in forces, velocities {}",
+                            "unknown coordinate: expected {} or, in forces, a velocity {}, found `{c}`",
                             self.space.coordinate_list(),
                             self.space.velocity_list()
                         ),
@@ -575,7 +580,7 @@ impl Resolver<'_> {
                 let allowed = matches!((position, scope), (Some(_), Scope::State | Scope::Force) | (None, Scope::Force));
                 if !allowed {
                     let what = if position.is_some() { "coordinate" } else { "velocity" };
-                    self.errors.at_expr(e, format!("{what} `{b}.{c}` is not allowed here: {}", scope.describe()));
+                    self.errors.at_expr(e, format!("{what} `{b}.{c}` is not allowed here: expected {}, found `{b}.{c}`", scope.describe()));
                     return None;
                 }
                 let body = self.body(b)?;
@@ -607,13 +612,13 @@ impl Resolver<'_> {
                     n if Kink::from_name(n).is_some() => Kink::from_name(n)?.arity(),
                     _ => {
                         let hint = parse::closest(&name, FUNCTIONS, &[]);
-                        self.errors.push(f.span(), format!("unknown function `{name}`{hint}: available are {}", FUNCTIONS.join(", ")));
+                        self.errors
+                            .push(f.span(), format!("unknown function: expected one of {}, found `{name}`{hint}", FUNCTIONS.join(", ")));
                         return None;
                     }
                 };
                 if args.len() != arity {
-                    self.errors
-                        .at_expr(e, format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()));
+                    self.errors.at_expr(e, format!("wrong number of arguments to `{name}`: expected {arity}, found {}", args.len()));
                     return None;
                 }
                 let resolved: Vec<Option<MExpr>> = args.iter().map(|a| self.expr(a, scope)).collect();
@@ -650,7 +655,7 @@ impl Resolver<'_> {
     pub fn components(&mut self, v: &VecLit, scope: Scope, what: &str) -> Option<Components> {
         let n = self.space.dim();
         if v.items.len() != n {
-            self.errors.push(v.span, format!("{what} has {n} entries, found {}", v.items.len()));
+            self.errors.push(v.span, format!("{what}: expected {n} entries, found {}", v.items.len()));
             return None;
         }
         let items: Vec<Option<MExpr>> = v.items.iter().map(|e| self.expr(e, scope)).collect();
@@ -669,8 +674,23 @@ impl Resolver<'_> {
             PointRef::Named(name) => match self.points.get(&(body, name.to_string())) {
                 Some(p) => Some(p.clone()),
                 None => {
-                    self.errors
-                        .push(name.span(), format!("unknown point `{name}` on this body: declare it with `point body.{name} = {shape};`"));
+                    let body_name = match body {
+                        BodyRef::Ground => "ground".to_string(),
+                        BodyRef::Body(k) => self.bodies.iter().find(|(_, &i)| i == k).map(|(n, _)| n.clone()).unwrap_or_default(),
+                    };
+                    let mut declared: Vec<&str> = self.points.keys().filter(|(b, _)| *b == body).map(|(_, n)| n.as_str()).collect();
+                    declared.sort_unstable();
+                    let hint = parse::closest(&name.to_string(), &declared, &[]);
+                    let expected = match declared.as_slice() {
+                        [] => "a declared point".to_string(),
+                        some => format!("one of {}", some.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")),
+                    };
+                    self.errors.push(
+                        name.span(),
+                        format!(
+                            "unknown point on body `{body_name}`: expected {expected}, found `{name}`{hint}; declare it with `point {body_name}.{name} = {shape};`"
+                        ),
+                    );
                     None
                 }
             },
@@ -690,21 +710,22 @@ impl Resolver<'_> {
                 let axis = self.components(v, Scope::Params, &format!("an axis `{shape}` in body coordinates"))?;
                 let values: Option<Vec<f64>> = axis.iter().map(|c| c.constant_value()).collect();
                 if values.is_some_and(|v| v.iter().all(|&c| c == 0.0)) {
-                    self.errors.push(v.span, "an axis must not be the zero vector");
+                    self.errors.push(v.span, "an axis has a direction: expected a non-zero vector, found the zero vector");
                     return None;
                 }
                 Some(axis)
             }
             AxisRef::Named(b, name) => {
                 if self.body(b)? != body {
-                    self.errors.push(b.span(), "the axis must be a vector of the same body as the point");
+                    self.errors
+                        .push(b.span(), "the axis must be a vector of the same body as the point: expected that body, found another");
                     return None;
                 }
                 match self.vectors.get(&(body, name.to_string())) {
                     Some(v) => Some(v.clone()),
                     None => {
                         let shape = self.shape(["x", "y", "z"]);
-                        self.errors.push(name.span(), format!("unknown vector `{name}`: declare it with `vector {b}.{name} = {shape};`"));
+                        self.errors.push(name.span(), format!("unknown vector: expected a declared vector, found `{name}`; declare it with `vector {b}.{name} = {shape};`"));
                         None
                     }
                 }
@@ -730,7 +751,7 @@ fn claim_name(
         return Some(name);
     }
     let msg = if label.is_some() {
-        format!("duplicate name `{name}`")
+        format!("duplicate name `{name}`: expected a new name, found `{name}` again; rename one of them")
     } else {
         format!("a second `{name}`: give one of them a name, e.g. `{} name: ...`", name.split(' ').next().unwrap_or(""))
     };
@@ -797,11 +818,11 @@ pub fn point_accessor(body: &str, point: &str) -> String {
 /// `what`; an error on `span` if a generated item or an earlier name has it.
 fn claim_item(items: &mut HashMap<String, String>, errors: &mut Errors, item: String, what: String, span: Span) -> bool {
     if GENERATED_ITEMS.contains(&item.as_str()) {
-        errors.push(span, format!("{what} would generate `{item}`, which every mechanism already has: rename it"));
+        errors.push(span, format!("{what} would generate `{item}`, which every mechanism already has: expected another name, found one that clashes; rename it"));
         return false;
     }
     if let Some(other) = items.insert(item.clone(), what.clone()) {
-        errors.push(span, format!("{what} and {other} would both generate `{item}`: rename one"));
+        errors.push(span, format!("{what} and {other} would both generate `{item}`: expected names that differ in more than case, found two that do not; rename one"));
         return false;
     }
     true
@@ -813,7 +834,7 @@ pub fn check_positive(errors: &mut Errors, e: &MExpr, written: &Expr, what: &str
     if let Some(v) = e.constant_value() {
         #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN is not positive either
         if !(v > 0.0) {
-            errors.at_expr(written, format!("{what} must be positive, found {v}"));
+            errors.at_expr(written, format!("{what} must be positive: expected a value above 0, found {v}"));
         }
     }
 }
@@ -852,7 +873,7 @@ impl MechanismDef {
         for item in &self.items {
             if let Item::Spatial(kw) = item {
                 if space == Space::Spatial {
-                    errors.push(kw.span(), "`spatial;` is stated twice");
+                    errors.push(kw.span(), "`spatial;` is stated twice: expected it once, found it again");
                 }
                 space = Space::Spatial;
             }
@@ -880,24 +901,33 @@ impl MechanismDef {
                         "f64" => Scalar::F64,
                         "f32" => Scalar::F32,
                         other => {
-                            r.errors.push(s.span(), format!("unsupported scalar type `{other}`: use `f64` or `f32`"));
+                            r.errors.push(s.span(), format!("unsupported scalar type: expected `f64` or `f32`, found `{other}`"));
                             continue;
                         }
                     };
                     if scalar.is_some() {
-                        r.errors.push(s.span(), "the scalar type is declared twice");
+                        r.errors.push(s.span(), "the scalar type is declared twice: expected one `scalar`, found a second one");
                     }
                     scalar = Some((sc, s.span()));
                 }
                 Item::Params(ps) => {
                     for (name, value) in ps {
                         if r.params.contains_key(&name.to_string()) {
-                            r.errors.push(name.span(), format!("duplicate parameter `{name}`"));
+                            r.errors.push(
+                                name.span(),
+                                format!("duplicate parameter `{name}`: expected a new name, found `{name}` again; rename one of them"),
+                            );
                             ok = false;
                             continue;
                         }
                         if ["t", "PI", "ground"].contains(&name.to_string().as_str()) {
-                            r.errors.push(name.span(), format!("`{name}` is reserved and cannot name a parameter"));
+                            r.errors.push(
+                                name.span(),
+                                format!(
+                                    "`{name}` is reserved: expected a parameter's name, found `{name}`, which expressions read as {}",
+                                    if name == "t" { "time" } else { "π" }
+                                ),
+                            );
                             ok = false;
                             continue;
                         }
@@ -907,7 +937,8 @@ impl MechanismDef {
                         };
                         let default = default.constant_value().unwrap_or(f64::NAN);
                         if !default.is_finite() {
-                            r.errors.at_expr(value, format!("the default of `{name}` evaluates to {default}"));
+                            r.errors
+                                .at_expr(value, format!("the default of `{name}` is not finite: expected a finite value, found {default}"));
                             ok = false;
                             continue;
                         }
@@ -918,12 +949,16 @@ impl MechanismDef {
                 }
                 Item::Body(b) => {
                     if b.name == "ground" {
-                        r.errors.push(b.name.span(), "`ground` is the fixed frame, always present: it cannot be declared as a body");
+                        r.errors
+                            .push(b.name.span(), "`ground` is the fixed frame, always present: expected another body name, found `ground`");
                         ok = false;
                         continue;
                     }
                     if r.bodies.contains_key(&b.name.to_string()) {
-                        r.errors.push(b.name.span(), format!("duplicate body `{}`", b.name));
+                        r.errors.push(
+                            b.name.span(),
+                            format!("duplicate body `{0}`: expected a new name, found `{0}` again; rename one of them", b.name),
+                        );
                         ok = false;
                         continue;
                     }
@@ -979,7 +1014,16 @@ impl MechanismDef {
             let key = (body, nv.name.to_string());
             let table = if is_point { &mut r.points } else { &mut r.vectors };
             if table.insert(key, local.clone()).is_some() {
-                r.errors.push(nv.name.span(), format!("duplicate {} `{}.{}`", if is_point { "point" } else { "vector" }, nv.body, nv.name));
+                r.errors.push(
+                    nv.name.span(),
+                    format!(
+                        "duplicate {} `{}.{}`: expected a new name, found `{}` again; rename one of them",
+                        if is_point { "point" } else { "vector" },
+                        nv.body,
+                        nv.name,
+                        nv.name
+                    ),
+                );
                 ok = false;
                 continue;
             }
@@ -1001,7 +1045,10 @@ impl MechanismDef {
         let gravity = force_elements(&self.items, &mut r, &mut names, &body_name, &joints, &mut forces, &mut ok);
 
         if bodies.is_empty() {
-            r.errors.push(self.name.span(), "a mechanism needs at least one body: `body name { mass: ..., inertia: ... }`");
+            r.errors.push(
+                self.name.span(),
+                "a mechanism needs at least one body: expected `body name { mass: ..., inertia: ... }`, found none",
+            );
             ok = false;
         }
         if !ok {
@@ -1042,7 +1089,7 @@ fn angle_rate_check(r: &mut Resolver, written: &Expr, f: &MExpr) {
         r.errors.warn(
             written.span,
             format!(
-                "this angle driver turns at {:.0} rev/s ({fastest:.0} rad/s): angles are radians; for degrees write `deg(...)`",
+                "this angle driver turns at {:.0} rev/s ({fastest:.0} rad/s): expected an angle in radians, found a rate above 100 rev/s, which reads like degrees; for degrees write `deg(...)`",
                 rev(fastest)
             ),
         );
@@ -1050,7 +1097,7 @@ fn angle_rate_check(r: &mut Resolver, written: &Expr, f: &MExpr) {
         r.errors.warn(
             written.span,
             format!(
-                "this angle driver turns at {whole} rad/s ({:.1} rev/s), which reads like degrees per second: angles are radians; for {whole}°/s write `deg({whole}) * t`",
+                "this angle driver turns at {whole} rad/s ({:.1} rev/s): expected an angle in radians, found a rate that reads like degrees per second; for {whole}°/s write `deg({whole}) * t`",
                 rev(whole)
             ),
         );
@@ -1124,7 +1171,7 @@ fn constraints(
                         spatial::drive_joint(r, d, body, coordinate, f, &joints, &mut driven)
                     }
                     DriveTarget::Angle { .. } | DriveTarget::Distance { .. } if r.space == Space::Spatial => {
-                        r.errors.push(d.keyword.span(), "`angle(..)` and `distance(..)` drivers are planar: in space drive a joint, `drive hinge.angle = f;` or `drive slider.stroke = f;`");
+                        r.errors.push(d.keyword.span(), "`angle(..)` and `distance(..)` drivers are planar: expected a joint to drive in space, found a relative driver; `drive hinge.angle = f;` or `drive slider.stroke = f;`");
                         None
                     }
                     DriveTarget::Coordinate { body, coordinate } => drive::resolve(r, d, body, coordinate, f, &mut driven),
@@ -1198,7 +1245,7 @@ fn force_elements(
         let built = match item {
             Item::Gravity(kw, v) => {
                 if gravity.is_some() {
-                    r.errors.push(kw.span(), "gravity is declared twice");
+                    r.errors.push(kw.span(), "gravity is declared twice: expected one `gravity`, found a second one");
                     *ok = false;
                 }
                 let shape = r.shape(["gx", "gy", "gz"]);
@@ -1239,10 +1286,10 @@ fn body_fields<'b>(r: &mut Resolver, b: &'b parse::BodyDef, known: &[&str], help
         let key = f.name.to_string();
         if !known.contains(&key.as_str()) {
             let hint = parse::closest(&key, known, &[]);
-            r.errors.push(f.name.span(), format!("unknown body field `{key}`{hint}: {help}"));
+            r.errors.push(f.name.span(), format!("unknown body field: expected {help}, found `{key}`{hint}"));
             ok = false;
         } else if fields.insert(key.clone(), &f.value).is_some() {
-            r.errors.push(f.name.span(), format!("duplicate field `{key}`"));
+            r.errors.push(f.name.span(), format!("duplicate field `{key}`: expected each field once, found `{key}` again; keep one"));
             ok = false;
         }
     }
@@ -1253,11 +1300,14 @@ fn body_fields<'b>(r: &mut Resolver, b: &'b parse::BodyDef, known: &[&str], help
 fn positive_field(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String, &Value>, name: &str, unit: &str) -> Option<MExpr> {
     match fields.get(name) {
         None => {
-            r.errors.push(b.name.span(), format!("body `{}` has no `{name}`: give it in {unit}, e.g. `{name}: 1.0`", b.name));
+            r.errors.push(
+                b.name.span(),
+                format!("body `{}` has no `{name}`: expected `{name}` in {unit}, e.g. `{name}: 1.0`, found none", b.name),
+            );
             None
         }
         Some(Value::List(v)) => {
-            r.errors.push(v.span, format!("`{name}` is a number ({unit}), not a list"));
+            r.errors.push(v.span, format!("`{name}` is a number: expected a number ({unit}), found a list"));
             None
         }
         Some(Value::Expr(e)) => {
@@ -1265,7 +1315,7 @@ fn positive_field(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String,
             if name == "inertia" && m.constant_value() == Some(0.0) {
                 r.errors.at_expr(
                     e,
-                    format!("the inertia of body `{0}` must be positive, found 0: a point mass is a particle, `particle {0} {{ mass: ..., at: [x, y] }}`", b.name),
+                    format!("the inertia of body `{0}` must be positive: expected a value above 0, found 0; a point mass is a particle, `particle {0} {{ mass: ..., at: [x, y] }}`", b.name),
                 );
                 return None;
             }
@@ -1280,12 +1330,12 @@ fn list_field(r: &mut Resolver, fields: &HashMap<String, &Value>, name: &str, wh
     match fields.get(name) {
         None => Some(None),
         Some(Value::Expr(e)) => {
-            r.errors.push(e.span, format!("`{name}` is a list `[{what}]`"));
+            r.errors.push(e.span, format!("`{name}` is a list: expected `[{what}]`, found a number"));
             None
         }
         Some(Value::List(v)) => {
             if !lengths.contains(&v.items.len()) {
-                r.errors.push(v.span, format!("`{name}: [{what}]` has {} entries, found {}", lengths[0], v.items.len()));
+                r.errors.push(v.span, format!("`{name}: [{what}]`: expected {} entries, found {}", lengths[0], v.items.len()));
                 return None;
             }
             let items: Vec<Option<MExpr>> = v.items.iter().map(|e| r.expr(e, Scope::Params)).collect();
@@ -1302,7 +1352,7 @@ fn zeros(n: usize) -> Vec<MExpr> {
 fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
     match r.space {
         Space::Planar if b.particle => {
-            let help = "a particle has `mass`, `at: [x, y]` and `velocity: [vx, vy]`";
+            let help = "`mass`, `at: [x, y]` or `velocity: [vx, vy]` (a particle)";
             let (fields, ok) = body_fields(r, b, &["mass", "at", "velocity"], help);
             let mass = positive_field(r, b, &fields, "mass", "kg");
             let q0 = list_field(r, &fields, "at", "x, y", &[2]);
@@ -1328,7 +1378,7 @@ fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
             })
         }
         Space::Planar => {
-            let help = "a body has `mass`, `inertia`, `at: [x, y, phi]` and `velocity: [vx, vy, omega]`";
+            let help = "`mass`, `inertia`, `at: [x, y, phi]` or `velocity: [vx, vy, omega]`";
             let (fields, ok) = body_fields(r, b, BODY_FIELDS, help);
             let mass = positive_field(r, b, &fields, "mass", "kg");
             let inertia = positive_field(r, b, &fields, "inertia", "kg·m² about the centre of mass");
@@ -1354,7 +1404,7 @@ fn resolve_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
 /// axis-angle or z-y-x angles) and twist (velocity, body-frame angular velocity).
 fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
     if b.particle {
-        let help = "a particle has `mass`, `at: [x, y, z]` and `velocity: [vx, vy, vz]`";
+        let help = "`mass`, `at: [x, y, z]` or `velocity: [vx, vy, vz]` (a particle)";
         let (fields, ok) = body_fields(r, b, &["mass", "at", "velocity"], help);
         let mass = positive_field(r, b, &fields, "mass", "kg");
         let at = list_field(r, &fields, "at", "x, y, z", &[3]);
@@ -1372,18 +1422,21 @@ fn spatial_body(r: &mut Resolver, b: &parse::BodyDef) -> Option<Body> {
         let inertia = [[j(0, 0), j(0, 1), j(0, 2)], [j(1, 0), j(1, 1), j(1, 2)], [j(2, 0), j(2, 1), j(2, 2)]];
         return Some(Body { name: b.name.clone(), particle: true, mass, inertia: Inertia::Tensor(inertia), q0, v0 });
     }
-    let help = "a spatial body has `mass`, `inertia: [Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, `at: [x, y, z]`, \
+    let help = "`mass`, `inertia: [Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, `at: [x, y, z]`, \
                 one of `quaternion: [e0, e1, e2, e3]`, `axis_angle: [ax, ay, az, angle]`, `angles: [yaw, pitch, roll]`, \
-                `velocity: [vx, vy, vz]` and `omega: [wx, wy, wz]` (body frame)";
+                `velocity: [vx, vy, vz]` or `omega: [wx, wy, wz]` (body frame)";
     let (fields, ok) = body_fields(r, b, SPATIAL_BODY_FIELDS, help);
     let mass = positive_field(r, b, &fields, "mass", "kg");
     let inertia = match fields.get("inertia") {
         None => {
-            r.errors.push(b.name.span(), format!("body `{}` has no `inertia`: give `inertia: [Jxx, Jyy, Jzz]` (kg·m², body axes)", b.name));
+            r.errors.push(
+                b.name.span(),
+                format!("body `{}` has no `inertia`: expected `inertia: [Jxx, Jyy, Jzz]` (kg·m², body axes), found none", b.name),
+            );
             None
         }
         Some(Value::Expr(e)) => {
-            r.errors.push(e.span, "a spatial body's `inertia` is a list: `[Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]` (kg·m²)");
+            r.errors.push(e.span, "a spatial body's `inertia` is a list: expected `[Jxx, Jyy, Jzz]` or `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]` (kg·m²), found a number");
             None
         }
         Some(Value::List(v)) => inertia_tensor(r, b, v),
@@ -1408,7 +1461,7 @@ fn inertia_tensor(r: &mut Resolver, b: &parse::BodyDef, v: &parse::VecLit) -> Op
     if v.items.len() != 3 && v.items.len() != 6 {
         r.errors.push(
             v.span,
-            format!("`inertia` has 3 entries `[Jxx, Jyy, Jzz]` or 6 `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, found {}", v.items.len()),
+            format!("`inertia`: expected 3 entries `[Jxx, Jyy, Jzz]` or 6 `[Jxx, Jyy, Jzz, Jxy, Jxz, Jyz]`, found {}", v.items.len()),
         );
         return None;
     }
@@ -1437,7 +1490,14 @@ fn call(f: Func, a: MExpr) -> MExpr {
 fn orientation(r: &mut Resolver, b: &parse::BodyDef, fields: &HashMap<String, &Value>) -> Option<Vec<MExpr>> {
     let given: Vec<&str> = ["quaternion", "axis_angle", "angles"].into_iter().filter(|k| fields.contains_key(*k)).collect();
     if given.len() > 1 {
-        r.errors.push(b.name.span(), format!("body `{}` gives its orientation twice (`{}`): keep one", b.name, given.join("`, `")));
+        r.errors.push(
+            b.name.span(),
+            format!(
+                "body `{}` gives its orientation twice: expected one of `quaternion`, `axis_angle` or `angles`, found `{}`; keep one",
+                b.name,
+                given.join("` and `")
+            ),
+        );
         return None;
     }
     let norm = |v: &[MExpr]| {
@@ -1525,7 +1585,7 @@ mod tests {
         let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
         assert_eq!(messages.len(), 4, "{messages:#?}");
         assert!(messages[0].contains("mass of body `a` must be positive"), "{}", messages[0]);
-        assert!(messages.iter().any(|m| m.contains("unknown body `crnk` (did you mean `a`?)") || m.contains("unknown body `crnk`")));
+        assert!(messages.iter().any(|m| m.contains("unknown body: expected a declared body or `ground`, found `crnk`")));
         assert!(messages.iter().any(|m| m.contains("needs its length")));
         assert!(messages.iter().any(|m| m.contains("needs a sliding axis on its first body")));
     }
@@ -1536,7 +1596,7 @@ mod tests {
         let Err(e) = validate("M { body a { mass: 1.0, inertia: 0.1 } rigid ground[0.0, 0.0] ~ a[0.0, 0.0] { length: 1.0 }; }") else {
             panic!("`length` is not an option of rigid")
         };
-        assert!(e.to_string().contains("unknown option `length` of a rigid joint (it takes: angle)"), "{e}");
+        assert!(e.to_string().contains("unknown option of a rigid joint: expected one of angle, found `length`"), "{e}");
     }
 
     /// A spatial body's orientation from z-y-x angles is the unit quaternion of
@@ -1567,11 +1627,11 @@ mod tests {
         let Err(e) = validate("M { body a { mass: 1.0, inertia: 0.1 } spherical ground[0.0, 0.0] ~ a[0.0, 0.0]; }") else {
             panic!("a spherical joint is spatial")
         };
-        assert!(e.to_string().contains("unknown joint kind `spherical` in the plane"), "{e}");
+        assert!(e.to_string().contains("found `spherical`, a spatial joint, in the plane"), "{e}");
         let Err(e) = validate("S { spatial; body a { mass: 1.0, inertia: [1.0, 1.0, 1.0] } revolute_revolute ground[0.0, 0.0, 0.0] ~ a[0.0, 0.0, 0.0] { length: 1.0 }; }") else {
             panic!("revolute_revolute is planar")
         };
-        assert!(e.to_string().contains("in space (it is a planar joint)"), "{e}");
+        assert!(e.to_string().contains("a planar joint, in space"), "{e}");
         let Err(e) = validate("S { spatial; body a { mass: 1.0, inertia: 0.1 } }") else { panic!("a spatial inertia is a tensor") };
         assert!(e.to_string().contains("a spatial body's `inertia` is a list"), "{e}");
     }

@@ -340,7 +340,7 @@ impl MechanismDef {
             }
         }
         if !input.is_empty() {
-            return Err(input.error("unexpected tokens after the mechanism's closing brace"));
+            return Err(input.error("expected nothing after the mechanism's closing brace, found more"));
         }
         let spatial = items.iter().any(|i| matches!(i, Item::Spatial(_)));
         for body in broken_bodies {
@@ -531,7 +531,10 @@ impl Parse for Item {
                     Some((_, ours)) => format!(" (the same joint is called `{ours}` here)"),
                     None => closest(other, STATEMENTS, &[]),
                 };
-                return Err(syn::Error::new(kw.span(), format!("unknown statement `{other}`{hint}")));
+                return Err(syn::Error::new(
+                    kw.span(),
+                    format!("unknown statement: expected a statement such as `body`, `revolute` or `spring`, found `{other}`{hint}"),
+                ));
             }
         };
         Ok(item)
@@ -595,7 +598,7 @@ fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
         let name: Ident = content.call(Ident::parse_any)?;
         content.parse::<Token![:]>()?;
         let value = if content.peek(syn::token::Bracket) { Value::List(content.parse()?) } else { Value::Expr(content.parse()?) };
-        fields.push(Field { name, value });
+        fields.push(Field { name: name.clone(), value });
         if !content.is_empty() {
             // `mass: 2.0 kg`: a unit after a number gets its own message, not "expected `,`"
             // (a next field's name, followed by `:`, is a missing comma instead).
@@ -603,7 +606,14 @@ fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
                 let unit: Ident = content.call(Ident::parse_any)?;
                 return Err(syn::Error::new(
                     unit.span(),
-                    format!("unexpected `{unit}` after a value: numbers are in SI units (kg, m, s, rad, N) and are written without one"),
+                    format!("expected `,` or the end after a value, found the unit `{unit}`: numbers are in SI units (kg, m, s, rad, N) and are written without one"),
+                ));
+            }
+            if content.peek(Ident::peek_any) && content.peek2(Token![:]) {
+                let next: Ident = content.call(Ident::parse_any)?;
+                return Err(syn::Error::new(
+                    next.span(),
+                    format!("expected `,` between fields, found `{next}`: separate them with commas, `{}: ..., {next}: ...`", name),
                 ));
             }
             content.parse::<Token![,]>()?;
@@ -642,7 +652,7 @@ fn parse_drive_target(input: ParseStream) -> syn::Result<DriveTarget> {
             DriveTarget::Distance { i: (bi, pi), j: (bj, pj) }
         };
         if !content.is_empty() {
-            return Err(content.error("unexpected tokens: a relative driver takes two arguments"));
+            return Err(content.error("expected two arguments to a relative driver, found more"));
         }
         Ok(target)
     } else {
@@ -786,7 +796,9 @@ fn parse_if(input: ParseStream, keyword: Span) -> syn::Result<Expr> {
         };
         return Err(syn::Error::new(
             span,
-            format!("`{op}` compares reals exactly, which a solver's rounding makes meaningless: compare with `>`, `>=`, `<` or `<=`"),
+            format!(
+                "expected `>`, `>=`, `<` or `<=`, found `{op}`: it compares reals exactly, which a solver's rounding makes meaningless"
+            ),
         ));
     } else if input.peek(Token![>]) {
         input.parse::<Token![>]>()?;
@@ -838,14 +850,20 @@ fn parse_atom(input: ParseStream) -> syn::Result<Expr> {
     if input.peek(syn::LitFloat) {
         let lit: syn::LitFloat = input.parse()?;
         if !lit.suffix().is_empty() {
-            return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
+            return Err(syn::Error::new(
+                lit.span(),
+                "expected a number without a type suffix, found one: the mechanism's scalar type is used",
+            ));
         }
         return Ok(Expr::new(ExprKind::Num(lit.base10_parse()?), lit.span(), lit.span()));
     }
     if input.peek(syn::LitInt) {
         let lit: syn::LitInt = input.parse()?;
         if !lit.suffix().is_empty() {
-            return Err(syn::Error::new(lit.span(), "write numbers without a type suffix: the mechanism's scalar type is used"));
+            return Err(syn::Error::new(
+                lit.span(),
+                "expected a number without a type suffix, found one: the mechanism's scalar type is used",
+            ));
         }
         return Ok(Expr::new(ExprKind::Num(lit.base10_parse::<f64>()?), lit.span(), lit.span()));
     }
@@ -941,6 +959,6 @@ mod tests {
         // another program's name of a joint: ours
         let err =
             syn::parse_str::<Item>("prismatic a[0.0, 0.0] along [1.0, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0];").err().unwrap().to_string();
-        assert!(err.contains("unknown statement `prismatic` (the same joint is called `translational` here)"), "{err}");
+        assert!(err.contains("found `prismatic` (the same joint is called `translational` here)"), "{err}");
     }
 }

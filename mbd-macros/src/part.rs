@@ -53,7 +53,10 @@ pub fn expand(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream>
                 for d in &definitions {
                     let part = definition(d)?;
                     if parts.iter().any(|p| p.name == part.name) {
-                        return Err(syn::Error::new(part.name.span(), format!("part `{}` is declared twice", part.name)));
+                        return Err(syn::Error::new(
+                            part.name.span(),
+                            format!("part `{0}` is declared twice: expected a new name, found `{0}` again", part.name),
+                        ));
                     }
                     parts.push(part);
                 }
@@ -78,7 +81,10 @@ fn definition(s: &[TokenTree]) -> syn::Result<Part> {
     };
     let reserved = crate::parse::STATEMENTS.contains(&name.to_string().as_str()) || name == "part" || name == "for";
     if reserved {
-        return Err(syn::Error::new(name.span(), format!("`{name}` is a statement of its own: a part needs another name")));
+        return Err(syn::Error::new(
+            name.span(),
+            format!("`{name}` is a statement of its own: expected a part's name, found `{name}`; a part needs another name"),
+        ));
     }
     let params = match s.get(2) {
         Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis => {
@@ -87,7 +93,10 @@ fn definition(s: &[TokenTree]) -> syn::Result<Part> {
             for p in tokens.split(|t| is_punct(t, ',')).filter(|p| !p.is_empty()) {
                 match p {
                     [TokenTree::Ident(id)] if params.contains(id) => {
-                        return Err(syn::Error::new(id.span(), format!("parameter `{id}` of part `{name}` is declared twice")))
+                        return Err(syn::Error::new(
+                            id.span(),
+                            format!("parameter `{id}` of part `{name}` is declared twice: expected a new name, found `{id}` again"),
+                        ))
                     }
                     [TokenTree::Ident(id)] => params.push(id.clone()),
                     _ => return Err(syn::Error::new(p[0].span(), format!("{shape}: a parameter is a name"))),
@@ -128,23 +137,35 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
         if let Some(TokenTree::Ident(k)) = s.first() {
             if k == "part" {
                 let why = if within.is_empty() { "outside every loop" } else { "not inside another part" };
-                return Err(syn::Error::new(k.span(), format!("a part is declared at the mechanism's level, {why}")));
+                return Err(syn::Error::new(
+                    k.span(),
+                    format!(
+                        "a part is declared at the mechanism's level, {why}: expected it there, found `part` {}",
+                        if within.is_empty() { "inside a loop" } else { "inside a part" }
+                    ),
+                ));
             }
             if let Some(part) = within.last().filter(|_| MECHANISM_ONLY.contains(&k.to_string().as_str())) {
                 return Err(syn::Error::new(
                     k.span(),
-                    format!("`{k}` belongs to the mechanism, not to part `{part}`: a part's values are its parameters"),
+                    format!("`{k}` belongs to the mechanism, not to part `{part}`: expected a part's statement, found `{k}`; a part's values are its parameters"),
                 ));
             }
         }
         match instance(&s, parts)? {
             Some((part, name, args)) => {
                 if namespaces.contains_key(&name.to_string()) {
-                    return Err(syn::Error::new(name.span(), format!("instance `{}` is made twice", names.written(&name.to_string()))));
+                    return Err(syn::Error::new(
+                        name.span(),
+                        format!("instance `{0}` is made twice: expected a new name, found `{0}` again", names.written(&name.to_string())),
+                    ));
                 }
                 if within.contains(&part.name.to_string()) {
                     let chain = within.join(" → ");
-                    return Err(syn::Error::new(part.name.span(), format!("part `{}` uses itself ({chain} → {})", part.name, part.name)));
+                    return Err(syn::Error::new(
+                        part.name.span(),
+                        format!("part `{0}` uses itself: expected parts that end, found the cycle {chain} → {0}", part.name),
+                    ));
                 }
                 within.push(part.name.to_string());
                 let inner = level(substitute(part.body.clone(), &part.params, &args), parts, names, within);
@@ -164,7 +185,13 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
             _ => None,
         };
         if let Some(d) = declared.filter(|d| namespaces.contains_key(&d.to_string())) {
-            return Err(syn::Error::new(d.span(), format!("`{}` is already the name of a part's instance", names.written(&d.to_string()))));
+            return Err(syn::Error::new(
+                d.span(),
+                format!(
+                    "`{0}` is already the name of a part's instance: expected a new name, found `{0}` again",
+                    names.written(&d.to_string())
+                ),
+            ));
         }
     }
     let mut tokens = Vec::new();
@@ -193,7 +220,7 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
             let known: Vec<String> = parts.iter().map(|p| p.name.to_string()).collect();
             let known: Vec<&str> = known.iter().map(String::as_str).collect();
             let hint = crate::parse::closest(&kind.to_string(), &known, &[]);
-            return Err(syn::Error::new(kind.span(), format!("unknown part `{kind}`{hint}: the parts are {}", known.join(", "))));
+            return Err(syn::Error::new(kind.span(), format!("unknown part: expected one of {}, found `{kind}`{hint}", known.join(", "))));
         }
         return Ok(None);
     };
@@ -210,11 +237,14 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
             let hint = crate::parse::closest(&param.to_string(), &wanted, &[]);
             return Err(syn::Error::new(
                 param.span(),
-                format!("part `{kind}` has no parameter `{param}`{hint}; it takes {}", list(&wanted)),
+                format!("part `{kind}` has no parameter `{param}`: expected {}, found `{param}`{hint}", list(&wanted)),
             ));
         }
         if given.iter().any(|(p, _)| *p == param) {
-            return Err(syn::Error::new(param.span(), format!("parameter `{param}` is given twice")));
+            return Err(syn::Error::new(
+                param.span(),
+                format!("parameter `{param}` is given twice: expected each parameter once, found `{param}` again"),
+            ));
         }
         given.push((param, value));
     }
@@ -222,7 +252,10 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
     if !missing.is_empty() {
         return Err(syn::Error::new(
             name.span(),
-            format!("instance `{name}` of part `{kind}` needs a value for each parameter: add {}", missing.join(", ")),
+            format!(
+                "instance `{name}` of part `{kind}` needs a value for each parameter: expected {}, found none; add it",
+                missing.join(", ")
+            ),
         ));
     }
     Ok(Some((part, name.clone(), given)))
@@ -386,7 +419,7 @@ fn resolve(tokens: &[TokenTree], namespaces: &Namespaces, names: &Names) -> syn:
                         return Err(syn::Error::new(
                             member.span(),
                             format!(
-                                "`{}` has no `{member}`{hint}; it declares {}",
+                                "`{}` has no `{member}`: expected one of {}, found `{member}`{hint}",
                                 names.written(&current),
                                 known.iter().map(|m| format!("`{}`", names.written(m))).collect::<Vec<_>>().join(", ")
                             ),
@@ -527,10 +560,13 @@ mod tests {
     fn mistakes_in_parts_and_instances_are_errors_that_say_what_is_expected() {
         let body = quote!(body b { mass: 1.0, inertia: 0.1 });
         let cases = [
-            (quote!(M { part arm(x) { #body } arm a(y: 1.0); }), "part `arm` has no parameter `y` (did you mean `x`?); it takes `x`"),
+            (
+                quote!(M { part arm(x) { #body } arm a(y: 1.0); }),
+                "part `arm` has no parameter `y`: expected `x`, found `y` (did you mean `x`?)",
+            ),
             (
                 quote!(M { part arm(x, side) { #body } arm a(x: 1.0); }),
-                "instance `a` of part `arm` needs a value for each parameter: add `side: ...`",
+                "instance `a` of part `arm` needs a value for each parameter: expected `side: ...`, found none; add it",
             ),
             (quote!(M { part arm(x) { #body } arm a(x: 1.0, x: 2.0); }), "parameter `x` is given twice"),
             (quote!(M { part arm(x) { #body } arm a(x 1.0); }), "expected `parameter: value`; part `arm` takes `x`"),
@@ -539,13 +575,19 @@ mod tests {
                 quote!(M { part arm() { #body } arm a(); body a { mass: 1.0, inertia: 0.1 } }),
                 "`a` is already the name of a part's instance",
             ),
-            (quote!(M { part arm() { #body } amr a(); }), "unknown part `amr` (did you mean `arm`?): the parts are arm"),
-            (quote!(M { part arm() { #body } arm a(); fix a.bb.x; }), "`a` has no `bb` (did you mean `b`?); it declares `b`"),
-            (quote!(M { part arm() { arm inner(); } arm a(); }), "part `arm` uses itself (arm → arm)"),
+            (quote!(M { part arm() { #body } amr a(); }), "unknown part: expected one of arm, found `amr` (did you mean `arm`?)"),
+            (
+                quote!(M { part arm() { #body } arm a(); fix a.bb.x; }),
+                "`a` has no `bb`: expected one of `b`, found `bb` (did you mean `b`?)",
+            ),
+            (
+                quote!(M { part arm() { arm inner(); } arm a(); }),
+                "part `arm` uses itself: expected parts that end, found the cycle arm → arm",
+            ),
             (quote!(M { part arm() { params { k: 1.0 } } arm a(); }), "`params` belongs to the mechanism, not to part `arm`"),
             (quote!(M { part arm() { part b() {} } arm a(); }), "a part is declared at the mechanism's level, not inside another part"),
             (quote!(M { for i in 0..1 { part b() {} } }), "a part is declared at the mechanism's level, outside every loop"),
-            (quote!(M { part body() {} }), "`body` is a statement of its own: a part needs another name"),
+            (quote!(M { part body() {} }), "`body` is a statement of its own: expected a part's name, found `body`"),
             (quote!(M { part arm {} }), "the parameters in parentheses, `()` for none"),
             (quote!(M { part arm() {} part arm() {} }), "part `arm` is declared twice"),
         ];
@@ -564,7 +606,7 @@ mod tests {
             fix c[2].lnk.x;
         }))
         .to_string();
-        assert!(out.contains("`c[2]` has no `lnk` (did you mean `link`?)"), "{out}");
+        assert!(out.contains("`c[2]` has no `lnk`: expected one of `link`, found `lnk` (did you mean `link`?)"), "{out}");
         let out = expand(quote!(M {
             part arm() { body link { mass: 1.0, inertia: 0.0 } revolute ground[0.0, 0.0] ~ link[0.0, 0.0]; }
             arm c[2]();

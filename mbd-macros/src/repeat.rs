@@ -95,7 +95,9 @@ fn unroll_for(tokens: &[TokenTree], start: usize, u: &mut Unroll) -> syn::Result
         integer(part, &u.scope).map_err(|why| {
             syn::Error::new(
                 span,
-                format!("the {which} bound of a `for` must be an integer expression of numbers and enclosing loop variables: {why}"),
+                format!(
+                    "the {which} bound of a `for`: expected an integer expression of numbers and enclosing loop variables, found {why}"
+                ),
             )
         })
     };
@@ -106,7 +108,10 @@ fn unroll_for(tokens: &[TokenTree], start: usize, u: &mut Unroll) -> syn::Result
     for k in a..b {
         u.count += 1;
         if u.count > MAX_REPETITIONS {
-            return Err(syn::Error::new(range_span, format!("more than {MAX_REPETITIONS} repetitions: is the range what you meant?")));
+            return Err(syn::Error::new(
+                range_span,
+                format!("expected at most {MAX_REPETITIONS} repetitions, found more: is the range what you meant?"),
+            ));
         }
         u.scope.push((var.to_string(), k));
         let unrolled = statements(body.stream(), u);
@@ -137,7 +142,10 @@ fn transform_one(tokens: &[TokenTree], i: usize, u: &mut Unroll, out: &mut Vec<T
                         written = format!("{written}[{index}]");
                     }
                     Ok(index) => {
-                        return Err(syn::Error::new(g.span(), format!("an index must not be negative; `{id}[…]` is {index} here")))
+                        return Err(syn::Error::new(
+                            g.span(),
+                            format!("an index must not be negative: expected 0 or more, found {index} for `{id}[…]`"),
+                        ))
                     }
                     Err(_) => break,
                 }
@@ -197,7 +205,7 @@ fn integer(tokens: &[TokenTree], scope: &Scope) -> Result<i64, String> {
     let mut at = 0;
     let value = sum(tokens, &mut at, scope)?;
     if at != tokens.len() {
-        return Err(format!("unexpected `{}`", tokens[at]));
+        return Err(format!("`{}`", tokens[at]));
     }
     Ok(value)
 }
@@ -235,15 +243,18 @@ fn unary(t: &[TokenTree], at: &mut usize, scope: &Scope) -> Result<i64, String> 
     *at += 1;
     match token {
         TokenTree::Punct(p) if p.as_char() == '-' => unary(t, at, scope)?.checked_neg().ok_or_else(|| "overflow".into()),
-        TokenTree::Literal(l) => l.to_string().parse::<i64>().map_err(|_| format!("`{l}` is not an integer")),
-        TokenTree::Ident(id) => {
-            scope.iter().rev().find(|(v, _)| id == v).map(|&(_, value)| value).ok_or_else(|| format!("`{id}` is not a loop variable"))
-        }
+        TokenTree::Literal(l) => l.to_string().parse::<i64>().map_err(|_| format!("`{l}`, which is not an integer")),
+        TokenTree::Ident(id) => scope
+            .iter()
+            .rev()
+            .find(|(v, _)| id == v)
+            .map(|&(_, value)| value)
+            .ok_or_else(|| format!("`{id}`, which is not a loop variable")),
         // Parentheses, and the invisible group around a `macro_rules!` fragment (`0..$n`).
         TokenTree::Group(g) if matches!(g.delimiter(), Delimiter::Parenthesis | Delimiter::None) => {
             integer(&g.stream().into_iter().collect::<Vec<_>>(), scope)
         }
-        other => Err(format!("unexpected `{other}`")),
+        other => Err(format!("`{other}`")),
     }
 }
 
@@ -311,11 +322,11 @@ mod tests {
             (quote!(M { for i in 0 to 2 {} }), "a range `a..b`"),
             (
                 quote!(M { for i in 0..n {} }),
-                "upper bound of a `for` must be an integer expression of numbers and enclosing loop variables: `n` is not a loop variable",
+                "the upper bound of a `for`: expected an integer expression of numbers and enclosing loop variables, found `n`, which is not a loop variable",
             ),
-            (quote!(M { for i in 0.5..2 {} }), "`0.5` is not an integer"),
-            (quote!(M { for i in 0..2 { body l[i - 1] {} } }), "an index must not be negative; `l[…]` is -1 here"),
-            (quote!(M { for i in 0..1000000 {} }), "more than 100000 repetitions"),
+            (quote!(M { for i in 0.5..2 {} }), "found `0.5`, which is not an integer"),
+            (quote!(M { for i in 0..2 { body l[i - 1] {} } }), "an index must not be negative: expected 0 or more, found -1 for `l[…]`"),
+            (quote!(M { for i in 0..1000000 {} }), "expected at most 100000 repetitions, found more"),
         ];
         for (input, want) in cases {
             let e = crate::part::expand(input, &mut Names::default()).expect_err(want).to_string();

@@ -64,7 +64,7 @@ pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec
         if seen.contains(&scene_name.to_string()) {
             return Err(syn::Error::new(
                 scene_name.span(),
-                format!("`{scene_name}` is already the name of the mechanism or of another scene: each scene is its own type"),
+                format!("`{scene_name}` is already the name of the mechanism or of another scene: expected a new name, found `{scene_name}` again; each scene is its own type"),
             ));
         }
         seen.push(scene_name.to_string());
@@ -82,9 +82,9 @@ pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec
                 return Err(syn::Error::new(
                     item.span(),
                     format!(
-                        "scene `{scene_name}` leaves out `{word}`, which `{name}` does not have{hint}: a scene leaves out labelled \
-                         statements (`actuator lift: ...`; here: {}), a part's label in every instance, and the effects `gravity` and \
-                         `friction`",
+                        "scene `{scene_name}` leaves out what `{name}` does not have: expected a labelled statement \
+                         (`actuator lift: ...`; here: {}), a part's label (left out in every instance), `gravity` or `friction`, \
+                         found `{word}`{hint}",
                         if names.is_empty() { "none is labelled".to_string() } else { names.join(", ") }
                     ),
                 ));
@@ -306,10 +306,10 @@ mod tests {
         let cases = [
             (
                 quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute pin: ground[0.0, 0.0] ~ b[0.0, 0.0]; scene S without pn; }),
-                "scene `S` leaves out `pn`, which `M` does not have (did you mean `pin`?): a scene leaves out labelled statements (`actuator lift: ...`; here: pin), a part's label in every instance, and the effects `gravity` and `friction`",
+                "scene `S` leaves out what `M` does not have: expected a labelled statement (`actuator lift: ...`; here: pin), a part's label (left out in every instance), `gravity` or `friction`, found `pn` (did you mean `pin`?)",
             ),
-            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without gravity; }), "leaves out `gravity`, which `M` does not have"),
-            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without friction; }), "leaves out `friction`, which `M` does not have"),
+            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without gravity; }), "leaves out what `M` does not have: expected a labelled statement (`actuator lift: ...`; here: none is labelled), a part's label (left out in every instance), `gravity` or `friction`, found `gravity`"),
+            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without friction; }), "found `friction`"),
             (quote!(M { gravity [0.0, -9.81]; body b { mass: 1.0, inertia: 0.1 } scene M without gravity; }), "`M` is already the name of the mechanism or of another scene"),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S with friction; }), "expected `scene Name without item, item, ...;`"),
         ];

@@ -31,22 +31,22 @@ pub fn resolve<'a>(
     let coord = Coord::from_ident(r.space, coordinate).filter(|c| !c.is_euler_parameter());
     if coord.is_none() {
         let msg = match r.space {
-            crate::model::Space::Planar => format!("unknown coordinate `{coordinate}`: a body has `x`, `y` and `phi`"),
+            crate::model::Space::Planar => format!("unknown coordinate: expected `x`, `y` or `phi`, found `{coordinate}`"),
             crate::model::Space::Spatial => format!(
-                "`{coordinate}` cannot be driven: a spatial body's `x`, `y` or `z` can; drive its orientation through a joint (`drive hinge.angle = f;`)"
+                "`{coordinate}` cannot be driven: expected a spatial body's `x`, `y` or `z`, found its orientation's `{coordinate}`; drive its orientation through a joint (`drive hinge.angle = f;`)"
             ),
         };
         r.errors.push(coordinate.span(), msg);
     }
     match (b, coord, f) {
         (Some(BodyRef::Ground), _, _) => {
-            r.errors.push(body.span(), "the ground cannot be driven");
+            r.errors.push(body.span(), "expected a moving body, found `ground`, which cannot be driven");
             None
         }
         (Some(BodyRef::Body(k)), Some(coord), f) => {
             let span: Span = coordinate.span();
             if driven.coords.insert((k, coord), span).is_some() {
-                r.errors.push(span, format!("`{body}.{}` is already fixed or driven", coord.name()));
+                r.errors.push(span, format!("`{body}.{}` is fixed or driven twice: expected one `fix` or `drive` per coordinate, found a second one; remove one", coord.name()));
                 return None;
             }
             let f = f?;

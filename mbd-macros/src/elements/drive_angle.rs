@@ -22,13 +22,16 @@ pub fn resolve<'a>(r: &mut Resolver, d: &'a DriveDef, i: &Ident, j: &Ident, f: O
     let (bi, bj) = (r.body(i), r.body(j));
     match (bi, bj, f) {
         (Some(bi), Some(bj), _) if bi == bj => {
-            r.errors.push(j.span(), format!("a relative angle needs two different bodies, found `{j}` twice"));
+            r.errors.push(j.span(), format!("a relative angle needs two different bodies: expected a second body, found `{j}` again"));
             None
         }
         (Some(bi), Some(bj), f) => {
             let key = if format!("{bi:?}") < format!("{bj:?}") { (bi, bj) } else { (bj, bi) };
             if !driven.angles.insert(key) {
-                r.errors.push(i.span(), format!("the angle between `{i}` and `{j}` is already driven"));
+                r.errors.push(
+                    i.span(),
+                    format!("the angle between `{i}` and `{j}` is driven twice: expected one driver, found a second one; remove one"),
+                );
                 return None;
             }
             let f = f?;

@@ -30,11 +30,12 @@ pub fn resolve<'a>(
     let lj = r.loc(&j.0, &j.1);
     match (li, lj, f) {
         (Some(li), Some(lj), _) if li.body == lj.body => {
-            r.errors.push(j.0.span(), "a distance driver needs points on two different bodies");
+            r.errors
+                .push(j.0.span(), "a distance driver needs points on two different bodies: expected a second body, found the first again");
             None
         }
         (Some(_), Some(_), Some(f)) if f.is_zero_in_time() => {
-            r.errors.at_expr(&d.f, "a distance driver to length 0 has no direction to pull along: drive the points' coordinates, or join them with a `revolute`");
+            r.errors.at_expr(&d.f, "a distance driver to length 0 has no direction to pull along: expected a length that stays positive, found 0; drive the points' coordinates, or join them with a `revolute`");
             None
         }
         (Some(li), Some(lj), Some(f)) => {

@@ -25,22 +25,29 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a FixDef, driven: &mut Driven, bodies:
     let coord = Coord::from_ident(r.space, &f.coordinate).filter(|c| !c.is_euler_parameter());
     if coord.is_none() {
         let msg = match r.space {
-            crate::model::Space::Planar => format!("unknown coordinate `{}`: a body has `x`, `y` and `phi`", f.coordinate),
+            crate::model::Space::Planar => format!("unknown coordinate: expected `x`, `y` or `phi`, found `{}`", f.coordinate),
             crate::model::Space::Spatial => format!(
-                "`{}` cannot be fixed: a spatial body's `x`, `y` or `z` can; hold its orientation with a `rigid` joint (to `ground` or to another body)",
-                f.coordinate
+                "`{}` cannot be fixed: expected a spatial body's `x`, `y` or `z`, found its orientation's `{}`; hold its orientation with a `rigid` joint (to `ground` or to another body)",
+                f.coordinate, f.coordinate
             ),
         };
         r.errors.push(f.coordinate.span(), msg);
     }
     match (body, coord) {
         (Some(BodyRef::Ground), _) => {
-            r.errors.push(f.body.span(), "the ground is fixed already");
+            r.errors.push(f.body.span(), "expected a moving body, found `ground`, which is fixed already");
             None
         }
         (Some(BodyRef::Body(k)), Some(coord)) => {
             if driven.coords.insert((k, coord), f.coordinate.span()).is_some() {
-                r.errors.push(f.coordinate.span(), format!("`{}.{}` is already fixed or driven", f.body, coord.name()));
+                r.errors.push(
+                    f.coordinate.span(),
+                    format!(
+                        "`{}.{}` is fixed or driven twice: expected one `fix` or `drive` per coordinate, found a second one; remove one",
+                        f.body,
+                        coord.name()
+                    ),
+                );
                 return None;
             }
             let value = match &f.value {

@@ -118,15 +118,21 @@ pub fn resolve<'a>(
     let kind = j.kind.to_string();
     let Some(spec) = spec(&kind) else {
         let spatial = spatial::spec(&kind).is_some();
-        let why = if spatial { " in the plane (it is a spatial joint: state `spatial;`)" } else { "" };
-        r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`{why}"));
+        let why = if spatial { ", a spatial joint, in the plane; state `spatial;` for a spatial mechanism" } else { "" };
+        r.errors.push(j.kind.span(), format!("unknown joint kind: expected a planar joint, found `{kind}`{why}"));
         return None;
     };
     let li = r.loc(&j.i.body, &j.i.point);
     let lj = r.loc(&j.j.body, &j.j.point);
     let (li, lj) = (li?, lj?);
     if li.body == lj.body {
-        r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
+        r.errors.push(
+            j.j.body.span(),
+            format!(
+                "a joint of body `{0}` to itself: expected a second body, found `{0}` again; a {kind} joint connects two different bodies",
+                j.j.body
+            ),
+        );
         return None;
     }
     let axis = |r: &mut Resolver, side: &parse::Attach, body: BodyRef, needed: bool, which: &str| -> Option<Option<Components>> {
@@ -135,12 +141,18 @@ pub fn resolve<'a>(
             (None, true) => {
                 r.errors.push(
                     side.body.span(),
-                    format!("a {kind} joint needs a sliding axis on its {which} body: `{}.P along [x, y]`", side.body),
+                    format!(
+                        "a {kind} joint needs a sliding axis on its {which} body: expected `{}.P along [x, y]`, found no `along`",
+                        side.body
+                    ),
                 );
                 None
             }
             (Some(a), false) => {
-                r.errors.push(a.keyword.span(), format!("a {kind} joint takes no axis on its {which} body"));
+                r.errors.push(
+                    a.keyword.span(),
+                    format!("a {kind} joint takes no axis on its {which} body: expected a point, found `along`; remove the axis"),
+                );
                 None
             }
             (None, false) => Some(None),
@@ -181,13 +193,15 @@ pub fn joint_options(
         let key = f.name.to_string();
         let Some(&(_, positive)) = known.iter().find(|(n, _)| *n == key) else {
             let list = if known.is_empty() { "none".to_string() } else { known.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
-            r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} joint (it takes: {list})"));
+            let names: Vec<&str> = known.iter().map(|(n, _)| *n).collect();
+            let hint = parse::closest(&key, &names, &[]);
+            r.errors.push(f.name.span(), format!("unknown option of a {kind} joint: expected one of {list}, found `{key}`{hint}"));
             bad = true;
             continue;
         };
         match &f.value {
             FieldValue::List(v) => {
-                r.errors.push(v.span, format!("`{key}` is a number, not a list"));
+                r.errors.push(v.span, format!("`{key}` is a number: expected a number, found a list"));
                 bad = true;
             }
             FieldValue::Expr(e) => match r.expr(e, Scope::Params) {
@@ -196,7 +210,10 @@ pub fn joint_options(
                         check_positive(r.errors, &m, e, what);
                     }
                     if options.insert(key.clone(), m).is_some() {
-                        r.errors.push(f.name.span(), format!("duplicate option `{key}`"));
+                        r.errors.push(
+                            f.name.span(),
+                            format!("duplicate option `{key}`: expected each option once, found `{key}` again; keep one"),
+                        );
                         bad = true;
                     }
                 }

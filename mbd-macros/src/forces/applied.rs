@@ -23,7 +23,7 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a ForceDef) -> Option<Resolved<'a>> {
     let value = r.components(&f.value, Scope::Force, &format!("a force `{shape}` (N)"));
     match (at, value) {
         (Some(at), _) if at.body == BodyRef::Ground => {
-            r.errors.push(f.body.span(), "a force on the ground does nothing: apply it to a moving body");
+            r.errors.push(f.body.span(), "a force on the ground does nothing: expected a moving body, found `ground`");
             None
         }
         (Some(at), Some(force)) => {

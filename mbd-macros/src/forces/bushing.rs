@@ -25,7 +25,7 @@ pub struct Bushing {
 
 pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef) -> String) -> Option<Resolved<'a>> {
     if r.space != Space::Spatial {
-        r.errors.push(f.kind.span(), "a bushing is a spatial element: state `spatial;` (in the plane use springs and rotational springs)");
+        r.errors.push(f.kind.span(), "a bushing is a spatial element: expected `spatial;` in the mechanism, found a planar one; in the plane use springs and rotational springs");
         return None;
     }
     let mi = marker(r, &f.i, Axis::Default, "bushing", "first");
@@ -35,24 +35,33 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     for field in &f.options {
         let key = field.name.to_string();
         let Some(slot) = ["k", "c", "preload"].iter().position(|n| *n == key) else {
-            r.errors.push(field.name.span(), format!("unknown option `{key}` of a bushing (it takes: k, c, preload)"));
+            r.errors.push(
+                field.name.span(),
+                format!(
+                    "unknown option of a bushing: expected one of k, c, preload, found `{key}`{}",
+                    crate::parse::closest(&key, &["k", "c", "preload"], &[])
+                ),
+            );
             bad = true;
             continue;
         };
         match &field.value {
             FieldValue::Expr(e) => {
-                r.errors.at_expr(e, format!("`{key}` of a bushing is a list of six: x, y, z along marker i's axes, then turns about them"));
+                r.errors.at_expr(e, format!("`{key}` of a bushing is a list of six: expected x, y, z along marker i's axes, then turns about them, found a number"));
                 bad = true;
             }
             FieldValue::List(v) if v.items.len() != 6 => {
-                r.errors.push(v.span, format!("`{key}` of a bushing has 6 entries (x, y, z, rx, ry, rz), found {}", v.items.len()));
+                r.errors.push(v.span, format!("`{key}` of a bushing: expected 6 entries (x, y, z, rx, ry, rz), found {}", v.items.len()));
                 bad = true;
             }
             FieldValue::List(v) => {
                 let items: Option<Vec<MExpr>> = v.items.iter().map(|e| r.expr(e, Scope::Params)).collect();
                 match items {
                     Some(_) if lists[slot].is_some() => {
-                        r.errors.push(field.name.span(), format!("duplicate option `{key}`"));
+                        r.errors.push(
+                            field.name.span(),
+                            format!("duplicate option `{key}`: expected each option once, found `{key}` again; keep one"),
+                        );
                         bad = true;
                     }
                     Some(items) => lists[slot] = Some(items),
@@ -66,13 +75,16 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
         return None;
     }
     if mi.loc.body == mj.loc.body {
-        r.errors
-            .push(f.j.body.span(), format!("a bushing of body `{}` to itself does nothing: it connects two different bodies", f.j.body));
+        r.errors.push(
+            f.j.body.span(),
+            format!("a bushing of body `{0}` to itself does nothing: expected a second body, found `{0}` again", f.j.body),
+        );
         return None;
     }
     let [k, c, preload] = lists;
     let Some(k) = k else {
-        r.errors.push(f.kind.span(), "a bushing needs its stiffnesses: `{ k: [kx, ky, kz, krx, kry, krz] }` (N/m, N·m/rad)");
+        r.errors
+            .push(f.kind.span(), "a bushing needs its stiffnesses: expected `k: [kx, ky, kz, krx, kry, krz]` (N/m, N·m/rad), found none");
         return None;
     };
     let name = format!("bushing {}~{}", body_name(mi.loc.body), body_name(mj.loc.body));

@@ -30,12 +30,23 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     let mut o = super::options(r, &f.kind, &f.options, &known)?;
     let (li, lj) = (li?, lj?);
     if li.body == lj.body {
-        r.errors
-            .push(f.j.body.span(), format!("a cable from body `{}` to itself does nothing: it connects two different bodies", f.j.body));
+        r.errors.push(
+            f.j.body.span(),
+            format!("a cable from body `{0}` to itself does nothing: expected a second body, found `{0}` again", f.j.body),
+        );
         return None;
     }
-    let (Some(k), Some(length)) = (o.remove("k"), o.remove("length")) else {
-        r.errors.push(f.kind.span(), "a cable needs its stiffness and unstretched length: `{ k: 5.0e4, length: 1.2 }` (N/m, m)");
+    let (k, length) = (o.remove("k"), o.remove("length"));
+    let (Some(k), Some(length)) = (k.clone(), length.clone()) else {
+        let found = match (k, length) {
+            (Some(_), None) => "only `k`",
+            (None, Some(_)) => "only `length`",
+            _ => "neither",
+        };
+        r.errors.push(
+            f.kind.span(),
+            format!("a cable needs its stiffness and unstretched length: expected `k` (N/m) and `length` (m), found {found}; e.g. `{{ k: 5.0e4, length: 1.2 }}`"),
+        );
         return None;
     };
     let name = format!("cable {}~{}", body_name(li.body), body_name(lj.body));

@@ -28,14 +28,17 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     let li = r.loc(&f.i.body, &f.i.point);
     let lj = r.loc(&f.j.body, &f.j.point);
     if let Some(a) = &f.i.along {
-        r.errors.push(a.keyword.span(), "the contact point takes no axis: the surface's normal goes on the second side, `~ Pj along n`");
+        r.errors.push(a.keyword.span(), "the contact point takes no axis: expected a point, found `along`; the surface's normal goes on the second side, `~ Pj along n`");
         return None;
     }
     let Some(along) = &f.j.along else {
         let shape = r.shape(["nx", "ny", "nz"]);
         r.errors.push(
             f.j.body.span(),
-            format!("a contact needs its surface's outward normal: `~ {}.P along {shape}` (in the body's frame)", f.j.body),
+            format!(
+                "a contact needs its surface's outward normal: expected `~ {}.P along {shape}` (in the body's frame), found no `along`",
+                f.j.body
+            ),
         );
         return None;
     };
@@ -46,12 +49,15 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     if li.body == lj.body {
         r.errors.push(
             f.j.body.span(),
-            format!("a contact of body `{}` with itself does nothing: it touches another body or the ground", f.j.body),
+            format!("a contact of body `{0}` with itself does nothing: expected another body or the ground, found `{0}` again", f.j.body),
         );
         return None;
     }
     let Some(k) = o.remove("k") else {
-        r.errors.push(f.kind.span(), "a contact needs its stiffness: `{ k: 1.0e5 }` (N/m; N/mᵉ with an `exponent`)");
+        r.errors.push(
+            f.kind.span(),
+            "a contact needs its stiffness: expected `k` (N/m; N/mᵉ with an `exponent`), found none; e.g. `{ k: 1.0e5 }`",
+        );
         return None;
     };
     let name = format!("contact {}~{}", body_name(li.body), body_name(lj.body));

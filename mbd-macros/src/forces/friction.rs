@@ -51,7 +51,7 @@ pub fn from_joint_options(
                 (None, Some(radius)) => Box::new(RevoluteCoulomb { i: i.body, j: j.body, mu, radius, slip, joint }),
                 (None, None) => {
                     return Err(
-                        "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)".to_string()
+                        "Coulomb friction in a revolute joint needs the pin radius: expected `radius` (m) with `coulomb`, found none; e.g. `{ coulomb: 0.1, radius: 0.01 }`".to_string()
                     )
                 }
             };

@@ -197,19 +197,29 @@ pub fn options(
         let key = f.name.to_string();
         let Some(&(_, scope)) = known.iter().find(|(n, _)| *n == key) else {
             let list: Vec<&str> = known.iter().map(|(n, _)| *n).collect();
-            r.errors.push(f.name.span(), format!("unknown option `{key}` of a {kind} (it takes: {})", list.join(", ")));
+            r.errors.push(
+                f.name.span(),
+                format!(
+                    "unknown option of a {kind}: expected one of {}, found `{key}`{}",
+                    list.join(", "),
+                    crate::parse::closest(&key, &list, &[])
+                ),
+            );
             bad = true;
             continue;
         };
         match &f.value {
             Value::List(v) => {
-                r.errors.push(v.span, format!("`{key}` is a number, not a list"));
+                r.errors.push(v.span, format!("`{key}` is a number: expected a number, found a list"));
                 bad = true;
             }
             Value::Expr(e) => match r.expr(e, scope) {
                 Some(m) => {
                     if out.insert(key.clone(), m).is_some() {
-                        r.errors.push(f.name.span(), format!("duplicate option `{key}`"));
+                        r.errors.push(
+                            f.name.span(),
+                            format!("duplicate option `{key}`: expected each option once, found `{key}` again; keep one"),
+                        );
                         bad = true;
                     }
                 }

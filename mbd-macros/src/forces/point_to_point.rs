@@ -31,11 +31,14 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     let mut o = super::options(r, &f.kind, &f.options, &known)?;
     let (li, lj) = (li?, lj?);
     if li.body == lj.body {
-        r.errors.push(f.j.body.span(), format!("a {kind} of body `{}` to itself does nothing: it connects two different bodies", f.j.body));
+        r.errors.push(
+            f.j.body.span(),
+            format!("a {kind} of body `{0}` to itself does nothing: expected a second body, found `{0}` again", f.j.body),
+        );
         return None;
     }
     let required = match kind.as_str() {
-        "spring" => ("k", "a spring needs its stiffness: `{ k: 2.0e3, length: 0.3 }` (N/m, m)"),
+        "spring" => ("k", "a spring needs its stiffness: expected `k` (N/m), found none; e.g. `{ k: 2.0e3, length: 0.3 }` (N/m, m)"),
         "damper" => ("c", "a damper needs its damping coefficient: `{ c: 50.0 }` (N·s/m)"),
         _ => ("force", "an actuator needs its force: `{ force: 100.0 * sin(t) }` (N, tension positive)"),
     };
@@ -44,7 +47,7 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
         return None;
     }
     if o.contains_key("k") && !o.contains_key("length") {
-        r.errors.push(f.kind.span(), "a spring needs its free length: `length: 0.3` (m)");
+        r.errors.push(f.kind.span(), "a spring needs its free length: expected `length` (m), found none; e.g. `length: 0.3`");
         return None;
     }
     let name = format!("{kind} {}~{}", body_name(li.body), body_name(lj.body));

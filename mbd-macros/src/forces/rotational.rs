@@ -46,33 +46,30 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a RotationalDef, joints: &SpatialJoint
             let bj = r.body(j);
             (Some((bi, bj, j)), None)
         }
-        (None, true) => {
-            match joints.get(&f.i.to_string()) {
-                Some((jk, mi, mj)) if matches!(*jk, "revolute" | "cylindrical") => (None, Some((mi.clone(), mj.clone()))),
-                Some((jk, ..)) => {
-                    r.errors
-                        .push(f.i.span(), format!("a {kind} acts on a revolute or cylindrical joint's angle; `{}` is a {jk} joint", f.i));
-                    return None;
-                }
-                None => {
-                    r.errors.push(f.i.span(), format!("unknown joint `{}`: a {kind} in space acts on a labelled revolute or cylindrical joint, `{kind} hinge {{ ... }};`", f.i));
-                    return None;
-                }
+        (None, true) => match joints.get(&f.i.to_string()) {
+            Some((jk, mi, mj)) if matches!(*jk, "revolute" | "cylindrical") => (None, Some((mi.clone(), mj.clone()))),
+            Some((jk, ..)) => {
+                r.errors.push(f.i.span(), format!("a {kind} acts on a revolute or cylindrical joint's angle; `{}` is a {jk} joint", f.i));
+                return None;
             }
-        }
+            None => {
+                r.errors.push(f.i.span(), format!("unknown joint: expected a labelled revolute or cylindrical joint, found `{}`; a {kind} in space acts on one, `{kind} hinge {{ ... }};`", f.i));
+                return None;
+            }
+        },
         (Some(j), true) => {
             r.errors
                 .push(j.span(), format!("in space a {kind} acts on a joint's angle: `{kind} hinge {{ ... }};` with `revolute hinge: ...`"));
             return None;
         }
         (None, false) => {
-            r.errors.push(f.i.span(), format!("a {kind} connects two bodies: `{kind} {} ~ other {{ ... }};`", f.i));
+            r.errors.push(f.i.span(), format!("a {kind} connects two bodies: expected `{kind} {} ~ other {{ ... }};`, found no `~`", f.i));
             return None;
         }
     };
     let mut o = super::options(r, &f.kind, &f.options, &known)?;
     let required = match kind.as_str() {
-        "rotational_spring" => ("k", "a rotational spring needs its stiffness: `{ k: 50.0 }` (N·m/rad)"),
+        "rotational_spring" => ("k", "a rotational spring needs its stiffness: expected `k` (N·m/rad), found none; e.g. `{ k: 50.0 }`"),
         "rotational_damper" => ("c", "a rotational damper needs its damping coefficient: `{ c: 0.5 }` (N·m·s/rad)"),
         _ => ("torque", "a torque actuator needs its torque: `{ torque: 2.0 * sin(t) }` (N·m)"),
     };
@@ -88,7 +85,7 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a RotationalDef, joints: &SpatialJoint
     let (bi, bj, j) = sides?;
     let (bi, bj) = (bi?, bj?);
     if bi == bj {
-        r.errors.push(j.span(), format!("a {kind} of body `{j}` to itself does nothing: it connects two different bodies"));
+        r.errors.push(j.span(), format!("a {kind} of body `{j}` to itself does nothing: expected a second body, found `{j}` again"));
         return None;
     }
     let name = format!("{kind} {}~{}", f.i, j);

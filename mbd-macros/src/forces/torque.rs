@@ -32,21 +32,21 @@ pub fn resolve<'a>(r: &mut Resolver, tq: &'a TorqueDef) -> Option<Resolved<'a>> 
         (FieldValue::Expr(e), false) => r.expr(e, Scope::Force).map(|t| vec![t]),
         (FieldValue::List(v), true) => r.components(v, Scope::Force, "a torque `[tx, ty, tz]` (N·m)"),
         (FieldValue::Expr(e), true) => {
-            r.errors.at_expr(e, "a torque in space has three components: `[tx, ty, tz]` (N·m)");
+            r.errors.at_expr(e, "a torque in space has three components: expected `[tx, ty, tz]` (N·m), found a number");
             None
         }
         (FieldValue::List(v), false) => {
-            r.errors.push(v.span, "a planar torque is a number (N·m, counter-clockwise positive), not a list");
+            r.errors.push(v.span, "a planar torque is a number: expected a number (N·m, counter-clockwise positive), found a list");
             None
         }
     };
     if tq.keyword == "local_torque" && !spatial {
-        r.errors.push(tq.keyword.span(), "`local_torque` is for spatial mechanisms (`spatial;`); a planar torque is `torque body = τ;`");
+        r.errors.push(tq.keyword.span(), "`local_torque` is for spatial mechanisms: expected `spatial;` in the mechanism, found a planar one; a planar torque is `torque body = τ;`");
         return None;
     }
     match (body, torque) {
         (Some(BodyRef::Ground), _) => {
-            r.errors.push(tq.body.span(), "a torque on the ground does nothing: apply it to a moving body");
+            r.errors.push(tq.body.span(), "a torque on the ground does nothing: expected a moving body, found `ground`");
             None
         }
         (Some(BodyRef::Body(k)), Some(mut torque)) => {

@@ -36,16 +36,16 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
     if lj.body != BodyRef::Ground {
         r.errors.push(
             f.j.body.span(),
-            "a tyre rolls on the road, which is fixed: write `~ ground[0.0, 0.0]` (the road's height is measured from that point)",
+            "a tyre rolls on the road, which is fixed: expected `~ ground[0.0, 0.0]` (the road's height is measured from that point), found a moving body",
         );
         return None;
     }
     if li.body == BodyRef::Ground {
-        r.errors.push(f.i.body.span(), "a tyre's first point is its wheel's centre on a moving body, not on the ground");
+        r.errors.push(f.i.body.span(), "a tyre's first point is its wheel's centre: expected a point on a moving body, found `ground`");
         return None;
     }
     let (Some(radius), Some(k)) = (o.remove("radius"), o.remove("k")) else {
-        r.errors.push(f.kind.span(), "a tyre needs its radius and radial stiffness: `{ radius: 0.3, k: 2.0e5 }` (m, N/m)");
+        r.errors.push(f.kind.span(), "a tyre needs its radius and radial stiffness: expected `radius` (m) and `k` (N/m), found not both; e.g. `{ radius: 0.3, k: 2.0e5 }`");
         return None;
     };
     let name = format!("tyre {}", body_name(li.body));

@@ -145,11 +145,17 @@ pub fn marker(r: &mut Resolver, side: &parse::Attach, axis: Axis, kind: &str, wh
             (z, vec![MExpr::Num(1.0), MExpr::Num(0.0), MExpr::Num(0.0)])
         }
         (None, Axis::Required) => {
-            r.errors.push(side.body.span(), format!("a {kind} joint needs an axis on its {which} body: `{}.P along [x, y, z]`", side.body));
+            r.errors.push(
+                side.body.span(),
+                format!("a {kind} joint needs an axis on its {which} body: expected `{}.P along [x, y, z]`, found no `along`", side.body),
+            );
             return None;
         }
         (Some(a), Axis::None) => {
-            r.errors.push(a.keyword.span(), format!("a {kind} joint takes no axis on its {which} body"));
+            r.errors.push(
+                a.keyword.span(),
+                format!("a {kind} joint takes no axis on its {which} body: expected a point, found `along`; remove the axis"),
+            );
             return None;
         }
         (Some(a), _) => {
@@ -175,15 +181,21 @@ pub fn resolve<'a>(
     let kind = j.kind.to_string();
     let Some(spec) = spec(&kind) else {
         let planar = super::spec(&kind).is_some();
-        let why = if planar { " in space (it is a planar joint)" } else { "" };
-        r.errors.push(j.kind.span(), format!("unknown joint kind `{kind}`{why}"));
+        let why = if planar { ", a planar joint, in space" } else { "" };
+        r.errors.push(j.kind.span(), format!("unknown joint kind: expected a spatial joint, found `{kind}`{why}"));
         return None;
     };
     let mi = marker(r, &j.i, spec.axis_i, &kind, "first");
     let mj = marker(r, &j.j, spec.axis_j, &kind, "second");
     let (mi, mj) = (mi?, mj?);
     if mi.loc.body == mj.loc.body {
-        r.errors.push(j.j.body.span(), format!("a joint of body `{}` to itself: a {kind} joint connects two different bodies", j.j.body));
+        r.errors.push(
+            j.j.body.span(),
+            format!(
+                "a joint of body `{0}` to itself: expected a second body, found `{0}` again; a {kind} joint connects two different bodies",
+                j.j.body
+            ),
+        );
         return None;
     }
     let mut options = super::joint_options(r, &kind, spec.options, &j.options)?;
@@ -225,7 +237,7 @@ fn friction_options(
                 (false, Some(r)) => Some(r),
                 (false, None) => {
                     return Err(
-                        "Coulomb friction in a revolute joint needs the pin radius: `{ coulomb: 0.1, radius: 0.01 }` (m)".to_string()
+                        "Coulomb friction in a revolute joint needs the pin radius: expected `radius` (m) with `coulomb`, found none; e.g. `{ coulomb: 0.1, radius: 0.01 }`".to_string()
                     )
                 }
             };
@@ -271,7 +283,7 @@ pub fn drive_joint<'a>(
         let hint = parse::closest(&joint.to_string(), &names, &[]);
         r.errors.push(
             joint.span(),
-            format!("unknown body or joint `{joint}`{hint}: drive a body's `x`, `y`, `z`, or a labelled joint's `angle` or `stroke` (`revolute {joint}: ...`)"),
+            format!("unknown body or joint: expected a body or a labelled joint, found `{joint}`{hint}; drive a body's `x`, `y`, `z`, or a labelled joint's `angle` or `stroke` (`revolute {joint}: ...`)"),
         );
         return None;
     };
@@ -288,13 +300,16 @@ pub fn drive_joint<'a>(
                     "drivers act on a revolute or cylindrical joint's `angle` and a translational or cylindrical joint's `stroke`"
                 }
             };
-            r.errors.push(what.span(), format!("`{joint}.{other}` cannot be driven: `{joint}` is a {kind} joint; {hint}"));
+            r.errors.push(what.span(), format!("`{joint}.{other}` cannot be driven: expected a joint with an `angle` or a `stroke`, found `{joint}`, a {kind} joint; {hint}"));
             return None;
         }
     };
     let key = format!("{joint}.{what}");
     if !driven.joints.insert(key.clone()) {
-        r.errors.push(what.span(), format!("`{key}` is already driven"));
+        r.errors.push(
+            what.span(),
+            format!("`{key}` is driven twice: expected one driver per joint coordinate, found a second one; remove one"),
+        );
         return None;
     }
     Some((d.label.as_ref(), format!("drive {key}"), d.keyword.span(), element, Vec::new()))
