@@ -6,8 +6,10 @@ fn ui() {
     t.compile_fail("tests/ui/*/*.rs");
 }
 
-/// The catalogue's messages, as committed: each says what was expected and what was found, and
-/// the catalogue covers at least 40 classes of mistake, grouped by topic.
+/// The catalogue's messages, as committed: each says what was expected and what was found; the
+/// catalogue covers at least 40 classes of mistake, grouped by topic; and each case's `main` uses
+/// the mechanism's type (its constants, traits and solvers), so that its committed stderr shows
+/// the mistake adds no follow-up error there.
 #[test]
 fn every_message_says_what_was_expected_and_what_was_found() {
     let mut cases = 0;
@@ -16,6 +18,10 @@ fn every_message_says_what_was_expected_and_what_was_found() {
         let group = group.unwrap().path();
         for file in std::fs::read_dir(&group).unwrap() {
             let file = file.unwrap().path();
+            if file.extension().is_some_and(|e| e == "rs") {
+                let program = std::fs::read_to_string(&file).unwrap();
+                assert!(!program.contains("fn main() {}"), "{}: `main` does not use the mechanism", file.display());
+            }
             if file.extension().is_some_and(|e| e == "stderr") {
                 cases += 1;
                 let text = std::fs::read_to_string(&file).unwrap();

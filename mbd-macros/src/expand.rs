@@ -9,7 +9,7 @@ use crate::formulation::{formulate, Formulation};
 use crate::forward::{forward_dynamics, ForwardCode};
 use crate::json::model_json;
 use crate::model::{Model, Partial};
-use crate::parse::MechanismDef;
+use crate::parse::{BodyDef, Expr, Item, MechanismDef};
 
 /// Expands a `mechanism!` invocation: its parts and loops expanded ([`crate::part`],
 /// [`crate::repeat`]), then the base mechanism and each of its scenes ([`crate::scene`]); every
@@ -34,13 +34,42 @@ pub fn expand(input: TokenStream) -> TokenStream {
             }
             out
         });
-    // A mistake in a part, an instance or a scene: the placeholder of what parses as written.
+    // A mistake in a part, a loop, an instance or a scene: the placeholders of the mechanism
+    // without the statement that has it.
     let out = out.unwrap_or_else(|e| {
         let errors = crate::wording::compile_errors(e);
-        let placeholder = syn::parse::Parser::parse2(MechanismDef::parse_recovering, written).map(|(def, _)| placeholder(def)).ok();
-        quote!(#errors #placeholder)
+        let placeholders = placeholders_without_the_mistake(written);
+        quote!(#errors #placeholders)
     });
     names.rewrite_strings(out)
+}
+
+/// The placeholders of a mechanism (and its scenes) whose parts, loops, instances or scenes do
+/// not expand: made of the mechanism without the first top-level statement whose removal lets
+/// them expand, or, when no one statement does, of what parses as written.
+fn placeholders_without_the_mistake(written: TokenStream) -> TokenStream {
+    use proc_macro2::{Delimiter, Group, TokenTree};
+    let tokens: Vec<TokenTree> = written.clone().into_iter().collect();
+    let body = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace));
+    let expands = |input: TokenStream| {
+        let names = &mut crate::names::Names::default();
+        crate::part::expand(input, names).and_then(|input| crate::scene::split(input, names))
+    };
+    let placeholder_of =
+        |input: TokenStream| syn::parse::Parser::parse2(MechanismDef::parse_recovering, input).map(|(def, _)| placeholder(def)).ok();
+    if let Some(at) = body {
+        let TokenTree::Group(g) = &tokens[at] else { unreachable!("found as a brace group") };
+        let statements = crate::scene::statements(g.stream());
+        for k in 0..statements.len() {
+            let kept: TokenStream = statements.iter().enumerate().filter(|&(i, _)| i != k).flat_map(|(_, s)| s.clone()).collect();
+            let mut candidate = tokens.clone();
+            candidate[at] = TokenTree::Group(Group::new(Delimiter::Brace, kept));
+            if let Ok((base, scenes)) = expands(candidate.into_iter().collect()) {
+                return std::iter::once(base).chain(scenes).filter_map(placeholder_of).collect();
+            }
+        }
+    }
+    placeholder_of(written).unwrap_or_default()
 }
 
 /// A raw identifier (`r#type`) names nothing in a mechanism: the names it makes from names
@@ -86,11 +115,14 @@ fn expand_one(input: TokenStream) -> (TokenStream, bool) {
 /// The type of a mechanism that has mistakes, generated in full from its statements without
 /// mistakes, so that the user's code using it — its constants, traits, accessors and solvers —
 /// adds no errors of its own: one mistake, one error. Statements are taken in order, each kept
-/// if it adds no error (a joint naming a body whose statement is wrong goes with it). If what is
-/// left still does not generate, the bare struct with its parameters.
+/// if it adds no error (a joint naming a body whose statement is wrong goes with it). A body
+/// with a mistake stays as a body of unit mass and inertia, and parameters whose defaults have
+/// one stay with defaults 0, so what names them still resolves. If what is left still does not
+/// generate, the bare struct with its parameters.
 fn placeholder(mut def: MechanismDef) -> TokenStream {
     let count = |def: &MechanismDef| def.validate().err().map_or(0, |e| e.into_iter().count());
     let partial = def.partial();
+    let spatial = def.items.iter().any(|i| matches!(i, Item::Spatial(_)));
     let mut left = std::mem::take(&mut def.items);
     let mut errors = count(&def);
     // Passes until one keeps nothing more: a statement may name what a later one declares.
@@ -98,8 +130,19 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
         let kept = def.items.len();
         let mut dropped = Vec::new();
         for statement in left {
+            let stand_in = stand_in(&statement, spatial);
             def.items.push(statement);
-            let now = count(&def);
+            let mut now = count(&def);
+            // The stand-in instead, where it has fewer errors.
+            if let Some(stand_in) = stand_in.filter(|_| now > 0) {
+                let original = std::mem::replace(def.items.last_mut().expect("just pushed"), stand_in);
+                let instead = count(&def);
+                if instead < now {
+                    now = instead;
+                } else {
+                    *def.items.last_mut().expect("just pushed") = original;
+                }
+            }
             if now > errors {
                 dropped.extend(def.items.pop());
             } else {
@@ -111,11 +154,27 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
         }
         left = dropped;
     }
+    // A type needs a body: where none is left, one of unit mass and inertia stands in.
+    if !def.items.iter().any(|i| matches!(i, Item::Body(_))) {
+        let name = proc_macro2::Ident::new("placeholder", def.name.span());
+        def.items.push(Item::Body(BodyDef::unit(name, spatial, false)));
+    }
     let generated = def.validate().and_then(|mut m| {
         m.warnings.clear();
         generate(&m)
     });
     generated.unwrap_or_else(|_| stub(&partial))
+}
+
+/// What stands in for a body or parameter statement with a mistake ([`placeholder`]).
+fn stand_in(statement: &Item, spatial: bool) -> Option<Item> {
+    match statement {
+        Item::Body(b) => Some(Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))),
+        Item::Params(ps) => {
+            Some(Item::Params(ps.iter().map(|(name, value)| (name.clone(), Expr::number(0.0, value.span, value.end))).collect()))
+        }
+        _ => None,
+    }
 }
 
 /// The type of a mechanism whose description has mistakes: its name and parameters, `Default`,

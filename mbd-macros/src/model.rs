@@ -482,6 +482,8 @@ pub struct Partial {
 pub struct Resolver<'a> {
     pub errors: &'a mut Errors,
     pub space: Space,
+    /// The largest magnitude the scalar type holds (f32 or f64).
+    largest: f64,
     params: HashMap<String, usize>,
     /// The parameters' default values, by index (for marker defaults).
     pub defaults: Vec<f64>,
@@ -518,7 +520,7 @@ impl Resolver<'_> {
     }
 
     /// An expression resolved in its scope; a constant part of it that is not finite (`ln(0)`,
-    /// `sqrt(-1)`, `1e999`) is an error on that part.
+    /// `sqrt(-1)`, `1e999`), or beyond f32's range under `scalar f32;`, is an error on that part.
     pub fn expr(&mut self, e: &Expr, scope: Scope) -> Option<MExpr> {
         let m = self.expr_unchecked(e, scope)?;
         match m.constant_value() {
@@ -527,6 +529,10 @@ impl Resolver<'_> {
                     e,
                     format!("expected a finite value, found {v} for every state and time: a constant such as ln(0), 1/0 or sqrt(-1)"),
                 );
+                None
+            }
+            Some(v) if v.abs() > self.largest => {
+                self.errors.at_expr(e, format!("this constant is beyond the range of f32: expected at most ±3.4e38, found {v:e}"));
                 None
             }
             _ => Some(m),
@@ -878,9 +884,11 @@ impl MechanismDef {
                 space = Space::Spatial;
             }
         }
+        let f32 = self.items.iter().any(|i| matches!(i, Item::Scalar(s) if s == "f32"));
         let mut r = Resolver {
             errors,
             space,
+            largest: if f32 { f32::MAX as f64 } else { f64::MAX },
             params: HashMap::new(),
             defaults: Vec::new(),
             bodies: HashMap::new(),
@@ -925,23 +933,31 @@ impl MechanismDef {
                                 name.span(),
                                 format!(
                                     "`{name}` is reserved: expected a parameter's name, found `{name}`, which expressions read as {}",
-                                    if name == "t" { "time" } else { "π" }
+                                    match name.to_string().as_str() {
+                                        "t" => "time",
+                                        "PI" => "π",
+                                        _ => "the fixed frame",
+                                    }
                                 ),
                             );
                             ok = false;
                             continue;
                         }
-                        let Some(default) = r.expr(value, Scope::Constant) else {
-                            ok = false;
-                            continue;
+                        // A default with a mistake is reported; the parameter is still declared,
+                        // so that what uses it is not reported too.
+                        let default = match r.expr(value, Scope::Constant).map(|d| d.constant_value().unwrap_or(f64::NAN)) {
+                            Some(d) if d.is_finite() => d,
+                            Some(d) => {
+                                r.errors
+                                    .at_expr(value, format!("the default of `{name}` is not finite: expected a finite value, found {d}"));
+                                ok = false;
+                                0.0
+                            }
+                            None => {
+                                ok = false;
+                                0.0
+                            }
                         };
-                        let default = default.constant_value().unwrap_or(f64::NAN);
-                        if !default.is_finite() {
-                            r.errors
-                                .at_expr(value, format!("the default of `{name}` is not finite: expected a finite value, found {default}"));
-                            ok = false;
-                            continue;
-                        }
                         r.params.insert(name.to_string(), params.len());
                         r.defaults.push(default);
                         params.push(Param { name: name.clone(), default });

@@ -194,6 +194,11 @@ impl Expr {
         Expr { kind, span, end }
     }
 
+    /// A number written between these spans.
+    pub fn number(value: f64, span: Span, end: Span) -> Self {
+        Expr::new(ExprKind::Num(value), span, end)
+    }
+
     /// An error underlining the whole expression.
     pub fn error(&self, msg: impl std::fmt::Display) -> syn::Error {
         let first = quote::quote_spanned!(self.span=> a);
@@ -343,17 +348,23 @@ impl MechanismDef {
             return Err(input.error("expected nothing after the mechanism's closing brace, found more"));
         }
         let spatial = items.iter().any(|i| matches!(i, Item::Spatial(_)));
-        for body in broken_bodies {
-            let span = body.span();
-            let one = || Expr::new(ExprKind::Num(1.0), span, span);
-            let inertia = if spatial { Value::List(VecLit { items: vec![one(), one(), one()], span }) } else { Value::Expr(one()) };
-            let fields = vec![
-                Field { name: Ident::new("mass", span), value: Value::Expr(one()) },
-                Field { name: Ident::new("inertia", span), value: inertia },
-            ];
-            items.push(Item::Body(BodyDef { name: body, fields, particle: false }));
-        }
+        items.extend(broken_bodies.into_iter().map(|body| Item::Body(BodyDef::unit(body, spatial, false))));
         Ok((MechanismDef { attrs, vis, name, items }, errors))
+    }
+}
+
+impl BodyDef {
+    /// A body of unit mass and inertia, at the origin: what stands in for a body whose statement
+    /// has a mistake, so that what names it still resolves.
+    pub fn unit(name: Ident, spatial: bool, particle: bool) -> Self {
+        let span = name.span();
+        let one = || Expr::new(ExprKind::Num(1.0), span, span);
+        let mut fields = vec![Field { name: Ident::new("mass", span), value: Value::Expr(one()) }];
+        if !particle {
+            let inertia = if spatial { Value::List(VecLit { items: vec![one(), one(), one()], span }) } else { Value::Expr(one()) };
+            fields.push(Field { name: Ident::new("inertia", span), value: inertia });
+        }
+        BodyDef { name, fields, particle }
     }
 }
 

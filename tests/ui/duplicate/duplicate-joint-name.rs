@@ -7,4 +7,10 @@ mechanism! {
         revolute_revolute pin: ground[1.0, 0.0] ~ a[1.0, 0.0] { length: 1.0 };
     }
 }
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = TwoPins::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut TwoPins::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", TwoPins::NQ, TwoPins::NC, <TwoPins as Mechanism>::BODY_NAMES);
+}

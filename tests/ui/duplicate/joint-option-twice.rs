@@ -8,4 +8,10 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Slot::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Slot::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Slot::NQ, Slot::NC, <Slot as Mechanism>::BODY_NAMES);
+}

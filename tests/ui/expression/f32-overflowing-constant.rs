@@ -19,4 +19,14 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Heavy::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Heavy::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Heavy::NQ, Heavy::NC, <Heavy as Mechanism>::BODY_NAMES);
+    let m = Heavier::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Heavier::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Heavier::NQ, Heavier::NC, <Heavier as Mechanism>::BODY_NAMES);
+}

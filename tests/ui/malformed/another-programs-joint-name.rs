@@ -8,4 +8,10 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Slide::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Slide::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Slide::NQ, Slide::NC, <Slide as Mechanism>::BODY_NAMES);
+}

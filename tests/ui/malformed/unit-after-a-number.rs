@@ -15,4 +15,14 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Bob::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Bob::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Bob::NQ, Bob::NC, <Bob as Mechanism>::BODY_NAMES);
+    let m = Bob2::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Bob2::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Bob2::NQ, Bob2::NC, <Bob2 as Mechanism>::BODY_NAMES);
+}

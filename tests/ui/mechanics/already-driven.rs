@@ -8,4 +8,10 @@ mechanism! {
         drive crank.phi = 3.0 * t;
     }
 }
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Crank::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Crank::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Crank::NQ, Crank::NC, <Crank as Mechanism>::BODY_NAMES);
+}

@@ -1,4 +1,4 @@
-use mbd::mechanism;
+use mbd::prelude::*;
 
 mechanism! {
     PinFriction {
@@ -7,4 +7,10 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = PinFriction::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut PinFriction::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", PinFriction::NQ, PinFriction::NC, <PinFriction as Mechanism>::BODY_NAMES);
+}

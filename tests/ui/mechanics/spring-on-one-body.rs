@@ -8,4 +8,10 @@ mechanism! {
         spring bob[0.0, 0.0] ~ bob[0.0, 0.5] { k: 100.0, length: 0.5 };
     }
 }
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Pendulum::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Pendulum::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Pendulum::NQ, Pendulum::NC, <Pendulum as Mechanism>::BODY_NAMES);
+}

@@ -10,4 +10,10 @@ mechanism! {
         tyre wheel[0.0, 0.0] ~ chassis[0.0, 0.0] { radius: 0.3, k: 2.0e5 };
     }
 }
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Quarter::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Quarter::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Quarter::NQ, Quarter::NC, <Quarter as Mechanism>::BODY_NAMES);
+}

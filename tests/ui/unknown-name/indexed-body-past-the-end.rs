@@ -13,4 +13,10 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Chain::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Chain::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Chain::NQ, Chain::NC, <Chain as Mechanism>::BODY_NAMES);
+}

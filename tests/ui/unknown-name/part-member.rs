@@ -15,4 +15,10 @@ mechanism! {
     }
 }
 
-fn main() {}
+// The program uses the mechanism's type as a user would: the mistake above is its one error.
+fn main() {
+    let m = Axle::default();
+    let mut q = m.initial_positions();
+    let _ = KinematicSolver::default().assemble(&m, &mut Axle::workspace(), &mut q, 0.0);
+    println!("{} {} {:?}", Axle::NQ, Axle::NC, <Axle as Mechanism>::BODY_NAMES);
+}
