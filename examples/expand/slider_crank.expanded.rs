@@ -1500,6 +1500,11 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             m[7] = 0.5f64;
             m[8] = 0.001f64;
         }
+        let mut b = phi;
+        let mut worst = 0f64;
+        for x in b.iter() {
+            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
+        }
         let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
@@ -1528,11 +1533,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             return ::core::result::Result::Err(
                 ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
             );
-        }
-        let mut b = phi;
-        let mut worst = 0f64;
-        for x in b.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
         }
         Self::schur_solve(&l, &dinv, &mut b);
         q[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);

@@ -53,7 +53,9 @@ fn placeholders_without_the_mistake(written: TokenStream) -> TokenStream {
     let body = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace));
     let expands = |input: TokenStream| {
         let names = &mut crate::names::Names::default();
-        crate::part::expand(input, names).and_then(|input| crate::scene::split(input, names))
+        refuse_raw_identifiers(&input)
+            .and_then(|()| crate::part::expand(input, names))
+            .and_then(|input| crate::scene::split(input, names))
     };
     let placeholder_of =
         |input: TokenStream| syn::parse::Parser::parse2(MechanismDef::parse_recovering, input).map(|(def, _)| placeholder(def)).ok();
@@ -244,6 +246,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let np = usize_lit(m.params.len());
     let dof = nv as i32 - nc as i32;
     let zero = e.literal(0.0);
+    let inline = crate::emit::inline_hint(nc);
 
     let params: Vec<_> = m.params.iter().map(|p| &p.name).collect();
     let defaults: Vec<_> = m.params.iter().map(|p| e.literal(p.default)).collect();
@@ -318,7 +321,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         });
         quote! {
             const SWITCH_NAMES: &'static [&'static str] = &[#(#names),*];
-            #[inline]
+            #inline
             fn switching_function(&self, k: usize, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
                 match k {
                     #(#cases)*
@@ -552,14 +555,14 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             }
 
             /// The structural non-zeros of Φ_q(q, t), in the order of `JACOBIAN_PATTERN`.
-            #[inline]
+            #inline
             pub fn jacobian_values(&self, q: &[#real; #nq_l], t: #real, out: &mut [#real; #nnz_l]) {
                 #values_body
             }
 
             /// Φ, the structural non-zeros of Φ_q (in the order of `JACOBIAN_PATTERN`), ν and γ in
             /// one evaluation: the sparse twin of `Kinematics::full_eval`.
-            #[inline]
+            #inline
             #[allow(clippy::too_many_arguments)]
             pub fn full_eval_values(
                 &self,
@@ -600,7 +603,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::Linearize<#real, #nq_l, #nv_l, #nc_l> for #name {
             const INPUTS: &'static [&'static str] = &[#(#input_names),*];
-            #[inline]
+            #inline
             fn gamma_derivatives(
                 &self,
                 q: &[#real; #nq_l],
@@ -614,7 +617,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 }
                 #gamma_derivatives_body
             }
-            #[inline]
+            #inline
             fn forces_input(&self, k: usize, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [#real; #nv_l]) {
                 *dh = [#zero; #nv_l];
                 match k {
@@ -638,7 +641,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 
         #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::ConstraintForces<#real, #nq_l, #nv_l, #nc_l> for #name {
-            #[inline]
+            #inline
             fn constraint_force_q(&self, q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], k: &mut [[#real; #nv_l]; #nv_l]) {
                 for row in k.iter_mut() {
                     *row = [#zero; #nv_l];
@@ -650,7 +653,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
         impl ::mbd::Dynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
-            #[inline]
+            #inline
             fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
                 let mut m = [#zero; #nv_l];
                 #coupling_decl
@@ -659,7 +662,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #( y[#mass_entries] = m[#mass_entries] * x[#mass_entries]; )*
                 #coupling_times
             }
-            #[inline]
+            #inline
             fn add_mass_matrix(&self, q: &[#real; #nq_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
                 let mut m = [#zero; #nv_l];
                 #coupling_decl
@@ -667,36 +670,36 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
                 #( a[#mass_entries][#mass_entries] += scale * m[#mass_entries]; )*
                 #coupling_add
             }
-            #[inline]
+            #inline
             fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
                 #h_body
             }
-            #[inline]
+            #inline
             fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
                 for row in dh.iter_mut() {
                     *row = [#zero; #nv_l];
                 }
                 #h_q_body
             }
-            #[inline]
+            #inline
             fn forces_v(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
                 for row in dh.iter_mut() {
                     *row = [#zero; #nv_l];
                 }
                 #h_v_body
             }
-            #[inline]
+            #inline
             fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
                 let mut energy = [#zero; 1];
                 #v_body
                 energy[0]
             }
             #switching
-            #[inline]
+            #inline
             fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
                 #friction_fn
             }
-            #[inline]
+            #inline
             fn friction_derivatives(
                 &self,
                 q: &[#real; #nq_l],
@@ -708,7 +711,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             ) {
                 #friction_derivatives_fn
             }
-            #[inline]
+            #inline
             fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
                 let mut power = [#zero; 1];
                 #power_body
@@ -728,47 +731,47 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, clippy::approx_constant)]
         impl ::mbd::Kinematics<#real, #nq_l, #nv_l, #nc_l> for #name {
-            #[inline]
+            #inline
             fn initial_positions(&self) -> [#real; #nq_l] {
                 let mut q = [#zero; #nq_l];
                 #q0_body
                 q
             }
-            #[inline]
+            #inline
             fn initial_velocities(&self) -> [#real; #nv_l] {
                 let mut v = [#zero; #nv_l];
                 #v0_body
                 v
             }
             #positions_code
-            #[inline]
+            #inline
             fn constraints(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l]) {
                 #phi_body
             }
-            #[inline]
+            #inline
             fn jacobian(&self, q: &[#real; #nq_l], t: #real, d: &mut [[#real; #nv_l]; #nc_l]) {
                 for row in d.iter_mut() {
                     *row = [#zero; #nv_l];
                 }
                 #jac_body
             }
-            #[inline]
+            #inline
             fn velocity_rhs(&self, q: &[#real; #nq_l], t: #real, nu: &mut [#real; #nc_l]) {
                 #zero_nu
             }
-            #[inline]
+            #inline
             fn gamma(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l]) {
                 #gamma_body
             }
             #position_step
-            #[inline]
+            #inline
             fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
                 for row in d.iter_mut() {
                     *row = [#zero; #nv_l];
                 }
                 #pos_body
             }
-            #[inline]
+            #inline
             fn full_eval(
                 &self,
                 q: &[#real; #nq_l],
