@@ -3040,105 +3040,145 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         gamma[8] = 0f64;
     }
     #[inline]
-    fn sparse_position_step(
+    #[allow(clippy::too_many_arguments)]
+    fn sparse_position_solve(
         &self,
-        q: &[f64; 9],
+        q: &mut [f64; 9],
         t: f64,
         tolerance: f64,
         pivot_tolerance: f64,
+        max_iterations: u32,
         phi: &mut [f64; 9],
         step: &mut [f64; 9],
-    ) -> ::core::option::Option<::mbd::PositionStep> {
+    ) -> ::core::option::Option<(::mbd::PositionStep, u32)> {
         let mut jv = [0f64; 23];
-        let (
-            v5,
-            s_crank,
-            c_crank,
-            v10,
-            v12,
-            v13,
-            v24,
-            s_rod,
-            c_rod,
-            v29,
-            v31,
-            v32,
-            s_slider,
-            c_slider,
-            v81,
-        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        let (v5, v24, v59): (f64, f64, f64);
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
-        v10 = (v5 * c_crank);
-        v12 = (v5 * s_crank);
-        v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        v29 = (v24 * c_rod);
-        v31 = (v24 * s_rod);
-        v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        v81 = (-c_slider);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
-        jv[0] = (-1f64);
-        jv[1] = v13;
-        jv[2] = (-1f64);
-        jv[3] = v10;
-        jv[4] = 1f64;
-        jv[5] = v13;
-        jv[6] = (-1f64);
-        jv[7] = v32;
-        jv[8] = 1f64;
-        jv[9] = v10;
-        jv[10] = (-1f64);
-        jv[11] = v29;
-        jv[12] = 1f64;
-        jv[13] = v32;
-        jv[14] = (-1f64);
-        jv[15] = 1f64;
-        jv[16] = v29;
-        jv[17] = (-1f64);
-        jv[18] = s_slider;
-        jv[19] = v81;
-        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        jv[21] = v81;
-        jv[22] = 1f64;
-        let mut worst = 0f64;
-        for x in phi.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
+        v59 = (self.omega * t);
+        let mut iterations = 0u32;
+        loop {
+            {
+                let q: &[f64; 9] = q;
+                let (
+                    s_crank,
+                    c_crank,
+                    v10,
+                    v12,
+                    v13,
+                    s_rod,
+                    c_rod,
+                    v29,
+                    v31,
+                    v32,
+                    s_slider,
+                    c_slider,
+                    v81,
+                ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+                (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+                v10 = (v5 * c_crank);
+                v12 = (v5 * s_crank);
+                v13 = (-v12);
+                (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+                v29 = (v24 * c_rod);
+                v31 = (v24 * s_rod);
+                v32 = (-v31);
+                (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+                phi[0] = (-(q[0] - v10));
+                phi[1] = (-(q[1] - v12));
+                phi[2] = ((v10 + q[0]) - (q[3] - v29));
+                phi[3] = ((v12 + q[1]) - (q[4] - v31));
+                phi[4] = ((v29 + q[3]) - q[6]);
+                phi[5] = ((v31 + q[4]) - q[7]);
+                phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
+                phi[7] = (-s_slider);
+                phi[8] = (q[2] - v59);
+                let mut worst = 0f64;
+                let mut finite = true;
+                for x in phi.iter() {
+                    worst = <f64 as ::mbd::Real>::max(
+                        worst,
+                        <f64 as ::mbd::Real>::abs(*x),
+                    );
+                    finite &= x.is_finite();
+                }
+                if finite && worst <= tolerance {
+                    return ::core::option::Option::Some((
+                        ::mbd::PositionStep::Converged,
+                        iterations,
+                    ));
+                }
+                if !finite || iterations >= max_iterations {
+                    return ::core::option::Option::Some((
+                        ::mbd::PositionStep::Step,
+                        iterations,
+                    ));
+                }
+                v81 = (-c_slider);
+                jv[0] = (-1f64);
+                jv[1] = v13;
+                jv[2] = (-1f64);
+                jv[3] = v10;
+                jv[4] = 1f64;
+                jv[5] = v13;
+                jv[6] = (-1f64);
+                jv[7] = v32;
+                jv[8] = 1f64;
+                jv[9] = v10;
+                jv[10] = (-1f64);
+                jv[11] = v29;
+                jv[12] = 1f64;
+                jv[13] = v32;
+                jv[14] = (-1f64);
+                jv[15] = 1f64;
+                jv[16] = v29;
+                jv[17] = (-1f64);
+                jv[18] = s_slider;
+                jv[19] = v81;
+                jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+                jv[21] = v81;
+                jv[22] = 1f64;
+                let mut l = [0f64; 18];
+                let mut dinv = [0f64; 9];
+                if Self::schur_factor(
+                        &jv,
+                        &[1f64; 9],
+                        pivot_tolerance,
+                        false,
+                        &mut l,
+                        &mut dinv,
+                    )
+                    .is_err()
+                {
+                    return ::core::option::Option::Some((
+                        ::mbd::PositionStep::Singular,
+                        iterations,
+                    ));
+                }
+                let mut b = *phi;
+                Self::schur_solve(&l, &dinv, &mut b);
+                *step = [0f64; 9];
+                step[0] = -(jv[0] * b[0] + jv[4] * b[2]);
+                step[1] = -(jv[2] * b[1] + jv[8] * b[3]);
+                step[2] = -(jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
+                    + jv[22] * b[8]);
+                step[3] = -(jv[6] * b[2] + jv[12] * b[4]);
+                step[4] = -(jv[10] * b[3] + jv[15] * b[5]);
+                step[5] = -(jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4]
+                    + jv[16] * b[5]);
+                step[6] = -(jv[14] * b[4] + jv[18] * b[6]);
+                step[7] = -(jv[17] * b[5] + jv[19] * b[6]);
+                step[8] = -(jv[20] * b[6] + jv[21] * b[7]);
+            }
+            if !step.iter().all(|x| x.is_finite()) {
+                return ::core::option::Option::Some((
+                    ::mbd::PositionStep::Step,
+                    iterations,
+                ));
+            }
+            ::mbd::Kinematics::integrate_positions(self, q, step, 1f64);
+            iterations += 1;
         }
-        if worst <= tolerance {
-            return ::core::option::Option::Some(::mbd::PositionStep::Converged);
-        }
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
-        if Self::schur_factor(&jv, &[1f64; 9], pivot_tolerance, false, &mut l, &mut dinv)
-            .is_err()
-        {
-            return ::core::option::Option::Some(::mbd::PositionStep::Singular);
-        }
-        let mut b = *phi;
-        Self::schur_solve(&l, &dinv, &mut b);
-        *step = [0f64; 9];
-        step[0] = -(jv[0] * b[0] + jv[4] * b[2]);
-        step[1] = -(jv[2] * b[1] + jv[8] * b[3]);
-        step[2] = -(jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
-            + jv[22] * b[8]);
-        step[3] = -(jv[6] * b[2] + jv[12] * b[4]);
-        step[4] = -(jv[10] * b[3] + jv[15] * b[5]);
-        step[5] = -(jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
-        step[6] = -(jv[14] * b[4] + jv[18] * b[6]);
-        step[7] = -(jv[17] * b[5] + jv[19] * b[6]);
-        step[8] = -(jv[20] * b[6] + jv[21] * b[7]);
-        ::core::option::Option::Some(::mbd::PositionStep::Step)
     }
     #[inline]
     fn position_eval(

@@ -25,6 +25,7 @@ pub struct Ops {
 }
 
 /// Where an output goes: an lvalue expression such as `phi[3]` or `d[2][5]`.
+#[derive(Clone)]
 pub struct Output {
     pub target: TokenStream,
     pub node: Id,
@@ -292,6 +293,145 @@ impl Emitter<'_> {
         }
     }
 
+    /// Code for outputs computed in stages that share their temporaries, for a loop that runs
+    /// the stages in turn and may leave after any of them (a Newton iteration: Φ, the convergence
+    /// test, then D): a prologue, computed once before the loop, with every maximal subexpression
+    /// that depends on neither coordinates, velocities nor multipliers (`sin(t + 1)` of a driver;
+    /// with the declarations of all the temporaries); then each stage's statements, each
+    /// temporary in the first stage that reads it. A temporary of a later stage is assigned
+    /// after the earlier stages' statements, so the loop may leave before it is computed.
+    pub fn staged(&self, stages: &[&[Output]]) -> (TokenStream, Vec<TokenStream>) {
+        let g = self.graph;
+        let all: Vec<Output> = stages.iter().flat_map(|s| s.iter().cloned()).collect();
+        let mut plan = self.plan(&all);
+        // Which nodes depend on the state, in ascending id (children first).
+        let mut reached: Vec<Id> = Vec::new();
+        let mut seen = HashSet::new();
+        let mut stack: Vec<Id> = all.iter().map(|o| o.node).collect();
+        while let Some(id) = stack.pop() {
+            if seen.insert(id) {
+                reached.push(id);
+                stack.extend(g.children(id).into_iter().flatten());
+            }
+        }
+        reached.sort_unstable();
+        let mut state: HashSet<Id> = HashSet::new();
+        for &id in &reached {
+            let reads_state = match g.node(id) {
+                Node::Var(v) => matches!(v, Var::Q(_) | Var::Qd(_) | Var::Lambda(_)),
+                _ => g.children(id).into_iter().flatten().any(|c| state.contains(&c)),
+            };
+            if reads_state {
+                state.insert(id);
+            }
+        }
+        // A negation is written into its reader (`a - b`): what it negates is what is read.
+        let read = |id: Id| if let Node::Neg(x) = g.node(id) { x } else { id };
+        let costly = |id: Id| !matches!(g.node(id), Node::Const(_) | Node::Var(_) | Node::Neg(_));
+        // Maximal time-only subexpressions: read by a node of the state or by an output.
+        let mut hoisted: HashSet<Id> = HashSet::new();
+        for &id in &reached {
+            if state.contains(&id) {
+                for c in g.children(id).into_iter().flatten().map(read) {
+                    if !state.contains(&c) && costly(c) {
+                        hoisted.insert(c);
+                    }
+                }
+            }
+        }
+        for o in &all {
+            let c = read(o.node);
+            if !state.contains(&c) && costly(c) {
+                hoisted.insert(c);
+            }
+        }
+        for &id in &hoisted {
+            plan.bound.entry(id).or_insert_with(|| format_ident!("v{}", id));
+        }
+        // Bound time-only nodes inside a hoisted one are computed with it.
+        for &id in &reached {
+            if plan.bound.contains_key(&id) && !state.contains(&id) {
+                hoisted.insert(id);
+            }
+        }
+        // The first stage reading each bound node of the state.
+        let mut stage_of: HashMap<Id, usize> = HashMap::new();
+        for (k, stage) in stages.iter().enumerate() {
+            let mut stack: Vec<Id> = stage.iter().map(|o| o.node).collect();
+            while let Some(id) = stack.pop() {
+                if stage_of.contains_key(&id) || hoisted.contains(&id) {
+                    continue;
+                }
+                stage_of.insert(id, k);
+                stack.extend(g.children(id).into_iter().flatten());
+            }
+        }
+        // sin and cos of one argument are one `sin_cos`, in the earlier of their stages.
+        for (s, c) in plan.pairs.values().copied().collect::<Vec<_>>() {
+            if let (Some(&a), Some(&b)) = (stage_of.get(&s), stage_of.get(&c)) {
+                stage_of.insert(s, a.min(b));
+                stage_of.insert(c, a.min(b));
+            }
+        }
+        let real = self.real();
+        let mut ops = Ops::default();
+        let mut done_pairs = HashSet::new();
+        let mut prologue = Vec::new();
+        let mut statements: Vec<Vec<TokenStream>> = vec![Vec::new(); stages.len()];
+        for (&id, name) in &plan.bound {
+            let into = match stage_of.get(&id) {
+                _ if hoisted.contains(&id) => &mut prologue,
+                Some(&k) => &mut statements[k],
+                None => continue,
+            };
+            let pair = match g.node(id) {
+                Node::Call(Func::Sin | Func::Cos, a) => plan.pairs.get(&a).map(|p| (a, *p)),
+                _ => None,
+            };
+            match pair {
+                Some((arg, (s, c))) => {
+                    if done_pairs.insert(arg) {
+                        let a = self.expr(arg, &plan, &mut ops);
+                        let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
+                        into.push(quote!((#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
+                    }
+                }
+                None => {
+                    let def = self.definition(id, &plan, &mut ops);
+                    into.push(quote!(#name = #def;));
+                }
+            }
+        }
+        for (k, stage) in stages.iter().enumerate() {
+            for o in stage.iter() {
+                let target = &o.target;
+                let value = self.expr(o.node, &plan, &mut ops);
+                statements[k].push(quote!(#target = #value;));
+            }
+        }
+        let declare = |names: Vec<&Ident>| -> Vec<TokenStream> {
+            names
+                .chunks(DECLARED_TOGETHER)
+                .map(|chunk| match chunk {
+                    [one] => quote!(let #one: #real;),
+                    _ => {
+                        let types = chunk.iter().map(|_| &real);
+                        quote!(let (#(#chunk),*): (#(#types),*);)
+                    }
+                })
+                .collect()
+        };
+        let hoisted_names = declare(plan.bound.iter().filter(|(id, _)| hoisted.contains(id)).map(|(_, n)| n).collect());
+        let stage_names =
+            declare(plan.bound.iter().filter(|(id, _)| stage_of.contains_key(id) && !hoisted.contains(id)).map(|(_, n)| n).collect());
+        let prologue = quote!(#(#hoisted_names)* #(#prologue)*);
+        let mut out: Vec<TokenStream> = statements.into_iter().map(|s| quote!(#(#s)*)).collect();
+        if let Some(first) = out.first_mut() {
+            *first = quote!(#(#stage_names)* #first);
+        }
+        (prologue, out)
+    }
+
     /// Straight-line statements computing every output, and their operation count.
     ///
     /// The temporaries are declared first, [`DECLARED_TOGETHER`] to a `let`, and assigned after:
@@ -491,5 +631,35 @@ mod tests {
         assert!(!code.contains(":: sin (") && !code.contains(":: cos ("), "{code}");
         assert_eq!(ops.call, 1, "one sin_cos");
         assert!(code.contains("phi [0] =") && code.contains("phi [1] ="), "{code}");
+    }
+
+    /// The position solve's stages: `sin(2t)` of the driver in the prologue, computed once per
+    /// solve; Φ's stage with the body angle's `sin_cos`; the Jacobian's stage with what only it
+    /// reads (a product of the crank's half length and its angle's cosine).
+    #[test]
+    fn staged_code_hoists_time_and_leaves_the_jacobian_for_later() {
+        let model = syn::parse_str::<MechanismDef>(
+            "P { params { l: 2.0 } body a { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ a[-l / 2.0, 0.0]; \
+             drive a.phi = 0.5 * sin(2.0 * t); }",
+        )
+        .unwrap()
+        .validate()
+        .unwrap();
+        let f = crate::formulation::formulate(&model);
+        let e = emitter(&model, &f);
+        let (phi, jv) = (vector_outputs("phi", &f.phi), jacobian_values_outputs(&f, "jv"));
+        let (prologue, stages) = e.staged(&[&phi, &jv]);
+        let (prologue, first, second) = (prologue.to_string(), stages[0].to_string(), stages[1].to_string());
+        assert!(prologue.contains(":: sin (") && !prologue.contains("q ["), "{prologue}");
+        assert!(!first.contains(":: sin (") && first.contains("sin_cos (q [2])"), "{first}");
+        assert!(first.contains("phi [2] =") && !first.contains("jv ["), "{first}");
+        assert!(second.contains("jv [") && !second.contains("sin_cos") && !second.contains("phi ["), "{second}");
+        // Every temporary the second stage reads is assigned in the prologue, the first stage or
+        // the second stage itself: the stages run in order, each assignment before its reads.
+        let all = format!("{prologue} {first} {second}");
+        for name in second.split(|c: char| !c.is_alphanumeric() && c != '_').filter(|w| w.starts_with('v') && w[1..].parse::<u32>().is_ok())
+        {
+            assert!(all.contains(&format!("{name} =")), "{name} is read but never assigned:\n{all}");
+        }
     }
 }

@@ -53,9 +53,7 @@ fn placeholders_without_the_mistake(written: TokenStream) -> TokenStream {
     let body = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace));
     let expands = |input: TokenStream| {
         let names = &mut crate::names::Names::default();
-        refuse_raw_identifiers(&input)
-            .and_then(|()| crate::part::expand(input, names))
-            .and_then(|input| crate::scene::split(input, names))
+        refuse_raw_identifiers(&input).and_then(|()| crate::part::expand(input, names)).and_then(|input| crate::scene::split(input, names))
     };
     let placeholder_of =
         |input: TokenStream| syn::parse::Parser::parse2(MechanismDef::parse_recovering, input).map(|(def, _)| placeholder(def)).ok();

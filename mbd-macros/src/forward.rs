@@ -280,11 +280,14 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
 
-    // The kinematic position solve's Newton step, −Dᵀ(D Dᵀ)⁻¹Φ: the same factorization with unit
-    // weights (the step is D⁻¹(−Φ) for any weights when D is square and regular).
-    let mut kinematic = vector_outputs("phi", &f.phi);
-    kinematic.extend(jacobian_values_outputs(f, "jv"));
-    let (kinematic_body, _) = e.body(&kinematic);
+    // The kinematic position solve: Newton's iteration with the step −Dᵀ(D Dᵀ)⁻¹Φ over the same
+    // factorization with unit weights (the step is D⁻¹(−Φ) for any weights when D is square and
+    // regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
+    // computed once before it, and D only after Φ's convergence test.
+    let phi_outputs = vector_outputs("phi", &f.phi);
+    let jv_outputs = jacobian_values_outputs(f, "jv");
+    let (time_terms, stages) = e.staged(&[&phi_outputs, &jv_outputs]);
+    let (phi_stage, jv_stage) = (&stages[0], &stages[1]);
     let unit_off = if coupled { quote!(&[#zero; #n_off],) } else { quote!() };
     let step_columns: Vec<TokenStream> = (0..nv)
         .filter_map(|c| {
@@ -296,34 +299,53 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let inline = crate::emit::inline_hint(nc);
     let position_step = quote! {
         #step_inline
-        fn sparse_position_step(
+        #[allow(clippy::too_many_arguments)]
+        fn sparse_position_solve(
             &self,
-            q: &[#real; #nq_l],
+            q: &mut [#real; #nq_l],
             t: #real,
             tolerance: #real,
             pivot_tolerance: #real,
+            max_iterations: u32,
             phi: &mut [#real; #nc_l],
             step: &mut [#real; #nv_l],
-        ) -> ::core::option::Option<::mbd::PositionStep> {
+        ) -> ::core::option::Option<(::mbd::PositionStep, u32)> {
             let mut jv = [#zero; #nnz_l];
-            #kinematic_body
-            let mut worst = #zero;
-            for x in phi.iter() {
-                worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
+            #time_terms
+            let mut iterations = 0u32;
+            loop {
+                {
+                    let q: &[#real; #nq_l] = q;
+                    #phi_stage
+                    let mut worst = #zero;
+                    let mut finite = true;
+                    for x in phi.iter() {
+                        worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
+                        finite &= x.is_finite();
+                    }
+                    if finite && worst <= tolerance {
+                        return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations));
+                    }
+                    if !finite || iterations >= max_iterations {
+                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations));
+                    }
+                    #jv_stage
+                    let mut l = [#zero; #nl_l];
+                    let mut dinv = [#zero; #nc_l];
+                    if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                        return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations));
+                    }
+                    let mut b = *phi;
+                    Self::schur_solve(&l, &dinv, &mut b);
+                    *step = [#zero; #nv_l];
+                    #(#step_columns)*
+                }
+                if !step.iter().all(|x| x.is_finite()) {
+                    return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations));
+                }
+                ::mbd::Kinematics::integrate_positions(self, q, step, #one);
+                iterations += 1;
             }
-            if worst <= tolerance {
-                return ::core::option::Option::Some(::mbd::PositionStep::Converged);
-            }
-            let mut l = [#zero; #nl_l];
-            let mut dinv = [#zero; #nc_l];
-            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                return ::core::option::Option::Some(::mbd::PositionStep::Singular);
-            }
-            let mut b = *phi;
-            Self::schur_solve(&l, &dinv, &mut b);
-            *step = [#zero; #nv_l];
-            #(#step_columns)*
-            ::core::option::Option::Some(::mbd::PositionStep::Step)
         }
     };
 

@@ -173,7 +173,7 @@ pub struct KinematicSolver {
 }
 
 /// How a Newton iteration computes its step from D and −Φ.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq, Eq)]
 enum StepRule {
     /// D Δv = −Φ with D square (LU with partial pivoting).
     Square,
@@ -583,10 +583,10 @@ impl KinematicSolver {
     }
 
     /// Newton iteration on Φ(q, t) = 0 with the given step rule, each step Δv applied as
-    /// q ⊕ Δv. A square D takes [`Kinematics::sparse_position_step`] and leaves `jacobian`
-    /// alone; otherwise, on success, `jacobian` holds D(q, t) at the returned q (unfactored):
-    /// the convergence test comes after each evaluation, so the last evaluation is at the
-    /// solution.
+    /// q ⊕ Δv. A square D takes [`Kinematics::sparse_position_solve`] first and, when that
+    /// converges, leaves `jacobian` alone; otherwise (and from where that stopped), on success,
+    /// `jacobian` holds D(q, t) at the returned q (unfactored): the convergence test comes after
+    /// each evaluation, so the last evaluation is at the solution.
     fn newton<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
@@ -610,18 +610,22 @@ impl KinematicSolver {
         let mut iterations = 0;
         let mut previous_norm = T::from_f64(f64::INFINITY);
         let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
-        loop {
-            // A square D: the step over the sparse factorization planned at compile time; the
-            // dense LU where none is generated or it found no pivot (the LU then names the
-            // coordinate without one, or finds one: D Dᵀ's pivots are D's squared).
-            let sparse = match rule {
-                StepRule::Square => m.sparse_position_step(q, t, tolerance, pivot_tolerance, &mut residual, &mut step),
-                StepRule::RankRevealing => None,
-            };
-            let dense = !matches!(sparse, Some(PositionStep::Converged | PositionStep::Step));
-            if dense {
-                m.position_eval(q, t, &mut residual, jacobian);
+        // A square D: the iteration over the sparse factorization planned at compile time; the
+        // dense LU where none is generated or from where that stopped (a pivot not found: the LU
+        // names the coordinate without one, or finds one, D Dᵀ's pivots being D's squared; a
+        // value not finite or too many steps: the loop below names the row).
+        if rule == StepRule::Square {
+            let max_iterations = self.options.max_iterations;
+            let sparse = m.sparse_position_solve(q, t, tolerance, pivot_tolerance, max_iterations, &mut residual, &mut step);
+            if let Some((end, taken)) = sparse {
+                if end == PositionStep::Converged {
+                    return Ok(Convergence { iterations: taken, residual: max_abs(&residual).0.to_f64() });
+                }
+                iterations = taken;
             }
+        }
+        loop {
+            m.position_eval(q, t, &mut residual, jacobian);
             check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
             let (norm, worst) = max_abs(&residual);
             if norm <= tolerance {
@@ -639,7 +643,6 @@ impl KinematicSolver {
                 *negated = -value;
             }
             match rule {
-                StepRule::Square if !dense => Ok(()),
                 StepRule::Square => linalg::lu_factor(jacobian, pivot_tolerance)
                     .and_then(|permutation| linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step))
                     .map_err(|e| jacobian_error::<M>(e, time)),

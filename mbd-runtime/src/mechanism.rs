@@ -154,12 +154,12 @@ pub(crate) const fn body_of_velocity<M: Mechanism + ?Sized>(i: usize) -> usize {
     i / velocities_per_body::<M>()
 }
 
-/// What [`Kinematics::sparse_position_step`] did.
+/// What [`Kinematics::sparse_position_solve`] ended with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PositionStep {
-    /// ‖Φ‖∞ was within the tolerance: no step.
+    /// ‖Φ‖∞ is within the tolerance.
     Converged,
-    /// The step is in `step`.
+    /// Stopped at a value that is not finite or after the most steps allowed.
     Step,
     /// D Dᵀ had no acceptable pivot (a singular position, or a NaN in D).
     Singular,
@@ -194,25 +194,30 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     fn gamma(&self, q: &[T; NQ], v: &[T; NV], t: T, gamma: &mut [T; NC]);
     /// Φ and D in one evaluation (shared subexpressions computed once): a Newton step's inputs.
     fn position_eval(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NV]; NC]);
-    /// One Newton step of a driven mechanism's position solve over the sparse factorization
-    /// planned at compile time: Φ(q, t) into `phi`; then, unless ‖Φ‖∞ ≤ `tolerance`, the step
-    /// Δv = −Dᵀ(D Dᵀ)⁻¹Φ into `step` — for a square, regular D (NV = NC) the Newton step D⁻¹(−Φ)
-    /// itself — from the LDLᵀ of D Dᵀ that `mechanism!` plans (the Schur complement of the
-    /// forward dynamics with unit weights). [`PositionStep::Singular`] when a pivot is at most
-    /// `pivot_tolerance` times its diagonal: the solver then takes the dense LU, which names the
-    /// coordinate without a pivot. `None` (the provided method) where nothing is generated: the
-    /// dense path.
+    /// A driven mechanism's position solve over the sparse factorization planned at compile
+    /// time: Newton's iteration q ← q ⊕ Δv with Δv = −Dᵀ(D Dᵀ)⁻¹Φ — for a square, regular D
+    /// (NV = NC) the Newton step D⁻¹(−Φ) itself — from the LDLᵀ of D Dᵀ that `mechanism!` plans
+    /// (the Schur complement of the forward dynamics with unit weights), the whole loop in
+    /// generated code. Returns what it ended with and the steps taken, q at the last iterate and
+    /// Φ(q, t) in `phi`: [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`;
+    /// [`PositionStep::Singular`] when a pivot is at most `pivot_tolerance` times its diagonal;
+    /// [`PositionStep::Step`] when Φ or a step is not finite or `max_iterations` steps are taken.
+    /// The solver goes on from there with the dense LU, which names the coordinate without a
+    /// pivot or the row that is not finite. `None` (the provided method) where nothing is
+    /// generated: the dense path from the start.
     #[doc(hidden)]
-    fn sparse_position_step(
+    #[allow(clippy::too_many_arguments)]
+    fn sparse_position_solve(
         &self,
-        q: &[T; NQ],
+        q: &mut [T; NQ],
         t: T,
         tolerance: T,
         pivot_tolerance: T,
+        max_iterations: u32,
         phi: &mut [T; NC],
         step: &mut [T; NV],
-    ) -> Option<PositionStep> {
-        let _ = (q, t, tolerance, pivot_tolerance, phi, step);
+    ) -> Option<(PositionStep, u32)> {
+        let _ = (q, t, tolerance, pivot_tolerance, max_iterations, phi, step);
         None
     }
     /// Φ, D, ν and γ in one evaluation (shared subexpressions computed once).
