@@ -87,3 +87,35 @@ fn a_scene_moves_as_the_base_with_its_effects_made_inert() {
     assert!(moved(base, run(&Frictionless::default())) > 1e-4, "friction moves the base");
     assert!(moved(base, run(&Bare::default())) > 1e-3, "spring and gravity move the base");
 }
+
+mechanism! {
+    /// A crank turned by a driver at 6 rad/s and a wobble, and its free scene without it.
+    pub Spun {
+        body crank { mass: 2.0, inertia: 0.02, at: [0.05, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ crank[-0.05, 0.0];
+        drive spin: crank.phi = 6.0 * t + 0.1 * sin(3.0 * t);
+        scene Unspun without spin;
+    }
+}
+
+/// The runtime skips whole computations a scene does not need: without a driver nothing depends
+/// on time, so ν = −Φ_t is not generated (its function counts no operation) and γ has no Φ_tt
+/// terms; without friction the forward dynamics has no fixed-point iteration on the loads — one
+/// pass is all there is, where the base needs more than one.
+#[test]
+fn a_scene_skips_what_it_does_not_need() {
+    assert!(!Spun::PHI_T_IS_ZERO && Unspun::PHI_T_IS_ZERO);
+    assert!(ops(Spun::OP_COUNTS, "velocity_rhs") > 0);
+    assert_eq!(ops(Unspun::OP_COUNTS, "velocity_rhs"), 0);
+
+    let (press, frictionless) = (Press::default(), Frictionless::default());
+    let mut q = press.initial_positions();
+    KinematicSolver::default().assemble(&press, &mut Workspace::<f64, 9, 8, 17>::new(), &mut q, 0.0).expect("assembles");
+    let v = press.initial_velocities();
+    let one_pass = DynamicsOptions { friction_iterations: 1, ..DynamicsOptions::default() };
+    let (mut vd, mut lambda) = ([0.0; 9], [0.0; 8]);
+    let base = press.accelerations(&q, &v, 0.0, &one_pass, &mut vd, &mut lambda);
+    assert!(matches!(base, Err(DynamicsError::FrictionNotConverged { .. })), "{base:?}");
+    let (mut vd, mut lambda) = ([0.0; 9], [0.0; 8]);
+    frictionless.accelerations(&q, &v, 0.0, &one_pass, &mut vd, &mut lambda).expect("one solve, no iteration");
+}
