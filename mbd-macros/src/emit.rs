@@ -293,6 +293,43 @@ impl Emitter<'_> {
         }
     }
 
+    /// The statement binding a temporary: its definition, or the `sin_cos` of a sine and cosine
+    /// of one argument (once for the pair; `None` for the second of the two).
+    fn binding(&self, id: Id, name: &Ident, plan: &Plan, ops: &mut Ops, done_pairs: &mut HashSet<Id>) -> Option<TokenStream> {
+        let real = self.real();
+        let pair = match self.graph.node(id) {
+            Node::Call(Func::Sin | Func::Cos, a) => plan.pairs.get(&a).map(|p| (a, *p)),
+            _ => None,
+        };
+        match pair {
+            Some((arg, (s, c))) => done_pairs.insert(arg).then(|| {
+                ops.call += 1;
+                let a = self.expr(arg, plan, ops);
+                let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
+                quote!((#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);)
+            }),
+            None => {
+                let def = self.definition(id, plan, ops);
+                Some(quote!(#name = #def;))
+            }
+        }
+    }
+
+    /// The declarations of temporaries, [`DECLARED_TOGETHER`] to a `let`.
+    fn declarations(&self, names: &[&Ident]) -> Vec<TokenStream> {
+        let real = self.real();
+        names
+            .chunks(DECLARED_TOGETHER)
+            .map(|chunk| match chunk {
+                [one] => quote!(let #one: #real;),
+                _ => {
+                    let types = chunk.iter().map(|_| &real);
+                    quote!(let (#(#chunk),*): (#(#types),*);)
+                }
+            })
+            .collect()
+    }
+
     /// Code for outputs computed in stages that share their temporaries, for a loop that runs
     /// the stages in turn and may leave after any of them (a Newton iteration: Φ, the convergence
     /// test, then D): a prologue, computed once before the loop, with every maximal subexpression
@@ -373,7 +410,6 @@ impl Emitter<'_> {
                 stage_of.insert(c, a.min(b));
             }
         }
-        let real = self.real();
         let mut ops = Ops::default();
         let mut done_pairs = HashSet::new();
         let mut prologue = Vec::new();
@@ -384,23 +420,7 @@ impl Emitter<'_> {
                 Some(&k) => &mut statements[k],
                 None => continue,
             };
-            let pair = match g.node(id) {
-                Node::Call(Func::Sin | Func::Cos, a) => plan.pairs.get(&a).map(|p| (a, *p)),
-                _ => None,
-            };
-            match pair {
-                Some((arg, (s, c))) => {
-                    if done_pairs.insert(arg) {
-                        let a = self.expr(arg, &plan, &mut ops);
-                        let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
-                        into.push(quote!((#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
-                    }
-                }
-                None => {
-                    let def = self.definition(id, &plan, &mut ops);
-                    into.push(quote!(#name = #def;));
-                }
-            }
+            into.extend(self.binding(id, name, &plan, &mut ops, &mut done_pairs));
         }
         for (k, stage) in stages.iter().enumerate() {
             for o in stage.iter() {
@@ -409,18 +429,7 @@ impl Emitter<'_> {
                 statements[k].push(quote!(#target = #value;));
             }
         }
-        let declare = |names: Vec<&Ident>| -> Vec<TokenStream> {
-            names
-                .chunks(DECLARED_TOGETHER)
-                .map(|chunk| match chunk {
-                    [one] => quote!(let #one: #real;),
-                    _ => {
-                        let types = chunk.iter().map(|_| &real);
-                        quote!(let (#(#chunk),*): (#(#types),*);)
-                    }
-                })
-                .collect()
-        };
+        let declare = |names: Vec<&Ident>| self.declarations(&names);
         let hoisted_names = declare(plan.bound.iter().filter(|(id, _)| hoisted.contains(id)).map(|(_, n)| n).collect());
         let stage_names =
             declare(plan.bound.iter().filter(|(id, _)| stage_of.contains_key(id) && !hoisted.contains(id)).map(|(_, n)| n).collect());
@@ -440,30 +449,12 @@ impl Emitter<'_> {
     /// vehicle, whose `forces_q` has that many).
     pub fn body(&self, outputs: &[Output]) -> (TokenStream, Ops) {
         let plan = self.plan(outputs);
-        let real = self.real();
         let mut ops = Ops::default();
         let mut stmts = Vec::new();
         let mut done_pairs = HashSet::new();
         // Ascending id is a topological order: children are created before their parents.
         for (&id, name) in &plan.bound {
-            let pair = match self.graph.node(id) {
-                Node::Call(Func::Sin | Func::Cos, a) => plan.pairs.get(&a).map(|p| (a, *p)),
-                _ => None,
-            };
-            match pair {
-                Some((arg, (s, c))) => {
-                    if done_pairs.insert(arg) {
-                        ops.call += 1;
-                        let a = self.expr(arg, &plan, &mut ops);
-                        let (sn, cn) = (&plan.bound[&s], &plan.bound[&c]);
-                        stmts.push(quote!((#sn, #cn) = <#real as ::mbd::Real>::sin_cos(#a);));
-                    }
-                }
-                None => {
-                    let def = self.definition(id, &plan, &mut ops);
-                    stmts.push(quote!(#name = #def;));
-                }
-            }
+            stmts.extend(self.binding(id, name, &plan, &mut ops, &mut done_pairs));
         }
         for o in outputs {
             let target = &o.target;
@@ -471,13 +462,7 @@ impl Emitter<'_> {
             stmts.push(quote!(#target = #value;));
         }
         let names: Vec<&Ident> = plan.bound.values().collect();
-        let declarations = names.chunks(DECLARED_TOGETHER).map(|chunk| match chunk {
-            [one] => quote!(let #one: #real;),
-            _ => {
-                let types = chunk.iter().map(|_| &real);
-                quote!(let (#(#chunk),*): (#(#types),*);)
-            }
-        });
+        let declarations = self.declarations(&names);
         (quote!(#(#declarations)* #(#stmts)*), ops)
     }
 }
