@@ -180,7 +180,7 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
     // An instance's name is its own: `front_left.x` cannot be both a body's coordinate and a member.
     for (own_statement, piece) in &pieces {
         let declared = match piece.as_slice() {
-            [TokenTree::Ident(k), TokenTree::Ident(b), ..] if *own_statement && k == "body" => Some(b),
+            [TokenTree::Ident(k), TokenTree::Ident(b), ..] if *own_statement && (k == "body" || k == "particle") => Some(b),
             _ if *own_statement => label(piece),
             _ => None,
         };
@@ -317,7 +317,7 @@ fn own(inner: Level, instance: &str, names: &mut Names) -> (Vec<TokenTree>, Name
     let mut bodies: BTreeSet<String> = BTreeSet::new();
     for s in &statements {
         if let (Some(TokenTree::Ident(k)), Some(TokenTree::Ident(b))) = (s.first(), s.get(1)) {
-            if k == "body" {
+            if k == "body" || k == "particle" {
                 bodies.insert(b.to_string());
             }
         }
@@ -506,6 +506,20 @@ mod tests {
         let mut group = names.made_from("pivot");
         group.sort();
         assert_eq!(group, ["left_pivot", "right_pivot"], "a part's label names its element in every instance");
+    }
+
+    /// A particle is a part's own, as a body is (a new user's `particle bob` in a part of two
+    /// instances was one `bob` twice).
+    #[test]
+    fn a_particle_in_a_part_is_each_instances_own() {
+        let (got, names) = expanded(quote!(M {
+            part weight(x) { particle bob { mass: 0.3, at: [x, 0.0] } }
+            weight a(x: 1.0);
+            weight b(x: 2.0);
+        }));
+        let want = quote!(M { particle a_bob { mass: 0.3, at: [1.0, 0.0] } particle b_bob { mass: 0.3, at: [2.0, 0.0] } });
+        assert_eq!(got, want.to_string());
+        assert_eq!(names.rewrite("b_bob.x"), "b.bob.x");
     }
 
     #[test]
