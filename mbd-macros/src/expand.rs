@@ -22,7 +22,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
     let written = input.clone();
     let out = refuse_raw_identifiers(&input)
         .and_then(|()| crate::part::expand(input, &mut names))
-        .and_then(|input| crate::scene::split(input, &names))
+        .and_then(|input| crate::scene::split(input.clone(), &names).map_err(|e| statements_that_do_not_parse(input).unwrap_or(e)))
         .map(|(base, scenes)| {
             let (mut out, ok) = expand_one(base);
             for scene in scenes {
@@ -44,19 +44,49 @@ pub fn expand(input: TokenStream) -> TokenStream {
     names.rewrite_strings(out)
 }
 
+/// The errors of the mechanism's statements that do not parse, its scenes set aside: where a
+/// scene names what the mechanism does not have, a statement that does not parse (a missing `;`
+/// that joins `drive motor: ...` to the statement before it) is the mistake to report.
+fn statements_that_do_not_parse(input: TokenStream) -> Option<syn::Error> {
+    use proc_macro2::{Delimiter, Group, TokenTree};
+    let without_scenes: TokenStream = input
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
+                let kept = crate::scene::statements(g.stream())
+                    .into_iter()
+                    .filter(|s| !matches!(s.first(), Some(TokenTree::Ident(k)) if k == "scene"))
+                    .flatten()
+                    .collect();
+                TokenTree::Group(Group::new(Delimiter::Brace, kept))
+            }
+            other => other,
+        })
+        .collect();
+    syn::parse::Parser::parse2(MechanismDef::parse_recovering, without_scenes).ok().and_then(|(_, errors)| errors)
+}
+
 /// The placeholders of a mechanism (and its scenes) whose parts, loops, instances or scenes do
-/// not expand: made of the mechanism without the first top-level statement whose removal lets
-/// them expand, or, when no one statement does, of what parses as written.
+/// not expand: made of the mechanism with its instances' parameters taken leniently, or without
+/// the first top-level statement whose removal lets it expand, or, when no one statement does,
+/// of what parses as written.
 fn placeholders_without_the_mistake(written: TokenStream) -> TokenStream {
     use proc_macro2::{Delimiter, Group, TokenTree};
     let tokens: Vec<TokenTree> = written.clone().into_iter().collect();
     let body = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace));
     let expands = |input: TokenStream| {
         let names = &mut crate::names::Names::default();
-        refuse_raw_identifiers(&input).and_then(|()| crate::part::expand(input, names)).and_then(|input| crate::scene::split(input, names))
+        refuse_raw_identifiers(&input)
+            .and_then(|()| crate::part::expand_leniently(input, names))
+            .and_then(|input| crate::scene::split_leniently(input, names))
     };
     let placeholder_of =
         |input: TokenStream| syn::parse::Parser::parse2(MechanismDef::parse_recovering, input).map(|(def, _)| placeholder(def)).ok();
+    // Instances' parameters and scenes' items are taken leniently: one missing or misspelt loses
+    // nothing else.
+    if let Ok((base, scenes)) = expands(written.clone()) {
+        return std::iter::once(base).chain(scenes).filter_map(placeholder_of).collect();
+    }
     if let Some(at) = body {
         let TokenTree::Group(g) = &tokens[at] else { unreachable!("found as a brace group") };
         let statements = crate::scene::statements(g.stream());
@@ -166,9 +196,13 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
     generated.unwrap_or_else(|_| stub(&partial))
 }
 
-/// What stands in for a body or parameter statement with a mistake ([`placeholder`]).
+/// What stands in for a statement with a mistake ([`placeholder`]), so that the names it makes
+/// (`Name::MOTOR`, `Name::CRANK`) are still there: a body of unit mass and inertia, parameters
+/// with defaults 0, a driver of a constant, a joint without its options.
 fn stand_in(statement: &Item, spatial: bool) -> Option<Item> {
     match statement {
+        Item::Drive(d) => Some(Item::Drive(crate::parse::DriveDef { f: Expr::number(1.0, d.f.span, d.f.end), ..d.clone() })),
+        Item::Joint(j) if !j.options.is_empty() => Some(Item::Joint(crate::parse::JointDef { options: Vec::new(), ..j.clone() })),
         Item::Body(b) => Some(Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))),
         Item::Params(ps) => {
             Some(Item::Params(ps.iter().map(|(name, value)| (name.clone(), Expr::number(0.0, value.span, value.end))).collect()))
@@ -223,13 +257,15 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     emit::check_finite(m, &f, m.name.span())?;
     let e: Emitter = emit::emitter(m, &f);
     // Warnings through the one channel stable Rust gives a macro: a deprecated item used on the
-    // span.
+    // span. The compiler names the item first ("use of deprecated unit struct
+    // `_::mbd_warning`: ..."), so it is named for what it is.
     let warnings = m.warnings.iter().map(|(span, msg)| {
-        let use_ = quote::quote_spanned!(*span=> let _ = Warning;);
+        let use_ = quote::quote_spanned!(*span=> let _ = mbd_warning;);
         quote! {
             const _: () = {
                 #[deprecated(note = #msg)]
-                struct Warning;
+                #[allow(non_camel_case_types)]
+                struct mbd_warning;
                 #use_
             };
         }

@@ -618,8 +618,10 @@ impl Resolver<'_> {
                     n if Kink::from_name(n).is_some() => Kink::from_name(n)?.arity(),
                     _ => {
                         let hint = parse::closest(&name, FUNCTIONS, &[]);
-                        self.errors
-                            .push(f.span(), format!("unknown function: expected one of {}, found `{name}`{hint}", FUNCTIONS.join(", ")));
+                        self.errors.push(
+                            f.span(),
+                            format!("unknown function: expected {}, found `{name}`{hint}", parse::one_of(FUNCTIONS, "a function")),
+                        );
                         return None;
                     }
                 };
@@ -1304,6 +1306,10 @@ fn body_fields<'b>(r: &mut Resolver, b: &'b parse::BodyDef, known: &[&str], help
             let hint = parse::closest(&key, known, &[]);
             r.errors.push(f.name.span(), format!("unknown body field: expected {help}, found `{key}`{hint}"));
             ok = false;
+            // A misspelt field stands for the field it is near, so it is not also missing.
+            if let Some(near) = parse::nearest(&key, known, &[]) {
+                fields.entry(near.to_string()).or_insert(&f.value);
+            }
         } else if fields.insert(key.clone(), &f.value).is_some() {
             r.errors.push(f.name.span(), format!("duplicate field `{key}`: expected each field once, found `{key}` again; keep one"));
             ok = false;
@@ -1612,7 +1618,7 @@ mod tests {
         let Err(e) = validate("M { body a { mass: 1.0, inertia: 0.1 } rigid ground[0.0, 0.0] ~ a[0.0, 0.0] { length: 1.0 }; }") else {
             panic!("`length` is not an option of rigid")
         };
-        assert!(e.to_string().contains("unknown option of a rigid joint: expected one of angle, found `length`"), "{e}");
+        assert!(e.to_string().contains("unknown option of a rigid joint: expected `angle`, found `length`"), "{e}");
     }
 
     /// A spatial body's orientation from z-y-x angles is the unit quaternion of

@@ -61,6 +61,7 @@ pub enum Item {
     Torque(TorqueDef),
 }
 
+#[derive(Clone)]
 pub struct RotationalDef {
     pub kind: Ident,
     pub label: Option<Ident>,
@@ -70,6 +71,7 @@ pub struct RotationalDef {
     pub options: Vec<Field>,
 }
 
+#[derive(Clone)]
 pub struct ForceDef {
     pub kind: Ident,
     pub label: Option<Ident>,
@@ -78,6 +80,7 @@ pub struct ForceDef {
     pub value: VecLit,
 }
 
+#[derive(Clone)]
 pub struct TorqueDef {
     pub keyword: Ident,
     pub label: Option<Ident>,
@@ -86,6 +89,7 @@ pub struct TorqueDef {
     pub value: Value,
 }
 
+#[derive(Clone)]
 pub struct BodyDef {
     pub name: Ident,
     pub fields: Vec<Field>,
@@ -94,24 +98,28 @@ pub struct BodyDef {
 }
 
 /// `name: value` inside a body or an option block.
+#[derive(Clone)]
 pub struct Field {
     pub name: Ident,
     pub value: Value,
 }
 
 /// A field's value: an expression, or a bracketed list of them.
+#[derive(Clone)]
 pub enum Value {
     Expr(Expr),
     List(VecLit),
 }
 
 /// `[e1, e2, ...]`
+#[derive(Clone)]
 pub struct VecLit {
     pub items: Vec<Expr>,
     pub span: Span,
 }
 
 /// `point body.name = [ξ, η];` or `vector body.name = [x, y];`
+#[derive(Clone)]
 pub struct NamedVector {
     pub body: Ident,
     pub name: Ident,
@@ -119,12 +127,14 @@ pub struct NamedVector {
 }
 
 /// A point on a body, by name (`crank.B`) or written in place (`crank[0.05, 0.0]`).
+#[derive(Clone)]
 pub enum PointRef {
     Named(Ident),
     Inline(VecLit),
 }
 
 /// One side of a joint: a body, a point on it and, for sliding joints, an axis.
+#[derive(Clone)]
 pub struct Attach {
     pub body: Ident,
     pub point: PointRef,
@@ -133,17 +143,20 @@ pub struct Attach {
 
 /// The axis after `along`: a named vector of the same body or a vector written in place; in
 /// space, optionally the reference direction of the marker's x-axis after `reference`.
+#[derive(Clone)]
 pub struct Along {
     pub keyword: Ident,
     pub axis: AxisRef,
     pub reference: Option<AxisRef>,
 }
 
+#[derive(Clone)]
 pub enum AxisRef {
     Named(Ident, Ident),
     Inline(VecLit),
 }
 
+#[derive(Clone)]
 pub struct JointDef {
     pub kind: Ident,
     pub label: Option<Ident>,
@@ -152,6 +165,7 @@ pub struct JointDef {
     pub options: Vec<Field>,
 }
 
+#[derive(Clone)]
 pub struct FixDef {
     pub keyword: Ident,
     pub label: Option<Ident>,
@@ -160,12 +174,14 @@ pub struct FixDef {
     pub value: Option<Expr>,
 }
 
+#[derive(Clone)]
 pub enum DriveTarget {
     Coordinate { body: Ident, coordinate: Ident },
     Angle { i: Ident, j: Ident },
     Distance { i: (Ident, PointRef), j: (Ident, PointRef) },
 }
 
+#[derive(Clone)]
 pub struct DriveDef {
     pub keyword: Ident,
     pub label: Option<Ident>,
@@ -173,6 +189,7 @@ pub struct DriveDef {
     pub f: Expr,
 }
 
+#[derive(Clone)]
 pub struct ConstraintDef {
     pub keyword: Ident,
     pub label: Option<Ident>,
@@ -333,12 +350,13 @@ impl MechanismDef {
                         Some(all) => all.combine(e),
                         None => errors = Some(e),
                     }
-                    // A body stays, unit mass and inertia, for what names it.
+                    // A body stays, unit mass and inertia, and parameters stay, defaults 0, for
+                    // what names them.
                     let head = content.fork();
-                    if head.parse::<Ident>().is_ok_and(|k| k == "body") {
-                        if let Ok(body) = head.parse::<Ident>() {
-                            broken_bodies.push(body);
-                        }
+                    match head.parse::<Ident>() {
+                        Ok(k) if k == "body" => broken_bodies.extend(head.parse::<Ident>().ok()),
+                        Ok(k) if k == "params" => items.extend(head.parse::<proc_macro2::Group>().ok().map(|g| stand_in_params(&g))),
+                        _ => {}
                     }
                     skip_statement(&content)?;
                 }
@@ -368,10 +386,35 @@ impl BodyDef {
     }
 }
 
-/// Skips the rest of a statement that did not parse: through its `;`, or through a braced group
-/// not followed by `;` (`body b { ... }`, `params { ... }`).
+/// The parameters of a `params { ... }` that does not parse, each `name:` at its top level with
+/// the default 0 (a missing comma or a unit does not lose the names after it).
+fn stand_in_params(group: &proc_macro2::Group) -> Item {
+    use proc_macro2::{Spacing, TokenTree};
+    let tokens: Vec<TokenTree> = group.stream().into_iter().collect();
+    let names = tokens.windows(2).filter_map(|w| match w {
+        [TokenTree::Ident(name), TokenTree::Punct(colon)] if colon.as_char() == ':' && colon.spacing() == Spacing::Alone => {
+            Some((name.clone(), Expr::number(0.0, name.span(), name.span())))
+        }
+        _ => None,
+    });
+    Item::Params(names.collect())
+}
+
+/// Skips the rest of a statement that did not parse: through its `;`, through a braced group
+/// not followed by `;` (`body b { ... }`, `params { ... }`), or up to the next statement's
+/// keyword, so that a missing `;` costs only the statement before it (`gravity [0.0, -9.81]`
+/// followed by `body crank { ... }` loses the gravity, not the body).
 fn skip_statement(input: ParseStream) -> syn::Result<()> {
+    let mut first = true;
     while !input.is_empty() {
+        let next_statement =
+            input.fork().call(Ident::parse_any).is_ok_and(|k| STATEMENTS.contains(&k.to_string().as_str()) || k == "scene")
+                && !input.peek2(Token![:])
+                && !input.peek2(Token![.]);
+        if next_statement && !first {
+            return Ok(());
+        }
+        first = false;
         let tt: proc_macro2::TokenTree = input.parse()?;
         match tt {
             proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => return Ok(()),
@@ -426,6 +469,7 @@ impl Parse for Item {
                     let value: Expr = content.parse()?;
                     params.push((name, value));
                     if !content.is_empty() {
+                        no_unit_after_value(&content)?;
                         content.parse::<Token![,]>()?;
                     }
                 }
@@ -570,15 +614,23 @@ const SYNONYMS: &[(&str, &str)] = &[
     ("stop", "contact"),
 ];
 
+/// "one of `a`, `b`, `c`" ("`a`" for one, `none` for none): what an error expected.
+pub fn one_of(names: &[&str], none: &str) -> String {
+    match names {
+        [] => none.to_string(),
+        [one] => format!("`{one}`"),
+        _ => format!("one of {}", names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")),
+    }
+}
+
 /// " (did you mean `x`?)" when a known word is one or two edits away.
 pub fn closest(word: &str, a: &[&str], b: &[&str]) -> String {
-    a.iter()
-        .chain(b)
-        .map(|c| (edit_distance(word, c), *c))
-        .filter(|(d, _)| *d <= 2)
-        .min()
-        .map(|(_, c)| format!(" (did you mean `{c}`?)"))
-        .unwrap_or_default()
+    nearest(word, a, b).map(|c| format!(" (did you mean `{c}`?)")).unwrap_or_default()
+}
+
+/// The known word one or two edits away, the nearest.
+pub fn nearest<'a>(word: &str, a: &[&'a str], b: &[&'a str]) -> Option<&'a str> {
+    a.iter().chain(b).map(|c| (edit_distance(word, c), *c)).filter(|(d, _)| *d <= 2).min().map(|(_, c)| c)
 }
 
 fn edit_distance(a: &str, b: &str) -> usize {
@@ -601,6 +653,23 @@ fn eat_optional_semi(input: ParseStream) -> syn::Result<()> {
     Ok(())
 }
 
+/// `mass: 2.0 kg`, `d: 300 mm`, `[97.2 deg, 0.0]`: a unit after a number gets its own message,
+/// not "expected `,`" (a next field's name, followed by `:`, is a missing comma instead).
+fn no_unit_after_value(input: ParseStream) -> syn::Result<()> {
+    if !input.peek(Ident::peek_any) || input.peek2(Token![:]) {
+        return Ok(());
+    }
+    let unit: Ident = input.call(Ident::parse_any)?;
+    let degrees = matches!(unit.to_string().as_str(), "deg" | "degree" | "degrees");
+    let hint = if degrees { "; an angle in degrees is `deg(value)`" } else { "" };
+    Err(syn::Error::new(
+        unit.span(),
+        format!(
+            "expected `,` or the end after a value, found the unit `{unit}`: numbers are in SI units (kg, m, s, rad, N) and are written without one{hint}"
+        ),
+    ))
+}
+
 fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
     let content;
     braced!(content in input);
@@ -611,15 +680,7 @@ fn parse_fields(input: ParseStream) -> syn::Result<Vec<Field>> {
         let value = if content.peek(syn::token::Bracket) { Value::List(content.parse()?) } else { Value::Expr(content.parse()?) };
         fields.push(Field { name: name.clone(), value });
         if !content.is_empty() {
-            // `mass: 2.0 kg`: a unit after a number gets its own message, not "expected `,`"
-            // (a next field's name, followed by `:`, is a missing comma instead).
-            if content.peek(Ident::peek_any) && !content.peek2(Token![:]) {
-                let unit: Ident = content.call(Ident::parse_any)?;
-                return Err(syn::Error::new(
-                    unit.span(),
-                    format!("expected `,` or the end after a value, found the unit `{unit}`: numbers are in SI units (kg, m, s, rad, N) and are written without one"),
-                ));
-            }
+            no_unit_after_value(&content)?;
             if content.peek(Ident::peek_any) && content.peek2(Token![:]) {
                 let next: Ident = content.call(Ident::parse_any)?;
                 return Err(syn::Error::new(
@@ -720,6 +781,7 @@ impl Parse for VecLit {
         while !content.is_empty() {
             items.push(content.parse()?);
             if !content.is_empty() {
+                no_unit_after_value(&content)?;
                 content.parse::<Token![,]>()?;
             }
         }
@@ -959,6 +1021,21 @@ mod tests {
         let e: Expr = syn::parse_str("-x^2").unwrap();
         let ExprKind::Neg(inner) = e.kind else { panic!("not a negation") };
         assert!(matches!(inner.kind, ExprKind::Bin(BinOp::Pow, ..)));
+    }
+
+    /// A unit after a value is named wherever a value stands: a field, a parameter, a list
+    /// entry; degrees get `deg(...)`.
+    #[test]
+    fn a_unit_after_a_value_is_named_everywhere() {
+        let cases = [
+            ("body b { mass: 2.0 kg, inertia: 0.1 }", "found the unit `kg`"),
+            ("params { d: 300 mm, k: 1.0 }", "found the unit `mm`"),
+            ("body b { mass: 1.0, inertia: 0.1, at: [0.0, 0.0, 97.2 deg] }", "an angle in degrees is `deg(value)`"),
+        ];
+        for (statement, want) in cases {
+            let err = syn::parse_str::<Item>(statement).err().expect(statement).to_string();
+            assert!(err.contains(want), "{statement}: {err}");
+        }
     }
 
     /// An unknown statement names the closest keyword, or the DSL's name of a joint another

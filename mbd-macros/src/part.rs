@@ -40,6 +40,16 @@ type Namespaces = BTreeMap<String, BTreeSet<String>>;
 /// The mechanism with its parts' definitions taken out, every loop unrolled and every instance
 /// expanded.
 pub fn expand(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream> {
+    expand_with(input, names, false)
+}
+
+/// [`expand`] for a placeholder: an instance missing a parameter takes 0 for it, and a
+/// parameter its part does not have is ignored, so that what the instance makes is still there.
+pub fn expand_leniently(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream> {
+    expand_with(input, names, true)
+}
+
+fn expand_with(input: TokenStream, names: &mut Names, lenient: bool) -> syn::Result<TokenStream> {
     let mut out = TokenStream::new();
     let mut done = false;
     for tt in input {
@@ -60,7 +70,7 @@ pub fn expand(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream>
                     }
                     parts.push(part);
                 }
-                let level = level(rest.into_iter().flatten().collect(), &parts, names, &mut Vec::new())?;
+                let level = level(rest.into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient)?;
                 let mut group = Group::new(Delimiter::Brace, level.tokens.into_iter().collect());
                 group.set_span(g.span());
                 out.extend([TokenTree::Group(group)]);
@@ -128,7 +138,7 @@ const MECHANISM_ONLY: &[&str] = &["params", "scene", "spatial", "scalar"];
 
 /// Unrolls a statement list, expands its instances (inside `within`, the chain of parts being
 /// expanded) and resolves its references into them.
-fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<String>) -> syn::Result<Level> {
+fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<String>, lenient: bool) -> syn::Result<Level> {
     let unrolled = crate::repeat::unroll_statements(body, names)?;
     let mut namespaces = Namespaces::new();
     // Each statement, or the expansion of an instance.
@@ -152,7 +162,7 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
                 ));
             }
         }
-        match instance(&s, parts)? {
+        match instance(&s, parts, lenient)? {
             Some((part, name, args)) => {
                 if namespaces.contains_key(&name.to_string()) {
                     return Err(syn::Error::new(
@@ -168,7 +178,7 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
                     ));
                 }
                 within.push(part.name.to_string());
-                let inner = level(substitute(part.body.clone(), &part.params, &args), parts, names, within);
+                let inner = level(substitute(part.body.clone(), &part.params, &args), parts, names, within, lenient);
                 within.pop();
                 let (tokens, made) = own(inner?, &name.to_string(), names);
                 namespaces.extend(made);
@@ -207,7 +217,7 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
 
 /// An instance statement `part name(param: value, ...);`: its part, name and arguments.
 #[allow(clippy::type_complexity)]
-fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p Part, Ident, Vec<(Ident, Vec<TokenTree>)>)>> {
+fn instance<'p>(s: &[TokenTree], parts: &'p [Part], lenient: bool) -> syn::Result<Option<(&'p Part, Ident, Vec<(Ident, Vec<TokenTree>)>)>> {
     let (Some(TokenTree::Ident(kind)), Some(TokenTree::Ident(name))) = (s.first(), s.get(1)) else { return Ok(None) };
     let args = match &s[2..] {
         [TokenTree::Group(g), semi] if g.delimiter() == Delimiter::Parenthesis && is_punct(semi, ';') => Some(g),
@@ -220,7 +230,10 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
             let known: Vec<String> = parts.iter().map(|p| p.name.to_string()).collect();
             let known: Vec<&str> = known.iter().map(String::as_str).collect();
             let hint = crate::parse::closest(&kind.to_string(), &known, &[]);
-            return Err(syn::Error::new(kind.span(), format!("unknown part: expected one of {}, found `{kind}`{hint}", known.join(", "))));
+            return Err(syn::Error::new(
+                kind.span(),
+                format!("unknown part: expected {}, found `{kind}`{hint}", crate::parse::one_of(&known, "a part")),
+            ));
         }
         return Ok(None);
     };
@@ -233,6 +246,9 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
             [TokenTree::Ident(p), colon, value @ ..] if is_punct(colon, ':') && !value.is_empty() => (p.clone(), value.to_vec()),
             _ => return Err(syn::Error::new(arg[0].span(), format!("expected `parameter: value`; part `{kind}` takes {}", list(&wanted)))),
         };
+        if !part.params.contains(&param) && lenient {
+            continue;
+        }
         if !part.params.contains(&param) {
             let hint = crate::parse::closest(&param.to_string(), &wanted, &[]);
             return Err(syn::Error::new(
@@ -247,6 +263,13 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part]) -> syn::Result<Option<(&'p P
             ));
         }
         given.push((param, value));
+    }
+    if lenient {
+        for p in &part.params {
+            if !given.iter().any(|(g, _)| g == p) {
+                given.push((p.clone(), vec![TokenTree::Literal(proc_macro2::Literal::f64_unsuffixed(0.0))]));
+            }
+        }
     }
     let missing: Vec<String> = part.params.iter().filter(|p| !given.iter().any(|(g, _)| g == *p)).map(|p| format!("`{p}: ...`")).collect();
     if !missing.is_empty() {
@@ -589,7 +612,7 @@ mod tests {
                 quote!(M { part arm() { #body } arm a(); body a { mass: 1.0, inertia: 0.1 } }),
                 "`a` is already the name of a part's instance",
             ),
-            (quote!(M { part arm() { #body } amr a(); }), "unknown part: expected one of arm, found `amr` (did you mean `arm`?)"),
+            (quote!(M { part arm() { #body } amr a(); }), "unknown part: expected `arm`, found `amr` (did you mean `arm`?)"),
             (
                 quote!(M { part arm() { #body } arm a(); fix a.bb.x; }),
                 "`a` has no `bb`: expected one of `b`, found `bb` (did you mean `b`?)",

@@ -26,6 +26,16 @@ const FRICTION_OPTIONS: &[&str] = &["viscous", "coulomb", "radius", "slip_veloci
 
 /// The base mechanism's tokens and each scene's.
 pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec<TokenStream>)> {
+    split_with(input, names, false)
+}
+
+/// [`split`] for a placeholder: a scene leaving out what the mechanism does not have leaves out
+/// the rest, so that the scene's type is still there.
+pub fn split_leniently(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec<TokenStream>)> {
+    split_with(input, names, true)
+}
+
+fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(TokenStream, Vec<TokenStream>)> {
     let tokens: Vec<TokenTree> = input.into_iter().collect();
     let Some(body_at) = tokens.iter().position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)) else {
         // Not a mechanism's shape: the parser will say what is missing.
@@ -75,6 +85,9 @@ pub fn split(input: TokenStream, names: &Names) -> syn::Result<(TokenStream, Vec
             let group: Vec<String> = names.made_from(&word).into_iter().filter(|l| labels.contains(l)).collect();
             let known =
                 labels.contains(&word) || !group.is_empty() || (word == "friction" && has_friction) || (word == "gravity" && has_gravity);
+            if !known && lenient {
+                continue;
+            }
             if !known {
                 let written: Vec<String> = labels.iter().map(|l| names.written(l)).collect();
                 let names: Vec<&str> = written.iter().map(String::as_str).collect();

@@ -192,10 +192,9 @@ pub fn joint_options(
     for f in fields {
         let key = f.name.to_string();
         let Some(&(_, positive)) = known.iter().find(|(n, _)| *n == key) else {
-            let list = if known.is_empty() { "none".to_string() } else { known.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ") };
             let names: Vec<&str> = known.iter().map(|(n, _)| *n).collect();
-            let hint = parse::closest(&key, &names, &[]);
-            r.errors.push(f.name.span(), format!("unknown option of a {kind} joint: expected one of {list}, found `{key}`{hint}"));
+            let (expected, hint) = (parse::one_of(&names, "no option"), parse::closest(&key, &names, &[]));
+            r.errors.push(f.name.span(), format!("unknown option of a {kind} joint: expected {expected}, found `{key}`{hint}"));
             bad = true;
             continue;
         };

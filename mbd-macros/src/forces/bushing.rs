@@ -38,7 +38,7 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a JointDef, body_name: &dyn Fn(BodyRef
             r.errors.push(
                 field.name.span(),
                 format!(
-                    "unknown option of a bushing: expected one of k, c, preload, found `{key}`{}",
+                    "unknown option of a bushing: expected one of `k`, `c`, `preload`, found `{key}`{}",
                     crate::parse::closest(&key, &["k", "c", "preload"], &[])
                 ),
             );

@@ -200,8 +200,8 @@ pub fn options(
             r.errors.push(
                 f.name.span(),
                 format!(
-                    "unknown option of a {kind}: expected one of {}, found `{key}`{}",
-                    list.join(", "),
+                    "unknown option of a {kind}: expected {}, found `{key}`{}",
+                    crate::parse::one_of(&list, "no option"),
                     crate::parse::closest(&key, &list, &[])
                 ),
             );
