@@ -153,6 +153,9 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
     let count = |def: &MechanismDef| def.validate().err().map_or(0, |e| e.into_iter().count());
     let partial = def.partial();
     let spatial = def.items.iter().any(|i| matches!(i, Item::Spatial(_)));
+    let body_names: Vec<String> =
+        def.items.iter().filter_map(|i| if let Item::Body(b) = i { Some(b.name.to_string()) } else { None }).collect();
+    let bodies: Vec<&str> = body_names.iter().map(String::as_str).collect();
     let mut left = std::mem::take(&mut def.items);
     let mut errors = count(&def);
     // Passes until one keeps nothing more: a statement may name what a later one declares.
@@ -160,7 +163,7 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
         let kept = def.items.len();
         let mut dropped = Vec::new();
         for statement in left {
-            let stand_in = stand_in(&statement, spatial);
+            let stand_in = stand_in(&statement, spatial, &bodies);
             def.items.push(statement);
             let mut now = count(&def);
             // The stand-in instead, where it has fewer errors.
@@ -198,9 +201,13 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
 
 /// What stands in for a statement with a mistake ([`placeholder`]), so that the names it makes
 /// (`Name::MOTOR`, `Name::CRANK`) are still there: a body of unit mass and inertia, parameters
-/// with defaults 0, a driver of a constant, a joint without its options.
-fn stand_in(statement: &Item, spatial: bool) -> Option<Item> {
+/// with defaults 0, a driver of a constant, a joint without its options, a point on a misspelt
+/// body on the body whose name is nearest.
+fn stand_in(statement: &Item, spatial: bool, bodies: &[&str]) -> Option<Item> {
     match statement {
+        // A point on a misspelt body: on the body it is nearest to.
+        Item::Point(p) => crate::parse::nearest(&p.body.to_string(), bodies, &["ground"])
+            .map(|body| Item::Point(crate::parse::NamedVector { body: syn::Ident::new(body, p.body.span()), ..p.clone() })),
         Item::Drive(d) => Some(Item::Drive(crate::parse::DriveDef { f: Expr::number(1.0, d.f.span, d.f.end), ..d.clone() })),
         Item::Joint(j) if !j.options.is_empty() => Some(Item::Joint(crate::parse::JointDef { options: Vec::new(), ..j.clone() })),
         Item::Body(b) => Some(Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))),

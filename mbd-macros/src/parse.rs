@@ -358,7 +358,13 @@ impl MechanismDef {
                         Ok(k) if k == "params" => items.extend(head.parse::<proc_macro2::Group>().ok().map(|g| stand_in_params(&g))),
                         _ => {}
                     }
-                    skip_statement(&content)?;
+                    // A statement whose only mistake is its missing `;` stays, for what names it.
+                    let (skipped, cut_short) = skip_statement(&content)?;
+                    if cut_short {
+                        let completed: proc_macro2::TokenStream =
+                            skipped.into_iter().chain(Some(quote::quote!(;).into_iter().next().expect("a `;`"))).collect();
+                        items.extend(syn::parse2::<Item>(completed).ok());
+                    }
                 }
             }
         }
@@ -404,25 +410,30 @@ fn stand_in_params(group: &proc_macro2::Group) -> Item {
 /// not followed by `;` (`body b { ... }`, `params { ... }`), or up to the next statement's
 /// keyword, so that a missing `;` costs only the statement before it (`gravity [0.0, -9.81]`
 /// followed by `body crank { ... }` loses the gravity, not the body).
-fn skip_statement(input: ParseStream) -> syn::Result<()> {
-    let mut first = true;
+/// Returns the tokens skipped, and whether the statement was cut short (at the next statement's
+/// keyword or the end: its `;` is missing).
+fn skip_statement(input: ParseStream) -> syn::Result<(Vec<proc_macro2::TokenTree>, bool)> {
+    let mut skipped = Vec::new();
     while !input.is_empty() {
         let next_statement =
             input.fork().call(Ident::parse_any).is_ok_and(|k| STATEMENTS.contains(&k.to_string().as_str()) || k == "scene")
                 && !input.peek2(Token![:])
                 && !input.peek2(Token![.]);
-        if next_statement && !first {
-            return Ok(());
+        if next_statement && !skipped.is_empty() {
+            return Ok((skipped, true));
         }
-        first = false;
         let tt: proc_macro2::TokenTree = input.parse()?;
-        match tt {
-            proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => return Ok(()),
-            proc_macro2::TokenTree::Group(g) if g.delimiter() == proc_macro2::Delimiter::Brace && !input.peek(Token![;]) => return Ok(()),
-            _ => {}
+        let ends = match &tt {
+            proc_macro2::TokenTree::Punct(p) => p.as_char() == ';',
+            proc_macro2::TokenTree::Group(g) => g.delimiter() == proc_macro2::Delimiter::Brace && !input.peek(Token![;]),
+            _ => false,
+        };
+        skipped.push(tt);
+        if ends {
+            return Ok((skipped, false));
         }
     }
-    Ok(())
+    Ok((skipped, true))
 }
 
 /// An optional `label:` before a statement's body.
