@@ -163,18 +163,21 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
         let kept = def.items.len();
         let mut dropped = Vec::new();
         for statement in left {
-            let stand_in = stand_in(&statement, spatial, &bodies);
+            let candidates = stand_ins(&statement, spatial, &bodies);
             def.items.push(statement);
             let mut now = count(&def);
-            // The stand-in instead, where it has fewer errors.
-            if let Some(stand_in) = stand_in.filter(|_| now > 0) {
+            // The first stand-in with fewer errors, instead.
+            for stand_in in candidates {
+                if now == 0 {
+                    break;
+                }
                 let original = std::mem::replace(def.items.last_mut().expect("just pushed"), stand_in);
                 let instead = count(&def);
                 if instead < now {
                     now = instead;
-                } else {
-                    *def.items.last_mut().expect("just pushed") = original;
+                    break;
                 }
+                *def.items.last_mut().expect("just pushed") = original;
             }
             if now > errors {
                 dropped.extend(def.items.pop());
@@ -199,22 +202,37 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
     generated.unwrap_or_else(|_| stub(&partial))
 }
 
-/// What stands in for a statement with a mistake ([`placeholder`]), so that the names it makes
-/// (`Name::MOTOR`, `Name::CRANK`) are still there: a body of unit mass and inertia, parameters
-/// with defaults 0, a driver of a constant, a joint without its options, a point on a misspelt
+/// What may stand in for a statement with a mistake, in order ([`placeholder`]), so that the
+/// names it makes (`Name::MOTOR`, `Name::CRANK`) are still there: a body of unit mass and
+/// inertia, parameters with defaults 0, a driver of a constant (of each of its body's
+/// coordinates, where its own is wrong), a joint without its options, a point on a misspelt
 /// body on the body whose name is nearest.
-fn stand_in(statement: &Item, spatial: bool, bodies: &[&str]) -> Option<Item> {
+fn stand_ins(statement: &Item, spatial: bool, bodies: &[&str]) -> Vec<Item> {
     match statement {
         // A point on a misspelt body: on the body it is nearest to.
         Item::Point(p) => crate::parse::nearest(&p.body.to_string(), bodies, &["ground"])
-            .map(|body| Item::Point(crate::parse::NamedVector { body: syn::Ident::new(body, p.body.span()), ..p.clone() })),
-        Item::Drive(d) => Some(Item::Drive(crate::parse::DriveDef { f: Expr::number(1.0, d.f.span, d.f.end), ..d.clone() })),
-        Item::Joint(j) if !j.options.is_empty() => Some(Item::Joint(crate::parse::JointDef { options: Vec::new(), ..j.clone() })),
-        Item::Body(b) => Some(Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))),
-        Item::Params(ps) => {
-            Some(Item::Params(ps.iter().map(|(name, value)| (name.clone(), Expr::number(0.0, value.span, value.end))).collect()))
+            .map(|body| Item::Point(crate::parse::NamedVector { body: syn::Ident::new(body, p.body.span()), ..p.clone() }))
+            .into_iter()
+            .collect(),
+        // A driver of a constant; where its coordinate is what is wrong, of each of its body's.
+        Item::Drive(d) => {
+            let constant = crate::parse::DriveDef { f: Expr::number(1.0, d.f.span, d.f.end), ..d.clone() };
+            let mut candidates = vec![Item::Drive(constant.clone())];
+            if let crate::parse::DriveTarget::Coordinate { body, coordinate } = &d.target {
+                candidates.extend(["phi", "x", "y", "z"].iter().map(|c| {
+                    let target =
+                        crate::parse::DriveTarget::Coordinate { body: body.clone(), coordinate: syn::Ident::new(c, coordinate.span()) };
+                    Item::Drive(crate::parse::DriveDef { target, ..constant.clone() })
+                }));
+            }
+            candidates
         }
-        _ => None,
+        Item::Joint(j) if !j.options.is_empty() => vec![Item::Joint(crate::parse::JointDef { options: Vec::new(), ..j.clone() })],
+        Item::Body(b) => vec![Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))],
+        Item::Params(ps) => {
+            vec![Item::Params(ps.iter().map(|(name, value)| (name.clone(), Expr::number(0.0, value.span, value.end))).collect())]
+        }
+        _ => Vec::new(),
     }
 }
 
