@@ -70,6 +70,9 @@ fn expand_with(input: TokenStream, names: &mut Names, lenient: bool) -> syn::Res
                     }
                     parts.push(part);
                 }
+                // Leniently, the parameters' integral defaults may bound a loop.
+                let constants = if lenient { integral_defaults(&rest) } else { Vec::new() };
+                let lenient = lenient.then_some(constants.as_slice());
                 let level = level(rest.into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient)?;
                 let mut group = Group::new(Delimiter::Brace, level.tokens.into_iter().collect());
                 group.set_span(g.span());
@@ -133,13 +136,43 @@ struct Level {
     namespaces: Namespaces,
 }
 
+/// The parameters `name: number` of a `params { ... }` whose number is an integer.
+fn integral_defaults(statements: &[Vec<TokenTree>]) -> Vec<(String, i64)> {
+    let mut out = Vec::new();
+    for s in statements {
+        if let [TokenTree::Ident(k), TokenTree::Group(g), ..] = s.as_slice() {
+            if k == "params" {
+                let tokens: Vec<TokenTree> = g.stream().into_iter().collect();
+                for w in tokens.windows(3) {
+                    if let [TokenTree::Ident(name), colon, TokenTree::Literal(value)] = w {
+                        let value = value.to_string().parse::<f64>().ok().filter(|v| v.fract() == 0.0 && v.abs() < 1e9);
+                        if let (true, Some(value)) = (is_punct(colon, ':'), value) {
+                            out.push((name.to_string(), value as i64));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 /// Statements that belong to the mechanism, not to a part.
 const MECHANISM_ONLY: &[&str] = &["params", "scene", "spatial", "scalar"];
 
 /// Unrolls a statement list, expands its instances (inside `within`, the chain of parts being
 /// expanded) and resolves its references into them.
-fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<String>, lenient: bool) -> syn::Result<Level> {
-    let unrolled = crate::repeat::unroll_statements(body, names)?;
+fn level(
+    body: TokenStream,
+    parts: &[Part],
+    names: &mut Names,
+    within: &mut Vec<String>,
+    lenient: Option<&[(String, i64)]>,
+) -> syn::Result<Level> {
+    let unrolled = match lenient {
+        Some(constants) => crate::repeat::unroll_statements_leniently(body, names, constants)?,
+        None => crate::repeat::unroll_statements(body, names)?,
+    };
     let mut namespaces = Namespaces::new();
     // Each statement, or the expansion of an instance.
     let mut pieces: Vec<(bool, Vec<TokenTree>)> = Vec::new();
@@ -162,7 +195,7 @@ fn level(body: TokenStream, parts: &[Part], names: &mut Names, within: &mut Vec<
                 ));
             }
         }
-        match instance(&s, parts, lenient)? {
+        match instance(&s, parts, lenient.is_some())? {
             Some((part, name, args)) => {
                 if namespaces.contains_key(&name.to_string()) {
                     return Err(syn::Error::new(

@@ -29,7 +29,14 @@ const MAX_REPETITIONS: usize = 100_000;
 /// see [`crate::part::expand`]); each indexed name's identifier is recorded in `names` with its
 /// written form.
 pub fn unroll_statements(input: TokenStream, names: &mut Names) -> syn::Result<TokenStream> {
-    statements(input, &mut Unroll { scope: Vec::new(), count: 0, names })
+    statements(input, &mut Unroll { scope: Vec::new(), count: 0, names, lenient: false })
+}
+
+/// [`unroll_statements`] for a placeholder: a bound may also be a parameter of an integer
+/// default (given in `constants`) or an integral number such as `2.0`, so that what a loop
+/// with such a mistake makes is still there.
+pub fn unroll_statements_leniently(input: TokenStream, names: &mut Names, constants: &[(String, i64)]) -> syn::Result<TokenStream> {
+    statements(input, &mut Unroll { scope: constants.to_vec(), count: 0, names, lenient: true })
 }
 
 /// Loop variables in scope, innermost last.
@@ -41,6 +48,8 @@ struct Unroll<'a> {
     scope: Scope,
     count: usize,
     names: &'a mut Names,
+    /// Integral numbers taken as bounds ([`unroll_statements_leniently`]).
+    lenient: bool,
 }
 
 /// A statement list: each `for` at a statement's start unrolled, every other token transformed.
@@ -92,6 +101,13 @@ fn unroll_for(tokens: &[TokenTree], start: usize, u: &mut Unroll) -> syn::Result
     let upper = &range[dots + if inclusive { 3 } else { 2 }..];
     let bound = |part: &[TokenTree], which: &str| -> syn::Result<i64> {
         let span = part.first().map_or(range_span, TokenTree::span);
+        let integral = |part: &[TokenTree]| match part {
+            [TokenTree::Literal(l)] => l.to_string().parse::<f64>().ok().filter(|v| v.fract() == 0.0 && v.abs() < 1e9).map(|v| v as i64),
+            _ => None,
+        };
+        if let Some(value) = integral(part).filter(|_| u.lenient) {
+            return Ok(value);
+        }
         integer(part, &u.scope).map_err(|why| {
             syn::Error::new(
                 span,
