@@ -35,7 +35,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
             out
         });
     // A mistake in a part, a loop, an instance or a scene: the placeholders of the mechanism
-    // without the statement that has it.
+    // expanded leniently, or without the statement that has it.
     let out = out.unwrap_or_else(|e| {
         let errors = crate::wording::compile_errors(e);
         let placeholders = placeholders_without_the_mistake(written);
@@ -145,10 +145,9 @@ fn expand_one(input: TokenStream) -> (TokenStream, bool) {
 /// The type of a mechanism that has mistakes, generated in full from its statements without
 /// mistakes, so that the user's code using it — its constants, traits, accessors and solvers —
 /// adds no errors of its own: one mistake, one error. Statements are taken in order, each kept
-/// if it adds no error (a joint naming a body whose statement is wrong goes with it). A body
-/// with a mistake stays as a body of unit mass and inertia, and parameters whose defaults have
-/// one stay with defaults 0, so what names them still resolves. If what is left still does not
-/// generate, the bare struct with its parameters.
+/// if it adds no error (a joint naming a body whose statement is wrong goes with it), or else
+/// replaced by the first of its [`stand_ins`] that has fewer errors, so that what names it still
+/// resolves. If what is left still does not generate, the bare struct with its parameters.
 fn placeholder(mut def: MechanismDef) -> TokenStream {
     let count = |def: &MechanismDef| def.validate().err().map_or(0, |e| e.into_iter().count());
     let partial = def.partial();
