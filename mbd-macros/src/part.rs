@@ -73,7 +73,8 @@ fn expand_with(input: TokenStream, names: &mut Names, lenient: bool) -> syn::Res
                 // Leniently, the parameters' integral defaults may bound a loop.
                 let constants = if lenient { integral_defaults(&rest) } else { Vec::new() };
                 let lenient = lenient.then_some(constants.as_slice());
-                let level = level(rest.into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient)?;
+                let level = level(rest.clone().into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient)
+                    .map_err(|e| parameters_as_bounds(e, &rest))?;
                 let mut group = Group::new(Delimiter::Brace, level.tokens.into_iter().collect());
                 group.set_span(g.span());
                 out.extend([TokenTree::Group(group)]);
@@ -134,6 +135,46 @@ fn definition(s: &[TokenTree]) -> syn::Result<Part> {
 struct Level {
     tokens: Vec<TokenTree>,
     namespaces: Namespaces,
+}
+
+/// A loop bound that names a parameter gets the reason it cannot: a parameter may change at run
+/// time, a loop is unrolled when the mechanism is built.
+fn parameters_as_bounds(e: syn::Error, statements: &[Vec<TokenTree>]) -> syn::Error {
+    let unchanged = e.clone();
+    let params: Vec<String> = statements
+        .iter()
+        .filter(|s| matches!(s.first(), Some(TokenTree::Ident(k)) if k == "params"))
+        .filter_map(|s| match s.get(1) {
+            Some(TokenTree::Group(g)) => Some(g.stream().into_iter().collect::<Vec<_>>()),
+            _ => None,
+        })
+        .flat_map(|tokens| {
+            tokens
+                .windows(2)
+                .filter_map(|w| match w {
+                    [TokenTree::Ident(name), colon] if is_punct(colon, ':') => Some(name.to_string()),
+                    _ => None,
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut all: Option<syn::Error> = None;
+    for one in e {
+        let message = one.to_string();
+        let named = params.iter().find(|p| message.contains(&format!("found `{p}`, which is not a loop variable")));
+        let one = match named {
+            Some(p) => syn::Error::new(
+                one.span(),
+                format!("{message}; `{p}` is a parameter, which may change at run time, and a loop is unrolled when the mechanism is built: write a number"),
+            ),
+            None => one,
+        };
+        match &mut all {
+            Some(all) => all.combine(one),
+            None => all = Some(one),
+        }
+    }
+    all.unwrap_or(unchanged)
 }
 
 /// The parameters `name: number` of a `params { ... }` whose number is an integer.

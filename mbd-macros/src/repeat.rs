@@ -341,6 +341,10 @@ mod tests {
                 "the upper bound of a `for`: expected an integer expression of numbers and enclosing loop variables, found `n`, which is not a loop variable",
             ),
             (quote!(M { for i in 0.5..2 {} }), "found `0.5`, which is not an integer"),
+            (
+                quote!(M { params { n: 2.0 } for i in 0..n {} }),
+                "found `n`, which is not a loop variable; `n` is a parameter, which may change at run time, and a loop is unrolled when the mechanism is built: write a number",
+            ),
             (quote!(M { for i in 0..2 { body l[i - 1] {} } }), "an index must not be negative: expected 0 or more, found -1 for `l[…]`"),
             (quote!(M { for i in 0..1000000 {} }), "expected at most 100000 repetitions, found more"),
         ];
