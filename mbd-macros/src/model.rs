@@ -870,7 +870,9 @@ impl MechanismDef {
         let model = self.build(&mut errors);
         let warnings = std::mem::take(&mut errors.1);
         errors.into_result()?;
-        let mut model = model.ok_or_else(|| syn::Error::new(self.name.span(), "invalid mechanism"))?;
+        let mut model = model.ok_or_else(|| {
+            syn::Error::new(self.name.span(), "invalid mechanism: expected a mechanism that resolves, found mistakes without a message")
+        })?;
         model.warnings = warnings;
         Ok(model)
     }

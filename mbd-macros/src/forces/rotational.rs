@@ -49,7 +49,10 @@ pub fn resolve<'a>(r: &mut Resolver, f: &'a RotationalDef, joints: &SpatialJoint
         (None, true) => match joints.get(&f.i.to_string()) {
             Some((jk, mi, mj)) if matches!(*jk, "revolute" | "cylindrical") => (None, Some((mi.clone(), mj.clone()))),
             Some((jk, ..)) => {
-                r.errors.push(f.i.span(), format!("a {kind} acts on a revolute or cylindrical joint's angle; `{}` is a {jk} joint", f.i));
+                r.errors.push(
+                    f.i.span(),
+                    format!("a {kind} acts on a joint's angle: expected a revolute or cylindrical joint, found `{}`, a {jk} joint", f.i),
+                );
                 return None;
             }
             None => {
