@@ -30,34 +30,4 @@ mechanism! {
     }
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let m = Rig::default();
-    println!("NQ = {}, NC = {}, DOF = {} bodies {:?}", Rig::NQ, Rig::NC, Rig::DOF, Rig::BODY_NAMES);
-    let solver = KinematicSolver::default();
-    let mut ws = Rig::workspace();
-    let mut q = m.initial_positions();
-    solver.assemble(&m, &mut ws, &mut q, 0.0)?;
-    let p = m.coupler_p();
-    let times: Vec<f64> = (0..=10).map(|k| k as f64 * 0.1).collect();
-    solver.sweep(&m, &mut ws, &mut q, times.iter().copied(), |t, q, qd, _qdd| {
-        let pos = p.position(q);
-        let rocker = Rig::ROCKER.phi(q).to_degrees();
-        let bob = Rig::CW_BOB.x(q);
-        let w1 = Rig::W_1.y(q);
-        println!("{t:.2} s: P = ({:.4}, {:.4}) m, |v_P| = {:.4} m/s, rocker {rocker:.2} deg, bob x {bob:.4}, w[1] y {w1:.4}",
-            pos.x, pos.y, p.velocity(q, qd).norm());
-    })?;
-    println!("motor joint index {}", Rig::MOTOR);
-
-    // The free scene: let it fall for 0.2 s.
-    let f = FreeRig::default();
-    let mut fws = FreeRig::workspace();
-    let mut fq = f.initial_positions();
-    solver.assemble(&f, &mut fws, &mut fq, 0.0)?;
-    let mut rk4 = Rk4::new(1e-3);
-    let ftimes: Vec<f64> = (0..=4).map(|k| k as f64 * 0.05).collect();
-    simulate(&f, &mut fws, &mut rk4, 0.0, &fq, &[0.0; FreeRig::NV], &ftimes, &SimulationOptions::default(), |s| {
-        println!("free {:.2} s: crank {:.4} rad, energy {:.6} J", s.point.t, FreeRig::CRANK.phi(&s.point.q), s.energy.kinetic + s.energy.potential);
-    })?;
-    Ok(())
-}
+include!("rig_main.in");
