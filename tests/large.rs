@@ -99,3 +99,51 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
         }
     });
 }
+
+/// The chain's evaluations are emitted in parts (`mbd-macros`' `PART_NODES`: each is more than
+/// 2 000 expression nodes) and their long straight-line sequences in blocks: the accelerations
+/// still satisfy the equations of motion written with the functions emitted whole,
+/// M v̇ − Dᵀλ = h and D v̇ = γ (Baumgarte off), at a moving, tilted state.
+#[test]
+fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
+    on_default_stack(|| {
+        let m = Chain120::default();
+        let mut ws = Chain120::workspace();
+        let mut q = m.initial_positions();
+        KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the chain assembles");
+        let options = DynamicsOptions { baumgarte_alpha: 0.0, baumgarte_beta: 0.0, ..DynamicsOptions::default() };
+        let mut v: [f64; 360] = core::array::from_fn(|i| (0.7 * i as f64).sin());
+        m.project_velocities(&q, &mut v, 0.0, &options).expect("v onto D v = 0");
+        let (mut vd, mut lambda) = ([0.0; 360], [0.0; 240]);
+        m.accelerations(&q, &v, 0.0, &options, &mut vd, &mut lambda).expect("accelerations");
+        let (mut mvd, mut h, mut gamma) = ([0.0; 360], [0.0; 360], [0.0; 240]);
+        m.mass_times(&q, &vd, &mut mvd);
+        m.forces(&q, &v, 0.0, &mut h);
+        m.gamma(&q, &v, 0.0, &mut gamma);
+        // D on the heap: 691 KB would crowd the 2 MB stack.
+        let mut d: Box<[[f64; 360]; 240]> = vec![[0.0; 360]; 240].into_boxed_slice().try_into().expect("240 rows");
+        m.jacobian(&q, 0.0, &mut d);
+        // Rounding: λ reaches ~120 · 0.1 kg · 9.81 m/s² ≈ 12 N at the top pin and the velocities
+        // are O(1); the LDLᵀ of a 240-row chain loses a few digits to its condition number, so
+        // 1e-9 is far above rounding and far below any missing or misplaced term (≥ 1e-3).
+        for i in 0..360 {
+            let dt_lambda: f64 = (0..240).map(|r| d[r][i] * lambda[r]).sum();
+            let force = mvd[i] - dt_lambda - h[i];
+            assert!(force.abs() < 1e-9, "velocity {i}: M v̇ − Dᵀλ − h = {force:e}");
+        }
+        for r in 0..240 {
+            let dvd: f64 = (0..360).map(|i| d[r][i] * vd[i]).sum();
+            assert!((dvd - gamma[r]).abs() < 1e-9, "row {r}: D v̇ − γ = {:e}", dvd - gamma[r]);
+        }
+        // Generalized-α's matrix, in parts too: its Φ and D equal the functions emitted whole.
+        let mut s = Chain120::newton_storage();
+        let mut phi = [0.0; 240];
+        m.newton_matrix(&q, &v, 0.0, &lambda, 0.0, 1e-6, &mut phi, &mut s);
+        let mut whole = [0.0; 240];
+        m.constraints(&q, 0.0, &mut whole);
+        assert_eq!(phi, whole);
+        for (k, &(r, c)) in Chain120::JACOBIAN_PATTERN.iter().enumerate() {
+            assert_eq!(s[k], d[r as usize][c as usize], "D[{r}][{c}]");
+        }
+    });
+}

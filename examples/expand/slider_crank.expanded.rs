@@ -1797,7 +1797,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         for x in s[23..].iter_mut() {
             *x = 0f64;
         }
-        let mut m = [0f64; 9usize];
+        let mut m = [0f64; 9];
         let (
             v5,
             s_crank,

@@ -5,6 +5,7 @@
 //! subexpressions across all outputs of the function are computed once — and nodes used once
 //! are written in place. `sin φ` and `cos φ` of one angle become one `sin_cos` call.
 
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use proc_macro2::{Literal, Span, TokenStream};
@@ -38,7 +39,29 @@ pub struct Emitter<'a> {
     pub params: Vec<Ident>,
     /// Names of the coordinates, for readable bindings of sin/cos of body angles.
     pub coordinate_names: Vec<String>,
+    /// Methods holding the parts of functions too large to compile as one (see
+    /// [`Emitter::body_in_parts`]), for the mechanism's inherent `impl`.
+    pub parts: RefCell<Vec<TokenStream>>,
 }
+
+/// The signature shared by a function's parts: the parameters each part takes (besides
+/// `&self`) and the arguments the function passes them, e.g. `q: &[f64; 9], jv: &mut [f64; 23]`
+/// and `q, &mut jv`.
+pub struct PartSignature {
+    pub name: &'static str,
+    pub params: TokenStream,
+    pub args: TokenStream,
+}
+
+/// Expression nodes up to which a function is emitted whole. Beyond, its outputs are split into
+/// parts of about this many nodes, each its own method: rustc's type and borrow checking and
+/// LLVM's instruction selection and scheduling grow faster than linearly in a function's
+/// length (measured on straight-line code: 80 000 statements cost 6.4× what 20 000 cost, where
+/// four functions of 20 000 cost 4×), so a 240-body chain built 2.36× slower than a 120-body
+/// one. A part recomputes what it shares with another (the sines and cosines of the bodies at
+/// its ends); the outputs are ordered by the first coordinate they read, so a part covers
+/// neighbouring bodies and shares little.
+pub const PART_NODES: usize = 2000;
 
 struct Plan {
     /// Nodes bound with `let`, with their binding names.
@@ -463,8 +486,112 @@ impl Emitter<'_> {
         }
         let names: Vec<&Ident> = plan.bound.values().collect();
         let declarations = self.declarations(&names);
-        (quote!(#(#declarations)* #(#stmts)*), ops)
+        let stmts = in_blocks(&stmts);
+        (quote!(#(#declarations)* #stmts), ops)
     }
+
+    /// As [`Emitter::body`], for a function that may be too large to compile as one: above
+    /// [`PART_NODES`] expression nodes the outputs, ordered by the first coordinate each reads,
+    /// are cut into parts of about that many nodes; each part becomes a method
+    /// `__mbd_{name}_{k}(&self, params)` (collected in [`Emitter::parts`]) and the returned code
+    /// calls them in turn. The operation count is the parts' sum.
+    pub fn body_in_parts(&self, outputs: &[Output], signature: &PartSignature) -> (TokenStream, Ops) {
+        let g = self.graph;
+        // Each node's reach (how many non-leaf nodes it reads, counted once per part below) and
+        // the first coordinate or velocity it reads; ascending id is a topological order.
+        let mut first: HashMap<Id, u32> = HashMap::new();
+        let mut reached: Vec<Id> = Vec::new();
+        let mut seen = HashSet::new();
+        let mut stack: Vec<Id> = outputs.iter().map(|o| o.node).collect();
+        while let Some(id) = stack.pop() {
+            if seen.insert(id) {
+                reached.push(id);
+                stack.extend(g.children(id).into_iter().flatten());
+            }
+        }
+        let costly = |id: Id| !matches!(g.node(id), Node::Const(_) | Node::Var(_));
+        if reached.iter().filter(|&&id| costly(id)).count() <= PART_NODES {
+            return self.body(outputs);
+        }
+        reached.sort_unstable();
+        for &id in &reached {
+            let own = match g.node(id) {
+                Node::Var(Var::Q(i) | Var::Qd(i)) => u32::from(i),
+                _ => u32::MAX,
+            };
+            let key = g.children(id).into_iter().flatten().map(|c| first[&c]).fold(own, u32::min);
+            first.insert(id, key);
+        }
+        let mut ordered: Vec<&Output> = outputs.iter().collect();
+        ordered.sort_by_key(|o| first[&o.node]);
+        // Greedy cut: a part closes when the next output would take it past PART_NODES.
+        let mut groups: Vec<Vec<Output>> = vec![Vec::new()];
+        let (mut in_part, mut size): (HashSet<Id>, usize) = (HashSet::new(), 0);
+        for o in ordered {
+            let mut new = HashSet::new();
+            let mut stack = vec![o.node];
+            while let Some(id) = stack.pop() {
+                if !in_part.contains(&id) && new.insert(id) {
+                    stack.extend(g.children(id).into_iter().flatten());
+                }
+            }
+            let added = new.iter().filter(|&&id| costly(id)).count();
+            if !groups.last().expect("a part").is_empty() && size + added > PART_NODES {
+                // A new part reads everything the output reads.
+                groups.push(Vec::new());
+                in_part.clear();
+                size = 0;
+                let mut stack = vec![o.node];
+                while let Some(id) = stack.pop() {
+                    if in_part.insert(id) {
+                        size += usize::from(costly(id));
+                        stack.extend(g.children(id).into_iter().flatten());
+                    }
+                }
+            } else {
+                in_part.extend(new);
+                size += added;
+            }
+            groups.last_mut().expect("a part").push(o.clone());
+        }
+        let mut ops = Ops::default();
+        let mut calls = Vec::new();
+        let mut parts = self.parts.borrow_mut();
+        let PartSignature { name, params, args } = signature;
+        for group in groups {
+            let (code, part_ops) = self.body(&group);
+            ops.add += part_ops.add;
+            ops.mul += part_ops.mul;
+            ops.div += part_ops.div;
+            ops.call += part_ops.call;
+            let method = format_ident!("__mbd_{}_{}", name, parts.len());
+            parts.push(quote! {
+                #[inline(never)]
+                fn #method(&self, #params) {
+                    #code
+                }
+            });
+            calls.push(quote!(self.#method(#args);));
+        }
+        (quote!(#(#calls)*), ops)
+    }
+}
+
+/// Statements per basic block in long straight-line sequences (see [`in_blocks`]).
+pub const BLOCK_STATEMENTS: usize = 256;
+
+/// Straight-line statements, cut every [`BLOCK_STATEMENTS`] into basic blocks that LLVM cannot
+/// merge (a branch on an opaque `false` around an empty `black_box`; a few cycles each). LLVM's
+/// SLP vectorizer, instruction selection and scheduler work one basic block at a time and grow
+/// faster than linearly in its length: in a 240-body chain's build the vectorizer alone took
+/// 8.5 s, three times its time at 120 bodies. Shorter sequences (every mechanism of a few dozen
+/// bodies) are emitted as they are.
+pub fn in_blocks(stmts: &[TokenStream]) -> TokenStream {
+    if stmts.len() <= 2 * BLOCK_STATEMENTS {
+        return quote!(#(#stmts)*);
+    }
+    let blocks = stmts.chunks(BLOCK_STATEMENTS).map(|block| quote!(#(#block)*));
+    quote!(#(#blocks if ::core::hint::black_box(false) { ::core::hint::black_box(()); })*)
 }
 
 /// Constraint rows up to which the generated functions are `#[inline]` and the LDLᵀ of the Schur
@@ -540,6 +667,7 @@ pub fn emitter<'a>(model: &Model, f: &'a Formulation) -> Emitter<'a> {
         scalar: model.scalar,
         params: model.params.iter().map(|p| p.name.clone()).collect(),
         coordinate_names: model.coordinate_names(),
+        parts: RefCell::new(Vec::new()),
     }
 }
 

@@ -6,7 +6,9 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use crate::emit::{friction_outputs, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output};
+use crate::emit::{
+    friction_outputs, in_blocks, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature,
+};
 use crate::formulation::Formulation;
 use crate::model::Model;
 use crate::schur::Schur;
@@ -161,7 +163,30 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     outputs.extend(vector_outputs("h", &f.h));
     outputs.extend(vector_outputs("m", &f.mass));
     outputs.extend(inverse_outputs(f));
-    let (eval_body, eval_ops) = e.body(&outputs);
+    // The parts of a large mechanism's evaluations write these locals (M⁻¹'s blocks too when
+    // coupled).
+    let (mi_param, mi_arg) = if !coupled {
+        (quote!(), quote!())
+    } else {
+        let n_mi = usize_lit(f.mass_inverse.len());
+        (quote!(mi: &mut [#real; #n_mi],), quote!(&mut mi,))
+    };
+    let part = |name: &'static str, inputs: TokenStream, input_args: TokenStream, locals: &[(&str, &Literal)]| {
+        let names: Vec<syn::Ident> = locals.iter().map(|(n, _)| syn::Ident::new(n, proc_macro2::Span::call_site())).collect();
+        let lengths = locals.iter().map(|(_, l)| l);
+        PartSignature {
+            name,
+            params: quote!(#inputs #(#names: &mut [#real; #lengths],)* #mi_param),
+            args: quote!(#input_args #(&mut #names,)* #mi_arg),
+        }
+    };
+    let evaluation = part(
+        "accelerations",
+        quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real,),
+        quote!(q, v, t,),
+        &[("jv", &nnz_l), ("phi", &nc_l), ("nu", &nc_l), ("gamma", &nc_l), ("h", &nv_l), ("m", &nv_l)],
+    );
+    let (eval_body, eval_ops) = e.body_in_parts(&outputs, &evaluation);
     let d_vd = row_times(&quote!(vd));
     let d_v = row_times(&quote!(v));
     let lambda_vd = add_transpose(&quote!(vd), &quote!(lambda), quote!(+=));
@@ -170,7 +195,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     positions.extend(jacobian_values_outputs(f, "jv"));
     positions.extend(vector_outputs("m", &f.mass));
     positions.extend(inverse_outputs(f));
-    let (positions_body, _) = e.body(&positions);
+    let position_part =
+        part("positions", quote!(q: &[#real; #nq_l], t: #real,), quote!(q, t,), &[("jv", &nnz_l), ("phi", &nc_l), ("m", &nv_l)]);
+    let (positions_body, _) = e.body_in_parts(&positions, &position_part);
     // q ← q ⊕ (−M⁻¹ Dᵀ b): directly in q where v = q̇, through the velocity map otherwise.
     let q_step = if nq == nv {
         add_transpose(&quote!(q), &quote!(b), quote!(-=))
@@ -187,7 +214,9 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     }
     velocities.extend(vector_outputs("m", &f.mass));
     velocities.extend(inverse_outputs(f));
-    let (velocities_body, _) = e.body(&velocities);
+    let velocity_part =
+        part("velocities", quote!(q: &[#real; #nq_l], t: #real,), quote!(q, t,), &[("jv", &nnz_l), ("nu", &nc_l), ("m", &nv_l)]);
+    let (velocities_body, _) = e.body_in_parts(&velocities, &velocity_part);
     let v_step = add_transpose(&quote!(v), &quote!(b), quote!(-=));
 
     // Without Coulomb friction one solve; with it, fixed-point iteration on the normal loads λ
@@ -200,11 +229,20 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     } else {
         cols.iter().map(|c| quote!(vd[#c] = h[#c] * minv[#c];)).collect()
     };
+    let lambda_rows: Vec<TokenStream> = rows
+        .iter()
+        .zip(d_vd.iter().zip(&d_v))
+        .map(|(r, (d_vd, d_v))| quote!(lambda[#r] = gamma[#r] - #d_vd - two_alpha * (#d_v - nu[#r]) - beta2 * phi[#r];))
+        .collect();
+    let velocity_rows: Vec<TokenStream> = rows.iter().zip(&d_v).map(|(r, d_v)| quote!(b[#r] = #d_v - nu[#r];)).collect();
+    let (minv_h, lambda_rows, lambda_vd, velocity_rows) =
+        (in_blocks(&minv_h), in_blocks(&lambda_rows), in_blocks(&lambda_vd), in_blocks(&velocity_rows));
+    let (q_step, v_step) = (in_blocks(&q_step), in_blocks(&v_step));
     let one_solve = quote! {
-        #(#minv_h)*
-        #( lambda[#rows] = gamma[#rows] - #d_vd - two_alpha * (#d_v - nu[#rows]) - beta2 * phi[#rows]; )*
+        #minv_h
+        #lambda_rows
         Self::schur_solve(&l, &dinv, lambda);
-        #(#lambda_vd)*
+        #lambda_vd
     };
     let friction = friction_outputs(f);
     let solve_for_lambda = if friction.is_empty() {
@@ -295,6 +333,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
         })
         .collect();
+    let step_columns = in_blocks(&step_columns);
     let step_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
     let inline = crate::emit::inline_hint(nc);
     let position_step = quote! {
@@ -338,7 +377,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                     let mut b = *phi;
                     Self::schur_solve(&l, &dinv, &mut b);
                     *step = [#zero; #nv_l];
-                    #(#step_columns)*
+                    #step_columns
                 }
                 if !step.iter().all(|x| x.is_finite()) {
                     return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations));
@@ -424,7 +463,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 #max_abs
                 #factor_call
                 Self::schur_solve(&l, &dinv, &mut b);
-                #(#q_step)*
+                #q_step
                 ::core::result::Result::Ok(worst)
             }
 
@@ -445,11 +484,11 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 let mut b = [#zero; #nc_l];
                 {
                     let v: &[#real; #nv_l] = v;
-                    #( b[#rows] = #d_v - nu[#rows]; )*
+                    #velocity_rows
                 }
                 #max_abs
                 Self::schur_solve(&l, &dinv, &mut b);
-                #(#v_step)*
+                #v_step
                 ::core::result::Result::Ok(worst)
             }
         }

@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use crate::emit::{jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output};
+use crate::emit::{in_blocks, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature};
 use crate::formulation::Formulation;
 
 /// The ordering and the filled pattern of the LU factors.
@@ -304,14 +304,21 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
     // are computed once: the stiffness straight into its slot of `s`, the damping and the
     // masses into small locals; then each slot of A is M − c_v (damping) − c_q (stiffness).
+    let (nq_l, nv_l, nc_l, nnz_l, total) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz), usize_lit(nnz + plan.entries()));
     let mut outputs = vector_outputs("phi", &f.phi);
     outputs.extend(jacobian_values_outputs(f, "s"));
-    let (position_body, _) = e.body(&outputs);
+    let position_signature = PartSignature {
+        name: "newton_jacobian",
+        params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]),
+        args: quote!(q, t, phi, s),
+    };
+    let (position_body, _) = e.body_in_parts(&outputs, &position_signature);
     let mut terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>> = BTreeMap::new();
-    let mut locals = Vec::new();
+    // The locals the body writes besides Φ and s: their names and lengths.
+    let mut locals: Vec<(syn::Ident, usize)> = Vec::new();
     let mass_entries: Vec<usize> = (0..nv).filter(|&i| !f.graph.is_zero(f.mass[i])).collect();
     if !mass_entries.is_empty() {
-        locals.push(quote!(let mut m = [#zero; #nv];));
+        locals.push((syn::Ident::new("m", proc_macro2::Span::call_site()), nv));
     }
     for &i in &mass_entries {
         let il = usize_lit(i);
@@ -323,8 +330,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             return;
         }
         let ident = syn::Ident::new(name, proc_macro2::Span::call_site());
-        let n = usize_lit(entries.len());
-        locals.push(quote!(let mut #ident = [#zero; #n];));
+        locals.push((ident.clone(), entries.len()));
         for (k, &(r, c, node)) in entries.iter().enumerate() {
             let k = usize_lit(k);
             outputs.push(Output { target: quote!(#ident[#k]), node });
@@ -342,7 +348,18 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
         outputs.push(Output { target: quote!(s[#slot]), node });
         terms.entry((r, c)).or_default().push((true, quote!(c_q * s[#slot])));
     }
-    let (body, matrix_ops) = e.body(&outputs);
+    let local_names: Vec<&syn::Ident> = locals.iter().map(|(ident, _)| ident).collect();
+    let local_lengths: Vec<proc_macro2::Literal> = locals.iter().map(|&(_, n)| usize_lit(n)).collect();
+    let signature = PartSignature {
+        name: "newton_matrix",
+        params: quote! {
+            q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l],
+            phi: &mut [#real; #nc_l], s: &mut [#real; #total], #(#local_names: &mut [#real; #local_lengths]),*
+        },
+        args: quote!(q, v, t, lambda, phi, s, #(&mut #local_names),*),
+    };
+    let locals: Vec<TokenStream> = local_names.iter().zip(&local_lengths).map(|(ident, n)| quote!(let mut #ident = [#zero; #n];)).collect();
+    let (body, matrix_ops) = e.body_in_parts(&outputs, &signature);
     let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).collect();
     let sums: Vec<TokenStream> = terms
         .into_iter()
@@ -376,6 +393,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             }
         })
         .collect();
+    let (sums, d_entries) = (in_blocks(&sums), in_blocks(&d_entries));
     let pattern = plan.pattern();
     // Inlined into the step of small mechanisms; kept apart in large ones (build time, as for
     // the Schur complement's helpers).
@@ -407,7 +425,6 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     } else {
         quote!()
     };
-    let (nq_l, nv_l, nc_l, nnz_l, total) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz), usize_lit(nnz + plan.entries()));
     let impl_block = quote! {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -441,8 +458,8 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 }
                 #(#locals)*
                 #body
-                #(#sums)*
-                #(#d_entries)*
+                #sums
+                #d_entries
             }
             #solver
         }

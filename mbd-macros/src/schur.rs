@@ -212,7 +212,7 @@ impl Schur {
                 stmts.push(quote!(b[#bk] -= l[#idx] * b[#bi];));
             }
         }
-        quote!(#(#stmts)*)
+        crate::emit::in_blocks(&stmts)
     }
 }
 
