@@ -895,140 +895,98 @@ impl SliderCrank {
         let exact: f64 = if allow_redundant { 1e2 } else { 1.0 };
         let skk: f64 = (jv[21] * jv[21] * minv[8]);
         let dk: f64 = skk;
-        if dk > exact * tol * skk {
-            d[0] = dk;
-            dinv[0] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[0] = w / dk;
-                d[0] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[0] = 0f64;
-                d[0] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(7);
-        }
+        };
+        d[0] = dk;
+        dinv[0] = dik;
         l[0] = ((jv[21] * jv[20] * minv[8])) * dinv[0];
         let skk: f64 = (jv[18] * jv[18] * minv[6] + jv[19] * jv[19] * minv[7]
             + jv[20] * jv[20] * minv[8]);
         let dk: f64 = skk - l[0] * l[0] * d[0];
-        if dk > exact * tol * skk {
-            d[1] = dk;
-            dinv[1] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[1] = w / dk;
-                d[1] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[1] = 0f64;
-                d[1] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(6);
-        }
+        };
+        d[1] = dk;
+        dinv[1] = dik;
         l[1] = ((jv[18] * jv[14] * minv[6])) * dinv[1];
         l[2] = ((jv[19] * jv[17] * minv[7])) * dinv[1];
         let skk: f64 = (jv[12] * jv[12] * minv[3] + jv[13] * jv[13] * minv[5]
             + jv[14] * jv[14] * minv[6]);
         let dk: f64 = skk - l[1] * l[1] * d[1];
-        if dk > exact * tol * skk {
-            d[2] = dk;
-            dinv[2] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[2] = w / dk;
-                d[2] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[2] = 0f64;
-                d[2] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(4);
-        }
+        };
+        d[2] = dk;
+        dinv[2] = dik;
         l[3] = ((jv[16] * jv[13] * minv[5]) - l[2] * l[1] * d[1]) * dinv[2];
         l[4] = ((jv[12] * jv[6] * minv[3] + jv[13] * jv[7] * minv[5])) * dinv[2];
         l[5] = ((jv[13] * jv[11] * minv[5])) * dinv[2];
         let skk: f64 = (jv[15] * jv[15] * minv[4] + jv[16] * jv[16] * minv[5]
             + jv[17] * jv[17] * minv[7]);
         let dk: f64 = skk - l[2] * l[2] * d[1] - l[3] * l[3] * d[2];
-        if dk > exact * tol * skk {
-            d[3] = dk;
-            dinv[3] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[3] = w / dk;
-                d[3] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[3] = 0f64;
-                d[3] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(5);
-        }
+        };
+        d[3] = dk;
+        dinv[3] = dik;
         l[6] = ((jv[16] * jv[7] * minv[5]) - l[4] * l[3] * d[2]) * dinv[3];
         l[7] = ((jv[15] * jv[10] * minv[4] + jv[16] * jv[11] * minv[5])
             - l[5] * l[3] * d[2]) * dinv[3];
         let skk: f64 = (jv[0] * jv[0] * minv[0] + jv[1] * jv[1] * minv[2]);
         let dk: f64 = skk;
-        if dk > exact * tol * skk {
-            d[4] = dk;
-            dinv[4] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[4] = w / dk;
-                d[4] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[4] = 0f64;
-                d[4] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(0);
-        }
+        };
+        d[4] = dk;
+        dinv[4] = dik;
         l[8] = ((jv[3] * jv[1] * minv[2])) * dinv[4];
         l[9] = ((jv[4] * jv[0] * minv[0] + jv[5] * jv[1] * minv[2])) * dinv[4];
         l[10] = ((jv[9] * jv[1] * minv[2])) * dinv[4];
         l[11] = ((jv[22] * jv[1] * minv[2])) * dinv[4];
         let skk: f64 = (jv[2] * jv[2] * minv[1] + jv[3] * jv[3] * minv[2]);
         let dk: f64 = skk - l[8] * l[8] * d[4];
-        if dk > exact * tol * skk {
-            d[5] = dk;
-            dinv[5] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[5] = w / dk;
-                d[5] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[5] = 0f64;
-                d[5] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(1);
-        }
+        };
+        d[5] = dk;
+        dinv[5] = dik;
         l[12] = ((jv[5] * jv[3] * minv[2]) - l[9] * l[8] * d[4]) * dinv[5];
         l[13] = ((jv[8] * jv[2] * minv[1] + jv[9] * jv[3] * minv[2])
             - l[10] * l[8] * d[4]) * dinv[5];
@@ -1037,24 +995,17 @@ impl SliderCrank {
             + jv[6] * jv[6] * minv[3] + jv[7] * jv[7] * minv[5]);
         let dk: f64 = skk - l[4] * l[4] * d[2] - l[6] * l[6] * d[3] - l[9] * l[9] * d[4]
             - l[12] * l[12] * d[5];
-        if dk > exact * tol * skk {
-            d[6] = dk;
-            dinv[6] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[6] = w / dk;
-                d[6] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[6] = 0f64;
-                d[6] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(2);
-        }
+        };
+        d[6] = dk;
+        dinv[6] = dik;
         l[15] = ((jv[9] * jv[5] * minv[2] + jv[11] * jv[7] * minv[5])
             - l[5] * l[4] * d[2] - l[7] * l[6] * d[3] - l[10] * l[9] * d[4]
             - l[13] * l[12] * d[5]) * dinv[6];
@@ -1064,47 +1015,33 @@ impl SliderCrank {
             + jv[10] * jv[10] * minv[4] + jv[11] * jv[11] * minv[5]);
         let dk: f64 = skk - l[5] * l[5] * d[2] - l[7] * l[7] * d[3]
             - l[10] * l[10] * d[4] - l[13] * l[13] * d[5] - l[15] * l[15] * d[6];
-        if dk > exact * tol * skk {
-            d[7] = dk;
-            dinv[7] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[7] = w / dk;
-                d[7] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[7] = 0f64;
-                d[7] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(3);
-        }
+        };
+        d[7] = dk;
+        dinv[7] = dik;
         l[17] = ((jv[22] * jv[9] * minv[2]) - l[11] * l[10] * d[4] - l[14] * l[13] * d[5]
             - l[16] * l[15] * d[6]) * dinv[7];
         let skk: f64 = (jv[22] * jv[22] * minv[2]);
         let dk: f64 = skk - l[11] * l[11] * d[4] - l[14] * l[14] * d[5]
             - l[16] * l[16] * d[6] - l[17] * l[17] * d[7];
-        if dk > exact * tol * skk {
-            d[8] = dk;
-            dinv[8] = <f64 as ::mbd::Real>::ONE / dk;
-        } else if allow_redundant && skk > 0f64 && dk.is_finite() {
-            if dk > 0f64 {
-                let rho = tol * skk / dk;
-                let rho4 = (rho * rho) * (rho * rho);
-                let w = <f64 as ::mbd::Real>::ONE
-                    / (<f64 as ::mbd::Real>::ONE + rho4 * rho4);
-                dinv[8] = w / dk;
-                d[8] = if w > 0f64 { dk / w } else { 0f64 };
-            } else {
-                dinv[8] = 0f64;
-                d[8] = 0f64;
-            }
-        } else {
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+            skk,
+            dk,
+            exact,
+            tol,
+            allow_redundant,
+        ) else {
             return ::core::result::Result::Err(8);
-        }
+        };
+        d[8] = dk;
+        dinv[8] = dik;
         ::core::result::Result::Ok(())
     }
     /// b ← S⁻¹ b with the factors of `schur_factor`.

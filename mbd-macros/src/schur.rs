@@ -141,26 +141,11 @@ impl Schur {
             stmts.push(quote! {
                 let skk: #real = #skk;
                 let dk: #real = skk #(#sub)*;
-                if dk > exact * tol * skk {
-                    d[#kl] = dk;
-                    dinv[#kl] = <#real as ::mbd::Real>::ONE / dk;
-                } else if allow_redundant && skk > #zero && dk.is_finite() {
-                    // 1/d̂ = w/d with w = 1/(1 + ρ⁸), ρ = τ S_kk/d: the exact pivot where
-                    // ρ ≪ 1 (relative change ρ⁸), the row dropped (w → 0) as d → 0, smooth in
-                    // between; ρ⁸ may overflow to ∞ (w = 0), never to NaN.
-                    if dk > #zero {
-                        let rho = tol * skk / dk;
-                        let rho4 = (rho * rho) * (rho * rho);
-                        let w = <#real as ::mbd::Real>::ONE / (<#real as ::mbd::Real>::ONE + rho4 * rho4);
-                        dinv[#kl] = w / dk;
-                        d[#kl] = if w > #zero { dk / w } else { #zero };
-                    } else {
-                        dinv[#kl] = #zero;
-                        d[#kl] = #zero;
-                    }
-                } else {
+                let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(skk, dk, exact, tol, allow_redundant) else {
                     return ::core::result::Result::Err(#row_kl);
-                }
+                };
+                d[#kl] = dk;
+                dinv[#kl] = dik;
             });
             // L_ik = (S_ik − Σ_j L_ij L_kj d_j) / d_k
             for i in (k + 1)..self.nc {

@@ -63,6 +63,32 @@ impl SparsePattern {
 /// the identity); an error names the unknown. `smallest_ratio` tracks the smallest ratio
 /// pivot/scale of a kept multiplier. Velocities fail at |pivot| ≤ `tolerance` · `scale`,
 /// multipliers at a ratio ≤ `tolerance` or when already marked in `dropped` (module docs).
+/// The k-th pivot of the generated LDLᵀ of S = D M⁻¹ Dᵀ (`schur_factor`): (d_k, 1/d_k) for
+/// d_k = S_kk − Σ_j L_kj² d_j, or `None` for a dependent row. A pivot above `exact` · τ S_kk
+/// is taken as it is (one division). With `allow_redundant` a smaller one is weighted,
+/// 1/d̂ = w/d with w = 1/(1 + ρ⁸), ρ = τ S_kk/d: the exact pivot where ρ ≪ 1 (relative change
+/// ρ⁸), the row dropped (w → 0) as d → 0, smooth in between; ρ⁸ may overflow to ∞ (w = 0), never
+/// to NaN. One call per pivot keeps the generated factorization short (a 240-body chain's was
+/// 171 000 tokens with this logic written out at each of its 480 pivots).
+#[doc(hidden)]
+#[inline(always)]
+pub fn schur_pivot<T: Real>(skk: T, dk: T, exact: T, tolerance: T, allow_redundant: bool) -> Option<(T, T)> {
+    if dk > exact * tolerance * skk {
+        Some((dk, T::ONE / dk))
+    } else if allow_redundant && skk > T::ZERO && dk.is_finite() {
+        if dk > T::ZERO {
+            let rho = tolerance * skk / dk;
+            let rho4 = (rho * rho) * (rho * rho);
+            let w = T::ONE / (T::ONE + rho4 * rho4);
+            Some((if w > T::ZERO { dk / w } else { T::ZERO }, w / dk))
+        } else {
+            Some((T::ZERO, T::ZERO))
+        }
+    } else {
+        None
+    }
+}
+
 #[doc(hidden)]
 #[allow(clippy::too_many_arguments)]
 #[inline]
