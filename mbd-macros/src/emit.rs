@@ -165,6 +165,22 @@ impl Emitter<'_> {
         Plan { bound, pairs }
     }
 
+    /// The nodes the outputs read, themselves included, in ascending id: a topological order,
+    /// children before parents.
+    fn reached(&self, outputs: &[Output]) -> Vec<Id> {
+        let mut reached: Vec<Id> = Vec::new();
+        let mut seen = HashSet::new();
+        let mut stack: Vec<Id> = outputs.iter().map(|o| o.node).collect();
+        while let Some(id) = stack.pop() {
+            if seen.insert(id) {
+                reached.push(id);
+                stack.extend(self.graph.children(id).into_iter().flatten());
+            }
+        }
+        reached.sort_unstable();
+        reached
+    }
+
     /// Readable names for sin/cos of a body angle (`s_crank`, `c_crank`).
     fn trig_names(&self, arg: Id, s: Id, c: Id) -> (Ident, Ident) {
         if let Node::Var(Var::Q(i)) = self.graph.node(arg) {
@@ -365,16 +381,7 @@ impl Emitter<'_> {
         let all: Vec<Output> = stages.iter().flat_map(|s| s.iter().cloned()).collect();
         let mut plan = self.plan(&all);
         // Which nodes depend on the state, in ascending id (children first).
-        let mut reached: Vec<Id> = Vec::new();
-        let mut seen = HashSet::new();
-        let mut stack: Vec<Id> = all.iter().map(|o| o.node).collect();
-        while let Some(id) = stack.pop() {
-            if seen.insert(id) {
-                reached.push(id);
-                stack.extend(g.children(id).into_iter().flatten());
-            }
-        }
-        reached.sort_unstable();
+        let reached = self.reached(&all);
         let mut state: HashSet<Id> = HashSet::new();
         for &id in &reached {
             let reads_state = match g.node(id) {
@@ -497,23 +504,13 @@ impl Emitter<'_> {
     /// calls them in turn. The operation count is the parts' sum.
     pub fn body_in_parts(&self, outputs: &[Output], signature: &PartSignature) -> (TokenStream, Ops) {
         let g = self.graph;
-        // Each node's reach (how many non-leaf nodes it reads, counted once per part below) and
-        // the first coordinate or velocity it reads; ascending id is a topological order.
-        let mut first: HashMap<Id, u32> = HashMap::new();
-        let mut reached: Vec<Id> = Vec::new();
-        let mut seen = HashSet::new();
-        let mut stack: Vec<Id> = outputs.iter().map(|o| o.node).collect();
-        while let Some(id) = stack.pop() {
-            if seen.insert(id) {
-                reached.push(id);
-                stack.extend(g.children(id).into_iter().flatten());
-            }
-        }
+        let reached = self.reached(outputs);
         let costly = |id: Id| !matches!(g.node(id), Node::Const(_) | Node::Var(_));
         if reached.iter().filter(|&&id| costly(id)).count() <= PART_NODES {
             return self.body(outputs);
         }
-        reached.sort_unstable();
+        // The first coordinate or velocity each node reads.
+        let mut first: HashMap<Id, u32> = HashMap::new();
         for &id in &reached {
             let own = match g.node(id) {
                 Node::Var(Var::Q(i) | Var::Qd(i)) => u32::from(i),
