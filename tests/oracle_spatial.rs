@@ -86,7 +86,8 @@ mbd::mechanism! {
     /// Every spatial force element: gravity in a general direction; point-to-point spring,
     /// damper and actuator, alone and combined, with ground on either side; a bushing with and
     /// without damping and preload; rotational spring-damper-actuators on a revolute and a
-    /// cylindrical joint; forces at points in global and body components and torques in global
+    /// cylindrical joint; translational spring-damper-actuators on a translational and a
+    /// cylindrical joint's stroke; forces at points in global and body components and torques in global
     /// and body components (state-, velocity- and time-dependent); viscous friction in a
     /// revolute and a translational joint. Products of inertia on one body.
     pub SpatialEveryForce {
@@ -109,6 +110,9 @@ mbd::mechanism! {
         bushing link[0.1, 0.0, 0.0] along [0.0, 1.0, 1.0] ~ cap[0.0, 0.1, 0.0] along [0.0, 1.0, 1.0] { k: [100.0, 200.0, 300.0, 4.0, 5.0, 6.0] };
         rotational_spring hinge { k: 25.0, angle: 0.2, c: 0.4, torque: 1.0 + link.z };
         torque_actuator sleeve { torque: 2.0 * cos(3.0 * t) * slider.wy };
+        translational_spring slide { k: 40.0, length: 0.1, c: 0.3, force: 2.0 + arm.y };
+        translational_damper sleeve { c: 0.6 };
+        force_actuator sleeve { force: 3.0 * sin(t) * link.vz };
         force slider[0.1, 0.0, 0.0] = [1.0, -2.0 * t, 0.5];
         force link.tip = [arm.x * slider.vy, f0 * exp(-t), cap.vz];
         local_force arm[0.0, 0.1, 0.0] = [3.0, slider.wz, 0.2];

@@ -9,7 +9,7 @@ use syn::{Attribute, Ident, Visibility};
 
 use crate::elements::spatial::{self, Marker};
 use crate::elements::{self, drive, drive_angle, drive_distance, fix, user, Constraint, Driven};
-use crate::forces::{applied, bushing, cable, contact, point_to_point, rotational, torque, tyre, ForceElement};
+use crate::forces::{applied, bushing, cable, contact, point_to_point, rotational, stroke, torque, tyre, ForceElement};
 use crate::parse::{self, AxisRef, BinOp, CmpOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::{Cmp, Func};
 
@@ -1280,7 +1280,8 @@ fn force_elements(
             Item::PointForce(f) if f.kind == "cable" => cable::resolve(r, f, body_name),
             Item::PointForce(f) if f.kind == "tyre" => tyre::resolve(r, f, body_name),
             Item::PointForce(f) => point_to_point::resolve(r, f, body_name),
-            Item::RotationalForce(f) => rotational::resolve(r, f, joints),
+            Item::AxisForce(f) if stroke::KINDS.contains(&f.kind.to_string().as_str()) => stroke::resolve(r, f, joints),
+            Item::AxisForce(f) => rotational::resolve(r, f, joints),
             Item::Force(f) => applied::resolve(r, f),
             Item::Torque(tq) => torque::resolve(r, tq),
             _ => continue,

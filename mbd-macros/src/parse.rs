@@ -54,15 +54,16 @@ pub enum Item {
     /// `spring`, `damper`, `actuator` between two points (same shape as a joint).
     PointForce(JointDef),
     /// `rotational_spring`, `rotational_damper`, `torque_actuator` between two bodies (planar)
-    /// or on a joint (spatial).
-    RotationalForce(RotationalDef),
+    /// or on a joint's angle (spatial); `translational_spring`, `translational_damper`,
+    /// `force_actuator` on a spatial joint's stroke.
+    AxisForce(AxisForceDef),
     /// `force` (global components) or `local_force` (body components) at a point.
     Force(ForceDef),
     Torque(TorqueDef),
 }
 
 #[derive(Clone)]
-pub struct RotationalDef {
+pub struct AxisForceDef {
     pub kind: Ident,
     pub label: Option<Ident>,
     pub i: Ident,
@@ -267,8 +268,9 @@ pub enum BinOp {
 /// two-attachment force rule.
 pub const POINT_FORCE_KINDS: &[&str] = &["spring", "damper", "actuator", "bushing", "contact", "cable", "tyre"];
 
-/// Force elements between two bodies' angles.
-pub const ROTATIONAL_FORCE_KINDS: &[&str] = &["rotational_spring", "rotational_damper", "torque_actuator"];
+/// Force elements between two bodies' angles or on a joint's angle or stroke.
+pub const AXIS_FORCE_KINDS: &[&str] =
+    &["rotational_spring", "rotational_damper", "torque_actuator", "translational_spring", "translational_damper", "force_actuator"];
 
 /// Every statement keyword, for "did you mean" hints (a test checks that every registered joint
 /// kind is here).
@@ -310,6 +312,9 @@ pub const STATEMENTS: &[&str] = &[
     "rotational_spring",
     "rotational_damper",
     "torque_actuator",
+    "translational_spring",
+    "translational_damper",
+    "force_actuator",
     "scene",
 ];
 
@@ -456,7 +461,8 @@ impl Parse for Item {
                  (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`; \
                  in space also `spherical`, `universal`, `cylindrical`, `planar`, `point_on_line`, `point_on_plane`, \
                  `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial`, a force element (`spring`, `damper`, \
-                 `actuator`, `bushing`, `rotational_spring`, `rotational_damper`, `torque_actuator`, `force`, `local_force`, \
+                 `actuator`, `bushing`, `rotational_spring`, `rotational_damper`, `torque_actuator`, \
+                 in space also `translational_spring`, `translational_damper`, `force_actuator`; `force`, `local_force`, \
                  `torque`, `local_torque`), a `for` loop or a `scene`",
             )
         })?;
@@ -559,7 +565,7 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::Torque(TorqueDef { keyword: kw, label, body, value })
             }
-            k if ROTATIONAL_FORCE_KINDS.contains(&k) => {
+            k if AXIS_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;
                 let i: Ident = input.call(Ident::parse_any)?;
                 let j = if input.peek(Token![~]) {
@@ -570,7 +576,7 @@ impl Parse for Item {
                 };
                 let options = parse_fields(input)?;
                 input.parse::<Token![;]>()?;
-                Item::RotationalForce(RotationalDef { kind: kw, label, i, j, options })
+                Item::AxisForce(AxisForceDef { kind: kw, label, i, j, options })
             }
             k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => {
                 let label = label(input)?;

@@ -23,6 +23,7 @@ pub mod friction;
 pub mod gravity;
 pub mod point_to_point;
 pub mod rotational;
+pub mod stroke;
 pub mod torque;
 pub mod tyre;
 

@@ -11,7 +11,7 @@ use crate::elements::spatial::Marker;
 use crate::frames::Builder;
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr, Resolver, Scope, SpatialJoints};
-use crate::parse::RotationalDef;
+use crate::parse::AxisForceDef;
 
 #[derive(Debug)]
 pub struct Rotational {
@@ -36,7 +36,7 @@ pub struct JointRotational {
     pub torque: Option<MExpr>,
 }
 
-pub fn resolve<'a>(r: &mut Resolver, f: &'a RotationalDef, joints: &SpatialJoints) -> Option<Resolved<'a>> {
+pub fn resolve<'a>(r: &mut Resolver, f: &'a AxisForceDef, joints: &SpatialJoints) -> Option<Resolved<'a>> {
     let kind = f.kind.to_string();
     let known = [("k", Scope::Params), ("angle", Scope::Params), ("c", Scope::Params), ("torque", Scope::Force)];
     let spatial = r.space == crate::model::Space::Spatial;

@@ -408,6 +408,13 @@ class Spatial:
             torque = k * (theta - angle) + c * self.rate(theta) + self.opt(f["torque"])
             v = 0.5 * k * (theta - angle) ** 2 if f["k"] is not None else ca.SX(0)
             return name, self.power(-torque, theta), v, f["c"] is None and f["torque"] is None
+        if kind == "translational":
+            s = self.joint_stroke(f["joint"])
+            k, c = self.opt(f["k"]), self.opt(f["c"])
+            length = self.expr(f["length"])
+            force = k * (s - length) + c * self.rate(s) + self.opt(f["force"])
+            v = 0.5 * k * (s - length) ** 2 if f["k"] is not None else ca.SX(0)
+            return name, self.power(-force, s), v, f["c"] is None and f["force"] is None
         if kind == "bushing":
             delta = self.bushing_components(f["i"], f["j"])
             q, v = ca.SX(self.nv, 1), ca.SX(0)
