@@ -1,7 +1,8 @@
 //! Scenes: variants of one mechanism with effects left out, each its own generated type.
 //!
 //! ```text
-//! scene Name without item, item, ...;      item := a statement's label | gravity | friction
+//! scene Name [without item, item, ...] [actuating driver [= force], ...];
+//!     item := a statement's label | gravity | friction;   driver := a driver's label
 //! ```
 //!
 //! Split on the (unrolled) tokens before parsing: the mechanism without its `scene` statements is
@@ -12,6 +13,20 @@
 //! (`viscous`, `coulomb`, `radius`, `slip_velocity`, `bearing`). Each is then expanded on its
 //! own, so what a scene leaves out is absent from its generated code, and what it keeps is
 //! generated exactly as the base generates it.
+//!
+//! `actuating` frees a driven coordinate: the driver's row is gone and an actuator exerts a
+//! generalized force F along the coordinate it drove, in the sense that increases it — the force
+//! the driver exerted (its multiplier λ, N or N·m), so inverse dynamics of the driven scene gives
+//! the forces that make the free scene follow the same motion. F is the new parameter
+//! `label_force` (default 0), or the expression after `=`. Each kind of driver has its actuator:
+//!
+//! | driver | actuator |
+//! |---|---|
+//! | `distance(Pi, Pj)` | `actuator Pi ~ Pj { force: -(F) }` (a push F along the line) |
+//! | `angle(i, j)` | `torque_actuator i ~ j { torque: -(F) }` |
+//! | planar `body.phi`, `body.x`, `body.y` | `torque body = F`, `force body[0, 0] = [F, 0]`, `[0, F]` |
+//! | spatial `body.x`, `.y`, `.z` | `force body[0, 0, 0] = [F, 0, 0]`, … |
+//! | spatial `joint.angle`, `joint.stroke` | `torque_actuator joint { torque: -(F) }`, `force_actuator joint { force: -(F) }` |
 
 use proc_macro2::{Delimiter, Group, Ident, Punct, Spacing, TokenStream, TokenTree};
 use quote::quote;
@@ -69,8 +84,9 @@ fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(
     let base = rebuild(&name, kept.iter().flatten().cloned().collect(), None);
     let mut seen: Vec<String> = vec![name.to_string()];
     let mut out = Vec::new();
+    let spatial = kept.iter().any(|s| keyword(s).is_some_and(|k| k == "spatial"));
     for scene in &scenes {
-        let (scene_name, left_out) = parse_scene(scene)?;
+        let Scene { name: scene_name, without: left_out, actuating } = parse_scene(scene)?;
         if seen.contains(&scene_name.to_string()) {
             return Err(syn::Error::new(
                 scene_name.span(),
@@ -105,19 +121,134 @@ fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(
             left_out_labels.push(word);
             left_out_labels.extend(group);
         }
+        // Each actuated driver's labels (a part's label: every instance's), with the force.
+        let mut actuated: Vec<(String, &Ident, &Option<Vec<TokenTree>>)> = Vec::new();
+        for (item, force) in &actuating {
+            let word = item.to_string();
+            let group: Vec<String> = names.made_from(&word).into_iter().filter(|l| labels.contains(l)).collect();
+            let own: Vec<String> = if labels.contains(&word) { vec![word.clone()] } else { group };
+            let drivers: Vec<String> =
+                kept.iter().filter(|s| keyword(s).is_some_and(|k| k == "drive")).filter_map(|s| label(s).map(|l| l.to_string())).collect();
+            if own.is_empty() || !own.iter().all(|l| drivers.contains(l)) {
+                if lenient {
+                    continue;
+                }
+                let written: Vec<String> = drivers.iter().map(|l| names.written(l)).collect();
+                let candidates: Vec<&str> = written.iter().map(String::as_str).collect();
+                let what = match kept.iter().find(|s| label(s).is_some_and(|l| own.contains(&l.to_string()))).and_then(|s| keyword(s)) {
+                    Some(k) => format!("`{word}`, a `{k}` statement"),
+                    None => format!("`{word}`{}", crate::parse::closest(&word, &candidates, &[])),
+                };
+                return Err(syn::Error::new(
+                    item.span(),
+                    format!(
+                        "scene `{scene_name}` actuates what is not a labelled driver of `{name}`: expected a driver's label \
+                         (`drive lift: ...`; here: {}), found {what}",
+                        if candidates.is_empty() { "none".to_string() } else { candidates.join(", ") }
+                    ),
+                ));
+            }
+            if left_out_labels.iter().any(|l| own.contains(l)) {
+                return Err(syn::Error::new(
+                    item.span(),
+                    format!("scene `{scene_name}` both leaves out and actuates `{word}`: expected it in one list, found it in both"),
+                ));
+            }
+            actuated.extend(own.into_iter().map(|l| (l, item, force)));
+        }
         let no_gravity = left_out.iter().any(|i| i == "gravity");
         let without = |s: &Vec<TokenTree>| {
             !(label(s).is_some_and(|l| left_out_labels.contains(&l.to_string()))
                 || (no_gravity && keyword(s).is_some_and(|k| k == "gravity")))
         };
         let friction = left_out.iter().any(|i| i == "friction");
-        let body_tokens: TokenStream =
-            kept.iter().filter(|s| without(s)).flat_map(|s| if friction { strip_friction(s) } else { s.clone() }).collect();
-        let list: Vec<String> = left_out.iter().map(|i| format!("`{i}`")).collect();
-        let doc = format!("Scene of [`{name}`]: the same mechanism without {}.", list.join(", "));
-        out.push(rebuild(&scene_name, body_tokens, Some(doc)));
+        let mut body_tokens: Vec<TokenTree> = Vec::new();
+        for s in kept.iter().filter(|s| without(s)) {
+            match label(s).and_then(|l| actuated.iter().find(|(a, ..)| l == a)) {
+                Some((_, item, force)) => body_tokens.extend(actuator(s, item, force.as_deref(), spatial)?),
+                None if friction => body_tokens.extend(strip_friction(s)),
+                None => body_tokens.extend(s.iter().cloned()),
+            }
+        }
+        let mut what: Vec<String> = Vec::new();
+        if !left_out.is_empty() {
+            let list: Vec<String> = left_out.iter().map(|i| format!("`{i}`")).collect();
+            what.push(format!("without {}", list.join(", ")));
+        }
+        if !actuating.is_empty() {
+            let list: Vec<String> = actuating
+                .iter()
+                .map(|(i, force)| match force {
+                    Some(f) => format!("`{i}` (force `{}`)", f.iter().cloned().collect::<TokenStream>()),
+                    None => format!("`{i}` (force: the parameter `{i}_force`)"),
+                })
+                .collect();
+            what.push(format!(
+                "with {} as actuators: each exerts a force (N, or N·m on an angle) along the coordinate it drove, in the sense that increases it",
+                list.join(", ")
+            ));
+        }
+        let doc = format!("Scene of [`{name}`]: the same mechanism {}.", what.join("; "));
+        out.push(rebuild(&scene_name, body_tokens.into_iter().collect(), Some(doc)));
     }
     Ok((base, out))
+}
+
+/// A driver statement `drive label: target = f;` made an actuator of the same label along the
+/// coordinate it drove (see the module's table), with the force `force`, or the new parameter
+/// `label_force` declared before it. The new tokens carry `item`'s span: a mistake in them is
+/// reported on the scene's item.
+fn actuator(s: &[TokenTree], item: &Ident, force: Option<&[TokenTree]>, spatial: bool) -> syn::Result<Vec<TokenTree>> {
+    let span = item.span();
+    let Some(label) = label(s) else { unreachable!("an actuated driver is found by its label") };
+    let target_end = s.iter().position(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == '=')).unwrap_or(s.len());
+    let target = &s[3..target_end];
+    let mut out: TokenStream = TokenStream::new();
+    let f: TokenStream = match force {
+        Some(f) => f.iter().cloned().collect(),
+        None => {
+            let param = Ident::new(&format!("{label}_force"), span);
+            out.extend(quote::quote_spanned!(span=> params { #param: 0.0 }));
+            quote::quote_spanned!(span=> #param)
+        }
+    };
+    let f = TokenTree::Group(Group::new(Delimiter::Parenthesis, f));
+    let zero = quote::quote_spanned!(span=> 0.0);
+    let statement = match target {
+        [TokenTree::Ident(kind), TokenTree::Group(args)]
+            if (kind == "distance" || kind == "angle") && args.delimiter() == Delimiter::Parenthesis =>
+        {
+            let args: Vec<TokenTree> = args.stream().into_iter().collect();
+            let mut sides = args.split(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ','));
+            let (Some(a), Some(b)) = (sides.next(), sides.next()) else { return Ok(s.to_vec()) };
+            let (a, b): (TokenStream, TokenStream) = (a.iter().cloned().collect(), b.iter().cloned().collect());
+            if kind == "distance" {
+                quote::quote_spanned!(span=> actuator #label: #a ~ #b { force: -#f };)
+            } else {
+                quote::quote_spanned!(span=> torque_actuator #label: #a ~ #b { torque: -#f };)
+            }
+        }
+        [TokenTree::Ident(x), TokenTree::Punct(dot), TokenTree::Ident(coordinate)] if dot.as_char() == '.' => {
+            let c = coordinate.to_string();
+            let axes: &[&str] = if spatial { &["x", "y", "z"] } else { &["x", "y"] };
+            if let Some(k) = axes.iter().position(|a| *a == c) {
+                let components: Vec<TokenStream> = (0..axes.len()).map(|i| if i == k { f.clone().into() } else { zero.clone() }).collect();
+                let origin = vec![zero.clone(); axes.len()];
+                quote::quote_spanned!(span=> force #label: #x[#(#origin),*] = [#(#components),*];)
+            } else {
+                match (spatial, c.as_str()) {
+                    (false, "phi") => quote::quote_spanned!(span=> torque #label: #x = #f;),
+                    (true, "angle") => quote::quote_spanned!(span=> torque_actuator #label: #x { torque: -#f };),
+                    (true, "stroke") => quote::quote_spanned!(span=> force_actuator #label: #x { force: -#f };),
+                    // Not a driver's shape: left as it is, for the parser to report.
+                    _ => return Ok(s.to_vec()),
+                }
+            }
+        }
+        _ => return Ok(s.to_vec()),
+    };
+    out.extend(statement);
+    Ok(out.into_iter().collect())
 }
 
 /// Whether `tokens[k]` is part of an outer attribute `#[...]`.
@@ -176,31 +307,71 @@ pub(crate) fn label(s: &[TokenTree]) -> Option<&Ident> {
     }
 }
 
-/// `scene Name without a, b, c;`
-fn parse_scene(s: &[TokenTree]) -> syn::Result<(Ident, Vec<Ident>)> {
-    let shape = "expected `scene Name without item, item, ...;` (an item is a statement's label, `gravity` or `friction`)";
+/// A `scene` statement: its name, what it leaves out and which drivers it makes actuators (with
+/// their force's tokens, where given).
+struct Scene {
+    name: Ident,
+    without: Vec<Ident>,
+    actuating: Vec<(Ident, Option<Vec<TokenTree>>)>,
+}
+
+/// `scene Name without a, b, c actuating d, e = force;` (either list may be absent, not both).
+fn parse_scene(s: &[TokenTree]) -> syn::Result<Scene> {
+    let shape = "expected `scene Name without item, item, ...;` (an item is a statement's label, `gravity` or `friction`) \
+                 and/or `actuating driver, driver = force, ...` (a driver's label)";
     let at = |k: usize| s.get(k).map_or(s[0].span(), TokenTree::span);
     let name = match s.get(1) {
         Some(TokenTree::Ident(n)) => n.clone(),
         _ => return Err(syn::Error::new(at(1), shape)),
     };
-    match s.get(2) {
-        Some(TokenTree::Ident(w)) if w == "without" => {}
-        _ => return Err(syn::Error::new(at(2), shape)),
-    }
-    let mut items = Vec::new();
-    let mut k = 3;
-    loop {
-        match s.get(k) {
-            Some(TokenTree::Ident(item)) => items.push(item.clone()),
-            _ => return Err(syn::Error::new(at(k), shape)),
+    let mut scene = Scene { name, without: Vec::new(), actuating: Vec::new() };
+    let is = |k: usize, c: char| matches!(s.get(k), Some(TokenTree::Punct(p)) if p.as_char() == c);
+    let mut k = 2;
+    if matches!(s.get(k), Some(TokenTree::Ident(w)) if w == "without") {
+        k += 1;
+        loop {
+            match s.get(k) {
+                Some(TokenTree::Ident(item)) => scene.without.push(item.clone()),
+                _ => return Err(syn::Error::new(at(k), shape)),
+            }
+            k += 1;
+            if !is(k, ',') {
+                break;
+            }
+            k += 1;
         }
-        match s.get(k + 1) {
-            Some(TokenTree::Punct(p)) if p.as_char() == ',' => k += 2,
-            Some(TokenTree::Punct(p)) if p.as_char() == ';' && k + 2 == s.len() => return Ok((name, items)),
-            _ => return Err(syn::Error::new(at(k + 1), shape)),
+    }
+    if matches!(s.get(k), Some(TokenTree::Ident(w)) if w == "actuating") {
+        k += 1;
+        loop {
+            let item = match s.get(k) {
+                Some(TokenTree::Ident(item)) => item.clone(),
+                _ => return Err(syn::Error::new(at(k), shape)),
+            };
+            k += 1;
+            let mut force = None;
+            if is(k, '=') {
+                let start = k + 1;
+                while k + 1 < s.len() && !is(k + 1, ',') && !is(k + 1, ';') {
+                    k += 1;
+                }
+                if k < start {
+                    return Err(syn::Error::new(at(start), "expected the actuator's force after `=`, found none"));
+                }
+                force = Some(s[start..=k].to_vec());
+                k += 1;
+            }
+            scene.actuating.push((item, force));
+            if !is(k, ',') {
+                break;
+            }
+            k += 1;
         }
     }
+    if (scene.without.is_empty() && scene.actuating.is_empty()) || !is(k, ';') || k + 1 != s.len() {
+        return Err(syn::Error::new(at(k), shape));
+    }
+    Ok(scene)
 }
 
 /// Whether a statement's options braces hold fields (joints and force elements; not a body's
@@ -314,6 +485,90 @@ mod tests {
         assert!(front_only.contains("\"front.coil\"") && !front_only.contains("\"rear.coil\""), "{front_only}");
     }
 
+    /// A scene actuating a driver is its mechanism written with the actuator in the driver's
+    /// place: each kind of driver, token for token.
+    #[test]
+    fn a_scene_actuating_a_driver_generates_what_its_mechanism_written_with_the_actuator_generates() {
+        let bodies = quote! {
+            gravity [0.0, -9.81];
+            body a { mass: 1.0, inertia: 0.01, at: [0.1, 0.0, 0.0] }
+            body b { mass: 0.5, inertia: 0.02, at: [0.3, 0.0, 0.0] }
+            body c { mass: 0.8, inertia: 0.03, at: [1.0, -1.0, 0.0] }
+            revolute ground[0.0, 0.0] ~ a[-0.1, 0.0];
+            revolute a[0.1, 0.0] ~ b[-0.1, 0.0];
+            translational ground[0.0, -1.0] along [1.0, 0.0] ~ c[0.0, 0.0] along [1.0, 0.0];
+        };
+        let with_scene = quote!(Arm {
+            #bodies
+            drive turn: a.phi = 0.5 * t;
+            drive bend: angle(a, b) = 0.1;
+            drive push: c.x = 1.0;
+            drive reach: distance(ground[0.5, 0.5], b[0.1, 0.0]) = 0.6;
+            scene Free actuating turn, bend = 2.0 * t, push, reach;
+        });
+        let written = quote!(Free {
+            #bodies
+            params { turn_force: 0.0 }
+            torque turn: a = (turn_force);
+            torque_actuator bend: a ~ b { torque: -(2.0 * t) };
+            params { push_force: 0.0 }
+            force push: c[0.0, 0.0] = [(push_force), 0.0];
+            params { reach_force: 0.0 }
+            actuator reach: ground[0.5, 0.5] ~ b[0.1, 0.0] { force: -(reach_force) };
+        });
+        let both = expand(with_scene.clone()).to_string();
+        let base = expand(quote!(Arm {
+            #bodies
+            drive turn: a.phi = 0.5 * t;
+            drive bend: angle(a, b) = 0.1;
+            drive push: c.x = 1.0;
+            drive reach: distance(ground[0.5, 0.5], b[0.1, 0.0]) = 0.6;
+        }))
+        .to_string();
+        let scene = both.strip_prefix(base.as_str()).expect("the base comes first, as it expands alone");
+        let doc_at = scene.find("# [doc = \"Scene of").expect("the scene's doc line");
+        let doc_end = doc_at + scene[doc_at..].find("\"] ").expect("its end") + 3;
+        let scene = format!("{}{}", &scene[..doc_at].trim_end().trim_end_matches("# [doc = \"\"]"), &scene[doc_end..]);
+        assert_same_code(&canonical_text(scene.trim().to_string()), &canonical(written));
+        assert!(both.contains("with `turn` (force: the parameter `turn_force`), `bend` (force `2.0 * t`)"), "{both}");
+    }
+
+    /// In space: a joint's angle and stroke and a body's coordinate.
+    #[test]
+    fn a_spatial_scene_actuating_a_driver_writes_the_joints_actuator() {
+        let with_scene = quote!(Lift {
+            spatial;
+            body e { mass: 1.0, inertia: [0.1, 0.1, 0.1] }
+            cylindrical sleeve: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ e[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0];
+            drive turn: sleeve.angle = t;
+            drive lift: sleeve.stroke = 0.1 * t;
+            body f { mass: 1.0, inertia: [0.1, 0.1, 0.1], at: [1.0, 0.0, 0.0] }
+            translational rail: ground[1.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ f[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0];
+            drive rise: f.z = 0.2;
+            scene Free actuating turn, lift, rise;
+        });
+        let out = expand(with_scene).to_string();
+        let (_, free) = out.split_once("struct Free").expect("the scene");
+        for element in [
+            "\"turn\"",
+            "\"lift\"",
+            "\"rise\"",
+            "\"rotational spring-damper-actuator\"",
+            "\"translational spring-damper-actuator\"",
+            "\"applied force\"",
+        ] {
+            assert!(free.contains(element), "{element} is not in the scene's expansion");
+        }
+        assert!(out.contains("\"turn: angle\"") && out.contains("\"rise: z\""), "the base's driver rows");
+        assert!(
+            !free.contains("\"turn: angle\"") && !free.contains("\"lift: stroke\"") && !free.contains("\"rise: z\""),
+            "gone in the scene"
+        );
+        for parameter in ["turn_force", "lift_force", "rise_force"] {
+            assert!(free.contains(parameter), "{parameter}");
+        }
+    }
+
     #[test]
     fn a_scene_that_leaves_out_what_is_not_there_is_an_error_naming_what_is() {
         let cases = [
@@ -325,6 +580,27 @@ mod tests {
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S without friction; }), "found `friction`"),
             (quote!(M { gravity [0.0, -9.81]; body b { mass: 1.0, inertia: 0.1 } scene M without gravity; }), "`M` is already the name of the mechanism or of another scene"),
             (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S with friction; }), "expected `scene Name without item, item, ...;`"),
+            (quote!(M { body b { mass: 1.0, inertia: 0.1 } scene S; }), "and/or `actuating driver, driver = force, ...`"),
+            (
+                quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute pin: ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating pin; }),
+                "scene `S` actuates what is not a labelled driver of `M`: expected a driver's label (`drive lift: ...`; here: turn), found `pin`, a `revolute` statement",
+            ),
+            (
+                quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating trun; }),
+                "found `trun` (did you mean `turn`?)",
+            ),
+            (
+                quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S without turn actuating turn; }),
+                "scene `S` both leaves out and actuates `turn`: expected it in one list, found it in both",
+            ),
+            (
+                quote!(M { params { turn_force: 1.0 } body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating turn; }),
+                "duplicate parameter `turn_force`",
+            ),
+            (
+                quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating turn = ; }),
+                "expected the actuator's force after `=`, found none",
+            ),
         ];
         for (input, want) in cases {
             let e = expand(input).to_string();
