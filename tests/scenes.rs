@@ -1,6 +1,8 @@
 //! Scenes (`scene Name without ...;`): one declaration, several generated types, each without
 //! the effects it leaves out — absent from its code (its effects, force elements and operation
-//! counts) and from its motion, which equals the base's with those effects made inert.
+//! counts) and from its motion, which equals the base's with those effects made inert; and
+//! scenes `actuating` their drivers, which follow the driven motion when pushed by the forces
+//! inverse dynamics gives.
 use mbd::prelude::*;
 
 mechanism! {
