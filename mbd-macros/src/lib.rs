@@ -23,6 +23,7 @@ mod frames;
 #[cfg(test)]
 mod fuzz;
 mod json;
+mod mirror;
 mod model;
 mod names;
 mod newton;

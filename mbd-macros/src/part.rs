@@ -1,8 +1,9 @@
 //! Parts: a sub-assembly declared once and used several times.
 //!
 //! ```text
-//! part corner(x0, side) { statements }        a part, with parameters
-//! corner front_left(x0: 1.3, side: 1.0);      an instance: the part's statements once more
+//! part corner(x0) { statements }              a part, with parameters
+//! corner front_left(x0: 1.3);                 an instance: the part's statements once more
+//! corner front_right(x0: 1.3) mirrored y;     its mirror image (`crate::mirror`)
 //! ```
 //!
 //! An instance is the part's statements with each parameter replaced by its value (an
@@ -73,7 +74,8 @@ fn expand_with(input: TokenStream, names: &mut Names, lenient: bool) -> syn::Res
                 // Leniently, the parameters' integral defaults may bound a loop.
                 let constants = if lenient { integral_defaults(&rest) } else { Vec::new() };
                 let lenient = lenient.then_some(constants.as_slice());
-                let level = level(rest.clone().into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient)
+                let spatial = rest.iter().any(|s| matches!(s.first(), Some(TokenTree::Ident(k)) if k == "spatial"));
+                let level = level(rest.clone().into_iter().flatten().collect(), &parts, names, &mut Vec::new(), lenient, spatial)
                     .map_err(|e| parameters_as_bounds(e, &rest))?;
                 let mut group = Group::new(Delimiter::Brace, level.tokens.into_iter().collect());
                 group.set_span(g.span());
@@ -209,6 +211,7 @@ fn level(
     names: &mut Names,
     within: &mut Vec<String>,
     lenient: Option<&[(String, i64)]>,
+    spatial: bool,
 ) -> syn::Result<Level> {
     let unrolled = match lenient {
         Some(constants) => crate::repeat::unroll_statements_leniently(body, names, constants)?,
@@ -236,8 +239,8 @@ fn level(
                 ));
             }
         }
-        match instance(&s, parts, lenient.is_some())? {
-            Some((part, name, args)) => {
+        match instance(&s, parts, lenient.is_some(), spatial)? {
+            Some((part, name, args, mirror)) => {
                 if namespaces.contains_key(&name.to_string()) {
                     return Err(syn::Error::new(
                         name.span(),
@@ -252,9 +255,13 @@ fn level(
                     ));
                 }
                 within.push(part.name.to_string());
-                let inner = level(substitute(part.body.clone(), &part.params, &args), parts, names, within, lenient);
+                let inner = level(substitute(part.body.clone(), &part.params, &args), parts, names, within, lenient, spatial);
                 within.pop();
-                let (tokens, made) = own(inner?, &name.to_string(), names);
+                let mut inner = inner?;
+                if let Some(mirror) = mirror {
+                    inner.tokens = mirror.apply(inner.tokens)?;
+                }
+                let (tokens, made) = own(inner, &name.to_string(), names);
                 namespaces.extend(made);
                 pieces.push((false, tokens));
             }
@@ -289,14 +296,37 @@ fn level(
     Ok(Level { tokens, namespaces })
 }
 
-/// An instance statement `part name(param: value, ...);`: its part, name and arguments.
+/// An instance statement `part name(param: value, ...) [mirrored axis];`: its part, name,
+/// arguments and reflection.
 #[allow(clippy::type_complexity)]
-fn instance<'p>(s: &[TokenTree], parts: &'p [Part], lenient: bool) -> syn::Result<Option<(&'p Part, Ident, Vec<(Ident, Vec<TokenTree>)>)>> {
+fn instance<'p>(
+    s: &[TokenTree],
+    parts: &'p [Part],
+    lenient: bool,
+    spatial: bool,
+) -> syn::Result<Option<(&'p Part, Ident, Vec<(Ident, Vec<TokenTree>)>, Option<crate::mirror::Mirror>)>> {
     let (Some(TokenTree::Ident(kind)), Some(TokenTree::Ident(name))) = (s.first(), s.get(1)) else { return Ok(None) };
-    let args = match &s[2..] {
-        [TokenTree::Group(g), semi] if g.delimiter() == Delimiter::Parenthesis && is_punct(semi, ';') => Some(g),
-        [semi] if is_punct(semi, ';') => None,
+    let (args, mirrored) = match &s[2..] {
+        [TokenTree::Group(g), semi] if g.delimiter() == Delimiter::Parenthesis && is_punct(semi, ';') => (Some(g), None),
+        [semi] if is_punct(semi, ';') => (None, None),
+        [TokenTree::Group(g), TokenTree::Ident(m), rest @ ..] if g.delimiter() == Delimiter::Parenthesis && m == "mirrored" => {
+            (Some(g), Some((m, rest)))
+        }
+        [TokenTree::Ident(m), rest @ ..] if m == "mirrored" => (None, Some((m, rest))),
         _ => return Ok(None),
+    };
+    let mirror = match mirrored {
+        None => None,
+        Some((_, [TokenTree::Ident(axis), semi])) if is_punct(semi, ';') => Some(crate::mirror::Mirror::parse(axis, spatial)?),
+        Some((m, _)) => {
+            return Err(syn::Error::new(
+                m.span(),
+                format!(
+                    "expected `{kind} {name}(...) mirrored {};` (the axis the mirror plane is normal to), found something else after `mirrored`",
+                    if spatial { "y" } else { "x" }
+                ),
+            ))
+        }
     };
     let Some(part) = parts.iter().find(|p| p.name == *kind) else {
         // `kind name(...);` is an instance's shape, not a statement's.
@@ -355,7 +385,7 @@ fn instance<'p>(s: &[TokenTree], parts: &'p [Part], lenient: bool) -> syn::Resul
             ),
         ));
     }
-    Ok(Some((part, name.clone(), given)))
+    Ok(Some((part, name.clone(), given, mirror)))
 }
 
 fn list(params: &[&str]) -> String {
