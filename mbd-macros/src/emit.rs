@@ -60,8 +60,16 @@ pub struct PartSignature {
 /// as 20 000, and eight functions of 10 000 took 12.9 s where one of 80 000 took 19.4 s), so a
 /// 240-body chain built 2.36× slower than a 120-body one. A part recomputes what it shares with another (the sines and cosines of the bodies at
 /// its ends); the outputs are ordered by the first coordinate they read, so a part covers
-/// neighbouring bodies and shares little.
+/// neighbouring bodies and shares little — in a chain. Where the parts would repeat more than
+/// [`PART_OVERHEAD`] of the work — a body every other one hangs from, as a vehicle's chassis: cut
+/// into parts, the 13-body vehicle of the scene benchmark repeated 79 % of its `accelerations`'
+/// 13 043 nodes and 300 % of its Newton matrix's 63 922 — the function is emitted whole. (A
+/// 120-link chain's parts repeat 0.4 %; the vehicle's position projection, 11 %.)
 pub const PART_NODES: usize = 2000;
+
+/// The most the parts of a function may repeat, as a fraction of its nodes emitted whole, for
+/// it to be cut into them.
+pub const PART_OVERHEAD: f64 = 0.2;
 
 struct Plan {
     /// Nodes bound with `let`, with their binding names.
@@ -499,7 +507,8 @@ impl Emitter<'_> {
 
     /// As [`Emitter::body`], for a function that may be too large to compile as one: above
     /// [`PART_NODES`] expression nodes the outputs, ordered by the first coordinate each reads,
-    /// are cut into parts of about that many nodes; each part becomes a method
+    /// are cut into parts of about that many nodes — unless they would repeat more than
+    /// [`PART_OVERHEAD`] of the work; each part becomes a method
     /// `__mbd_{name}_{k}(&self, params)` (collected in [`Emitter::parts`]) and the returned code
     /// calls them in turn. The operation count is the parts' sum.
     pub fn body_in_parts(&self, outputs: &[Output], signature: &PartSignature) -> (TokenStream, Ops) {
@@ -522,8 +531,9 @@ impl Emitter<'_> {
         let mut ordered: Vec<&Output> = outputs.iter().collect();
         ordered.sort_by_key(|o| first[&o.node]);
         // Greedy cut: a part closes when the next output would take it past PART_NODES.
+        let whole = reached.iter().filter(|&&id| costly(id)).count();
         let mut groups: Vec<Vec<Output>> = vec![Vec::new()];
-        let (mut in_part, mut size): (HashSet<Id>, usize) = (HashSet::new(), 0);
+        let (mut in_part, mut size, mut closed): (HashSet<Id>, usize, usize) = (HashSet::new(), 0, 0);
         for o in ordered {
             let mut new = HashSet::new();
             let mut stack = vec![o.node];
@@ -537,6 +547,7 @@ impl Emitter<'_> {
                 // A new part reads everything the output reads.
                 groups.push(Vec::new());
                 in_part.clear();
+                closed += size;
                 size = 0;
                 let mut stack = vec![o.node];
                 while let Some(id) = stack.pop() {
@@ -550,6 +561,9 @@ impl Emitter<'_> {
                 size += added;
             }
             groups.last_mut().expect("a part").push(o.clone());
+        }
+        if (closed + size) as f64 > (1.0 + PART_OVERHEAD) * whole as f64 {
+            return self.body(outputs);
         }
         let mut ops = Ops::default();
         let mut calls = Vec::new();
@@ -741,6 +755,51 @@ mod tests {
         assert!(!code.contains(":: sin (") && !code.contains(":: cos ("), "{code}");
         assert_eq!(ops.call, 1, "one sin_cos");
         assert!(code.contains("phi [0] =") && code.contains("phi [1] ="), "{code}");
+    }
+
+    /// A chain's `accelerations` is cut into parts (they repeat 0.4 % of it); outputs that all
+    /// read one large node, which every part would repeat, are emitted whole.
+    #[test]
+    fn a_function_is_cut_into_parts_only_where_they_repeat_little() {
+        let chain: TokenStream = "C {
+            gravity [0.0, -9.81];
+            revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+            for k in 0..120 { body l[k] { mass: 0.1, inertia: 8.3e-5, at: [0.05 + 0.1 * k, 0.0, 0.0] } }
+            for k in 1..120 { revolute l[k - 1][0.05, 0.0] ~ l[k][-0.05, 0.0]; }
+        }"
+        .parse()
+        .unwrap();
+        let chain = crate::expand::expand(chain).to_string();
+        assert!(chain.contains("__mbd_accelerations_0"), "the chain's accelerations in parts");
+        // Outputs that all read one large shared node: parts would repeat it in each.
+        let model = syn::parse_str::<MechanismDef>("P { body a { mass: 1.0, inertia: 0.1 } }").unwrap().validate().unwrap();
+        let mut f = crate::formulation::formulate(&model);
+        let g = &mut f.graph;
+        // Σ sin(c_k q₀), summed pairwise (shallow: the graph's walks recurse).
+        let q0 = g.var(Var::Q(0));
+        let mut terms: Vec<Id> = (0..PART_NODES)
+            .map(|k| {
+                let c = g.num(1.0 + k as f64);
+                let x = g.mul(c, q0);
+                g.call(crate::sym::Func::Sin, x)
+            })
+            .collect();
+        while terms.len() > 1 {
+            terms = terms.chunks(2).map(|p| if let [a, b] = p { g.add(*a, *b) } else { p[0] }).collect();
+        }
+        let shared = terms[0];
+        let nodes: Vec<Id> = (0..8)
+            .map(|k| {
+                let c = g.num(k as f64 + 0.5);
+                let x = g.var(Var::Q(k % 3));
+                let own = g.mul(c, x);
+                g.add(shared, own)
+            })
+            .collect();
+        let signature = PartSignature { name: "shared", params: quote!(q: &[f64; 3]), args: quote!(q) };
+        let e = emitter(&model, &f);
+        let (code, _) = e.body_in_parts(&vector_outputs("out", &nodes), &signature);
+        assert!(e.parts.borrow().is_empty() && !code.to_string().contains("__mbd_shared"), "emitted whole");
     }
 
     /// The position solve's stages: `sin(2t)` of the driver in the prologue, computed once per

@@ -175,12 +175,12 @@ fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(
             let list: Vec<String> = left_out.iter().map(|i| format!("`{i}`")).collect();
             what.push(format!("without {}", list.join(", ")));
         }
-        if !actuating.is_empty() {
-            let list: Vec<String> = actuating
+        if !actuated.is_empty() {
+            let list: Vec<String> = actuated
                 .iter()
-                .map(|(i, force)| match force {
-                    Some(f) => format!("`{i}` (force `{}`)", f.iter().cloned().collect::<TokenStream>()),
-                    None => format!("`{i}` (force: the parameter `{i}_force`)"),
+                .map(|(l, _, force)| match force {
+                    Some(f) => format!("`{}` (force `{}`)", names.written(l), f.iter().cloned().collect::<TokenStream>()),
+                    None => format!("`{}` (force: the parameter `{l}_force`)", names.written(l)),
                 })
                 .collect();
             what.push(format!(

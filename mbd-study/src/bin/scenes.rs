@@ -42,7 +42,7 @@ mechanism! {
 
 mechanism! {
     /// A vehicle of four double-wishbone corners (the corner of `examples/double_wishbone_3d.rs`,
-    /// its y mirrored by `side` on the right) on a free chassis: lower and upper arms hinged to the
+    /// the right ones its mirror image in y) on a free chassis: lower and upper arms hinged to the
     /// chassis with viscous pivot friction, ball joints to the upright, a tie rod to the chassis,
     /// coil spring and shock absorber from the lower arm to the chassis, and a vertical linear
     /// tyre at the wheel centre. Chassis frame at its centre of mass, 0.55 m above the road.
@@ -51,26 +51,26 @@ mechanism! {
         params { k_s: 35000.0, free_length: 0.67, c_s: 3000.0, k_t: 250000.0, c_t: 200.0, radius: 0.3126, c_pivot: 5.0 }
         gravity [0.0, 0.0, -9.81];
         body chassis { mass: 1200.0, inertia: [450.0, 1700.0, 1900.0], at: [0.0, 0.0, 0.55] }
-        part corner(x0, side) {
-            body lower { mass: 3.0, inertia: [0.06, 0.01, 0.06], at: [x0, side * 0.475, 0.14] }
-            body upper { mass: 2.0, inertia: [0.02, 0.005, 0.02], at: [x0 - 0.009, side * 0.505, 0.46] }
-            body upright { mass: 15.0, inertia: [0.5, 0.8, 0.5], at: [x0, side * 0.76, 0.30] }
-            revolute lower_pivot: chassis[x0, side * 0.25, 0.15 - 0.55] along [1.0, 0.0, 0.0]
-                ~ lower[0.0, side * (0.25 - 0.475), 0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
-            revolute upper_pivot: chassis[x0, side * 0.35, 0.45 - 0.55] along [1.0, 0.0, 0.0]
-                ~ upper[0.009, side * (0.35 - 0.505), -0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
-            spherical lower_ball: lower[0.0, side * (0.70 - 0.475), -0.01] ~ upright[0.0, side * (0.70 - 0.76), -0.17];
-            spherical upper_ball: upper[-0.009, side * (0.66 - 0.505), 0.01] ~ upright[-0.018, side * (0.66 - 0.76), 0.17];
-            distance tie_rod: chassis[x0 - 0.13, side * 0.25, 0.15 - 0.55] ~ upright[-0.13, side * (0.70 - 0.76), -0.17]
+        part corner(x0) {
+            body lower { mass: 3.0, inertia: [0.06, 0.01, 0.06], at: [x0, 0.475, 0.14] }
+            body upper { mass: 2.0, inertia: [0.02, 0.005, 0.02], at: [x0 - 0.009, 0.505, 0.46] }
+            body upright { mass: 15.0, inertia: [0.5, 0.8, 0.5], at: [x0, 0.76, 0.30] }
+            revolute lower_pivot: chassis[x0, 0.25, 0.15 - 0.55] along [1.0, 0.0, 0.0]
+                ~ lower[0.0, 0.25 - 0.475, 0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
+            revolute upper_pivot: chassis[x0, 0.35, 0.45 - 0.55] along [1.0, 0.0, 0.0]
+                ~ upper[0.009, 0.35 - 0.505, -0.01] along [1.0, 0.0, 0.0] { viscous: c_pivot };
+            spherical lower_ball: lower[0.0, 0.70 - 0.475, -0.01] ~ upright[0.0, 0.70 - 0.76, -0.17];
+            spherical upper_ball: upper[-0.009, 0.66 - 0.505, 0.01] ~ upright[-0.018, 0.66 - 0.76, 0.17];
+            distance tie_rod: chassis[x0 - 0.13, 0.25, 0.15 - 0.55] ~ upright[-0.13, 0.70 - 0.76, -0.17]
                 { length: sqrt(0.45^2 + 0.02^2) };
-            spring coil: lower[0.0, side * (0.60 - 0.475), 0.0] ~ chassis[x0, side * 0.55, 0.70 - 0.55] { k: k_s, length: free_length };
-            damper shock: lower[0.0, side * (0.60 - 0.475), 0.0] ~ chassis[x0, side * 0.55, 0.70 - 0.55] { c: c_s };
+            spring coil: lower[0.0, 0.60 - 0.475, 0.0] ~ chassis[x0, 0.55, 0.70 - 0.55] { k: k_s, length: free_length };
+            damper shock: lower[0.0, 0.60 - 0.475, 0.0] ~ chassis[x0, 0.55, 0.70 - 0.55] { c: c_s };
             force tyre: upright[0.0, 0.0, 0.0] = [0.0, 0.0, k_t * (radius - upright.z) - c_t * upright.vz];
         }
-        corner front_left(x0: 1.3, side: 1.0);
-        corner front_right(x0: 1.3, side: -1.0);
-        corner rear_left(x0: -1.4, side: 1.0);
-        corner rear_right(x0: -1.4, side: -1.0);
+        corner front_left(x0: 1.3);
+        corner front_right(x0: 1.3) mirrored y;
+        corner rear_left(x0: -1.4);
+        corner rear_right(x0: -1.4) mirrored y;
         scene VehicleNoFriction without friction;
         scene VehicleNoShock without shock;
         scene VehicleBare without friction, shock, coil, tyre, gravity;
@@ -246,8 +246,12 @@ mod tests {
         let weight: f64 = (0..Vehicle::N_BODIES).map(|k| m.mass_of(SpatialBody::new(k, "")) * 9.81).sum();
         // The tyre forces balance the weight to the static solver's tolerance (1e-10 relative).
         assert!((tyres - weight).abs() <= 1e-6 * weight, "tyres {tyres} N, weight {weight} N");
-        // Mirror images: the same heights left and right, to the solver's tolerance.
+        // Mirror images (`mirrored y`): the same heights and opposite y left and right, to the
+        // solver's tolerance.
+        let y = |b: SpatialBody| b.position(&q).y;
         assert!((z(uprights[0]) - z(uprights[1])).abs() < 1e-9 && (z(uprights[2]) - z(uprights[3])).abs() < 1e-9);
+        assert!((y(uprights[0]) + y(uprights[1])).abs() < 1e-9 && (y(uprights[2]) + y(uprights[3])).abs() < 1e-9);
+        assert!(y(uprights[0]) > 0.7, "the left wheel centres at y = 0.76 m: {}", y(uprights[0]));
         let chassis = z(Vehicle::CHASSIS);
         assert!((chassis - 0.55).abs() < 0.02, "chassis at {chassis} m");
         assert_eq!(Vehicle::BODY_NAMES[1], "front_left.lower", "names read as written");
