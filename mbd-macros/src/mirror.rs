@@ -33,11 +33,13 @@ use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenS
 use crate::scene::{label, statements};
 
 /// The reflection: which coordinate it negates, in which space, and where it was asked for.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 pub struct Mirror {
     pub axis: usize,
     pub spatial: bool,
     pub span: Span,
+    /// The instance being reflected, as written (for errors).
+    instance: String,
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -47,7 +49,7 @@ impl Mirror {
     pub fn parse(word: &Ident, spatial: bool) -> syn::Result<Mirror> {
         let axes = if spatial { &AXES[..] } else { &AXES[..2] };
         match axes.iter().position(|a| word == a) {
-            Some(axis) => Ok(Mirror { axis, spatial, span: word.span() }),
+            Some(axis) => Ok(Mirror { axis, spatial, span: word.span(), instance: String::new() }),
             None => Err(syn::Error::new(
                 word.span(),
                 format!(
@@ -58,8 +60,13 @@ impl Mirror {
         }
     }
 
-    /// The instance's statements, reflected.
-    pub fn apply(&self, tokens: Vec<TokenTree>) -> syn::Result<Vec<TokenTree>> {
+    /// The statements of instance `instance`, reflected.
+    pub fn apply(&self, tokens: Vec<TokenTree>, instance: &str) -> syn::Result<Vec<TokenTree>> {
+        let this = Mirror { instance: instance.to_string(), ..self.clone() };
+        this.reflect(tokens)
+    }
+
+    fn reflect(&self, tokens: Vec<TokenTree>) -> syn::Result<Vec<TokenTree>> {
         let statements = statements(tokens.into_iter().collect());
         let declared: Vec<(String, String, Vec<TokenTree>)> = statements
             .iter()
@@ -177,8 +184,8 @@ impl Mirror {
                     return Err(syn::Error::new(
                         keyword.span(),
                         format!(
-                            "a tyre acts along the vertical ({}): expected a mirror plane that keeps it, found `mirrored {}` on this instance",
-                            AXES[self.axis], AXES[self.axis]
+                            "a tyre acts along the vertical ({}): expected a mirror plane that keeps it, found `mirrored {}` on instance `{}`",
+                            AXES[self.axis], AXES[self.axis], self.instance
                         ),
                     ));
                 }
@@ -311,9 +318,9 @@ impl Mirror {
                     return Err(syn::Error::new(
                         side[at].span(),
                         format!(
-                            "in an instance `mirrored {}`, a marker whose axis is not written in numbers needs its reference: \
+                            "instance `{}` is mirrored in {}: a marker whose axis is not written in numbers needs its reference there: \
                              expected `along [..] reference [..]`, found no `reference`",
-                            AXES[self.axis]
+                            self.instance, AXES[self.axis]
                         ),
                     ))
                 }
@@ -416,9 +423,9 @@ impl Mirror {
                         return Err(syn::Error::new(
                             p.span(),
                             format!(
-                                "an instance `mirrored {}` reflects what its part declares: expected a point or vector declared in the part, \
-                                 or written in place (`{b}[x, y, ..]`), found `{b}.{p}`, declared outside it",
-                                AXES[self.axis]
+                                "instance `{}` is mirrored in {}, which reflects what its part declares: expected a point or vector declared \
+                                 in the part, or written in place (`{b}[x, y, ..]`), found `{b}.{p}`, declared outside it",
+                                self.instance, AXES[self.axis]
                             ),
                         ));
                     }
@@ -542,18 +549,19 @@ mod tests {
         let cases = [
             (
                 quote!(M { point ground.mount = [1.0, 0.5]; part p() { body b { mass: 1.0, inertia: 0.1 } revolute ground.mount ~ b[0.0, 0.0]; } p l(); p r() mirrored x; }),
-                "an instance `mirrored x` reflects what its part declares: expected a point or vector declared in the part, or written in place (`ground[x, y, ..]`), found `ground.mount`, declared outside it",
+                "instance `r` is mirrored in x, which reflects what its part declares: expected a point or vector declared in the part, or written in place (`ground[x, y, ..]`), found `ground.mount`, declared outside it",
             ),
             (
                 quote!(M { spatial; params { a: 1.0 } part p() { body b { mass: 1.0, inertia: [0.1, 0.1, 0.1] } revolute ground[0.0, 0.0, 0.0] along [a, 0.0, 0.0] ~ b[0.0, 0.0, 0.0] along [1.0, 0.0, 0.0]; } p r() mirrored y; }),
-                "in an instance `mirrored y`, a marker whose axis is not written in numbers needs its reference: expected `along [..] reference [..]`, found no `reference`",
+                "instance `r` is mirrored in y: a marker whose axis is not written in numbers needs its reference there: expected `along [..] reference [..]`, found no `reference`",
             ),
             (
                 quote!(M { part p() { body b { mass: 1.0, inertia: 0.1 } tyre b[0.0, 0.0] ~ ground[0.0, 0.0] { radius: 0.3, k: 1.0e5 }; } p r() mirrored y; }),
-                "a tyre acts along the vertical (y): expected a mirror plane that keeps it, found `mirrored y` on this instance",
+                "a tyre acts along the vertical (y): expected a mirror plane that keeps it, found `mirrored y` on instance `r`",
             ),
             (quote!(M { part p() { body b { mass: 1.0, inertia: 0.1 } } p r() mirrored z; }), "expected the axis the mirror plane is normal to, `x` or `y` (in the plane), found `z`"),
             (quote!(M { part p() { body b { mass: 1.0, inertia: 0.1 } } p r() mirrored; }), "expected `p r(...) mirrored x;` (the axis the mirror plane is normal to), found something else after `mirrored`"),
+            (quote!(M { part p() { body b { mass: 1.0, inertia: 0.1 } } p r() mirror x; }), "expected `;` or `mirrored x;` after the parameters of instance `r`, found `mirror` (did you mean `mirrored`?)"),
         ];
         for (input, want) in cases {
             let e = expand(input).to_string();

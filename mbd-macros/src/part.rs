@@ -259,7 +259,12 @@ fn level(
                 within.pop();
                 let mut inner = inner?;
                 if let Some(mirror) = mirror {
-                    inner.tokens = mirror.apply(inner.tokens)?;
+                    match mirror.apply(inner.tokens.clone(), &names.written(&name.to_string())) {
+                        Ok(tokens) => inner.tokens = tokens,
+                        // A placeholder keeps the instance, unreflected, so that its names exist.
+                        Err(_) if lenient.is_some() => {}
+                        Err(e) => return Err(e),
+                    }
                 }
                 let (tokens, made) = own(inner, &name.to_string(), names);
                 namespaces.extend(made);
@@ -306,6 +311,7 @@ fn instance<'p>(
     spatial: bool,
 ) -> syn::Result<Option<(&'p Part, Ident, Vec<(Ident, Vec<TokenTree>)>, Option<crate::mirror::Mirror>)>> {
     let (Some(TokenTree::Ident(kind)), Some(TokenTree::Ident(name))) = (s.first(), s.get(1)) else { return Ok(None) };
+    let axis = if spatial { "y" } else { "x" };
     let (args, mirrored) = match &s[2..] {
         [TokenTree::Group(g), semi] if g.delimiter() == Delimiter::Parenthesis && is_punct(semi, ';') => (Some(g), None),
         [semi] if is_punct(semi, ';') => (None, None),
@@ -313,17 +319,36 @@ fn instance<'p>(
             (Some(g), Some((m, rest)))
         }
         [TokenTree::Ident(m), rest @ ..] if m == "mirrored" => (None, Some((m, rest))),
+        // An instance of a part with something else after its parameters.
+        [TokenTree::Group(g), other, ..] if g.delimiter() == Delimiter::Parenthesis && parts.iter().any(|p| p.name == *kind) => {
+            if lenient {
+                (Some(g), None)
+            } else {
+                let hint = match other {
+                    TokenTree::Ident(w) => crate::parse::closest(&w.to_string(), &["mirrored"], &[]),
+                    _ => String::new(),
+                };
+                return Err(syn::Error::new(
+                    other.span(),
+                    format!("expected `;` or `mirrored {axis};` after the parameters of instance `{name}`, found `{other}`{hint}"),
+                ));
+            }
+        }
         _ => return Ok(None),
     };
     let mirror = match mirrored {
         None => None,
-        Some((_, [TokenTree::Ident(axis), semi])) if is_punct(semi, ';') => Some(crate::mirror::Mirror::parse(axis, spatial)?),
+        Some((_, [TokenTree::Ident(a), semi])) if is_punct(semi, ';') => match crate::mirror::Mirror::parse(a, spatial) {
+            Ok(m) => Some(m),
+            Err(_) if lenient => None,
+            Err(e) => return Err(e),
+        },
+        Some(_) if lenient => None,
         Some((m, _)) => {
             return Err(syn::Error::new(
                 m.span(),
                 format!(
-                    "expected `{kind} {name}(...) mirrored {};` (the axis the mirror plane is normal to), found something else after `mirrored`",
-                    if spatial { "y" } else { "x" }
+                    "expected `{kind} {name}(...) mirrored {axis};` (the axis the mirror plane is normal to), found something else after `mirrored`"
                 ),
             ))
         }

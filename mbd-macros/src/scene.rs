@@ -126,11 +126,19 @@ fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(
         for (item, force) in &actuating {
             let word = item.to_string();
             let group: Vec<String> = names.made_from(&word).into_iter().filter(|l| labels.contains(l)).collect();
-            let own: Vec<String> = if labels.contains(&word) { vec![word.clone()] } else { group };
+            let mut own: Vec<String> = if labels.contains(&word) { vec![word.clone()] } else { group };
             let drivers: Vec<String> =
                 kept.iter().filter(|s| keyword(s).is_some_and(|k| k == "drive")).filter_map(|s| label(s).map(|l| l.to_string())).collect();
             if own.is_empty() || !own.iter().all(|l| drivers.contains(l)) {
                 if lenient {
+                    // A placeholder actuates the driver the user most likely meant, so that its
+                    // force's parameter is there.
+                    let candidates: Vec<&str> = drivers.iter().map(String::as_str).collect();
+                    match crate::parse::nearest(&word, &candidates, &[]) {
+                        Some(d) if !actuated.iter().any(|(a, ..)| a == d) => own = vec![d.to_string()],
+                        _ => continue,
+                    }
+                    actuated.extend(own.into_iter().map(|l| (l, item, force)));
                     continue;
                 }
                 let written: Vec<String> = drivers.iter().map(|l| names.written(l)).collect();
@@ -152,6 +160,12 @@ fn split_with(input: TokenStream, names: &Names, lenient: bool) -> syn::Result<(
                 return Err(syn::Error::new(
                     item.span(),
                     format!("scene `{scene_name}` both leaves out and actuates `{word}`: expected it in one list, found it in both"),
+                ));
+            }
+            if actuated.iter().any(|(a, ..)| own.contains(a)) {
+                return Err(syn::Error::new(
+                    item.span(),
+                    format!("scene `{scene_name}` actuates `{word}` twice: expected each driver once, found `{word}` again"),
                 ));
             }
             actuated.extend(own.into_iter().map(|l| (l, item, force)));
@@ -588,6 +602,10 @@ mod tests {
             (
                 quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating trun; }),
                 "found `trun` (did you mean `turn`?)",
+            ),
+            (
+                quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S actuating turn, turn = 2.0; }),
+                "scene `S` actuates `turn` twice: expected each driver once, found `turn` again",
             ),
             (
                 quote!(M { body b { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ b[0.0, 0.0]; drive turn: b.phi = t; scene S without turn actuating turn; }),
