@@ -145,3 +145,42 @@ fn a_mirrored_spatial_instance_moves_as_the_mirror_image() {
     assert!((m.left_sleeve_stroke(&q) - m.right_sleeve_stroke(&q)).abs() <= SAME, "its stroke is s");
     eprintln!("spatial: mirror images to {worst:.1e}");
 }
+
+mechanism! {
+    /// Reflections compose: a pair of arms, plain and mirrored, used plain and mirrored. The
+    /// mirrored pair's mirrored arm is reflected twice: the plain arm again, in its place.
+    pub Pairs {
+        gravity [0.0, -9.81];
+        part arm(x0) {
+            body link { mass: 1.0, inertia: 0.02, at: [x0 + 0.25, 0.1, 0.3] }
+            body tip { mass: 0.3, inertia: 0.002, at: [x0 + 0.6, 0.2, -0.2] }
+            revolute ground[x0, 0.0] ~ link[-0.25, 0.0];
+            revolute link[0.25, 0.0] ~ tip[-0.1, 0.0];
+            rotational_spring link ~ tip { k: 3.0, angle: 0.5 };
+            torque link = 0.4 * sin(2.0 * t) + 0.1 * tip.omega;
+        }
+        part pair(x0) {
+            arm own(x0: x0);
+            arm image(x0: x0) mirrored x;
+        }
+        pair near(x0: 0.5);
+        pair far(x0: 0.5) mirrored x;
+    }
+}
+
+/// Reflecting twice is no reflection: `far.image` moves as `near.own` (the same statements,
+/// each number negated twice), and `far.own` as `near.image`.
+#[test]
+fn a_mirrored_part_holding_a_mirrored_instance_reflects_it_back() {
+    let m = Pairs::default();
+    let (q, _) = run(&m, &mut Pairs::workspace());
+    for (a, b) in [(Pairs::NEAR_OWN_LINK, Pairs::FAR_IMAGE_LINK), (Pairs::NEAR_OWN_TIP, Pairs::FAR_IMAGE_TIP)] {
+        let d = [a.x(&q) - b.x(&q), a.y(&q) - b.y(&q), a.phi(&q) - b.phi(&q)];
+        assert!(d.iter().all(|x| x.abs() <= SAME), "{}: {d:?}", b.name);
+    }
+    for (a, b) in [(Pairs::NEAR_IMAGE_LINK, Pairs::FAR_OWN_LINK), (Pairs::NEAR_IMAGE_TIP, Pairs::FAR_OWN_TIP)] {
+        let d = [a.x(&q) - b.x(&q), a.y(&q) - b.y(&q), a.phi(&q) - b.phi(&q)];
+        assert!(d.iter().all(|x| x.abs() <= SAME), "{}: {d:?}", b.name);
+    }
+    assert!(Pairs::NEAR_OWN_LINK.x(&q) > 0.0 && Pairs::NEAR_IMAGE_LINK.x(&q) < 0.0, "the two sides");
+}
