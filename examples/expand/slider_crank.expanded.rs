@@ -2127,8 +2127,8 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[55] * s[55] / s[35].abs() + s[56] * s[56] / s[39].abs()
-                + s[57] * s[57] / s[50].abs();
+            let scale = 0f64 + s[55] * s[55] * s[35].abs() + s[56] * s[56] * s[39].abs()
+                + s[57] * s[57] * s[50].abs();
             {
                 let l = s[55] * inverse[4];
                 s[55] = l;
@@ -2173,7 +2173,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[62] * s[62] / s[50].abs();
+            let scale = 0f64 + s[62] * s[62] * s[50].abs();
             {
                 let l = s[62] * inverse[7];
                 s[62] = l;
@@ -2211,8 +2211,8 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[67] * s[67] / s[29].abs() + s[68] * s[68] / s[35].abs()
-                + s[69] * s[69] / s[43].abs();
+            let scale = 0f64 + s[67] * s[67] * s[29].abs() + s[68] * s[68] * s[35].abs()
+                + s[69] * s[69] * s[43].abs();
             {
                 let l = s[67] * inverse[2];
                 s[67] = l;
@@ -2277,8 +2277,8 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[77] * s[77] / s[32].abs() + s[78] * s[78] / s[39].abs()
-                + s[79] * s[79] / s[43].abs();
+            let scale = 0f64 + s[77] * s[77] * s[32].abs() + s[78] * s[78] * s[39].abs()
+                + s[79] * s[79] * s[43].abs();
             {
                 let l = s[77] * inverse[3];
                 s[77] = l;
@@ -2379,7 +2379,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[93] * s[93] / s[23].abs() + s[94] * s[94] / s[87].abs();
+            let scale = 0f64 + s[93] * s[93] * s[23].abs() + s[94] * s[94] * s[87].abs();
             {
                 let l = s[93] * inverse[0];
                 s[93] = l;
@@ -2417,8 +2417,8 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[100] * s[100] / s[26].abs()
-                + s[101] * s[101] / s[87].abs();
+            let scale = 0f64 + s[100] * s[100] * s[26].abs()
+                + s[101] * s[101] * s[87].abs();
             {
                 let l = s[100] * inverse[1];
                 s[100] = l;
@@ -2464,9 +2464,9 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[107] * s[107] / s[23].abs()
-                + s[108] * s[108] / s[29].abs() + s[109] * s[109] / s[43].abs()
-                + s[112] * s[112] / s[87].abs();
+            let scale = 0f64 + s[107] * s[107] * s[23].abs()
+                + s[108] * s[108] * s[29].abs() + s[109] * s[109] * s[43].abs()
+                + s[112] * s[112] * s[87].abs();
             {
                 let l = s[107] * inverse[0];
                 s[107] = l;
@@ -2546,9 +2546,9 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[118] * s[118] / s[26].abs()
-                + s[119] * s[119] / s[32].abs() + s[120] * s[120] / s[43].abs()
-                + s[123] * s[123] / s[87].abs();
+            let scale = 0f64 + s[118] * s[118] * s[26].abs()
+                + s[119] * s[119] * s[32].abs() + s[120] * s[120] * s[43].abs()
+                + s[123] * s[123] * s[87].abs();
             {
                 let l = s[118] * inverse[1];
                 s[118] = l;
@@ -2634,7 +2634,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             }
         }
         {
-            let scale = 0f64 + s[129] * s[129] / s[87].abs();
+            let scale = 0f64 + s[129] * s[129] * s[87].abs();
             {
                 let l = s[129] * inverse[12];
                 s[129] = l;

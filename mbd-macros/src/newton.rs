@@ -99,9 +99,10 @@ impl NewtonPlan {
             // The row's scale from its entries before elimination (`sparse::factor`).
             let originals: Vec<usize> = (start..end).filter(|&p| self.original.contains(&(i, self.columns[p]))).collect();
             let scale = if u >= self.nv {
+                // Σ D_rc² / |u_cc|: the diagonal already holds 1/u_cc for the velocities before.
                 let terms = originals.iter().filter(|&&p| p < diag).map(|&p| {
                     let (x, d) = (at(p), at(self.diagonal[self.columns[p]]));
-                    quote!(s[#x] * s[#x] / s[#d].abs())
+                    quote!(s[#x] * s[#x] * s[#d].abs())
                 });
                 quote!(let scale = #zero #(+ #terms)*;)
             } else {
