@@ -96,7 +96,7 @@ fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
     mut ws: Box<Workspace<f64, NQ, NC, N>>,
 ) -> Result<Report, Box<dyn std::error::Error>>
 where
-    M: ForwardDynamics<f64, NQ, NQ, NC> + ConstraintForces<f64, NQ, NQ, NC>,
+    M: NewtonMatrix<f64, NQ, NQ, NC>,
 {
     // The stable rest state from the `at:` guesses (the solver assembles them first).
     let mut q = m.initial_positions();

@@ -11,10 +11,10 @@
 //! all. Instead, at t fixed:
 //!
 //! 1. **Assembly**: q is brought onto Φ = 0 by Newton steps of least kinetic-energy norm,
-//!    [[M, Dᵀ], [D, 0]] [Δv; ·] = [0; −Φ], q ← q ⊕ Δv — the same restoration follows every trial
-//!    step.
+//!    [[M, −Dᵀ], [D, 0]] [Δv; ·] = [0; −Φ], q ← q ⊕ Δv — the same restoration follows every
+//!    trial step.
 //! 2. **Multipliers by least squares** at every iterate, in the M⁻¹ norm:
-//!    [[M, Dᵀ], [D, 0]] [x; −λ] = [h; 0], so that the residual r = h + Dᵀλ = M x is the force
+//!    [[M, −Dᵀ], [D, 0]] [x; λ] = [h; 0], so that the residual r = h + Dᵀλ = M x is the force
 //!    projected onto the motions the joints allow (x is the acceleration the mechanism would
 //!    take if released from rest here, and λ its reactions at that instant). The λ passed in is
 //!    only an output: its value on entry is ignored. The M⁻¹ norm makes the projection
@@ -22,42 +22,58 @@
 //!    same λ at an equilibrium. Converged when ‖r‖∞ ≤ tolerance (N, N·m; or the rounding
 //!    floor of the forces where that is larger, see [`StaticOptions::tolerance`]) and
 //!    ‖Φ‖∞ ≤ tolerance (m, rad).
-//! 3. **Modes**: Z, an M-orthonormal basis of the null space of D (the M-orthogonal projections
-//!    of the unit velocities onto it, by column-pivoted Gram–Schmidt in the M inner product),
-//!    and the reduced stiffness A = −Zᵀ H Z with H = (∂h/∂q)B + K(λ), K = ∂(Dᵀλ)/∂q·B
-//!    ([`ConstraintForces`]) — the Hessian of the potential on the manifold (its symmetric part
-//!    is used). Its eigenvalues (cyclic Jacobi) are the squared natural frequencies ω² (1/s²)
-//!    of small oscillations about the current configuration, the eigenvectors the mode shapes.
-//! 4. **Trust-region step** in mode coordinates y (δ = Z y), minimizing the quadratic model of
-//!    the energy −fᵀy + ½ yᵀ diag(ω²) y, f = Zᵀ r, within a radius on ‖S y‖, S the largest
-//!    velocity-space entry of each unit mode — so the radius is in m or rad, and the first one
-//!    is [`StaticOptions::initial_step`]: the Newton step y = f/ω² when every mode that carries
-//!    a force is stiff and the step fits the radius, else y_i = f_i / (ω²_i + μ s_i²) with the
-//!    shift μ ≥ max(0, −ω²_i/s_i²) that puts the step on the radius (the Levenberg–Marquardt
-//!    form of the step: μ = 0 is Newton, large μ a short step along M⁻¹ r). Modes whose force
-//!    is below the tolerance are not moved (a compressed spring pushing straight down does
-//!    not buckle sideways).
+//! 3. **Stiffness**: H = (∂h/∂q)B + K(λ), K = ∂(Dᵀλ)/∂q·B ([`ConstraintForces`]); on the
+//!    constraint manifold −H is the Hessian of the potential, and the reduced stiffness
+//!    −Zᵀ H Z (Z a basis of the motions the joints allow, D Z = 0) has as eigenvalues, against
+//!    the reduced mass Zᵀ M Z, the squared natural frequencies ω² (1/s²) of small oscillations.
+//!    Z is never formed. Every system is the saddle-point matrix
+//!
+//!    ```text
+//!    [ μM − H   −Dᵀ ]
+//!    [ D          0 ]
+//!    ```
+//!
+//!    for a shift μ ≥ 0 (1/s²), factored over the pattern `mechanism!` plans for
+//!    generalized-α's Newton matrix ([`NewtonMatrix`], [`crate::sparse`]): O(non-zeros), no
+//!    dense matrix. Whether μM − H is positive definite on the motions the joints allow is read
+//!    off the pivots' signs: by Sylvester's law of inertia the symmetric saddle matrix has
+//!    then exactly NV positive pivots (velocities' positive, kept multipliers' negative in this
+//!    unsymmetric form), whatever the order of elimination.
+//! 4. **Trust-region step** (Levenberg–Marquardt in the M norm): (μM − H)δ − Dᵀy = r, Dδ = 0,
+//!    the minimizer of the quadratic model of the energy −rᵀδ − ½δᵀHδ plus ½μ δᵀMδ on the
+//!    manifold's tangent. Newton's step (μ = 0) when the matrix at the floor shift √ε · s
+//!    (s = max |H_ij| / √(M_ii M_jj), the stiffness scale; √ε ≈ 1.5e-8) is definite and the
+//!    step's largest entry fits the trust radius (m or rad; the first one is
+//!    [`StaticOptions::initial_step`]) — the floor's factors, refined against the unshifted
+//!    matrix, give it exactly; else the smallest μ (to 5 %) that is definite and fits: the step
+//!    on the radius. Modes whose force is zero are not moved (a compressed spring pushing
+//!    straight down does not buckle sideways). The factors eliminate velocities first, which
+//!    loses up to log₁₀(s/μ) digits where μM − H is nearly singular on a free direction;
+//!    iterative refinement against the matrix regains them.
 //! 5. **Energy test**: after q ⊕ δ and restoration onto Φ = 0, the work the loads did along the
 //!    displacement δ' (velocity space), by Simpson's rule on the chord
 //!    (h(q₀) + 4 h(q₀ ⊕ δ'/2) + h(q₁))ᵀ δ' / 6 — for a conservative h that is −ΔV (to fifth
 //!    order on a straight chord), it covers actuators and applied forces, which
 //!    [`Dynamics::potential_energy`] does not, and its midpoint sees a hill inside a long step
 //!    that the trapezoid on the end points would miss (that is how a stiff cylinder's branch
-//!    is kept) — is compared with the model's predicted decrease: the step is accepted only if
-//!    the energy went down by at least 1 % of the prediction, and the radius grows (×2) or
-//!    shrinks (to ¼ of the step) with the agreement, as in any trust-region method.
-//! 6. **Stability** from the eigenvalues at the converged point ([`Stability`]). When the
+//!    is kept) — is compared with the model's predicted decrease ½(rᵀδ + μ δᵀMδ): the step is
+//!    accepted only if the energy went down by at least 1 % of the prediction, and the radius
+//!    grows (×2) or shrinks (to ¼ of the step) with the agreement, as in any trust-region
+//!    method.
+//! 6. **Stability** at the converged point ([`Stability`]): the lowest mode by inverse
+//!    iteration with the factors of the smallest definite shift μ, x ← (μM − H)⁻¹ M x on the
+//!    manifold, which converges to the smallest ω² + μ > 0, i.e. to the lowest ω², stable or
+//!    not; ω² is the Rayleigh quotient x'ᵀMx / x'ᵀMx' − μ (no product with H). When the
 //!    equilibrium reached is unstable (a saddle or a maximum: the upright pendulum started
-//!    exactly upright), the solver by default steps off it along the mode of most negative ω²
-//!    and continues downhill ([`StaticOptions::leave_unstable`]); with that option off it
-//!    returns the unstable equilibrium and says so.
+//!    exactly upright), the solver by default steps off it along that mode and continues
+//!    downhill ([`StaticOptions::leave_unstable`]); with that option off it returns the unstable
+//!    equilibrium and says so.
 //!
-//! Compared with Levenberg–Marquardt on the full KKT matrix (shift ×10 on rejection, ÷10 on
-//! acceptance), the eigen-decomposed trust region solves the step problem exactly for any
-//! shift and leaves a saddle in a few steps of growing length: an LM shift just above the
-//! negative curvature makes steps proportional to the tiny force near the saddle, and the
-//! ×10/÷10 rule alternates around that curvature (about a 17 % gain per two iterations for the
-//! pendulum near upright). The stability report comes from the same decomposition.
+//! Compared with Levenberg–Marquardt on a fixed shift schedule (×10 on rejection, ÷10 on
+//! acceptance), choosing μ anew at each iterate — Newton's where it is definite, else the
+//! step on the trust radius — leaves a saddle in a few steps of growing length: a shift just
+//! above the negative curvature makes steps proportional to the tiny force near the saddle,
+//! and the ×10/÷10 rule alternates around that curvature.
 //!
 //! **Angles** come back in a documented range: each planar angle coordinate (`"body.phi"`) is
 //! wrapped into (−π, π] when the wrap changes neither Φ nor h (the mechanism is 2π-periodic in
@@ -65,14 +81,15 @@
 //! angles are wrapped one at a time). Spatial Euler parameters come back unit, with e0 ≥ 0
 //! (p and −p are the same rotation).
 //!
-//! Work space: the caller's [`Workspace`] holds D, the (NV + NC)-square matrix
-//! [[M, Dᵀ], [D, 0]] and its factors (then the reduced stiffness), and two NV × NV arrays (H,
-//! and the basis Z); the stack holds O(NV + NC) scalars. Nothing allocates.
+//! Work space: the stack holds a few copies of the planned storage (D's non-zeros and the
+//! factors' entries: O(bodies) for a chain) and O(NV + NC) scalars; the caller's
+//! [`Workspace`] is only checked for its size. Nothing allocates.
 
 use crate::kinematics::{first_non_finite, name};
-use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError, Permutation};
-use crate::redundancy::orthogonalize;
-use crate::{ConstraintForces, Dynamics, Mechanism, Real, Workspace};
+use crate::linalg::LinalgError;
+#[cfg(doc)]
+use crate::{ConstraintForces, Dynamics};
+use crate::{Mechanism, NewtonMatrix, Real, Workspace};
 use core::fmt;
 
 /// Default tolerance on max(‖h + Dᵀλ‖∞ (N, N·m), ‖Φ‖∞ (m, rad)).
@@ -80,16 +97,17 @@ pub const DEFAULT_STATIC_TOLERANCE: f64 = 1e-9;
 /// Default cap on trial steps, accepted and rejected together: a Newton phase takes 3–6, a
 /// start on the wrong side of a hill (a pendulum near upright) 10–20 more.
 pub const DEFAULT_STATIC_MAX_ITERATIONS: u32 = 100;
-/// Default relative pivot tolerance of the factorization of [[M, Dᵀ], [D, 0]].
+/// Default relative pivot tolerance of the factorizations of [[μM − H, −Dᵀ], [D, 0]].
 pub const DEFAULT_STATIC_PIVOT_TOLERANCE: f64 = 1e-13;
 /// Default cap on the Newton iterations of each assembly onto Φ = 0 (the first one and the
 /// restoration after each trial step), as [`crate::DEFAULT_MAX_ITERATIONS`] of the kinematic
 /// solver.
 pub const DEFAULT_STATIC_ASSEMBLY_ITERATIONS: u32 = 25;
 /// Default relative tolerance of the stability verdict: a mode is neutral when
-/// |ω²| ≤ 1e-8 · s, s the largest |ω²| or |H_ij| / √(M_ii M_jj) (1/s²). The stiffness and the
-/// basis are computed to about 1e-12 of s (rounding through the factorizations), and the
-/// equilibrium itself is only found to the tolerance: four orders of margin above both.
+/// |ω²| ≤ 1e-8 · s, s the largest of |ω²|, |H_ij| / √(M_ii M_jj) and the shift of the inverse
+/// iteration (1/s²). ω² is computed to about 1e-12 of s (rounding through the refined
+/// factorizations), and the equilibrium itself is only found to the tolerance: four orders of
+/// margin above both.
 pub const DEFAULT_STATIC_NEUTRAL_TOLERANCE: f64 = 1e-8;
 /// Default length of the first step along a mode of non-positive stiffness, where Newton gives
 /// no length: its largest entry in velocity space is 0.5 (m or rad). The trust region adapts
@@ -106,12 +124,17 @@ const SHRINK_RATIO: f64 = 0.25;
 const GROW_RATIO: f64 = 0.75;
 /// A step "on the radius": at least this fraction of it.
 const ON_RADIUS: f64 = 0.9;
-/// Cyclic Jacobi sweeps of the reduced stiffness: each sweep squares the off-diagonal norm
-/// (quadratic convergence), so 6–10 sweeps reach rounding; 50 is a safe cap.
-const JACOBI_MAX_SWEEPS: u32 = 50;
-/// Bisection steps for the trust-region shift μ (each halves the bracket; 200 reach any
-/// double's resolution from any bracket).
-const SHIFT_BISECTIONS: u32 = 200;
+/// Cap on the iterative refinements of a solve with a shifted matrix
+/// ([`Iterate::shifted_solve`]): at the floor shift the factors lose up to half the digits, and
+/// the first refinement regains them; toward Newton's μ = 0 each gains log₁₀(ω²_min/μ) more.
+const MAX_REFINEMENTS: u32 = 12;
+/// Shifts tried, ×10 each from the floor (past 1e24 · s the reduced matrix is μM to rounding,
+/// definite where M is) and ×4 each to fit a step in the trust radius.
+const SHIFT_TRIALS: u32 = 64;
+/// Cap on inverse iterations for the lowest mode; each is one solve with the planned factors
+/// and gains a factor (ω²₁ + μ)/(ω²₂ + μ), so a gap of 1 % of the spectrum settles in a few
+/// hundred.
+const INVERSE_ITERATIONS: u32 = 500;
 /// Rejected trial steps off an unstable equilibrium before it is returned as such.
 const ESCAPE_ATTEMPTS: u32 = 12;
 /// The force residual's rounding floor, in units of ε (‖h‖∞ + max_k Σ_r |D_rk λ_r| +
@@ -136,8 +159,10 @@ pub struct StaticOptions {
     /// Trial steps (accepted and rejected) before giving up. Default
     /// [`DEFAULT_STATIC_MAX_ITERATIONS`].
     pub max_iterations: u32,
-    /// Relative pivot tolerance of the LU factorization (see [`crate::linalg::lu_factor`]).
-    /// Default [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
+    /// Relative pivot tolerance of the planned factorization (see [`crate::sparse::factor`]):
+    /// a velocity pivot at most this times its row's largest entry has no pivot, and a
+    /// multiplier whose pivot ratio is at most this is dependent. Default
+    /// [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
     pub pivot_tolerance: f64,
     /// Newton iterations of each assembly onto Φ = 0. Default
     /// [`DEFAULT_STATIC_ASSEMBLY_ITERATIONS`].
@@ -151,8 +176,10 @@ pub struct StaticOptions {
     /// On reaching an unstable equilibrium, step off it along its most unstable mode and keep
     /// going downhill (`true`, the default), or return it with [`Stability::Unstable`].
     pub leave_unstable: bool,
-    /// A constraint row whose sine of angle to the rows declared before it is at most this is
-    /// dropped (redundant, or dependent at a singular pose; its multiplier is 0). Default
+    /// A constraint row whose sine of angle to the rows eliminated before it (in the M⁻¹
+    /// metric) is at most this is dropped (redundant, or dependent at a singular pose; its
+    /// multiplier is 0). The factorization compares the squared sine, its pivot ratio, so
+    /// below √[`pivot_tolerance`](Self::pivot_tolerance) the pivot tolerance decides. Default
     /// [`crate::DEFAULT_RANK_TOLERANCE`], as the kinematic solver's.
     pub rank_tolerance: f64,
 }
@@ -215,12 +242,13 @@ impl StaticOptions {
     }
 }
 
-/// Whether an equilibrium is stable, from the reduced stiffness A = −Zᵀ H Z in an M-orthonormal
-/// basis Z of the motions the joints allow: its eigenvalues are the squared natural frequencies
-/// ω² (1/s²) of small oscillations about the equilibrium. A mode is neutral when
-/// |ω²| ≤ [`StaticOptions::neutral_tolerance`] · s, s the largest |ω²| or |H_ij| / √(M_ii M_jj).
-/// The verdict is on the symmetric part of the stiffness: for non-conservative loads (follower
-/// forces) it says nothing about flutter.
+/// Whether an equilibrium is stable, from the lowest eigenvalue of the reduced stiffness −Zᵀ H Z
+/// against the reduced mass Zᵀ M Z (Z a basis of the motions the joints allow): the squared
+/// natural frequencies ω² (1/s²) of small oscillations about the equilibrium. A mode is
+/// neutral when |ω²| ≤ [`StaticOptions::neutral_tolerance`] · s, s the largest of |ω²|,
+/// |H_ij| / √(M_ii M_jj) and the inverse iteration's shift. The verdict assumes a symmetric
+/// stiffness (conservative loads); for non-conservative ones (follower forces) it is that of
+/// the lowest real mode of the non-symmetric −H and says nothing about flutter.
 ///
 /// A mode is named by the velocity that carries the largest share of its kinetic energy
 /// (the largest |z_i| √M_ii), from [`Mechanism::VELOCITY_NAMES`].
@@ -365,16 +393,6 @@ impl fmt::Display for StaticError {
 
 impl core::error::Error for StaticError {}
 
-/// The saddle-point part of the [`Workspace`]: the (NV + NC)-square matrix and its right-hand
-/// side.
-struct Saddle<'w, T, const NV: usize, const NC: usize, const N: usize> {
-    matrix: &'w mut [[T; N]; N],
-    rhs: &'w mut [T; N],
-    /// Scratch of the rank-revealing orthogonalization of D's rows.
-    rows: &'w mut [[T; NV]; NC],
-    gram: &'w mut [[T; NC]; NC],
-}
-
 /// Static-equilibrium solver that finds stable equilibria (the algorithm: [the `statics`
 /// module](crate::statics)).
 #[derive(Clone, Copy, Debug, Default)]
@@ -383,7 +401,6 @@ pub struct StaticSolver {
     pub options: StaticOptions,
 }
 
-/// Name of row `i` of the stacked system: a velocity (force balance) or a constraint.
 /// A non-finite generalized force or stiffness at velocity `i`: named by the force element that
 /// reaches it (else by the velocity: the constraint stiffness K(λ) or a gyroscopic term).
 fn non_finite_force<M: Mechanism>(t: f64, i: usize) -> StaticError {
@@ -394,11 +411,15 @@ fn non_finite_force<M: Mechanism>(t: f64, i: usize) -> StaticError {
     }
 }
 
-fn row_name<M: Mechanism>(i: usize, nv: usize) -> &'static str {
-    if i < nv {
-        name(M::VELOCITY_NAMES, i)
-    } else {
-        name(M::CONSTRAINT_NAMES, i - nv)
+/// A failed factorization as the solver reports it: a velocity without pivot, or the row
+/// (velocity: its force or stiffness; constraint: Φ or D) where a NaN appeared.
+fn factor_error<M: Mechanism>(t: f64, nv: usize, e: LinalgError) -> StaticError {
+    match e {
+        LinalgError::Singular { column, .. } if column < nv => StaticError::Singular { t, row: name(M::VELOCITY_NAMES, column) },
+        LinalgError::Singular { column, .. } => StaticError::Singular { t, row: name(M::CONSTRAINT_NAMES, column - nv) },
+        LinalgError::NonFinite { row, .. } if row < nv => non_finite_force::<M>(t, row),
+        LinalgError::NonFinite { row, .. } => StaticError::NonFinite { t, row: name(M::CONSTRAINT_NAMES, row - nv) },
+        LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => StaticError::NonFinite { t, row: "t" },
     }
 }
 
@@ -412,157 +433,111 @@ fn dot<T: Real>(a: &[T], b: &[T]) -> T {
     a.iter().zip(b).fold(T::ZERO, |s, (&x, &y)| s + x * y)
 }
 
+/// Each stored entry of the Newton pattern with the unknowns of its row and column (v̇ entries
+/// 0..NV, then multipliers), in storage order (after D's non-zeros).
+fn entries(pattern: &crate::SparsePattern) -> impl Iterator<Item = (usize, usize)> + '_ {
+    (0..pattern.size()).flat_map(move |p| {
+        let row = pattern.row_start[p] as usize..pattern.row_start[p + 1] as usize;
+        pattern.columns[row].iter().map(move |&c| (pattern.unknown[p] as usize, pattern.unknown[c as usize] as usize))
+    })
+}
+
 /// Why a restoration onto Φ = 0 failed.
 enum RestoreFailure {
     NotConverged { iterations: u32, worst: usize, residual: f64 },
     Static(StaticError),
 }
 
-/// The column `j` of an NV × NV array.
-fn column<T: Real, const NV: usize>(a: &[[T; NV]; NV], j: usize) -> [T; NV] {
-    core::array::from_fn(|i| a[i][j])
+/// One iterate, evaluated over the Newton matrix's planned storage: the matrices
+/// [[M, −Dᵀ], [D, 0]] (`mass`) and
+/// [[M − H, −Dᵀ], [D, 0]] (`stiff`, H = (∂h/∂q)B + K(λ) at the multipliers), the loads, the
+/// multipliers and the projected residual r = h + Dᵀλ.
+struct Iterate<S, T, const NV: usize, const NC: usize> {
+    mass: S,
+    stiff: S,
+    /// The rows of D dropped as dependent on the rows eliminated before them.
+    dropped: [bool; NC],
+    h: [T; NV],
+    phi: [T; NC],
+    lambda: [T; NC],
+    r: [T; NV],
+    /// M's diagonal.
+    mass_diagonal: [T; NV],
+    /// max |H_ij| / √(M_ii M_jj) (1/s²): the scale of the stiffness, of the neutral verdict and
+    /// of the Levenberg–Marquardt shift.
+    scale: T,
+    /// ‖H‖∞ and max_k Σ_r |D_rk λ_r|: the sizes entering the residual's rounding floor.
+    stiffness_norm: T,
+    reaction: T,
+    /// max_r |D_ri| and max_r |H_ri| of each column i, for the angle wrap.
+    d_columns: [T; NV],
+    h_columns: [T; NV],
 }
 
-/// Writes column `j` of an NV × NV array.
-fn set_column<T: Real, const NV: usize>(a: &mut [[T; NV]; NV], j: usize, x: &[T; NV]) {
-    for (row, &value) in a.iter_mut().zip(x) {
-        row[j] = value;
+impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usize> Iterate<S, T, NV, NC> {
+    /// Multipliers kept by the factorization of [[M, −Dᵀ], [D, 0]].
+    fn kept(&self) -> usize {
+        self.dropped.iter().filter(|&&d| !d).count()
     }
-}
 
-/// Eigen-decomposition of the symmetric leading n × n block of `a` by cyclic Jacobi rotations:
-/// on return its diagonal holds the eigenvalues; every rotation is also applied to the first n
-/// columns of `basis` (so they become the eigenvectors in its coordinates).
-// `!(x > y)` on purpose: it is also true when either side is NaN.
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
-fn jacobi_eigen<T: Real, const N: usize, const NV: usize>(a: &mut [[T; N]; N], n: usize, basis: &mut [[T; NV]; NV]) {
-    let two = T::from_f64(2.0);
-    let huge = T::ONE / T::EPSILON;
-    for _ in 0..JACOBI_MAX_SWEEPS {
-        let (mut off, mut total) = (T::ZERO, T::ZERO);
-        for (p, row) in a.iter().enumerate().take(n) {
-            for (q, &value) in row.iter().enumerate().take(n) {
-                total += value * value;
-                if p != q {
-                    off += value * value;
-                }
-            }
-        }
-        if !(off > T::EPSILON * T::EPSILON * total) {
-            return;
-        }
-        for p in 0..n {
-            for q in p + 1..n {
-                let apq = a[p][q];
-                if apq == T::ZERO {
+    /// Solves [[μM − H, −Dᵀ], [D, 0]] x = b in place (`b`: NV + NC entries) by iterative
+    /// refinement against that matrix, with the `factors` of the one at a shift μ_f ≥ μ. For
+    /// μ = μ_f this regains the digits the factors lose: the planned order eliminates
+    /// velocities first, and where M − H/μ is nearly singular there (a small shift on a free
+    /// direction: only the constraints' stiffness holds a pendulum's x) they lose up to
+    /// log₁₀(s/μ). For μ below it (Newton's μ = 0 from the floor's factors) each refinement
+    /// also gains a factor (μ_f − μ)/(ω²_min + μ_f): the exact Newton step, where the floor is
+    /// tiny against the softest mode. Returns whether the corrections fell to rounding
+    /// ([`MAX_REFINEMENTS`] at most, each at least halving the last).
+    fn shifted_solve<M, const NQ: usize, const N: usize>(&self, factors: &S, mu: T, b: &mut [T; N]) -> bool
+    where
+        M: NewtonMatrix<T, NQ, NV, NC, NewtonStorage = S>,
+    {
+        let nnz = M::JACOBIAN_PATTERN.len();
+        let rhs = *b;
+        M::newton_solve(factors, b);
+        let mut last: Option<T> = None;
+        for _ in 0..MAX_REFINEMENTS {
+            // r = rhs − A x over the stored entries; a dropped multiplier's row is the
+            // identity's in the factors, and its unknown stays 0.
+            let mut r = rhs;
+            let values = self.stiff.as_ref()[nnz..].iter().zip(&self.mass.as_ref()[nnz..]);
+            for ((u, w), (&stiff, &mass)) in entries(&M::NEWTON_PATTERN).zip(values) {
+                if u >= NV && self.dropped[u - NV] {
                     continue;
                 }
-                let theta = (a[q][q] - a[p][p]) / (two * apq);
-                let t = if theta.abs() > huge {
-                    T::ONE / (two * theta)
-                } else {
-                    let magnitude = T::ONE / (theta.abs() + (theta * theta + T::ONE).sqrt());
-                    if theta < T::ZERO {
-                        -magnitude
-                    } else {
-                        magnitude
-                    }
-                };
-                let c = T::ONE / (t * t + T::ONE).sqrt();
-                let s = t * c;
-                for row in a.iter_mut().take(n) {
-                    let (akp, akq) = (row[p], row[q]);
-                    row[p] = c * akp - s * akq;
-                    row[q] = s * akp + c * akq;
-                }
-                let (upper, lower) = a.split_at_mut(q);
-                for (apk, aqk) in upper[p].iter_mut().zip(lower[0].iter_mut()).take(n) {
-                    (*apk, *aqk) = (c * *apk - s * *aqk, s * *apk + c * *aqk);
-                }
-                a[p][q] = T::ZERO;
-                a[q][p] = T::ZERO;
-                for row in basis.iter_mut() {
-                    let (zp, zq) = (row[p], row[q]);
-                    row[p] = c * zp - s * zq;
-                    row[q] = s * zp + c * zq;
+                let a = if u < NV && w < NV { stiff + (mu - T::ONE) * mass } else { stiff };
+                r[u] -= a * b[w];
+            }
+            for (r, &dropped) in r[NV..].iter_mut().zip(&self.dropped) {
+                if dropped {
+                    *r = T::ZERO;
                 }
             }
+            M::newton_solve(factors, &mut r);
+            let change = max_abs(&r).0;
+            if !change.is_finite() || last.is_some_and(|last| change > T::from_f64(0.5) * last) {
+                return false;
+            }
+            for (x, dx) in b.iter_mut().zip(r) {
+                *x += dx;
+            }
+            if change <= T::from_f64(16.0) * T::EPSILON * max_abs(b).0 {
+                return true;
+            }
+            last = Some(change);
         }
+        false
     }
 }
 
-/// The trust-region step in mode coordinates, in the scaled norm ‖S y‖ (S = diag(`reach`), the
-/// largest velocity-space entry of each unit mode, so ‖S y‖ measures the step in m or rad):
-/// y_i = f_i / (ω²_i + μ s_i²) for the `active` modes (0 for the others), with the smallest
-/// μ ≥ max(0, max −ω²_i / s_i²) that keeps ‖S y‖ ≤ `radius`, found by bisection on the
-/// decreasing ‖S y(μ)‖. Returns ‖S y‖.
-fn shifted_step<T: Real>(omega2: &[T], f: &[T], reach: &[T], active: &[bool], radius: T, y: &mut [T]) -> T {
-    let modes = || omega2.iter().zip(f).zip(reach).zip(active).map(|(((&w, &fi), &s), &on)| (w, fi, s, on));
-    let mut low = T::ZERO;
-    let mut force = T::ZERO;
-    for (w, fi, s, on) in modes() {
-        if on {
-            low = low.max(-w / (s * s));
-            force += (fi / s) * (fi / s);
-        }
-    }
-    let norm_at = |mu: T| {
-        let mut sum = T::ZERO;
-        for (w, fi, s, on) in modes() {
-            if on {
-                let scaled = s * fi / (w + mu * s * s);
-                sum += scaled * scaled;
-            }
-        }
-        sum.sqrt()
-    };
-    // At μ_hi = μ_lo + ‖f/s‖/radius every |s_i y_i| ≤ |f_i/s_i| radius/‖f/s‖, so ‖S y‖ ≤ radius.
-    let mut high = low + force.sqrt() / radius;
-    let newton = norm_at(T::ZERO);
-    let mu = if low == T::ZERO && newton.is_finite() && newton <= radius {
-        T::ZERO
-    } else {
-        let mut lo = low;
-        for _ in 0..SHIFT_BISECTIONS {
-            let mid = T::from_f64(0.5) * (lo + high);
-            if !(mid > lo && mid < high) {
-                break;
-            }
-            if norm_at(mid) > radius {
-                lo = mid;
-            } else {
-                high = mid;
-            }
-        }
-        high
-    };
-    let mut norm = T::ZERO;
-    for (yi, (w, fi, s, on)) in y.iter_mut().zip(modes()) {
-        *yi = if on { fi / (w + mu * s * s) } else { T::ZERO };
-        norm += (s * *yi) * (s * *yi);
-    }
-    norm.sqrt()
-}
-
-/// Wraps an angle into (−π, π].
-fn wrap_angle(phi: f64) -> f64 {
-    let turn = 2.0 * core::f64::consts::PI;
-    let mut wrapped = phi - turn * libm::round(phi / turn);
-    if wrapped <= -core::f64::consts::PI {
-        wrapped += turn;
-    } else if wrapped > core::f64::consts::PI {
-        wrapped -= turn;
-    }
-    wrapped
-}
-
-/// The factorization of [[M, Dᵀ], [D, 0]] at one configuration.
-struct SaddleFactors<const N: usize, const NC: usize> {
-    permutation: Permutation<N>,
-    /// The rank of D: NV − rank is the mobility at q, the null space's dimension.
-    rank: usize,
-    /// The constraint rows dropped as dependent on the rows before them.
-    redundant: [bool; NC],
+/// The lowest mode of the reduced stiffness: ω² (1/s²) and its shape z (M-normalized,
+/// velocity space).
+struct Mode<T, const NV: usize> {
+    omega_squared: T,
+    shape: [T; NV],
+    /// The shift of the inverse iteration: ω² is known to about ε times it.
+    shift: T,
 }
 
 impl StaticSolver {
@@ -580,6 +555,10 @@ impl StaticSolver {
     /// (−π, π] where the mechanism is periodic in them and unit Euler parameters with e0 ≥ 0;
     /// on error it holds the last accepted iterate.
     ///
+    /// The solver works over the factorization `mechanism!` plans for generalized-α
+    /// ([`NewtonMatrix`]), on the stack: O(its non-zeros). `ws` is only checked for its size
+    /// (the other analyses share it); nothing in it is read or written.
+    ///
     /// # Errors
     /// [`StaticError::WorkspaceSize`]; [`StaticError::NonFinite`] (t, q, Φ, D, h, its
     /// derivatives); [`StaticError::NotAssembled`]; [`StaticError::Singular`] (a velocity
@@ -595,8 +574,9 @@ impl StaticSolver {
     ) -> Result<StaticReport, StaticError>
     where
         T: Real,
-        M: Dynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>,
+        M: NewtonMatrix<T, NQ, NV, NC>,
     {
+        let _ = ws;
         if N != NV + NC {
             return Err(StaticError::WorkspaceSize { expected: NV + NC, found: N });
         }
@@ -610,19 +590,10 @@ impl StaticSolver {
         let options = &self.options;
         let tol = T::from_f64(options.tolerance);
         let half = T::from_f64(0.5);
-        let zero_v = [T::ZERO; NV];
-        let mut phi = [T::ZERO; NC];
-        // D; H = (∂h/∂q)B + K(λ) and then Z in two NV × NV arrays; the saddle-point system.
-        let Workspace { jacobian: d, jacobian_scratch, constraint_square, velocity_squares: [stiffness, basis, _], saddle, saddle_rhs } =
-            ws;
-        let ws = &mut Saddle { matrix: saddle, rhs: saddle_rhs, rows: jacobian_scratch, gram: constraint_square };
-        let (mut h, mut r, mut mass_diagonal) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
-        // Per mode: ω², the force along it, its largest entry, the largest entry of M z.
-        let (mut omega2, mut f, mut reach, mut force_scale) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
-        let (mut y, mut active, mut trial) = ([T::ZERO; NV], [false; NV], *q);
+        let mut trial = *q;
         let mut correction = [T::ZERO; NV];
 
-        self.restore(m, q, t, &mut phi, d, ws, &mut correction).map_err(|e| match e {
+        self.restore::<T, M, NQ, NV, NC, N>(m, q, t, &mut correction).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -630,138 +601,74 @@ impl StaticSolver {
         })?;
 
         let (mut accepted, mut rejected) = (0u32, 0u32);
-        // The trust radius, in the scaled norm of `shifted_step` (m or rad).
+        // The trust radius: the largest velocity-space entry of a step (m or rad).
         let mut radius = T::from_f64(options.initial_step);
         loop {
-            // Forces, constraints, multipliers and the projected residual at the assembled q.
-            m.position_eval(q, t, &mut phi, d);
-            m.forces(q, &zero_v, t, &mut h);
-            if let Some(i) = first_non_finite(&phi) {
-                return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
-            }
-            if let Some(i) = first_non_finite(&h) {
-                return Err(non_finite_force::<M>(time, i));
-            }
-            let factors = self.factor_saddle(m, q, t, d, ws, &mut mass_diagonal)?;
-            // The mobility at q: NV − NC, or more where rows are redundant or the pose singular.
-            let dof = NV - factors.rank;
-            ws.rhs[..NV].copy_from_slice(&h);
-            ws.rhs[NV..].fill(T::ZERO);
-            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
-            for (l, &x) in lambda.iter_mut().zip(&ws.rhs[NV..]) {
-                *l = -x;
-            }
-            for (kv, ri) in r.iter_mut().enumerate() {
-                *ri = h[kv] + d.iter().zip(lambda.iter()).fold(T::ZERO, |s, (row, &l)| s + row[kv] * l);
-            }
-            if let Some(i) = first_non_finite(&r) {
-                return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
-            }
-            let (force_residual, force_row) = max_abs(&r);
-            let (constraint_residual, constraint_row) = max_abs(&phi);
+            let it = self.evaluate::<T, M, NQ, NV, NC, N>(m, q, t)?;
+            *lambda = it.lambda;
+            let (force_residual, force_row) = max_abs(&it.r);
+            let (constraint_residual, constraint_row) = max_abs(&it.phi);
             let (residual, worst_row) = if force_residual >= constraint_residual {
                 (force_residual, name(M::VELOCITY_NAMES, force_row))
             } else {
                 (constraint_residual, name(M::CONSTRAINT_NAMES, constraint_row))
             };
-
-            // Modes: Z (M-orthonormal null-space basis) and the reduced stiffness's eigenpairs.
-            m.forces_q(q, &zero_v, t, stiffness);
-            m.constraint_force_q(q, t, lambda, basis);
-            for (row, krow) in stiffness.iter_mut().zip(basis.iter()) {
-                for (x, &kx) in row.iter_mut().zip(krow) {
-                    *x += kx;
-                }
-            }
-            for (i, row) in stiffness.iter().enumerate() {
-                if first_non_finite(row).is_some() {
-                    return Err(non_finite_force::<M>(time, i));
-                }
-            }
-            self.null_space_basis(m, q, t, &factors, ws, dof, basis)?;
-            let scale = reduced_stiffness(stiffness, basis, dof, &mass_diagonal, ws);
-            jacobi_eigen(ws.matrix, dof, basis);
-            let mut lowest = 0;
-            for i in 0..dof {
-                omega2[i] = ws.matrix[i][i];
-                let z = column(basis, i);
-                f[i] = dot(&z, &r);
-                reach[i] = max_abs(&z).0;
-                let mut mz = [T::ZERO; NV];
-                m.mass_times(q, &z, &mut mz);
-                force_scale[i] = max_abs(&mz).0;
-                if omega2[i] < omega2[lowest] {
-                    lowest = i;
-                }
-            }
-            let scale = omega2[..dof].iter().fold(scale, |s, w| s.max(w.abs()));
-            let neutral = T::from_f64(options.neutral_tolerance) * scale;
-
+            // The mobility at q: NV − NC, or more where rows are redundant or the pose singular.
+            let dof = NV - it.kept();
             // The tolerance, or the force residual's rounding floor where that is larger.
-            let reaction =
-                (0..NV).fold(T::ZERO, |s, kv| s.max(d.iter().zip(lambda.iter()).fold(T::ZERO, |a, (row, &l)| a + (row[kv] * l).abs())));
-            let stiffness_norm = stiffness.iter().fold(T::ZERO, |s, row| s.max(row.iter().fold(T::ZERO, |a, x| a + x.abs())));
-            let floor =
-                T::from_f64(RESIDUAL_ROUNDING) * T::EPSILON * (max_abs(&h).0 + reaction + stiffness_norm * max_abs(q).0.max(T::ONE));
+            let floor = T::from_f64(RESIDUAL_ROUNDING)
+                * T::EPSILON
+                * (max_abs(&it.h).0 + it.reaction + it.stiffness_norm * max_abs(q).0.max(T::ONE));
             let tol = tol.max(floor);
             let converged = residual <= tol;
-            let unstable = dof > 0 && omega2[lowest] < -neutral;
+            let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
+            // At a converged point, its lowest mode tells stable from unstable.
+            let mode = if converged && dof > 0 {
+                Some(self.lowest_mode::<T, M, NQ, NV, NC, N>(m, q, &it).ok_or_else(|| not_converged(accepted + rejected))?)
+            } else {
+                None
+            };
+            // The neutral band: relative to the stiffness scale, and never below what rounding
+            // leaves of ω² (about ε times the inverse iteration's shift).
+            let neutral =
+                |mode: &Mode<T, NV>| T::from_f64(options.neutral_tolerance) * it.scale.max(mode.omega_squared.abs()).max(mode.shift);
+            let unstable = mode.as_ref().is_some_and(|mode| mode.omega_squared < -neutral(mode));
             if converged && !(unstable && options.leave_unstable) {
-                let stability = classify::<T, M, NV>(dof, &omega2, basis, &mass_diagonal, lowest, neutral);
-                self.wrap_angles(m, q, t, &phi, d, &h, stiffness);
+                let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
+                self.wrap_angles(m, q, t, &it);
                 return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
             }
-            let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
             if accepted + rejected >= options.max_iterations {
                 return Err(not_converged(accepted + rejected));
             }
-
-            // Which modes to move: those whose force shows in the residual (r = Σ M z_i f_i, so
-            // if each were below tolerance / DOF we would have converged).
-            let per_mode = tol / T::from_f64(dof.max(1) as f64);
-            for i in 0..dof {
-                active[i] = f[i].abs() * force_scale[i] > per_mode;
-            }
-            let newton = (0..dof).all(|i| !active[i] || omega2[i] > neutral);
             // Off an unstable equilibrium: along its most unstable mode, the first step moving
             // no entry more than `initial_step`.
-            let escape = converged;
-            if escape {
+            let escape = mode.filter(|_| converged);
+            if escape.is_some() {
                 radius = T::from_f64(options.initial_step);
             }
             let mut attempts = 0u32;
             loop {
-                // The step in mode coordinates and its predicted energy decrease.
-                let step_norm = if escape {
-                    y[..dof].fill(T::ZERO);
-                    // Downhill along the force if it has any, else toward the mode's largest
-                    // entry (either way falls off a saddle).
-                    let z = column(basis, lowest);
-                    let sign = if f[lowest] != T::ZERO { f[lowest] } else { z[max_abs(&z).1] };
-                    let size = radius / reach[lowest];
-                    y[lowest] = if sign < T::ZERO { -size } else { size };
-                    radius
-                } else {
-                    let mut norm = T::ZERO;
-                    if newton {
-                        for i in 0..dof {
-                            y[i] = if active[i] { f[i] / omega2[i] } else { T::ZERO };
-                            norm += (reach[i] * y[i]) * (reach[i] * y[i]);
-                        }
-                        norm = norm.sqrt();
+                // The step and its predicted energy decrease.
+                let step = match &escape {
+                    Some(mode) => {
+                        // Downhill along the force if it has any, else toward the mode's
+                        // largest entry (either way falls off a saddle).
+                        let z = &mode.shape;
+                        let f = dot(z, &it.r);
+                        let sign = if f != T::ZERO { f } else { z[max_abs(z).1] };
+                        let size = radius / max_abs(z).0;
+                        let y = if sign < T::ZERO { -size } else { size };
+                        let delta: [T; NV] = core::array::from_fn(|i| y * z[i]);
+                        Some((delta, f * y - half * mode.omega_squared * y * y))
                     }
-                    if newton && norm <= radius {
-                        norm
-                    } else {
-                        shifted_step(&omega2[..dof], &f[..dof], &reach[..dof], &active[..dof], radius, &mut y[..dof])
-                    }
+                    None => self.shifted_step::<T, M, NQ, NV, NC, N>(m, q, &it, radius),
                 };
-                let predicted = (0..dof).fold(T::ZERO, |s, i| s + f[i] * y[i] - half * omega2[i] * y[i] * y[i]);
-                let mut delta = [T::ZERO; NV];
-                for (di, row) in delta.iter_mut().zip(basis.iter()) {
-                    *di = dot(&row[..dof], &y[..dof]);
-                }
-                let ratio = self.trial(m, q, t, &h, &delta, predicted, &mut trial, &mut phi, d, ws);
+                let Some((delta, predicted)) = step else {
+                    return Err(not_converged(accepted + rejected));
+                };
+                let step_norm = max_abs(&delta).0;
+                let ratio = self.trial::<T, M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction);
                 if let Some(ratio) = ratio {
                     *q = trial;
                     accepted += 1;
@@ -775,12 +682,11 @@ impl StaticSolver {
                 rejected += 1;
                 attempts += 1;
                 radius = step_norm / T::from_f64(4.0);
-                if escape && attempts >= ESCAPE_ATTEMPTS {
+                if escape.is_some() && attempts >= ESCAPE_ATTEMPTS {
                     // Every step off it raised the energy: unstable as it looked, but not
                     // leavable at this resolution; report it as it is.
-                    m.position_eval(q, t, &mut phi, d);
-                    let stability = classify::<T, M, NV>(dof, &omega2, basis, &mass_diagonal, lowest, neutral);
-                    self.wrap_angles(m, q, t, &phi, d, &h, stiffness);
+                    let stability = classify::<T, M, NV>(escape.as_ref(), &it.mass_diagonal, neutral);
+                    self.wrap_angles(m, q, t, &it);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
                 }
                 if accepted + rejected >= options.max_iterations {
@@ -788,6 +694,295 @@ impl StaticSolver {
                 }
             }
         }
+    }
+
+    /// The relative pivot ratio below which a multiplier is dropped as dependent: the ratio is
+    /// about the squared sine of the row's angle to the rows eliminated before it (in the M⁻¹
+    /// metric), so the square of [`StaticOptions::rank_tolerance`], and never below the pivot
+    /// tolerance (rounding).
+    fn drop_ratio<T: Real>(&self) -> T {
+        let o = &self.options;
+        T::from_f64((o.rank_tolerance * o.rank_tolerance).max(o.pivot_tolerance).max(f64::EPSILON))
+    }
+
+    /// Everything the iteration needs at an assembled `q`: the two matrices, the factors of
+    /// [[M, −Dᵀ], [D, 0]], the multipliers by least squares in the M⁻¹ norm
+    /// ([[M, −Dᵀ], [D, 0]] [x; λ] = [h; 0]) and the residual r = h + Dᵀλ = M x.
+    fn evaluate<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        t: T,
+    ) -> Result<Iterate<M::NewtonStorage, T, NV, NC>, StaticError>
+    where
+        T: Real,
+        M: NewtonMatrix<T, NQ, NV, NC>,
+    {
+        let time = t.to_f64();
+        let zero_v = [T::ZERO; NV];
+        let nnz = M::JACOBIAN_PATTERN.len();
+        let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
+        let mut mass = M::newton_storage();
+        m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, &mut mass);
+        m.forces(q, &zero_v, t, &mut h);
+        if let Some(i) = first_non_finite(&phi) {
+            return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
+        }
+        if let Some(i) = first_non_finite(&h) {
+            return Err(non_finite_force::<M>(time, i));
+        }
+        let mut factors = mass;
+        let mut dropped = [false; NC];
+        M::newton_factor(&mut factors, self.drop_ratio(), true, &mut dropped).map_err(|e| factor_error::<M>(time, NV, e))?;
+        let mut b = [T::ZERO; N];
+        b[..NV].copy_from_slice(&h);
+        M::newton_solve(&factors, &mut b);
+        let mut lambda = [T::ZERO; NC];
+        lambda.copy_from_slice(&b[NV..]);
+        let mut r = h;
+        let mut reaction_row = [T::ZERO; NV];
+        for (&value, &(row, c)) in mass.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+            r[c as usize] += value * lambda[row as usize];
+            reaction_row[c as usize] += (value * lambda[row as usize]).abs();
+        }
+        if let Some(i) = first_non_finite(&r) {
+            return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
+        }
+        let mut stiff = M::newton_storage();
+        m.newton_matrix(q, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, &mut stiff);
+        // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
+        let mut mass_diagonal = [T::ZERO; NV];
+        for ((u, w), &value) in entries(&M::NEWTON_PATTERN).zip(&mass.as_ref()[nnz..]) {
+            if u == w && u < NV {
+                mass_diagonal[u] = value;
+            }
+        }
+        let (mut scale, mut row_sums, mut h_columns, mut d_columns) = (T::ZERO, [T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
+        for ((u, w), (&m0, &m1)) in entries(&M::NEWTON_PATTERN).zip(mass.as_ref()[nnz..].iter().zip(&stiff.as_ref()[nnz..])) {
+            if u < NV && w < NV {
+                let hij = m0 - m1;
+                if !hij.is_finite() {
+                    return Err(non_finite_force::<M>(time, u));
+                }
+                row_sums[u] += hij.abs();
+                h_columns[w] = h_columns[w].max(hij.abs());
+                let weight = (mass_diagonal[u] * mass_diagonal[w]).abs().sqrt();
+                if weight > T::ZERO {
+                    scale = scale.max(hij.abs() / weight);
+                }
+            }
+        }
+        for (&value, &(_, c)) in mass.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+            d_columns[c as usize] = d_columns[c as usize].max(value.abs());
+        }
+        Ok(Iterate {
+            mass,
+            stiff,
+            dropped,
+            h,
+            phi,
+            lambda,
+            r,
+            mass_diagonal,
+            scale,
+            stiffness_norm: max_abs(&row_sums).0,
+            reaction: max_abs(&reaction_row).0,
+            d_columns,
+            h_columns,
+        })
+    }
+
+    /// [[μM − H, −Dᵀ], [D, 0]] factored, if the reduced matrix of that shift μ (1/s²) is
+    /// positive definite on the motions the joints allow: the factorization keeps the rows kept
+    /// at the iterate, and its pivots' signs (velocity pivots positive, multiplier pivots
+    /// negative, NV of them) say so (Sylvester's law of inertia: module documentation).
+    fn shifted_factor<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        it: &Iterate<M::NewtonStorage, T, NV, NC>,
+        mu: T,
+    ) -> Option<M::NewtonStorage>
+    where
+        T: Real,
+        M: NewtonMatrix<T, NQ, NV, NC>,
+    {
+        let nnz = M::JACOBIAN_PATTERN.len();
+        let pattern = M::NEWTON_PATTERN;
+        let mut s = it.stiff;
+        for ((u, w), (x, &m0)) in entries(&pattern).zip(s.as_mut()[nnz..].iter_mut().zip(&it.mass.as_ref()[nnz..])) {
+            if u < NV && w < NV {
+                *x += (mu - T::ONE) * m0;
+            }
+        }
+        let mut dropped = it.dropped;
+        let tolerance = T::from_f64(self.options.pivot_tolerance).max(T::EPSILON);
+        M::newton_factor(&mut s, tolerance, true, &mut dropped).ok()?;
+        if dropped != it.dropped {
+            return None;
+        }
+        let values = &s.as_ref()[nnz..];
+        let positive = (0..pattern.size())
+            .filter(|&p| {
+                let (u, pivot) = (pattern.unknown[p] as usize, values[pattern.diagonal[p] as usize]);
+                if u < NV {
+                    pivot > T::ZERO
+                } else {
+                    !dropped[u - NV] && pivot < T::ZERO
+                }
+            })
+            .count();
+        (positive == NV).then_some(s)
+    }
+
+    /// The smallest shift of the ladder μ_k = 10^k · μ₀ (k = 0, 1, …; μ₀ = [`shift_floor`])
+    /// whose reduced matrix is positive definite, with its factors.
+    fn definite_shift<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        it: &Iterate<M::NewtonStorage, T, NV, NC>,
+    ) -> Option<(T, M::NewtonStorage)>
+    where
+        T: Real,
+        M: NewtonMatrix<T, NQ, NV, NC>,
+    {
+        let mut mu = shift_floor(it);
+        for _ in 0..SHIFT_TRIALS {
+            if let Some(s) = self.shifted_factor::<T, M, NQ, NV, NC>(it, mu) {
+                return Some((mu, s));
+            }
+            mu *= T::from_f64(10.0);
+        }
+        None
+    }
+
+    /// The Levenberg–Marquardt step in the M norm along the motions the joints allow:
+    /// (μM − H)δ − Dᵀy = r, Dδ = 0 (the iterate is assembled; the restoration after the step
+    /// meets Φ = 0 again), with the smallest shift of the ladder that makes the reduced matrix
+    /// positive definite, raised ×4 until no entry of δ exceeds `radius`. Returns δ and the
+    /// decrease the quadratic model predicts, rᵀδ + ½δᵀHδ = ½(rᵀδ + μ δᵀMδ); `None` if no
+    /// shift gives a finite step.
+    #[allow(clippy::too_many_arguments)]
+    fn shifted_step<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        it: &Iterate<M::NewtonStorage, T, NV, NC>,
+        radius: T,
+    ) -> Option<([T; NV], T)>
+    where
+        T: Real,
+        M: NewtonMatrix<T, NQ, NV, NC>,
+    {
+        // The step at shift μ: `Err(true)` if the reduced matrix is definite but the step
+        // does not fit, `Err(false)` if it is not definite (or the step not finite).
+        let floor = shift_floor(it);
+        let attempt = |mu: T| -> Result<([T; NV], T), bool> {
+            let factors = self.shifted_factor::<T, M, NQ, NV, NC>(it, mu).ok_or(false)?;
+            let mut b = [T::ZERO; N];
+            b[..NV].copy_from_slice(&it.r);
+            // At the floor, Newton's own step (μ = 0) where the refinement converges to it.
+            let mut mu = mu;
+            if mu == floor && !it.shifted_solve::<M, NQ, N>(&factors, T::ZERO, &mut b) {
+                b = [T::ZERO; N];
+                b[..NV].copy_from_slice(&it.r);
+                it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+            } else if mu == floor {
+                mu = T::ZERO;
+            } else {
+                it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+            }
+            let delta: [T; NV] = core::array::from_fn(|i| b[i]);
+            if first_non_finite(&delta).is_some() {
+                return Err(false);
+            }
+            if max_abs(&delta).0 > radius {
+                return Err(true);
+            }
+            let mut md = [T::ZERO; NV];
+            m.mass_times(q, &delta, &mut md);
+            Ok((delta, T::from_f64(0.5) * (dot(&it.r, &delta) + mu * dot(&delta, &md))))
+        };
+        // Up from the floor (Newton's step where it is definite and fits): ×10 while not
+        // definite, ×4 while the step is too long.
+        let (mut low, mut mu) = (T::ZERO, floor);
+        let (mut high, mut step) = loop {
+            match attempt(mu) {
+                Ok(step) => break (mu, step),
+                Err(definite) => {
+                    low = mu;
+                    mu *= T::from_f64(if definite { 4.0 } else { 10.0 });
+                    if !mu.is_finite() {
+                        return None;
+                    }
+                }
+            }
+        };
+        // Above the floor, the smallest shift that fits (to 5 %): the step on the radius, the
+        // trust-region step (step length falls as μ grows past the definite threshold).
+        if low > T::ZERO {
+            for _ in 0..SHIFT_TRIALS {
+                if max_abs(&step.0).0 >= T::from_f64(ON_RADIUS) * radius || high <= T::from_f64(1.05) * low {
+                    break;
+                }
+                let middle = (low * high).sqrt();
+                match attempt(middle) {
+                    Ok(found) => (high, step) = (middle, found),
+                    Err(_) => low = middle,
+                }
+            }
+        }
+        let _ = high;
+        Some(step)
+    }
+
+    /// The lowest mode of the reduced stiffness, by inverse iteration on the factors of the
+    /// smallest definite shift μ: x ← (μM − H)⁻¹ M x on the motions the joints allow
+    /// ([[μM − H, −Dᵀ], [D, 0]] [x'; ·] = [M x; 0]), which converges to the mode of smallest
+    /// ω² + μ > 0, i.e. the smallest ω²; ω² from the Rayleigh quotient
+    /// x'ᵀ(−H)x' / x'ᵀMx' = x'ᵀMx / x'ᵀMx' − μ, which needs no product with H.
+    fn lowest_mode<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        it: &Iterate<M::NewtonStorage, T, NV, NC>,
+    ) -> Option<Mode<T, NV>>
+    where
+        T: Real,
+        M: NewtonMatrix<T, NQ, NV, NC>,
+    {
+        let (mu, factors) = self.definite_shift::<T, M, NQ, NV, NC>(it)?;
+        // Start from M times a vector of unequal entries (fractional parts of multiples of the
+        // golden ratio): no mode is missed by a symmetry of the start.
+        let mut mx: [T; NV] = core::array::from_fn(|i| {
+            let spread = libm::fmod(0.618_033_988_749_895 * (i + 1) as f64, 1.0);
+            it.mass_diagonal[i] * T::from_f64(0.5 + spread)
+        });
+        let mut x = [T::ZERO; NV];
+        let mut omega_squared = T::ZERO;
+        for k in 0..INVERSE_ITERATIONS {
+            let mut b = [T::ZERO; N];
+            b[..NV].copy_from_slice(&mx);
+            it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+            let next: [T; NV] = core::array::from_fn(|i| b[i]);
+            let mut m_next = [T::ZERO; NV];
+            m.mass_times(q, &next, &mut m_next);
+            let norm2 = dot(&next, &m_next);
+            if !norm2.is_finite() || norm2 <= T::ZERO {
+                return None;
+            }
+            let rayleigh = dot(&next, &mx) / norm2 - mu;
+            let inverse = T::ONE / norm2.sqrt();
+            x = core::array::from_fn(|i| next[i] * inverse);
+            mx = core::array::from_fn(|i| m_next[i] * inverse);
+            let settled = (rayleigh - omega_squared).abs() <= T::from_f64(1e-13) * rayleigh.abs().max(it.scale);
+            omega_squared = rayleigh;
+            if k > 0 && settled {
+                break;
+            }
+        }
+        // Without any stiffness (H = 0) every ω² is 0 exactly; the iteration gave the shape.
+        if it.scale == T::ZERO {
+            omega_squared = T::ZERO;
+        }
+        Some(Mode { omega_squared, shape: x, shift: mu })
     }
 
     /// One trial step from the equilibrium iterate `q` (forces `h`): `trial` = q ⊕ δ restored
@@ -807,19 +1002,17 @@ impl StaticSolver {
         delta: &[T; NV],
         predicted: T,
         trial: &mut [T; NQ],
-        phi: &mut [T; NC],
-        d: &mut [[T; NV]; NC],
-        ws: &mut Saddle<'_, T, NV, NC, N>,
+        correction: &mut [T; NV],
     ) -> Option<T>
     where
         T: Real,
-        M: Dynamics<T, NQ, NV, NC>,
+        M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let zero_v = [T::ZERO; NV];
         *trial = *q;
         m.integrate_positions(trial, delta, T::ONE);
-        let mut correction = [T::ZERO; NV];
-        self.restore(m, trial, t, phi, d, ws, &mut correction).ok()?;
+        correction.fill(T::ZERO);
+        self.restore::<T, M, NQ, NV, NC, N>(m, trial, t, correction).ok()?;
         let displacement: [T; NV] = core::array::from_fn(|i| delta[i] + correction[i]);
         let half_way: [T; NV] = core::array::from_fn(|i| T::from_f64(0.5) * displacement[i]);
         let mut middle = *q;
@@ -844,92 +1037,35 @@ impl StaticSolver {
         Some(if predicted > rounding { (work / predicted).max(T::ZERO) } else { T::ONE })
     }
 
-    /// [[M, Dᵀ], [D, 0]] into the workspace, factored; M's diagonal into `mass_diagonal`.
-    /// A constraint row that depends on the rows declared before it (sine of its angle to
-    /// their span ≤ [`StaticOptions::rank_tolerance`], as [`crate::KinematicSolver::redundancy`]
-    /// decides: a redundant constraint, or a singular pose) is dropped: its row and column of
-    /// the matrix become the identity's, so its multiplier is 0 (the dropped row carries no
-    /// load, the rule forward dynamics follows) and what it imposes is met through the others.
-    fn factor_saddle<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-        &self,
-        m: &M,
-        q: &[T; NQ],
-        t: T,
-        d: &[[T; NV]; NC],
-        ws: &mut Saddle<'_, T, NV, NC, N>,
-        mass_diagonal: &mut [T; NV],
-    ) -> Result<SaddleFactors<N, NC>, StaticError>
-    where
-        T: Real,
-        M: Dynamics<T, NQ, NV, NC>,
-    {
-        let time = t.to_f64();
-        for row in ws.matrix.iter_mut() {
-            row.fill(T::ZERO);
-        }
-        let mut unit = [T::ZERO; NV];
-        let mut column_j = [T::ZERO; NV];
-        for j in 0..NV {
-            unit[j] = T::ONE;
-            m.mass_times(q, &unit, &mut column_j);
-            unit[j] = T::ZERO;
-            for (i, &value) in column_j.iter().enumerate() {
-                ws.matrix[i][j] = value;
-            }
-            mass_diagonal[j] = column_j[j];
-        }
-        let mut redundant = [false; NC];
-        let split = orthogonalize(d, T::from_f64(self.options.rank_tolerance), ws.rows, ws.gram, &mut redundant);
-        for (r, row) in d.iter().enumerate() {
-            if redundant[r] {
-                ws.matrix[NV + r][NV + r] = T::ONE;
-                continue;
-            }
-            for (c, &value) in row.iter().enumerate() {
-                ws.matrix[c][NV + r] = value;
-                ws.matrix[NV + r][c] = value;
-            }
-        }
-        let permutation = lu_factor(ws.matrix, T::from_f64(self.options.pivot_tolerance).max(T::EPSILON)).map_err(|e| match e {
-            LinalgError::Singular { column, .. } => StaticError::Singular { t: time, row: row_name::<M>(column, NV) },
-            // M is NV × NV, D's entries sit in the rows or columns past NV.
-            LinalgError::NonFinite { row, column } => StaticError::NonFinite { t: time, row: row_name::<M>(row.max(column), NV) },
-            LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => {
-                StaticError::WorkspaceSize { expected: NV + NC, found: N }
-            }
-        })?;
-        Ok(SaddleFactors { permutation, rank: split.rank, redundant })
-    }
-
     /// Newton onto Φ(q, t) = 0 with steps of least kinetic-energy norm,
-    /// [[M, Dᵀ], [D, 0]] [Δv; ·] = [0; −Φ], q ← q ⊕ Δv; the steps are added to `correction`.
-    /// On success `phi` and `d` hold Φ and D at the returned q.
-    #[allow(clippy::too_many_arguments)]
+    /// [[M, −Dᵀ], [D, 0]] [Δv; ·] = [0; −Φ], q ← q ⊕ Δv, over the planned factorization; the
+    /// steps are added to `correction`. A constraint row that depends on the rows eliminated
+    /// before it (a redundant constraint, or a singular pose) is dropped: its multiplier is 0
+    /// and what it imposes is met through the others.
     fn restore<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        phi: &mut [T; NC],
-        d: &mut [[T; NV]; NC],
-        ws: &mut Saddle<'_, T, NV, NC, N>,
         correction: &mut [T; NV],
     ) -> Result<u32, RestoreFailure>
     where
         T: Real,
-        M: Dynamics<T, NQ, NV, NC>,
+        M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let time = t.to_f64();
         let tol = T::from_f64(self.options.tolerance);
-        let mut diagonal = [T::ZERO; NV];
+        let zero_v = [T::ZERO; NV];
+        let mut phi = [T::ZERO; NC];
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            m.position_eval(q, t, phi, d);
-            if let Some(i) = first_non_finite(phi) {
+            let mut s = M::newton_storage();
+            m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, &mut s);
+            if let Some(i) = first_non_finite(&phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
-            let (norm, worst) = max_abs(phi);
+            let (norm, worst) = max_abs(&phi);
             if norm <= tol {
                 return Ok(iterations);
             }
@@ -941,15 +1077,15 @@ impl StaticSolver {
                 }
                 return Err(RestoreFailure::NotConverged { iterations, worst, residual: norm.to_f64() });
             }
-            let factors = self.factor_saddle(m, q, t, d, ws, &mut diagonal).map_err(RestoreFailure::Static)?;
-            dropped = factors.redundant;
-            ws.rhs[..NV].fill(T::ZERO);
-            for (x, &p) in ws.rhs[NV..].iter_mut().zip(phi.iter()) {
+            dropped = [false; NC];
+            M::newton_factor(&mut s, self.drop_ratio(), true, &mut dropped)
+                .map_err(|e| RestoreFailure::Static(factor_error::<M>(time, NV, e)))?;
+            let mut b = [T::ZERO; N];
+            for (x, &p) in b[NV..].iter_mut().zip(&phi) {
                 *x = -p;
             }
-            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
-            let mut step = [T::ZERO; NV];
-            step.copy_from_slice(&ws.rhs[..NV]);
+            M::newton_solve(&s, &mut b);
+            let step: [T; NV] = core::array::from_fn(|i| b[i]);
             if let Some(i) = first_non_finite(&step) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) }));
             }
@@ -961,103 +1097,27 @@ impl StaticSolver {
         }
     }
 
-    /// The first `dof` columns of `basis` become an M-orthonormal basis of the null space of D:
-    /// the M-orthogonal projections P e_j of the unit velocities (from the factors of
-    /// [[M, Dᵀ], [D, 0]]: [[M, Dᵀ], [D, 0]] [P e_j; ·] = [M e_j; 0]), orthonormalized by
-    /// Gram–Schmidt in the M inner product, each step taking the remaining column of largest
-    /// M-norm.
-    // `!(x > y)` on purpose: it is also true when either side is NaN.
-    #[allow(clippy::too_many_arguments, clippy::neg_cmp_op_on_partial_ord)]
-    fn null_space_basis<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-        &self,
-        m: &M,
-        q: &[T; NQ],
-        t: T,
-        factors: &SaddleFactors<N, NC>,
-        ws: &mut Saddle<'_, T, NV, NC, N>,
-        dof: usize,
-        basis: &mut [[T; NV]; NV],
-    ) -> Result<(), StaticError>
-    where
-        T: Real,
-        M: Dynamics<T, NQ, NV, NC>,
-    {
-        let mut unit = [T::ZERO; NV];
-        let mut mz = [T::ZERO; NV];
-        for j in 0..NV {
-            unit[j] = T::ONE;
-            m.mass_times(q, &unit, &mut mz);
-            unit[j] = T::ZERO;
-            ws.rhs[..NV].copy_from_slice(&mz);
-            ws.rhs[NV..].fill(T::ZERO);
-            lu_solve_in_place(ws.matrix, &factors.permutation, ws.rhs);
-            for (row, &value) in basis.iter_mut().zip(ws.rhs.iter()) {
-                row[j] = value;
-            }
-        }
-        let m_norm2 = |z: &[T; NV], mz: &mut [T; NV]| {
-            m.mass_times(q, z, mz);
-            dot(z, mz)
-        };
-        for s in 0..dof {
-            let mut best = (T::ZERO, s);
-            for j in s..NV {
-                let n2 = m_norm2(&column(basis, j), &mut mz);
-                if n2 > best.0 {
-                    best = (n2, j);
-                }
-            }
-            if !(best.0 > T::ZERO) || !best.0.is_finite() {
-                return Err(StaticError::Singular { t: t.to_f64(), row: name(M::VELOCITY_NAMES, best.1) });
-            }
-            for row in basis.iter_mut() {
-                row.swap(s, best.1);
-            }
-            let inverse = T::ONE / best.0.sqrt();
-            let mut zs = column(basis, s);
-            for x in zs.iter_mut() {
-                *x *= inverse;
-            }
-            set_column(basis, s, &zs);
-            m.mass_times(q, &zs, &mut mz);
-            for j in s + 1..NV {
-                let mut zj = column(basis, j);
-                let c = dot(&zj, &mz);
-                for (x, &z) in zj.iter_mut().zip(&zs) {
-                    *x -= c * z;
-                }
-                set_column(basis, j, &zj);
-            }
-        }
-        Ok(())
-    }
-
     /// Wraps each planar angle into (−π, π] and flips each body's Euler parameters to e0 ≥ 0,
     /// where that leaves Φ and h unchanged (to the tolerance plus the rounding of the shift,
     /// bounded by the shift's size times the largest entry of D's or H's column); then
-    /// normalizes. `d` (D at q on entry) is work space.
-    #[allow(clippy::too_many_arguments)]
+    /// normalizes.
     fn wrap_angles<T, M, const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        phi: &[T; NC],
-        d: &mut [[T; NV]; NC],
-        h: &[T; NV],
-        stiffness: &[[T; NV]; NV],
+        it: &Iterate<M::NewtonStorage, T, NV, NC>,
     ) where
         T: Real,
-        M: Dynamics<T, NQ, NV, NC>,
+        M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let tol = T::from_f64(self.options.tolerance);
         let names = M::COORDINATE_NAMES;
         let zero_v = [T::ZERO; NV];
-        let d_columns: [T; NV] = core::array::from_fn(|i| d.iter().fold(T::ZERO, |s, row| s.max(row[i].abs())));
-        let h_columns: [T; NV] = core::array::from_fn(|i| stiffness.iter().fold(T::ZERO, |s, row| s.max(row[i].abs())));
-        let (mut phi1, mut h1) = ([T::ZERO; NC], [T::ZERO; NV]);
+        let (phi, h) = (&it.phi, &it.h);
+        let (mut phi1, mut h1, mut s) = ([T::ZERO; NC], [T::ZERO; NV], M::newton_storage());
         let mut unchanged = |candidate: &[T; NQ], d_scale: T, h_scale: T| {
-            m.position_eval(candidate, t, &mut phi1, d);
+            m.newton_jacobian(candidate, t, &mut phi1, &mut s);
             m.forces(candidate, &zero_v, t, &mut h1);
             phi.iter().zip(&phi1).all(|(a, b)| (*a - *b).abs() <= tol + d_scale)
                 && h.iter().zip(&h1).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)
@@ -1073,7 +1133,7 @@ impl StaticSolver {
                 let shift = rounding * (q[i].abs() + T::from_f64(2.0 * core::f64::consts::PI));
                 let mut candidate = *q;
                 candidate[i] = wrapped;
-                if unchanged(&candidate, shift * d_columns[i], shift * h_columns[i]) {
+                if unchanged(&candidate, shift * it.d_columns[i], shift * it.h_columns[i]) {
                     *q = candidate;
                 }
             } else if M::DIMENSION == 3 && coordinate.ends_with(".e0") && i + 3 < NQ && q[i] < T::ZERO {
@@ -1091,63 +1151,51 @@ impl StaticSolver {
     }
 }
 
-/// A = −Zᵀ H Z (symmetric part) into the leading `dof` block of the workspace; returns
-/// s = max |H_ij| / √(M_ii M_jj), the scale of the neutral verdict (1/s²).
-fn reduced_stiffness<T: Real, const NV: usize, const NC: usize, const N: usize>(
-    stiffness: &[[T; NV]; NV],
-    basis: &[[T; NV]; NV],
-    dof: usize,
-    mass_diagonal: &[T; NV],
-    ws: &mut Saddle<'_, T, NV, NC, N>,
-) -> T {
-    let mut scale = T::ZERO;
-    for (i, row) in stiffness.iter().enumerate() {
-        for (j, &value) in row.iter().enumerate() {
-            let weight = (mass_diagonal[i] * mass_diagonal[j]).sqrt();
-            if weight > T::ZERO {
-                scale = scale.max(value.abs() / weight);
-            }
-        }
+/// The smallest Levenberg–Marquardt shift tried: √ε (1.5e-8 in f64) times the stiffness scale
+/// s = max |H_ij| / √(M_ii M_jj). Small enough that the step is Newton's to √ε · s / ω²_min
+/// (the iteration converges at least at that rate), large enough that the factors, eliminating
+/// velocities first, keep half the digits where μM − H is singular but for μM (two iterative
+/// refinements regain them). 1 (1/s²) where there is no stiffness at all (H = 0: every step is
+/// then r/μ in the M norm, on the trust radius).
+fn shift_floor<S, T: Real, const NV: usize, const NC: usize>(it: &Iterate<S, T, NV, NC>) -> T {
+    if it.scale > T::ZERO {
+        T::EPSILON.sqrt() * it.scale
+    } else {
+        T::ONE
     }
-    for j in 0..dof {
-        let z = column(basis, j);
-        let hz: [T; NV] = core::array::from_fn(|i| dot(&stiffness[i], &z));
-        for (a, row) in ws.matrix.iter_mut().enumerate().take(dof) {
-            row[j] = -basis.iter().zip(&hz).fold(T::ZERO, |s, (z, &x)| s + z[a] * x);
-        }
-    }
-    let half = T::from_f64(0.5);
-    for a in 0..dof {
-        for b in a + 1..dof {
-            let mean = half * (ws.matrix[a][b] + ws.matrix[b][a]);
-            ws.matrix[a][b] = mean;
-            ws.matrix[b][a] = mean;
-        }
-    }
-    scale
 }
 
-/// The stability verdict from the eigenvalues ω² and mode shapes (columns of `basis`).
-fn classify<T: Real, M: Mechanism, const NV: usize>(
-    dof: usize,
-    omega2: &[T; NV],
-    basis: &[[T; NV]; NV],
-    mass_diagonal: &[T; NV],
-    lowest: usize,
-    neutral: T,
-) -> Stability {
-    if dof == 0 {
-        return Stability::Stable { omega_squared: f64::INFINITY };
+/// Wraps an angle into (−π, π].
+fn wrap_angle(phi: f64) -> f64 {
+    let turn = 2.0 * core::f64::consts::PI;
+    let mut wrapped = phi - turn * libm::round(phi / turn);
+    if wrapped <= -core::f64::consts::PI {
+        wrapped += turn;
+    } else if wrapped > core::f64::consts::PI {
+        wrapped -= turn;
     }
-    let w = omega2[lowest];
+    wrapped
+}
+
+/// The stability verdict from the lowest mode (`None`: no motion is free, DOF = 0); `neutral`
+/// gives the half-width of the neutral band about its ω².
+fn classify<T: Real, M: Mechanism, const NV: usize>(
+    mode: Option<&Mode<T, NV>>,
+    mass_diagonal: &[T; NV],
+    neutral: impl Fn(&Mode<T, NV>) -> T,
+) -> Stability {
+    let Some(mode) = mode else {
+        return Stability::Stable { omega_squared: f64::INFINITY };
+    };
+    let w = mode.omega_squared;
     let direction = {
-        let z = column(basis, lowest);
-        let weighted: [T; NV] = core::array::from_fn(|i| z[i] * mass_diagonal[i].abs().sqrt());
+        let weighted: [T; NV] = core::array::from_fn(|i| mode.shape[i] * mass_diagonal[i].abs().sqrt());
         name(M::VELOCITY_NAMES, max_abs(&weighted).1)
     };
-    if w < -neutral {
+    let band = neutral(mode);
+    if w < -band {
         Stability::Unstable { direction, omega_squared: w.to_f64() }
-    } else if w <= neutral {
+    } else if w <= band {
         Stability::Neutral { direction, omega_squared: w.to_f64() }
     } else {
         Stability::Stable { omega_squared: w.to_f64() }
@@ -1189,58 +1237,6 @@ mod tests {
         let mut q = [0.2, -0.4, 0.4, -0.95];
         let err = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 6>::new(), &mut q, 0.0, &mut [0.0; 2]);
         assert_eq!(err, Err(StaticError::WorkspaceSize { expected: 5, found: 6 }));
-    }
-
-    /// Jacobi's eigenvalues of a symmetric 3 × 3 matrix with known spectrum (1, 2, 4 — the
-    /// matrix Q diag(1, 2, 4) Qᵀ for a rotation Q), and the rotated basis holds its eigenvectors:
-    /// to 1e-12 (a few sweeps reach rounding).
-    #[test]
-    fn jacobi_finds_eigenpairs() {
-        let (c, s) = (0.6, 0.8);
-        let qm = [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]];
-        let lambda = [1.0, 2.0, 4.0];
-        let mut a = [[0.0; 4]; 4];
-        for i in 0..3 {
-            for j in 0..3 {
-                a[i][j] = (0..3).map(|k| qm[i][k] * lambda[k] * qm[j][k]).sum();
-            }
-        }
-        let original = a;
-        let mut basis = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        jacobi_eigen(&mut a, 3, &mut basis);
-        let mut found = [a[0][0], a[1][1], a[2][2]];
-        found.sort_by(f64::total_cmp);
-        for (f, e) in found.iter().zip(lambda) {
-            assert!((f - e).abs() < 1e-12, "{found:?}");
-        }
-        for k in 0..3 {
-            let v = [basis[0][k], basis[1][k], basis[2][k]];
-            for i in 0..3 {
-                let av: f64 = (0..3).map(|j| original[i][j] * v[j]).sum();
-                assert!((av - a[k][k] * v[i]).abs() < 1e-12, "A v = λ v for mode {k}");
-            }
-        }
-    }
-
-    /// The shifted step: Newton's when it fits, else on the radius with μ > −min ω²; inactive
-    /// modes do not move. Tolerances: the bisection resolves μ to rounding, so ‖y‖ = radius to
-    /// 1e-12.
-    #[test]
-    fn shifted_step_stays_in_the_radius() {
-        let mut y = [0.0; 3];
-        let unscaled = [1.0; 3];
-        // Newton fits: μ = 0.
-        let n = shifted_step(&[2.0, 4.0, 1.0], &[1.0, 2.0, 0.0], &unscaled, &[true, true, true], 10.0, &mut y);
-        assert_eq!(y, [0.5, 0.5, 0.0]);
-        assert!((n - 0.5f64.hypot(0.5)).abs() < 1e-15);
-        // Negative curvature with a force along it: on the radius, the negative mode dominant.
-        let n = shifted_step(&[-3.0, 4.0, 1.0], &[0.1, 2.0, 5.0], &unscaled, &[true, true, false], 0.7, &mut y);
-        assert!((n - 0.7).abs() < 1e-12 && y[2] == 0.0 && y[0] > 0.0 && y[0].abs() > y[1].abs(), "{y:?}");
-        let mu = 0.1 / y[0] + 3.0;
-        assert!(mu > 3.0 && (y[1] - 2.0 / (4.0 + mu)).abs() < 1e-9, "{y:?}");
-        // Scaled: a mode whose unit moves an entry by 2 gets half the room.
-        let n = shifted_step(&[1.0], &[10.0], &[2.0], &[true], 1.0, &mut y[..1]);
-        assert!((n - 1.0).abs() < 1e-12 && (y[0] - 0.5).abs() < 1e-12, "{y:?}");
     }
 
     #[test]

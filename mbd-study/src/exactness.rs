@@ -75,7 +75,7 @@ fn statics<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
     start: &[f64; NQ],
 ) -> (f64, Solved<NQ>)
 where
-    K: Dynamics<f64, NQ, NV, NC> + ConstraintForces<f64, NQ, NV, NC>,
+    K: NewtonMatrix<f64, NQ, NV, NC>,
 {
     timed(|| {
         let mut q = *start;
