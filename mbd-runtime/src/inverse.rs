@@ -140,7 +140,7 @@ where
             return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
         }
     }
-    let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_squares: [dt, ..], .. } = ws;
+    let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = ws;
     m.jacobian(q, t, d);
     let mut h = [T::ZERO; NV];
     m.forces(q, v, t, &mut h);

@@ -161,7 +161,7 @@ impl KinematicSolver {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         check_finite(lambda, t, NonFiniteQuantity::Multiplier, M::CONSTRAINT_NAMES)?;
-        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, saddle, .. } = ws;
+        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, coupling, .. } = ws;
         m.jacobian(q, t, d);
         check_rows_finite::<T, M, NV, NC>(d, t)?;
         let mut redundant = [false; NC];
@@ -178,7 +178,7 @@ impl KinematicSolver {
             }
             kept
         };
-        // C (p × rank) in saddle[j][0..rank]: for redundant row i, solve Rᵀ c = Q d_i (R lower
+        // C (p × rank) in coupling[j][0..rank]: for redundant row i, solve Rᵀ c = Q d_i (R lower
         // triangular, so Rᵀ upper: back substitution).
         let dropped = (0..NC).filter(|&i| redundant[i]);
         for (j, i) in dropped.clone().enumerate() {
@@ -186,9 +186,9 @@ impl KinematicSolver {
             for k in (0..rank).rev() {
                 let mut value = coef[k];
                 for l in k + 1..rank {
-                    value -= r[l][k] * saddle[j][l];
+                    value -= r[l][k] * coupling[j][l];
                 }
-                saddle[j][k] = value / r[k][k];
+                coupling[j][k] = value / r[k][k];
             }
         }
         // μ: λ with each redundant row's load moved onto the kept rows it repeats
@@ -199,44 +199,44 @@ impl KinematicSolver {
         }
         for (j, i) in dropped.clone().enumerate() {
             for k in 0..rank {
-                mu[k] += saddle[j][k] * lambda[i];
+                mu[k] += coupling[j][k] * lambda[i];
             }
         }
-        // I + C Cᵀ (p × p, symmetric positive definite) in saddle[a][rank..rank + p], then its
+        // I + C Cᵀ (p × p, symmetric positive definite) in coupling[a][rank..rank + p], then its
         // Cholesky factor in place (lower triangle), then λ_R = (I + C Cᵀ)⁻¹ C μ.
         for a in 0..p {
             for b in 0..=a {
-                let value = (0..rank).fold(if a == b { T::ONE } else { T::ZERO }, |s, k| s + saddle[a][k] * saddle[b][k]);
-                saddle[a][rank + b] = value;
+                let value = (0..rank).fold(if a == b { T::ONE } else { T::ZERO }, |s, k| s + coupling[a][k] * coupling[b][k]);
+                coupling[a][rank + b] = value;
             }
         }
         for a in 0..p {
             for b in 0..=a {
-                let mut value = saddle[a][rank + b];
+                let mut value = coupling[a][rank + b];
                 for k in 0..b {
-                    value -= saddle[a][rank + k] * saddle[b][rank + k];
+                    value -= coupling[a][rank + k] * coupling[b][rank + k];
                 }
-                saddle[a][rank + b] = if a == b { value.sqrt() } else { value / saddle[b][rank + b] };
+                coupling[a][rank + b] = if a == b { value.sqrt() } else { value / coupling[b][rank + b] };
             }
         }
         let mut y = [T::ZERO; NC];
         for a in 0..p {
-            let mut value = (0..rank).fold(T::ZERO, |s, k| s + saddle[a][k] * mu[k]);
+            let mut value = (0..rank).fold(T::ZERO, |s, k| s + coupling[a][k] * mu[k]);
             for k in 0..a {
-                value -= saddle[a][rank + k] * y[k];
+                value -= coupling[a][rank + k] * y[k];
             }
-            y[a] = value / saddle[a][rank + a];
+            y[a] = value / coupling[a][rank + a];
         }
         for a in (0..p).rev() {
             let mut value = y[a];
             for k in a + 1..p {
-                value -= saddle[k][rank + a] * y[k];
+                value -= coupling[k][rank + a] * y[k];
             }
-            y[a] = value / saddle[a][rank + a];
+            y[a] = value / coupling[a][rank + a];
         }
         // λ_K = μ − Cᵀ λ_R.
         for k in 0..rank {
-            let folded = (0..p).fold(T::ZERO, |s, a| s + saddle[a][k] * y[a]);
+            let folded = (0..p).fold(T::ZERO, |s, a| s + coupling[a][k] * y[a]);
             lambda[kept[k]] = mu[k] - folded;
         }
         for (j, i) in dropped.enumerate() {

@@ -3,7 +3,7 @@
 //! beside its `Model`).
 //!
 //! The solvers themselves keep only O(NV + NC) arrays on the stack, so a mechanism of any size
-//! runs on an ordinary thread's stack: a 120-link chain (NV = 360, NC = 240) needs 7.8 MB of
+//! runs on an ordinary thread's stack: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
@@ -13,10 +13,12 @@
 //! | constraint Jacobian D | NC × NV | kinematics, assembly, partitioning, inverse dynamics, statics, generalized-α |
 //! | a second NC × NV | NC × NV | partitioning (the elimination that chooses the dependent velocities) |
 //! | constraint square | NC × NC | minimum-norm assembly steps (D Dᵀ), coordinate partitioning |
-//! | three velocity squares | 3 × NV × NV | inverse dynamics (Dᵀ), statics (stiffness, null-space basis), generalized-α (∂h/∂q, ∂h/∂v, ∂(Dᵀλ)/∂q) |
-//! | saddle-point matrix and right-hand side | N × N, N | statics and generalized-α: [[·, Dᵀ], [D, 0]] |
+//! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
+//! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
 //!
-//! N must be NV + NC (stable Rust cannot compute it from the other two); the generated
+//! Statics and generalized-α need none of it: they factor over the sparse pattern `mechanism!`
+//! plans, on the stack (O(its non-zeros)). N must be NV + NC (stable Rust cannot compute it
+//! from the other two; the solvers that size their planned storage by it check it); the generated
 //! `Name::workspace()` gets it right, and the solvers check it
 //! ([`crate::SimulationError::WorkspaceSize`], [`crate::StaticError::WorkspaceSize`]).
 
@@ -39,9 +41,8 @@ pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize> {
     pub(crate) jacobian: [[T; NV]; NC],
     pub(crate) jacobian_scratch: [[T; NV]; NC],
     pub(crate) constraint_square: [[T; NC]; NC],
-    pub(crate) velocity_squares: [[[T; NV]; NV]; 3],
-    pub(crate) saddle: [[T; N]; N],
-    pub(crate) saddle_rhs: [T; N],
+    pub(crate) velocity_square: [[T; NV]; NV],
+    pub(crate) coupling: [[T; NC]; NC],
 }
 
 impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV, NC, N> {
@@ -52,9 +53,8 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV,
             jacobian: [[T::ZERO; NV]; NC],
             jacobian_scratch: [[T::ZERO; NV]; NC],
             constraint_square: [[T::ZERO; NC]; NC],
-            velocity_squares: [[[T::ZERO; NV]; NV]; 3],
-            saddle: [[T::ZERO; N]; N],
-            saddle_rhs: [T::ZERO; N],
+            velocity_square: [[T::ZERO; NV]; NV],
+            coupling: [[T::ZERO; NC]; NC],
         }
     }
 
@@ -104,7 +104,7 @@ mod tests {
         let boxed = Workspace::<f64, 3, 2, 5>::boxed();
         let value = Workspace::<f64, 3, 2, 5>::new();
         assert_eq!(format!("{boxed:?}"), format!("{value:?}"));
-        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 + 3 * 3 * 3 + 5 * 5 + 5));
+        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3));
     }
 
     /// A work space far larger than a thread's stack is built on the heap (a copy through the
@@ -115,7 +115,7 @@ mod tests {
             .stack_size(256 << 10)
             .spawn(|| {
                 let ws = Workspace::<f64, 120, 80, 200>::boxed();
-                ws.saddle[199][199] + ws.jacobian[79][119]
+                ws.coupling[79][79] + ws.jacobian[79][119]
             })
             .unwrap();
         assert_eq!(handle.join().unwrap(), 0.0);
