@@ -52,7 +52,10 @@ macro_rules! bench_mechanism {
         // One step of a kinematic sweep: Newton from the previous position at t + 1 ms.
         let mut qn = q;
         let convergence = solver.solve_position(&m, &mut ws, &mut qn, t0 + 1e-3).expect("converges");
-        println!("{}: the position solve takes {} Newton steps", $label, convergence.iterations);
+        println!(
+            "{}: the position solve takes {} Newton steps, {} factorizations of D",
+            $label, convergence.iterations, convergence.factorizations
+        );
         g.bench_function("position solve, t → t + 1 ms", |b| {
             b.iter(|| {
                 let mut qn = q;

@@ -1438,10 +1438,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             m[8] = 0.001f64;
         }
         let mut b = phi;
-        let mut worst = 0f64;
-        for x in b.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
-        }
+        let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
         let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
@@ -1605,10 +1602,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             b[7] = (jv[21] * v[8]) - nu[7];
             b[8] = (jv[22] * v[2]) - nu[8];
         }
-        let mut worst = 0f64;
-        for x in b.iter() {
-            worst = <f64 as ::mbd::Real>::max(worst, <f64 as ::mbd::Real>::abs(*x));
-        }
+        let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
         Self::schur_solve(&l, &dinv, &mut b);
         v[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
         v[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
@@ -2985,10 +2979,15 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         tolerance: f64,
         pivot_tolerance: f64,
         max_iterations: u32,
+        reuse: f64,
         phi: &mut [f64; 9],
         step: &mut [f64; 9],
-    ) -> ::core::option::Option<(::mbd::PositionStep, u32)> {
+    ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
         let mut jv = [0f64; 23];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        let mut factored = 0u32;
+        let mut last = 0f64;
         let (v5, v24, v59): (f64, f64, f64);
         v5 = (self.r / 2f64);
         v24 = (self.l / 2f64);
@@ -3030,68 +3029,65 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
                 phi[7] = (-s_slider);
                 phi[8] = (q[2] - v59);
-                let mut worst = 0f64;
-                let mut finite = true;
-                for x in phi.iter() {
-                    worst = <f64 as ::mbd::Real>::max(
-                        worst,
-                        <f64 as ::mbd::Real>::abs(*x),
-                    );
-                    finite &= x.is_finite();
-                }
+                let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
                 if finite && worst <= tolerance {
                     return ::core::option::Option::Some((
                         ::mbd::PositionStep::Converged,
                         iterations,
+                        factored,
                     ));
                 }
                 if !finite || iterations >= max_iterations {
                     return ::core::option::Option::Some((
                         ::mbd::PositionStep::Step,
                         iterations,
+                        factored,
                     ));
                 }
-                v81 = (-c_slider);
-                jv[0] = (-1f64);
-                jv[1] = v13;
-                jv[2] = (-1f64);
-                jv[3] = v10;
-                jv[4] = 1f64;
-                jv[5] = v13;
-                jv[6] = (-1f64);
-                jv[7] = v32;
-                jv[8] = 1f64;
-                jv[9] = v10;
-                jv[10] = (-1f64);
-                jv[11] = v29;
-                jv[12] = 1f64;
-                jv[13] = v32;
-                jv[14] = (-1f64);
-                jv[15] = 1f64;
-                jv[16] = v29;
-                jv[17] = (-1f64);
-                jv[18] = s_slider;
-                jv[19] = v81;
-                jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-                jv[21] = v81;
-                jv[22] = 1f64;
-                let mut l = [0f64; 18];
-                let mut dinv = [0f64; 9];
-                if Self::schur_factor(
-                        &jv,
-                        &[1f64; 9],
-                        pivot_tolerance,
-                        false,
-                        &mut l,
-                        &mut dinv,
-                    )
-                    .is_err()
-                {
-                    return ::core::option::Option::Some((
-                        ::mbd::PositionStep::Singular,
-                        iterations,
-                    ));
+                if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
+                    v81 = (-c_slider);
+                    jv[0] = (-1f64);
+                    jv[1] = v13;
+                    jv[2] = (-1f64);
+                    jv[3] = v10;
+                    jv[4] = 1f64;
+                    jv[5] = v13;
+                    jv[6] = (-1f64);
+                    jv[7] = v32;
+                    jv[8] = 1f64;
+                    jv[9] = v10;
+                    jv[10] = (-1f64);
+                    jv[11] = v29;
+                    jv[12] = 1f64;
+                    jv[13] = v32;
+                    jv[14] = (-1f64);
+                    jv[15] = 1f64;
+                    jv[16] = v29;
+                    jv[17] = (-1f64);
+                    jv[18] = s_slider;
+                    jv[19] = v81;
+                    jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+                    jv[21] = v81;
+                    jv[22] = 1f64;
+                    if Self::schur_factor(
+                            &jv,
+                            &[1f64; 9],
+                            pivot_tolerance,
+                            false,
+                            &mut l,
+                            &mut dinv,
+                        )
+                        .is_err()
+                    {
+                        return ::core::option::Option::Some((
+                            ::mbd::PositionStep::Singular,
+                            iterations,
+                            factored,
+                        ));
+                    }
+                    factored += 1;
                 }
+                last = worst;
                 let mut b = *phi;
                 Self::schur_solve(&l, &dinv, &mut b);
                 *step = [0f64; 9];
@@ -3111,6 +3107,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 return ::core::option::Option::Some((
                     ::mbd::PositionStep::Step,
                     iterations,
+                    factored,
                 ));
             }
             ::mbd::Kinematics::integrate_positions(self, q, step, 1f64);

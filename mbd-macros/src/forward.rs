@@ -311,17 +311,18 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             #fail
         }
     };
+    // ‖b‖∞, NaN entries ignored (the callers check the result for finiteness).
     let max_abs = quote! {
-        let mut worst = #zero;
-        for x in b.iter() {
-            worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
-        }
+        let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
     };
 
     // The kinematic position solve: Newton's iteration with the step −Dᵀ(D Dᵀ)⁻¹Φ over the same
     // factorization with unit weights (the step is D⁻¹(−Φ) for any weights when D is square and
     // regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
-    // computed once before it, and D only after Φ's convergence test.
+    // computed once before it, and D only after Φ's convergence test. A step expected to end the
+    // iteration keeps D and its factors (simplified Newton, the chord method: Φ alone is
+    // evaluated): ‖Φ‖∞ times the last step's contraction, times the safety factor `reuse`, is
+    // within the tolerance.
     let phi_outputs = vector_outputs("phi", &f.phi);
     let jv_outputs = jacobian_values_outputs(f, "jv");
     let (time_terms, stages) = e.staged(&[&phi_outputs, &jv_outputs]);
@@ -346,41 +347,45 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             tolerance: #real,
             pivot_tolerance: #real,
             max_iterations: u32,
+            reuse: #real,
             phi: &mut [#real; #nc_l],
             step: &mut [#real; #nv_l],
-        ) -> ::core::option::Option<(::mbd::PositionStep, u32)> {
+        ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
             let mut jv = [#zero; #nnz_l];
+            let mut l = [#zero; #nl_l];
+            let mut dinv = [#zero; #nc_l];
+            // The factorizations made (`l` and `dinv` hold factors after the first), and ‖Φ‖∞
+            // where the last step was taken.
+            let mut factored = 0u32;
+            let mut last = #zero;
             #time_terms
             let mut iterations = 0u32;
             loop {
                 {
                     let q: &[#real; #nq_l] = q;
                     #phi_stage
-                    let mut worst = #zero;
-                    let mut finite = true;
-                    for x in phi.iter() {
-                        worst = <#real as ::mbd::Real>::max(worst, <#real as ::mbd::Real>::abs(*x));
-                        finite &= x.is_finite();
-                    }
+                    let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
                     if finite && worst <= tolerance {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations));
+                        return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations, factored));
                     }
                     if !finite || iterations >= max_iterations {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations));
+                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
                     }
-                    #jv_stage
-                    let mut l = [#zero; #nl_l];
-                    let mut dinv = [#zero; #nc_l];
-                    if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations));
+                    if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
+                        #jv_stage
+                        if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                            return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations, factored));
+                        }
+                        factored += 1;
                     }
+                    last = worst;
                     let mut b = *phi;
                     Self::schur_solve(&l, &dinv, &mut b);
                     *step = [#zero; #nv_l];
                     #step_columns
                 }
                 if !step.iter().all(|x| x.is_finite()) {
-                    return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations));
+                    return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
                 }
                 ::mbd::Kinematics::integrate_positions(self, q, step, #one);
                 iterations += 1;

@@ -198,11 +198,13 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// time: Newton's iteration q ← q ⊕ Δv with Δv = −Dᵀ(D Dᵀ)⁻¹Φ — for a square, regular D
     /// (NV = NC) the Newton step D⁻¹(−Φ) itself — from the LDLᵀ of D Dᵀ that `mechanism!` plans
     /// (the Schur complement of the forward dynamics with unit weights), the whole loop in
-    /// generated code. Returns what it ended with and the steps taken, q at the last iterate and
-    /// Φ(q, t) in `phi`: [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`;
-    /// [`PositionStep::Singular`] when a pivot is at most `pivot_tolerance` times its diagonal;
-    /// [`PositionStep::Step`] when Φ or a step is not finite or `max_iterations` steps are taken.
-    /// The solver goes on from there with the dense LU, which names the coordinate without a
+    /// generated code. A step expected to end the iteration keeps D and its factors (simplified
+    /// Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
+    /// `reuse` evaluates and factors D at every step. Returns what it ended with, the steps
+    /// taken and the factorizations of D made, q at the last iterate and Φ(q, t) in `phi`:
+    /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
+    /// pivot is at most `pivot_tolerance` times its diagonal; [`PositionStep::Step`] when Φ or a
+    /// step is not finite or `max_iterations` steps are taken. The solver goes on from there with the dense LU, which names the coordinate without a
     /// pivot or the row that is not finite. `None` (the provided method) where nothing is
     /// generated: the dense path from the start.
     #[doc(hidden)]
@@ -214,10 +216,11 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
         tolerance: T,
         pivot_tolerance: T,
         max_iterations: u32,
+        reuse: T,
         phi: &mut [T; NC],
         step: &mut [T; NV],
-    ) -> Option<(PositionStep, u32)> {
-        let _ = (q, t, tolerance, pivot_tolerance, max_iterations, phi, step);
+    ) -> Option<(PositionStep, u32, u32)> {
+        let _ = (q, t, tolerance, pivot_tolerance, max_iterations, reuse, phi, step);
         None
     }
     /// Φ, D, ν and γ in one evaluation (shared subexpressions computed once).
