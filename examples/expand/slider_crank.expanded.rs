@@ -92,18 +92,22 @@ impl SliderCrank {
     #[allow(unused_parens, clippy::approx_constant)]
     pub fn mass_of(&self, body: ::mbd::PlanarBody) -> f64 {
         let mut out = [0f64; 3];
-        out[0] = 1f64;
-        out[1] = 2f64;
-        out[2] = 0.5f64;
+        use ::mbd::sparse::Elements as _;
+        let [__out_0, __out_1, __out_2] = out.window_mut::<0, 3>();
+        (*__out_0) = 1f64;
+        (*__out_1) = 2f64;
+        (*__out_2) = 0.5f64;
         out[body.index]
     }
     /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
     #[allow(unused_parens, clippy::approx_constant)]
     pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> f64 {
         let mut out = [0f64; 3];
-        out[0] = 0.002f64;
-        out[1] = 0.015f64;
-        out[2] = 0.001f64;
+        use ::mbd::sparse::Elements as _;
+        let [__out_0, __out_1, __out_2] = out.window_mut::<0, 3>();
+        (*__out_0) = 0.002f64;
+        (*__out_1) = 0.015f64;
+        (*__out_2) = 0.001f64;
         out[body.index]
     }
     /// Parameter values in declaration order (see `PARAM_NAMES`).
@@ -152,39 +156,45 @@ impl SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__out_0, __out_1, __out_2, __out_3, __out_4, __out_5, __out_6, __out_7,
+        __out_8, __out_9, __out_10, __out_11, __out_12, __out_13, __out_14, __out_15,
+        __out_16, __out_17, __out_18, __out_19, __out_20, __out_21, __out_22] = out
+            .window_mut::<0, 23>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v13 = (-(v5 * s_crank));
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v32 = (-(v24 * s_rod));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        out[0] = (-1f64);
-        out[1] = v13;
-        out[2] = (-1f64);
-        out[3] = v10;
-        out[4] = 1f64;
-        out[5] = v13;
-        out[6] = (-1f64);
-        out[7] = v32;
-        out[8] = 1f64;
-        out[9] = v10;
-        out[10] = (-1f64);
-        out[11] = v29;
-        out[12] = 1f64;
-        out[13] = v32;
-        out[14] = (-1f64);
-        out[15] = 1f64;
-        out[16] = v29;
-        out[17] = (-1f64);
-        out[18] = s_slider;
-        out[19] = v81;
-        out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        out[21] = v81;
-        out[22] = 1f64;
+        (*__out_0) = (-1f64);
+        (*__out_1) = v13;
+        (*__out_2) = (-1f64);
+        (*__out_3) = v10;
+        (*__out_4) = 1f64;
+        (*__out_5) = v13;
+        (*__out_6) = (-1f64);
+        (*__out_7) = v32;
+        (*__out_8) = 1f64;
+        (*__out_9) = v10;
+        (*__out_10) = (-1f64);
+        (*__out_11) = v29;
+        (*__out_12) = 1f64;
+        (*__out_13) = v32;
+        (*__out_14) = (-1f64);
+        (*__out_15) = 1f64;
+        (*__out_16) = v29;
+        (*__out_17) = (-1f64);
+        (*__out_18) = s_slider;
+        (*__out_19) = v81;
+        (*__out_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__out_21) = v81;
+        (*__out_22) = 1f64;
     }
     /// Φ, the structural non-zeros of Φ_q (in the order of `JACOBIAN_PATTERN`), ν and γ in
     /// one evaluation: the sparse twin of `Kinematics::full_eval`.
@@ -251,78 +261,92 @@ impl SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        let [__out_0, __out_1, __out_2, __out_3, __out_4, __out_5, __out_6, __out_7,
+        __out_8, __out_9, __out_10, __out_11, __out_12, __out_13, __out_14, __out_15,
+        __out_16, __out_17, __out_18, __out_19, __out_20, __out_21, __out_22] = out
+            .window_mut::<0, 23>();
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        v119 = (s_slider * v[8]);
-        v126 = (c_slider * v[8]);
-        v134 = (v5 * (v[2] * (c_crank * v[2])));
-        v138 = (v5 * (v[2] * (s_crank * v[2])));
-        v141 = (v24 * (v[5] * (c_rod * v[5])));
-        v147 = (v24 * (v[5] * (s_rod * v[5])));
-        v151 = (v[6] * v126);
-        v152 = (v[8] * v119);
-        v158 = (v[7] * v119);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
-        out[0] = (-1f64);
-        out[1] = v13;
-        out[2] = (-1f64);
-        out[3] = v10;
-        out[4] = 1f64;
-        out[5] = v13;
-        out[6] = (-1f64);
-        out[7] = v32;
-        out[8] = 1f64;
-        out[9] = v10;
-        out[10] = (-1f64);
-        out[11] = v29;
-        out[12] = 1f64;
-        out[13] = v32;
-        out[14] = (-1f64);
-        out[15] = 1f64;
-        out[16] = v29;
-        out[17] = (-1f64);
-        out[18] = s_slider;
-        out[19] = v81;
-        out[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        out[21] = v81;
-        out[22] = 1f64;
-        nu[0] = 0f64;
-        nu[1] = 0f64;
-        nu[2] = 0f64;
-        nu[3] = 0f64;
-        nu[4] = 0f64;
-        nu[5] = 0f64;
-        nu[6] = 0f64;
-        nu[7] = 0f64;
-        nu[8] = self.omega;
-        gamma[0] = v134;
-        gamma[1] = v138;
-        gamma[2] = (v134 + v141);
-        gamma[3] = (v138 + v147);
-        gamma[4] = v141;
-        gamma[5] = v147;
-        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
-        gamma[7] = (-v152);
-        gamma[8] = 0f64;
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+        v151 = ((*__v_6) * v126);
+        v152 = ((*__v_8) * v119);
+        v158 = ((*__v_7) * v119);
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
+        (*__out_0) = (-1f64);
+        (*__out_1) = v13;
+        (*__out_2) = (-1f64);
+        (*__out_3) = v10;
+        (*__out_4) = 1f64;
+        (*__out_5) = v13;
+        (*__out_6) = (-1f64);
+        (*__out_7) = v32;
+        (*__out_8) = 1f64;
+        (*__out_9) = v10;
+        (*__out_10) = (-1f64);
+        (*__out_11) = v29;
+        (*__out_12) = 1f64;
+        (*__out_13) = v32;
+        (*__out_14) = (-1f64);
+        (*__out_15) = 1f64;
+        (*__out_16) = v29;
+        (*__out_17) = (-1f64);
+        (*__out_18) = s_slider;
+        (*__out_19) = v81;
+        (*__out_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__out_21) = v81;
+        (*__out_22) = 1f64;
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+        (*__gamma_0) = v134;
+        (*__gamma_1) = v138;
+        (*__gamma_2) = (v134 + v141);
+        (*__gamma_3) = (v138 + v147);
+        (*__gamma_4) = v141;
+        (*__gamma_5) = v147;
+        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+        (*__gamma_7) = (-v152);
+        (*__gamma_8) = 0f64;
     }
 }
 impl ::mbd::Mechanism for SliderCrank {
@@ -644,26 +668,29 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        v87 = (s_crank * v[2]);
-        v93 = (c_crank * v[2]);
-        v98 = (s_rod * v[5]);
-        v106 = (c_rod * v[5]);
-        v119 = (s_slider * v[8]);
-        v126 = (c_slider * v[8]);
-        v134 = (v5 * (v[2] * v93));
-        v139 = (-(v5 * (v[2] * v87)));
-        v141 = (v24 * (v[5] * v106));
-        v148 = (-(v24 * (v[5] * v98)));
-        v152 = (v[8] * v119);
-        v160 = (v[8] * v126);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v87 = (s_crank * (*__v_2));
+        v93 = (c_crank * (*__v_2));
+        v98 = (s_rod * (*__v_5));
+        v106 = (c_rod * (*__v_5));
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * v93));
+        v139 = (-(v5 * ((*__v_2) * v87)));
+        v141 = (v24 * ((*__v_5) * v106));
+        v148 = (-(v24 * ((*__v_5) * v98)));
+        v152 = ((*__v_8) * v119);
+        v160 = ((*__v_8) * v126);
         v251 = (-v160);
-        v254 = (v[7] * v126);
-        v259 = (v[6] * v119);
+        v254 = ((*__v_7) * v126);
+        v259 = ((*__v_6) * v119);
         v268 = (v5 * (2f64 * v93));
         v270 = (v5 * (2f64 * v87));
         v272 = (v24 * (2f64 * v106));
@@ -671,8 +698,8 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
         v275 = (2f64 * v126);
         v277 = (2f64 * v119);
         v278 = (-v277);
-        v280 = (s_slider * v[7]);
-        v285 = (c_slider * v[6]);
+        v280 = (s_slider * (*__v_7));
+        v285 = (c_slider * (*__v_6));
         gamma_q[0][2] = v139;
         gamma_q[1][2] = v134;
         gamma_q[2][2] = v139;
@@ -683,8 +710,8 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
         gamma_q[5][5] = v141;
         gamma_q[6][6] = v152;
         gamma_q[6][7] = v251;
-        gamma_q[6][8] = (-((v254 + (v254 - (q[7] * v152)))
-            - (v259 + ((q[6] * v160) + v259))));
+        gamma_q[6][8] = (-((v254 + (v254 - ((*__q_7) * v152)))
+            - (v259 + (((*__q_6) * v160) + v259))));
         gamma_q[7][8] = v251;
         gamma_v[0][2] = v268;
         gamma_v[1][2] = v270;
@@ -696,8 +723,8 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
         gamma_v[5][5] = v274;
         gamma_v[6][6] = (-v275);
         gamma_v[6][7] = v278;
-        gamma_v[6][8] = (-((v280 + ((q[7] * v275) + v280))
-            + (v285 + (v285 - (q[6] * v277)))));
+        gamma_v[6][8] = (-((v280 + (((*__q_7) * v275) + v280))
+            + (v285 + (v285 - ((*__q_6) * v277)))));
         gamma_v[7][8] = v278;
     }
     #[inline]
@@ -754,27 +781,33 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
             v203,
             v205,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
+        __lambda_6, __lambda_7] = lambda.window::<0, 8>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        v203 = (s_slider * lambda[6]);
-        v205 = (c_slider * lambda[6]);
-        k[2][2] = (-((v12 * lambda[3])
-            + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
-        k[5][5] = (-((v31 * lambda[5])
-            + ((v29 * lambda[4]) + ((v31 * lambda[3]) + (v29 * lambda[2])))));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v203 = (s_slider * (*__lambda_6));
+        v205 = (c_slider * (*__lambda_6));
+        k[2][2] = (-((v12 * (*__lambda_3))
+            + ((v10 * (*__lambda_2))
+                + ((v12 * (*__lambda_1)) + (v10 * (*__lambda_0))))));
+        k[5][5] = (-((v31 * (*__lambda_5))
+            + ((v29 * (*__lambda_4))
+                + ((v31 * (*__lambda_3)) + (v29 * (*__lambda_2))))));
         k[6][8] = v205;
         k[7][8] = v203;
         k[8][6] = v205;
         k[8][7] = v203;
-        k[8][8] = ((s_slider * lambda[7])
-            + (lambda[6] * ((c_slider * q[7]) - (s_slider * q[6]))));
+        k[8][8] = ((s_slider * (*__lambda_7))
+            + ((*__lambda_6) * ((c_slider * (*__q_7)) - (s_slider * (*__q_6)))));
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -782,15 +815,18 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn mass_times(&self, q: &[f64; 9], x: &[f64; 9], y: &mut [f64; 9]) {
         let mut m = [0f64; 9];
-        m[0] = 1f64;
-        m[1] = 1f64;
-        m[2] = 0.002f64;
-        m[3] = 2f64;
-        m[4] = 2f64;
-        m[5] = 0.015f64;
-        m[6] = 0.5f64;
-        m[7] = 0.5f64;
-        m[8] = 0.001f64;
+        use ::mbd::sparse::Elements as _;
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window_mut::<0, 9>();
+        (*__m_0) = 1f64;
+        (*__m_1) = 1f64;
+        (*__m_2) = 0.002f64;
+        (*__m_3) = 2f64;
+        (*__m_4) = 2f64;
+        (*__m_5) = 0.015f64;
+        (*__m_6) = 0.5f64;
+        (*__m_7) = 0.5f64;
+        (*__m_8) = 0.001f64;
         y[0] = m[0] * x[0];
         y[1] = m[1] * x[1];
         y[2] = m[2] * x[2];
@@ -804,15 +840,18 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn add_mass_matrix(&self, q: &[f64; 9], scale: f64, a: &mut [[f64; 9]; 9]) {
         let mut m = [0f64; 9];
-        m[0] = 1f64;
-        m[1] = 1f64;
-        m[2] = 0.002f64;
-        m[3] = 2f64;
-        m[4] = 2f64;
-        m[5] = 0.015f64;
-        m[6] = 0.5f64;
-        m[7] = 0.5f64;
-        m[8] = 0.001f64;
+        use ::mbd::sparse::Elements as _;
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window_mut::<0, 9>();
+        (*__m_0) = 1f64;
+        (*__m_1) = 1f64;
+        (*__m_2) = 0.002f64;
+        (*__m_3) = 2f64;
+        (*__m_4) = 2f64;
+        (*__m_5) = 0.015f64;
+        (*__m_6) = 0.5f64;
+        (*__m_7) = 0.5f64;
+        (*__m_8) = 0.001f64;
         a[0][0] += scale * m[0];
         a[1][1] += scale * m[1];
         a[2][2] += scale * m[2];
@@ -825,15 +864,18 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     }
     #[inline]
     fn forces(&self, q: &[f64; 9], v: &[f64; 9], t: f64, h: &mut [f64; 9]) {
-        h[0] = 0f64;
-        h[1] = 0f64;
-        h[2] = 0f64;
-        h[3] = 0f64;
-        h[4] = 0f64;
-        h[5] = 0f64;
-        h[6] = 0f64;
-        h[7] = 0f64;
-        h[8] = 0f64;
+        use ::mbd::sparse::Elements as _;
+        let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
+            .window_mut::<0, 9>();
+        (*__h_0) = 0f64;
+        (*__h_1) = 0f64;
+        (*__h_2) = 0f64;
+        (*__h_3) = 0f64;
+        (*__h_4) = 0f64;
+        (*__h_5) = 0f64;
+        (*__h_6) = 0f64;
+        (*__h_7) = 0f64;
+        (*__h_8) = 0f64;
     }
     #[inline]
     fn forces_q(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
@@ -850,7 +892,9 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn potential_energy(&self, q: &[f64; 9], t: f64) -> f64 {
         let mut energy = [0f64; 1];
-        energy[0] = 0f64;
+        use ::mbd::sparse::Elements as _;
+        let [__energy_0] = energy.window_mut::<0, 1>();
+        (*__energy_0) = 0f64;
         energy[0]
     }
     #[inline]
@@ -875,7 +919,9 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn nonconservative_power(&self, q: &[f64; 9], v: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
-        power[0] = 0f64;
+        use ::mbd::sparse::Elements as _;
+        let [__power_0] = power.window_mut::<0, 1>();
+        (*__power_0) = 0f64;
         power[0]
     }
 }
@@ -893,7 +939,20 @@ impl SliderCrank {
     ) -> ::core::result::Result<(), usize> {
         let mut d = [0f64; 9];
         let exact: f64 = if allow_redundant { 1e2 } else { 1.0 };
-        let skk: f64 = (jv[21] * jv[21] * minv[8]);
+        use ::mbd::sparse::Elements as _;
+        let [__d_0, __d_1, __d_2, __d_3, __d_4, __d_5, __d_6, __d_7, __d_8] = d
+            .window_mut::<0, 9>();
+        let [__dinv_0, __dinv_1, __dinv_2, __dinv_3, __dinv_4, __dinv_5, __dinv_6,
+        __dinv_7, __dinv_8] = dinv.window_mut::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__l_0, __l_1, __l_2, __l_3, __l_4, __l_5, __l_6, __l_7, __l_8, __l_9,
+        __l_10, __l_11, __l_12, __l_13, __l_14, __l_15, __l_16, __l_17] = l
+            .window_mut::<0, 18>();
+        let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
+        __minv_7, __minv_8] = minv.window::<0, 9>();
+        let skk: f64 = ((*__jv_21) * (*__jv_21) * (*__minv_8));
         let dk: f64 = skk;
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
@@ -904,12 +963,13 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(7);
         };
-        d[0] = dk;
-        dinv[0] = dik;
-        l[0] = ((jv[21] * jv[20] * minv[8])) * dinv[0];
-        let skk: f64 = (jv[18] * jv[18] * minv[6] + jv[19] * jv[19] * minv[7]
-            + jv[20] * jv[20] * minv[8]);
-        let dk: f64 = skk - l[0] * l[0] * d[0];
+        (*__d_0) = dk;
+        (*__dinv_0) = dik;
+        (*__l_0) = (((*__jv_21) * (*__jv_20) * (*__minv_8))) * (*__dinv_0);
+        let skk: f64 = ((*__jv_18) * (*__jv_18) * (*__minv_6)
+            + (*__jv_19) * (*__jv_19) * (*__minv_7)
+            + (*__jv_20) * (*__jv_20) * (*__minv_8));
+        let dk: f64 = skk - (*__l_0) * (*__l_0) * (*__d_0);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -919,13 +979,14 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(6);
         };
-        d[1] = dk;
-        dinv[1] = dik;
-        l[1] = ((jv[18] * jv[14] * minv[6])) * dinv[1];
-        l[2] = ((jv[19] * jv[17] * minv[7])) * dinv[1];
-        let skk: f64 = (jv[12] * jv[12] * minv[3] + jv[13] * jv[13] * minv[5]
-            + jv[14] * jv[14] * minv[6]);
-        let dk: f64 = skk - l[1] * l[1] * d[1];
+        (*__d_1) = dk;
+        (*__dinv_1) = dik;
+        (*__l_1) = (((*__jv_18) * (*__jv_14) * (*__minv_6))) * (*__dinv_1);
+        (*__l_2) = (((*__jv_19) * (*__jv_17) * (*__minv_7))) * (*__dinv_1);
+        let skk: f64 = ((*__jv_12) * (*__jv_12) * (*__minv_3)
+            + (*__jv_13) * (*__jv_13) * (*__minv_5)
+            + (*__jv_14) * (*__jv_14) * (*__minv_6));
+        let dk: f64 = skk - (*__l_1) * (*__l_1) * (*__d_1);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -935,14 +996,18 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(4);
         };
-        d[2] = dk;
-        dinv[2] = dik;
-        l[3] = ((jv[16] * jv[13] * minv[5]) - l[2] * l[1] * d[1]) * dinv[2];
-        l[4] = ((jv[12] * jv[6] * minv[3] + jv[13] * jv[7] * minv[5])) * dinv[2];
-        l[5] = ((jv[13] * jv[11] * minv[5])) * dinv[2];
-        let skk: f64 = (jv[15] * jv[15] * minv[4] + jv[16] * jv[16] * minv[5]
-            + jv[17] * jv[17] * minv[7]);
-        let dk: f64 = skk - l[2] * l[2] * d[1] - l[3] * l[3] * d[2];
+        (*__d_2) = dk;
+        (*__dinv_2) = dik;
+        (*__l_3) = (((*__jv_16) * (*__jv_13) * (*__minv_5))
+            - (*__l_2) * (*__l_1) * (*__d_1)) * (*__dinv_2);
+        (*__l_4) = (((*__jv_12) * (*__jv_6) * (*__minv_3)
+            + (*__jv_13) * (*__jv_7) * (*__minv_5))) * (*__dinv_2);
+        (*__l_5) = (((*__jv_13) * (*__jv_11) * (*__minv_5))) * (*__dinv_2);
+        let skk: f64 = ((*__jv_15) * (*__jv_15) * (*__minv_4)
+            + (*__jv_16) * (*__jv_16) * (*__minv_5)
+            + (*__jv_17) * (*__jv_17) * (*__minv_7));
+        let dk: f64 = skk - (*__l_2) * (*__l_2) * (*__d_1)
+            - (*__l_3) * (*__l_3) * (*__d_2);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -952,12 +1017,15 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(5);
         };
-        d[3] = dk;
-        dinv[3] = dik;
-        l[6] = ((jv[16] * jv[7] * minv[5]) - l[4] * l[3] * d[2]) * dinv[3];
-        l[7] = ((jv[15] * jv[10] * minv[4] + jv[16] * jv[11] * minv[5])
-            - l[5] * l[3] * d[2]) * dinv[3];
-        let skk: f64 = (jv[0] * jv[0] * minv[0] + jv[1] * jv[1] * minv[2]);
+        (*__d_3) = dk;
+        (*__dinv_3) = dik;
+        (*__l_6) = (((*__jv_16) * (*__jv_7) * (*__minv_5))
+            - (*__l_4) * (*__l_3) * (*__d_2)) * (*__dinv_3);
+        (*__l_7) = (((*__jv_15) * (*__jv_10) * (*__minv_4)
+            + (*__jv_16) * (*__jv_11) * (*__minv_5)) - (*__l_5) * (*__l_3) * (*__d_2))
+            * (*__dinv_3);
+        let skk: f64 = ((*__jv_0) * (*__jv_0) * (*__minv_0)
+            + (*__jv_1) * (*__jv_1) * (*__minv_2));
         let dk: f64 = skk;
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
@@ -968,14 +1036,16 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(0);
         };
-        d[4] = dk;
-        dinv[4] = dik;
-        l[8] = ((jv[3] * jv[1] * minv[2])) * dinv[4];
-        l[9] = ((jv[4] * jv[0] * minv[0] + jv[5] * jv[1] * minv[2])) * dinv[4];
-        l[10] = ((jv[9] * jv[1] * minv[2])) * dinv[4];
-        l[11] = ((jv[22] * jv[1] * minv[2])) * dinv[4];
-        let skk: f64 = (jv[2] * jv[2] * minv[1] + jv[3] * jv[3] * minv[2]);
-        let dk: f64 = skk - l[8] * l[8] * d[4];
+        (*__d_4) = dk;
+        (*__dinv_4) = dik;
+        (*__l_8) = (((*__jv_3) * (*__jv_1) * (*__minv_2))) * (*__dinv_4);
+        (*__l_9) = (((*__jv_4) * (*__jv_0) * (*__minv_0)
+            + (*__jv_5) * (*__jv_1) * (*__minv_2))) * (*__dinv_4);
+        (*__l_10) = (((*__jv_9) * (*__jv_1) * (*__minv_2))) * (*__dinv_4);
+        (*__l_11) = (((*__jv_22) * (*__jv_1) * (*__minv_2))) * (*__dinv_4);
+        let skk: f64 = ((*__jv_2) * (*__jv_2) * (*__minv_1)
+            + (*__jv_3) * (*__jv_3) * (*__minv_2));
+        let dk: f64 = skk - (*__l_8) * (*__l_8) * (*__d_4);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -985,16 +1055,21 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(1);
         };
-        d[5] = dk;
-        dinv[5] = dik;
-        l[12] = ((jv[5] * jv[3] * minv[2]) - l[9] * l[8] * d[4]) * dinv[5];
-        l[13] = ((jv[8] * jv[2] * minv[1] + jv[9] * jv[3] * minv[2])
-            - l[10] * l[8] * d[4]) * dinv[5];
-        l[14] = ((jv[22] * jv[3] * minv[2]) - l[11] * l[8] * d[4]) * dinv[5];
-        let skk: f64 = (jv[4] * jv[4] * minv[0] + jv[5] * jv[5] * minv[2]
-            + jv[6] * jv[6] * minv[3] + jv[7] * jv[7] * minv[5]);
-        let dk: f64 = skk - l[4] * l[4] * d[2] - l[6] * l[6] * d[3] - l[9] * l[9] * d[4]
-            - l[12] * l[12] * d[5];
+        (*__d_5) = dk;
+        (*__dinv_5) = dik;
+        (*__l_12) = (((*__jv_5) * (*__jv_3) * (*__minv_2))
+            - (*__l_9) * (*__l_8) * (*__d_4)) * (*__dinv_5);
+        (*__l_13) = (((*__jv_8) * (*__jv_2) * (*__minv_1)
+            + (*__jv_9) * (*__jv_3) * (*__minv_2)) - (*__l_10) * (*__l_8) * (*__d_4))
+            * (*__dinv_5);
+        (*__l_14) = (((*__jv_22) * (*__jv_3) * (*__minv_2))
+            - (*__l_11) * (*__l_8) * (*__d_4)) * (*__dinv_5);
+        let skk: f64 = ((*__jv_4) * (*__jv_4) * (*__minv_0)
+            + (*__jv_5) * (*__jv_5) * (*__minv_2) + (*__jv_6) * (*__jv_6) * (*__minv_3)
+            + (*__jv_7) * (*__jv_7) * (*__minv_5));
+        let dk: f64 = skk - (*__l_4) * (*__l_4) * (*__d_2)
+            - (*__l_6) * (*__l_6) * (*__d_3) - (*__l_9) * (*__l_9) * (*__d_4)
+            - (*__l_12) * (*__l_12) * (*__d_5);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -1004,17 +1079,21 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(2);
         };
-        d[6] = dk;
-        dinv[6] = dik;
-        l[15] = ((jv[9] * jv[5] * minv[2] + jv[11] * jv[7] * minv[5])
-            - l[5] * l[4] * d[2] - l[7] * l[6] * d[3] - l[10] * l[9] * d[4]
-            - l[13] * l[12] * d[5]) * dinv[6];
-        l[16] = ((jv[22] * jv[5] * minv[2]) - l[11] * l[9] * d[4] - l[14] * l[12] * d[5])
-            * dinv[6];
-        let skk: f64 = (jv[8] * jv[8] * minv[1] + jv[9] * jv[9] * minv[2]
-            + jv[10] * jv[10] * minv[4] + jv[11] * jv[11] * minv[5]);
-        let dk: f64 = skk - l[5] * l[5] * d[2] - l[7] * l[7] * d[3]
-            - l[10] * l[10] * d[4] - l[13] * l[13] * d[5] - l[15] * l[15] * d[6];
+        (*__d_6) = dk;
+        (*__dinv_6) = dik;
+        (*__l_15) = (((*__jv_9) * (*__jv_5) * (*__minv_2)
+            + (*__jv_11) * (*__jv_7) * (*__minv_5)) - (*__l_5) * (*__l_4) * (*__d_2)
+            - (*__l_7) * (*__l_6) * (*__d_3) - (*__l_10) * (*__l_9) * (*__d_4)
+            - (*__l_13) * (*__l_12) * (*__d_5)) * (*__dinv_6);
+        (*__l_16) = (((*__jv_22) * (*__jv_5) * (*__minv_2))
+            - (*__l_11) * (*__l_9) * (*__d_4) - (*__l_14) * (*__l_12) * (*__d_5))
+            * (*__dinv_6);
+        let skk: f64 = ((*__jv_8) * (*__jv_8) * (*__minv_1)
+            + (*__jv_9) * (*__jv_9) * (*__minv_2) + (*__jv_10) * (*__jv_10) * (*__minv_4)
+            + (*__jv_11) * (*__jv_11) * (*__minv_5));
+        let dk: f64 = skk - (*__l_5) * (*__l_5) * (*__d_2)
+            - (*__l_7) * (*__l_7) * (*__d_3) - (*__l_10) * (*__l_10) * (*__d_4)
+            - (*__l_13) * (*__l_13) * (*__d_5) - (*__l_15) * (*__l_15) * (*__d_6);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -1024,13 +1103,15 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(3);
         };
-        d[7] = dk;
-        dinv[7] = dik;
-        l[17] = ((jv[22] * jv[9] * minv[2]) - l[11] * l[10] * d[4] - l[14] * l[13] * d[5]
-            - l[16] * l[15] * d[6]) * dinv[7];
-        let skk: f64 = (jv[22] * jv[22] * minv[2]);
-        let dk: f64 = skk - l[11] * l[11] * d[4] - l[14] * l[14] * d[5]
-            - l[16] * l[16] * d[6] - l[17] * l[17] * d[7];
+        (*__d_7) = dk;
+        (*__dinv_7) = dik;
+        (*__l_17) = (((*__jv_22) * (*__jv_9) * (*__minv_2))
+            - (*__l_11) * (*__l_10) * (*__d_4) - (*__l_14) * (*__l_13) * (*__d_5)
+            - (*__l_16) * (*__l_15) * (*__d_6)) * (*__dinv_7);
+        let skk: f64 = ((*__jv_22) * (*__jv_22) * (*__minv_2));
+        let dk: f64 = skk - (*__l_11) * (*__l_11) * (*__d_4)
+            - (*__l_14) * (*__l_14) * (*__d_5) - (*__l_16) * (*__l_16) * (*__d_6)
+            - (*__l_17) * (*__l_17) * (*__d_7);
         let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
             skk,
             dk,
@@ -1040,58 +1121,66 @@ impl SliderCrank {
         ) else {
             return ::core::result::Result::Err(8);
         };
-        d[8] = dk;
-        dinv[8] = dik;
+        (*__d_8) = dk;
+        (*__dinv_8) = dik;
         ::core::result::Result::Ok(())
     }
     /// b ← S⁻¹ b with the factors of `schur_factor`.
     #[inline(always)]
     fn schur_solve(l: &[f64; 18], dinv: &[f64; 9], b: &mut [f64; 9]) {
-        b[6] -= l[0] * b[7];
-        b[4] -= l[1] * b[6];
-        b[5] -= l[2] * b[6];
-        b[5] -= l[3] * b[4];
-        b[1] -= l[8] * b[0];
-        b[2] -= l[4] * b[4];
-        b[2] -= l[6] * b[5];
-        b[2] -= l[9] * b[0];
-        b[2] -= l[12] * b[1];
-        b[3] -= l[5] * b[4];
-        b[3] -= l[7] * b[5];
-        b[3] -= l[10] * b[0];
-        b[3] -= l[13] * b[1];
-        b[3] -= l[15] * b[2];
-        b[8] -= l[11] * b[0];
-        b[8] -= l[14] * b[1];
-        b[8] -= l[16] * b[2];
-        b[8] -= l[17] * b[3];
-        b[7] *= dinv[0];
-        b[6] *= dinv[1];
-        b[4] *= dinv[2];
-        b[5] *= dinv[3];
-        b[0] *= dinv[4];
-        b[1] *= dinv[5];
-        b[2] *= dinv[6];
-        b[3] *= dinv[7];
-        b[8] *= dinv[8];
-        b[3] -= l[17] * b[8];
-        b[2] -= l[15] * b[3];
-        b[2] -= l[16] * b[8];
-        b[1] -= l[12] * b[2];
-        b[1] -= l[13] * b[3];
-        b[1] -= l[14] * b[8];
-        b[0] -= l[8] * b[1];
-        b[0] -= l[9] * b[2];
-        b[0] -= l[10] * b[3];
-        b[0] -= l[11] * b[8];
-        b[5] -= l[6] * b[2];
-        b[5] -= l[7] * b[3];
-        b[4] -= l[3] * b[5];
-        b[4] -= l[4] * b[2];
-        b[4] -= l[5] * b[3];
-        b[6] -= l[1] * b[4];
-        b[6] -= l[2] * b[5];
-        b[7] -= l[0] * b[6];
+        use ::mbd::sparse::Elements as _;
+        let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+            .window_mut::<0, 9>();
+        let [__dinv_0, __dinv_1, __dinv_2, __dinv_3, __dinv_4, __dinv_5, __dinv_6,
+        __dinv_7, __dinv_8] = dinv.window::<0, 9>();
+        let [__l_0, __l_1, __l_2, __l_3, __l_4, __l_5, __l_6, __l_7, __l_8, __l_9,
+        __l_10, __l_11, __l_12, __l_13, __l_14, __l_15, __l_16, __l_17] = l
+            .window::<0, 18>();
+        (*__b_6) -= (*__l_0) * (*__b_7);
+        (*__b_4) -= (*__l_1) * (*__b_6);
+        (*__b_5) -= (*__l_2) * (*__b_6);
+        (*__b_5) -= (*__l_3) * (*__b_4);
+        (*__b_1) -= (*__l_8) * (*__b_0);
+        (*__b_2) -= (*__l_4) * (*__b_4);
+        (*__b_2) -= (*__l_6) * (*__b_5);
+        (*__b_2) -= (*__l_9) * (*__b_0);
+        (*__b_2) -= (*__l_12) * (*__b_1);
+        (*__b_3) -= (*__l_5) * (*__b_4);
+        (*__b_3) -= (*__l_7) * (*__b_5);
+        (*__b_3) -= (*__l_10) * (*__b_0);
+        (*__b_3) -= (*__l_13) * (*__b_1);
+        (*__b_3) -= (*__l_15) * (*__b_2);
+        (*__b_8) -= (*__l_11) * (*__b_0);
+        (*__b_8) -= (*__l_14) * (*__b_1);
+        (*__b_8) -= (*__l_16) * (*__b_2);
+        (*__b_8) -= (*__l_17) * (*__b_3);
+        (*__b_7) *= (*__dinv_0);
+        (*__b_6) *= (*__dinv_1);
+        (*__b_4) *= (*__dinv_2);
+        (*__b_5) *= (*__dinv_3);
+        (*__b_0) *= (*__dinv_4);
+        (*__b_1) *= (*__dinv_5);
+        (*__b_2) *= (*__dinv_6);
+        (*__b_3) *= (*__dinv_7);
+        (*__b_8) *= (*__dinv_8);
+        (*__b_3) -= (*__l_17) * (*__b_8);
+        (*__b_2) -= (*__l_15) * (*__b_3);
+        (*__b_2) -= (*__l_16) * (*__b_8);
+        (*__b_1) -= (*__l_12) * (*__b_2);
+        (*__b_1) -= (*__l_13) * (*__b_3);
+        (*__b_1) -= (*__l_14) * (*__b_8);
+        (*__b_0) -= (*__l_8) * (*__b_1);
+        (*__b_0) -= (*__l_9) * (*__b_2);
+        (*__b_0) -= (*__l_10) * (*__b_3);
+        (*__b_0) -= (*__l_11) * (*__b_8);
+        (*__b_5) -= (*__l_6) * (*__b_2);
+        (*__b_5) -= (*__l_7) * (*__b_3);
+        (*__b_4) -= (*__l_3) * (*__b_5);
+        (*__b_4) -= (*__l_4) * (*__b_2);
+        (*__b_4) -= (*__l_5) * (*__b_3);
+        (*__b_6) -= (*__l_1) * (*__b_4);
+        (*__b_6) -= (*__l_2) * (*__b_5);
+        (*__b_7) -= (*__l_0) * (*__b_6);
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -1163,96 +1252,113 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+        let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
+            .window_mut::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window_mut::<0, 9>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        v119 = (s_slider * v[8]);
-        v126 = (c_slider * v[8]);
-        v134 = (v5 * (v[2] * (c_crank * v[2])));
-        v138 = (v5 * (v[2] * (s_crank * v[2])));
-        v141 = (v24 * (v[5] * (c_rod * v[5])));
-        v147 = (v24 * (v[5] * (s_rod * v[5])));
-        v151 = (v[6] * v126);
-        v152 = (v[8] * v119);
-        v158 = (v[7] * v119);
-        jv[0] = (-1f64);
-        jv[1] = v13;
-        jv[2] = (-1f64);
-        jv[3] = v10;
-        jv[4] = 1f64;
-        jv[5] = v13;
-        jv[6] = (-1f64);
-        jv[7] = v32;
-        jv[8] = 1f64;
-        jv[9] = v10;
-        jv[10] = (-1f64);
-        jv[11] = v29;
-        jv[12] = 1f64;
-        jv[13] = v32;
-        jv[14] = (-1f64);
-        jv[15] = 1f64;
-        jv[16] = v29;
-        jv[17] = (-1f64);
-        jv[18] = s_slider;
-        jv[19] = v81;
-        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        jv[21] = v81;
-        jv[22] = 1f64;
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
-        nu[0] = 0f64;
-        nu[1] = 0f64;
-        nu[2] = 0f64;
-        nu[3] = 0f64;
-        nu[4] = 0f64;
-        nu[5] = 0f64;
-        nu[6] = 0f64;
-        nu[7] = 0f64;
-        nu[8] = self.omega;
-        gamma[0] = v134;
-        gamma[1] = v138;
-        gamma[2] = (v134 + v141);
-        gamma[3] = (v138 + v147);
-        gamma[4] = v141;
-        gamma[5] = v147;
-        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
-        gamma[7] = (-v152);
-        gamma[8] = 0f64;
-        h[0] = 0f64;
-        h[1] = 0f64;
-        h[2] = 0f64;
-        h[3] = 0f64;
-        h[4] = 0f64;
-        h[5] = 0f64;
-        h[6] = 0f64;
-        h[7] = 0f64;
-        h[8] = 0f64;
-        m[0] = 1f64;
-        m[1] = 1f64;
-        m[2] = 0.002f64;
-        m[3] = 2f64;
-        m[4] = 2f64;
-        m[5] = 0.015f64;
-        m[6] = 0.5f64;
-        m[7] = 0.5f64;
-        m[8] = 0.001f64;
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+        v151 = ((*__v_6) * v126);
+        v152 = ((*__v_8) * v119);
+        v158 = ((*__v_7) * v119);
+        (*__jv_0) = (-1f64);
+        (*__jv_1) = v13;
+        (*__jv_2) = (-1f64);
+        (*__jv_3) = v10;
+        (*__jv_4) = 1f64;
+        (*__jv_5) = v13;
+        (*__jv_6) = (-1f64);
+        (*__jv_7) = v32;
+        (*__jv_8) = 1f64;
+        (*__jv_9) = v10;
+        (*__jv_10) = (-1f64);
+        (*__jv_11) = v29;
+        (*__jv_12) = 1f64;
+        (*__jv_13) = v32;
+        (*__jv_14) = (-1f64);
+        (*__jv_15) = 1f64;
+        (*__jv_16) = v29;
+        (*__jv_17) = (-1f64);
+        (*__jv_18) = s_slider;
+        (*__jv_19) = v81;
+        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_21) = v81;
+        (*__jv_22) = 1f64;
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+        (*__gamma_0) = v134;
+        (*__gamma_1) = v138;
+        (*__gamma_2) = (v134 + v141);
+        (*__gamma_3) = (v138 + v147);
+        (*__gamma_4) = v141;
+        (*__gamma_5) = v147;
+        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+        (*__gamma_7) = (-v152);
+        (*__gamma_8) = 0f64;
+        (*__h_0) = 0f64;
+        (*__h_1) = 0f64;
+        (*__h_2) = 0f64;
+        (*__h_3) = 0f64;
+        (*__h_4) = 0f64;
+        (*__h_5) = 0f64;
+        (*__h_6) = 0f64;
+        (*__h_7) = 0f64;
+        (*__h_8) = 0f64;
+        (*__m_0) = 1f64;
+        (*__m_1) = 1f64;
+        (*__m_2) = 0.002f64;
+        (*__m_3) = 2f64;
+        (*__m_4) = 2f64;
+        (*__m_5) = 0.015f64;
+        (*__m_6) = 0.5f64;
+        (*__m_7) = 0.5f64;
+        (*__m_8) = 0.001f64;
         let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
@@ -1284,58 +1390,109 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
         let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-        vd[0] = h[0] * minv[0];
-        vd[1] = h[1] * minv[1];
-        vd[2] = h[2] * minv[2];
-        vd[3] = h[3] * minv[3];
-        vd[4] = h[4] * minv[4];
-        vd[5] = h[5] * minv[5];
-        vd[6] = h[6] * minv[6];
-        vd[7] = h[7] * minv[7];
-        vd[8] = h[8] * minv[8];
-        lambda[0] = gamma[0] - (jv[0] * vd[0] + jv[1] * vd[2])
-            - two_alpha * ((jv[0] * v[0] + jv[1] * v[2]) - nu[0]) - beta2 * phi[0];
-        lambda[1] = gamma[1] - (jv[2] * vd[1] + jv[3] * vd[2])
-            - two_alpha * ((jv[2] * v[1] + jv[3] * v[2]) - nu[1]) - beta2 * phi[1];
-        lambda[2] = gamma[2]
-            - (jv[4] * vd[0] + jv[5] * vd[2] + jv[6] * vd[3] + jv[7] * vd[5])
+        use ::mbd::sparse::Elements as _;
+        let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
+            .window::<0, 9>();
+        let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
+        __minv_7, __minv_8] = minv.window::<0, 9>();
+        let [__vd_0, __vd_1, __vd_2, __vd_3, __vd_4, __vd_5, __vd_6, __vd_7, __vd_8] = vd
+            .window_mut::<0, 9>();
+        (*__vd_0) = (*__h_0) * (*__minv_0);
+        (*__vd_1) = (*__h_1) * (*__minv_1);
+        (*__vd_2) = (*__h_2) * (*__minv_2);
+        (*__vd_3) = (*__h_3) * (*__minv_3);
+        (*__vd_4) = (*__h_4) * (*__minv_4);
+        (*__vd_5) = (*__h_5) * (*__minv_5);
+        (*__vd_6) = (*__h_6) * (*__minv_6);
+        (*__vd_7) = (*__h_7) * (*__minv_7);
+        (*__vd_8) = (*__h_8) * (*__minv_8);
+        use ::mbd::sparse::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
+        __lambda_6, __lambda_7, __lambda_8] = lambda.window_mut::<0, 9>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window::<0, 9>();
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window::<0, 9>();
+        let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
+            .window::<0, 9>();
+        let [__vd_0, __vd_1, __vd_2, __vd_3, __vd_4, __vd_5, __vd_6, __vd_7, __vd_8] = vd
+            .window::<0, 9>();
+        (*__lambda_0) = (*__gamma_0) - ((*__jv_0) * (*__vd_0) + (*__jv_1) * (*__vd_2))
+            - two_alpha * (((*__jv_0) * (*__v_0) + (*__jv_1) * (*__v_2)) - (*__nu_0))
+            - beta2 * (*__phi_0);
+        (*__lambda_1) = (*__gamma_1) - ((*__jv_2) * (*__vd_1) + (*__jv_3) * (*__vd_2))
+            - two_alpha * (((*__jv_2) * (*__v_1) + (*__jv_3) * (*__v_2)) - (*__nu_1))
+            - beta2 * (*__phi_1);
+        (*__lambda_2) = (*__gamma_2)
+            - ((*__jv_4) * (*__vd_0) + (*__jv_5) * (*__vd_2) + (*__jv_6) * (*__vd_3)
+                + (*__jv_7) * (*__vd_5))
             - two_alpha
-                * ((jv[4] * v[0] + jv[5] * v[2] + jv[6] * v[3] + jv[7] * v[5]) - nu[2])
-            - beta2 * phi[2];
-        lambda[3] = gamma[3]
-            - (jv[8] * vd[1] + jv[9] * vd[2] + jv[10] * vd[4] + jv[11] * vd[5])
+                * (((*__jv_4) * (*__v_0) + (*__jv_5) * (*__v_2) + (*__jv_6) * (*__v_3)
+                    + (*__jv_7) * (*__v_5)) - (*__nu_2)) - beta2 * (*__phi_2);
+        (*__lambda_3) = (*__gamma_3)
+            - ((*__jv_8) * (*__vd_1) + (*__jv_9) * (*__vd_2) + (*__jv_10) * (*__vd_4)
+                + (*__jv_11) * (*__vd_5))
             - two_alpha
-                * ((jv[8] * v[1] + jv[9] * v[2] + jv[10] * v[4] + jv[11] * v[5]) - nu[3])
-            - beta2 * phi[3];
-        lambda[4] = gamma[4] - (jv[12] * vd[3] + jv[13] * vd[5] + jv[14] * vd[6])
-            - two_alpha * ((jv[12] * v[3] + jv[13] * v[5] + jv[14] * v[6]) - nu[4])
-            - beta2 * phi[4];
-        lambda[5] = gamma[5] - (jv[15] * vd[4] + jv[16] * vd[5] + jv[17] * vd[7])
-            - two_alpha * ((jv[15] * v[4] + jv[16] * v[5] + jv[17] * v[7]) - nu[5])
-            - beta2 * phi[5];
-        lambda[6] = gamma[6] - (jv[18] * vd[6] + jv[19] * vd[7] + jv[20] * vd[8])
-            - two_alpha * ((jv[18] * v[6] + jv[19] * v[7] + jv[20] * v[8]) - nu[6])
-            - beta2 * phi[6];
-        lambda[7] = gamma[7] - (jv[21] * vd[8]) - two_alpha * ((jv[21] * v[8]) - nu[7])
-            - beta2 * phi[7];
-        lambda[8] = gamma[8] - (jv[22] * vd[2]) - two_alpha * ((jv[22] * v[2]) - nu[8])
-            - beta2 * phi[8];
+                * (((*__jv_8) * (*__v_1) + (*__jv_9) * (*__v_2) + (*__jv_10) * (*__v_4)
+                    + (*__jv_11) * (*__v_5)) - (*__nu_3)) - beta2 * (*__phi_3);
+        (*__lambda_4) = (*__gamma_4)
+            - ((*__jv_12) * (*__vd_3) + (*__jv_13) * (*__vd_5) + (*__jv_14) * (*__vd_6))
+            - two_alpha
+                * (((*__jv_12) * (*__v_3) + (*__jv_13) * (*__v_5)
+                    + (*__jv_14) * (*__v_6)) - (*__nu_4)) - beta2 * (*__phi_4);
+        (*__lambda_5) = (*__gamma_5)
+            - ((*__jv_15) * (*__vd_4) + (*__jv_16) * (*__vd_5) + (*__jv_17) * (*__vd_7))
+            - two_alpha
+                * (((*__jv_15) * (*__v_4) + (*__jv_16) * (*__v_5)
+                    + (*__jv_17) * (*__v_7)) - (*__nu_5)) - beta2 * (*__phi_5);
+        (*__lambda_6) = (*__gamma_6)
+            - ((*__jv_18) * (*__vd_6) + (*__jv_19) * (*__vd_7) + (*__jv_20) * (*__vd_8))
+            - two_alpha
+                * (((*__jv_18) * (*__v_6) + (*__jv_19) * (*__v_7)
+                    + (*__jv_20) * (*__v_8)) - (*__nu_6)) - beta2 * (*__phi_6);
+        (*__lambda_7) = (*__gamma_7) - ((*__jv_21) * (*__vd_8))
+            - two_alpha * (((*__jv_21) * (*__v_8)) - (*__nu_7)) - beta2 * (*__phi_7);
+        (*__lambda_8) = (*__gamma_8) - ((*__jv_22) * (*__vd_2))
+            - two_alpha * (((*__jv_22) * (*__v_2)) - (*__nu_8)) - beta2 * (*__phi_8);
         Self::schur_solve(&l, &dinv, lambda);
-        vd[0] += minv[0] * (jv[0] * lambda[0] + jv[4] * lambda[2]);
-        vd[1] += minv[1] * (jv[2] * lambda[1] + jv[8] * lambda[3]);
-        vd[2]
-            += minv[2]
-                * (jv[1] * lambda[0] + jv[3] * lambda[1] + jv[5] * lambda[2]
-                    + jv[9] * lambda[3] + jv[22] * lambda[8]);
-        vd[3] += minv[3] * (jv[6] * lambda[2] + jv[12] * lambda[4]);
-        vd[4] += minv[4] * (jv[10] * lambda[3] + jv[15] * lambda[5]);
-        vd[5]
-            += minv[5]
-                * (jv[7] * lambda[2] + jv[11] * lambda[3] + jv[13] * lambda[4]
-                    + jv[16] * lambda[5]);
-        vd[6] += minv[6] * (jv[14] * lambda[4] + jv[18] * lambda[6]);
-        vd[7] += minv[7] * (jv[17] * lambda[5] + jv[19] * lambda[6]);
-        vd[8] += minv[8] * (jv[20] * lambda[6] + jv[21] * lambda[7]);
+        use ::mbd::sparse::Elements as _;
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
+        __lambda_6, __lambda_7, __lambda_8] = lambda.window::<0, 9>();
+        let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
+        __minv_7, __minv_8] = minv.window::<0, 9>();
+        let [__vd_0, __vd_1, __vd_2, __vd_3, __vd_4, __vd_5, __vd_6, __vd_7, __vd_8] = vd
+            .window_mut::<0, 9>();
+        (*__vd_0)
+            += (*__minv_0) * ((*__jv_0) * (*__lambda_0) + (*__jv_4) * (*__lambda_2));
+        (*__vd_1)
+            += (*__minv_1) * ((*__jv_2) * (*__lambda_1) + (*__jv_8) * (*__lambda_3));
+        (*__vd_2)
+            += (*__minv_2)
+                * ((*__jv_1) * (*__lambda_0) + (*__jv_3) * (*__lambda_1)
+                    + (*__jv_5) * (*__lambda_2) + (*__jv_9) * (*__lambda_3)
+                    + (*__jv_22) * (*__lambda_8));
+        (*__vd_3)
+            += (*__minv_3) * ((*__jv_6) * (*__lambda_2) + (*__jv_12) * (*__lambda_4));
+        (*__vd_4)
+            += (*__minv_4) * ((*__jv_10) * (*__lambda_3) + (*__jv_15) * (*__lambda_5));
+        (*__vd_5)
+            += (*__minv_5)
+                * ((*__jv_7) * (*__lambda_2) + (*__jv_11) * (*__lambda_3)
+                    + (*__jv_13) * (*__lambda_4) + (*__jv_16) * (*__lambda_5));
+        (*__vd_6)
+            += (*__minv_6) * ((*__jv_14) * (*__lambda_4) + (*__jv_18) * (*__lambda_6));
+        (*__vd_7)
+            += (*__minv_7) * ((*__jv_17) * (*__lambda_5) + (*__jv_19) * (*__lambda_6));
+        (*__vd_8)
+            += (*__minv_8) * ((*__jv_20) * (*__lambda_6) + (*__jv_21) * (*__lambda_7));
         ::core::result::Result::Ok(())
     }
     #[inline]
@@ -1383,59 +1540,70 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 f64,
                 f64,
             );
+            use ::mbd::sparse::Elements as _;
+            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
+            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                .window_mut::<0, 23>();
+            let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+                .window_mut::<0, 9>();
+            let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+            __phi_8] = phi.window_mut::<0, 9>();
+            let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+                .window::<0, 9>();
             v5 = (self.r / 2f64);
-            (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+            (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
             v10 = (v5 * c_crank);
             v12 = (v5 * s_crank);
             v13 = (-v12);
             v24 = (self.l / 2f64);
-            (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+            (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
             v29 = (v24 * c_rod);
             v31 = (v24 * s_rod);
             v32 = (-v31);
-            (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+            (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
             v81 = (-c_slider);
-            phi[0] = (-(q[0] - v10));
-            phi[1] = (-(q[1] - v12));
-            phi[2] = ((v10 + q[0]) - (q[3] - v29));
-            phi[3] = ((v12 + q[1]) - (q[4] - v31));
-            phi[4] = ((v29 + q[3]) - q[6]);
-            phi[5] = ((v31 + q[4]) - q[7]);
-            phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-            phi[7] = (-s_slider);
-            phi[8] = (q[2] - (self.omega * t));
-            jv[0] = (-1f64);
-            jv[1] = v13;
-            jv[2] = (-1f64);
-            jv[3] = v10;
-            jv[4] = 1f64;
-            jv[5] = v13;
-            jv[6] = (-1f64);
-            jv[7] = v32;
-            jv[8] = 1f64;
-            jv[9] = v10;
-            jv[10] = (-1f64);
-            jv[11] = v29;
-            jv[12] = 1f64;
-            jv[13] = v32;
-            jv[14] = (-1f64);
-            jv[15] = 1f64;
-            jv[16] = v29;
-            jv[17] = (-1f64);
-            jv[18] = s_slider;
-            jv[19] = v81;
-            jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-            jv[21] = v81;
-            jv[22] = 1f64;
-            m[0] = 1f64;
-            m[1] = 1f64;
-            m[2] = 0.002f64;
-            m[3] = 2f64;
-            m[4] = 2f64;
-            m[5] = 0.015f64;
-            m[6] = 0.5f64;
-            m[7] = 0.5f64;
-            m[8] = 0.001f64;
+            (*__phi_0) = (-((*__q_0) - v10));
+            (*__phi_1) = (-((*__q_1) - v12));
+            (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+            (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+            (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+            (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+            (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+            (*__phi_7) = (-s_slider);
+            (*__phi_8) = ((*__q_2) - (self.omega * t));
+            (*__jv_0) = (-1f64);
+            (*__jv_1) = v13;
+            (*__jv_2) = (-1f64);
+            (*__jv_3) = v10;
+            (*__jv_4) = 1f64;
+            (*__jv_5) = v13;
+            (*__jv_6) = (-1f64);
+            (*__jv_7) = v32;
+            (*__jv_8) = 1f64;
+            (*__jv_9) = v10;
+            (*__jv_10) = (-1f64);
+            (*__jv_11) = v29;
+            (*__jv_12) = 1f64;
+            (*__jv_13) = v32;
+            (*__jv_14) = (-1f64);
+            (*__jv_15) = 1f64;
+            (*__jv_16) = v29;
+            (*__jv_17) = (-1f64);
+            (*__jv_18) = s_slider;
+            (*__jv_19) = v81;
+            (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+            (*__jv_21) = v81;
+            (*__jv_22) = 1f64;
+            (*__m_0) = 1f64;
+            (*__m_1) = 1f64;
+            (*__m_2) = 0.002f64;
+            (*__m_3) = 2f64;
+            (*__m_4) = 2f64;
+            (*__m_5) = 0.015f64;
+            (*__m_6) = 0.5f64;
+            (*__m_7) = 0.5f64;
+            (*__m_8) = 0.001f64;
         }
         let mut b = phi;
         let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
@@ -1469,18 +1637,31 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             );
         }
         Self::schur_solve(&l, &dinv, &mut b);
-        q[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
-        q[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
-        q[2]
-            -= minv[2]
-                * (jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
-                    + jv[22] * b[8]);
-        q[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
-        q[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
-        q[5] -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
-        q[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
-        q[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
-        q[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
+        use ::mbd::sparse::Elements as _;
+        let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+            .window::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
+        __minv_7, __minv_8] = minv.window::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window_mut::<0, 9>();
+        (*__q_0) -= (*__minv_0) * ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+        (*__q_1) -= (*__minv_1) * ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+        (*__q_2)
+            -= (*__minv_2)
+                * ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1) + (*__jv_5) * (*__b_2)
+                    + (*__jv_9) * (*__b_3) + (*__jv_22) * (*__b_8));
+        (*__q_3) -= (*__minv_3) * ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+        (*__q_4) -= (*__minv_4) * ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+        (*__q_5)
+            -= (*__minv_5)
+                * ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3) + (*__jv_13) * (*__b_4)
+                    + (*__jv_16) * (*__b_5));
+        (*__q_6) -= (*__minv_6) * ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+        (*__q_7) -= (*__minv_7) * ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+        (*__q_8) -= (*__minv_8) * ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
         ::core::result::Result::Ok(worst)
     }
     #[inline]
@@ -1509,57 +1690,66 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window_mut::<0, 9>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v13 = (-(v5 * s_crank));
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v32 = (-(v24 * s_rod));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        jv[0] = (-1f64);
-        jv[1] = v13;
-        jv[2] = (-1f64);
-        jv[3] = v10;
-        jv[4] = 1f64;
-        jv[5] = v13;
-        jv[6] = (-1f64);
-        jv[7] = v32;
-        jv[8] = 1f64;
-        jv[9] = v10;
-        jv[10] = (-1f64);
-        jv[11] = v29;
-        jv[12] = 1f64;
-        jv[13] = v32;
-        jv[14] = (-1f64);
-        jv[15] = 1f64;
-        jv[16] = v29;
-        jv[17] = (-1f64);
-        jv[18] = s_slider;
-        jv[19] = v81;
-        jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        jv[21] = v81;
-        jv[22] = 1f64;
-        nu[0] = 0f64;
-        nu[1] = 0f64;
-        nu[2] = 0f64;
-        nu[3] = 0f64;
-        nu[4] = 0f64;
-        nu[5] = 0f64;
-        nu[6] = 0f64;
-        nu[7] = 0f64;
-        nu[8] = self.omega;
-        m[0] = 1f64;
-        m[1] = 1f64;
-        m[2] = 0.002f64;
-        m[3] = 2f64;
-        m[4] = 2f64;
-        m[5] = 0.015f64;
-        m[6] = 0.5f64;
-        m[7] = 0.5f64;
-        m[8] = 0.001f64;
+        (*__jv_0) = (-1f64);
+        (*__jv_1) = v13;
+        (*__jv_2) = (-1f64);
+        (*__jv_3) = v10;
+        (*__jv_4) = 1f64;
+        (*__jv_5) = v13;
+        (*__jv_6) = (-1f64);
+        (*__jv_7) = v32;
+        (*__jv_8) = 1f64;
+        (*__jv_9) = v10;
+        (*__jv_10) = (-1f64);
+        (*__jv_11) = v29;
+        (*__jv_12) = 1f64;
+        (*__jv_13) = v32;
+        (*__jv_14) = (-1f64);
+        (*__jv_15) = 1f64;
+        (*__jv_16) = v29;
+        (*__jv_17) = (-1f64);
+        (*__jv_18) = s_slider;
+        (*__jv_19) = v81;
+        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_21) = v81;
+        (*__jv_22) = 1f64;
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+        (*__m_0) = 1f64;
+        (*__m_1) = 1f64;
+        (*__m_2) = 0.002f64;
+        (*__m_3) = 2f64;
+        (*__m_4) = 2f64;
+        (*__m_5) = 0.015f64;
+        (*__m_6) = 0.5f64;
+        (*__m_7) = 0.5f64;
+        (*__m_8) = 0.001f64;
         let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
@@ -1592,30 +1782,58 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut b = [0f64; 9];
         {
             let v: &[f64; 9] = v;
-            b[0] = (jv[0] * v[0] + jv[1] * v[2]) - nu[0];
-            b[1] = (jv[2] * v[1] + jv[3] * v[2]) - nu[1];
-            b[2] = (jv[4] * v[0] + jv[5] * v[2] + jv[6] * v[3] + jv[7] * v[5]) - nu[2];
-            b[3] = (jv[8] * v[1] + jv[9] * v[2] + jv[10] * v[4] + jv[11] * v[5]) - nu[3];
-            b[4] = (jv[12] * v[3] + jv[13] * v[5] + jv[14] * v[6]) - nu[4];
-            b[5] = (jv[15] * v[4] + jv[16] * v[5] + jv[17] * v[7]) - nu[5];
-            b[6] = (jv[18] * v[6] + jv[19] * v[7] + jv[20] * v[8]) - nu[6];
-            b[7] = (jv[21] * v[8]) - nu[7];
-            b[8] = (jv[22] * v[2]) - nu[8];
+            use ::mbd::sparse::Elements as _;
+            let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                .window_mut::<0, 9>();
+            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
+            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+            let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8,
+            ] = nu.window::<0, 9>();
+            let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
+                .window::<0, 9>();
+            (*__b_0) = ((*__jv_0) * (*__v_0) + (*__jv_1) * (*__v_2)) - (*__nu_0);
+            (*__b_1) = ((*__jv_2) * (*__v_1) + (*__jv_3) * (*__v_2)) - (*__nu_1);
+            (*__b_2) = ((*__jv_4) * (*__v_0) + (*__jv_5) * (*__v_2)
+                + (*__jv_6) * (*__v_3) + (*__jv_7) * (*__v_5)) - (*__nu_2);
+            (*__b_3) = ((*__jv_8) * (*__v_1) + (*__jv_9) * (*__v_2)
+                + (*__jv_10) * (*__v_4) + (*__jv_11) * (*__v_5)) - (*__nu_3);
+            (*__b_4) = ((*__jv_12) * (*__v_3) + (*__jv_13) * (*__v_5)
+                + (*__jv_14) * (*__v_6)) - (*__nu_4);
+            (*__b_5) = ((*__jv_15) * (*__v_4) + (*__jv_16) * (*__v_5)
+                + (*__jv_17) * (*__v_7)) - (*__nu_5);
+            (*__b_6) = ((*__jv_18) * (*__v_6) + (*__jv_19) * (*__v_7)
+                + (*__jv_20) * (*__v_8)) - (*__nu_6);
+            (*__b_7) = ((*__jv_21) * (*__v_8)) - (*__nu_7);
+            (*__b_8) = ((*__jv_22) * (*__v_2)) - (*__nu_8);
         }
         let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
         Self::schur_solve(&l, &dinv, &mut b);
-        v[0] -= minv[0] * (jv[0] * b[0] + jv[4] * b[2]);
-        v[1] -= minv[1] * (jv[2] * b[1] + jv[8] * b[3]);
-        v[2]
-            -= minv[2]
-                * (jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
-                    + jv[22] * b[8]);
-        v[3] -= minv[3] * (jv[6] * b[2] + jv[12] * b[4]);
-        v[4] -= minv[4] * (jv[10] * b[3] + jv[15] * b[5]);
-        v[5] -= minv[5] * (jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4] + jv[16] * b[5]);
-        v[6] -= minv[6] * (jv[14] * b[4] + jv[18] * b[6]);
-        v[7] -= minv[7] * (jv[17] * b[5] + jv[19] * b[6]);
-        v[8] -= minv[8] * (jv[20] * b[6] + jv[21] * b[7]);
+        use ::mbd::sparse::Elements as _;
+        let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+            .window::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
+        __minv_7, __minv_8] = minv.window::<0, 9>();
+        let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
+            .window_mut::<0, 9>();
+        (*__v_0) -= (*__minv_0) * ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+        (*__v_1) -= (*__minv_1) * ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+        (*__v_2)
+            -= (*__minv_2)
+                * ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1) + (*__jv_5) * (*__b_2)
+                    + (*__jv_9) * (*__b_3) + (*__jv_22) * (*__b_8));
+        (*__v_3) -= (*__minv_3) * ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+        (*__v_4) -= (*__minv_4) * ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+        (*__v_5)
+            -= (*__minv_5)
+                * ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3) + (*__jv_13) * (*__b_4)
+                    + (*__jv_16) * (*__b_5));
+        (*__v_6) -= (*__minv_6) * ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+        (*__v_7) -= (*__minv_7) * ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+        (*__v_8) -= (*__minv_8) * ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
         ::core::result::Result::Ok(worst)
     }
 }
@@ -1668,50 +1886,58 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
+        let [__s_0, __s_1, __s_2, __s_3, __s_4, __s_5, __s_6, __s_7, __s_8, __s_9,
+        __s_10, __s_11, __s_12, __s_13, __s_14, __s_15, __s_16, __s_17, __s_18, __s_19,
+        __s_20, __s_21, __s_22] = s.window_mut::<0, 23>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
-        s[0] = (-1f64);
-        s[1] = v13;
-        s[2] = (-1f64);
-        s[3] = v10;
-        s[4] = 1f64;
-        s[5] = v13;
-        s[6] = (-1f64);
-        s[7] = v32;
-        s[8] = 1f64;
-        s[9] = v10;
-        s[10] = (-1f64);
-        s[11] = v29;
-        s[12] = 1f64;
-        s[13] = v32;
-        s[14] = (-1f64);
-        s[15] = 1f64;
-        s[16] = v29;
-        s[17] = (-1f64);
-        s[18] = s_slider;
-        s[19] = v81;
-        s[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-        s[21] = v81;
-        s[22] = 1f64;
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
+        (*__s_0) = (-1f64);
+        (*__s_1) = v13;
+        (*__s_2) = (-1f64);
+        (*__s_3) = v10;
+        (*__s_4) = 1f64;
+        (*__s_5) = v13;
+        (*__s_6) = (-1f64);
+        (*__s_7) = v32;
+        (*__s_8) = 1f64;
+        (*__s_9) = v10;
+        (*__s_10) = (-1f64);
+        (*__s_11) = v29;
+        (*__s_12) = 1f64;
+        (*__s_13) = v32;
+        (*__s_14) = (-1f64);
+        (*__s_15) = 1f64;
+        (*__s_16) = v29;
+        (*__s_17) = (-1f64);
+        (*__s_18) = s_slider;
+        (*__s_19) = v81;
+        (*__s_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__s_21) = v81;
+        (*__s_22) = 1f64;
     }
     #[inline(never)]
     fn newton_matrix(
@@ -1770,31 +1996,40 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
+        __lambda_6, __lambda_7] = lambda.window::<0, 8>();
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window_mut::<0, 9>();
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        v53 = (s_slider * q[6]);
-        v54 = (c_slider * q[7]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v53 = (s_slider * (*__q_6));
+        v54 = (c_slider * (*__q_7));
         v81 = (-c_slider);
-        v203 = (s_slider * lambda[6]);
-        v205 = (c_slider * lambda[6]);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = (v53 - v54);
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
+        v203 = (s_slider * (*__lambda_6));
+        v205 = (c_slider * (*__lambda_6));
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = (v53 - v54);
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
         s[0] = (-1f64);
         s[1] = v13;
         s[2] = (-1f64);
@@ -1815,40 +2050,45 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[17] = (-1f64);
         s[18] = s_slider;
         s[19] = v81;
-        s[20] = ((s_slider * q[7]) + (c_slider * q[6]));
+        s[20] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
         s[21] = v81;
         s[22] = 1f64;
-        m[0] = 1f64;
-        m[1] = 1f64;
-        m[2] = 0.002f64;
-        m[3] = 2f64;
-        m[4] = 2f64;
-        m[5] = 0.015f64;
-        m[6] = 0.5f64;
-        m[7] = 0.5f64;
-        m[8] = 0.001f64;
-        s[87] = (-((v12 * lambda[3])
-            + ((v10 * lambda[2]) + ((v12 * lambda[1]) + (v10 * lambda[0])))));
-        s[43] = (-((v31 * lambda[5])
-            + ((v29 * lambda[4]) + ((v31 * lambda[3]) + (v29 * lambda[2])))));
+        (*__m_0) = 1f64;
+        (*__m_1) = 1f64;
+        (*__m_2) = 0.002f64;
+        (*__m_3) = 2f64;
+        (*__m_4) = 2f64;
+        (*__m_5) = 0.015f64;
+        (*__m_6) = 0.5f64;
+        (*__m_7) = 0.5f64;
+        (*__m_8) = 0.001f64;
+        s[87] = (-((v12 * (*__lambda_3))
+            + ((v10 * (*__lambda_2))
+                + ((v12 * (*__lambda_1)) + (v10 * (*__lambda_0))))));
+        s[43] = (-((v31 * (*__lambda_5))
+            + ((v29 * (*__lambda_4))
+                + ((v31 * (*__lambda_3)) + (v29 * (*__lambda_2))))));
         s[36] = v205;
         s[40] = v203;
         s[48] = v205;
         s[49] = v203;
-        s[50] = ((s_slider * lambda[7]) + (lambda[6] * (v54 - v53)));
-        s[23] = m[0];
-        s[26] = m[1];
-        s[87] = m[2] - c_q * s[87];
-        s[29] = m[3];
-        s[32] = m[4];
-        s[43] = m[5] - c_q * s[43];
-        s[35] = m[6];
+        s[50] = ((s_slider * (*__lambda_7)) + ((*__lambda_6) * (v54 - v53)));
+        use ::mbd::sparse::Elements as _;
+        let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
+            .window::<0, 9>();
+        s[23] = (*__m_0);
+        s[26] = (*__m_1);
+        s[87] = (*__m_2) - c_q * s[87];
+        s[29] = (*__m_3);
+        s[32] = (*__m_4);
+        s[43] = (*__m_5) - c_q * s[43];
+        s[35] = (*__m_6);
         s[36] *= -c_q;
-        s[39] = m[7];
+        s[39] = (*__m_7);
         s[40] *= -c_q;
         s[48] *= -c_q;
         s[49] *= -c_q;
-        s[50] = m[8] - c_q * s[50];
+        s[50] = (*__m_8) - c_q * s[50];
         s[24] = -s[0];
         s[93] = s[0];
         s[88] = -s[1];
@@ -2768,29 +3008,35 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn initial_positions(&self) -> [f64; 9] {
         let mut q = [0f64; 9];
-        q[0] = 0.05f64;
-        q[1] = 0f64;
-        q[2] = 0f64;
-        q[3] = 0.25f64;
-        q[4] = 0f64;
-        q[5] = 0f64;
-        q[6] = 0.4f64;
-        q[7] = 0f64;
-        q[8] = 0f64;
+        use ::mbd::sparse::Elements as _;
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window_mut::<0, 9>();
+        (*__q_0) = 0.05f64;
+        (*__q_1) = 0f64;
+        (*__q_2) = 0f64;
+        (*__q_3) = 0.25f64;
+        (*__q_4) = 0f64;
+        (*__q_5) = 0f64;
+        (*__q_6) = 0.4f64;
+        (*__q_7) = 0f64;
+        (*__q_8) = 0f64;
         q
     }
     #[inline]
     fn initial_velocities(&self) -> [f64; 9] {
         let mut v = [0f64; 9];
-        v[0] = 0f64;
-        v[1] = 0f64;
-        v[2] = 0f64;
-        v[3] = 0f64;
-        v[4] = 0f64;
-        v[5] = 0f64;
-        v[6] = 0f64;
-        v[7] = 0f64;
-        v[8] = 0f64;
+        use ::mbd::sparse::Elements as _;
+        let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
+            .window_mut::<0, 9>();
+        (*__v_0) = 0f64;
+        (*__v_1) = 0f64;
+        (*__v_2) = 0f64;
+        (*__v_3) = 0f64;
+        (*__v_4) = 0f64;
+        (*__v_5) = 0f64;
+        (*__v_6) = 0f64;
+        (*__v_7) = 0f64;
+        (*__v_8) = 0f64;
         v
     }
     #[inline]
@@ -2821,24 +3067,29 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             s_slider,
             c_slider,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
     }
     #[inline]
     fn jacobian(&self, q: &[f64; 9], t: f64, d: &mut [[f64; 9]; 9]) {
@@ -2860,15 +3111,17 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v13 = (-(v5 * s_crank));
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v32 = (-(v24 * s_rod));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
         d[0][0] = (-1f64);
         d[0][2] = v13;
@@ -2890,21 +3143,24 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
+        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
         d[7][8] = v81;
         d[8][2] = 1f64;
     }
     #[inline]
     fn velocity_rhs(&self, q: &[f64; 9], t: f64, nu: &mut [f64; 9]) {
-        nu[0] = 0f64;
-        nu[1] = 0f64;
-        nu[2] = 0f64;
-        nu[3] = 0f64;
-        nu[4] = 0f64;
-        nu[5] = 0f64;
-        nu[6] = 0f64;
-        nu[7] = 0f64;
-        nu[8] = self.omega;
+        use ::mbd::sparse::Elements as _;
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
     }
     #[inline]
     fn gamma(&self, q: &[f64; 9], v: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
@@ -2945,30 +3201,35 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-        v119 = (s_slider * v[8]);
-        v126 = (c_slider * v[8]);
-        v134 = (v5 * (v[2] * (c_crank * v[2])));
-        v138 = (v5 * (v[2] * (s_crank * v[2])));
-        v141 = (v24 * (v[5] * (c_rod * v[5])));
-        v147 = (v24 * (v[5] * (s_rod * v[5])));
-        v151 = (v[6] * v126);
-        v152 = (v[8] * v119);
-        v158 = (v[7] * v119);
-        gamma[0] = v134;
-        gamma[1] = v138;
-        gamma[2] = (v134 + v141);
-        gamma[3] = (v138 + v147);
-        gamma[4] = v141;
-        gamma[5] = v147;
-        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
-        gamma[7] = (-v152);
-        gamma[8] = 0f64;
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+        v151 = ((*__v_6) * v126);
+        v152 = ((*__v_8) * v119);
+        v158 = ((*__v_7) * v119);
+        (*__gamma_0) = v134;
+        (*__gamma_1) = v138;
+        (*__gamma_2) = (v134 + v141);
+        (*__gamma_3) = (v138 + v147);
+        (*__gamma_4) = v141;
+        (*__gamma_5) = v147;
+        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+        (*__gamma_7) = (-v152);
+        (*__gamma_8) = 0f64;
     }
     #[inline]
     #[allow(clippy::too_many_arguments)]
@@ -3011,24 +3272,29 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                     c_slider,
                     v81,
                 ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-                (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+                use ::mbd::sparse::Elements as _;
+                let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6,
+                __phi_7, __phi_8] = phi.window_mut::<0, 9>();
+                let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+                    .window::<0, 9>();
+                (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
                 v10 = (v5 * c_crank);
                 v12 = (v5 * s_crank);
                 v13 = (-v12);
-                (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+                (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
                 v29 = (v24 * c_rod);
                 v31 = (v24 * s_rod);
                 v32 = (-v31);
-                (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
-                phi[0] = (-(q[0] - v10));
-                phi[1] = (-(q[1] - v12));
-                phi[2] = ((v10 + q[0]) - (q[3] - v29));
-                phi[3] = ((v12 + q[1]) - (q[4] - v31));
-                phi[4] = ((v29 + q[3]) - q[6]);
-                phi[5] = ((v31 + q[4]) - q[7]);
-                phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-                phi[7] = (-s_slider);
-                phi[8] = (q[2] - v59);
+                (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+                (*__phi_0) = (-((*__q_0) - v10));
+                (*__phi_1) = (-((*__q_1) - v12));
+                (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+                (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+                (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+                (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+                (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+                (*__phi_7) = (-s_slider);
+                (*__phi_8) = ((*__q_2) - v59);
                 let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
                 if finite && worst <= tolerance {
                     return ::core::option::Option::Some((
@@ -3045,30 +3311,36 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                     ));
                 }
                 if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
+                    use ::mbd::sparse::Elements as _;
+                    let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                    __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                    __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                        .window_mut::<0, 23>();
+                    let [__q_6, __q_7] = q.window::<6, 2>();
                     v81 = (-c_slider);
-                    jv[0] = (-1f64);
-                    jv[1] = v13;
-                    jv[2] = (-1f64);
-                    jv[3] = v10;
-                    jv[4] = 1f64;
-                    jv[5] = v13;
-                    jv[6] = (-1f64);
-                    jv[7] = v32;
-                    jv[8] = 1f64;
-                    jv[9] = v10;
-                    jv[10] = (-1f64);
-                    jv[11] = v29;
-                    jv[12] = 1f64;
-                    jv[13] = v32;
-                    jv[14] = (-1f64);
-                    jv[15] = 1f64;
-                    jv[16] = v29;
-                    jv[17] = (-1f64);
-                    jv[18] = s_slider;
-                    jv[19] = v81;
-                    jv[20] = ((s_slider * q[7]) + (c_slider * q[6]));
-                    jv[21] = v81;
-                    jv[22] = 1f64;
+                    (*__jv_0) = (-1f64);
+                    (*__jv_1) = v13;
+                    (*__jv_2) = (-1f64);
+                    (*__jv_3) = v10;
+                    (*__jv_4) = 1f64;
+                    (*__jv_5) = v13;
+                    (*__jv_6) = (-1f64);
+                    (*__jv_7) = v32;
+                    (*__jv_8) = 1f64;
+                    (*__jv_9) = v10;
+                    (*__jv_10) = (-1f64);
+                    (*__jv_11) = v29;
+                    (*__jv_12) = 1f64;
+                    (*__jv_13) = v32;
+                    (*__jv_14) = (-1f64);
+                    (*__jv_15) = 1f64;
+                    (*__jv_16) = v29;
+                    (*__jv_17) = (-1f64);
+                    (*__jv_18) = s_slider;
+                    (*__jv_19) = v81;
+                    (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+                    (*__jv_21) = v81;
+                    (*__jv_22) = 1f64;
                     if Self::schur_factor(
                             &jv,
                             &[1f64; 9],
@@ -3091,17 +3363,27 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 let mut b = *phi;
                 Self::schur_solve(&l, &dinv, &mut b);
                 *step = [0f64; 9];
-                step[0] = -(jv[0] * b[0] + jv[4] * b[2]);
-                step[1] = -(jv[2] * b[1] + jv[8] * b[3]);
-                step[2] = -(jv[1] * b[0] + jv[3] * b[1] + jv[5] * b[2] + jv[9] * b[3]
-                    + jv[22] * b[8]);
-                step[3] = -(jv[6] * b[2] + jv[12] * b[4]);
-                step[4] = -(jv[10] * b[3] + jv[15] * b[5]);
-                step[5] = -(jv[7] * b[2] + jv[11] * b[3] + jv[13] * b[4]
-                    + jv[16] * b[5]);
-                step[6] = -(jv[14] * b[4] + jv[18] * b[6]);
-                step[7] = -(jv[17] * b[5] + jv[19] * b[6]);
-                step[8] = -(jv[20] * b[6] + jv[21] * b[7]);
+                use ::mbd::sparse::Elements as _;
+                let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                    .window::<0, 9>();
+                let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                    .window::<0, 23>();
+                let [__step_0, __step_1, __step_2, __step_3, __step_4, __step_5,
+                __step_6, __step_7, __step_8] = step.window_mut::<0, 9>();
+                (*__step_0) = -((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+                (*__step_1) = -((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+                (*__step_2) = -((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1)
+                    + (*__jv_5) * (*__b_2) + (*__jv_9) * (*__b_3)
+                    + (*__jv_22) * (*__b_8));
+                (*__step_3) = -((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+                (*__step_4) = -((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+                (*__step_5) = -((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3)
+                    + (*__jv_13) * (*__b_4) + (*__jv_16) * (*__b_5));
+                (*__step_6) = -((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+                (*__step_7) = -((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+                (*__step_8) = -((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
             }
             if !step.iter().all(|x| x.is_finite()) {
                 return ::core::option::Option::Some((
@@ -3142,27 +3424,32 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
         d[0][0] = (-1f64);
         d[0][2] = v13;
         d[1][1] = (-1f64);
@@ -3183,7 +3470,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
+        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
         d[7][8] = v81;
         d[8][2] = 1f64;
     }
@@ -3252,36 +3539,46 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
+        use ::mbd::sparse::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos(q[2]);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
         v10 = (v5 * c_crank);
         v12 = (v5 * s_crank);
         v13 = (-v12);
         v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos(q[5]);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
         v29 = (v24 * c_rod);
         v31 = (v24 * s_rod);
         v32 = (-v31);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos(q[8]);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         v81 = (-c_slider);
-        v119 = (s_slider * v[8]);
-        v126 = (c_slider * v[8]);
-        v134 = (v5 * (v[2] * (c_crank * v[2])));
-        v138 = (v5 * (v[2] * (s_crank * v[2])));
-        v141 = (v24 * (v[5] * (c_rod * v[5])));
-        v147 = (v24 * (v[5] * (s_rod * v[5])));
-        v151 = (v[6] * v126);
-        v152 = (v[8] * v119);
-        v158 = (v[7] * v119);
-        phi[0] = (-(q[0] - v10));
-        phi[1] = (-(q[1] - v12));
-        phi[2] = ((v10 + q[0]) - (q[3] - v29));
-        phi[3] = ((v12 + q[1]) - (q[4] - v31));
-        phi[4] = ((v29 + q[3]) - q[6]);
-        phi[5] = ((v31 + q[4]) - q[7]);
-        phi[6] = ((s_slider * q[6]) - (c_slider * q[7]));
-        phi[7] = (-s_slider);
-        phi[8] = (q[2] - (self.omega * t));
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+        v151 = ((*__v_6) * v126);
+        v152 = ((*__v_8) * v119);
+        v158 = ((*__v_7) * v119);
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
         d[0][0] = (-1f64);
         d[0][2] = v13;
         d[1][1] = (-1f64);
@@ -3302,27 +3599,27 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * q[7]) + (c_slider * q[6]));
+        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
         d[7][8] = v81;
         d[8][2] = 1f64;
-        nu[0] = 0f64;
-        nu[1] = 0f64;
-        nu[2] = 0f64;
-        nu[3] = 0f64;
-        nu[4] = 0f64;
-        nu[5] = 0f64;
-        nu[6] = 0f64;
-        nu[7] = 0f64;
-        nu[8] = self.omega;
-        gamma[0] = v134;
-        gamma[1] = v138;
-        gamma[2] = (v134 + v141);
-        gamma[3] = (v138 + v147);
-        gamma[4] = v141;
-        gamma[5] = v147;
-        gamma[6] = (-((v151 + (v151 - (q[6] * v152)))
-            + (v158 + (v158 + (q[7] * (v[8] * v126))))));
-        gamma[7] = (-v152);
-        gamma[8] = 0f64;
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+        (*__gamma_0) = v134;
+        (*__gamma_1) = v138;
+        (*__gamma_2) = (v134 + v141);
+        (*__gamma_3) = (v138 + v147);
+        (*__gamma_4) = v141;
+        (*__gamma_5) = v147;
+        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+        (*__gamma_7) = (-v152);
+        (*__gamma_8) = 0f64;
     }
 }

@@ -14,6 +14,7 @@ use syn::Ident;
 
 use crate::formulation::Formulation;
 use crate::model::{Model, Scalar};
+use crate::scalar::scalarize;
 use crate::sym::{Cmp, Func, Graph, Id, Node, Var};
 
 /// Operation counts of one emitted function (see `mbd_runtime::OpCount`).
@@ -472,7 +473,7 @@ impl Emitter<'_> {
         let stage_names =
             declare(plan.bound.iter().filter(|(id, _)| stage_of.contains_key(id) && !hoisted.contains(id)).map(|(_, n)| n).collect());
         let prologue = quote!(#(#hoisted_names)* #(#prologue)*);
-        let mut out: Vec<TokenStream> = statements.into_iter().map(|s| quote!(#(#s)*)).collect();
+        let mut out: Vec<TokenStream> = statements.iter().map(|s| scalarized_blocks(s, BLOCK_STATEMENTS)).collect();
         if let Some(first) = out.first_mut() {
             *first = quote!(#(#stage_names)* #first);
         }
@@ -597,12 +598,23 @@ pub const BLOCK_STATEMENTS: usize = 256;
 /// faster than linearly in its length: in a 240-body chain's build the vectorizer alone took
 /// 8.5 s, 3.4 times as long on its `accelerations` as at 120 bodies. Shorter sequences (every mechanism of a few dozen
 /// bodies) are emitted as they are.
+///
+/// Array accesses by literal index are read and written through bindings of the elements, made
+/// block by block ([`crate::scalar`]: rustc type-checks an index expression in about 100 µs,
+/// and a binding's borrow spans at most its block).
 pub fn in_blocks(stmts: &[TokenStream]) -> TokenStream {
     if stmts.len() <= 2 * BLOCK_STATEMENTS {
-        return quote!(#(#stmts)*);
+        return scalarize(quote!(#(#stmts)*));
     }
-    let blocks = stmts.chunks(BLOCK_STATEMENTS).map(|block| quote!(#(#block)*));
+    let blocks = stmts.chunks(BLOCK_STATEMENTS).map(|block| scalarize(quote!(#(#block)*)));
     quote!(#(#blocks if ::core::hint::black_box(false) { ::core::hint::black_box(()); })*)
+}
+
+/// Statements with their array accesses made element bindings ([`crate::scalar`]) in groups of
+/// `per_group`, so that no binding's borrow spans more than a group; not cut into basic blocks.
+pub fn scalarized_blocks(stmts: &[TokenStream], per_group: usize) -> TokenStream {
+    let groups = stmts.chunks(per_group.max(1)).map(|group| scalarize(quote!(#(#group)*)));
+    quote!(#(#groups)*)
 }
 
 /// Constraint rows up to which the generated functions are `#[inline]` and the LDLᵀ of the Schur
@@ -754,7 +766,8 @@ mod tests {
         assert_eq!(code.matches("sin_cos").count(), 1, "{code}");
         assert!(!code.contains(":: sin (") && !code.contains(":: cos ("), "{code}");
         assert_eq!(ops.call, 1, "one sin_cos");
-        assert!(code.contains("phi [0] =") && code.contains("phi [1] ="), "{code}");
+        // Outputs written through bindings of the elements (`crate::scalar`).
+        assert!(code.contains("(* __phi_0) =") && code.contains("(* __phi_1) ="), "{code}");
     }
 
     /// A chain's `accelerations` is cut into parts (they repeat 0.4 % of it); outputs that all
@@ -819,10 +832,11 @@ mod tests {
         let (phi, jv) = (vector_outputs("phi", &f.phi), jacobian_values_outputs(&f, "jv"));
         let (prologue, stages) = e.staged(&[&phi, &jv]);
         let (prologue, first, second) = (prologue.to_string(), stages[0].to_string(), stages[1].to_string());
-        assert!(prologue.contains(":: sin (") && !prologue.contains("q ["), "{prologue}");
-        assert!(!first.contains(":: sin (") && first.contains("sin_cos (q [2])"), "{first}");
-        assert!(first.contains("phi [2] =") && !first.contains("jv ["), "{first}");
-        assert!(second.contains("jv [") && !second.contains("sin_cos") && !second.contains("phi ["), "{second}");
+        // Arrays are read and written through bindings of their elements (`crate::scalar`).
+        assert!(prologue.contains(":: sin (") && !prologue.contains("__q_"), "{prologue}");
+        assert!(!first.contains(":: sin (") && first.contains("sin_cos ((* __q_2))"), "{first}");
+        assert!(first.contains("(* __phi_2) =") && !first.contains("__jv_"), "{first}");
+        assert!(second.contains("__jv_") && !second.contains("sin_cos") && !second.contains("__phi_"), "{second}");
         // Every temporary the second stage reads is assigned in the prologue, the first stage or
         // the second stage itself: the stages run in order, each assignment before its reads.
         let all = format!("{prologue} {first} {second}");

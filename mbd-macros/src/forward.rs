@@ -40,7 +40,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let schur = Schur::plan(nc, &pattern, &coupling);
     let nl_l = usize_lit(schur.nl());
     let factor = schur.factor(&real, &zero);
-    let solve = schur.solve();
+    let solve = schur.solve(&real);
     let jv_outputs: Vec<Output> = f
         .jacobian
         .iter()

@@ -30,6 +30,7 @@ mod newton;
 mod parse;
 mod part;
 mod repeat;
+mod scalar;
 mod scene;
 mod schur;
 mod sym;

@@ -46,6 +46,10 @@ pub struct Schur {
     l: BTreeMap<(usize, usize), usize>,
 }
 
+/// Entries (a pivot with its row of L counts one each) per group of element bindings in the
+/// factorization ([`crate::emit::scalarized_blocks`]).
+const PIVOTS_PER_BLOCK: usize = 128;
+
 fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
@@ -123,6 +127,8 @@ impl Schur {
     }
 
     /// The body of `schur_factor`: writes `l` and `dinv`, returns `Err(row)` for a dependent row.
+    /// Above [`STATEMENTS_PER_PART`] statements the pivots are factored by nested functions of
+    /// about that many statements each, called in turn ([`in_parts`]).
     pub fn factor(&self, real: &TokenStream, zero: &TokenStream) -> TokenStream {
         let mut stmts = Vec::new();
         // d[k] (pivots, in positions) kept in a local array; dinv written to the output.
@@ -163,18 +169,37 @@ impl Schur {
             }
         }
         let nc = lit(self.nc);
+        let off = self.coupled().then(|| quote!(minv_off: &[#real; NOFF],));
+        let off_generic = self.coupled().then(|| quote!(const NOFF: usize,));
+        let off_arg = self.coupled().then(|| quote!(minv_off,));
+        let part = Part {
+            generics: quote!(<const NNZ: usize, const NV: usize, #off_generic const NL: usize, const NC: usize>),
+            params: quote!(jv: &[#real; NNZ], minv: &[#real; NV], #off tol: #real, exact: #real, allow_redundant: bool, l: &mut [#real; NL], d: &mut [#real; NC], dinv: &mut [#real; NC]),
+            output: quote!(-> ::core::result::Result<(), usize>),
+            ok: quote!(::core::result::Result::Ok(())),
+            call: quote!((jv, minv, #off_arg tol, exact, allow_redundant, l, &mut d, dinv)?;),
+        };
+        // Each pivot's test is a branch of its own: the blocks stay short without `in_blocks`'s
+        // cuts; its element bindings (`crate::scalar`) are made for every few pivots.
+        let stmts = in_parts(&stmts, &part, |group| crate::emit::scalarized_blocks(group, PIVOTS_PER_BLOCK));
         quote! {
             let mut d = [#zero; #nc];
             // Pivots above this · τ S_kk are taken exactly (one division): with
             // `allow_redundant` the smooth weight below is 1 there to rounding (ρ⁸ < 1e-16).
             let exact: #real = if allow_redundant { 1e2 } else { 1.0 };
-            #(#stmts)*
+            #stmts
             ::core::result::Result::Ok(())
         }
     }
 
-    /// The body of `schur_solve`: b ← S⁻¹ b in place (forward, diagonal, back substitution).
-    pub fn solve(&self) -> TokenStream {
+    /// Whether M⁻¹ has entries off its diagonal (`minv_off`).
+    fn coupled(&self) -> bool {
+        self.s.values().flatten().any(|t| matches!(t, Term::Off(..)))
+    }
+
+    /// The body of `schur_solve`: b ← S⁻¹ b in place (forward, diagonal, back substitution),
+    /// in nested functions of about [`STATEMENTS_PER_PART`] statements above that many.
+    pub fn solve(&self, real: &TokenStream) -> TokenStream {
         let mut stmts = Vec::new();
         let pos = |k: usize| lit(self.order[k]);
         // b_k −= L_kj b_j one term at a time: the same left-to-right rounding as one long
@@ -197,8 +222,57 @@ impl Schur {
                 stmts.push(quote!(b[#bk] -= l[#idx] * b[#bi];));
             }
         }
-        crate::emit::in_blocks(&stmts)
+        let part = Part {
+            generics: quote!(<const NL: usize, const NC: usize>),
+            params: quote!(l: &[#real; NL], dinv: &[#real; NC], b: &mut [#real; NC]),
+            output: quote!(),
+            ok: quote!(),
+            call: quote!((l, dinv, b);),
+        };
+        in_parts(&stmts, &part, crate::emit::in_blocks)
     }
+}
+
+/// Statements of the factorization or the solve up to which they are emitted in one function;
+/// above, in nested functions of about this many each. LLVM's instruction selection and
+/// register allocation work on a whole function and grow faster than linearly in its length:
+/// the 240-body chain's `schur_factor` (480 pivots) took 3.8 times as long to optimize as the
+/// 120-body chain's (`-Zllvm-time-trace`), its `schur_solve` 3.2 times.
+pub const STATEMENTS_PER_PART: usize = 512;
+
+/// How the statements of one function are cut into nested functions: their generic
+/// parameters (sizes, so the parts need not know them), parameters, return type and success
+/// value, and the arguments the function passes (ending in `;`, or `?;` to pass an error on).
+struct Part {
+    generics: TokenStream,
+    params: TokenStream,
+    output: TokenStream,
+    ok: TokenStream,
+    call: TokenStream,
+}
+
+/// `stmts` as one function body (through `emit`), or, above [`STATEMENTS_PER_PART`], as nested
+/// `#[inline(never)]` functions of about that many statements, each emitted through `emit`,
+/// called in turn.
+fn in_parts(stmts: &[TokenStream], part: &Part, emit: impl Fn(&[TokenStream]) -> TokenStream) -> TokenStream {
+    if stmts.len() <= STATEMENTS_PER_PART {
+        return emit(stmts);
+    }
+    let Part { generics, params, output, ok, call } = part;
+    let parts = stmts.chunks(STATEMENTS_PER_PART).enumerate().map(|(k, group)| {
+        let name = quote::format_ident!("__mbd_part_{}", k);
+        let body = emit(group);
+        quote! {
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments)]
+            fn #name #generics(#params) #output {
+                #body
+                #ok
+            }
+            #name #call
+        }
+    });
+    quote!(#(#parts)*)
 }
 
 /// Minimum-degree ordering of a graph given by adjacency sets (exact elimination-graph degrees;

@@ -89,6 +89,36 @@ pub fn schur_pivot<T: Real>(skk: T, dk: T, exact: T, tolerance: T, allow_redunda
     }
 }
 
+/// A span of a fixed-size array as an array, by reference, for the element bindings of
+/// generated code (`let [__l_5, __l_6] = l.window_mut::<5, 2>();`): rustc type-checks a
+/// pattern once where it checks every index expression on its own, at about 100 µs each. A
+/// method, so that one call serves a local array and a reference to one alike (the receiver
+/// is auto-referenced or auto-dereferenced).
+#[doc(hidden)]
+pub trait Elements<T, const N: usize> {
+    /// Elements K..K + M.
+    fn window<const K: usize, const M: usize>(&self) -> &[T; M];
+    /// Elements K..K + M, mutable.
+    fn window_mut<const K: usize, const M: usize>(&mut self) -> &mut [T; M];
+}
+
+impl<T, const N: usize> Elements<T, N> for [T; N] {
+    #[inline(always)]
+    fn window<const K: usize, const M: usize>(&self) -> &[T; M] {
+        const { assert!(K + M <= N, "a window past the array's end") };
+        // SAFETY: elements K..K + M lie within the array (the assertion above is evaluated
+        // when the method is instantiated, so a window past the end does not compile), and
+        // [T; M] has T's alignment and M·size_of::<T>() bytes, the layout of those elements.
+        unsafe { &*self.as_ptr().add(K).cast::<[T; M]>() }
+    }
+    #[inline(always)]
+    fn window_mut<const K: usize, const M: usize>(&mut self) -> &mut [T; M] {
+        const { assert!(K + M <= N, "a window past the array's end") };
+        // SAFETY: as in `window`; the exclusive borrow of the array covers the elements.
+        unsafe { &mut *self.as_mut_ptr().add(K).cast::<[T; M]>() }
+    }
+}
+
 /// (max_i |x_i|, whether every x_i is finite): the convergence test of the Newton loops
 /// `mechanism!` generates. Four running maxima over interleaved entries, so that their
 /// comparisons do not wait on one another: a single running `max` with NaN handling made the
@@ -265,6 +295,18 @@ mod tests {
 
     fn matrix() -> [f64; 9] {
         [2.0, 0.0, -1.0, 0.0, 3.0, -2.0, 1.0, 2.0, 0.0]
+    }
+
+    #[test]
+    fn windows_are_the_spans_they_name() {
+        let mut a = [0.0, 1.0, 2.0, 3.0, 4.0];
+        assert_eq!(a.window::<1, 3>(), &[1.0, 2.0, 3.0]);
+        assert_eq!(a.window::<0, 5>(), &a);
+        let [x, y] = a.window_mut::<3, 2>();
+        (*x, *y) = (-3.0, -4.0);
+        assert_eq!(a, [0.0, 1.0, 2.0, -3.0, -4.0]);
+        let r = &mut a;
+        assert_eq!(r.window::<4, 1>(), &[-4.0]);
     }
 
     #[test]
