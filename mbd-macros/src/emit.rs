@@ -190,6 +190,12 @@ impl Emitter<'_> {
         reached
     }
 
+    /// The expression nodes (operations and calls, not constants or variables) that computing
+    /// the outputs takes: the measure of a function's size behind [`PART_NODES`].
+    pub fn nodes(&self, outputs: &[Output]) -> usize {
+        self.reached(outputs).into_iter().filter(|&id| !matches!(self.graph.node(id), Node::Const(_) | Node::Var(_))).count()
+    }
+
     /// Readable names for sin/cos of a body angle (`s_crank`, `c_crank`).
     fn trig_names(&self, arg: Id, s: Id, c: Id) -> (Ident, Ident) {
         if let Node::Var(Var::Q(i)) = self.graph.node(arg) {
@@ -516,7 +522,7 @@ impl Emitter<'_> {
         let g = self.graph;
         let reached = self.reached(outputs);
         let costly = |id: Id| !matches!(g.node(id), Node::Const(_) | Node::Var(_));
-        if reached.iter().filter(|&&id| costly(id)).count() <= PART_NODES {
+        if self.nodes(outputs) <= PART_NODES {
             return self.body(outputs);
         }
         // The first coordinate or velocity each node reads.
@@ -608,6 +614,69 @@ pub fn in_blocks(stmts: &[TokenStream]) -> TokenStream {
     }
     let blocks = stmts.chunks(BLOCK_STATEMENTS).map(|block| scalarize(quote!(#(#block)*)));
     quote!(#(#blocks if ::core::hint::black_box(false) { ::core::hint::black_box(()); })*)
+}
+
+/// Statements of one function up to which [`in_functions`] keeps them in it.
+pub const STATEMENTS_PER_FUNCTION: usize = 256;
+
+/// Straight-line array code (`b[3] -= l[5] * b[1];`) as [`in_blocks`] does, or, above
+/// [`STATEMENTS_PER_FUNCTION`] statements, as nested `#[inline(never)]` functions of about that
+/// many statements, called in turn. LLVM's instruction selection and register allocation work
+/// on a whole function and grow faster than linearly in its length (the 240-body chain's
+/// `accelerations`, whose linear algebra is such code, took 3.2 times as long to compile as the
+/// 120-body chain's, `-Zllvm-time-trace`); functions of bounded length make it linear.
+///
+/// The functions are named `__mbd_{label}_{k}`: one label per sequence of a function body.
+/// Each nested function takes the arrays its statements index, by reference (mutable if it
+/// writes them; generic over their lengths, through `mbd::sparse::Elements::all`, which serves
+/// local arrays and references alike), and the `scalars` they read, of the scalar type `real`.
+/// Code that reads anything else (a temporary, `self`), declares a local or may return early
+/// stays in one function: a nested function could not see it, or would change what `return`
+/// leaves.
+pub fn in_functions(stmts: &[TokenStream], label: &str, scalars: &[&str], real: &TokenStream) -> TokenStream {
+    if stmts.len() <= STATEMENTS_PER_FUNCTION {
+        return in_blocks(stmts);
+    }
+    let Some(groups) =
+        stmts.chunks(STATEMENTS_PER_FUNCTION).map(|group| crate::scalar::free_arrays(group, scalars)).collect::<Option<Vec<_>>>()
+    else {
+        return in_blocks(stmts);
+    };
+    let functions = stmts.chunks(STATEMENTS_PER_FUNCTION).zip(groups).enumerate().map(|(k, (group, arrays))| {
+        let name = format_ident!("__mbd_{}_{}", label, k);
+        let mut generics = Vec::new();
+        let mut params = Vec::new();
+        let mut args = Vec::new();
+        for (array, written) in &arrays.arrays {
+            let (ident, length) = (format_ident!("{}", array), format_ident!("N_{}", array.to_uppercase()));
+            generics.push(quote!(const #length: usize));
+            if *written {
+                params.push(quote!(#ident: &mut [#real; #length]));
+                args.push(quote!(#ident.all_mut()));
+            } else {
+                params.push(quote!(#ident: &[#real; #length]));
+                args.push(quote!(#ident.all()));
+            }
+        }
+        for scalar in &arrays.scalars {
+            let ident = format_ident!("{}", scalar);
+            params.push(quote!(#ident: #real));
+            args.push(quote!(#ident));
+        }
+        let body = in_blocks(group);
+        quote! {
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments, non_snake_case)]
+            fn #name<#(#generics),*>(#(#params),*) {
+                #body
+            }
+            {
+                use ::mbd::sparse::Elements as _;
+                #name(#(#args),*);
+            }
+        }
+    });
+    quote!(#(#functions)*)
 }
 
 /// Statements with their array accesses made element bindings ([`crate::scalar`]) in groups of
@@ -784,6 +853,10 @@ mod tests {
         .unwrap();
         let chain = crate::expand::expand(chain).to_string();
         assert!(chain.contains("__mbd_accelerations_0"), "the chain's accelerations in parts");
+        // Its linear algebra in nested functions of bounded length (`in_functions`).
+        for part in ["fn __mbd_minv_h_1", "fn __mbd_lambda_vd_0", "fn __mbd_step_columns_1"] {
+            assert!(chain.contains(part), "{part}");
+        }
         // Outputs that all read one large shared node: parts would repeat it in each.
         let model = syn::parse_str::<MechanismDef>("P { body a { mass: 1.0, inertia: 0.1 } }").unwrap().validate().unwrap();
         let mut f = crate::formulation::formulate(&model);

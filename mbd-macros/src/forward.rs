@@ -7,7 +7,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use crate::emit::{
-    friction_outputs, in_blocks, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature,
+    friction_outputs, in_functions, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature,
 };
 use crate::formulation::Formulation;
 use crate::model::Model;
@@ -19,7 +19,7 @@ use crate::emit::INLINE_ROWS as INLINE_SCHUR_ROWS;
 /// `ForwardDynamics` implementation.
 pub struct ForwardCode {
     pub helpers: TokenStream,
-    /// `Kinematics::sparse_position_step`, for the `Kinematics` implementation.
+    /// `Kinematics::sparse_position_solve`, for the `Kinematics` implementation.
     pub position_step: TokenStream,
     pub impl_block: TokenStream,
     pub eval_ops: Ops,
@@ -235,9 +235,13 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         .map(|(r, (d_vd, d_v))| quote!(lambda[#r] = gamma[#r] - #d_vd - two_alpha * (#d_v - nu[#r]) - beta2 * phi[#r];))
         .collect();
     let velocity_rows: Vec<TokenStream> = rows.iter().zip(&d_v).map(|(r, d_v)| quote!(b[#r] = #d_v - nu[#r];)).collect();
-    let (minv_h, lambda_rows, lambda_vd, velocity_rows) =
-        (in_blocks(&minv_h), in_blocks(&lambda_rows), in_blocks(&lambda_vd), in_blocks(&velocity_rows));
-    let (q_step, v_step) = (in_blocks(&q_step), in_blocks(&v_step));
+    let (minv_h, lambda_rows, lambda_vd, velocity_rows) = (
+        in_functions(&minv_h, "minv_h", &[], &real),
+        in_functions(&lambda_rows, "lambda_rows", &["two_alpha", "beta2"], &real),
+        in_functions(&lambda_vd, "lambda_vd", &[], &real),
+        in_functions(&velocity_rows, "velocity_rows", &[], &real),
+    );
+    let (q_step, v_step) = (in_functions(&q_step, "q_step", &[], &real), in_functions(&v_step, "v_step", &[], &real));
     let one_solve = quote! {
         #minv_h
         #lambda_rows
@@ -323,10 +327,36 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     // iteration keeps D and its factors (simplified Newton, the chord method: Φ alone is
     // evaluated): ‖Φ‖∞ times the last step's contraction, times the safety factor `reuse`, is
     // within the tolerance.
+    //
+    // Where Φ and D together take more than `PART_NODES` operations, the loop evaluates them
+    // apart, each through `Emitter::body_in_parts` (in methods of bounded size where it is
+    // larger still): one straight-line loop body of Φ and D made the 240-body chain's
+    // `sparse_position_solve` the largest function LLVM compiled, 2.7 times as long as at 120
+    // bodies. Apart, D recomputes what it shares with Φ (the bodies' sines and cosines), and
+    // what depends on t alone is no longer computed once per solve.
     let phi_outputs = vector_outputs("phi", &f.phi);
     let jv_outputs = jacobian_values_outputs(f, "jv");
-    let (time_terms, stages) = e.staged(&[&phi_outputs, &jv_outputs]);
-    let (phi_stage, jv_stage) = (&stages[0], &stages[1]);
+    let together: Vec<Output> = phi_outputs.iter().chain(&jv_outputs).cloned().collect();
+    let (time_terms, phi_stage, jv_stage) = if e.nodes(&together) > crate::emit::PART_NODES {
+        let phi_part = PartSignature {
+            name: "position_solve_phi",
+            params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l],),
+            args: quote!(q, t, phi,),
+        };
+        let (phi_in_parts, _) = e.body_in_parts(&phi_outputs, &phi_part);
+        let jv_part = PartSignature {
+            name: "position_solve_jacobian",
+            params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
+            args: quote!(q, t, &mut jv,),
+        };
+        let (jv_in_parts, _) = e.body_in_parts(&jv_outputs, &jv_part);
+        (quote!(), phi_in_parts, jv_in_parts)
+    } else {
+        let (time_terms, mut stages) = e.staged(&[&phi_outputs, &jv_outputs]);
+        let jv_stage = stages.pop().expect("two stages");
+        let phi_stage = stages.pop().expect("two stages");
+        (time_terms, phi_stage, jv_stage)
+    };
     let unit_off = if coupled { quote!(&[#zero; #n_off],) } else { quote!() };
     let step_columns: Vec<TokenStream> = (0..nv)
         .filter_map(|c| {
@@ -334,7 +364,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
         })
         .collect();
-    let step_columns = in_blocks(&step_columns);
+    let step_columns = in_functions(&step_columns, "step_columns", &[], &real);
     let step_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
     let inline = crate::emit::inline_hint(nc);
     let position_step = quote! {

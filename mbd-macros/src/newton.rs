@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use crate::emit::{in_blocks, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature};
+use crate::emit::{in_functions, jacobian_values_outputs, real, usize_lit, vector_outputs, Emitter, Ops, Output, PartSignature};
 use crate::formulation::Formulation;
 
 /// The ordering and the filled pattern of the LU factors.
@@ -394,7 +394,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             }
         })
         .collect();
-    let (sums, d_entries) = (in_blocks(&sums), in_blocks(&d_entries));
+    let (sums, d_entries) = (in_functions(&sums, "sums", &["c_q", "c_v"], &real), in_functions(&d_entries, "d_entries", &[], &real));
     let pattern = plan.pattern();
     // Inlined into the step of small mechanisms; kept apart in large ones (build time, as for
     // the Schur complement's helpers).

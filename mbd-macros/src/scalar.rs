@@ -79,6 +79,59 @@ pub fn scalarize(code: TokenStream) -> TokenStream {
     quote!(use ::mbd::sparse::Elements as _; #(#lets)* #body)
 }
 
+/// The arrays straight-line statements index by literal (each with whether they write it) and
+/// the scalars of `scalars` they read, if that is all they read: `None` where they use an
+/// array otherwise, read another identifier (a temporary, `self`), declare a local or may
+/// leave early (`return`, `?`, `break`, `continue`).
+pub fn free_arrays(stmts: &[TokenStream], scalars: &[&str]) -> Option<FreeNames> {
+    let code = quote!(#(#stmts)*);
+    let mut uses = Uses::default();
+    survey(&code, &mut uses);
+    let mut names = FreeNames::default();
+    if !free_only(&code, scalars, &uses, &mut names.scalars) {
+        return None;
+    }
+    names.arrays = uses.indices.keys().map(|n| (n.clone(), uses.written.contains(n))).collect();
+    Some(names)
+}
+
+/// What [`free_arrays`] found: arrays (name, written) and scalars, each once, in name order.
+#[derive(Default)]
+pub struct FreeNames {
+    pub arrays: Vec<(String, bool)>,
+    pub scalars: BTreeSet<String>,
+}
+
+/// Whether every identifier of `code` is an array indexed by literal, a scalar of `scalars`
+/// (collected into `found`), a path segment, a field or method, or one of the few keywords
+/// straight-line array code uses.
+fn free_only(code: &TokenStream, scalars: &[&str], uses: &Uses, found: &mut BTreeSet<String>) -> bool {
+    let trees: Vec<TokenTree> = code.clone().into_iter().collect();
+    for (i, tree) in trees.iter().enumerate() {
+        match tree {
+            TokenTree::Group(g) if !free_only(&g.stream(), scalars, uses, found) => return false,
+            TokenTree::Punct(p) if p.as_char() == '?' => return false,
+            TokenTree::Ident(id) => {
+                let name = id.to_string();
+                let path_head = matches!(trees.get(i + 1), Some(TokenTree::Punct(p)) if p.as_char() == ':');
+                if qualified(&trees, i) || path_head || matches!(name.as_str(), "if" | "else" | "true" | "false" | "as") {
+                    continue;
+                }
+                if uses.indices.contains_key(&name) && !uses.whole.contains(&name) {
+                    continue;
+                }
+                if scalars.contains(&name.as_str()) {
+                    found.insert(name);
+                    continue;
+                }
+                return false;
+            }
+            _ => {}
+        }
+    }
+    true
+}
+
 /// Indices more than this apart start a new cluster (a window of their own).
 const CLUSTER_GAP: usize = 8;
 

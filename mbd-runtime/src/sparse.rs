@@ -96,6 +96,10 @@ pub fn schur_pivot<T: Real>(skk: T, dk: T, exact: T, tolerance: T, allow_redunda
 /// is auto-referenced or auto-dereferenced).
 #[doc(hidden)]
 pub trait Elements<T, const N: usize> {
+    /// The whole array.
+    fn all(&self) -> &[T; N];
+    /// The whole array, mutable.
+    fn all_mut(&mut self) -> &mut [T; N];
     /// Elements K..K + M.
     fn window<const K: usize, const M: usize>(&self) -> &[T; M];
     /// Elements K..K + M, mutable.
@@ -103,6 +107,14 @@ pub trait Elements<T, const N: usize> {
 }
 
 impl<T, const N: usize> Elements<T, N> for [T; N] {
+    #[inline(always)]
+    fn all(&self) -> &[T; N] {
+        self
+    }
+    #[inline(always)]
+    fn all_mut(&mut self) -> &mut [T; N] {
+        self
+    }
     #[inline(always)]
     fn window<const K: usize, const M: usize>(&self) -> &[T; M] {
         const { assert!(K + M <= N, "a window past the array's end") };
