@@ -150,14 +150,20 @@ fn pendulum_guess(phi: f64) -> [f64; 3] {
 /// The hanging pendulum, checked: φ = −π/2 within 1e-9 rad (the torque tolerance 1e-9 N·m over
 /// the gravity stiffness m g l/2 = 9.81 N·m/rad leaves 1e-10), the pin carrying the weight to
 /// 1e-9 N (the force tolerance), Stable with ω² = PENDULUM_OMEGA2 to 1e-9 relative (the
-/// eigenvalue at a q within 1e-10 of the equilibrium).
-fn assert_hanging(q: &[f64; 3], lambda: &[f64; 2], report: &StaticReport, from: &str) {
+/// eigenvalue at a q within 1e-10 of the equilibrium). The reaction is read as the README says,
+/// from the D the solve left in the workspace: D at the returned q, bit for bit (the start's D,
+/// which an earlier version left there, puts the pin's moment about the centre of mass off by
+/// the weight times the lever's change, 9.81 N·m for the start from horizontal).
+fn assert_hanging(q: &[f64; 3], lambda: &[f64; 2], ws: &Workspace<f64, 3, 2, 5>, report: &StaticReport, from: &str) {
     let m = Pendulum::default();
     assert!((Pendulum::ROD.phi(q) + PI / 2.0).abs() < 1e-9, "from {from}: φ = {}", Pendulum::ROD.phi(q));
     let mut d = [[0.0; 3]; 2];
     m.jacobian(q, 0.0, &mut d);
-    let pin = joint_reaction(&m, q, &d, lambda, Pendulum::PIN).and_then(|r| r.on_j).expect("the pin holds the rod");
+    assert_eq!(ws.jacobian(), &d, "from {from}: the workspace's D is D at the equilibrium");
+    let pin = joint_reaction(&m, q, ws.jacobian(), lambda, Pendulum::PIN).and_then(|r| r.on_j).expect("the pin holds the rod");
     assert!(pin.force[0].abs() < 1e-9 && (pin.force[1] - 2.0 * 9.81).abs() < 1e-9, "from {from}: {pin:?}");
+    // The pin is on the rod's axis, straight above its centre of mass: no moment about it.
+    assert!(pin.moment[2].abs() < 1e-9, "from {from}: {pin:?}");
     match report.stability {
         Stability::Stable { omega_squared } => {
             assert!((omega_squared - PENDULUM_OMEGA2).abs() < 1e-9 * PENDULUM_OMEGA2, "from {from}: {report:?}")
@@ -184,11 +190,12 @@ fn pendulum_hangs_from_the_documented_start_and_rough_guesses() {
     for (from, start) in starts {
         let mut q = start;
         let mut lambda = [0.0; 2];
-        let report = StaticSolver::default().solve(&m, &mut Pendulum::workspace(), &mut q, 0.0, &mut lambda).expect(from);
+        let mut ws = Pendulum::workspace();
+        let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect(from);
         eprintln!("pendulum from {from}: {report:?}");
         assert!(report.iterations + report.rejected <= 30, "from {from}: {report:?}");
         assert!(q[2] > -PI && q[2] <= PI, "from {from}: φ = {} out of (−π, π]", q[2]);
-        assert_hanging(&q, &lambda, &report, from);
+        assert_hanging(&q, &lambda, &ws, &report, from);
     }
 }
 
@@ -202,10 +209,11 @@ fn upright_pendulum_is_left_or_reported_unstable() {
     let upright = [0.0, 0.5, PI / 2.0];
     let mut q = upright;
     let mut lambda = [0.0; 2];
-    let report = StaticSolver::default().solve(&m, &mut Pendulum::workspace(), &mut q, 0.0, &mut lambda).expect("falls and hangs");
+    let mut ws = Pendulum::workspace();
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("falls and hangs");
     eprintln!("pendulum from upright: {report:?}");
     assert!(report.iterations + report.rejected <= 30, "{report:?}");
-    assert_hanging(&q, &lambda, &report, "upright");
+    assert_hanging(&q, &lambda, &ws, &report, "upright");
 
     let mut q = upright;
     let solver = StaticSolver::new(StaticOptions::default().with_leave_unstable(false));

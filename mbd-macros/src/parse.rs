@@ -645,9 +645,13 @@ pub fn closest(word: &str, a: &[&str], b: &[&str]) -> String {
     nearest(word, a, b).map(|c| format!(" (did you mean `{c}`?)")).unwrap_or_default()
 }
 
-/// The known word one or two edits away, the nearest.
+/// The known word one or two edits away, the nearest; between equally near indexed names
+/// (`l_3` against `l_0`, `l_1`, `l_2`: one edit each) the one of the nearest index, so that a
+/// loop reaching one past its last body hears of the last one.
 pub fn nearest<'a>(word: &str, a: &[&'a str], b: &[&'a str]) -> Option<&'a str> {
-    a.iter().chain(b).map(|c| (edit_distance(word, c), *c)).filter(|(d, _)| *d <= 2).min().map(|(_, c)| c)
+    let index = |name: &str| name.rsplit_once('_').and_then(|(_, n)| n.parse::<i64>().ok());
+    let gap = |c: &str| index(word).zip(index(c)).map_or(0, |(w, c)| (w - c).unsigned_abs());
+    a.iter().chain(b).map(|c| (edit_distance(word, c), gap(c), *c)).filter(|(d, ..)| *d <= 2).min().map(|(.., c)| c)
 }
 
 fn edit_distance(a: &str, b: &str) -> usize {

@@ -12,7 +12,9 @@
 //! expression; it becomes the identifier `name_index` (`crank[3]` is `crank_3`, `cell[1][2]` is
 //! `cell_1_2`), which names the same thing anywhere, inside a loop or not. Brackets holding
 //! anything else (a point's coordinates `crank[0.05, 0.0]`) are left alone. A name after `.`
-//! (a point or coordinate, `crank.x`) is never replaced by a loop variable.
+//! (a point or coordinate, `crank.x`) and a name before a single `:` (an option, `k: 1.0`, or
+//! a label) are never replaced by a loop variable: a spring's `{ k: 2.0 }` inside
+//! `for k in 0..n` keeps its stiffness option.
 //!
 //! Every produced token keeps the span of the token it came from, so a mistake inside a loop is
 //! reported on the statement that made it (once per repetition that makes it).
@@ -141,6 +143,8 @@ fn unroll_for(tokens: &[TokenTree], start: usize, u: &mut Unroll) -> syn::Result
 /// the index of the next token.
 fn transform_one(tokens: &[TokenTree], i: usize, u: &mut Unroll, out: &mut Vec<TokenTree>) -> syn::Result<usize> {
     let after_dot = i > 0 && is_punct(&tokens[i - 1], '.');
+    // `name:` but not `name::`: an option's or a label's name.
+    let before_colon = matches!(tokens.get(i + 1), Some(TokenTree::Punct(p)) if p.as_char() == ':' && p.spacing() == Spacing::Alone);
     match &tokens[i] {
         TokenTree::Ident(id) => {
             // `name[index]...`: one identifier, `name_index...`.
@@ -173,7 +177,7 @@ fn transform_one(tokens: &[TokenTree], i: usize, u: &mut Unroll, out: &mut Vec<T
                 return Ok(k);
             }
             match u.scope.iter().rev().find(|(v, _)| id == v) {
-                Some(&(_, value)) if !after_dot => out.extend(number(value, id.span())),
+                Some(&(_, value)) if !after_dot && !before_colon => out.extend(number(value, id.span())),
                 _ => out.push(tokens[i].clone()),
             }
             Ok(i + 1)
@@ -326,6 +330,15 @@ mod tests {
     fn names_after_a_dot_and_point_brackets_are_left_alone() {
         let got = unrolled(quote!(M { for x in 0..1 { fix b.x = x; revolute ground[0.0, 0.0] ~ b[x, 0.0]; gravity [0.0, -9.81]; } }));
         let want = quote!(M { fix b.x = 0; revolute ground[0.0, 0.0] ~ b[0, 0.0]; gravity [0.0, -9.81]; });
+        assert_eq!(got, want.to_string());
+    }
+
+    /// An option named like the loop variable (a spring's `k`) stays an option; its value is
+    /// replaced.
+    #[test]
+    fn option_names_are_left_alone() {
+        let got = unrolled(quote!(M { for k in 1..2 { rotational_spring l[k - 1] ~ l[k] { k: 0.5 * k, c: k }; } }));
+        let want = quote!(M { rotational_spring l_0 ~ l_1 { k: 0.5 * 1, c: 1 }; });
         assert_eq!(got, want.to_string());
     }
 

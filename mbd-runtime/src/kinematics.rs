@@ -345,7 +345,8 @@ impl KinematicSolver {
     /// from the q given, until ‖Φ‖∞ ≤ [`KinematicOptions::tolerance`]. Each iteration costs one
     /// evaluation of Φ and D and one factorization of D (for a square D, the LDLᵀ of D Dᵀ
     /// `mechanism!` plans), except that a last step expected to converge keeps D's factors and
-    /// evaluates Φ alone ([`KinematicOptions::reuse_safety`]). On success `q` holds the solution (m, rad); on error it holds the last iterate.
+    /// evaluates Φ alone ([`KinematicOptions::reuse_safety`]). On success `q` holds the
+    /// solution (m, rad); on error it holds the last iterate.
     ///
     /// # Errors
     /// [`KinematicError::NotDriven`] if NV > NC; [`KinematicError::NonFinite`] for a NaN or

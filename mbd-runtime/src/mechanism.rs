@@ -204,9 +204,10 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// taken and the factorizations of D made, q at the last iterate and Φ(q, t) in `phi`:
     /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
     /// pivot is at most `pivot_tolerance` times its diagonal; [`PositionStep::Step`] when Φ or a
-    /// step is not finite or `max_iterations` steps are taken. The solver goes on from there with the dense LU, which names the coordinate without a
-    /// pivot or the row that is not finite. `None` (the provided method) where nothing is
-    /// generated: the dense path from the start.
+    /// step is not finite or `max_iterations` steps are taken. The solver goes on from there
+    /// with the dense LU, which names the coordinate without a pivot or the row that is not
+    /// finite. `None` (the provided method) where nothing is generated: the dense path from the
+    /// start.
     #[doc(hidden)]
     #[allow(clippy::too_many_arguments)]
     fn sparse_position_solve(

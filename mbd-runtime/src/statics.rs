@@ -550,14 +550,15 @@ impl StaticSolver {
     /// potential energy is a local minimum on the constraint manifold, starting from `q` — any
     /// rough guess; it is assembled first — and descending in energy (see the module
     /// documentation). `lambda` is an output only (its value on entry is ignored): on success
-    /// it holds the multipliers, and the joint reactions follow from them with
-    /// [`crate::joint_reaction`]. On success `q` holds the equilibrium, with planar angles in
-    /// (−π, π] where the mechanism is periodic in them and unit Euler parameters with e0 ≥ 0;
-    /// on error it holds the last accepted iterate.
+    /// it holds the multipliers, and `ws.jacobian()` holds D(q, t) at the equilibrium: the
+    /// joint reactions follow with [`crate::joint_reaction`]`(m, q, ws.jacobian(), lambda, …)`.
+    /// On success `q` holds the equilibrium, with planar angles in (−π, π] where the mechanism
+    /// is periodic in them and unit Euler parameters with e0 ≥ 0; on error it holds the last
+    /// accepted iterate.
     ///
     /// The solver works over the factorization `mechanism!` plans for generalized-α
-    /// ([`NewtonMatrix`]), on the stack: O(its non-zeros). `ws` is only checked for its size
-    /// (the other analyses share it); nothing in it is read or written.
+    /// ([`NewtonMatrix`]), on the stack: O(its non-zeros). Of `ws` it reads nothing; it writes
+    /// only D at the equilibrium, on success.
     ///
     /// # Errors
     /// [`StaticError::WorkspaceSize`]; [`StaticError::NonFinite`] (t, q, Φ, D, h, its
@@ -576,7 +577,6 @@ impl StaticSolver {
         T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        let _ = ws;
         if N != NV + NC {
             return Err(StaticError::WorkspaceSize { expected: NV + NC, found: N });
         }
@@ -636,6 +636,7 @@ impl StaticSolver {
             if converged && !(unstable && options.leave_unstable) {
                 let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
                 self.wrap_angles(m, q, t, &it);
+                m.jacobian(q, t, &mut ws.jacobian);
                 return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
             }
             if accepted + rejected >= options.max_iterations {
@@ -687,6 +688,7 @@ impl StaticSolver {
                     // leavable at this resolution; report it as it is.
                     let stability = classify::<T, M, NV>(escape.as_ref(), &it.mass_diagonal, neutral);
                     self.wrap_angles(m, q, t, &it);
+                    m.jacobian(q, t, &mut ws.jacobian);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
                 }
                 if accepted + rejected >= options.max_iterations {
