@@ -82,8 +82,9 @@
 //! (p and −p are the same rotation).
 //!
 //! Work space: the stack holds a few copies of the planned storage (D's non-zeros and the
-//! factors' entries: O(bodies) for a chain) and O(NV + NC) scalars; the caller's
-//! [`Workspace`] is only checked for its size. Nothing allocates.
+//! factors' entries: O(bodies) for a chain) and O(NV + NC) scalars; of the caller's
+//! [`Workspace`] only D is written, at the equilibrium, for [`crate::joint_reaction`]. Nothing
+//! allocates.
 
 use crate::kinematics::{first_non_finite, name};
 use crate::linalg::LinalgError;
