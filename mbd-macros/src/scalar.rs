@@ -297,6 +297,30 @@ mod tests {
         assert_eq!(text(scalarize(code)), text(expected));
     }
 
+    /// The arrays and named scalars of pure array code, for `emit::in_functions`; anything a
+    /// nested function could not see or would change (a temporary, `self`, a `let`, an early
+    /// `return`, `?`, an array also used whole) makes it `None`.
+    #[test]
+    fn free_arrays_are_the_indexed_arrays_and_the_named_scalars() {
+        let code = [quote!(b[3] -= l[5] * b[1];), quote!(lambda[0] = gamma[0] - two_alpha * nu[0];)];
+        let names = free_arrays(&code, &["two_alpha", "beta2"]).expect("pure array code");
+        let arrays: Vec<(&str, bool)> = names.arrays.iter().map(|(n, w)| (n.as_str(), *w)).collect();
+        assert_eq!(arrays, [("b", true), ("gamma", false), ("l", false), ("lambda", true), ("nu", false)]);
+        assert_eq!(names.scalars.into_iter().collect::<Vec<_>>(), ["two_alpha"]);
+        for other in [
+            quote!(b[0] = tmp * l[1];),
+            quote!(b[0] = self.x;),
+            quote!(let x = l[0];),
+            quote!(if b[0] > 1.0 {
+                return;
+            }),
+            quote!(b[0] = f(l[0])?;),
+            quote!(b[0] = l[0]; solve(&b);),
+        ] {
+            assert!(free_arrays(&[other.clone()], &["two_alpha"]).is_none(), "{other}");
+        }
+    }
+
     /// Accesses far apart are bound through a window each where the array is only read, and
     /// left indexed where it is written (one mutable window at a time).
     #[test]
