@@ -317,7 +317,7 @@ mod tests {
             quote!(b[0] = f(l[0])?;),
             quote!(b[0] = l[0]; solve(&b);),
         ] {
-            assert!(free_arrays(&[other.clone()], &["two_alpha"]).is_none(), "{other}");
+            assert!(free_arrays(std::slice::from_ref(&other), &["two_alpha"]).is_none(), "{other}");
         }
     }
 
