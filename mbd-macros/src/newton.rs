@@ -209,23 +209,29 @@ impl NewtonPlan {
     }
 }
 
-/// Minimum degree (ties to the lower index) over the unknowns that may go next: every velocity,
-/// and a multiplier once all velocities of its row are eliminated.
+/// Minimum degree over the unknowns that may go next: every velocity, and a multiplier once all
+/// velocities of its row are eliminated. Ties go to the unknown whose pivot waits on the
+/// shortest chain of pivots before it (its depth in the elimination tree so far), then to the
+/// lower index: a chain is then eliminated from both ends at once, two independent sequences of
+/// dependent divisions and multiply-subtracts that the processor overlaps, where one end after
+/// the other made the factorization and the solves one sequence twice as long.
 pub fn constrained_minimum_degree(adjacency: &[BTreeSet<usize>], nv: usize) -> Vec<usize> {
     let n = adjacency.len();
     let mut graph = adjacency.to_vec();
     let mut waiting: Vec<usize> = (0..n).map(|u| if u < nv { 0 } else { adjacency[u].len() }).collect();
     let mut eliminated = vec![false; n];
+    let mut depth = vec![0usize; n];
     let mut order = Vec::with_capacity(n);
     for _ in 0..n {
         let u = (0..n)
             .filter(|&u| !eliminated[u] && waiting[u] == 0)
-            .min_by_key(|&u| (graph[u].len(), u))
+            .min_by_key(|&u| (graph[u].len(), depth[u], u))
             .expect("a velocity or a released multiplier is always left");
         eliminated[u] = true;
         order.push(u);
         let neighbours: Vec<usize> = graph[u].iter().copied().collect();
         for &a in &neighbours {
+            depth[a] = depth[a].max(depth[u] + 1);
             graph[a].remove(&u);
             for &b in &neighbours {
                 if a != b {
