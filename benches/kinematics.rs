@@ -63,6 +63,10 @@ macro_rules! bench_mechanism {
                 qn
             })
         });
+        // One point of a kinematic sweep: position, velocity and acceleration at t + 1 ms.
+        g.bench_function("analysis (q, v, v̇), t → t + 1 ms", |b| {
+            b.iter(|| solver.analyze(&m, &mut ws, black_box(&q), black_box(t0 + 1e-3)).expect("converges"))
+        });
         g.finish();
     }};
 }

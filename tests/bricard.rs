@@ -6,6 +6,8 @@
 //! the others impose: the runtime must find it, report mobility 1 against Grübler's 0 at every
 //! configuration (a redundancy, not a singular pose), simulate the one motion, find its static
 //! equilibrium, and give the reactions by its documented rule (the dropped row carries none).
+//! Which row the sparse factorization drops is the one its elimination order meets last in the
+//! dependent loop — here not the row the report names, which is the last declared.
 //!
 //! Geometry in Denavit–Hartenberg terms: link i carries joint i (its z-axis, at its frame's
 //! origin) and joint i + 1 at (a_i, 0, d_i), along (0, −sin α_i, cos α_i). Link 6 is the ground;
@@ -79,6 +81,11 @@ fn asymmetry(m: &Bricard, q: &[f64; 35]) -> f64 {
         .fold(0.0, |s, x| s.max(x.abs()))
 }
 
+/// The row of least |λ|: the one the factorization drops.
+fn dropped_row(lambda: &[f64; 30]) -> usize {
+    (0..30).min_by(|&a, &b| lambda[a].abs().total_cmp(&lambda[b].abs())).expect("30 rows")
+}
+
 fn assembled(m: &Bricard, ws: &mut Workspace<f64, 30, 30, 60>) -> [f64; 35] {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(m, ws, &mut q, 0.0).expect("the Bricard linkage assembles from its rounded pose");
@@ -123,6 +130,7 @@ fn bricard_moves_with_one_degree_of_freedom() {
     let times: Vec<f64> = (1..=40).map(|k| 0.05 * k as f64).collect();
     let (mut worst_sym, mut worst_phi, mut worst_e, mut moved, mut worst_dropped) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut samples = Vec::new();
+    let mut dropped = None;
     let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
     simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &[0.0; 30], &times, &SimulationOptions::default(), |s| {
         let q = &s.point.q;
@@ -132,7 +140,9 @@ fn bricard_moves_with_one_degree_of_freedom() {
         worst_sym = worst_sym.max(asymmetry(&m, q));
         worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
         moved = moved.max((m.j1_angle(q) - m.j1_angle(&q0)).abs());
-        worst_dropped = worst_dropped.max(s.point.lambda[29].abs());
+        let row = dropped_row(&s.point.lambda);
+        assert_eq!(*dropped.get_or_insert(row), row, "the dropped row is one row all along");
+        worst_dropped = worst_dropped.max(s.point.lambda[row].abs());
         samples.push(*q);
     })
     .expect("the Bricard linkage moves");
@@ -144,8 +154,8 @@ fn bricard_moves_with_one_degree_of_freedom() {
     // of a swing through several joules (measured 2.9e-11 J, bound 300× above)
     assert!(worst_phi < 1e-10, "‖Φ‖ = {worst_phi}");
     assert!(worst_e < 1e-8, "|ΔE| = {worst_e} J");
-    // the row dropped by the smooth pivot rule is the one the report names (the last): its
-    // weight w = 1/(1 + ρ⁸) is ~1e-40 at an exact redundancy (measured λ 1.9e-48 N)
+    // the row dropped by the smooth pivot rule: its weight w = 1/(1 + ρ⁸) is ~1e-40 at an exact
+    // redundancy (measured λ 1.9e-48 N)
     assert!(worst_dropped < 1e-9, "λ of the dropped row up to {worst_dropped} N");
     for q in samples.iter().step_by(10) {
         let report = KinematicSolver::default().redundancy(&m, &mut ws, q, 0.0).unwrap();
@@ -168,7 +178,12 @@ fn bricard_statics_finds_its_hanging_pose() {
         "{report:?}"
     );
     assert!(asymmetry(&m, &q) < 1e-9, "θ_i − θ_(i+3) up to {}", asymmetry(&m, &q));
-    assert_eq!(lambda[29], 0.0);
+    // One row is dropped, with λ = 0; every other carries load.
+    let row = dropped_row(&lambda);
+    assert_eq!(lambda[row], 0.0, "row {row}");
+    let others = (0..30).filter(|&r| r != row).map(|r| lambda[r].abs()).fold(f64::INFINITY, f64::min);
+    eprintln!("dropped: row {row}, {}; the smallest other |λ| {others:.3e}", Bricard::CONSTRAINT_NAMES[row]);
+    assert!(others > 1e-3, "row {row} dropped, the smallest other |λ| {others} N");
     // Independently, along the one motion of the driven copy (positions and velocities by the
     // kinematic solver over the independent rows): the slope of the potential dV/dθ₁ = −hᵀv
     // (v for θ̇₁ = 1 rad/s, h gravity's generalized force) vanishes at the statics' θ₁, and

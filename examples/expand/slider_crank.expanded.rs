@@ -1183,6 +1183,99 @@ impl SliderCrank {
         (*__b_6) -= (*__l_2) * (*__b_5);
         (*__b_7) -= (*__l_0) * (*__b_6);
     }
+    /// x = D⁻¹ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined on
+    /// its residual; false where the refinement does not settle.
+    #[inline]
+    fn constraint_solve(
+        jv: &[f64; 23],
+        l: &[f64; 18],
+        dinv: &[f64; 9],
+        rhs: &[f64; 9],
+        x: &mut [f64; 9],
+    ) -> bool {
+        let mut b = *rhs;
+        Self::schur_solve(l, dinv, &mut b);
+        *x = [0f64; 9];
+        use ::mbd::sparse::Elements as _;
+        let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+            .window::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__x_0, __x_1, __x_2, __x_3, __x_4, __x_5, __x_6, __x_7, __x_8] = x
+            .window_mut::<0, 9>();
+        (*__x_0) = ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+        (*__x_1) = ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+        (*__x_2) = ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1) + (*__jv_5) * (*__b_2)
+            + (*__jv_9) * (*__b_3) + (*__jv_22) * (*__b_8));
+        (*__x_3) = ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+        (*__x_4) = ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+        (*__x_5) = ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3) + (*__jv_13) * (*__b_4)
+            + (*__jv_16) * (*__b_5));
+        (*__x_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+        (*__x_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+        (*__x_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
+        let mut dx = [0f64; 9];
+        for _ in 0..4 {
+            {
+                let x: &[f64; 9] = x;
+                use ::mbd::sparse::Elements as _;
+                let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                    .window_mut::<0, 9>();
+                let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                    .window::<0, 23>();
+                let [__rhs_0, __rhs_1, __rhs_2, __rhs_3, __rhs_4, __rhs_5, __rhs_6,
+                __rhs_7, __rhs_8] = rhs.window::<0, 9>();
+                let [__x_0, __x_1, __x_2, __x_3, __x_4, __x_5, __x_6, __x_7, __x_8] = x
+                    .window::<0, 9>();
+                (*__b_0) = (*__rhs_0) - ((*__jv_0) * (*__x_0) + (*__jv_1) * (*__x_2));
+                (*__b_1) = (*__rhs_1) - ((*__jv_2) * (*__x_1) + (*__jv_3) * (*__x_2));
+                (*__b_2) = (*__rhs_2)
+                    - ((*__jv_4) * (*__x_0) + (*__jv_5) * (*__x_2) + (*__jv_6) * (*__x_3)
+                        + (*__jv_7) * (*__x_5));
+                (*__b_3) = (*__rhs_3)
+                    - ((*__jv_8) * (*__x_1) + (*__jv_9) * (*__x_2)
+                        + (*__jv_10) * (*__x_4) + (*__jv_11) * (*__x_5));
+                (*__b_4) = (*__rhs_4)
+                    - ((*__jv_12) * (*__x_3) + (*__jv_13) * (*__x_5)
+                        + (*__jv_14) * (*__x_6));
+                (*__b_5) = (*__rhs_5)
+                    - ((*__jv_15) * (*__x_4) + (*__jv_16) * (*__x_5)
+                        + (*__jv_17) * (*__x_7));
+                (*__b_6) = (*__rhs_6)
+                    - ((*__jv_18) * (*__x_6) + (*__jv_19) * (*__x_7)
+                        + (*__jv_20) * (*__x_8));
+                (*__b_7) = (*__rhs_7) - ((*__jv_21) * (*__x_8));
+                (*__b_8) = (*__rhs_8) - ((*__jv_22) * (*__x_2));
+            }
+            Self::schur_solve(l, dinv, &mut b);
+            use ::mbd::sparse::Elements as _;
+            let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                .window::<0, 9>();
+            let [__dx_0, __dx_1, __dx_2, __dx_3, __dx_4, __dx_5, __dx_6, __dx_7, __dx_8,
+            ] = dx.window_mut::<0, 9>();
+            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
+            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+            (*__dx_0) = ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+            (*__dx_1) = ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+            (*__dx_2) = ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1)
+                + (*__jv_5) * (*__b_2) + (*__jv_9) * (*__b_3) + (*__jv_22) * (*__b_8));
+            (*__dx_3) = ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+            (*__dx_4) = ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+            (*__dx_5) = ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3)
+                + (*__jv_13) * (*__b_4) + (*__jv_16) * (*__b_5));
+            (*__dx_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+            (*__dx_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+            (*__dx_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
+            if ::mbd::sparse::refine(x, &dx) {
+                return true;
+            }
+        }
+        false
+    }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
 impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
@@ -3396,6 +3489,150 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             ::mbd::Kinematics::integrate_positions(self, q, step, 1f64);
             iterations += 1;
         }
+    }
+    #[inline]
+    fn sparse_velocity_acceleration(
+        &self,
+        q: &[f64; 9],
+        t: f64,
+        pivot_tolerance: f64,
+        v: &mut [f64; 9],
+        vd: &mut [f64; 9],
+    ) -> bool {
+        let mut jv = [0f64; 23];
+        let mut nu = [0f64; 9];
+        let mut gamma = [0f64; 9];
+        let (v5, v24): (f64, f64);
+        v5 = (self.r / 2f64);
+        v24 = (self.l / 2f64);
+        let (
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        use ::mbd::sparse::Elements as _;
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v81 = (-c_slider);
+        (*__jv_0) = (-1f64);
+        (*__jv_1) = v13;
+        (*__jv_2) = (-1f64);
+        (*__jv_3) = v10;
+        (*__jv_4) = 1f64;
+        (*__jv_5) = v13;
+        (*__jv_6) = (-1f64);
+        (*__jv_7) = v32;
+        (*__jv_8) = 1f64;
+        (*__jv_9) = v10;
+        (*__jv_10) = (-1f64);
+        (*__jv_11) = v29;
+        (*__jv_12) = 1f64;
+        (*__jv_13) = v32;
+        (*__jv_14) = (-1f64);
+        (*__jv_15) = 1f64;
+        (*__jv_16) = v29;
+        (*__jv_17) = (-1f64);
+        (*__jv_18) = s_slider;
+        (*__jv_19) = v81;
+        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_21) = v81;
+        (*__jv_22) = 1f64;
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if Self::schur_factor(&jv, &[1f64; 9], pivot_tolerance, false, &mut l, &mut dinv)
+            .is_err()
+        {
+            return false;
+        }
+        if !Self::constraint_solve(&jv, &l, &dinv, &nu, v) {
+            return false;
+        }
+        {
+            let v: &[f64; 9] = v;
+            use ::mbd::sparse::Elements as _;
+            let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5,
+            __gamma_6, __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+            let [__q_6, __q_7] = q.window::<6, 2>();
+            let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
+            v119 = (s_slider * (*__v_8));
+            v126 = (c_slider * (*__v_8));
+            v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+            v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+            v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+            v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+            v151 = ((*__v_6) * v126);
+            v152 = ((*__v_8) * v119);
+            v158 = ((*__v_7) * v119);
+            (*__gamma_0) = v134;
+            (*__gamma_1) = v138;
+            (*__gamma_2) = (v134 + v141);
+            (*__gamma_3) = (v138 + v147);
+            (*__gamma_4) = v141;
+            (*__gamma_5) = v147;
+            (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+                + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+            (*__gamma_7) = (-v152);
+            (*__gamma_8) = 0f64;
+        }
+        Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
     }
     #[inline]
     fn position_eval(

@@ -854,7 +854,7 @@ mod tests {
         let chain = crate::expand::expand(chain).to_string();
         assert!(chain.contains("__mbd_accelerations_0"), "the chain's accelerations in parts");
         // Its linear algebra in nested functions of bounded length (`in_functions`).
-        for part in ["fn __mbd_minv_h_1", "fn __mbd_lambda_vd_0", "fn __mbd_step_columns_1"] {
+        for part in ["fn __mbd_minv_h_1", "fn __mbd_lambda_vd_0", "fn __mbd_v_step_1"] {
             assert!(chain.contains(part), "{part}");
         }
         // Outputs that all read one large shared node: parts would repeat it in each.

@@ -423,6 +423,126 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
     };
 
+    // The kinematic velocity and acceleration of a driven mechanism over the same factorization:
+    // D, ν, then γ with the velocity solved, each solve x = Dᵀ(D Dᵀ)⁻¹ b refined on its residual
+    // (`constraint_solve`, below). Where Φ_t vanishes, D v = 0 and v = 0 without a solve.
+    let mut first_outputs = jacobian_values_outputs(f, "jv");
+    if !phi_t_zero {
+        first_outputs.extend(vector_outputs("nu", &f.nu));
+    }
+    let gamma_outputs = vector_outputs("gamma", &f.gamma);
+    let both: Vec<Output> = first_outputs.iter().chain(&gamma_outputs).cloned().collect();
+    let (motion_time_terms, first_stage, gamma_stage) = if e.nodes(&both) > crate::emit::PART_NODES {
+        let first_part = PartSignature {
+            name: "motion_jacobian",
+            params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l], nu: &mut [#real; #nc_l],),
+            args: quote!(q, t, &mut jv, &mut nu,),
+        };
+        let (first_in_parts, _) = e.body_in_parts(&first_outputs, &first_part);
+        let gamma_part = PartSignature {
+            name: "motion_gamma",
+            params: quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l],),
+            args: quote!(q, v, t, &mut gamma,),
+        };
+        let (gamma_in_parts, _) = e.body_in_parts(&gamma_outputs, &gamma_part);
+        (quote!(), first_in_parts, gamma_in_parts)
+    } else {
+        let (time_terms, mut stages) = e.staged(&[&first_outputs, &gamma_outputs]);
+        let gamma_stage = stages.pop().expect("two stages");
+        let first_stage = stages.pop().expect("two stages");
+        (time_terms, first_stage, gamma_stage)
+    };
+    let solve_velocity = if phi_t_zero {
+        quote!(*v = [#zero; #nv_l];)
+    } else {
+        quote! {
+            if !Self::constraint_solve(&jv, &l, &dinv, &nu, v) {
+                return false;
+            }
+        }
+    };
+    let motion_step = quote! {
+        #step_inline
+        fn sparse_velocity_acceleration(
+            &self,
+            q: &[#real; #nq_l],
+            t: #real,
+            pivot_tolerance: #real,
+            v: &mut [#real; #nv_l],
+            vd: &mut [#real; #nv_l],
+        ) -> bool {
+            let mut jv = [#zero; #nnz_l];
+            let mut nu = [#zero; #nc_l];
+            let mut gamma = [#zero; #nc_l];
+            #motion_time_terms
+            #first_stage
+            let mut l = [#zero; #nl_l];
+            let mut dinv = [#zero; #nc_l];
+            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                return false;
+            }
+            #solve_velocity
+            {
+                let v: &[#real; #nv_l] = v;
+                #gamma_stage
+            }
+            Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
+        }
+    };
+    // The runtime calls both only where D is square (a driven mechanism); elsewhere the provided
+    // methods stand, and nothing is generated to type-check.
+    let position_step = if nv == nc { quote!(#position_step #motion_step) } else { quote!() };
+    // x = Dᵀ(D Dᵀ)⁻¹ b, then up to four refinements x ← x + Dᵀ(D Dᵀ)⁻¹(b − D x) (`sparse::refine`
+    // says when to stop): the normal equations square D's condition number, the refinement
+    // brings the error back to an LU's.
+    let columns_into = |x: &str, assign: TokenStream| -> TokenStream {
+        let x = syn::Ident::new(x, proc_macro2::Span::call_site());
+        let stmts: Vec<TokenStream> = (0..nv)
+            .filter_map(|c| {
+                let cl = usize_lit(c);
+                transpose_column(&quote!(b), c).map(|t| quote!(#x[#cl] #assign #t;))
+            })
+            .collect();
+        in_functions(&stmts, "solution_columns", &[], &real)
+    };
+    let solution = columns_into("x", quote!(=));
+    let correction = columns_into("dx", quote!(=));
+    let residual_rows: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(x))).map(|(r, d_x)| quote!(b[#r] = rhs[#r] - #d_x;)).collect();
+    let residual_rows = in_functions(&residual_rows, "residual_rows", &[], &real);
+    let helper_inline_solve = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
+    let constraint_solve = (nv == nc).then(|| {
+        quote! {
+            /// x = D⁻¹ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined on
+            /// its residual; false where the refinement does not settle.
+            #helper_inline_solve
+            fn constraint_solve(
+                jv: &[#real; #nnz_l],
+                l: &[#real; #nl_l],
+                dinv: &[#real; #nc_l],
+                rhs: &[#real; #nc_l],
+                x: &mut [#real; #nv_l],
+            ) -> bool {
+                let mut b = *rhs;
+                Self::schur_solve(l, dinv, &mut b);
+                *x = [#zero; #nv_l];
+                #solution
+                let mut dx = [#zero; #nv_l];
+                for _ in 0..4 {
+                    {
+                        let x: &[#real; #nv_l] = x;
+                        #residual_rows
+                    }
+                    Self::schur_solve(l, dinv, &mut b);
+                    #correction
+                    if ::mbd::sparse::refine(x, &dx) {
+                        return true;
+                    }
+                }
+                false
+            }
+        }
+    });
+
     // Inlined into small mechanisms' solves (a call's cost matters there); kept apart in large
     // ones, where LLVM's optimization of the factor's straight-line, branchy code inlined into
     // each caller grew superlinearly (a 60-link chain's RK4 build took 166 s, a 30-link one 6 s).
@@ -447,6 +567,8 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         fn schur_solve(l: &[#real; #nl_l], dinv: &[#real; #nc_l], b: &mut [#real; #nc_l]) {
             #solve
         }
+
+        #constraint_solve
     };
     let impl_block = quote! {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).

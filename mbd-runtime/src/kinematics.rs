@@ -6,9 +6,10 @@
 //! D v̇ = γ            acceleration  (γ = −𝒟(𝒟Φ); planar −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt)
 //! ```
 //!
-//! with D = Φ_q B in velocity space (planar: v = q̇, D = Φ_q), all three sharing one LU
-//! factorization of D at the converged q; q ⊕ Δv is [`Kinematics::integrate_positions`] with
-//! h = 1. Coordinates are in m and rad, velocities in m/s and rad/s, accelerations in m/s² and
+//! with D = Φ_q B in velocity space (planar: v = q̇, D = Φ_q), all three over the LDLᵀ of D Dᵀ
+//! that `mechanism!` plans at compile time where D is square (the dense LU of D where that
+//! finds no pivot, and for the separate velocity and acceleration solves); q ⊕ Δv is
+//! [`Kinematics::integrate_positions`] with h = 1. Coordinates are in m and rad, velocities in m/s and rad/s, accelerations in m/s² and
 //! rad/s², times in s. Assembly ([`KinematicSolver::assemble`]) also handles DOF > 0 with
 //! minimum-norm Newton steps.
 //!
@@ -472,12 +473,17 @@ impl KinematicSolver {
 
     /// Complete kinematic analysis at time t from the guess `q`: position (Newton, as
     /// [`solve_position`](Self::solve_position)), then velocity D v = ν and acceleration
-    /// D v̇ = γ with a single LU factorization of D at the converged q.
+    /// D v̇ = γ with a single factorization of D at the converged q.
     ///
-    /// The last Newton evaluation is the one at the converged q, so its D is reused as is: the
-    /// whole analysis costs the Newton iterations plus one [`Kinematics::velocity_rhs`], one
-    /// [`Kinematics::gamma`] and one factorization. ([`Kinematics::full_eval`] cannot save
-    /// work here: γ needs v, which needs D and ν at the converged q first.)
+    /// Where D is square and `mechanism!` planned its factorization, one generated function
+    /// evaluates D and ν, factors D Dᵀ over the planned pattern, solves v = Dᵀ(D Dᵀ)⁻¹ν, evaluates
+    /// γ with the sines and cosines already taken, and solves v̇ the same way; each solve is
+    /// refined on its residual until a correction is below √ε of the answer, which takes the
+    /// normal equations' κ(D)² ε of error back to an LU's κ(D) ε. Where that finds no pivot or
+    /// a value that is not finite, D is evaluated and factored by the dense LU, which names the
+    /// coordinate or row that failed: the whole analysis then costs the Newton iterations plus
+    /// one [`Kinematics::jacobian`], one [`Kinematics::velocity_rhs`], one
+    /// [`Kinematics::gamma`] and one factorization.
     ///
     /// # Errors
     /// Those of [`solve_position`](Self::solve_position), [`solve_velocity`](Self::solve_velocity)
@@ -582,8 +588,13 @@ impl KinematicSolver {
         M: Kinematics<T, NQ, NV, NC>,
     {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
-        // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
         if NV == NC {
+            // The factorization planned at compile time; where it finds no pivot or a value
+            // that is not finite, the dense LU below, which names what failed.
+            if m.sparse_velocity_acceleration(q, t, self.pivot_tolerance(), v, vd) {
+                return Ok(convergence);
+            }
+            // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
             m.jacobian(q, t, &mut ws.jacobian);
         }
         let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;

@@ -224,6 +224,19 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
         let _ = (q, t, tolerance, pivot_tolerance, max_iterations, reuse, phi, step);
         None
     }
+    /// A driven mechanism's velocity and acceleration (NV = NC, D regular) over the sparse
+    /// factorization planned at compile time: D v = ν(q, t), then D v̇ = γ(q, v, t), each as
+    /// x = Dᵀ(D Dᵀ)⁻¹ b from one LDLᵀ of D Dᵀ (the position solve's), refined on the residual
+    /// b − D x until a correction is below √ε of x (at most four times). q must satisfy
+    /// Φ(q, t) = 0. False — `v` and `vd` unspecified — where a pivot is at most
+    /// `pivot_tolerance` times its diagonal, a value is not finite or the refinement does not
+    /// settle: the solver then takes the dense LU, which names the coordinate or row. False
+    /// (the provided method) where nothing is generated.
+    #[doc(hidden)]
+    fn sparse_velocity_acceleration(&self, q: &[T; NQ], t: T, pivot_tolerance: T, v: &mut [T; NV], vd: &mut [T; NV]) -> bool {
+        let _ = (q, t, pivot_tolerance, v, vd);
+        false
+    }
     /// Φ, D, ν and γ in one evaluation (shared subexpressions computed once).
     #[allow(clippy::too_many_arguments)]
     fn full_eval(&self, q: &[T; NQ], v: &[T; NV], t: T, phi: &mut [T; NC], d: &mut [[T; NV]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]);

@@ -131,6 +131,23 @@ impl<T, const N: usize> Elements<T, N> for [T; N] {
     }
 }
 
+/// x ← x + Δx, one step of iterative refinement in the kinematic velocity and acceleration
+/// solves `mechanism!` generates (x = Dᵀ(D Dᵀ)⁻¹ b through the planned LDLᵀ of D Dᵀ, whose
+/// relative error is about κ(D)² ε, refined on the residual b − D x): true when the step was
+/// small enough to end the refinement, ‖Δx‖∞ ≤ √ε ‖x‖∞ with x and Δx finite. A step of
+/// relative size ρ measures the error it corrects, and the solve that made it errs by about ρ
+/// of itself, so about ρ² ≤ ε is left: what an LU of D leaves, κ(D) ε, once κ(D)² ε < 1.
+#[doc(hidden)]
+#[inline]
+pub fn refine<T: Real, const N: usize>(x: &mut [T; N], dx: &[T; N]) -> bool {
+    for (xi, &d) in x.iter_mut().zip(dx) {
+        *xi += d;
+    }
+    let (size, finite_x) = max_abs_finite(x);
+    let (step, finite_dx) = max_abs_finite(dx);
+    finite_x && finite_dx && step <= T::EPSILON.sqrt() * size
+}
+
 /// (max_i |x_i|, whether every x_i is finite): the convergence test of the Newton loops
 /// `mechanism!` generates. Four running maxima over interleaved entries, so that their
 /// comparisons do not wait on one another: a single running `max` with NaN handling made the
