@@ -67,6 +67,16 @@ macro_rules! bench_mechanism {
         g.bench_function("analysis (q, v, v̇), t → t + 1 ms", |b| {
             b.iter(|| solver.analyze(&m, &mut ws, black_box(&q), black_box(t0 + 1e-3)).expect("converges"))
         });
+        // Inverse dynamics at that point: Dᵀλ = M v̇ − h for the multipliers.
+        let state = solver.analyze(&m, &mut ws, &q, t0 + 1e-3).expect("converges");
+        let mut lambda = [0.0; NC];
+        g.bench_function("inverse dynamics (λ) at the analysed state", |b| {
+            b.iter(|| {
+                mbd::inverse_dynamics(&m, &mut ws, black_box(&state.q), black_box(&state.v), black_box(&state.vd), t0 + 1e-3, &mut lambda)
+                    .expect("a regular D");
+                lambda
+            })
+        });
         g.finish();
     }};
 }

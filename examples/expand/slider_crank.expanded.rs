@@ -1276,6 +1276,99 @@ impl SliderCrank {
         }
         false
     }
+    /// x = D⁻ᵀ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined
+    /// on its residual; false where the refinement does not settle.
+    #[inline]
+    fn transpose_solve(
+        jv: &[f64; 23],
+        l: &[f64; 18],
+        dinv: &[f64; 9],
+        rhs: &[f64; 9],
+        x: &mut [f64; 9],
+    ) -> bool {
+        let mut b = [0f64; 9];
+        use ::mbd::sparse::Elements as _;
+        let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+            .window_mut::<0, 9>();
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+        let [__rhs_0, __rhs_1, __rhs_2, __rhs_3, __rhs_4, __rhs_5, __rhs_6, __rhs_7,
+        __rhs_8] = rhs.window::<0, 9>();
+        (*__b_0) = ((*__jv_0) * (*__rhs_0) + (*__jv_1) * (*__rhs_2));
+        (*__b_1) = ((*__jv_2) * (*__rhs_1) + (*__jv_3) * (*__rhs_2));
+        (*__b_2) = ((*__jv_4) * (*__rhs_0) + (*__jv_5) * (*__rhs_2)
+            + (*__jv_6) * (*__rhs_3) + (*__jv_7) * (*__rhs_5));
+        (*__b_3) = ((*__jv_8) * (*__rhs_1) + (*__jv_9) * (*__rhs_2)
+            + (*__jv_10) * (*__rhs_4) + (*__jv_11) * (*__rhs_5));
+        (*__b_4) = ((*__jv_12) * (*__rhs_3) + (*__jv_13) * (*__rhs_5)
+            + (*__jv_14) * (*__rhs_6));
+        (*__b_5) = ((*__jv_15) * (*__rhs_4) + (*__jv_16) * (*__rhs_5)
+            + (*__jv_17) * (*__rhs_7));
+        (*__b_6) = ((*__jv_18) * (*__rhs_6) + (*__jv_19) * (*__rhs_7)
+            + (*__jv_20) * (*__rhs_8));
+        (*__b_7) = ((*__jv_21) * (*__rhs_8));
+        (*__b_8) = ((*__jv_22) * (*__rhs_2));
+        Self::schur_solve(l, dinv, &mut b);
+        *x = b;
+        let mut w = [0f64; 9];
+        for _ in 0..4 {
+            {
+                let x: &[f64; 9] = x;
+                use ::mbd::sparse::Elements as _;
+                let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                    .window::<0, 23>();
+                let [__rhs_0, __rhs_1, __rhs_2, __rhs_3, __rhs_4, __rhs_5, __rhs_6,
+                __rhs_7, __rhs_8] = rhs.window::<0, 9>();
+                let [__w_0, __w_1, __w_2, __w_3, __w_4, __w_5, __w_6, __w_7, __w_8] = w
+                    .window_mut::<0, 9>();
+                let [__x_0, __x_1, __x_2, __x_3, __x_4, __x_5, __x_6, __x_7, __x_8] = x
+                    .window::<0, 9>();
+                (*__w_0) = (*__rhs_0) - ((*__jv_0) * (*__x_0) + (*__jv_4) * (*__x_2));
+                (*__w_1) = (*__rhs_1) - ((*__jv_2) * (*__x_1) + (*__jv_8) * (*__x_3));
+                (*__w_2) = (*__rhs_2)
+                    - ((*__jv_1) * (*__x_0) + (*__jv_3) * (*__x_1) + (*__jv_5) * (*__x_2)
+                        + (*__jv_9) * (*__x_3) + (*__jv_22) * (*__x_8));
+                (*__w_3) = (*__rhs_3) - ((*__jv_6) * (*__x_2) + (*__jv_12) * (*__x_4));
+                (*__w_4) = (*__rhs_4) - ((*__jv_10) * (*__x_3) + (*__jv_15) * (*__x_5));
+                (*__w_5) = (*__rhs_5)
+                    - ((*__jv_7) * (*__x_2) + (*__jv_11) * (*__x_3)
+                        + (*__jv_13) * (*__x_4) + (*__jv_16) * (*__x_5));
+                (*__w_6) = (*__rhs_6) - ((*__jv_14) * (*__x_4) + (*__jv_18) * (*__x_6));
+                (*__w_7) = (*__rhs_7) - ((*__jv_17) * (*__x_5) + (*__jv_19) * (*__x_6));
+                (*__w_8) = (*__rhs_8) - ((*__jv_20) * (*__x_6) + (*__jv_21) * (*__x_7));
+            }
+            use ::mbd::sparse::Elements as _;
+            let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                .window_mut::<0, 9>();
+            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
+            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
+            let [__w_0, __w_1, __w_2, __w_3, __w_4, __w_5, __w_6, __w_7, __w_8] = w
+                .window::<0, 9>();
+            (*__b_0) = ((*__jv_0) * (*__w_0) + (*__jv_1) * (*__w_2));
+            (*__b_1) = ((*__jv_2) * (*__w_1) + (*__jv_3) * (*__w_2));
+            (*__b_2) = ((*__jv_4) * (*__w_0) + (*__jv_5) * (*__w_2)
+                + (*__jv_6) * (*__w_3) + (*__jv_7) * (*__w_5));
+            (*__b_3) = ((*__jv_8) * (*__w_1) + (*__jv_9) * (*__w_2)
+                + (*__jv_10) * (*__w_4) + (*__jv_11) * (*__w_5));
+            (*__b_4) = ((*__jv_12) * (*__w_3) + (*__jv_13) * (*__w_5)
+                + (*__jv_14) * (*__w_6));
+            (*__b_5) = ((*__jv_15) * (*__w_4) + (*__jv_16) * (*__w_5)
+                + (*__jv_17) * (*__w_7));
+            (*__b_6) = ((*__jv_18) * (*__w_6) + (*__jv_19) * (*__w_7)
+                + (*__jv_20) * (*__w_8));
+            (*__b_7) = ((*__jv_21) * (*__w_8));
+            (*__b_8) = ((*__jv_22) * (*__w_2));
+            Self::schur_solve(l, dinv, &mut b);
+            if ::mbd::sparse::refine(x, &b) {
+                return true;
+            }
+        }
+        false
+    }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
 impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
@@ -3633,6 +3726,78 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             (*__gamma_8) = 0f64;
         }
         Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
+    }
+    #[inline]
+    fn sparse_multipliers(
+        &self,
+        q: &[f64; 9],
+        t: f64,
+        pivot_tolerance: f64,
+        b: &[f64; 9],
+        lambda: &mut [f64; 9],
+    ) -> bool {
+        let mut jv = [0f64; 23];
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
+        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
+        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v81 = (-c_slider);
+        (*__jv_0) = (-1f64);
+        (*__jv_1) = v13;
+        (*__jv_2) = (-1f64);
+        (*__jv_3) = v10;
+        (*__jv_4) = 1f64;
+        (*__jv_5) = v13;
+        (*__jv_6) = (-1f64);
+        (*__jv_7) = v32;
+        (*__jv_8) = 1f64;
+        (*__jv_9) = v10;
+        (*__jv_10) = (-1f64);
+        (*__jv_11) = v29;
+        (*__jv_12) = 1f64;
+        (*__jv_13) = v32;
+        (*__jv_14) = (-1f64);
+        (*__jv_15) = 1f64;
+        (*__jv_16) = v29;
+        (*__jv_17) = (-1f64);
+        (*__jv_18) = s_slider;
+        (*__jv_19) = v81;
+        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_21) = v81;
+        (*__jv_22) = 1f64;
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        if Self::schur_factor(&jv, &[1f64; 9], pivot_tolerance, false, &mut l, &mut dinv)
+            .is_err()
+        {
+            return false;
+        }
+        Self::transpose_solve(&jv, &l, &dinv, b, lambda)
     }
     #[inline]
     fn position_eval(

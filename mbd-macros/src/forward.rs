@@ -489,9 +489,37 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
         }
     };
-    // The runtime calls both only where D is square (a driven mechanism); elsewhere the provided
-    // methods stand, and nothing is generated to type-check.
-    let position_step = if nv == nc { quote!(#position_step #motion_step) } else { quote!() };
+    // Inverse dynamics' multipliers, Dᵀλ = b, over the same factorization: λ = (D Dᵀ)⁻¹ D b,
+    // refined on the residual b − Dᵀλ (`transpose_solve`, below).
+    let multipliers_part = PartSignature {
+        name: "multipliers_jacobian",
+        params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
+        args: quote!(q, t, &mut jv,),
+    };
+    let (multipliers_jacobian, _) = e.body_in_parts(&jacobian_values_outputs(f, "jv"), &multipliers_part);
+    let multipliers_step = quote! {
+        #step_inline
+        fn sparse_multipliers(
+            &self,
+            q: &[#real; #nq_l],
+            t: #real,
+            pivot_tolerance: #real,
+            b: &[#real; #nv_l],
+            lambda: &mut [#real; #nc_l],
+        ) -> bool {
+            let mut jv = [#zero; #nnz_l];
+            #multipliers_jacobian
+            let mut l = [#zero; #nl_l];
+            let mut dinv = [#zero; #nc_l];
+            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                return false;
+            }
+            Self::transpose_solve(&jv, &l, &dinv, b, lambda)
+        }
+    };
+    // The runtime calls these only where D is square (a driven mechanism); elsewhere the
+    // provided methods stand, and nothing is generated to type-check.
+    let position_step = if nv == nc { quote!(#position_step #motion_step #multipliers_step) } else { quote!() };
     // x = Dᵀ(D Dᵀ)⁻¹ b, then up to four refinements x ← x + Dᵀ(D Dᵀ)⁻¹(b − D x) (`sparse::refine`
     // says when to stop): the normal equations square D's condition number, the refinement
     // brings the error back to an LU's.
@@ -510,6 +538,54 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let residual_rows: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(x))).map(|(r, d_x)| quote!(b[#r] = rhs[#r] - #d_x;)).collect();
     let residual_rows = in_functions(&residual_rows, "residual_rows", &[], &real);
     let helper_inline_solve = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
+    // λ = (D Dᵀ)⁻¹ D b, then up to four refinements λ ← λ + (D Dᵀ)⁻¹ D (b − Dᵀλ).
+    let rows_of = |y: &str| -> TokenStream {
+        let y = syn::Ident::new(y, proc_macro2::Span::call_site());
+        let stmts: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(#y))).map(|(r, d_y)| quote!(b[#r] = #d_y;)).collect();
+        in_functions(&stmts, "transpose_rows", &[], &real)
+    };
+    let (rows_of_rhs, rows_of_w) = (rows_of("rhs"), rows_of("w"));
+    let residual_columns: Vec<TokenStream> = cols
+        .iter()
+        .enumerate()
+        .map(|(c, cl)| match transpose_column(&quote!(x), c) {
+            Some(t) => quote!(w[#cl] = rhs[#cl] - #t;),
+            None => quote!(w[#cl] = rhs[#cl];),
+        })
+        .collect();
+    let residual_columns = in_functions(&residual_columns, "residual_columns", &[], &real);
+    let transpose_solve = (nv == nc).then(|| {
+        quote! {
+            /// x = D⁻ᵀ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined
+            /// on its residual; false where the refinement does not settle.
+            #helper_inline_solve
+            fn transpose_solve(
+                jv: &[#real; #nnz_l],
+                l: &[#real; #nl_l],
+                dinv: &[#real; #nc_l],
+                rhs: &[#real; #nv_l],
+                x: &mut [#real; #nc_l],
+            ) -> bool {
+                let mut b = [#zero; #nc_l];
+                #rows_of_rhs
+                Self::schur_solve(l, dinv, &mut b);
+                *x = b;
+                let mut w = [#zero; #nv_l];
+                for _ in 0..4 {
+                    {
+                        let x: &[#real; #nc_l] = x;
+                        #residual_columns
+                    }
+                    #rows_of_w
+                    Self::schur_solve(l, dinv, &mut b);
+                    if ::mbd::sparse::refine(x, &b) {
+                        return true;
+                    }
+                }
+                false
+            }
+        }
+    });
     let constraint_solve = (nv == nc).then(|| {
         quote! {
             /// x = D⁻¹ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined on
@@ -569,6 +645,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
 
         #constraint_solve
+        #transpose_solve
     };
     let impl_block = quote! {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).

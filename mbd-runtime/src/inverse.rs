@@ -109,6 +109,10 @@ pub struct JointReaction<T> {
 /// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
 /// joint's reaction in N and N·m.
 ///
+/// For NV = NC the solve runs over the LDLᵀ of D Dᵀ that `mechanism!` plans at compile time,
+/// λ = (D Dᵀ)⁻¹ D b refined on the residual b − Dᵀλ to an LU's accuracy; where that finds no
+/// pivot or a value that is not finite, the dense LU of Dᵀ takes over and names what failed.
+///
 /// With redundant constraints (NC > NV) the loads are not unique; they are solved over the rows
 /// independent of the rows declared before them (sine of the angle to their span above
 /// [`crate::DEFAULT_RANK_TOLERANCE`]), and each row left out carries none (λ = 0) — the rule
@@ -150,17 +154,23 @@ where
     if let Some(i) = first_non_finite(&base) {
         return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::VELOCITY_NAMES, i) });
     }
-    // Dᵀ λ = b: with NV = NC by the LU of Dᵀ (square: row k is velocity k, column r constraint
-    // r); with redundant rows (NC > NV) over the rows independent of those declared before them,
-    // D_I = R Q (`redundancy::orthogonalize`), λ_I = R⁻ᵀ Q b and λ = 0 on the rows left out —
-    // the rule forward dynamics and statics follow: the dropped row carries no load.
-    let solver = if NV == NC {
+    // Dᵀ λ = b: with NV = NC over the LDLᵀ of D Dᵀ that `mechanism!` plans, refined on the
+    // residual (`Kinematics::sparse_multipliers`), else by the LU of Dᵀ (square: row k is
+    // velocity k, column r constraint r), which names a singular or non-finite D; with redundant
+    // rows (NC > NV) over the rows independent of those declared before them, D_I = R Q
+    // (`redundancy::orthogonalize`), λ_I = R⁻ᵀ Q b and λ = 0 on the rows left out — the rule
+    // forward dynamics and statics follow: the dropped row carries no load.
+    let pivot_tolerance = T::from_f64(INVERSE_PIVOT_TOLERANCE);
+    let sparse = NV == NC && m.sparse_multipliers(q, t, pivot_tolerance, &base, lambda);
+    let solver = if sparse {
+        Solver::Sparse
+    } else if NV == NC {
         for (r, row) in d.iter().enumerate() {
             for (c, &value) in row.iter().enumerate() {
                 dt[c][r] = value;
             }
         }
-        let permutation = lu_factor(dt, T::from_f64(INVERSE_PIVOT_TOLERANCE)).map_err(|e| match e {
+        let permutation = lu_factor(dt, pivot_tolerance).map_err(|e| match e {
             // Column r of Dᵀ is constraint r; the candidate row is a velocity.
             LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
                 t: time,
@@ -180,6 +190,13 @@ where
         Solver::Orthogonal(independent_rows::<T, M, NV, NC>(d, T::from_f64(crate::DEFAULT_RANK_TOLERANCE), basis, r, t)?)
     };
     let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
+        // The same D as the first solve: only a friction load that is not finite fails here,
+        // and its NaN ends the friction iteration below with `NotConverged`.
+        Solver::Sparse => {
+            if !m.sparse_multipliers(q, t, pivot_tolerance, b, lambda) {
+                *lambda = [T::from_f64(f64::NAN); NC];
+            }
+        }
         Solver::Lu(permutation) => {
             let mut x = [T::ZERO; NV];
             x.copy_from_slice(b);
@@ -208,7 +225,9 @@ where
             }
         }
     };
-    solve(&base, lambda);
+    if !sparse {
+        solve(&base, lambda);
+    }
     // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
     // to do for a mechanism without it, whose friction forces are all zero).
     for _ in 0..INVERSE_FRICTION_ITERATIONS {
@@ -239,9 +258,10 @@ where
     })
 }
 
-/// How [`inverse_dynamics`] solves Dᵀ λ = b: the LU of the square Dᵀ, or over D's independent
-/// rows (the flags mark the rows left out).
+/// How [`inverse_dynamics`] solves Dᵀ λ = b: over the planned LDLᵀ of D Dᵀ, by the LU of the
+/// square Dᵀ, or over D's independent rows (the flags mark the rows left out).
 enum Solver<const N: usize, const NC: usize> {
+    Sparse,
     Lu(crate::linalg::Permutation<N>),
     Orthogonal([bool; NC]),
 }

@@ -237,6 +237,18 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
         let _ = (q, t, pivot_tolerance, v, vd);
         false
     }
+    /// A driven mechanism's multipliers (NV = NC, D regular) from Dᵀλ = b, as inverse dynamics
+    /// needs them, over the sparse factorization planned at compile time: λ = (D Dᵀ)⁻¹ D b,
+    /// refined on the residual b − Dᵀλ as [`Kinematics::sparse_velocity_acceleration`] is.
+    /// False — `lambda` unspecified — where a pivot is at most `pivot_tolerance` times its
+    /// diagonal, a value is not finite or the refinement does not settle: inverse dynamics then
+    /// takes the dense LU of Dᵀ, which names what failed. False (the provided method) where
+    /// nothing is generated.
+    #[doc(hidden)]
+    fn sparse_multipliers(&self, q: &[T; NQ], t: T, pivot_tolerance: T, b: &[T; NV], lambda: &mut [T; NC]) -> bool {
+        let _ = (q, t, pivot_tolerance, b, lambda);
+        false
+    }
     /// Φ, D, ν and γ in one evaluation (shared subexpressions computed once).
     #[allow(clippy::too_many_arguments)]
     fn full_eval(&self, q: &[T; NQ], v: &[T; NV], t: T, phi: &mut [T; NC], d: &mut [[T; NV]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]);
