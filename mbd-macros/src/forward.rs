@@ -19,7 +19,9 @@ use crate::emit::INLINE_ROWS as INLINE_SCHUR_ROWS;
 /// `ForwardDynamics` implementation.
 pub struct ForwardCode {
     pub helpers: TokenStream,
-    /// `Kinematics::sparse_position_solve`, for the `Kinematics` implementation.
+    /// `Kinematics::sparse_position_solve`, `sparse_velocity_acceleration` and
+    /// `sparse_multipliers` of a driven mechanism (NV = NC; nothing otherwise), for the
+    /// `Kinematics` implementation.
     pub position_step: TokenStream,
     pub impl_block: TokenStream,
     pub eval_ops: Ops,
@@ -320,304 +322,310 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
     };
 
-    // The kinematic position solve: Newton's iteration with the step −Dᵀ(D Dᵀ)⁻¹Φ over the same
-    // factorization with unit weights (the step is D⁻¹(−Φ) for any weights when D is square and
-    // regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
-    // computed once before it, and D only after Φ's convergence test. A step expected to end the
-    // iteration keeps D and its factors (simplified Newton, the chord method: Φ alone is
-    // evaluated): ‖Φ‖∞ times the last step's contraction, times the safety factor `reuse`, is
-    // within the tolerance.
-    //
-    // Where Φ and D together take more than `PART_NODES` operations, the loop evaluates them
-    // apart, each through `Emitter::body_in_parts` (in methods of bounded size where it is
-    // larger still): one straight-line loop body of Φ and D made the 240-body chain's
-    // `sparse_position_solve` the largest function LLVM compiled, 2.7 times as long as at 120
-    // bodies. Apart, D recomputes what it shares with Φ (the bodies' sines and cosines), and
-    // what depends on t alone is no longer computed once per solve.
-    let phi_outputs = vector_outputs("phi", &f.phi);
-    let jv_outputs = jacobian_values_outputs(f, "jv");
-    let together: Vec<Output> = phi_outputs.iter().chain(&jv_outputs).cloned().collect();
-    let (time_terms, phi_stage, jv_stage) = if e.nodes(&together) > crate::emit::PART_NODES {
-        let phi_part = PartSignature {
-            name: "position_solve_phi",
-            params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l],),
-            args: quote!(q, t, phi,),
+    let inline = crate::emit::inline_hint(nc);
+    // The kinematic solves of a driven mechanism: the runtime calls them only where D is square;
+    // elsewhere the provided methods stand, and nothing is generated to type-check.
+    let (position_step, constraint_solve, transpose_solve) = if nv != nc {
+        (quote!(), None, None)
+    } else {
+        // The kinematic position solve: Newton's iteration with the step −Dᵀ(D Dᵀ)⁻¹Φ over the same
+        // factorization with unit weights (the step is D⁻¹(−Φ) for any weights when D is square and
+        // regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
+        // computed once before it, and D only after Φ's convergence test. A step expected to end the
+        // iteration keeps D and its factors (simplified Newton, the chord method: Φ alone is
+        // evaluated): ‖Φ‖∞ times the last step's contraction, times the safety factor `reuse`, is
+        // within the tolerance.
+        //
+        // Where Φ and D together take more than `PART_NODES` operations, the loop evaluates them
+        // apart, each through `Emitter::body_in_parts` (in methods of bounded size where it is
+        // larger still): one straight-line loop body of Φ and D made the 240-body chain's
+        // `sparse_position_solve` the largest function LLVM compiled, 2.7 times as long as at 120
+        // bodies. Apart, D recomputes what it shares with Φ (the bodies' sines and cosines), and
+        // what depends on t alone is no longer computed once per solve.
+        let phi_outputs = vector_outputs("phi", &f.phi);
+        let jv_outputs = jacobian_values_outputs(f, "jv");
+        let together: Vec<Output> = phi_outputs.iter().chain(&jv_outputs).cloned().collect();
+        let (time_terms, phi_stage, jv_stage) = if e.nodes(&together) > crate::emit::PART_NODES {
+            let phi_part = PartSignature {
+                name: "position_solve_phi",
+                params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l],),
+                args: quote!(q, t, phi,),
+            };
+            let (phi_in_parts, _) = e.body_in_parts(&phi_outputs, &phi_part);
+            let jv_part = PartSignature {
+                name: "position_solve_jacobian",
+                params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
+                args: quote!(q, t, &mut jv,),
+            };
+            let (jv_in_parts, _) = e.body_in_parts(&jv_outputs, &jv_part);
+            (quote!(), phi_in_parts, jv_in_parts)
+        } else {
+            let (time_terms, mut stages) = e.staged(&[&phi_outputs, &jv_outputs]);
+            let jv_stage = stages.pop().expect("two stages");
+            let phi_stage = stages.pop().expect("two stages");
+            (time_terms, phi_stage, jv_stage)
         };
-        let (phi_in_parts, _) = e.body_in_parts(&phi_outputs, &phi_part);
-        let jv_part = PartSignature {
-            name: "position_solve_jacobian",
+        let unit_off = if coupled { quote!(&[#zero; #n_off],) } else { quote!() };
+        let step_columns: Vec<TokenStream> = (0..nv)
+            .filter_map(|c| {
+                let cl = usize_lit(c);
+                transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
+            })
+            .collect();
+        let step_columns = in_functions(&step_columns, "step_columns", &[], &real);
+        let step_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
+        let position_step = quote! {
+            #step_inline
+            #[allow(clippy::too_many_arguments)]
+            fn sparse_position_solve(
+                &self,
+                q: &mut [#real; #nq_l],
+                t: #real,
+                tolerance: #real,
+                pivot_tolerance: #real,
+                max_iterations: u32,
+                reuse: #real,
+                phi: &mut [#real; #nc_l],
+                step: &mut [#real; #nv_l],
+            ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
+                let mut jv = [#zero; #nnz_l];
+                let mut l = [#zero; #nl_l];
+                let mut dinv = [#zero; #nc_l];
+                // The factorizations made (`l` and `dinv` hold factors after the first), and ‖Φ‖∞
+                // where the last step was taken.
+                let mut factored = 0u32;
+                let mut last = #zero;
+                #time_terms
+                let mut iterations = 0u32;
+                loop {
+                    {
+                        let q: &[#real; #nq_l] = q;
+                        #phi_stage
+                        let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
+                        if finite && worst <= tolerance {
+                            return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations, factored));
+                        }
+                        if !finite || iterations >= max_iterations {
+                            return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
+                        }
+                        if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
+                            #jv_stage
+                            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                                return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations, factored));
+                            }
+                            factored += 1;
+                        }
+                        last = worst;
+                        let mut b = *phi;
+                        Self::schur_solve(&l, &dinv, &mut b);
+                        *step = [#zero; #nv_l];
+                        #step_columns
+                    }
+                    if !step.iter().all(|x| x.is_finite()) {
+                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
+                    }
+                    ::mbd::Kinematics::integrate_positions(self, q, step, #one);
+                    iterations += 1;
+                }
+            }
+        };
+
+        // The kinematic velocity and acceleration of a driven mechanism over the same factorization:
+        // D, ν, then γ with the velocity solved, each solve x = Dᵀ(D Dᵀ)⁻¹ b refined on its residual
+        // (`constraint_solve`, below). Where Φ_t vanishes, D v = 0 and v = 0 without a solve.
+        let mut first_outputs = jacobian_values_outputs(f, "jv");
+        if !phi_t_zero {
+            first_outputs.extend(vector_outputs("nu", &f.nu));
+        }
+        let gamma_outputs = vector_outputs("gamma", &f.gamma);
+        let both: Vec<Output> = first_outputs.iter().chain(&gamma_outputs).cloned().collect();
+        let (motion_time_terms, first_stage, gamma_stage) = if e.nodes(&both) > crate::emit::PART_NODES {
+            let first_part = PartSignature {
+                name: "motion_jacobian",
+                params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l], nu: &mut [#real; #nc_l],),
+                args: quote!(q, t, &mut jv, &mut nu,),
+            };
+            let (first_in_parts, _) = e.body_in_parts(&first_outputs, &first_part);
+            let gamma_part = PartSignature {
+                name: "motion_gamma",
+                params: quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l],),
+                args: quote!(q, v, t, &mut gamma,),
+            };
+            let (gamma_in_parts, _) = e.body_in_parts(&gamma_outputs, &gamma_part);
+            (quote!(), first_in_parts, gamma_in_parts)
+        } else {
+            let (time_terms, mut stages) = e.staged(&[&first_outputs, &gamma_outputs]);
+            let gamma_stage = stages.pop().expect("two stages");
+            let first_stage = stages.pop().expect("two stages");
+            (time_terms, first_stage, gamma_stage)
+        };
+        let solve_velocity = if phi_t_zero {
+            quote!(*v = [#zero; #nv_l];)
+        } else {
+            quote! {
+                if !Self::constraint_solve(&jv, &l, &dinv, &nu, v) {
+                    return false;
+                }
+            }
+        };
+        let motion_step = quote! {
+            #step_inline
+            fn sparse_velocity_acceleration(
+                &self,
+                q: &[#real; #nq_l],
+                t: #real,
+                pivot_tolerance: #real,
+                v: &mut [#real; #nv_l],
+                vd: &mut [#real; #nv_l],
+            ) -> bool {
+                let mut jv = [#zero; #nnz_l];
+                let mut nu = [#zero; #nc_l];
+                let mut gamma = [#zero; #nc_l];
+                #motion_time_terms
+                #first_stage
+                let mut l = [#zero; #nl_l];
+                let mut dinv = [#zero; #nc_l];
+                if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                    return false;
+                }
+                #solve_velocity
+                {
+                    let v: &[#real; #nv_l] = v;
+                    #gamma_stage
+                }
+                Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
+            }
+        };
+        // Inverse dynamics' multipliers, Dᵀλ = b, over the same factorization: λ = (D Dᵀ)⁻¹ D b,
+        // refined on the residual b − Dᵀλ (`transpose_solve`, below).
+        let multipliers_part = PartSignature {
+            name: "multipliers_jacobian",
             params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
             args: quote!(q, t, &mut jv,),
         };
-        let (jv_in_parts, _) = e.body_in_parts(&jv_outputs, &jv_part);
-        (quote!(), phi_in_parts, jv_in_parts)
-    } else {
-        let (time_terms, mut stages) = e.staged(&[&phi_outputs, &jv_outputs]);
-        let jv_stage = stages.pop().expect("two stages");
-        let phi_stage = stages.pop().expect("two stages");
-        (time_terms, phi_stage, jv_stage)
-    };
-    let unit_off = if coupled { quote!(&[#zero; #n_off],) } else { quote!() };
-    let step_columns: Vec<TokenStream> = (0..nv)
-        .filter_map(|c| {
-            let cl = usize_lit(c);
-            transpose_column(&quote!(b), c).map(|t| quote!(step[#cl] = -#t;))
-        })
-        .collect();
-    let step_columns = in_functions(&step_columns, "step_columns", &[], &real);
-    let step_inline = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
-    let inline = crate::emit::inline_hint(nc);
-    let position_step = quote! {
-        #step_inline
-        #[allow(clippy::too_many_arguments)]
-        fn sparse_position_solve(
-            &self,
-            q: &mut [#real; #nq_l],
-            t: #real,
-            tolerance: #real,
-            pivot_tolerance: #real,
-            max_iterations: u32,
-            reuse: #real,
-            phi: &mut [#real; #nc_l],
-            step: &mut [#real; #nv_l],
-        ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
-            let mut jv = [#zero; #nnz_l];
-            let mut l = [#zero; #nl_l];
-            let mut dinv = [#zero; #nc_l];
-            // The factorizations made (`l` and `dinv` hold factors after the first), and ‖Φ‖∞
-            // where the last step was taken.
-            let mut factored = 0u32;
-            let mut last = #zero;
-            #time_terms
-            let mut iterations = 0u32;
-            loop {
-                {
-                    let q: &[#real; #nq_l] = q;
-                    #phi_stage
-                    let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
-                    if finite && worst <= tolerance {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations, factored));
-                    }
-                    if !finite || iterations >= max_iterations {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
-                    }
-                    if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
-                        #jv_stage
-                        if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                            return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations, factored));
-                        }
-                        factored += 1;
-                    }
-                    last = worst;
-                    let mut b = *phi;
-                    Self::schur_solve(&l, &dinv, &mut b);
-                    *step = [#zero; #nv_l];
-                    #step_columns
+        let (multipliers_jacobian, _) = e.body_in_parts(&jacobian_values_outputs(f, "jv"), &multipliers_part);
+        let multipliers_step = quote! {
+            #step_inline
+            fn sparse_multipliers(
+                &self,
+                q: &[#real; #nq_l],
+                t: #real,
+                pivot_tolerance: #real,
+                b: &[#real; #nv_l],
+                lambda: &mut [#real; #nc_l],
+            ) -> bool {
+                let mut jv = [#zero; #nnz_l];
+                #multipliers_jacobian
+                let mut l = [#zero; #nl_l];
+                let mut dinv = [#zero; #nc_l];
+                if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                    return false;
                 }
-                if !step.iter().all(|x| x.is_finite()) {
-                    return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
-                }
-                ::mbd::Kinematics::integrate_positions(self, q, step, #one);
-                iterations += 1;
+                Self::transpose_solve(&jv, &l, &dinv, b, lambda)
             }
-        }
-    };
+        };
 
-    // The kinematic velocity and acceleration of a driven mechanism over the same factorization:
-    // D, ν, then γ with the velocity solved, each solve x = Dᵀ(D Dᵀ)⁻¹ b refined on its residual
-    // (`constraint_solve`, below). Where Φ_t vanishes, D v = 0 and v = 0 without a solve.
-    let mut first_outputs = jacobian_values_outputs(f, "jv");
-    if !phi_t_zero {
-        first_outputs.extend(vector_outputs("nu", &f.nu));
-    }
-    let gamma_outputs = vector_outputs("gamma", &f.gamma);
-    let both: Vec<Output> = first_outputs.iter().chain(&gamma_outputs).cloned().collect();
-    let (motion_time_terms, first_stage, gamma_stage) = if e.nodes(&both) > crate::emit::PART_NODES {
-        let first_part = PartSignature {
-            name: "motion_jacobian",
-            params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l], nu: &mut [#real; #nc_l],),
-            args: quote!(q, t, &mut jv, &mut nu,),
+        // x = Dᵀ(D Dᵀ)⁻¹ b, then up to four refinements x ← x + Dᵀ(D Dᵀ)⁻¹(b − D x) (`sparse::refine`
+        // says when to stop): the normal equations square D's condition number, the refinement
+        // brings the error back to an LU's.
+        let columns_into = |x: &str, assign: TokenStream| -> TokenStream {
+            let x = syn::Ident::new(x, proc_macro2::Span::call_site());
+            let stmts: Vec<TokenStream> = (0..nv)
+                .filter_map(|c| {
+                    let cl = usize_lit(c);
+                    transpose_column(&quote!(b), c).map(|t| quote!(#x[#cl] #assign #t;))
+                })
+                .collect();
+            in_functions(&stmts, "solution_columns", &[], &real)
         };
-        let (first_in_parts, _) = e.body_in_parts(&first_outputs, &first_part);
-        let gamma_part = PartSignature {
-            name: "motion_gamma",
-            params: quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l],),
-            args: quote!(q, v, t, &mut gamma,),
+        let solution = columns_into("x", quote!(=));
+        let correction = columns_into("dx", quote!(=));
+        let residual_rows: Vec<TokenStream> =
+            rows.iter().zip(row_times(&quote!(x))).map(|(r, d_x)| quote!(b[#r] = rhs[#r] - #d_x;)).collect();
+        let residual_rows = in_functions(&residual_rows, "residual_rows", &[], &real);
+        let helper_inline_solve = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
+        // λ = (D Dᵀ)⁻¹ D b, then up to four refinements λ ← λ + (D Dᵀ)⁻¹ D (b − Dᵀλ).
+        let rows_of = |y: &str| -> TokenStream {
+            let y = syn::Ident::new(y, proc_macro2::Span::call_site());
+            let stmts: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(#y))).map(|(r, d_y)| quote!(b[#r] = #d_y;)).collect();
+            in_functions(&stmts, "transpose_rows", &[], &real)
         };
-        let (gamma_in_parts, _) = e.body_in_parts(&gamma_outputs, &gamma_part);
-        (quote!(), first_in_parts, gamma_in_parts)
-    } else {
-        let (time_terms, mut stages) = e.staged(&[&first_outputs, &gamma_outputs]);
-        let gamma_stage = stages.pop().expect("two stages");
-        let first_stage = stages.pop().expect("two stages");
-        (time_terms, first_stage, gamma_stage)
-    };
-    let solve_velocity = if phi_t_zero {
-        quote!(*v = [#zero; #nv_l];)
-    } else {
-        quote! {
-            if !Self::constraint_solve(&jv, &l, &dinv, &nu, v) {
-                return false;
-            }
-        }
-    };
-    let motion_step = quote! {
-        #step_inline
-        fn sparse_velocity_acceleration(
-            &self,
-            q: &[#real; #nq_l],
-            t: #real,
-            pivot_tolerance: #real,
-            v: &mut [#real; #nv_l],
-            vd: &mut [#real; #nv_l],
-        ) -> bool {
-            let mut jv = [#zero; #nnz_l];
-            let mut nu = [#zero; #nc_l];
-            let mut gamma = [#zero; #nc_l];
-            #motion_time_terms
-            #first_stage
-            let mut l = [#zero; #nl_l];
-            let mut dinv = [#zero; #nc_l];
-            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                return false;
-            }
-            #solve_velocity
-            {
-                let v: &[#real; #nv_l] = v;
-                #gamma_stage
-            }
-            Self::constraint_solve(&jv, &l, &dinv, &gamma, vd)
-        }
-    };
-    // Inverse dynamics' multipliers, Dᵀλ = b, over the same factorization: λ = (D Dᵀ)⁻¹ D b,
-    // refined on the residual b − Dᵀλ (`transpose_solve`, below).
-    let multipliers_part = PartSignature {
-        name: "multipliers_jacobian",
-        params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
-        args: quote!(q, t, &mut jv,),
-    };
-    let (multipliers_jacobian, _) = e.body_in_parts(&jacobian_values_outputs(f, "jv"), &multipliers_part);
-    let multipliers_step = quote! {
-        #step_inline
-        fn sparse_multipliers(
-            &self,
-            q: &[#real; #nq_l],
-            t: #real,
-            pivot_tolerance: #real,
-            b: &[#real; #nv_l],
-            lambda: &mut [#real; #nc_l],
-        ) -> bool {
-            let mut jv = [#zero; #nnz_l];
-            #multipliers_jacobian
-            let mut l = [#zero; #nl_l];
-            let mut dinv = [#zero; #nc_l];
-            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                return false;
-            }
-            Self::transpose_solve(&jv, &l, &dinv, b, lambda)
-        }
-    };
-    // The runtime calls these only where D is square (a driven mechanism); elsewhere the
-    // provided methods stand, and nothing is generated to type-check.
-    let position_step = if nv == nc { quote!(#position_step #motion_step #multipliers_step) } else { quote!() };
-    // x = Dᵀ(D Dᵀ)⁻¹ b, then up to four refinements x ← x + Dᵀ(D Dᵀ)⁻¹(b − D x) (`sparse::refine`
-    // says when to stop): the normal equations square D's condition number, the refinement
-    // brings the error back to an LU's.
-    let columns_into = |x: &str, assign: TokenStream| -> TokenStream {
-        let x = syn::Ident::new(x, proc_macro2::Span::call_site());
-        let stmts: Vec<TokenStream> = (0..nv)
-            .filter_map(|c| {
-                let cl = usize_lit(c);
-                transpose_column(&quote!(b), c).map(|t| quote!(#x[#cl] #assign #t;))
+        let (rows_of_rhs, rows_of_w) = (rows_of("rhs"), rows_of("w"));
+        let residual_columns: Vec<TokenStream> = cols
+            .iter()
+            .enumerate()
+            .map(|(c, cl)| match transpose_column(&quote!(x), c) {
+                Some(t) => quote!(w[#cl] = rhs[#cl] - #t;),
+                None => quote!(w[#cl] = rhs[#cl];),
             })
             .collect();
-        in_functions(&stmts, "solution_columns", &[], &real)
-    };
-    let solution = columns_into("x", quote!(=));
-    let correction = columns_into("dx", quote!(=));
-    let residual_rows: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(x))).map(|(r, d_x)| quote!(b[#r] = rhs[#r] - #d_x;)).collect();
-    let residual_rows = in_functions(&residual_rows, "residual_rows", &[], &real);
-    let helper_inline_solve = if nc <= INLINE_SCHUR_ROWS { quote!(#[inline]) } else { quote!(#[inline(never)]) };
-    // λ = (D Dᵀ)⁻¹ D b, then up to four refinements λ ← λ + (D Dᵀ)⁻¹ D (b − Dᵀλ).
-    let rows_of = |y: &str| -> TokenStream {
-        let y = syn::Ident::new(y, proc_macro2::Span::call_site());
-        let stmts: Vec<TokenStream> = rows.iter().zip(row_times(&quote!(#y))).map(|(r, d_y)| quote!(b[#r] = #d_y;)).collect();
-        in_functions(&stmts, "transpose_rows", &[], &real)
-    };
-    let (rows_of_rhs, rows_of_w) = (rows_of("rhs"), rows_of("w"));
-    let residual_columns: Vec<TokenStream> = cols
-        .iter()
-        .enumerate()
-        .map(|(c, cl)| match transpose_column(&quote!(x), c) {
-            Some(t) => quote!(w[#cl] = rhs[#cl] - #t;),
-            None => quote!(w[#cl] = rhs[#cl];),
-        })
-        .collect();
-    let residual_columns = in_functions(&residual_columns, "residual_columns", &[], &real);
-    let transpose_solve = (nv == nc).then(|| {
-        quote! {
-            /// x = D⁻ᵀ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined
-            /// on its residual; false where the refinement does not settle.
-            #helper_inline_solve
-            fn transpose_solve(
-                jv: &[#real; #nnz_l],
-                l: &[#real; #nl_l],
-                dinv: &[#real; #nc_l],
-                rhs: &[#real; #nv_l],
-                x: &mut [#real; #nc_l],
-            ) -> bool {
-                let mut b = [#zero; #nc_l];
-                #rows_of_rhs
-                Self::schur_solve(l, dinv, &mut b);
-                *x = b;
-                let mut w = [#zero; #nv_l];
-                for _ in 0..4 {
-                    {
-                        let x: &[#real; #nc_l] = x;
-                        #residual_columns
-                    }
-                    #rows_of_w
+        let residual_columns = in_functions(&residual_columns, "residual_columns", &[], &real);
+        let transpose_solve = {
+            quote! {
+                /// x = D⁻ᵀ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined
+                /// on its residual; false where the refinement does not settle.
+                #helper_inline_solve
+                fn transpose_solve(
+                    jv: &[#real; #nnz_l],
+                    l: &[#real; #nl_l],
+                    dinv: &[#real; #nc_l],
+                    rhs: &[#real; #nv_l],
+                    x: &mut [#real; #nc_l],
+                ) -> bool {
+                    let mut b = [#zero; #nc_l];
+                    #rows_of_rhs
                     Self::schur_solve(l, dinv, &mut b);
-                    if ::mbd::sparse::refine(x, &b) {
-                        return true;
+                    *x = b;
+                    let mut w = [#zero; #nv_l];
+                    for _ in 0..4 {
+                        {
+                            let x: &[#real; #nc_l] = x;
+                            #residual_columns
+                        }
+                        #rows_of_w
+                        Self::schur_solve(l, dinv, &mut b);
+                        if ::mbd::sparse::refine(x, &b) {
+                            return true;
+                        }
                     }
+                    false
                 }
-                false
             }
-        }
-    });
-    let constraint_solve = (nv == nc).then(|| {
-        quote! {
-            /// x = D⁻¹ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined on
-            /// its residual; false where the refinement does not settle.
-            #helper_inline_solve
-            fn constraint_solve(
-                jv: &[#real; #nnz_l],
-                l: &[#real; #nl_l],
-                dinv: &[#real; #nc_l],
-                rhs: &[#real; #nc_l],
-                x: &mut [#real; #nv_l],
-            ) -> bool {
-                let mut b = *rhs;
-                Self::schur_solve(l, dinv, &mut b);
-                *x = [#zero; #nv_l];
-                #solution
-                let mut dx = [#zero; #nv_l];
-                for _ in 0..4 {
-                    {
-                        let x: &[#real; #nv_l] = x;
-                        #residual_rows
-                    }
+        };
+        let constraint_solve = {
+            quote! {
+                /// x = D⁻¹ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined on
+                /// its residual; false where the refinement does not settle.
+                #helper_inline_solve
+                fn constraint_solve(
+                    jv: &[#real; #nnz_l],
+                    l: &[#real; #nl_l],
+                    dinv: &[#real; #nc_l],
+                    rhs: &[#real; #nc_l],
+                    x: &mut [#real; #nv_l],
+                ) -> bool {
+                    let mut b = *rhs;
                     Self::schur_solve(l, dinv, &mut b);
-                    #correction
-                    if ::mbd::sparse::refine(x, &dx) {
-                        return true;
+                    *x = [#zero; #nv_l];
+                    #solution
+                    let mut dx = [#zero; #nv_l];
+                    for _ in 0..4 {
+                        {
+                            let x: &[#real; #nv_l] = x;
+                            #residual_rows
+                        }
+                        Self::schur_solve(l, dinv, &mut b);
+                        #correction
+                        if ::mbd::sparse::refine(x, &dx) {
+                            return true;
+                        }
                     }
+                    false
                 }
-                false
             }
-        }
-    });
+        };
+        (quote!(#position_step #motion_step #multipliers_step), Some(constraint_solve), Some(transpose_solve))
+    };
 
     // Inlined into small mechanisms' solves (a call's cost matters there); kept apart in large
     // ones, where LLVM's optimization of the factor's straight-line, branchy code inlined into

@@ -276,7 +276,8 @@ fn in_parts(stmts: &[TokenStream], part: &Part, emit: impl Fn(&[TokenStream]) ->
 }
 
 /// Minimum-degree ordering of a graph given by adjacency sets (exact elimination-graph degrees;
-/// ties go to the lowest index, so a chain is ordered from its ends and never fills).
+/// ties to the shallowest pivot, then the lowest index, so a chain is ordered from both ends at
+/// once and never fills).
 fn minimum_degree(adjacency: &[BTreeSet<usize>]) -> Vec<usize> {
     // Every row may go at any time: no "multipliers" waiting for their velocities.
     crate::newton::constrained_minimum_degree(adjacency, adjacency.len())

@@ -9,8 +9,8 @@
 //! with D = Φ_q B in velocity space (planar: v = q̇, D = Φ_q), all three over the LDLᵀ of D Dᵀ
 //! that `mechanism!` plans at compile time where D is square (the dense LU of D where that
 //! finds no pivot, and for the separate velocity and acceleration solves); q ⊕ Δv is
-//! [`Kinematics::integrate_positions`] with h = 1. Coordinates are in m and rad, velocities in m/s and rad/s, accelerations in m/s² and
-//! rad/s², times in s. Assembly ([`KinematicSolver::assemble`]) also handles DOF > 0 with
+//! [`Kinematics::integrate_positions`] with h = 1. Coordinates are in m and rad, velocities in
+//! m/s and rad/s, accelerations in m/s² and rad/s², times in s. Assembly ([`KinematicSolver::assemble`]) also handles DOF > 0 with
 //! minimum-norm Newton steps.
 //!
 //! Nothing here allocates. D (NC × NV) and, for minimum-norm steps, D Dᵀ (NC × NC) live in the

@@ -132,8 +132,9 @@ impl<T, const N: usize> Elements<T, N> for [T; N] {
 }
 
 /// x ← x + Δx, one step of iterative refinement in the kinematic velocity and acceleration
-/// solves `mechanism!` generates (x = Dᵀ(D Dᵀ)⁻¹ b through the planned LDLᵀ of D Dᵀ, whose
-/// relative error is about κ(D)² ε, refined on the residual b − D x): true when the step was
+/// solves and inverse dynamics' multipliers that `mechanism!` generates (x = Dᵀ(D Dᵀ)⁻¹ b or
+/// λ = (D Dᵀ)⁻¹ D b through the planned LDLᵀ of D Dᵀ, whose relative error is about κ(D)² ε,
+/// refined on the residual b − D x or b − Dᵀλ): true when the step was
 /// small enough to end the refinement, ‖Δx‖∞ ≤ √ε ‖x‖∞ with x and Δx finite. A step of
 /// relative size ρ measures the error it corrects, and the solve that made it errs by about ρ
 /// of itself, so about ρ² ≤ ε is left: what an LU of D leaves, κ(D) ε, once κ(D)² ε < 1.
