@@ -3737,59 +3737,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         lambda: &mut [f64; 9],
     ) -> bool {
         let mut jv = [0f64; 23];
-        let (
-            v5,
-            s_crank,
-            c_crank,
-            v10,
-            v13,
-            v24,
-            s_rod,
-            c_rod,
-            v29,
-            v32,
-            s_slider,
-            c_slider,
-            v81,
-        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
-        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
-        __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
-        __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
-        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
-        v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
-        v10 = (v5 * c_crank);
-        v13 = (-(v5 * s_crank));
-        v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
-        v29 = (v24 * c_rod);
-        v32 = (-(v24 * s_rod));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
-        v81 = (-c_slider);
-        (*__jv_0) = (-1f64);
-        (*__jv_1) = v13;
-        (*__jv_2) = (-1f64);
-        (*__jv_3) = v10;
-        (*__jv_4) = 1f64;
-        (*__jv_5) = v13;
-        (*__jv_6) = (-1f64);
-        (*__jv_7) = v32;
-        (*__jv_8) = 1f64;
-        (*__jv_9) = v10;
-        (*__jv_10) = (-1f64);
-        (*__jv_11) = v29;
-        (*__jv_12) = 1f64;
-        (*__jv_13) = v32;
-        (*__jv_14) = (-1f64);
-        (*__jv_15) = 1f64;
-        (*__jv_16) = v29;
-        (*__jv_17) = (-1f64);
-        (*__jv_18) = s_slider;
-        (*__jv_19) = v81;
-        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
-        (*__jv_21) = v81;
-        (*__jv_22) = 1f64;
+        self.jacobian_values(q, t, &mut jv);
         let mut l = [0f64; 18];
         let mut dinv = [0f64; 9];
         if Self::schur_factor(&jv, &[1f64; 9], pivot_tolerance, false, &mut l, &mut dinv)

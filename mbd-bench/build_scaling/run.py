@@ -2,6 +2,7 @@
 """Build time and peak memory of a user's crate holding one mechanism of N bodies.
 
     python3 mbd-bench/build_scaling/run.py            # N = 10, 30, 60, 120, 240
+    python3 mbd-bench/build_scaling/run.py --driven   # the kinematic user's crate, below
 
 For each N it writes a crate under target/build-scaling/ whose binary declares a pendulum chain
 of N links with a torsion spring at every pin, assembles it and simulates it with RK4, DOPRI5,
@@ -9,6 +10,10 @@ DOP853 and generalized-α, and solves its statics — every solver instantiated,
 program would — then times `cargo build --release` of that binary alone (its dependencies built
 beforehand) and reads the peak resident memory of the largest process of that build (rustc).
 Prints a markdown table. Targets (issue 11): at most 30 s and 1 GB at 120 bodies, no cliff.
+
+With --driven the chain has every joint angle driven (NV = NC) and no springs, and the binary
+runs a kinematic sweep of 200 points and inverse dynamics at each, as a kinematic user's
+program would; it also prints the microseconds per point of each, run once after the build.
 """
 import os
 import pathlib
@@ -50,26 +55,67 @@ def chain(n):
     return "\n".join(lines)
 
 
+def driven_chain(n):
+    lines = ["use mbd::prelude::*;", "", "mechanism! {", f"    /// A chain of {n} links, every joint angle driven.", "    pub Chain {",
+             "        gravity [0.0, -9.81];"]
+    for i in range(n):
+        lines.append(f"        body l{i} {{ mass: 0.1, inertia: 8.3333e-5, at: [{0.05 + 0.1 * i:.2f}, 0.0, 0.0] }}")
+    lines.append("        revolute ground[0.0, 0.0] ~ l0[-0.05, 0.0];")
+    lines.append("        drive l0.phi = 0.1 * sin(t);")
+    for i in range(1, n):
+        lines.append(f"        revolute l{i - 1}[0.05, 0.0] ~ l{i}[-0.05, 0.0];")
+        lines.append(f"        drive angle(l{i - 1}, l{i}) = 0.1 * sin(t + {i}.0);")
+    lines += ["    }", "}", "", """fn main() {
+    let m = Chain::default();
+    let mut ws = Chain::workspace();
+    let mut q = m.initial_positions();
+    let solver = KinematicSolver::default();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let times: Vec<f64> = (0..200).map(|k| k as f64 * 1e-3).collect();
+    let mut states = Vec::new();
+    let start = std::time::Instant::now();
+    solver.sweep(&m, &mut ws, &mut q, &times, |t, q, v, vd| states.push((t, *q, *v, *vd))).expect("sweep");
+    let sweep = start.elapsed().as_secs_f64() / 200.0 * 1e6;
+    let mut lambda = [0.0; Chain::NC];
+    let start = std::time::Instant::now();
+    for (t, q, v, vd) in &states {
+        inverse_dynamics(&m, &mut ws, q, v, vd, *t, &mut lambda).expect("inverse dynamics");
+    }
+    println!("{sweep:.1} {:.1}", start.elapsed().as_secs_f64() / 200.0 * 1e6);
+}
+"""]
+    return "\n".join(lines)
+
+
 def main():
     if sys.argv[1:2] == ["--measure"]:
         return measure(int(sys.argv[2]))
-    sizes = [int(a) for a in sys.argv[1:]] or [10, 30, 60, 120, 240]
+    driven = "--driven" in sys.argv[1:]
+    sizes = [int(a) for a in sys.argv[1:] if a != "--driven"] or [10, 30, 60, 120, 240]
     (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
     (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
                                       f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
     for n in sizes:
-        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(chain(n))
+        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(driven_chain(n) if driven else chain(n))
     env = dict(os.environ, CARGO_TARGET_DIR=str(CRATE / "target"))
     # Dependencies first (mbd, nalgebra, the macro crate), so each timing is the mechanism's crate alone.
     (CRATE / "src" / "bin" / "dependencies.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
     subprocess.run(["cargo", "build", "--release", "--bin", "dependencies"], cwd=CRATE, env=env, check=True)
-    print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
+    if driven:
+        print("| bodies | release build (s) | peak memory (MB) | sweep (µs/point) | inverse dynamics (µs/point) |\n|---|---|---|---|---|")
+    else:
+        print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
     for n in sizes:
         (CRATE / "src" / "bin" / f"chain{n}.rs").touch()
         # In a process of its own, so that its children's peak memory is this build's alone.
         out = subprocess.run([sys.executable, __file__, "--measure", str(n)], env=env, check=True, capture_output=True, text=True)
         seconds, peak_kb = out.stdout.split()
-        print(f"| {n} | {float(seconds):.1f} | {int(peak_kb) / 1024:.0f} |", flush=True)
+        row = f"| {n} | {float(seconds):.1f} | {int(peak_kb) / 1024:.0f} |"
+        if driven:
+            run = subprocess.run([str(CRATE / "target" / "release" / f"chain{n}")], check=True, capture_output=True, text=True)
+            sweep, inverse = run.stdout.split()
+            row += f" {sweep} | {inverse} |"
+        print(row, flush=True)
 
 
 def measure(n):

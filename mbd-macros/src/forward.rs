@@ -439,20 +439,11 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         }
         let gamma_outputs = vector_outputs("gamma", &f.gamma);
         let both: Vec<Output> = first_outputs.iter().chain(&gamma_outputs).cloned().collect();
+        // Large: the `Kinematics` methods that evaluate them already (in parts), called; parts
+        // of their own would recompute the same and only add to the build.
         let (motion_time_terms, first_stage, gamma_stage) = if e.nodes(&both) > crate::emit::PART_NODES {
-            let first_part = PartSignature {
-                name: "motion_jacobian",
-                params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l], nu: &mut [#real; #nc_l],),
-                args: quote!(q, t, &mut jv, &mut nu,),
-            };
-            let (first_in_parts, _) = e.body_in_parts(&first_outputs, &first_part);
-            let gamma_part = PartSignature {
-                name: "motion_gamma",
-                params: quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l],),
-                args: quote!(q, v, t, &mut gamma,),
-            };
-            let (gamma_in_parts, _) = e.body_in_parts(&gamma_outputs, &gamma_part);
-            (quote!(), first_in_parts, gamma_in_parts)
+            let nu_call = (!phi_t_zero).then(|| quote!(::mbd::Kinematics::velocity_rhs(self, q, t, &mut nu);));
+            (quote!(), quote!(self.jacobian_values(q, t, &mut jv); #nu_call), quote!(::mbd::Kinematics::gamma(self, q, v, t, &mut gamma);))
         } else {
             let (time_terms, mut stages) = e.staged(&[&first_outputs, &gamma_outputs]);
             let gamma_stage = stages.pop().expect("two stages");
@@ -497,13 +488,8 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             }
         };
         // Inverse dynamics' multipliers, Dᵀλ = b, over the same factorization: λ = (D Dᵀ)⁻¹ D b,
-        // refined on the residual b − Dᵀλ (`transpose_solve`, below).
-        let multipliers_part = PartSignature {
-            name: "multipliers_jacobian",
-            params: quote!(q: &[#real; #nq_l], t: #real, jv: &mut [#real; #nnz_l],),
-            args: quote!(q, t, &mut jv,),
-        };
-        let (multipliers_jacobian, _) = e.body_in_parts(&jacobian_values_outputs(f, "jv"), &multipliers_part);
+        // refined on the residual b − Dᵀλ (`transpose_solve`, below); D's non-zeros by the
+        // `Kinematics` method.
         let multipliers_step = quote! {
             #step_inline
             fn sparse_multipliers(
@@ -515,7 +501,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 lambda: &mut [#real; #nc_l],
             ) -> bool {
                 let mut jv = [#zero; #nnz_l];
-                #multipliers_jacobian
+                self.jacobian_values(q, t, &mut jv);
                 let mut l = [#zero; #nl_l];
                 let mut dinv = [#zero; #nc_l];
                 if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
