@@ -26,16 +26,24 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 CRATE = ROOT / "target" / "build-scaling"
 
 
-def chain(n):
-    lines = ["use mbd::prelude::*;", "", "mechanism! {", f"    /// A pendulum chain of {n} links with torsion springs.", "    pub Chain {",
-             "        gravity [0.0, -9.81];"]
+def mechanism(n, doc, first, at_pin):
+    """`mechanism! { Chain }` of n links of 0.1 m pinned end to end and to the ground, with the
+    statement `first` after the ground pin and `at_pin(i)` after the pin of links i - 1 and i."""
+    lines = ["use mbd::prelude::*;", "", "mechanism! {", f"    /// {doc}", "    pub Chain {", "        gravity [0.0, -9.81];"]
     for i in range(n):
         lines.append(f"        body l{i} {{ mass: 0.1, inertia: 8.3333e-5, at: [{0.05 + 0.1 * i:.2f}, 0.0, 0.0] }}")
     lines.append("        revolute ground[0.0, 0.0] ~ l0[-0.05, 0.0];")
+    lines += [first] if first else []
     for i in range(1, n):
         lines.append(f"        revolute l{i - 1}[0.05, 0.0] ~ l{i}[-0.05, 0.0];")
-        lines.append(f"        rotational_spring l{i - 1} ~ l{i} {{ k: 1.0, angle: 0.0, c: 0.01 }};")
-    lines += ["    }", "}", "", """fn main() {
+        lines.append(at_pin(i))
+    return lines + ["    }", "}", ""]
+
+
+def chain(n):
+    lines = mechanism(n, f"A pendulum chain of {n} links with torsion springs.", None,
+                      lambda i: f"        rotational_spring l{i - 1} ~ l{i} {{ k: 1.0, angle: 0.0, c: 0.01 }};")
+    lines += ["""fn main() {
     let m = Chain::default();
     let mut ws = Chain::workspace();
     let mut q = m.initial_positions();
@@ -56,16 +64,9 @@ def chain(n):
 
 
 def driven_chain(n):
-    lines = ["use mbd::prelude::*;", "", "mechanism! {", f"    /// A chain of {n} links, every joint angle driven.", "    pub Chain {",
-             "        gravity [0.0, -9.81];"]
-    for i in range(n):
-        lines.append(f"        body l{i} {{ mass: 0.1, inertia: 8.3333e-5, at: [{0.05 + 0.1 * i:.2f}, 0.0, 0.0] }}")
-    lines.append("        revolute ground[0.0, 0.0] ~ l0[-0.05, 0.0];")
-    lines.append("        drive l0.phi = 0.1 * sin(t);")
-    for i in range(1, n):
-        lines.append(f"        revolute l{i - 1}[0.05, 0.0] ~ l{i}[-0.05, 0.0];")
-        lines.append(f"        drive angle(l{i - 1}, l{i}) = 0.1 * sin(t + {i}.0);")
-    lines += ["    }", "}", "", """fn main() {
+    lines = mechanism(n, f"A chain of {n} links, every joint angle driven.", "        drive l0.phi = 0.1 * sin(t);",
+                      lambda i: f"        drive angle(l{i - 1}, l{i}) = 0.1 * sin(t + {i}.0);")
+    lines += ["""fn main() {
     let m = Chain::default();
     let mut ws = Chain::workspace();
     let mut q = m.initial_positions();
