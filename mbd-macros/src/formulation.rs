@@ -296,6 +296,7 @@ pub fn formulate(model: &Model) -> Formulation {
         }
     }
 
+    b.g.forget_partials();
     Formulation {
         nc: phi.len(),
         row_names,
@@ -397,10 +398,8 @@ fn sparse_derivative(
     for (r, &row) in rows.iter().enumerate() {
         let mut cols = BTreeSet::new();
         collect_vars(g, row, &mut cols, pick);
-        let mut memo = HashMap::new();
         for c in cols {
-            memo.clear();
-            let d = g.diff(row, var(c), &mut memo);
+            let d = g.partial(row, var(c));
             if !g.is_zero(d) {
                 out.push((r, c as usize, d));
             }

@@ -297,14 +297,7 @@ impl<'m> Builder<'m> {
     pub fn gradient(&mut self, s: Id) -> Vec<(usize, Id)> {
         let mut cols = BTreeSet::new();
         collect_vars(&self.g, s, &mut cols, |v| if let Var::Q(i) = v { Some(i) } else { None });
-        let mut memo = HashMap::new();
-        let partials: Vec<(usize, Id)> = cols
-            .into_iter()
-            .map(|c| {
-                memo.clear();
-                (c as usize, self.g.diff(s, Var::Q(c), &mut memo))
-            })
-            .collect();
+        let partials: Vec<(usize, Id)> = cols.into_iter().map(|c| (c as usize, self.g.partial(s, Var::Q(c)))).collect();
         match self.coordinates {
             Coordinates::PlanarBody => partials,
             Coordinates::SpatialBody => self.through_velocity_map(partials),

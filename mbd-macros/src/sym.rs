@@ -134,6 +134,10 @@ impl Cmp {
 pub struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, Id>,
+    /// ∂node/∂v already taken, by v ([`Graph::partial`]): the graph only grows, so a node's
+    /// partial never changes, and the rows of a Jacobian, of ∂h/∂q and of each force element's
+    /// terms alone share most of theirs.
+    partials: HashMap<Var, HashMap<Id, Id>>,
 }
 
 impl Graph {
@@ -582,6 +586,19 @@ impl Graph {
     pub fn diff(&mut self, root: Id, v: Var, memo: &mut HashMap<Id, Id>) -> Id {
         let one = self.num(1.0);
         self.directional(root, &|w| (w == v).then_some(one), memo)
+    }
+
+    /// ∂root/∂v, remembering the partial of every node it passes for the next call by v.
+    pub fn partial(&mut self, root: Id, v: Var) -> Id {
+        let mut memo = self.partials.remove(&v).unwrap_or_default();
+        let d = self.diff(root, v, &mut memo);
+        self.partials.insert(v, memo);
+        d
+    }
+
+    /// Forgets the partials [`Graph::partial`] remembered (their memory, once no more are taken).
+    pub fn forget_partials(&mut self) {
+        self.partials = HashMap::new();
     }
 
     /// Evaluates a node for given variable values.
