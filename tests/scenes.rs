@@ -22,6 +22,9 @@ mechanism! {
         torque motor: crank = 1.5;
         scene Frictionless without friction;
         scene Bare without return_spring, gravity, friction;
+        scene OnlySpring without gravity, friction, motor;
+        scene OnlyGravity without return_spring, friction, motor;
+        scene Unloaded without return_spring, gravity, friction, motor;
     }
 }
 
@@ -66,6 +69,39 @@ fn a_scene_declares_and_generates_only_what_it_keeps() {
         assert!(bare < base, "{f}: {bare} ≥ {base}");
     }
     assert_eq!(ops(Press::OP_COUNTS, "constraints"), ops(Bare::OP_COUNTS, "constraints"));
+}
+
+/// The force functions' operations of a scene keeping one element, or none.
+fn force_ops(counts: &[OpCount]) -> [u32; 3] {
+    ["forces", "forces_q", "forces_v"].map(|f| ops(counts, f))
+}
+
+/// What an element costs alone (`ForceInfo::op_counts`) is what a scene keeping only it
+/// generates, and the base (`BASE_FORCE_OP_COUNTS`) what a scene keeping none generates: in the
+/// plane, where the base is empty, and in space, where it is the gyroscopic terms ω × Jω.
+#[test]
+fn an_element_alone_costs_what_a_scene_keeping_only_it_generates() {
+    let alone = |elements: &[ForceInfo], name: &str| {
+        force_ops(elements.iter().find(|e| e.name == name).unwrap_or_else(|| panic!("no element {name}")).op_counts)
+    };
+    let cases = [
+        ("return_spring", alone(Press::FORCE_ELEMENTS, "return_spring"), force_ops(OnlySpring::OP_COUNTS)),
+        ("gravity", alone(Press::FORCE_ELEMENTS, "gravity"), force_ops(OnlyGravity::OP_COUNTS)),
+        ("motor", alone(Press::FORCE_ELEMENTS, "motor"), force_ops(Bare::OP_COUNTS)),
+        ("(none)", force_ops(Press::BASE_FORCE_OP_COUNTS), force_ops(Unloaded::OP_COUNTS)),
+        ("gravity in space", alone(SpatialDriven::FORCE_ELEMENTS, "gravity"), force_ops(SpatialDriven::OP_COUNTS)),
+        ("e_lift", alone(SpatialActuated::FORCE_ELEMENTS, "e_lift"), force_ops(SpatialLifted::OP_COUNTS)),
+        ("(none) in space", force_ops(SpatialActuated::BASE_FORCE_OP_COUNTS), force_ops(SpatialWeightless::OP_COUNTS)),
+    ];
+    for (name, alone, scene) in cases {
+        eprintln!("{name}: {alone:?} operations (forces, forces_q, forces_v) alone, {scene:?} in its scene");
+        assert_eq!(alone, scene, "{name}");
+    }
+    // Each costs something above its base: the spring in all three functions (its damping in
+    // forces_v), gravity where g is a parameter (m g), and in space the gyroscopic terms.
+    assert!(alone(Press::FORCE_ELEMENTS, "return_spring").iter().all(|&n| n > 0));
+    assert!(alone(Press::FORCE_ELEMENTS, "gravity")[0] > 0);
+    assert!(force_ops(SpatialWeightless::OP_COUNTS)[0] > 0);
 }
 
 /// A scene follows the base's motion with the effects it leaves out made inert (a spring of
@@ -161,6 +197,8 @@ mechanism! {
         drive e_lift: sleeve.stroke = 0.1 * t * t;
         drive f_rise: f.z = 0.5 + 0.2 * sin(2.0 * t);
         scene SpatialActuated actuating e_turn, e_lift, f_rise;
+        scene SpatialWeightless without gravity;
+        scene SpatialLifted without gravity actuating e_lift;
     }
 }
 

@@ -571,6 +571,29 @@ impl ::mbd::Mechanism for SliderCrank {
         },
     ];
     const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[];
+    const BASE_FORCE_OP_COUNTS: &'static [::mbd::OpCount] = &[
+        ::mbd::OpCount {
+            function: "forces",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "forces_q",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+        ::mbd::OpCount {
+            function: "forces_v",
+            add: 0u32,
+            mul: 0u32,
+            div: 0u32,
+            call: 0u32,
+        },
+    ];
     const EFFECTS: &'static [&'static str] = &[];
     const CONSTRAINT_UNITS: &'static [&'static str] = &[
         "N",

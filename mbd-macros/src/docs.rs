@@ -4,6 +4,7 @@
 //! multiplier, which the runtime's CSV headers read from `Mechanism::CONSTRAINT_UNITS`.
 use std::fmt::Write;
 
+use crate::emit::Ops;
 use crate::formulation::Formulation;
 use crate::model::{BodyRef, Coord, Model, Space, Vel};
 
@@ -35,7 +36,10 @@ fn velocity_unit(v: Vel) -> &'static str {
 }
 
 /// The tables of the type's documentation, as markdown (one `#[doc]` string).
-pub fn tables(m: &Model, f: &Formulation) -> String {
+/// `force_ops`: the operations of `forces`, `forces_q` and `forces_v` with no element, and with
+/// each element alone (in the order of `f.force_velocities`).
+pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>)) -> String {
+    let (base, alone) = force_ops;
     let name = &m.name;
     let mut out = String::new();
     let w = &mut out;
@@ -111,15 +115,23 @@ pub fn tables(m: &Model, f: &Formulation) -> String {
         }
     }
     if !f.force_velocities.is_empty() {
-        let _ = writeln!(w, "\n# Force elements\n\nIn the order of `FORCE_ELEMENTS`.\n");
-        let _ = writeln!(w, "| element | velocities it acts on |\n|---|---|");
-        for (element, velocities) in &f.force_velocities {
+        let _ = writeln!(
+            w,
+            "\n# Force elements\n\nIn the order of `FORCE_ELEMENTS`. Its operations alone: what `forces`, `forces_q` and \
+             `forces_v` would count above the mechanism's base (no element: {}, {} and {}) were it the only element.\n",
+            base[0].total(),
+            base[1].total(),
+            base[2].total()
+        );
+        let _ = writeln!(w, "| element | velocities it acts on | its operations alone |\n|---|---|---|");
+        for ((element, velocities), ops) in f.force_velocities.iter().zip(alone) {
             let list = if velocities.len() > 12 {
                 format!("{} of them", velocities.len())
             } else {
                 velocities.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")
             };
-            let _ = writeln!(w, "| `{element}` | {list} |");
+            let cost: Vec<String> = ops.iter().zip(base).map(|(o, b)| o.total().saturating_sub(b.total()).to_string()).collect();
+            let _ = writeln!(w, "| `{element}` | {list} | {} |", cost.join(", "));
         }
     }
     out

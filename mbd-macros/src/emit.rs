@@ -26,6 +26,13 @@ pub struct Ops {
     pub call: u32,
 }
 
+impl Ops {
+    /// All operations together.
+    pub fn total(&self) -> u32 {
+        self.add + self.mul + self.div + self.call
+    }
+}
+
 /// Where an output goes: an lvalue expression such as `phi[3]` or `d[2][5]`.
 #[derive(Clone)]
 pub struct Output {

@@ -360,6 +360,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     };
     let positions_code = position_updates(m, &e);
     let named = named_items(m, &f, &e);
+    // What h, ∂h/∂q and ∂h/∂v cost with no element, and with each element alone.
+    let alone = |t: &crate::formulation::ForceTerms| -> [Ops; 3] {
+        [e.body(&vector_outputs("h", &t.h)).1, e.body(&matrix_outputs("dh", &t.h_q)).1, e.body(&matrix_outputs("dh", &t.h_qd)).1]
+    };
+    let force_ops = (alone(&f.base_forces), f.alone_forces.iter().map(alone).collect::<Vec<_>>());
     let (h_body, h_ops) = e.body(&vector_outputs("h", &f.h));
     let (h_q_body, h_q_ops) = e.body(&matrix_outputs("dh", &f.h_q));
     let (h_v_body, h_v_ops) = e.body(&matrix_outputs("dh", &f.h_qd));
@@ -484,9 +489,15 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             effects.push(element.kind.effect());
         }
     }
-    let force_elements = f.force_velocities.iter().map(|(name, velocities)| {
+    let force_counts = |counts: &[Ops; 3]| {
+        let counts = ["forces", "forces_q", "forces_v"].iter().zip(counts).map(|(name, &ops)| op_count(name, ops));
+        quote!(&[#(#counts),*])
+    };
+    let base_force_counts = force_counts(&force_ops.0);
+    let force_elements = f.force_velocities.iter().zip(&force_ops.1).map(|((name, velocities), alone)| {
         let velocities = velocities.iter().map(|&i| i as u16);
-        quote!(::mbd::ForceInfo { name: #name, velocities: &[#(#velocities),*] })
+        let counts = force_counts(alone);
+        quote!(::mbd::ForceInfo { name: #name, velocities: &[#(#velocities),*], op_counts: #counts })
     });
     let (v0_body, _) = e.body(&vector_outputs("v", &f.qd0));
 
@@ -518,7 +529,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
     let row_names = &f.row_names;
     let row_units = f.row_names.iter().map(|r| crate::docs::multiplier_unit(r));
-    let tables = crate::docs::tables(m, &f);
+    let tables = crate::docs::tables(m, &f, &force_ops);
     let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
     let pattern_tokens = pattern.iter().map(|&(r, c)| {
@@ -662,6 +673,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const OP_COUNTS: &'static [::mbd::OpCount] = &[#(#op_counts),*];
             const JOINTS: &'static [::mbd::JointInfo] = &[#(#joints),*];
             const FORCE_ELEMENTS: &'static [::mbd::ForceInfo] = &[#(#force_elements),*];
+            const BASE_FORCE_OP_COUNTS: &'static [::mbd::OpCount] = #base_force_counts;
             const EFFECTS: &'static [&'static str] = &[#(#effects),*];
             const CONSTRAINT_UNITS: &'static [&'static str] = &[#(#row_units),*];
             // the trait documents it; the type's page would show the whole JSON text

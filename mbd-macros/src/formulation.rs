@@ -14,6 +14,13 @@ use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
 /// The symbolic equations of one mechanism.
+/// h and its structural derivatives ∂h/∂q and ∂h/∂q̇ as (row, column, node).
+pub struct ForceTerms {
+    pub h: Vec<Id>,
+    pub h_q: Vec<(usize, usize, Id)>,
+    pub h_qd: Vec<(usize, usize, Id)>,
+}
+
 pub struct Formulation {
     pub graph: Graph,
     pub nq: usize,
@@ -49,6 +56,12 @@ pub struct Formulation {
     /// Each force element (gravity first, as `"gravity"`) with the velocities its generalized
     /// force (or friction force) structurally reaches, in declaration order.
     pub force_velocities: Vec<(String, Vec<usize>)>,
+    /// h and its derivatives with no force element and no gravity: nothing, or a spatial
+    /// mechanism's gyroscopic terms.
+    pub base_forces: ForceTerms,
+    /// h and its derivatives were each element (in the order of `force_velocities`) the only
+    /// one: the base's terms and its own, built exactly as a scene keeping only it builds them.
+    pub alone_forces: Vec<ForceTerms>,
     /// Structural non-zeros of ∂h/∂q and ∂h/∂q̇ as (row, column, node).
     pub h_q: Vec<(usize, usize, Id)>,
     pub h_qd: Vec<(usize, usize, Id)>,
@@ -162,6 +175,7 @@ pub fn formulate(model: &Model) -> Formulation {
     if b.coordinates == Coordinates::SpatialBody {
         gyroscopic(&mut b, &mut out.h);
     }
+    let base_h = out.h.clone();
     if let Some(g) = &model.gravity {
         gravity::apply(&mut b, g, &mut out);
     }
@@ -170,15 +184,27 @@ pub fn formulate(model: &Model) -> Formulation {
         element.kind.apply(&mut b, &mut out);
         switch_names.resize(out.switches.len(), element.name.clone());
     }
-    // Which velocities each element's generalized force reaches (structurally), for naming the
-    // element behind a NaN force at run time (`Mechanism::FORCE_ELEMENTS`). Applying an element
-    // again only revisits nodes the graph already holds.
+    // Each element alone on the base: which velocities its generalized force reaches
+    // (structurally), for naming the element behind a NaN force at run time
+    // (`Mechanism::FORCE_ELEMENTS`), and what h and its derivatives would cost were it the only
+    // one (`ForceInfo::op_counts`). Applying an element again only revisits nodes the graph
+    // already holds.
+    let terms = |b: &mut Builder, h: Vec<Id>| {
+        let h_q = tangent(b, &h);
+        let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+        ForceTerms { h, h_q, h_qd }
+    };
+    let base_forces = terms(&mut b, base_h.clone());
     let mut force_velocities = Vec::new();
+    let mut alone_forces = Vec::new();
     let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
         let mut alone = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
         apply(b, &mut alone);
         let velocities: Vec<usize> = (0..nv).filter(|&i| !b.g.is_zero(alone.h[i]) || !b.g.is_zero(alone.friction[i])).collect();
         force_velocities.push((name.to_string(), velocities));
+        let mut on_base = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
+        apply(b, &mut on_base);
+        alone_forces.push(terms(b, on_base.h));
     };
     if let Some(g) = &model.gravity {
         reach(&mut b, "gravity", &|b, out| gravity::apply(b, g, out));
@@ -315,6 +341,8 @@ pub fn formulate(model: &Model) -> Formulation {
         mass_inverse,
         h,
         force_velocities,
+        base_forces,
+        alone_forces,
         h_q,
         h_qd,
         inputs,

@@ -81,6 +81,11 @@ pub struct ForceInfo {
     /// The velocities (indices into [`Mechanism::VELOCITY_NAMES`]) its generalized force or
     /// friction force is structurally non-zero on.
     pub velocities: &'static [u16],
+    /// Operation counts of `forces`, `forces_q` and `forces_v` were this element the
+    /// mechanism's only one, as a scene leaving out every other element and gravity (or every
+    /// element, for gravity) generates them: [`Mechanism::BASE_FORCE_OP_COUNTS`] and its own
+    /// terms. What it costs above that base is its cost alone.
+    pub op_counts: &'static [OpCount],
 }
 
 /// What every generated mechanism says about itself: sizes, names, sparsity, model description.
@@ -123,6 +128,16 @@ pub trait Mechanism {
     const JOINTS: &'static [JointInfo] = &[];
     /// Its force elements, gravity first, then in declaration order.
     const FORCE_ELEMENTS: &'static [ForceInfo] = &[];
+    /// Operation counts of `forces`, `forces_q` and `forces_v` with no force element and no
+    /// gravity, as a scene leaving them all out generates them: nothing, or a spatial
+    /// mechanism's gyroscopic terms.
+    ///
+    /// The mechanism's own counts of these functions ([`Mechanism::OP_COUNTS`]) are this base,
+    /// plus each element's cost alone above it ([`ForceInfo::op_counts`]), less what elements
+    /// share (a coil and a shock on one strut compute its length once; two elements on one body
+    /// its sine and cosine), plus one addition wherever the terms of two elements meet in one
+    /// entry. Empty: not known.
+    const BASE_FORCE_OP_COUNTS: &'static [OpCount] = &[];
     /// The physical effects the mechanism declares (`"gravity"`, `"point-to-point
     /// spring-damper-actuator"`, ...): everything else generates no code and costs nothing.
     const EFFECTS: &'static [&'static str] = &[];

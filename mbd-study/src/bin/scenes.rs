@@ -102,6 +102,30 @@ fn ops(counts: &[OpCount], function: &str) -> u32 {
 /// The functions whose operations a scene's row shows.
 const FUNCTIONS: [&str; 4] = ["forces", "forces_q", "forces_v", "accelerations"];
 
+/// A function's operations were the elements computed apart: the base's, plus what each
+/// element costs alone above it.
+fn apart(base: &[OpCount], elements: &[ForceInfo], f: &str) -> u32 {
+    ops(base, f) + elements.iter().map(|e| ops(e.op_counts, f) - ops(base, f)).sum::<u32>()
+}
+
+/// The force functions whose operations add up element by element.
+const FORCES: [&str; 3] = ["forces", "forces_q", "forces_v"];
+
+/// What each force element of `M` costs alone (`ForceInfo::op_counts` above
+/// `BASE_FORCE_OP_COUNTS`), their sum, and what `M` generates with its elements together.
+fn elements_table<M: Mechanism>(title: &str) -> String {
+    let base = M::BASE_FORCE_OP_COUNTS;
+    let mut out = format!("**{title}: each force element alone**\n\n| element | forces | forces_q | forces_v |\n|---|---|---|---|\n");
+    let row = |name: &str, counts: [u32; 3]| format!("| {name} | {} | {} | {} |\n", counts[0], counts[1], counts[2]);
+    out += &row("base (no element)", FORCES.map(|f| ops(base, f)));
+    for e in M::FORCE_ELEMENTS {
+        out += &row(&format!("`{}`", e.name), FORCES.map(|f| ops(e.op_counts, f) - ops(base, f)));
+    }
+    out += &row("base + each alone", FORCES.map(|f| apart(base, M::FORCE_ELEMENTS, f)));
+    out += &row("generated, the elements together", FORCES.map(|f| ops(M::OP_COUNTS, f)));
+    out
+}
+
 /// Simulated time per timed run (s) and RK4's step (s).
 const RUN: f64 = 0.2;
 const STEP: f64 = 1e-3;
@@ -214,12 +238,19 @@ fn main() {
          evaluation of Φ, D, γ, h and M before the sparse solve. Evaluation: one call of `accelerations` at the \
          assembled design position at rest (a batch of {EVALUATIONS}). RK4 step: a run of {RUN} s at {STEP} s from \
          there, without drift correction and with the default projection (whose Newton iterations depend on how fast \
-         the scene moves). Each time is the median of {ROUNDS} rounds, each round timing every scene once.\n",
+         the scene moves). Each time is the median of {ROUNDS} rounds, each round timing every scene once.\n\n{}\n{}\n\
+         Each element alone: what the force functions would count above the base were it the mechanism's only element \
+         (`ForceInfo::op_counts`, equal to what a scene keeping only it generates). The elements together cost less \
+         than the base and each alone: common subexpressions are computed once (a coil and a shock on one strut share \
+         its length and direction; the vehicle's elements on the chassis share its orientation); `forces` has one \
+         addition more wherever two elements' terms meet in one entry.\n",
         table(&format!("Planar double A-arm corner ({} bodies, {} constraint rows)", QuarterCar::N_BODIES, QuarterCar::NC), &quarter),
         table(
             &format!("Vehicle of four double-wishbone corners ({} spatial bodies, {} constraint rows)", Vehicle::N_BODIES, Vehicle::NC),
             &vehicle
         ),
+        elements_table::<QuarterCar>("Planar double A-arm corner"),
+        elements_table::<Vehicle>("Vehicle"),
     );
     print!("{report}");
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("results/scenes.md");
@@ -259,11 +290,9 @@ mod tests {
 
     /// Nothing is paid for what a scene leaves out: every function of every scene costs at most
     /// the base's operations and at least those of the scene that leaves out everything, and
-    /// every effect costs something somewhere. (The costs do not add up exactly: effects share
-    /// subexpressions — a coil and a shock on the same points share the strut's length and
-    /// direction — and the additions that combine their terms; measured on the planar corner's
-    /// `forces_v`, friction and shock save 1 and 36 operations alone and 39 with the rest.)
-    /// The planar corner without its five effects has no force operations left.
+    /// every effect costs something somewhere. (How the costs add up, element by element, is
+    /// `a_scene_costs_its_base_and_each_element_alone_less_what_they_share`.) The planar corner
+    /// without its five effects has no force operations left.
     #[test]
     fn a_scene_costs_the_base_less_its_effects() {
         let quarter = [
@@ -293,5 +322,98 @@ mod tests {
         for f in ["forces", "forces_q", "forces_v"] {
             assert_eq!(ops(QuarterCarBare::OP_COUNTS, f), 0, "{f}");
         }
+    }
+
+    /// The additions of `forces` where the terms of two elements meet: on each velocity, one per
+    /// element beyond the first that reaches it.
+    fn meets(elements: &[ForceInfo]) -> u32 {
+        let mut on = std::collections::BTreeMap::new();
+        for e in elements {
+            for &v in e.velocities {
+                *on.entry(v).or_insert(0u32) += 1;
+            }
+        }
+        on.values().map(|k| k - 1).sum()
+    }
+
+    /// A scene's force functions cost its base (what the scene leaving out every effect
+    /// generates), plus each element's cost alone (`ForceInfo::op_counts`, what a scene keeping
+    /// only it generates: `tests/scenes.rs`), plus one addition wherever two elements' terms meet,
+    /// less what elements share — exactly, in every scene of the corner:
+    /// - each element costs the same in every scene that keeps it, and every scene's base is
+    ///   the bare scene's count;
+    /// - `forces` adds up exactly where no two elements read a common subexpression: the
+    ///   coil, the tyre and the pivot friction act on different bodies or read only velocities
+    ///   and parameters, and gravity's terms are constants;
+    /// - where the coil and the shock, on the same two points, are both kept, they share the
+    ///   strut's length and direction, and the scene costs less than the sum (measured 21 of
+    ///   77 operations of `forces`);
+    /// - in the scene without the shock the elements' derivatives fill disjoint entries (the
+    ///   coil's on the lower arm, the tyre's on the knuckle, the pivots' constant ∂/∂v), so
+    ///   `forces_q` and `forces_v` add up exactly too.
+    ///
+    /// The vehicle's base is its gyroscopic terms, and its elements share the chassis'
+    /// orientation, so its scenes cost less than the sum.
+    #[test]
+    fn a_scene_costs_its_base_and_each_element_alone_less_what_they_share() {
+        type Scene = (&'static str, &'static [OpCount], &'static [OpCount], &'static [ForceInfo]);
+        let corner: [Scene; 7] = [
+            ("QuarterCar", QuarterCar::OP_COUNTS, QuarterCar::BASE_FORCE_OP_COUNTS, QuarterCar::FORCE_ELEMENTS),
+            (
+                "QuarterCarNoFriction",
+                QuarterCarNoFriction::OP_COUNTS,
+                QuarterCarNoFriction::BASE_FORCE_OP_COUNTS,
+                QuarterCarNoFriction::FORCE_ELEMENTS,
+            ),
+            ("QuarterCarNoShock", QuarterCarNoShock::OP_COUNTS, QuarterCarNoShock::BASE_FORCE_OP_COUNTS, QuarterCarNoShock::FORCE_ELEMENTS),
+            ("QuarterCarNoCoil", QuarterCarNoCoil::OP_COUNTS, QuarterCarNoCoil::BASE_FORCE_OP_COUNTS, QuarterCarNoCoil::FORCE_ELEMENTS),
+            ("QuarterCarNoTyre", QuarterCarNoTyre::OP_COUNTS, QuarterCarNoTyre::BASE_FORCE_OP_COUNTS, QuarterCarNoTyre::FORCE_ELEMENTS),
+            (
+                "QuarterCarNoGravity",
+                QuarterCarNoGravity::OP_COUNTS,
+                QuarterCarNoGravity::BASE_FORCE_OP_COUNTS,
+                QuarterCarNoGravity::FORCE_ELEMENTS,
+            ),
+            ("QuarterCarBare", QuarterCarBare::OP_COUNTS, QuarterCarBare::BASE_FORCE_OP_COUNTS, QuarterCarBare::FORCE_ELEMENTS),
+        ];
+        let vehicle: [Scene; 4] = [
+            ("Vehicle", Vehicle::OP_COUNTS, Vehicle::BASE_FORCE_OP_COUNTS, Vehicle::FORCE_ELEMENTS),
+            ("VehicleNoFriction", VehicleNoFriction::OP_COUNTS, VehicleNoFriction::BASE_FORCE_OP_COUNTS, VehicleNoFriction::FORCE_ELEMENTS),
+            ("VehicleNoShock", VehicleNoShock::OP_COUNTS, VehicleNoShock::BASE_FORCE_OP_COUNTS, VehicleNoShock::FORCE_ELEMENTS),
+            ("VehicleBare", VehicleBare::OP_COUNTS, VehicleBare::BASE_FORCE_OP_COUNTS, VehicleBare::FORCE_ELEMENTS),
+        ];
+        for scenes in [&corner[..], &vehicle[..]] {
+            let (_, bare, _, _) = scenes[scenes.len() - 1];
+            let full = scenes[0].3;
+            for &(scene, counts, base, elements) in scenes {
+                for f in FORCES {
+                    assert_eq!(ops(base, f), ops(bare, f), "{scene}: {f} of the base");
+                    let (sum, total) = (apart(base, elements, f) + if f == "forces" { meets(elements) } else { 0 }, ops(counts, f));
+                    eprintln!("{scene} {f}: {total} operations, {sum} were its elements apart");
+                    if f == "forces" {
+                        assert!(total <= sum, "{scene}: sharing only saves");
+                    }
+                }
+                for e in elements {
+                    let same = full.iter().find(|b| b.name == e.name).unwrap_or_else(|| panic!("{scene}: {} not in the base", e.name));
+                    assert_eq!(e.op_counts, same.op_counts, "{scene}: {} costs what it costs in the base", e.name);
+                }
+            }
+        }
+        let strut = |elements: &[ForceInfo]| ["coil", "shock"].iter().all(|n| elements.iter().any(|e| e.name == *n));
+        for &(scene, counts, base, elements) in &corner {
+            let (sum, total) = (apart(base, elements, "forces") + meets(elements), ops(counts, "forces"));
+            if strut(elements) {
+                assert!(total < sum, "{scene}: the coil and the shock share the strut: {total} < {sum}");
+            } else {
+                assert_eq!(total, sum, "{scene}: forces add up where nothing is shared");
+            }
+        }
+        for f in ["forces_q", "forces_v"] {
+            let (_, counts, base, elements) = corner[2];
+            assert_eq!(ops(counts, f), apart(base, elements, f), "QuarterCarNoShock {f}: disjoint entries add up");
+        }
+        // The vehicle's base is its gyroscopic terms; they cost in forces and forces_v.
+        assert!(ops(Vehicle::BASE_FORCE_OP_COUNTS, "forces") > 0 && ops(Vehicle::BASE_FORCE_OP_COUNTS, "forces_v") > 0);
     }
 }
