@@ -62,6 +62,23 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// The slider-crank driven by its slider into the dead centre x = r + l, where it comes to
+    /// rest at t = 1 s, and back out: x = r + l − 0.1 (t − 1)². The crank passes the dead centre
+    /// at ω = −√(2 · 0.1 / (r (1 + r/l))) = −1.2247 rad/s and goes on turning the same way.
+    pub ThroughDeadCentre {
+        params { r: 0.1, l: 0.3 }
+        body crank  { mass: 1.0, inertia: 0.002, at: [0.008, 0.049, 1.40] }
+        body rod    { mass: 2.0, inertia: 0.015, at: [0.158, 0.049, -0.335] }
+        body slider { mass: 0.5, inertia: 0.001, at: [0.3, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ crank[-r / 2.0, 0.0];
+        revolute crank[r / 2.0, 0.0] ~ rod[-l / 2.0, 0.0];
+        revolute rod[l / 2.0, 0.0] ~ slider[0.0, 0.0];
+        translational slider[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+        drive slider.x = r + l - 0.1 * (t - 1.0)^2;
+    }
+}
+
 /// The largest |a − b| over max(1, ‖b‖∞).
 fn relative_difference<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
     let size = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
@@ -259,4 +276,39 @@ fn the_chord_method_converges_linearly_and_the_default_sees_it() {
     assert!(newton < 1e-11, "{newton}");
     assert!(chord > 1e-10 && chord < 1e-8, "{chord}");
     assert_eq!(default, newton);
+}
+
+/// A sweep through a dead centre stays on its branch. At the dead centre D is singular, and
+/// the point after it starts Newton from an iterate next to it, where the full step D⁻¹(−Φ) was
+/// 264 rad: the crank landed 42 turns away (a solution of the same pose, its angle no longer
+/// continuous). The damped step (`KinematicOptions::max_step`, 1 rad) keeps it on the branch:
+/// on a grid of 0.01 s that crosses t = 1 s exactly, the crank angle moves 0.0122 rad per step,
+/// so no step may move it 0.05 rad; the motion is symmetric about t = 1 s with the crank turning
+/// on (φ(2 − t) = −φ(t), to the position tolerance's √(1e-10) ≈ 1e-5 near the dead centre and
+/// far better away from it, checked to 1e-8 at the ends), and the crank's speed just after the
+/// dead centre is the speed just before it: to 2e-5 rad/s, as ‖Φ‖∞ ≤ 1e-10 m leaves φ uncertain
+/// by about 1e-10 m / (r φ) ≈ 8e-8 rad at φ = 0.012 rad, and ω, the slider's speed over r φ
+/// there, by ω · 8e-8 / 0.012 ≈ 1e-5 rad/s (measured 2.8e-6).
+#[test]
+fn a_sweep_through_a_dead_centre_keeps_the_crank_on_its_branch() {
+    let m = ThroughDeadCentre::default();
+    let mut ws = ThroughDeadCentre::workspace();
+    let mut q = m.initial_positions();
+    let solver = KinematicSolver::default();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let times: Vec<f64> = (0..=200).map(|k| k as f64 * 0.01).collect();
+    let mut crank = Vec::new();
+    solver
+        .sweep(&m, &mut ws, &mut q, &times, |t, q, v, _| crank.push((t, ThroughDeadCentre::CRANK.phi(q), v[2])))
+        .expect("the sweep passes the dead centre");
+    assert_eq!(crank.len(), times.len());
+    for pair in crank.windows(2) {
+        let ((t0, phi0, _), (t1, phi1, _)) = (pair[0], pair[1]);
+        assert!((phi1 - phi0).abs() < 0.05, "the crank jumped from {phi0} rad at {t0} s to {phi1} rad at {t1} s");
+    }
+    let (first, last) = (crank[0], crank[200]);
+    assert!(first.1 > 1.0 && (first.1 + last.1).abs() < 1e-8, "φ(0) = {}, φ(2) = {}", first.1, last.1);
+    let (before, after) = (crank[99], crank[101]);
+    println!("ω at 0.99 s: {} rad/s, at 1.01 s: {} rad/s", before.2, after.2);
+    assert!(before.2 < -1.2 && (before.2 - after.2).abs() < 2e-5, "ω before {}, after {}", before.2, after.2);
 }

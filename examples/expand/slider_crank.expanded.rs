@@ -3451,6 +3451,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         pivot_tolerance: f64,
         max_iterations: u32,
         reuse: f64,
+        max_step: f64,
         phi: &mut [f64; 9],
         step: &mut [f64; 9],
     ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
@@ -3602,6 +3603,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                     factored,
                 ));
             }
+            ::mbd::sparse::limit_step(step, max_step);
             ::mbd::Kinematics::integrate_positions(self, q, step, 1f64);
             iterations += 1;
         }

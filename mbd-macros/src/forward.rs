@@ -385,6 +385,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                 pivot_tolerance: #real,
                 max_iterations: u32,
                 reuse: #real,
+                max_step: #real,
                 phi: &mut [#real; #nc_l],
                 step: &mut [#real; #nv_l],
             ) -> ::core::option::Option<(::mbd::PositionStep, u32, u32)> {
@@ -424,6 +425,7 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
                     if !step.iter().all(|x| x.is_finite()) {
                         return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
                     }
+                    ::mbd::sparse::limit_step(step, max_step);
                     ::mbd::Kinematics::integrate_positions(self, q, step, #one);
                     iterations += 1;
                 }

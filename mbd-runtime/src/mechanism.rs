@@ -215,7 +215,8 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// (the Schur complement of the forward dynamics with unit weights), the whole loop in
     /// generated code. A step expected to end the iteration keeps D and its factors (simplified
     /// Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
-    /// `reuse` evaluates and factors D at every step. Returns what it ended with, the steps
+    /// `reuse` evaluates and factors D at every step. A step longer than `max_step` (‖Δv‖∞) is
+    /// shortened to it along its direction ([`crate::sparse::limit_step`]). Returns what it ended with, the steps
     /// taken and the factorizations of D made, q at the last iterate and Φ(q, t) in `phi`:
     /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
     /// pivot is at most `pivot_tolerance` times its diagonal; [`PositionStep::Step`] when Φ or a
@@ -233,10 +234,11 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
         pivot_tolerance: T,
         max_iterations: u32,
         reuse: T,
+        max_step: T,
         phi: &mut [T; NC],
         step: &mut [T; NV],
     ) -> Option<(PositionStep, u32, u32)> {
-        let _ = (q, t, tolerance, pivot_tolerance, max_iterations, reuse, phi, step);
+        let _ = (q, t, tolerance, pivot_tolerance, max_iterations, reuse, max_step, phi, step);
         None
     }
     /// A driven mechanism's velocity and acceleration (NV = NC, D regular) over the sparse

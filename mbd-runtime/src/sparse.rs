@@ -181,6 +181,20 @@ pub fn max_abs_finite<T: Real>(x: &[T]) -> (T, bool) {
     (pair(pair(worst[0], worst[1]), pair(worst[2], worst[3])), finite)
 }
 
+/// Damped Newton: a step longer than `max_step` in ‖·‖∞ is scaled down to it, its direction
+/// kept ([`crate::KinematicOptions::max_step`]). The step is finite (checked before).
+#[doc(hidden)]
+#[inline]
+pub fn limit_step<T: Real>(step: &mut [T], max_step: T) {
+    let (size, _) = max_abs_finite(step);
+    if size > max_step {
+        let scale = max_step / size;
+        for x in step.iter_mut() {
+            *x *= scale;
+        }
+    }
+}
+
 #[doc(hidden)]
 #[allow(clippy::too_many_arguments)]
 #[inline]
