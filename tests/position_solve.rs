@@ -90,12 +90,11 @@ fn relative_difference<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
 /// (`solve_velocity`, `solve_acceleration`), and inverse dynamics' multipliers (the same
 /// factors) against nalgebra's LU of Dᵀ for the same M v̇ − h. The largest differences over
 /// max(1, ‖x‖∞): (v and v̇, λ).
-fn against_dense_solves<M, const NQ: usize, const NC: usize, const N: usize>(m: &M, times: &[f64]) -> (f64, f64)
+fn against_dense_solves<M, const NQ: usize, const NC: usize, const N: usize>(m: &M, times: &[f64], solver: &KinematicSolver) -> (f64, f64)
 where
     M: Dynamics<f64, NQ, NQ, NC>,
 {
     use mbd::nalgebra::{DMatrix, DVector};
-    let solver = KinematicSolver::default();
     let mut ws = Workspace::<f64, NQ, NC, N>::boxed();
     let mut q = m.initial_positions();
     solver.assemble(m, &mut ws, &mut q, times[0]).expect("assembles");
@@ -132,10 +131,13 @@ where
 fn the_planned_factors_match_the_dense_lu() {
     let times: Vec<f64> = (0..10).map(|k| 0.37 + 0.1 * k as f64).collect();
     let results = [
-        ("slider-crank", against_dense_solves::<_, 9, 9, 18>(&SliderCrank::default(), &times)),
-        ("relative four-bar", against_dense_solves::<_, 9, 9, 18>(&RelativeFourBar::default(), &times)),
-        ("chain of 16", against_dense_solves::<_, 48, 48, 96>(&Chain16::default(), &times)),
-        ("driven chain of 150", against_dense_solves::<_, 450, 450, 900>(&DrivenChain150::default(), &times[..2])),
+        ("slider-crank", against_dense_solves::<_, 9, 9, 18>(&SliderCrank::default(), &times, &KinematicSolver::default())),
+        ("relative four-bar", against_dense_solves::<_, 9, 9, 18>(&RelativeFourBar::default(), &times, &KinematicSolver::default())),
+        ("chain of 16", against_dense_solves::<_, 48, 48, 96>(&Chain16::default(), &times, &KinematicSolver::default())),
+        (
+            "driven chain of 150",
+            against_dense_solves::<_, 450, 450, 900>(&DrivenChain150::default(), &times[..2], &KinematicSolver::default()),
+        ),
     ];
     for (name, (kinematic, multipliers)) in results {
         println!("{name}: v and v̇ {kinematic:.1e} apart, λ {multipliers:.1e}");
@@ -146,15 +148,27 @@ fn the_planned_factors_match_the_dense_lu() {
 /// Near the dead centre κ(D) grows as 1/θ, to about 1e6 at gap = 1e-10 m: D Dᵀ alone leaves
 /// about κ² ε of relative error (measured without the refinement: 5.4e-9 already at 1e-6 m),
 /// the refinement brings it back to the LU's κ ε (≤ 2e-10), so they must agree to 1e-9 of
-/// max(1, ‖x‖∞) (measured: 9e-15 and 3e-15). Closer gaps are below what the position
-/// tolerance (1e-10 m) resolves.
+/// max(1, ‖x‖∞) (measured: 4e-16). At gap = 1e-10 m the default position tolerance (1e-10 m)
+/// no longer resolves the position from the dead centre (D's rows meet at a sine of about
+/// 5e-6, below √1e-10): the analysis names the crank's angle instead of answering; a
+/// tolerance of 1e-14 m resolves it, and the solves agree again.
 #[test]
 fn near_a_singular_position_the_refined_solves_match_the_dense_lu() {
-    for gap in [1e-6, 1e-8, 1e-10] {
+    let tight = KinematicSolver::new(KinematicOptions::default().with_tolerance(1e-14));
+    let cases = [(1e-6, KinematicSolver::default()), (1e-8, KinematicSolver::default()), (1e-10, tight)];
+    for (gap, solver) in cases {
         let m = SliderDriven { gap, ..Default::default() };
-        let (kinematic, multipliers) = against_dense_solves::<_, 9, 9, 18>(&m, &[0.0, 1e-3, 2e-3]);
+        let (kinematic, multipliers) = against_dense_solves::<_, 9, 9, 18>(&m, &[0.0, 1e-3, 2e-3], &solver);
         println!("gap {gap:e} m: v and v̇ {kinematic:.1e} apart, λ {multipliers:.1e}");
         assert!(kinematic < 1e-9 && multipliers < 1e-9, "gap {gap:e}: {kinematic:e}, {multipliers:e}");
+    }
+    let m = SliderDriven { gap: 1e-10, ..Default::default() };
+    let mut ws = SliderDriven::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    match KinematicSolver::default().analyze(&m, &mut ws, &q, 0.0) {
+        Err(KinematicError::SingularJacobian { coordinate, .. }) => assert!(coordinate.ends_with(".phi"), "{coordinate}"),
+        other => panic!("1e-10 m from the dead centre at the default tolerance: {other:?}"),
     }
 }
 
@@ -278,37 +292,72 @@ fn the_chord_method_converges_linearly_and_the_default_sees_it() {
     assert_eq!(default, newton);
 }
 
-/// A sweep through a dead centre stays on its branch. At the dead centre D is singular, and
-/// the point after it starts Newton from an iterate next to it, where the full step D⁻¹(−Φ) was
-/// 264 rad: the crank landed 42 turns away (a solution of the same pose, its angle no longer
-/// continuous). The damped step (`KinematicOptions::max_step`, 1 rad) keeps it on the branch:
-/// on a grid of 0.01 s that crosses t = 1 s exactly, the crank angle moves 0.0122 rad per step,
-/// so no step may move it 0.05 rad; the motion is symmetric about t = 1 s with the crank turning
-/// on (φ(2 − t) = −φ(t), to the position tolerance's √(1e-10) ≈ 1e-5 near the dead centre and
-/// far better away from it, checked to 1e-8 at the ends), and the crank's speed just after the
-/// dead centre is the speed just before it: to 2e-5 rad/s, as ‖Φ‖∞ ≤ 1e-10 m leaves φ uncertain
-/// by about 1e-10 m / (r φ) ≈ 8e-8 rad at φ = 0.012 rad, and ω, the slider's speed over r φ
-/// there, by ω · 8e-8 / 0.012 ≈ 1e-5 rad/s (measured 2.8e-6).
+/// A position solve started next to a dead centre stays on its branch. There D is nearly
+/// singular, and Newton's full steps D⁻¹(−Φ) from 1e-7 rad off the dead centre to the pose
+/// 0.01 s later land the crank 999 rad away (159 turns; a new user's sweep crossing the dead
+/// centre had it 42 turns away), on a solution of the same pose with its angle no longer
+/// continuous. The damped step (`KinematicOptions::max_step`, 1 rad) lands it next to
+/// the dead centre, where the crank is 0.0122 rad from it either way (|cos φ| is fixed by the
+/// slider; Newton picks the side), within 0.05 rad.
 #[test]
-fn a_sweep_through_a_dead_centre_keeps_the_crank_on_its_branch() {
+fn a_position_solve_from_a_dead_centre_stays_on_its_branch() {
     let m = ThroughDeadCentre::default();
     let mut ws = ThroughDeadCentre::workspace();
-    let mut q = m.initial_positions();
+    // The dead centre at t = 1 s: every body on the x axis, the crank 1e-7 rad off it.
+    let (r, l, phi) = (m.r, m.l, 1e-7f64);
+    let mut q = [r / 2.0 * phi.cos(), r / 2.0 * phi.sin(), phi, r * phi.cos() + l / 2.0, r * phi.sin() / 2.0, 0.0, r + l, 0.0, 0.0];
     let solver = KinematicSolver::default();
-    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
-    let times: Vec<f64> = (0..=200).map(|k| k as f64 * 0.01).collect();
+    solver.solve_position(&m, &mut ws, &mut q, 1.01).expect("converges next to the dead centre");
+    let crank = ThroughDeadCentre::CRANK.phi(&q);
+    println!("crank at 1.01 s: {crank} rad");
+    assert!(crank.abs() < 0.05 && crank.abs() > 0.01, "the crank left its branch: {crank} rad");
+}
+
+/// On a grid that crosses the dead centre exactly, a sweep follows the crank up to it and stops
+/// there with the coordinate D no longer determines named: at t = 1 s the velocity is not
+/// determined by D v = ν (the slider is at rest, the crank turning at 1.2247 rad/s), and the
+/// position the solve reaches is within what its tolerance resolves of the singular one. `q`
+/// holds the last point solved, 0.01 s before. A grid that steps over the dead centre passes
+/// it, the crank turning on at the speed it came with.
+#[test]
+fn a_sweep_stops_at_a_dead_centre_and_passes_it_between_grid_points() {
+    let m = ThroughDeadCentre::default();
+    let mut ws = ThroughDeadCentre::workspace();
+    let solver = KinematicSolver::default();
+    let mut start = m.initial_positions();
+    solver.assemble(&m, &mut ws, &mut start, 0.0).expect("assembles");
+    let mut q = start;
+    let exact: Vec<f64> = (0..=200).map(|k| k as f64 * 0.01).collect();
+    let mut last = 0.0;
+    match solver.sweep(&m, &mut ws, &mut q, &exact, |t, _, _, _| last = t) {
+        Err(KinematicError::SingularJacobian { t, coordinate, .. }) => {
+            println!("stopped at {t} s: {coordinate}");
+            assert_eq!(t, 1.0);
+            assert!(coordinate.ends_with(".phi"), "{coordinate}");
+        }
+        other => panic!("expected a singular Jacobian at the dead centre, found {other:?}"),
+    }
+    assert!((last - 0.99).abs() < 1e-12 && (ThroughDeadCentre::CRANK.phi(&q) - 0.012248).abs() < 1e-5, "{last} s");
+    // The grid of 0.01 s shifted by 0.005 s steps over the dead centre: the crank angle moves
+    // 0.0122 rad per step, so no step may move it 0.05 rad; the motion is symmetric about
+    // t = 1 s with the crank turning on (φ(2 − t) = −φ(t), checked to 1e-8 at the ends), and
+    // the crank's speed 5 ms after the dead centre is the speed 5 ms before it, to 5e-4 rad/s:
+    // ‖Φ‖∞ ≤ 1e-10 m leaves φ uncertain by at most about 1e-10 m / (r φ / 8) ≈ 1.3e-6 rad at
+    // φ = 0.006 rad (D's rows meet at a sine of about φ/8), and ω, the slider's speed over
+    // r φ there, by ω · 1.3e-6 / 0.006 ≈ 3e-4 ω (measured 3e-9: Newton ends far inside).
+    let shifted: Vec<f64> = (0..200).map(|k| 0.005 + k as f64 * 0.01).collect();
+    let mut q = start;
     let mut crank = Vec::new();
     solver
-        .sweep(&m, &mut ws, &mut q, &times, |t, q, v, _| crank.push((t, ThroughDeadCentre::CRANK.phi(q), v[2])))
-        .expect("the sweep passes the dead centre");
-    assert_eq!(crank.len(), times.len());
+        .sweep(&m, &mut ws, &mut q, &shifted, |t, q, v, _| crank.push((t, ThroughDeadCentre::CRANK.phi(q), v[2])))
+        .expect("the sweep steps over the dead centre");
     for pair in crank.windows(2) {
         let ((t0, phi0, _), (t1, phi1, _)) = (pair[0], pair[1]);
         assert!((phi1 - phi0).abs() < 0.05, "the crank jumped from {phi0} rad at {t0} s to {phi1} rad at {t1} s");
     }
-    let (first, last) = (crank[0], crank[200]);
-    assert!(first.1 > 1.0 && (first.1 + last.1).abs() < 1e-8, "φ(0) = {}, φ(2) = {}", first.1, last.1);
-    let (before, after) = (crank[99], crank[101]);
-    println!("ω at 0.99 s: {} rad/s, at 1.01 s: {} rad/s", before.2, after.2);
-    assert!(before.2 < -1.2 && (before.2 - after.2).abs() < 2e-5, "ω before {}, after {}", before.2, after.2);
+    let (first, end) = (crank[0], crank[199]);
+    assert!(first.1 > 1.0 && (first.1 + end.1).abs() < 1e-8, "φ(0.005) = {}, φ(1.995) = {}", first.1, end.1);
+    let (before, after) = (crank[99], crank[100]);
+    println!("ω at {} s: {} rad/s, at {} s: {} rad/s", before.0, before.2, after.0, after.2);
+    assert!(before.2 < -1.2 && (before.2 - after.2).abs() < 5e-4, "ω before {}, after {}", before.2, after.2);
 }
