@@ -13,7 +13,6 @@ use crate::frames::{collect_vars, Builder, Coordinates};
 use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
-/// The symbolic equations of one mechanism.
 /// h and its structural derivatives ∂h/∂q and ∂h/∂q̇ as (row, column, node).
 pub struct ForceTerms {
     pub h: Vec<Id>,
@@ -21,6 +20,7 @@ pub struct ForceTerms {
     pub h_qd: Vec<(usize, usize, Id)>,
 }
 
+/// The symbolic equations of one mechanism.
 pub struct Formulation {
     pub graph: Graph,
     pub nq: usize,

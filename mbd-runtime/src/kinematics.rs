@@ -610,8 +610,8 @@ impl KinematicSolver {
         M: Kinematics<T, NQ, NV, NC>,
     {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
-        let (pivot_ratio, sine) = self.resolved_tolerances(q);
         if NV == NC {
+            let (pivot_ratio, sine) = self.resolved_tolerances(q);
             // The factorization planned at compile time; where it finds no pivot, one within
             // what the position tolerance resolves, or a value that is not finite, the dense
             // path below, which names what failed.

@@ -216,8 +216,9 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// generated code. A step expected to end the iteration keeps D and its factors (simplified
     /// Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
     /// `reuse` evaluates and factors D at every step. A step longer than `max_step` (‖Δv‖∞) is
-    /// shortened to it along its direction ([`crate::sparse::limit_step`]). Returns what it ended with, the steps
-    /// taken and the factorizations of D made, q at the last iterate and Φ(q, t) in `phi`:
+    /// shortened to it along its direction ([`crate::sparse::limit_step`]). Returns what it
+    /// ended with, the steps taken and the factorizations of D made, q at the last iterate and
+    /// Φ(q, t) in `phi`:
     /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
     /// pivot is at most `pivot_tolerance` times its diagonal; [`PositionStep::Step`] when Φ or a
     /// step is not finite or `max_iterations` steps are taken. The solver goes on from there
