@@ -56,6 +56,17 @@ pub const DEFAULT_REUSE_SAFETY: f64 = 100.0;
 /// with its angle no longer continuous. A step of 1 rad is already far outside where the
 /// linearization holds, and no step of a sweep or of a drift correction comes near it.
 pub const DEFAULT_MAX_STEP: f64 = 1.0;
+/// The pivot ratio of D Dᵀ (a squared sine: rows meeting at 1e-3) below which an analysis
+/// checks that its velocity is determined (`check_determined` in the source): a few dense
+/// solves and three evaluations of Φ, only near a singular position.
+const NEAR_SINGULAR_RATIO: f64 = 1e-6;
+/// The solves of the inverse iteration of `check_determined`.
+const INVERSE_ITERATIONS: usize = 3;
+/// `check_determined` refuses a position whose nearby singular one satisfies Φ to this many
+/// times the position tolerance: its estimates of σ and κ are each good to a factor of about
+/// two. (Measured: the slider-crank and the four-bar at their toggles read 2.4 and 3.2 times
+/// the tolerance; 1e-8 m from the slider-crank's dead centre, 160 times.)
+const DETERMINED_MARGIN: f64 = 8.0;
 /// Default [`KinematicOptions::predictor`]: on.
 pub const DEFAULT_PREDICTOR: bool = true;
 /// Default [`KinematicOptions::rank_tolerance`]: a constraint row whose angle to the rows before
@@ -507,9 +518,10 @@ impl KinematicSolver {
     /// Those of [`solve_position`](Self::solve_position), [`solve_velocity`](Self::solve_velocity)
     /// and [`solve_acceleration`](Self::solve_acceleration); and
     /// [`KinematicError::SingularJacobian`] where the position solved is as close to a
-    /// singular one as the position tolerance τ tells: a row of a square D meets the rows
-    /// before it at a sine of at most √τ (τ relative to max(1, ‖q‖∞)), so that D v = ν and
-    /// D v̇ = γ determine nothing (see `resolved_tolerances` in the source).
+    /// singular one as the position tolerance τ tells: D's smallest singular value σ and Φ's
+    /// curvature κ along its direction put the singular position σ/κ away with Φ about
+    /// σ²/(2κ) there; where that is within 8τ, D v = ν and D v̇ = γ determine nothing (see
+    /// `check_determined` in the source). A smaller tolerance resolves positions closer to it.
     pub fn analyze<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
@@ -611,47 +623,108 @@ impl KinematicSolver {
     {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
         if NV == NC {
-            let (pivot_ratio, sine) = self.resolved_tolerances(q);
-            // The factorization planned at compile time; where it finds no pivot, one within
-            // what the position tolerance resolves, or a value that is not finite, the dense
-            // path below, which names what failed.
-            if m.sparse_velocity_acceleration(q, t, pivot_ratio, v, vd) {
+            // The factorization planned at compile time; where a pivot is near dependence
+            // (`NEAR_SINGULAR_RATIO`) or a value is not finite, the dense path below, which
+            // names what failed and checks that the velocity is determined.
+            if m.sparse_velocity_acceleration(q, t, self.near_singular_ratio(q), v, vd) {
                 return Ok(convergence);
             }
             // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
             m.jacobian(q, t, &mut ws.jacobian);
-            // D's rows orthogonalized in order: a row within what the tolerance resolves of the
-            // rows before it names the velocity D leaves undetermined. (An LU's pivots do not
-            // see it: on the slider-crank at its dead centre, a sine of 6e-6 left relative
-            // pivots above 1e-4.)
-            let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
-            check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
-            independent_rows::<T, M, NV, NC>(jacobian, sine, jacobian_scratch, constraint_square, t)?;
         }
         let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
         velocity_from_factors(m, q, t, ws, &factors, v)?;
         acceleration_from_factors(m, q, v, t, ws, &factors, vd)?;
+        if NV == NC {
+            self.check_determined(m, q, t, ws, &factors)?;
+        }
         Ok(convergence)
     }
 
-    /// What an analysis, whose q solves Φ(q, t) = 0 only to the position tolerance, can tell
-    /// from a singular D: the least ratio of a pivot of D Dᵀ to its diagonal (the squared sine
-    /// of a row's angle to the rows eliminated before it) and the least sine of a row of D to
-    /// the rows before it, at least [`KinematicOptions::pivot_tolerance`] and its square root.
-    ///
-    /// Along D's nearly dependent direction, of smallest singular value σ (relative to the
-    /// rows' size), a residual within the tolerance τ (relative to the coordinates' scale
-    /// max(1, ‖q‖∞)) leaves q uncertain by about τ/σ, and D is singular about σ away. Where
-    /// σ² ≤ τ the position the analysis solved is as close to the singular one as it can tell:
-    /// D v = ν and D v̇ = γ then determine nothing, and the analysis names the velocity D leaves
-    /// undetermined ([`KinematicError::SingularJacobian`]) rather than return values that are
-    /// not. Measured on a slider-crank driven by its slider, on a grid crossing its dead centre:
-    /// the crank read ω = 0 there, between −1.2247 rad/s on both sides, at a sine of 6e-6. With
-    /// the default tolerance 1e-10 at metre scale, a sine of 1e-5.
-    fn resolved_tolerances<T: Real>(&self, q: &[T]) -> (T, T) {
+    /// The pivot ratio of D Dᵀ (to its diagonal: the squared sine of a row's angle to the rows
+    /// eliminated before it) below which an analysis takes the dense path and
+    /// [`check_determined`](Self::check_determined): [`NEAR_SINGULAR_RATIO`], or a thousand
+    /// times the position tolerance relative to max(1, ‖q‖∞) where that is larger, so that every
+    /// position that check refuses is screened.
+    fn near_singular_ratio<T: Real>(&self, q: &[T]) -> T {
         let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
-        let resolved = (tolerance / max_abs(q).0.max(T::ONE)).max(self.pivot_tolerance::<T>());
-        (resolved, resolved.sqrt())
+        let relative = tolerance / max_abs(q).0.max(T::ONE);
+        (T::from_f64(1e3) * relative).max(T::from_f64(NEAR_SINGULAR_RATIO)).max(self.pivot_tolerance::<T>())
+    }
+
+    /// Whether the velocity and acceleration of an analysis are determined at the q it solved,
+    /// which satisfies Φ(q, t) = 0 only to the position tolerance τ; `ws.jacobian` holds D's LU.
+    ///
+    /// Near a singular position, D's smallest singular value σ, along the direction n, grows
+    /// with the distance from it: Φ(q + s n) ≈ Φ(q) + s σ u + ½ s² κ, κ = Φ's curvature along n,
+    /// so the singular position lies σ/κ away, where Φ is about σ²/(2κ). Where that is within
+    /// the tolerance the position solved is the singular one as far as τ can tell, and D v = ν
+    /// determines nothing there: on a slider-crank driven by its slider, and on a four-bar
+    /// driven by its rocker, each on a grid that reached the toggle exactly, the crank read
+    /// ω = 0 while it turned at 1.2 and 6.3 rad/s (at sines of 6e-6 and 5.5e-5: κ differs by
+    /// mechanism, so a fixed pivot tolerance cannot tell). So where σ²/(2κ) ≤
+    /// [`DETERMINED_MARGIN`] τ the analysis returns [`KinematicError::SingularJacobian`], naming
+    /// the velocity n moves most and the row that bends most along it.
+    ///
+    /// n is D⁻¹ b for a fixed b with no special direction, normalized, and D⁻¹ applied twice
+    /// more (inverse iteration): near a singular D the other directions shrink by the ratio of
+    /// the smallest singular value to the others at each solve. (After one solve, the four-bar
+    /// at its toggle read σ twice too large; the criterion then missed it.) σ = ‖D n‖, and κ the second
+    /// difference of Φ over ±h n, h = 1e-4 max(1, ‖q‖∞) (rounding leaves ε/h² ≈ 1e-8 of it).
+    fn check_determined<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        t: T,
+        ws: &mut Workspace<T, NV, NC, N>,
+        factors: &Factors<NC>,
+    ) -> Result<(), KinematicError>
+    where
+        T: Real,
+        M: Kinematics<T, NQ, NV, NC>,
+    {
+        let mut b: [T; NC] = core::array::from_fn(|i| T::from_f64(1.0 + (i as f64 * 0.618_033_988_749_895).fract()));
+        let mut n = [T::ZERO; NV];
+        for _ in 0..INVERSE_ITERATIONS {
+            solve_factored::<T, M, NV, NC, N>(ws, factors, &b, &mut n, t)?;
+            let size = n.iter().fold(T::ZERO, |s, &x| s + x * x).sqrt();
+            if !(size > T::ZERO && size.is_finite()) {
+                return Ok(());
+            }
+            for x in n.iter_mut() {
+                *x /= size;
+            }
+            b = core::array::from_fn(|i| n[i]);
+        }
+        m.jacobian(q, t, &mut ws.jacobian_scratch);
+        let sigma = ws.jacobian_scratch.iter().fold(T::ZERO, |s, row| {
+            let dn = row.iter().zip(&n).fold(T::ZERO, |a, (&d, &x)| a + d * x);
+            s + dn * dn
+        });
+        let sigma = sigma.sqrt();
+        let h = T::from_f64(1e-4) * max_abs(q).0.max(T::ONE);
+        let (mut plus, mut minus, mut here) = ([T::ZERO; NC], [T::ZERO; NC], [T::ZERO; NC]);
+        let mut moved = *q;
+        m.integrate_positions(&mut moved, &n, h);
+        m.constraints(&moved, t, &mut plus);
+        let mut moved = *q;
+        m.integrate_positions(&mut moved, &n, T::ZERO - h);
+        m.constraints(&moved, t, &mut minus);
+        m.constraints(q, t, &mut here);
+        let mut bend = [T::ZERO; NC];
+        for (r, bend) in bend.iter_mut().enumerate() {
+            *bend = (plus[r] + minus[r] - (here[r] + here[r])) / (h * h);
+        }
+        let kappa = bend.iter().fold(T::ZERO, |s, &x| s + x * x).sqrt();
+        let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
+        if sigma * sigma <= T::from_f64(2.0 * DETERMINED_MARGIN) * kappa * tolerance {
+            return Err(KinematicError::SingularJacobian {
+                t: t.to_f64(),
+                coordinate: name(M::VELOCITY_NAMES, max_abs(&n).1),
+                constraint: name(M::CONSTRAINT_NAMES, max_abs(&bend).1),
+            });
+        }
+        Ok(())
     }
 
     /// D (in `ws.jacobian`) factored: LU in place when square, with failures named after the
