@@ -683,7 +683,7 @@ impl KinematicSolver {
         T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
-        let mut b: [T; NC] = core::array::from_fn(|i| T::from_f64(1.0 + (i as f64 * 0.618_033_988_749_895).fract()));
+        let mut b: [T; NC] = core::array::from_fn(|i| T::from_f64(1.0 + ((i * 618) % 1000) as f64 / 1000.0));
         let mut n = [T::ZERO; NV];
         for _ in 0..INVERSE_ITERATIONS {
             solve_factored::<T, M, NV, NC, N>(ws, factors, &b, &mut n, t)?;
