@@ -666,11 +666,13 @@ impl KinematicSolver {
     /// [`DETERMINED_MARGIN`] τ the analysis returns [`KinematicError::SingularJacobian`], naming
     /// the velocity n moves most and the row that bends most along it.
     ///
-    /// n is D⁻¹ b for a fixed b with no special direction, normalized, and D⁻¹ applied twice
-    /// more (inverse iteration): near a singular D the other directions shrink by the ratio of
-    /// the smallest singular value to the others at each solve. (After one solve, the four-bar
-    /// at its toggle read σ twice too large; the criterion then missed it.) σ = ‖D n‖, and κ the second
-    /// difference of Φ over ±h n, h = 1e-4 max(1, ‖q‖∞) (rounding leaves ε/h² ≈ 1e-8 of it).
+    /// n is D⁻¹ b for a fixed b with no special direction, normalized, with D⁻¹ applied twice
+    /// more (inverse iteration): D is nearly singular along n alone, so every other direction
+    /// shrinks at each solve. (After one solve the four-bar at its toggle read σ twice too
+    /// large, and the criterion missed it.) σ = ‖D n‖, and κ the second difference of Φ over
+    /// ±h n, h = 1e-4 max(1, ‖q‖∞) (rounding leaves ε/h² ≈ 1e-8 of it). Its arrays are only on
+    /// the stack while it runs: near a singular position.
+    #[inline(never)]
     fn check_determined<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
@@ -703,17 +705,22 @@ impl KinematicSolver {
         });
         let sigma = sigma.sqrt();
         let h = T::from_f64(1e-4) * max_abs(q).0.max(T::ONE);
-        let (mut plus, mut minus, mut here) = ([T::ZERO; NC], [T::ZERO; NC], [T::ZERO; NC]);
-        let mut moved = *q;
-        m.integrate_positions(&mut moved, &n, h);
-        m.constraints(&moved, t, &mut plus);
-        let mut moved = *q;
-        m.integrate_positions(&mut moved, &n, T::ZERO - h);
-        m.constraints(&moved, t, &mut minus);
-        m.constraints(q, t, &mut here);
-        let mut bend = [T::ZERO; NC];
-        for (r, bend) in bend.iter_mut().enumerate() {
-            *bend = (plus[r] + minus[r] - (here[r] + here[r])) / (h * h);
+        // Φ(q ⊕ h n) + Φ(q ⊕ −h n) − 2 Φ(q), over h², into `bend`.
+        let (mut bend, mut phi) = ([T::ZERO; NC], [T::ZERO; NC]);
+        m.constraints(q, t, &mut phi);
+        for (r, &x) in phi.iter().enumerate() {
+            bend[r] = T::ZERO - (x + x);
+        }
+        for side in [h, T::ZERO - h] {
+            let mut moved = *q;
+            m.integrate_positions(&mut moved, &n, side);
+            m.constraints(&moved, t, &mut phi);
+            for (bend, &x) in bend.iter_mut().zip(&phi) {
+                *bend += x;
+            }
+        }
+        for x in bend.iter_mut() {
+            *x /= h * h;
         }
         let kappa = bend.iter().fold(T::ZERO, |s, &x| s + x * x).sqrt();
         let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
