@@ -75,7 +75,10 @@ pub enum KinematicError {
     /// The square Jacobian D = Φ_q B has no acceptable pivot for a velocity (planar: a
     /// coordinate): at this configuration the constraints do not determine that velocity
     /// independently of the ones eliminated before it (a lock-up or toggle position, a missing driver, or redundant
-    /// constraints).
+    /// constraints). From [`KinematicSolver::analyze`](crate::KinematicSolver::analyze) and
+    /// `sweep`, also where the position solved lies next to such a position as far as the
+    /// position tolerance tells: the velocity is then not determined, and a smaller tolerance
+    /// resolves positions closer to it.
     SingularJacobian {
         /// Time of the failed solve (s).
         t: f64,
@@ -83,7 +86,9 @@ pub enum KinematicError {
         /// [`Mechanism::VELOCITY_NAMES`](crate::Mechanism::VELOCITY_NAMES) (planar: the
         /// coordinate).
         coordinate: &'static str,
-        /// The constraint row that held the best (largest) candidate pivot for it.
+        /// The constraint row that held the best (largest) candidate pivot for it; from an
+        /// analysis's check next to a singular position, the row that bends most along the
+        /// direction left undetermined.
         constraint: &'static str,
     },
     /// A kinematic analysis (position, velocity, acceleration) needs at least as many constraint
@@ -118,8 +123,8 @@ impl fmt::Display for KinematicError {
                 f,
                 "singular constraint Jacobian at t = {t} s: no usable pivot for coordinate \
                  '{coordinate}' (best candidate: constraint '{constraint}'); the mechanism is at a \
-                 lock-up or toggle position, or its constraints and drivers do not determine \
-                 '{coordinate}'"
+                 lock-up or toggle position (or next to one, as far as the position tolerance \
+                 tells), or its constraints and drivers do not determine '{coordinate}'"
             ),
             KinematicError::NotDriven { dof } if dof > 0 => write!(
                 f,
