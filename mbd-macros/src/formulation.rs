@@ -198,13 +198,13 @@ pub fn formulate(model: &Model) -> Formulation {
     let mut force_velocities = Vec::new();
     let mut alone_forces = Vec::new();
     let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
-        let mut alone = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
+        // On the base (zero, or the gyroscopic terms), an entry the element reaches is a new
+        // node: adding a non-zero term never gives back what it was added to.
+        let mut alone = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
         apply(b, &mut alone);
-        let velocities: Vec<usize> = (0..nv).filter(|&i| !b.g.is_zero(alone.h[i]) || !b.g.is_zero(alone.friction[i])).collect();
+        let velocities: Vec<usize> = (0..nv).filter(|&i| alone.h[i] != base_h[i] || !b.g.is_zero(alone.friction[i])).collect();
         force_velocities.push((name.to_string(), velocities));
-        let mut on_base = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
-        apply(b, &mut on_base);
-        alone_forces.push(terms(b, on_base.h));
+        alone_forces.push(terms(b, alone.h));
     };
     if let Some(g) = &model.gravity {
         reach(&mut b, "gravity", &|b, out| gravity::apply(b, g, out));

@@ -633,12 +633,18 @@ impl KinematicSolver {
             m.jacobian(q, t, &mut ws.jacobian);
         }
         let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
-        velocity_from_factors(m, q, t, ws, &factors, v)?;
-        acceleration_from_factors(m, q, v, t, ws, &factors, vd)?;
         if NV == NC {
             self.check_determined(m, q, t, ws, &factors)?;
         }
+        velocity_from_factors(m, q, t, ws, &factors, v)?;
+        acceleration_from_factors(m, q, v, t, ws, &factors, vd)?;
         Ok(convergence)
+    }
+
+    /// The position tolerance at q: [`KinematicOptions::tolerance`], raised to what the scalar
+    /// resolves ([`RESOLUTION_ULPS`] ε max(1, ‖q‖∞)).
+    fn position_tolerance<T: Real>(&self, q: &[T]) -> T {
+        T::from_f64(self.options.tolerance).max(resolution(q))
     }
 
     /// The pivot ratio of D Dᵀ (to its diagonal: the squared sine of a row's angle to the rows
@@ -647,13 +653,14 @@ impl KinematicSolver {
     /// times the position tolerance relative to max(1, ‖q‖∞) where that is larger, so that every
     /// position that check refuses is screened.
     fn near_singular_ratio<T: Real>(&self, q: &[T]) -> T {
-        let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
+        let tolerance = self.position_tolerance(q);
         let relative = tolerance / max_abs(q).0.max(T::ONE);
         (T::from_f64(1e3) * relative).max(T::from_f64(NEAR_SINGULAR_RATIO)).max(self.pivot_tolerance::<T>())
     }
 
     /// Whether the velocity and acceleration of an analysis are determined at the q it solved,
-    /// which satisfies Φ(q, t) = 0 only to the position tolerance τ; `ws.jacobian` holds D's LU.
+    /// which satisfies Φ(q, t) = 0 only to the position tolerance τ, before they are solved;
+    /// `ws.jacobian` holds D's LU.
     ///
     /// Near a singular position, D's smallest singular value σ, along the direction n, grows
     /// with the distance from it: Φ(q + s n) ≈ Φ(q) + s σ u + ½ s² κ, κ = Φ's curvature along n,
@@ -723,7 +730,7 @@ impl KinematicSolver {
             *x /= h * h;
         }
         let kappa = bend.iter().fold(T::ZERO, |s, &x| s + x * x).sqrt();
-        let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
+        let tolerance = self.position_tolerance(q);
         if sigma * sigma <= T::from_f64(2.0 * DETERMINED_MARGIN) * kappa * tolerance {
             return Err(KinematicError::SingularJacobian {
                 t: t.to_f64(),
@@ -779,7 +786,7 @@ impl KinematicSolver {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         let time = t.to_f64();
-        let tolerance = T::from_f64(self.options.tolerance).max(resolution(q));
+        let tolerance = self.position_tolerance(q);
         let pivot_tolerance = self.pivot_tolerance::<T>();
         let max_step = T::from_f64(self.options.max_step);
         let mut residual = [T::ZERO; NC];
