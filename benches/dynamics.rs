@@ -9,7 +9,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use mbd::{
     Dopri5, DynamicsOptions, ForwardDynamics, GeneralizedAlphaOptions, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4,
-    System,
+    Rk4Options, System,
 };
 use std::hint::black_box;
 
@@ -36,7 +36,7 @@ macro_rules! bench_dynamics {
         let system = System::new(&m);
         let from: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
         // Start from a moving state: 0.05 s into the fall.
-        let mut rk4 = Rk4::new(1e-3);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
         let mut p = from;
         let mut next = from;
         for _ in 0..50 {

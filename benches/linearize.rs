@@ -11,7 +11,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use mbd::{
     linearize, linearize_finite_differences, DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, LinearizeOptions,
-    Point, Rk4, System,
+    Point, Rk4, Rk4Options, System,
 };
 use std::hint::black_box;
 use std::time::Duration;
@@ -33,7 +33,7 @@ macro_rules! bench_linearize {
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
         let system = System::new(&m);
         let mut p: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
-        let mut rk4 = Rk4::new(1e-3);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
         let mut next = p;
         for _ in 0..50 {
             rk4.step(&system, &mut ws, &p, f64::INFINITY, &mut next).expect("step");

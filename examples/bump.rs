@@ -50,7 +50,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let compression = 0.3 - QuarterCar::WHEEL.position(&q).y;
     let expected = (250.0 + 35.0) * 9.81 / 2.0e5;
 
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (1..=300).map(|k| 0.005 * k as f64).collect();
     let mut events = Vec::new();
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
@@ -82,7 +82,7 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut ws = QuarterCar::workspace();
     let mut q = m.initial_positions();
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 4])?;
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (0..=200).map(|k| 0.9 + 0.003 * k as f64).collect();
     let mut animation = mbd::Animation::new::<QuarterCar>(&m.params()).title("Quarter car over a 10 cm bump at 20 m/s");
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {

@@ -112,8 +112,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
     let t_end = 6.0;
     let times: Vec<f64> = (0..=(t_end * 2000.0) as usize).map(|k| k as f64 / 2000.0).collect();
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+    let options = SimulationOptions::default().with_correction(Correction::projection());
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
     let crank = FreeEngine::CRANK;
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
@@ -151,8 +151,8 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut qd = m.initial_velocities();
     mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
     let times: Vec<f64> = (0..200).map(|k| 0.005 * k as f64).collect();
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+    let options = SimulationOptions::default().with_correction(Correction::projection());
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let mut animation = mbd::Animation::new::<FreeEngine>(&m.params()).title("Free engine with flywheel and generator, first second");
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)

@@ -50,7 +50,7 @@ where
     FreeFourBar: ForwardDynamics<f64, NQ, NV, NC>,
     I: Integrator<f64, FreeFourBar, NQ, NV, NC, N>,
 {
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let times: Vec<f64> = (1..=20).map(|k| k as f64 * T_END / 20.0).collect();
     let e0 = m.potential_energy(q, 0.0);
     let mut drift: f64 = 0.0;
@@ -68,24 +68,24 @@ pub fn run(print: bool) -> Result<Vec<Run>, Box<dyn std::error::Error>> {
     let mut q = m.initial_positions();
     let mut ws = FreeFourBar::workspace();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
-    let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut reference = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let (_, _, exact, _) = one(&m, &mut ws, &q, &mut reference)?;
     let mut runs = Vec::new();
     let mut record = |method, setting, (steps, seconds, last, drift): (u64, f64, f64, f64)| {
         runs.push(Run { method, setting, steps, seconds, error: (last - exact).abs(), energy_drift: drift });
     };
     for h in [4e-3, 2e-3, 1e-3, 5e-4] {
-        record("RK4 (h)", h, one(&m, &mut ws, &q, &mut Rk4::new(h))?);
+        record("RK4 (h)", h, one(&m, &mut ws, &q, &mut Rk4::new(Rk4Options::default().with_step(h)))?);
     }
     for rtol in [1e-4, 1e-6, 1e-8, 1e-10] {
         record(
             "DOPRI5 (rtol)",
             rtol,
-            one(&m, &mut ws, &q, &mut Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() }))?,
+            one(&m, &mut ws, &q, &mut Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol * 1e-2)))?,
         );
     }
     for h in [4e-3, 2e-3, 1e-3] {
-        let options = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
+        let options = GeneralizedAlphaOptions::default().with_step(h).with_rho_infinity(0.9);
         record("generalized-α (h)", h, one(&m, &mut ws, &q, &mut FreeFourBar::generalized_alpha(options))?);
     }
     if print {
@@ -114,9 +114,9 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut q = m.initial_positions();
     let mut ws = FreeFourBar::workspace();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * T_END / 100.0).collect();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut animation = mbd::Animation::new::<FreeFourBar>(&m.params()).title("Free four-bar released from rest under gravity");
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; FreeFourBar::NV], &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)

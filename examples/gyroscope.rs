@@ -120,11 +120,11 @@ fn nutation_exact(a: f64, b: f64, theta0: f64) -> (f64, f64, f64) {
 
 fn dopri() -> Dopri5<f64, { Gyroscope::NQ }, { Gyroscope::NV }> {
     // rtol 1e-10: the rates below come out to ~1e-9 relative.
-    Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() })
+    Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12))
 }
 
 fn options() -> SimulationOptions<f64> {
-    SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() }
+    SimulationOptions::default().with_correction(Correction::projection())
 }
 
 /// Runs the top started in steady precession at rate Ω for `duration` s; returns the measured

@@ -73,11 +73,11 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let q = m.initial_positions();
     let options = || {
         LinearizeOptions::default()
-            .inputs(&["push"])
-            .independent(&["cart.x", "pole.phi"])
-            .output(Output::Displacement("cart.x"))
-            .output(Output::Displacement("pole.phi"))
-            .output(Output::Multiplier("revolute cart~pole: x"))
+            .with_inputs(&["push"])
+            .with_independent(&["cart.x", "pole.phi"])
+            .with_output(Output::Displacement("cart.x"))
+            .with_output(Output::Displacement("pole.phi"))
+            .with_output(Output::Multiplier("revolute cart~pole: x"))
     };
     let lin = linearize(&m, &q, &[0.0; 6], 0.0, &options())?;
     let fd = linearize_finite_differences(&m, &q, &[0.0; 6], 0.0, &options())?;
@@ -110,7 +110,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut qc = car.initial_positions();
     let mut ws = QuarterCar::workspace();
     StaticSolver::default().solve(&car, &mut ws, &mut qc, 0.0, &mut [0.0; 4])?;
-    let car_lin = linearize(&car, &qc, &[0.0; 6], 0.0, &LinearizeOptions::default().independent(&["chassis.y", "wheel.y"]))?;
+    let car_lin = linearize(&car, &qc, &[0.0; 6], 0.0, &LinearizeOptions::default().with_independent(&["chassis.y", "wheel.y"]))?;
     let modes = car_lin.modes();
     // The 2-DOF model by hand: z = (chassis height, wheel height).
     let (ms, mu, ks, cs, kt, ct) = (250.0, 35.0, 2.0e4, 1500.0, 2.0e5, 200.0);

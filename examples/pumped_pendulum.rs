@@ -118,8 +118,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let per_period = 100;
     let n = (cycles * per_period as f64) as usize;
     let times: Vec<f64> = (0..=n).map(|k| k as f64 * period / per_period as f64).collect();
-    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
 
     // The reduced model, stepped along with the outputs (200 RK4 steps per output interval:
     // its error, ~(ωh)⁴ per unit time, is below 1e-12 rad).
@@ -200,8 +200,8 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut ws = PumpedPendulum::workspace();
     let period = 2.0 * PI / m.omega;
     let times: Vec<f64> = (0..=12 * 16).map(|k| k as f64 * period / 16.0).collect();
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let options = SimulationOptions::default().with_correction(Correction::projection());
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut animation =
         mbd::Animation::new::<PumpedPendulum>(&m.params()).title("Pumped pendulum: length driven at twice the swing frequency");
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;

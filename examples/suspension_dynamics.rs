@@ -107,7 +107,7 @@ where
     }
     let y0 = knuckle.y(&q);
     let static_tyre_load = tyre_load(&q, &[0.0; NQ], 0.0);
-    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
     let times: Vec<f64> = (0..=1500).map(|k| k as f64 * 1e-3).collect();
     let mut r = Report {
         static_height: y0,
@@ -120,7 +120,7 @@ where
         steps: 0,
     };
     let mut balance0 = None;
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, max_step: 2e-3, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11).with_max_step(2e-3));
     let stats = simulate(m, &mut *ws, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
         let p = &s.point;
         let travel = knuckle.y(&p.q) - y0;
@@ -194,9 +194,9 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut ws = DoubleAArmRide::workspace();
     let mut q = m.initial_positions();
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; DoubleAArmRide::NC])?;
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let times: Vec<f64> = (0..=200).map(|k| k as f64 * 7.5e-3).collect();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, max_step: 2e-3, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11).with_max_step(2e-3));
     let mut animation = mbd::Animation::new::<DoubleAArmRide>(&m.params()).title("Double A-arm over a 30 mm bump").trace("knuckle.contact");
     simulate(&m, &mut *ws, &mut dopri, 0.0, &q, &[0.0; DoubleAArmRide::NV], &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)

@@ -96,10 +96,10 @@ fn integrators_do_not_allocate() {
     for (k, t) in times.iter_mut().enumerate() {
         *t = (k + 1) as f64 * 1e-3;
     }
-    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
-    let partitioned = SimulationOptions { correction: Correction::partitioning(), ..options };
-    let mut rk4 = Rk4::new(1e-3);
-    let mut dopri = Dopri5::new(Dopri5Options { max_step: 1e-3, ..Dopri5Options::default() });
+    let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
+    let partitioned = options.with_correction(Correction::partitioning());
+    let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_max_step(1e-3));
     let mut alpha = FreeFourBar::generalized_alpha(GeneralizedAlphaOptions::default());
     let mut samples = 0u64;
     let mut energy = 0.0;
@@ -114,7 +114,9 @@ fn integrators_do_not_allocate() {
     steps += simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("DOPRI5").steps;
     steps += simulate(&m, &mut ws, &mut alpha, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("generalized-α").steps;
     steps +=
-        simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 9], &times, &partitioned, &mut collect).expect("partitioning").steps;
+        simulate(&m, &mut ws, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, &q, &[0.0; 9], &times, &partitioned, &mut collect)
+            .expect("partitioning")
+            .steps;
     let after = allocations();
 
     assert!(steps >= 40_000, "{steps} steps");

@@ -110,7 +110,7 @@ fn pages_draw_in_a_browser() {
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 4]).expect("rests on its tyre");
     let mut animation = Animation::new::<QuarterCar>(&m.params());
     let times: Vec<f64> = (0..=150).map(|k| 0.9 + 0.002 * k as f64).collect();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-8, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8));
     let before: Vec<f64> = (0..90).map(|k| 0.01 * k as f64).collect();
     let mut state = (0.0, q, [0.0; 6]);
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &before, &SimulationOptions::default(), |s| {

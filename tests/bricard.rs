@@ -131,7 +131,7 @@ fn bricard_moves_with_one_degree_of_freedom() {
     let (mut worst_sym, mut worst_phi, mut worst_e, mut moved, mut worst_dropped) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut samples = Vec::new();
     let mut dropped = None;
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &[0.0; 30], &times, &SimulationOptions::default(), |s| {
         let q = &s.point.q;
         let mut phi = [0.0; 30];

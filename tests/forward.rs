@@ -226,7 +226,7 @@ fn redundant_constraints_are_named_or_dropped() {
     let q = [0.25, 0.0, 0.0];
     let qd = [0.0; 3];
     let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 4]);
-    let strict = DynamicsOptions { allow_redundant: false, ..DynamicsOptions::default() };
+    let strict = DynamicsOptions::default().with_allow_redundant(false);
     let err = m.accelerations(&q, &qd, 0.0, &strict, &mut qdd, &mut lambda).unwrap_err();
     match err {
         DynamicsError::DependentConstraint { row, .. } => assert!(row.starts_with("revolute rod~ground"), "{row}"),

@@ -151,9 +151,9 @@ fn friction_holds_a_block_on_a_shallow_slope() {
     // μ = 0.8 > tan 30° ≈ 0.577: released at rest, the block creeps at about v_s only.
     let m = Incline { mu: 0.8, ..Incline::default() };
     let (q, qd) = incline_state(&m, 0.0, 0.0);
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut last = q;
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-8, atol: 1e-10, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8).with_atol(1e-10));
     simulate(&m, &mut Incline::workspace(), &mut dopri, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     // Creep speed v = v_s · r/√(1 − r²), r = tan θ / μ = 0.72: about 1.04 v_s.
@@ -192,12 +192,12 @@ fn pin_friction_torque_is_mu_r_times_the_pin_force() {
 fn friction_work_closes_the_energy_balance() {
     let m = FrictionPendulum { mu: 0.3 };
     let q = [0.5, 0.0, 0.0];
-    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
     let times: Vec<f64> = (0..=40).map(|k| k as f64 * 0.05).collect();
     let mut first = None;
     let mut worst: f64 = 0.0;
     let mut lost = 0.0;
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     simulate(&m, &mut FrictionPendulum::workspace(), &mut dopri, 0.0, &q, &[0.0; 3], &times, &options, |s| {
         let b = s.energy.balance();
         let b0 = *first.get_or_insert(b);
@@ -288,7 +288,7 @@ fn friction_derivatives_match_central_differences() {
 /// at h = 1 ms (measured 1.28e-3 m, halving with h); bounded here by h · v(1 s).
 #[test]
 fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let sticky = Incline { mu: 0.8, ..Incline::default() };
     let (q, qd) = incline_state(&sticky, 0.0, 0.0);
     let mut last = q;

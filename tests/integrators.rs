@@ -98,7 +98,7 @@ mechanism! {
 /// Runs `integrator` on the double pendulum from horizontal rest to t = 1 s; returns q(1).
 fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
     let m = DoublePendulum::default();
-    let options = SimulationOptions { correction, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(correction);
     let mut last = [0.0; 6];
     simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[1.0], &options, |s| {
         last = s.point.q
@@ -115,21 +115,21 @@ fn max_diff(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 /// reference is DOPRI5 at rtol 1e-12 (error ≲ 1e-10, far below the errors compared).
 #[test]
 fn integrators_converge_at_their_order() {
-    let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut reference = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let exact = double_pendulum_at_1s(&mut reference, Correction::None);
 
-    let e1 = max_diff(&double_pendulum_at_1s(&mut Rk4::new(4e-3), Correction::None), &exact);
-    let e2 = max_diff(&double_pendulum_at_1s(&mut Rk4::new(2e-3), Correction::None), &exact);
+    let e1 = max_diff(&double_pendulum_at_1s(&mut Rk4::new(Rk4Options::default().with_step(4e-3)), Correction::None), &exact);
+    let e2 = max_diff(&double_pendulum_at_1s(&mut Rk4::new(Rk4Options::default().with_step(2e-3)), Correction::None), &exact);
     eprintln!("RK4 errors {e1:e} → {e2:e}");
     assert!((12.0..20.0).contains(&(e1 / e2)), "RK4 error ratio {} ({e1:e} → {e2:e})", e1 / e2);
 
-    let options = |step| GeneralizedAlphaOptions { step, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
+    let options = |step| GeneralizedAlphaOptions::default().with_step(step).with_rho_infinity(0.9);
     let e1 = max_diff(&double_pendulum_at_1s(&mut DoublePendulum::generalized_alpha(options(2e-3)), Correction::None), &exact);
     let e2 = max_diff(&double_pendulum_at_1s(&mut DoublePendulum::generalized_alpha(options(1e-3)), Correction::None), &exact);
     eprintln!("generalized-α errors {e1:e} → {e2:e}");
     assert!((3.0..5.5).contains(&(e1 / e2)), "generalized-α error ratio {} ({e1:e} → {e2:e})", e1 / e2);
 
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-8, atol: 1e-10, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8).with_atol(1e-10));
     let e = max_diff(&double_pendulum_at_1s(&mut dopri, Correction::None), &exact);
     eprintln!("DOPRI5 error {e:e}, {} steps, {} rejected", dopri.accepted, dopri.rejected);
     // A chaotic motion amplifies local errors; 1 s of it by about 100.
@@ -150,10 +150,10 @@ fn dop853_converges_at_eighth_order_and_its_dense_output_at_seventh() {
     times.push(1.0);
     // [largest error between steps, error at t = 1] (m) with steps of h.
     let errors = |h: f64| -> [f64; 2] {
-        let options = Dop853Options { rtol: 1e3, atol: 1e3, initial_step: h, max_step: h, ..Dop853Options::default() };
+        let options = Dop853Options::default().with_rtol(1e3).with_atol(1e3).with_initial_step(h).with_max_step(h);
         let mut dop = Dop853::new(options);
         let mut e = [0.0f64; 2];
-        let run = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+        let run = SimulationOptions::default().with_correction(Correction::None);
         simulate(&m, &mut Oscillator::workspace(), &mut dop, 0.0, &m.initial_positions(), &[0.0; 3], &times, &run, |s| {
             let error = (s.point.q[0] - (0.1 + 0.05 * (10.0 * s.point.t).cos())).abs();
             let k = usize::from(s.point.t == 1.0);
@@ -177,10 +177,11 @@ fn dop853_converges_at_eighth_order_and_its_dense_output_at_seventh() {
 /// evaluations per step, so this is where its 8th order pays).
 #[test]
 fn dop853_meets_tight_tolerances_in_fewer_steps_than_dopri5() {
-    let tight = Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() };
+    let tight = Dop853Options::default().with_rtol(1e-13).with_atol(1e-15);
     let exact = double_pendulum_at_1s(&mut Dop853::new(tight), Correction::None);
-    let options = Dopri5Options { rtol: 1e-11, atol: 1e-13, ..Dopri5Options::default() };
-    let (mut dop, mut dopri) = (Dop853::new(options), Dopri5::new(options));
+    let (rtol, atol) = (1e-11, 1e-13);
+    let mut dop = Dop853::new(Dop853Options::default().with_rtol(rtol).with_atol(atol));
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(atol));
     let e853 = max_diff(&double_pendulum_at_1s(&mut dop, Correction::None), &exact);
     let e5 = max_diff(&double_pendulum_at_1s(&mut dopri, Correction::None), &exact);
     eprintln!(
@@ -203,9 +204,9 @@ fn conservative_mechanisms_conserve_energy() {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut SpringFourBar::workspace(), &mut q, 0.0).unwrap();
     let times: Vec<f64> = (1..=300).map(|k| k as f64 * 0.01).collect();
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
-    let mut rk4 = Rk4::new(1e-3);
+    let options = SimulationOptions::default().with_correction(Correction::projection());
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
+    let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
     for (name, bound, integrator) in
         [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8, 17>), ("RK4", 1e-6, &mut rk4)]
     {
@@ -257,10 +258,10 @@ fn the_energy_balance_holds_with_dampers_and_drivers() {
     let mut qd = [0.0; 9];
     KinematicSolver::default().solve_velocity(&m, &mut DrivenCrank::workspace(), &q, 0.0, &mut qd).unwrap();
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.02).collect();
-    let options = SimulationOptions { correction: Correction::projection(), track_work: true, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
     let mut balances = Vec::new();
     let mut totals = Vec::new();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     simulate(&m, &mut DrivenCrank::workspace(), &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
         balances.push(s.energy.balance());
         totals.push(s.energy.kinetic + s.energy.potential);
@@ -281,11 +282,19 @@ fn partitioning_and_projection_agree() {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut SpringFourBar::workspace(), &mut q, 0.0).unwrap();
     let run = |correction| {
-        let options = SimulationOptions { correction, dynamics: DynamicsOptions::without_stabilization(), ..SimulationOptions::default() };
+        let options = SimulationOptions::default().with_correction(correction).with_dynamics(DynamicsOptions::without_stabilization());
         let mut out = Vec::new();
-        simulate(&m, &mut SpringFourBar::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 9], &[0.5, 1.0, 2.0], &options, |s| {
-            out.push(s.point)
-        })
+        simulate(
+            &m,
+            &mut SpringFourBar::workspace(),
+            &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+            0.0,
+            &q,
+            &[0.0; 9],
+            &[0.5, 1.0, 2.0],
+            &options,
+            |s| out.push(s.point),
+        )
         .unwrap();
         out
     };
@@ -340,16 +349,26 @@ mechanism! {
 #[test]
 fn partitioning_chooses_again_where_its_block_turns_singular() {
     let m = Bead::default();
-    let options = SimulationOptions { correction: Correction::partitioning(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::partitioning());
     let (mut worst_phi, mut worst_e, mut turned) = (0.0f64, 0.0f64, 0.0f64);
     let e0 = 0.5 * 6.0 * 6.0;
     let times: Vec<f64> = (1..=200).map(|k| 0.01 * k as f64).collect();
-    simulate(&m, &mut Bead::workspace(), &mut Rk4::new(1e-3), 0.0, &m.initial_positions(), &[0.0, 6.0, 0.0], &times, &options, |s| {
-        let (x, y) = (Bead::BEAD.x(&s.point.q), Bead::BEAD.y(&s.point.q));
-        worst_phi = worst_phi.max((x * x + y * y - 1.0).abs());
-        worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
-        turned = turned.max(y.atan2(x).rem_euclid(std::f64::consts::TAU));
-    })
+    simulate(
+        &m,
+        &mut Bead::workspace(),
+        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+        0.0,
+        &m.initial_positions(),
+        &[0.0, 6.0, 0.0],
+        &times,
+        &options,
+        |s| {
+            let (x, y) = (Bead::BEAD.x(&s.point.q), Bead::BEAD.y(&s.point.q));
+            worst_phi = worst_phi.max((x * x + y * y - 1.0).abs());
+            worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
+            turned = turned.max(y.atan2(x).rem_euclid(std::f64::consts::TAU));
+        },
+    )
     .expect("partitioning loops the circle");
     eprintln!("bead: off the circle {worst_phi:.1e}, |ΔE| {worst_e:.1e} J");
     assert!(turned > 6.0, "it loops: turned up to {turned} rad");
@@ -359,7 +378,7 @@ fn partitioning_chooses_again_where_its_block_turns_singular() {
     let err = simulate(
         &twice,
         &mut TwiceBead::workspace(),
-        &mut Rk4::new(1e-3),
+        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
         0.0,
         &twice.initial_positions(),
         &[0.0; 3],
@@ -381,7 +400,18 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
     let m = StiffBlock::default();
     let q = m.initial_positions();
     let options = SimulationOptions::default();
-    let err = simulate(&m, &mut StiffBlock::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 3], &[2.0], &options, |_| {}).unwrap_err();
+    let err = simulate(
+        &m,
+        &mut StiffBlock::workspace(),
+        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+        0.0,
+        &q,
+        &[0.0; 3],
+        &[2.0],
+        &options,
+        |_| {},
+    )
+    .unwrap_err();
     // The blown-up state overflows the spring's force first (named), or reaches a coordinate.
     match err {
         SimulationError::NonFinite { coordinate, .. } => assert!(coordinate.starts_with("block."), "{coordinate}"),
@@ -390,8 +420,7 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
         }
         other => panic!("expected a non-finite error, got {other:?}"),
     }
-    let mut alpha =
-        StiffBlock::generalized_alpha(GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
+    let mut alpha = StiffBlock::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-3).with_rho_infinity(0.5));
     let mut last = [0.0; 3];
     simulate(&m, &mut StiffBlock::workspace(), &mut alpha, 0.0, &q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
     eprintln!("stiff block: RK4 {err}; generalized-α x(2 s) = {}", last[0]);
@@ -432,7 +461,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         let system = System::new(&free);
         let from = system.point(t0, q, qd, [0.0; 2]).unwrap();
         let mut to = from;
-        Rk4::new(h).step(&system, &mut TorqueCrank::workspace(), &from, f64::INFINITY, &mut to).unwrap();
+        Rk4::new(Rk4Options::default().with_step(h)).step(&system, &mut TorqueCrank::workspace(), &from, f64::INFINITY, &mut to).unwrap();
         (q, qd) = (to.q, to.v);
         let exact = 0.3 + 5.0 * to.t + 0.5 * (3.0 * to.t).sin();
         worst = worst.max((q[2] - exact).abs());
@@ -456,10 +485,20 @@ fn the_csv_writer_writes_every_sample_with_named_columns() {
     let mut buffer = Vec::new();
     let mut csv = CsvWriter::new::<DoublePendulum>(&mut buffer);
     let options = SimulationOptions::default();
-    simulate(&m, &mut DoublePendulum::workspace(), &mut Rk4::new(1e-2), 0.0, &m.initial_positions(), &[0.0; 6], &times, &options, |s| {
-        csv.write(s);
-        samples.push(*s);
-    })
+    simulate(
+        &m,
+        &mut DoublePendulum::workspace(),
+        &mut Rk4::new(Rk4Options::default().with_step(1e-2)),
+        0.0,
+        &m.initial_positions(),
+        &[0.0; 6],
+        &times,
+        &options,
+        |s| {
+            csv.write(s);
+            samples.push(*s);
+        },
+    )
     .unwrap();
     assert_eq!(csv.finish().unwrap(), 3);
     let text = String::from_utf8(buffer).unwrap();
@@ -517,12 +556,23 @@ fn a_correction_out_of_iterations_names_its_worst_row() {
     let m = DoublePendulum::default();
     let mut q = m.initial_positions();
     q[0] += 0.01;
-    for correction in
-        [Correction::Partitioning { tolerance: 1e-10, max_iterations: 0 }, Correction::Projection { tolerance: 1e-10, max_iterations: 0 }]
-    {
-        let options = SimulationOptions { correction, ..SimulationOptions::default() };
-        let err =
-            simulate(&m, &mut DoublePendulum::workspace(), &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 6], &[0.01], &options, |_| {}).unwrap_err();
+    for correction in [
+        Correction::partitioning().with_tolerance(1e-10).with_max_iterations(0),
+        Correction::projection().with_tolerance(1e-10).with_max_iterations(0),
+    ] {
+        let options = SimulationOptions::default().with_correction(correction);
+        let err = simulate(
+            &m,
+            &mut DoublePendulum::workspace(),
+            &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+            0.0,
+            &q,
+            &[0.0; 6],
+            &[0.01],
+            &options,
+            |_| {},
+        )
+        .unwrap_err();
         match err {
             SimulationError::NotConverged { t, worst_row, residual, .. } => {
                 assert_eq!(t, 0.0, "{correction:?}");
@@ -542,16 +592,12 @@ fn a_correction_out_of_iterations_names_its_worst_row() {
 /// reject first order (slope 1/2 in error at twice the steps' slope) and third.
 #[test]
 fn adaptive_generalized_alpha_error_falls_like_tolerance_to_two_thirds() {
-    let exact =
-        double_pendulum_at_1s(&mut Dop853::new(Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() }), Correction::None);
+    let exact = double_pendulum_at_1s(&mut Dop853::new(Dop853Options::default().with_rtol(1e-13).with_atol(1e-15)), Correction::None);
     let tolerances = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
     let (mut errors, mut steps) = (vec![], vec![]);
     for rtol in tolerances {
-        let control = ErrorControl { rtol, atol: rtol, ..ErrorControl::default() };
-        let mut alpha = DoublePendulum::generalized_alpha(GeneralizedAlphaOptions {
-            error_control: Some(control),
-            ..GeneralizedAlphaOptions::default()
-        });
+        let control = ErrorControl::default().with_rtol(rtol).with_atol(rtol);
+        let mut alpha = DoublePendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_error_control(Some(control)));
         let e = max_diff(&double_pendulum_at_1s(&mut alpha, Correction::None), &exact);
         eprintln!(
             "rtol {rtol:e}: error {e:e}, {} steps, {} rejected, {} iterations",
@@ -588,17 +634,16 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     let q = m.initial_positions();
     fn run(m: &StiffPendulum, q: &[f64; 3], integrator: &mut impl Integrator<f64, StiffPendulum, 3, 3, 0, 3>) -> [f64; 3] {
         let mut last = [0.0; 3];
-        let options = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+        let options = SimulationOptions::default().with_correction(Correction::None);
         simulate(m, &mut StiffPendulum::workspace(), integrator, 0.0, q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
         last
     }
-    let exact = run(&m, &q, &mut Dopri5::new(Dopri5Options { rtol: 1e-11, atol: 1e-13, ..Dopri5Options::default() }));
+    let exact = run(&m, &q, &mut Dopri5::new(Dopri5Options::default().with_rtol(1e-11).with_atol(1e-13)));
     let (rtol, atol) = (1e-6, 1e-8);
-    let mut dopri = Dopri5::new(Dopri5Options { rtol, atol, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(atol));
     let e5 = run(&m, &q, &mut dopri);
-    let control = ErrorControl { rtol, atol, ..ErrorControl::default() };
-    let mut alpha =
-        StiffPendulum::generalized_alpha(GeneralizedAlphaOptions { error_control: Some(control), ..GeneralizedAlphaOptions::default() });
+    let control = ErrorControl::default().with_rtol(rtol).with_atol(atol);
+    let mut alpha = StiffPendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_error_control(Some(control)));
     let ea = run(&m, &q, &mut alpha);
     let error = |q: [f64; 3]| (q[0] - exact[0]).abs().max((q[1] - exact[1]).abs());
     eprintln!(

@@ -77,7 +77,7 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the chain assembles");
         let times = [2.5e-3, 5e-3];
         for correction in [Correction::None, Correction::projection(), Correction::partitioning()] {
-            let options = SimulationOptions { correction, ..SimulationOptions::default() };
+            let options = SimulationOptions::default().with_correction(correction);
             let check = |name: &str, q: &[f64; 360]| {
                 let mut phi = [0.0; 240];
                 m.constraints(q, 5e-3, &mut phi);
@@ -85,7 +85,10 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
                 assert!(worst < 1e-6, "{name}, {correction:?}: ‖Φ‖∞ = {worst:e}");
             };
             let mut last = [0.0; 360];
-            simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("RK4");
+            simulate(&m, &mut ws, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, &q, &[0.0; 360], &times, &options, |s| {
+                last = s.point.q
+            })
+            .expect("RK4");
             check("RK4", &last);
             let mut dopri = Dopri5::new(Dopri5Options::default());
             simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOPRI5");
@@ -93,7 +96,7 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
             let mut dop853 = Dop853::new(Dop853Options::default());
             simulate(&m, &mut ws, &mut dop853, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOP853");
             check("DOP853", &last);
-            let mut alpha = Chain120::generalized_alpha(GeneralizedAlphaOptions { step: 2.5e-3, ..GeneralizedAlphaOptions::default() });
+            let mut alpha = Chain120::generalized_alpha(GeneralizedAlphaOptions::default().with_step(2.5e-3));
             simulate(&m, &mut ws, &mut alpha, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("generalized-α");
             check("generalized-α", &last);
         }
@@ -111,7 +114,7 @@ fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
         let mut ws = Chain120::workspace();
         let mut q = m.initial_positions();
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the chain assembles");
-        let options = DynamicsOptions { baumgarte_alpha: 0.0, baumgarte_beta: 0.0, ..DynamicsOptions::default() };
+        let options = DynamicsOptions::default().with_baumgarte_alpha(0.0).with_baumgarte_beta(0.0);
         let mut v: [f64; 360] = core::array::from_fn(|i| (0.7 * i as f64).sin());
         m.project_velocities(&q, &mut v, 0.0, &options).expect("v onto D v = 0");
         let (mut vd, mut lambda) = ([0.0; 360], [0.0; 240]);

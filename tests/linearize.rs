@@ -160,7 +160,7 @@ fn pendulum_small_oscillation_and_upright_instability() {
 fn mass_spring_damper_frequency_damping_and_gain() {
     let m = Oscillator::default();
     let q = m.initial_positions();
-    let options = LinearizeOptions::default().inputs(&["push"]).output(Output::Displacement("block.x"));
+    let options = LinearizeOptions::default().with_inputs(&["push"]).with_output(Output::Displacement("block.x"));
     let lin = linearize(&m, &q, &[0.0; 3], 0.0, &options).expect("linearizes");
     assert_eq!(lin.state_names, ["block.x", "block.x_dot"]);
     let (k, c, mass) = (400.0, 6.0, 2.5);
@@ -302,10 +302,10 @@ fn exact_against_finite_differences_at_equilibria() {
     let m = Oscillator::default();
     let options = || {
         LinearizeOptions::default()
-            .inputs(&["push"])
-            .output(Output::Displacement("block.x"))
-            .output(Output::Velocity("block.x"))
-            .output(Output::Multiplier("translational ground~block: normal"))
+            .with_inputs(&["push"])
+            .with_output(Output::Displacement("block.x"))
+            .with_output(Output::Velocity("block.x"))
+            .with_output(Output::Multiplier("translational ground~block: normal"))
     };
     let q = m.initial_positions();
     let exact = linearize(&m, &q, &[0.0; 3], 0.0, &options()).expect("exact");
@@ -316,7 +316,7 @@ fn exact_against_finite_differences_at_equilibria() {
     let mut q = m.initial_positions();
     let mut ws = SprungFourBar::workspace();
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 8]).expect("equilibrium");
-    let options = || LinearizeOptions::default().output(Output::Multiplier(SprungFourBar::CONSTRAINT_NAMES[6]));
+    let options = || LinearizeOptions::default().with_output(Output::Multiplier(SprungFourBar::CONSTRAINT_NAMES[6]));
     let exact = linearize(&m, &q, &[0.0; 9], 0.0, &options()).expect("exact");
     let fd = linearize_finite_differences(&m, &q, &[0.0; 9], 0.0, &options()).expect("differences");
     agree("four-bar", &exact, &fd);
@@ -334,12 +334,12 @@ fn exact_against_finite_differences_at_moving_states() {
     m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).expect("velocities");
     let options = || {
         LinearizeOptions::default()
-            .inputs(&["torque"])
-            .independent(&["crank.phi"])
-            .output(Output::Displacement("slider.x"))
-            .output(Output::Velocity("rod.phi"))
-            .output(Output::Multiplier(DrivenSliderCrank::CONSTRAINT_NAMES[0]))
-            .output(Output::rate("rod.B y", |q, v| DrivenSliderCrank::default().rod_b().velocity(q, v).y))
+            .with_inputs(&["torque"])
+            .with_independent(&["crank.phi"])
+            .with_output(Output::Displacement("slider.x"))
+            .with_output(Output::Velocity("rod.phi"))
+            .with_output(Output::Multiplier(DrivenSliderCrank::CONSTRAINT_NAMES[0]))
+            .with_output(Output::rate("rod.B y", |q, v| DrivenSliderCrank::default().rod_b().velocity(q, v).y))
     };
     assert!((q[2] - 0.7).abs() < 0.01 && q[6] > 0.3, "assembled off the dead centres: {q:?}");
     let exact = linearize(&m, &q, &v, 0.0, &options()).expect("exact");
@@ -350,14 +350,14 @@ fn exact_against_finite_differences_at_moving_states() {
 
     let m = SpinningTop::default();
     let (q, v) = (m.initial_positions(), m.initial_velocities());
-    let exact = linearize(&m, &q, &v, 0.0, &LinearizeOptions::default().output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])))
+    let exact = linearize(&m, &q, &v, 0.0, &LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])))
         .expect("exact");
     let fd = linearize_finite_differences(
         &m,
         &q,
         &v,
         0.0,
-        &LinearizeOptions::default().output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])),
+        &LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])),
     )
     .expect("differences");
     agree("spinning top", &exact, &fd);
@@ -372,7 +372,7 @@ fn exact_against_finite_differences_at_moving_states() {
 fn driver_acceleration_as_input() {
     let m = ShakenPendulum::default();
     let (q, v) = (m.initial_positions(), m.initial_velocities());
-    let options = || LinearizeOptions::default().inputs(&["carriage"]).output(Output::Multiplier("carriage: x"));
+    let options = || LinearizeOptions::default().with_inputs(&["carriage"]).with_output(Output::Multiplier("carriage: x"));
     let lin = linearize(&m, &q, &v, 0.0, &options()).expect("linearizes");
     assert_eq!(lin.state_names, ["rod.phi", "rod.phi_dot"]);
     let (mass, c, j) = (2.0, 0.5, 0.25);
@@ -394,16 +394,16 @@ fn errors_name_what_is_wrong() {
     let q = m.initial_positions();
     let e = linearize(&m, &q, &[1.0, 0.0, 0.0], 0.0, &LinearizeOptions::default()).unwrap_err();
     assert!(e.to_string().contains("velocities violate"), "{e}");
-    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().inputs(&["motor"])).unwrap_err();
+    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().with_inputs(&["motor"])).unwrap_err();
     assert!(e.to_string().contains("unknown input `motor`"), "{e}");
     // A parameter that also sets the geometry is not an input.
     assert_eq!(LongRod::INPUTS, ["push"]);
     let rod = LongRod::default();
-    let e = linearize(&rod, &rod.initial_positions(), &[0.0; 3], 0.0, &LinearizeOptions::default().inputs(&["len"])).unwrap_err();
+    let e = linearize(&rod, &rod.initial_positions(), &[0.0; 3], 0.0, &LinearizeOptions::default().with_inputs(&["len"])).unwrap_err();
     assert!(e.to_string().contains("unknown input (a parameter that also sets the geometry, the masses or friction) `len`"), "{e}");
     let e = linearize(&ShakenPendulum::default(), &[0.0; 6], &[0.0; 6], 0.0, &LinearizeOptions::default()).unwrap_err();
     assert!(e.to_string().contains("not assembled"), "{e}");
-    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().independent(&["rod.x", "rod.y"])).unwrap_err();
+    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().with_independent(&["rod.x", "rod.y"])).unwrap_err();
     assert!(e.to_string().contains("2 named, but the mechanism has 1 degrees of freedom"), "{e}");
 }
 
@@ -411,7 +411,7 @@ fn errors_name_what_is_wrong() {
 #[test]
 fn export_with_names() {
     let m = Oscillator::default();
-    let options = LinearizeOptions::default().inputs(&["push"]).output(Output::Displacement("block.x"));
+    let options = LinearizeOptions::default().with_inputs(&["push"]).with_output(Output::Displacement("block.x"));
     let lin = linearize(&m, &m.initial_positions(), &[0.0; 3], 0.0, &options).expect("linearizes");
     let dir = std::env::temp_dir().join(format!("mbd-linearize-{}", std::process::id()));
     lin.write_csv(&dir).expect("writes");

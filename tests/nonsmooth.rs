@@ -2,7 +2,8 @@
 //! derivatives at exactly the kink.
 
 use mbd::{
-    simulate, simulate_with_events, Dopri5, Dopri5Options, Dynamics, Event, EventHit, Kinematics, Mechanism, Rk4, SimulationOptions,
+    simulate, simulate_with_events, Dopri5, Dopri5Options, Dynamics, Event, EventHit, Kinematics, Mechanism, Rk4, Rk4Options,
+    SimulationOptions,
 };
 
 mbd::mechanism! {
@@ -48,7 +49,7 @@ fn a_ball_bounces_at_the_closed_form_instants() {
     let m = Ball::default();
     let mut ws = Ball::workspace();
     let (t1, t2, v0) = first_bounce(1.0e5);
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-11, atol: 1e-13, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-11).with_atol(1e-13));
     let q0 = m.initial_positions();
     let e0 = m.potential_energy(&q0, 0.0);
     let times: Vec<f64> = (1..=200).map(|i| 0.01 * i as f64).collect();
@@ -85,15 +86,25 @@ fn a_ball_bounces_at_the_closed_form_instants() {
 #[test]
 fn landing_on_the_switches_keeps_a_coarse_step_right() {
     let m = DampedBall::default();
-    let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut reference = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let run = |integrator: &mut dyn FnMut(&SimulationOptions<f64>) -> f64, locate: bool| {
-        integrator(&SimulationOptions { locate_switches: locate, ..SimulationOptions::default() })
+        integrator(&SimulationOptions::default().with_locate_switches(locate))
     };
     let at_half = |options: &SimulationOptions<f64>, h: f64| {
         let mut ws = DampedBall::workspace();
         let mut v = 0.0;
-        simulate(&m, &mut ws, &mut Rk4::new(h), 0.0, &m.initial_positions(), &[0.0; 3], &[0.5], options, |s| v = s.point.v[1])
-            .expect("bounces");
+        simulate(
+            &m,
+            &mut ws,
+            &mut Rk4::new(Rk4Options::default().with_step(h)),
+            0.0,
+            &m.initial_positions(),
+            &[0.0; 3],
+            &[0.5],
+            options,
+            |s| v = s.point.v[1],
+        )
+        .expect("bounces");
         v
     };
     let mut ws = DampedBall::workspace();
@@ -200,7 +211,7 @@ fn a_particle_pendulum_swings_with_the_simple_pendulums_period() {
     let mut q = m.initial_positions();
     mbd::KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
     let theta0 = q[0].atan2(-q[1]);
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let mut crossings = Vec::new();
     let mut tension_at_bottom = 0.0;
     // θ = 0 crossings: the user event x = 0 (recorded, not stopping).
@@ -232,7 +243,7 @@ fn a_spatial_particle_pendulum_swings_with_the_same_period() {
     let mut q = m.initial_positions();
     mbd::KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
     let theta0 = q[0].atan2(-q[2]);
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let (mut crossings, mut off_plane) = (Vec::new(), 0.0f64);
     let mut events = [Event { function: &mut |_t: f64, q: &[f64; 7], _v: &[f64; 6]| q[0], stop: false }];
     simulate_with_events(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &[4.5], &SimulationOptions::default(), &mut events, |s| {
@@ -278,7 +289,7 @@ fn a_rope_on_a_floor_runs_through_its_many_switches() {
     let mut ws = Rope::workspace();
     let q = m.initial_positions();
     let mut dopri = Dopri5::new(Dopri5Options::default());
-    let options = SimulationOptions { max_steps: 200_000, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_max_steps(200_000);
     let (mut lowest, mut energy) = (f64::INFINITY, Vec::new());
     let stats = simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 30], &[0.25, 0.5, 0.75, 1.0], &options, |s| {
         lowest = (0..10).fold(lowest, |l, i| l.min(s.point.q[3 * i + 1]));

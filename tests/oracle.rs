@@ -205,8 +205,7 @@ where
         // is asked for to a change of 1e-13 (compare.py's bound accounts for it).
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        let options =
-            mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
+        let options = mbd::DynamicsOptions::baumgarte(alpha, beta).with_friction_tolerance(1e-13).with_friction_iterations(500);
         if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
             forward += 1;
             let fields = sample.as_object_mut().expect("a sample is an object");
@@ -324,13 +323,9 @@ fn dop853_agrees_with_casadi_cvodes_on_the_pendulum_chain() {
     let m = pendulum_chain16::PendulumChain16::default();
     let q0 = m.initial_positions();
     let t_end = 1.0;
-    let options = SimulationOptions {
-        dynamics: DynamicsOptions::without_stabilization(),
-        correction: Correction::None,
-        ..SimulationOptions::default()
-    };
+    let options = SimulationOptions::default().with_dynamics(DynamicsOptions::without_stabilization()).with_correction(Correction::None);
     let mut q = [0.0; 48];
-    let mut dop = Dop853::new(Dop853Options { rtol: 1e-12, atol: 1e-14, ..Dop853Options::default() });
+    let mut dop = Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-14));
     simulate(&m, &mut pendulum_chain16::PendulumChain16::workspace(), &mut dop, 0.0, &q0, &[0.0; 48], &[t_end], &options, |s| {
         q = s.point.q
     })

@@ -201,8 +201,7 @@ where
         // gains; a random state at a singular configuration rightly fails and carries no v̇.
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
-        let options =
-            mbd::DynamicsOptions { friction_tolerance: 1e-13, friction_iterations: 500, ..mbd::DynamicsOptions::baumgarte(alpha, beta) };
+        let options = mbd::DynamicsOptions::baumgarte(alpha, beta).with_friction_tolerance(1e-13).with_friction_iterations(500);
         if m.accelerations(&q, &v, t, &options, &mut vd, &mut lambda).is_ok() {
             forward += 1;
             fields.insert("qdd".into(), json!(vd.to_vec()));

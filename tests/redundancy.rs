@@ -176,7 +176,7 @@ fn third_crank_moves_as_one_degree_of_freedom() {
     q[9..12].copy_from_slice(&[0.5 + r * c0, r * s0, 0.0]);
     // The defaults: no Baumgarte terms, projection after each step, dependent rows dropped.
     let options = SimulationOptions::default();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut k = 0;
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 12], &times, &options, |s| {
         let q = &s.point.q;

@@ -86,7 +86,7 @@ fn f32_simulations_run_with_the_default_options() {
         KinematicSolver::default().assemble(&m64, &mut FreeSliderCrank::workspace(), &mut q64, 0.0).unwrap();
         let times64: Vec<f64> = times.iter().map(|&t| t as f64).collect();
         let mut out = Vec::new();
-        let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-12, ..Dopri5Options::default() });
+        let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-12));
         simulate(&m64, &mut FreeSliderCrank::workspace(), &mut dopri, 0.0, &q64, &[0.0; 9], &times64, &SimulationOptions::default(), |s| {
             out.push(FreeSliderCrank::CRANK.phi(&s.point.q))
         })

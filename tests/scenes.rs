@@ -32,7 +32,7 @@ mechanism! {
 fn run<M: ForwardDynamics<f64, 9, 9, 8>>(m: &M) -> [f64; 9] {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(m, &mut Workspace::<f64, 9, 8, 17>::new(), &mut q, 0.0).expect("assembles");
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut last = q;
     let v0 = m.initial_velocities();
     simulate(m, &mut Workspace::<f64, 9, 8, 17>::new(), &mut dopri, 0.0, &q, &v0, &[0.5], &SimulationOptions::default(), |s| {
@@ -151,7 +151,7 @@ fn a_scene_skips_what_it_does_not_need() {
     let mut q = press.initial_positions();
     KinematicSolver::default().assemble(&press, &mut Workspace::<f64, 9, 8, 17>::new(), &mut q, 0.0).expect("assembles");
     let v = press.initial_velocities();
-    let one_pass = DynamicsOptions { friction_iterations: 1, ..DynamicsOptions::default() };
+    let one_pass = DynamicsOptions::default().with_friction_iterations(1);
     let (mut vd, mut lambda) = ([0.0; 9], [0.0; 8]);
     let base = press.accelerations(&q, &v, 0.0, &one_pass, &mut vd, &mut lambda);
     assert!(matches!(base, Err(DynamicsError::FrictionNotConverged { .. })), "{base:?}");

@@ -119,7 +119,7 @@ fn times(step: f64, end: f64) -> Vec<f64> {
 }
 
 fn tight() -> Dopri5<f64, 7, 6> {
-    Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() })
+    Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12))
 }
 
 /// Energy and global angular momentum L = A J′ω′ of a torque-free body over 100 s, and the
@@ -180,7 +180,7 @@ fn heavy_top_precesses_steadily() {
     let top = Top { l, theta, wx: w[0], wy: w[1], wz: w[2], vx: vr[0], vy: vr[1], vz: vr[2] };
     let (q0, v0) = (top.initial_positions(), top.initial_velocities());
     let (mut last, mut worst_tilt, mut azimuth) = (0.0, 0.0f64, Vec::new());
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     simulate(&top, &mut Top::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.01, 2.0), &options, |s| {
         let axis = rotation(&s.point.q, 0).map(|row| row[2]);
         worst_tilt = worst_tilt.max((axis[2].acos() - theta).abs());

@@ -61,7 +61,7 @@ fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64)
     m.project_velocities(&q0, &mut v0, 0.0, &DynamicsOptions::default()).expect("consistent velocities");
     let e0 = energy(&m, &q0, &v0);
     let times: Vec<f64> = (1..=200).map(|k| k as f64 * 0.01).collect();
-    let options = SimulationOptions { correction, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(correction);
     let (mut worst_phi, mut worst_e) = (0.0f64, 0.0f64);
     let mut check = |s: &Sample<f64, 14, 12, 8>| {
         let mut phi = [0.0; 8];
@@ -70,13 +70,23 @@ fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64)
         worst_e = worst_e.max((energy(&m, &s.point.q, &s.point.v) - e0).abs());
     };
     let result = match integrator {
-        "rk4" => simulate(&m, &mut SpatialDoublePendulum::workspace(), &mut Rk4::new(h), 0.0, &q0, &v0, &times, &options, &mut check),
+        "rk4" => simulate(
+            &m,
+            &mut SpatialDoublePendulum::workspace(),
+            &mut Rk4::new(Rk4Options::default().with_step(h)),
+            0.0,
+            &q0,
+            &v0,
+            &times,
+            &options,
+            &mut check,
+        ),
         "dopri5" => {
-            let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-9, atol: 1e-11, ..Dopri5Options::default() });
+            let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
             simulate(&m, &mut SpatialDoublePendulum::workspace(), &mut dopri, 0.0, &q0, &v0, &times, &options, &mut check)
         }
         _ => {
-            let ga = GeneralizedAlphaOptions { step: h, rho_infinity: 0.9, ..GeneralizedAlphaOptions::default() };
+            let ga = GeneralizedAlphaOptions::default().with_step(h).with_rho_infinity(0.9);
             simulate(
                 &m,
                 &mut SpatialDoublePendulum::workspace(),

@@ -58,8 +58,7 @@ fn bottom_passages(samples: &[(f64, f64)]) -> Vec<f64> {
 fn pendulum_run(h: f64, rho: f64, t_end: f64, every: f64) -> (Vec<(f64, f64)>, f64) {
     let m = Pendulum::default();
     let q0 = m.initial_positions();
-    let mut alpha =
-        Pendulum::generalized_alpha(GeneralizedAlphaOptions { step: h, rho_infinity: rho, ..GeneralizedAlphaOptions::default() });
+    let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h).with_rho_infinity(rho));
     let n = (t_end / every).round() as usize;
     let times: Vec<f64> = (0..=n).map(|k| k as f64 * every).collect();
     let mut samples = Vec::with_capacity(times.len());
@@ -110,7 +109,7 @@ fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(
     t_end: f64,
 ) -> ([f64; 6], [f64; 6], u64) {
     let m = DoublePendulum::default();
-    let options = SimulationOptions { correction, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(correction);
     let mut last = ([0.0; 6], [0.0; 6]);
     let stats =
         simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[t_end], &options, |s| {
@@ -125,7 +124,7 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn alpha(step: f64) -> GeneralizedAlpha<f64, 6> {
-    DoublePendulum::generalized_alpha(GeneralizedAlphaOptions { step, rho_infinity: 0.8, ..GeneralizedAlphaOptions::default() })
+    DoublePendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_step(step).with_rho_infinity(0.8))
 }
 
 /// q and v of the pendulum at `t_end` from horizontal rest, and the steps taken.
@@ -154,18 +153,18 @@ fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2, 5>>(integrator: &mut I, t_e
 /// 55–110 % a 1e-16 s step divided by h² gave generalized-α. RK4 too.
 #[test]
 fn the_last_fixed_step_lands_on_t_end() {
-    let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut reference = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let (t_end, h, n) = (0.48, 0.04_f64, 12);
     let (_, v_exact, _) = pendulum_at(&mut reference, t_end);
     let size = v_exact.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     assert!((0..n).fold(0.0, |t, _| t + h) < t_end, "the sum of the steps falls short");
-    let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
+    let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
     let (_, v, steps) = pendulum_at(&mut alpha, t_end);
     let error = max_diff(&v, &v_exact) / size;
     eprintln!("generalized-α h = {h} s: {steps} steps, relative velocity error at {t_end} s {error:e}");
     assert_eq!(steps, n);
     assert!(error < 0.1, "relative velocity error {error}");
-    let (_, v, steps) = pendulum_at(&mut Rk4::new(h), t_end);
+    let (_, v, steps) = pendulum_at(&mut Rk4::new(Rk4Options::default().with_step(h)), t_end);
     let error = max_diff(&v, &v_exact) / size;
     eprintln!("RK4 h = {h} s: {steps} steps, relative velocity error at {t_end} s {error:e}");
     assert_eq!(steps, n);
@@ -178,7 +177,7 @@ fn the_last_fixed_step_lands_on_t_end() {
 /// restarted from forward dynamics' Baumgarte-stabilized v̇ and λ).
 #[test]
 fn generalized_alpha_keeps_its_order_through_drift_correction() {
-    let mut reference = Dopri5::new(Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() });
+    let mut reference = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let (exact, _, _) = double_pendulum_at(&mut reference, Correction::None, 1.0);
     for correction in [Correction::projection(), Correction::partitioning()] {
         let e1 = max_diff(&double_pendulum_at(&mut alpha(2e-3), correction, 1.0).0, &exact);
@@ -199,7 +198,7 @@ fn generalized_alpha_multipliers_converge_at_small_steps() {
     let system = System::new(&m);
     let start = system.point(0.0, m.initial_positions(), [0.0; 3], [0.0; 2]).expect("forward dynamics");
     for h in [1e-4, 1e-5, 1e-6] {
-        let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
+        let mut alpha = Pendulum::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
         let (mut from, mut to) = (start, start);
         let mut ws = Pendulum::workspace();
         for _ in 0..20 {
@@ -253,7 +252,7 @@ fn generalized_alpha_failures_say_what_they_are() {
     let m = TwicePinned::default();
     let mut to = Point::zero();
     // By default the repeated pin's rows are dropped (tests/forward.rs); asked to refuse them:
-    let strict = System { dynamics: DynamicsOptions { allow_redundant: false, ..DynamicsOptions::default() }, ..System::new(&m) };
+    let strict = System { dynamics: DynamicsOptions::default().with_allow_redundant(false), ..System::new(&m) };
     let err = TwicePinned::generalized_alpha(step)
         .step(&strict, &mut TwicePinned::workspace(), &rest(m.initial_positions()), 1.0, &mut to)
         .unwrap_err();
@@ -329,8 +328,18 @@ fn a_force_that_turns_nan_is_named_with_its_time() {
             other => panic!("{label}: expected a named force element, got {other:?}"),
         }
     };
-    let err =
-        simulate(&m, &mut FailingTorque::workspace(), &mut Rk4::new(1e-3), 0.0, &q0, &[0.0; 3], &times, &options, |_| {}).unwrap_err();
+    let err = simulate(
+        &m,
+        &mut FailingTorque::workspace(),
+        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+        0.0,
+        &q0,
+        &[0.0; 3],
+        &times,
+        &options,
+        |_| {},
+    )
+    .unwrap_err();
     named(err, 1e-3, "RK4");
     let mut dopri = Dopri5::new(Dopri5Options::default());
     let err = simulate(&m, &mut FailingTorque::workspace(), &mut dopri, 0.0, &q0, &[0.0; 3], &times, &options, |_| {}).unwrap_err();
@@ -360,7 +369,7 @@ fn scaled_run(per_metre: f64, rtol: f64, t_end: f64) -> Vec<(f64, f64)> {
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
     let times: Vec<f64> = (1..=(t_end / 0.05).round() as usize).map(|k| k as f64 * 0.05).collect();
     let mut samples = Vec::with_capacity(times.len());
-    let mut dopri = Dopri5::new(Dopri5Options { rtol, atol: rtol * 1e-2, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol * 1e-2));
     simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
         samples.push((s.point.t, ScaledPendulum::ROD.phi(&s.point.q)))
     })
@@ -429,7 +438,17 @@ fn a_stiff_spring_is_stable_far_past_the_explicit_limit() {
     let mut ws = StiffBob::workspace();
     let q0 = m.initial_positions();
     let times: Vec<f64> = (1..=4000).map(|k| k as f64 * 5e-3).collect();
-    let explicit = simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q0, &[0.0; 6], &times, &SimulationOptions::default(), |_| {});
+    let explicit = simulate(
+        &m,
+        &mut ws,
+        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
+        0.0,
+        &q0,
+        &[0.0; 6],
+        &times,
+        &SimulationOptions::default(),
+        |_| {},
+    );
     // The default projection meets the blow-up first and names the row it cannot close.
     match explicit {
         Err(SimulationError::NonFinite { t, coordinate }) => eprintln!("RK4 at 1 ms: non-finite `{coordinate}` at t = {t} s"),
@@ -438,8 +457,7 @@ fn a_stiff_spring_is_stable_far_past_the_explicit_limit() {
         }
         other => panic!("RK4 at 14× its stability limit should fail with a named coordinate or row: {other:?}"),
     }
-    let mut alpha =
-        StiffBob::generalized_alpha(GeneralizedAlphaOptions { step: 1e-2, rho_infinity: 0.5, ..GeneralizedAlphaOptions::default() });
+    let mut alpha = StiffBob::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-2).with_rho_infinity(0.5));
     let (mut samples, mut e0, mut rise) = (Vec::new(), None, f64::NEG_INFINITY);
     simulate(&m, &mut ws, &mut alpha, 0.0, &q0, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
         samples.push((s.point.t, StiffBob::ROD.phi(&s.point.q)));
@@ -488,7 +506,7 @@ fn a_rod_spinning_at_1000_rad_per_s_keeps_its_speed_and_pin() {
     let q0 = m.initial_positions();
     let v0 = [0.0, 500.0, 1000.0];
     let times: Vec<f64> = (1..=10).map(|k| k as f64 * 0.1).collect();
-    let mut dopri = Dopri5::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut worst = [0.0f64; 4];
     simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &v0, &times, &SimulationOptions::default(), |s| {
         let (t, q, v) = (s.point.t, &s.point.q, &s.point.v);
@@ -524,9 +542,9 @@ mechanism! {
 #[test]
 fn generalized_alpha_out_of_iterations_reports_a_position_correction() {
     let m = FreeBlock::default();
-    let options = GeneralizedAlphaOptions { step: 1e-3, max_iterations: 1, ..GeneralizedAlphaOptions::default() };
+    let options = GeneralizedAlphaOptions::default().with_step(1e-3).with_max_iterations(1);
     let mut alpha = FreeBlock::generalized_alpha(options);
-    let run = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+    let run = SimulationOptions::default().with_correction(Correction::None);
     let err =
         simulate(&m, &mut FreeBlock::workspace(), &mut alpha, 0.0, &m.initial_positions(), &[0.0; 3], &[0.01], &run, |_| {}).unwrap_err();
     match err {
@@ -547,15 +565,10 @@ fn generalized_alpha_out_of_iterations_reports_a_position_correction() {
 #[test]
 fn generalized_alpha_out_of_iterations_names_an_unsettled_multiplier() {
     let m = Pendulum::default();
-    let options = GeneralizedAlphaOptions {
-        step: 1e-3,
-        tolerance: 1e-5,
-        lambda_tolerance: 1e-12,
-        max_iterations: 1,
-        ..GeneralizedAlphaOptions::default()
-    };
+    let options =
+        GeneralizedAlphaOptions::default().with_step(1e-3).with_tolerance(1e-5).with_lambda_tolerance(1e-12).with_max_iterations(1);
     let mut alpha = Pendulum::generalized_alpha(options);
-    let run = SimulationOptions { correction: Correction::None, ..SimulationOptions::default() };
+    let run = SimulationOptions::default().with_correction(Correction::None);
     let (q0, v0) = (m.initial_positions(), m.initial_velocities());
     let err = simulate(&m, &mut Pendulum::workspace(), &mut alpha, 0.0, &q0, &v0, &[0.01], &run, |_| {}).unwrap_err();
     match err {

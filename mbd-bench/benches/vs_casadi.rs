@@ -15,7 +15,9 @@
 //! `integrate_positions` (the quaternion update with renormalization), so only the right-hand
 //! sides differ. mbd's operation counts (`OP_COUNTS`) of the spatial mechanisms are printed first.
 use criterion::{criterion_group, criterion_main, Criterion};
-use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, System, Workspace};
+use mbd::{
+    DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, Rk4Options, System, Workspace,
+};
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -135,7 +137,7 @@ macro_rules! compare_dynamics {
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
         let system = System::new(&m);
         // A moving state: 50 steps of 1 ms into the fall from rest, as in benches/dynamics.rs.
-        let mut rk4 = Rk4::new(1e-3);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
         // Planar: v = q̇, NV = NQ, the state CasADi's functions take.
         let mut p: Point<f64, NQ, NQ, NC> = system.point(0.0, q, [0.0; NQ], [0.0; 2]).expect("forward dynamics");
         let mut next = p;
@@ -193,7 +195,7 @@ fn moving_state<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: 
     let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
     KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the benchmark mechanism assembles");
     let system = System::new(m);
-    let mut rk4 = Rk4::new(1e-3);
+    let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
     let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     for _ in 0..50 {
@@ -306,7 +308,7 @@ macro_rules! compare_spatial_dynamics {
         let m = <$ty>::default();
         let params = m.params();
         let system = System::new(&m);
-        let mut rk4 = Rk4::new(1e-3);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
         let p = moving_state(&m);
         let mut next = p;
         let mut ws = <$ty>::workspace();

@@ -14,7 +14,7 @@
 //! shrink with the step (RK4: about 256 times from 1 ms to 0.25 ms) — the check that both
 //! simulate the same motion. It fails the run if the tips differ by more than 1e-4 m at 1 ms.
 use criterion::Criterion;
-use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, System, Workspace};
+use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, Rk4Options, System, Workspace};
 use serde_json::Value;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -67,7 +67,7 @@ where
     let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
     KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the chain assembles");
     let system = System::new(m);
-    let mut rk4 = Rk4::new(h);
+    let mut rk4 = Rk4::new(Rk4Options::default().with_step(h));
     let mut p: Point<f64, NQ, NV, NC> = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     let (mut drift, mut phi) = (0.0f64, [0.0; NC]);
@@ -90,7 +90,7 @@ where
     let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
     KinematicSolver::default().assemble(m, &mut ws, &mut q, 0.0).expect("the chain assembles");
     let system = System::new(m);
-    let mut rk4 = Rk4::new(1e-3);
+    let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
     let mut p = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
     let mut next = p;
     for _ in 0..50 {
@@ -149,7 +149,7 @@ macro_rules! chain {
         }
         assert!(tips[0].1 < SAME_MOTION, "chain of {links}: mbd's and MuJoCo's tips differ by {:e} m at 0.5 s", tips[0].1);
         let system = System::new(&m);
-        let mut rk4 = Rk4::new(1e-3);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
         let p = moving_state(&m);
         let mut next = p;
         let _: (&[f64; NV], &[f64; NC]) = (&p.v, &p.lambda);

@@ -33,7 +33,7 @@ fn windows<I: Integrator<f64, Chain4, 12, 12, 8, 20>>(integrator: &mut I) -> (Ve
     let mut ws = Chain4::workspace();
     let q0 = m.initial_positions();
     let times: Vec<f64> = (1..=10_000).map(|k| k as f64 * 1e-2).collect();
-    let options = SimulationOptions { correction: Correction::projection(), ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut out = vec![(0.0f64, 0.0f64); 10];
     let e0 = m.potential_energy(&q0, 0.0);
     let mut phi = [0.0; 8];
@@ -59,14 +59,10 @@ fn windows<I: Integrator<f64, Chain4, 12, 12, 8, 20>>(integrator: &mut I) -> (Ve
 #[test]
 fn a_million_steps_of_a_chain_keep_constraints_and_energy() {
     for (name, (windows, steps)) in [
-        ("RK4", windows(&mut Rk4::new(1e-4))),
+        ("RK4", windows(&mut Rk4::new(Rk4Options::default().with_step(1e-4)))),
         (
             "generalized-α, ρ∞ = 1",
-            windows(&mut Chain4::generalized_alpha(GeneralizedAlphaOptions {
-                step: 1e-4,
-                rho_infinity: 1.0,
-                ..GeneralizedAlphaOptions::default()
-            })),
+            windows(&mut Chain4::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-4).with_rho_infinity(1.0))),
         ),
     ] {
         eprintln!("{name}: {steps} steps");

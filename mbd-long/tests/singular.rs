@@ -177,20 +177,22 @@ where
             // 2.2e-8 and 8.0e-9 at 1e-12, where the passages' disturbance is the floor); at
             // rtol 1e-6 the loose tolerance's phase error grows to 3e-3 rad: bounded at 1e-2.
             Method::Dopri5(rtol) => {
-                let mut dopri = Dopri5::new(Dopri5Options { rtol, atol: rtol, ..Dopri5Options::default() });
+                let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
                 let kept = run::<M, _, NQ, NV, NC, 0>(m, n, &mut dopri, t_end, theta);
                 (kept, (2e3 * rtol + 1e-7).max(if rtol >= 1e-6 { 1e-2 } else { 0.0 }), e * (5e2 * rtol + 2.5e-8))
             }
             // Fourth order: 3.7e-9 rad at 1 ms and 6.3e-7 rad at 0.1 ms (ten times the steps
             // near each flat position, each disturbed by the dropped row), energy 4.7e-9 and
             // 2.2e-7 J.
-            Method::Rk4(h) => (run::<M, _, NQ, NV, NC, 0>(m, n, &mut Rk4::new(h), t_end, theta), 1e-5, 2.5e-7 * e),
+            Method::Rk4(h) => {
+                (run::<M, _, NQ, NV, NC, 0>(m, n, &mut Rk4::new(Rk4Options::default().with_step(h)), t_end, theta), 1e-5, 2.5e-7 * e)
+            }
             // ρ∞ = 0.8 (the default): second order and dissipative, so the phase error and the
             // energy lost fall by about 100 per tenth of h (measured 1.28 rad / 0.50 J at 10 ms,
             // 2.6e-3 / 2.8e-3 at 1 ms, 1.9e-5 / 2.6e-5 at 0.1 ms; one loop at 0.01 ms: see its
             // test).
             Method::Alpha(h) => {
-                let mut alpha = GeneralizedAlpha::<f64, NV>::new(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
+                let mut alpha = GeneralizedAlpha::<f64, NV>::new(GeneralizedAlphaOptions::default().with_step(h));
                 let kept = run::<M, _, NQ, NV, NC, N>(m, n, &mut alpha, t_end, theta);
                 let (error_bound, energy_bound) = if h >= 1e-2 {
                     (f64::INFINITY, 0.25 * e)
@@ -307,12 +309,12 @@ fn an_isosceles_slider_crank_passes_its_crossing() {
     // at 1 ms, 9.3e-5 and 3.1e-6 at 0.1 ms, and at 0.01 ms (where λ's rounding, amplified by
     // the 1/(β'h²) of its constraint rows, once stopped it at the first crossing) see below.
     for (rtol, error_bound, energy_bound) in [(1e-8, 1e-4, 1e-5), (1e-12, 1e-7, 1e-8)] {
-        let mut dopri = Dopri5::new(Dopri5Options { rtol, atol: rtol, ..Dopri5Options::default() });
+        let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
         check(&format!("DOPRI5 rtol {rtol:e}"), isosceles_run::<_, 0>(&mut dopri, energy), error_bound, energy_bound);
     }
-    check("RK4 1 ms", isosceles_run::<_, 0>(&mut Rk4::new(1e-3), energy), 3e-6, 1e-7);
+    check("RK4 1 ms", isosceles_run::<_, 0>(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), energy), 3e-6, 1e-7);
     for (h, error_bound, energy_bound) in [(1e-3, 3e-2, 1e-3), (1e-4, 3e-4, 1e-5), (1e-5, 3e-6, 1e-7)] {
-        let mut alpha = IsoscelesSliderCrank::generalized_alpha(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
+        let mut alpha = IsoscelesSliderCrank::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
         check(&format!("generalized-α h {h:e}"), isosceles_run::<_, 17>(&mut alpha, energy), error_bound, energy_bound);
     }
 }
@@ -451,14 +453,19 @@ fn a_change_point_four_bar_passes_its_flat_position() {
     // at 0.1 ms; generalized-α (ρ∞ = 0.8) 1.5e-3 and 5.5e-4 at 1 ms, 3.9e-6 and 4.4e-6 at 0.1 ms.
     // Every run kept the branch to 3e-7 m.
     for (rtol, error_bound, energy_bound) in [(1e-8, 1e-4, 1e-5), (1e-12, 1e-7, 1e-9)] {
-        let mut dopri = Dopri5::new(Dopri5Options { rtol, atol: rtol, ..Dopri5Options::default() });
+        let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
         check(&format!("DOPRI5 rtol {rtol:e}"), change_point_run::<_, 0>(&mut dopri, energy), error_bound, energy_bound);
     }
     for (h, error_bound, energy_bound) in [(1e-3, 3e-2, 1e-3), (1e-4, 1e-7, 1e-9)] {
-        check(&format!("RK4 {h:e}"), change_point_run::<_, 0>(&mut Rk4::new(h), energy), error_bound, energy_bound);
+        check(
+            &format!("RK4 {h:e}"),
+            change_point_run::<_, 0>(&mut Rk4::new(Rk4Options::default().with_step(h)), energy),
+            error_bound,
+            energy_bound,
+        );
     }
     for (h, error_bound, energy_bound) in [(1e-3, 1e-2, 3e-3), (1e-4, 3e-5, 3e-5)] {
-        let mut alpha = ChangePointFourBar::generalized_alpha(GeneralizedAlphaOptions { step: h, ..GeneralizedAlphaOptions::default() });
+        let mut alpha = ChangePointFourBar::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
         check(&format!("generalized-α h {h:e}"), change_point_run::<_, 17>(&mut alpha, energy), error_bound, energy_bound);
     }
 }

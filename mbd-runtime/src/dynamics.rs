@@ -29,55 +29,58 @@ pub const DEFAULT_BAUMGARTE: f64 = 5.0;
 /// to 3.8e-7.
 pub const DEFAULT_DYNAMICS_PIVOT_TOLERANCE: f64 = 1e-8;
 
-/// Options of one forward-dynamics solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DynamicsOptions<T> {
-    /// Baumgarte α (1/s), the weight 2α of the velocity violation D v − ν. Default 5.
-    pub baumgarte_alpha: T,
-    /// Baumgarte β (1/s), the weight β² of the position violation Φ. Default 5.
-    pub baumgarte_beta: T,
-    /// Relative pivot tolerance τ of the factorization of S: a pivot d_k small against τ S_kk
-    /// marks row k as dependent on the rows before it. Default 1e-8
-    /// ([`DEFAULT_DYNAMICS_PIVOT_TOLERANCE`]).
-    pub pivot_tolerance: T,
-    /// What to do with a dependent constraint row — at a singular position (a parallelogram
-    /// lying flat, a slider-crank whose rod is as long as its crank at θ = ±π/2) or a redundant
-    /// constraint (a parallelogram's third crank). `true` (default): drop it smoothly — 1/d_k
-    /// becomes w/d_k with w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k, so its multiplier fades to 0 as the
-    /// row becomes dependent (d_k → 0) and the other rows carry its load: the right motion
-    /// where the constraints are consistent, with reactions that are one of many valid sets.
-    /// `false`: fail with [`DynamicsError::DependentConstraint`] where d_k ≤ τ S_kk, and use
-    /// the exact pivots everywhere else.
-    pub allow_redundant: bool,
-    /// Coulomb friction only: the loads λ are found by fixed-point iteration, starting from
-    /// the `lambda` passed in, until max |Δλ| ≤ `friction_tolerance` · max(1, |λ|∞). Default 1e-10.
-    pub friction_tolerance: T,
-    /// Coulomb friction only: iterations before [`DynamicsError::FrictionNotConverged`]. Default 50.
-    pub friction_iterations: u32,
-}
-
-impl<T: Real> Default for DynamicsOptions<T> {
-    fn default() -> Self {
-        Self {
-            baumgarte_alpha: T::from_f64(DEFAULT_BAUMGARTE),
-            baumgarte_beta: T::from_f64(DEFAULT_BAUMGARTE),
-            pivot_tolerance: T::from_f64(DEFAULT_DYNAMICS_PIVOT_TOLERANCE),
-            allow_redundant: true,
-            friction_tolerance: T::from_f64(1e-10),
-            friction_iterations: 50,
-        }
+crate::options::options! {
+    /// Options of one forward-dynamics solve, in the scalar type `T` of the mechanism (default
+    /// `f64`). Build from [`Default`] (Baumgarte on), [`DynamicsOptions::without_stabilization`]
+    /// (the default of [`simulate`](crate::simulate)) or [`DynamicsOptions::baumgarte`], and the
+    /// `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct DynamicsOptions<T> {
+        /// Baumgarte α (1/s), the weight 2α of the velocity violation D v − ν. Default 5
+        /// ([`DEFAULT_BAUMGARTE`]).
+        baumgarte_alpha: T = T::from_f64(DEFAULT_BAUMGARTE) => with_baumgarte_alpha,
+        /// Baumgarte β (1/s), the weight β² of the position violation Φ. Default 5
+        /// ([`DEFAULT_BAUMGARTE`]).
+        baumgarte_beta: T = T::from_f64(DEFAULT_BAUMGARTE) => with_baumgarte_beta,
+        /// Relative pivot tolerance τ of the factorization of S: a pivot d_k small against τ S_kk
+        /// marks row k as dependent on the rows before it. Default 1e-8
+        /// ([`DEFAULT_DYNAMICS_PIVOT_TOLERANCE`]).
+        pivot_tolerance: T = T::from_f64(DEFAULT_DYNAMICS_PIVOT_TOLERANCE) => with_pivot_tolerance,
+        /// What to do with a dependent constraint row — at a singular position (a parallelogram
+        /// lying flat, a slider-crank whose rod is as long as its crank at θ = ±π/2) or a
+        /// redundant constraint (a parallelogram's third crank). `true` (default): drop it
+        /// smoothly — 1/d_k becomes w/d_k with w = 1/(1 + ρ⁸), ρ = τ S_kk/d_k, so its multiplier
+        /// fades to 0 as the row becomes dependent (d_k → 0) and the other rows carry its load:
+        /// the right motion where the constraints are consistent, with reactions that are one of
+        /// many valid sets. `false`: fail with [`DynamicsError::DependentConstraint`] where
+        /// d_k ≤ τ S_kk, and use the exact pivots everywhere else.
+        allow_redundant: bool = true => with_allow_redundant,
+        /// Coulomb friction only: the loads λ are found by fixed-point iteration, starting from
+        /// the `lambda` passed in, until max |Δλ| ≤ `friction_tolerance` · max(1, |λ|∞)
+        /// (dimensionless). Default 1e-10.
+        friction_tolerance: T = T::from_f64(1e-10) => with_friction_tolerance,
+        /// Coulomb friction only: iterations before [`DynamicsError::FrictionNotConverged`].
+        /// Default 50.
+        friction_iterations: u32 = 50 => with_friction_iterations,
     }
 }
 
 impl<T: Real> DynamicsOptions<T> {
-    /// No Baumgarte stabilization (α = β = 0): for integrators that project instead.
+    /// The defaults without Baumgarte stabilization (α = β = 0): for integrators that project
+    /// instead.
     pub fn without_stabilization() -> Self {
-        Self { baumgarte_alpha: T::ZERO, baumgarte_beta: T::ZERO, ..Self::default() }
+        Self::new().with_baumgarte(T::ZERO, T::ZERO)
     }
 
-    /// With Baumgarte α and β (1/s).
+    /// The defaults with Baumgarte α and β (1/s).
     pub fn baumgarte(alpha: T, beta: T) -> Self {
-        Self { baumgarte_alpha: alpha, baumgarte_beta: beta, ..Self::default() }
+        Self::new().with_baumgarte(alpha, beta)
+    }
+
+    /// Sets both Baumgarte weights, α and β (1/s).
+    #[must_use]
+    pub fn with_baumgarte(self, alpha: T, beta: T) -> Self {
+        self.with_baumgarte_alpha(alpha).with_baumgarte_beta(beta)
     }
 }
 

@@ -79,109 +79,49 @@ pub const DEFAULT_RANK_TOLERANCE: f64 = 1e-8;
 /// implementation): errors still carry a name instead of panicking.
 const UNNAMED: &str = "<unnamed>";
 
-/// Settings of the kinematic solver. Build from [`Default`] and the `with_*` methods:
-///
-/// ```
-/// # use mbd_runtime::KinematicOptions;
-/// let options = KinematicOptions::default().with_tolerance(1e-6).with_max_iterations(10);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct KinematicOptions {
-    /// Convergence test of the position solve: ‖Φ(q, t)‖∞ ≤ `tolerance`, in the units of the
-    /// constraint rows (m for points and distances, rad or dimensionless for angles). Default [`DEFAULT_TOLERANCE`]; raised to what the scalar
-    /// type resolves, [`RESOLUTION_ULPS`] · ε · max(1, ‖q‖∞), where it is below that.
-    pub tolerance: f64,
-    /// Newton iterations allowed per position solve before [`KinematicError::NotConverged`].
-    /// Default [`DEFAULT_MAX_ITERATIONS`].
-    pub max_iterations: u32,
-    /// The longest Newton step of a position solve, ‖Δv‖∞ (m or rad): a longer one is shortened
-    /// to it along its direction (damped Newton), so that an iterate near a singular position
-    /// does not leave the branch it is on. Default [`DEFAULT_MAX_STEP`].
-    pub max_step: f64,
-    /// Relative pivot tolerance τ of the LU factorization: a pivot is accepted when
-    /// |pivot| > τ · (largest |entry| of its column of D), see [`crate::linalg`]. Values below
-    /// the scalar type's machine epsilon are raised to it (pivots that small are rounding
-    /// noise). Default [`DEFAULT_PIVOT_TOLERANCE`].
-    pub pivot_tolerance: f64,
-    /// In [`KinematicSolver::sweep`], start each position solve from the first-order
-    /// prediction q ⊕ v (t − t_previous) instead of the previous q; if Newton fails from the
-    /// prediction, the point is retried once from the previous q. Default [`DEFAULT_PREDICTOR`].
-    pub predictor: bool,
-    /// In [`KinematicSolver::redundancy`], a row whose sine of angle to the span of the rows
-    /// before it is at most this is redundant (dimensionless). Default [`DEFAULT_RANK_TOLERANCE`].
-    pub rank_tolerance: f64,
-    /// Simplified Newton in the position solve of a square D over the factorization
-    /// `mechanism!` plans: a step expected to end the iteration keeps the last D and its factors
-    /// and evaluates Φ alone (the chord method) — where ‖Φ_k‖∞ times the last step's contraction
-    /// ‖Φ_k‖∞/‖Φ_(k−1)‖∞, times this factor, is within [`tolerance`](Self::tolerance); every
-    /// other step evaluates and factors D anew. `f64::INFINITY` takes Newton's full step every
-    /// time (dimensionless). Default [`DEFAULT_REUSE_SAFETY`].
-    pub reuse_safety: f64,
-}
-
-impl Default for KinematicOptions {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl KinematicOptions {
-    /// The defaults ([`DEFAULT_TOLERANCE`], [`DEFAULT_MAX_ITERATIONS`],
-    /// [`DEFAULT_PIVOT_TOLERANCE`], [`DEFAULT_PREDICTOR`]), usable in `const` context.
-    pub const fn new() -> Self {
-        Self {
-            tolerance: DEFAULT_TOLERANCE,
-            max_iterations: DEFAULT_MAX_ITERATIONS,
-            max_step: DEFAULT_MAX_STEP,
-            pivot_tolerance: DEFAULT_PIVOT_TOLERANCE,
-            predictor: DEFAULT_PREDICTOR,
-            rank_tolerance: DEFAULT_RANK_TOLERANCE,
-            reuse_safety: DEFAULT_REUSE_SAFETY,
-        }
-    }
-
-    /// Sets [`tolerance`](Self::tolerance) (max-norm of Φ, units of the constraint rows).
-    pub const fn with_tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = tolerance;
-        self
-    }
-
-    /// Sets [`max_iterations`](Self::max_iterations).
-    pub const fn with_max_iterations(mut self, max_iterations: u32) -> Self {
-        self.max_iterations = max_iterations;
-        self
-    }
-
-    /// Sets [`pivot_tolerance`](Self::pivot_tolerance) (relative, dimensionless).
-    pub const fn with_pivot_tolerance(mut self, pivot_tolerance: f64) -> Self {
-        self.pivot_tolerance = pivot_tolerance;
-        self
-    }
-
-    /// Sets [`max_step`](Self::max_step) (m or rad; `f64::INFINITY`: Newton's full step).
-    pub const fn with_max_step(mut self, max_step: f64) -> Self {
-        self.max_step = max_step;
-        self
-    }
-
-    /// Sets [`predictor`](Self::predictor).
-    pub const fn with_predictor(mut self, predictor: bool) -> Self {
-        self.predictor = predictor;
-        self
-    }
-
-    /// Sets [`rank_tolerance`](Self::rank_tolerance) (a sine, dimensionless).
-    pub const fn with_rank_tolerance(mut self, rank_tolerance: f64) -> Self {
-        self.rank_tolerance = rank_tolerance;
-        self
-    }
-
-    /// Sets [`reuse_safety`](Self::reuse_safety) (dimensionless; `f64::INFINITY`: a fresh D
-    /// at every Newton step).
-    pub const fn with_reuse_safety(mut self, reuse_safety: f64) -> Self {
-        self.reuse_safety = reuse_safety;
-        self
+crate::options::options! {
+    /// Settings of the kinematic solver, in the scalar type `T` of the mechanism (default
+    /// `f64`). Build from [`Default`] and the `with_*` setters:
+    ///
+    /// ```
+    /// # use mbd_runtime::KinematicOptions;
+    /// let options = KinematicOptions::default().with_tolerance(1e-6).with_max_iterations(10);
+    /// # let _: KinematicOptions<f64> = options;
+    /// ```
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct KinematicOptions<T> {
+        /// Convergence test of the position solve: ‖Φ(q, t)‖∞ ≤ `tolerance`, in the units of the
+        /// constraint rows (m for points and distances, rad or dimensionless for angles). Default
+        /// [`DEFAULT_TOLERANCE`]; raised to what the scalar type resolves, [`RESOLUTION_ULPS`] · ε ·
+        /// max(1, ‖q‖∞), where it is below that.
+        tolerance: T = T::from_f64(DEFAULT_TOLERANCE) => with_tolerance,
+        /// Newton iterations allowed per position solve before [`KinematicError::NotConverged`].
+        /// Default [`DEFAULT_MAX_ITERATIONS`].
+        max_iterations: u32 = DEFAULT_MAX_ITERATIONS => with_max_iterations,
+        /// The longest Newton step of a position solve, ‖Δv‖∞ (m or rad): a longer one is
+        /// shortened to it along its direction (damped Newton), so that an iterate near a singular
+        /// position does not leave the branch it is on; infinity takes Newton's full step. Default
+        /// [`DEFAULT_MAX_STEP`].
+        max_step: T = T::from_f64(DEFAULT_MAX_STEP) => with_max_step,
+        /// Relative pivot tolerance τ of the LU factorization: a pivot is accepted when
+        /// |pivot| > τ · (largest |entry| of its column of D), see [`crate::linalg`]. Values below
+        /// the scalar type's machine epsilon are raised to it (pivots that small are rounding
+        /// noise). Default [`DEFAULT_PIVOT_TOLERANCE`].
+        pivot_tolerance: T = T::from_f64(DEFAULT_PIVOT_TOLERANCE) => with_pivot_tolerance,
+        /// In [`KinematicSolver::sweep`], start each position solve from the first-order
+        /// prediction q ⊕ v (t − t_previous) instead of the previous q; if Newton fails from the
+        /// prediction, the point is retried once from the previous q. Default [`DEFAULT_PREDICTOR`].
+        predictor: bool = DEFAULT_PREDICTOR => with_predictor,
+        /// In [`KinematicSolver::redundancy`], a row whose sine of angle to the span of the rows
+        /// before it is at most this is redundant (dimensionless). Default [`DEFAULT_RANK_TOLERANCE`].
+        rank_tolerance: T = T::from_f64(DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
+        /// Simplified Newton in the position solve of a square D over the factorization
+        /// `mechanism!` plans: a step expected to end the iteration keeps the last D and its
+        /// factors and evaluates Φ alone (the chord method) — where ‖Φ_k‖∞ times the last step's
+        /// contraction ‖Φ_k‖∞/‖Φ_(k−1)‖∞, times this factor, is within
+        /// [`tolerance`](Self::tolerance); every other step evaluates and factors D anew. Infinity
+        /// takes Newton's full step every time (dimensionless). Default [`DEFAULT_REUSE_SAFETY`].
+        reuse_safety: T = T::from_f64(DEFAULT_REUSE_SAFETY) => with_reuse_safety,
     }
 }
 
@@ -224,10 +164,16 @@ pub struct KinematicState<T, const NQ: usize, const NV: usize> {
 /// ([`crate::redundancy`]), which must then number NV. [`assemble`](Self::assemble) accepts
 /// any NC. The solver holds only its options: one solver
 /// serves any number of mechanisms and scalar types.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct KinematicSolver {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KinematicSolver<T = f64> {
     /// Tolerances and limits.
-    pub options: KinematicOptions,
+    pub options: KinematicOptions<T>,
+}
+
+impl<T: Real> Default for KinematicSolver<T> {
+    fn default() -> Self {
+        Self::new(KinematicOptions::new())
+    }
 }
 
 /// How a Newton iteration computes its step from D and −Φ.
@@ -354,15 +300,15 @@ pub(crate) fn check_time<T: Real>(t: T) -> Result<(), KinematicError> {
     }
 }
 
-impl KinematicSolver {
+impl<T: Real> KinematicSolver<T> {
     /// A solver with the given options.
-    pub const fn new(options: KinematicOptions) -> Self {
+    pub const fn new(options: KinematicOptions<T>) -> Self {
         Self { options }
     }
 
     /// The relative pivot tolerance in T, raised to T's machine epsilon.
-    fn pivot_tolerance<T: Real>(&self) -> T {
-        T::from_f64(self.options.pivot_tolerance).max(T::EPSILON)
+    fn pivot_tolerance(&self) -> T {
+        self.options.pivot_tolerance.max(T::EPSILON)
     }
 
     /// Position solve: Newton–Raphson on Φ(q, t) = 0 for a driven mechanism (NV = NC; with
@@ -383,7 +329,7 @@ impl KinematicSolver {
     /// infinite t, q, Φ, D or step; [`KinematicError::SingularJacobian`] (also where the
     /// independent rows of a redundant mechanism number fewer than NV);
     /// [`KinematicError::NotConverged`].
-    pub fn solve_position<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_position<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -391,14 +337,13 @@ impl KinematicSolver {
         t: T,
     ) -> Result<Convergence, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
         if NV != NC {
             // With redundant rows the independent ones must still determine every velocity.
-            self.factor::<T, M, NV, NC, N>(ws, t)?;
+            self.factor::<M, NV, NC, N>(ws, t)?;
         }
         Ok(convergence)
     }
@@ -429,7 +374,7 @@ impl KinematicSolver {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
-    pub fn assemble<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn assemble<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -437,7 +382,6 @@ impl KinematicSolver {
         t: T,
     ) -> Result<Convergence, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         self.newton(m, q, t, ws, StepRule::RankRevealing)
@@ -451,7 +395,7 @@ impl KinematicSolver {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, D, ν or v;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_velocity<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_velocity<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -460,14 +404,13 @@ impl KinematicSolver {
         v: &mut [T; NV],
     ) -> Result<(), KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         m.jacobian(q, t, &mut ws.jacobian);
-        let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
         velocity_from_factors(m, q, t, ws, &factors, v)
     }
 
@@ -478,7 +421,7 @@ impl KinematicSolver {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, v, D, γ or v̇;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_acceleration<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_acceleration<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -488,7 +431,6 @@ impl KinematicSolver {
         vd: &mut [T; NV],
     ) -> Result<(), KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
@@ -496,7 +438,7 @@ impl KinematicSolver {
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         check_finite(v, t, NonFiniteQuantity::Velocity, M::VELOCITY_NAMES)?;
         m.jacobian(q, t, &mut ws.jacobian);
-        let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
         acceleration_from_factors(m, q, v, t, ws, &factors, vd)
     }
 
@@ -522,7 +464,7 @@ impl KinematicSolver {
     /// curvature κ along its direction put the singular position σ/κ away with Φ about
     /// σ²/(2κ) there; where that is within 8τ, D v = ν and D v̇ = γ determine nothing (see
     /// `check_determined` in the source). A smaller tolerance resolves positions closer to it.
-    pub fn analyze<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn analyze<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -530,7 +472,6 @@ impl KinematicSolver {
         t: T,
     ) -> Result<KinematicState<T, NQ, NV>, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
@@ -564,7 +505,7 @@ impl KinematicSolver {
     ///
     /// # Errors
     /// The first error of any point (each carries its t); the sweep stops there.
-    pub fn sweep<T, M, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn sweep<M, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -573,7 +514,6 @@ impl KinematicSolver {
         mut f: impl FnMut(T, &[T; NQ], &[T; NV], &[T; NV]) -> R,
     ) -> Result<(), KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
         R: crate::Flow,
     {
@@ -608,7 +548,7 @@ impl KinematicSolver {
 
     /// Position, velocity and acceleration at t into `q`, `v`, `vd` (NV ≤ NC, checked by the
     /// callers), with `jacobian` as work space.
-    fn analyze_in_place<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn analyze_in_place<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
@@ -618,7 +558,6 @@ impl KinematicSolver {
         vd: &mut [T; NV],
     ) -> Result<Convergence, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
@@ -632,7 +571,7 @@ impl KinematicSolver {
             // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
             m.jacobian(q, t, &mut ws.jacobian);
         }
-        let factors = self.factor::<T, M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
         if NV == NC {
             self.check_determined(m, q, t, ws, &factors)?;
         }
@@ -643,8 +582,8 @@ impl KinematicSolver {
 
     /// The position tolerance at q: [`KinematicOptions::tolerance`], raised to what the scalar
     /// resolves ([`RESOLUTION_ULPS`] ε max(1, ‖q‖∞)).
-    fn position_tolerance<T: Real>(&self, q: &[T]) -> T {
-        T::from_f64(self.options.tolerance).max(resolution(q))
+    fn position_tolerance(&self, q: &[T]) -> T {
+        self.options.tolerance.max(resolution(q))
     }
 
     /// The pivot ratio of D Dᵀ (to its diagonal: the squared sine of a row's angle to the rows
@@ -652,10 +591,10 @@ impl KinematicSolver {
     /// [`check_determined`](Self::check_determined): [`NEAR_SINGULAR_RATIO`], or a thousand
     /// times the position tolerance relative to max(1, ‖q‖∞) where that is larger, so that every
     /// position that check refuses is screened.
-    fn near_singular_ratio<T: Real>(&self, q: &[T]) -> T {
+    fn near_singular_ratio(&self, q: &[T]) -> T {
         let tolerance = self.position_tolerance(q);
         let relative = tolerance / max_abs(q).0.max(T::ONE);
-        (T::from_f64(1e3) * relative).max(T::from_f64(NEAR_SINGULAR_RATIO)).max(self.pivot_tolerance::<T>())
+        (T::from_f64(1e3) * relative).max(T::from_f64(NEAR_SINGULAR_RATIO)).max(self.pivot_tolerance())
     }
 
     /// Whether the velocity and acceleration of an analysis are determined at the q it solved,
@@ -680,7 +619,7 @@ impl KinematicSolver {
     /// ±h n, h = 1e-4 max(1, ‖q‖∞) (rounding leaves ε/h² ≈ 1e-8 of it). Its arrays are only on
     /// the stack while it runs: near a singular position.
     #[inline(never)]
-    fn check_determined<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn check_determined<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
@@ -689,7 +628,6 @@ impl KinematicSolver {
         factors: &Factors<NC>,
     ) -> Result<(), KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         let mut b: [T; NC] = core::array::from_fn(|i| T::from_f64(1.0 + ((i * 618) % 1000) as f64 / 1000.0));
@@ -746,23 +684,22 @@ impl KinematicSolver {
     /// in declaration order, those that depend on the rows before them (sine ≤
     /// [`KinematicOptions::rank_tolerance`]) left out — the independent rows must number NV,
     /// else the velocity they leave least determined is named as a singular Jacobian's.
-    fn factor<T, M, const NV: usize, const NC: usize, const N: usize>(
+    fn factor<M, const NV: usize, const NC: usize, const N: usize>(
         &self,
         ws: &mut Workspace<T, NV, NC, N>,
         t: T,
     ) -> Result<Factors<NC>, KinematicError>
     where
-        T: Real,
         M: Mechanism,
     {
         if NV == NC {
-            return linalg::lu_factor(&mut ws.jacobian, self.pivot_tolerance::<T>())
+            return linalg::lu_factor(&mut ws.jacobian, self.pivot_tolerance())
                 .map(Factors::Lu)
                 .map_err(|e| jacobian_error::<M>(e, t.to_f64()));
         }
         let Workspace { jacobian, jacobian_scratch: basis, constraint_square: r, .. } = ws;
         check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
-        let redundant = independent_rows::<T, M, NV, NC>(jacobian, T::from_f64(self.options.rank_tolerance), basis, r, t)?;
+        let redundant = independent_rows::<T, M, NV, NC>(jacobian, self.options.rank_tolerance, basis, r, t)?;
         Ok(Factors::Orthogonal { redundant })
     }
 
@@ -771,7 +708,7 @@ impl KinematicSolver {
     /// converges, leaves `jacobian` alone; otherwise (and from where that stopped), on success,
     /// `jacobian` holds D(q, t) at the returned q (unfactored): the convergence test comes after
     /// each evaluation, so the last evaluation is at the solution.
-    fn newton<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn newton<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
@@ -780,15 +717,14 @@ impl KinematicSolver {
         rule: StepRule,
     ) -> Result<Convergence, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         let time = t.to_f64();
         let tolerance = self.position_tolerance(q);
-        let pivot_tolerance = self.pivot_tolerance::<T>();
-        let max_step = T::from_f64(self.options.max_step);
+        let pivot_tolerance = self.pivot_tolerance();
+        let max_step = self.options.max_step;
         let mut residual = [T::ZERO; NC];
         let mut negative_residual = [T::ZERO; NC];
         let mut step = [T::ZERO; NV];
@@ -801,7 +737,7 @@ impl KinematicSolver {
         // value not finite or too many steps: the loop below names the row).
         if rule == StepRule::Square {
             let max_iterations = self.options.max_iterations;
-            let reuse = T::from_f64(self.options.reuse_safety);
+            let reuse = self.options.reuse_safety;
             let sparse =
                 m.sparse_position_solve(q, t, tolerance, pivot_tolerance, max_iterations, reuse, max_step, &mut residual, &mut step);
             if let Some((end, taken, factored)) = sparse {
@@ -841,7 +777,7 @@ impl KinematicSolver {
                     // times a row's residual); near the solution the test falls to
                     // `rank_tolerance` and the step is Newton's. If the last step did not halve
                     // ‖Φ‖∞, every row takes part (a waiting row may hold the residual).
-                    let rank_tolerance = T::from_f64(self.options.rank_tolerance);
+                    let rank_tolerance = self.options.rank_tolerance;
                     let threshold = if norm <= T::from_f64(0.5) * previous_norm {
                         let relative = norm / max_abs(q).0.max(T::ONE);
                         let cap = T::from_f64(0.1);

@@ -27,6 +27,7 @@ pub mod linalg;
 pub mod linearize;
 mod mechanism;
 mod named;
+mod options;
 mod partition;
 mod planar;
 #[cfg(feature = "plots")]
@@ -50,8 +51,8 @@ pub use error::{KinematicError, NonFiniteQuantity};
 pub use finite_differences::FiniteDifferences;
 pub use integrate::{
     project, simulate, simulate_with_events, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event,
-    EventHit, Flow, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Sample, SimulationError, SimulationOptions,
-    Statistics, System,
+    EventHit, Flow, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, SimulationError,
+    SimulationOptions, Statistics, System,
 };
 pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
 pub use kinematics::{

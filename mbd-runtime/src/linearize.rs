@@ -146,7 +146,9 @@ impl fmt::Debug for Output {
     }
 }
 
-/// Options of [`linearize`] and [`linearize_finite_differences`].
+/// Options of [`linearize`] and [`linearize_finite_differences`]. Build from [`Default`] and the
+/// `with_*` setters. Unlike the solvers' options they are not generic over the scalar:
+/// linearization runs in f64 only. Not `Copy`: it holds the lists of inputs and outputs.
 #[derive(Debug)]
 #[non_exhaustive]
 pub struct LinearizeOptions {
@@ -169,6 +171,13 @@ pub struct LinearizeOptions {
 
 impl Default for LinearizeOptions {
     fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl LinearizeOptions {
+    /// The defaults, as each field documents them.
+    pub fn new() -> Self {
         Self {
             inputs: Vec::new(),
             outputs: Vec::new(),
@@ -177,22 +186,40 @@ impl Default for LinearizeOptions {
             consistency_tolerance: DEFAULT_LINEARIZE_CONSISTENCY,
         }
     }
-}
-
-impl LinearizeOptions {
-    /// With these inputs ([`LinearizeOptions::inputs`]).
-    pub fn inputs(mut self, names: &[&'static str]) -> Self {
+    /// Sets [`inputs`](Self::inputs).
+    #[must_use]
+    pub fn with_inputs(mut self, names: &[&'static str]) -> Self {
         self.inputs = names.to_vec();
         self
     }
-    /// With this output added.
-    pub fn output(mut self, output: Output) -> Self {
+    /// Sets [`outputs`](Self::outputs).
+    #[must_use]
+    pub fn with_outputs(mut self, outputs: Vec<Output>) -> Self {
+        self.outputs = outputs;
+        self
+    }
+    /// Adds one output to [`outputs`](Self::outputs).
+    #[must_use]
+    pub fn with_output(mut self, output: Output) -> Self {
         self.outputs.push(output);
         self
     }
-    /// With these independent velocities ([`LinearizeOptions::independent`]).
-    pub fn independent(mut self, names: &[&'static str]) -> Self {
+    /// Sets [`independent`](Self::independent).
+    #[must_use]
+    pub fn with_independent(mut self, names: &[&'static str]) -> Self {
         self.independent = names.to_vec();
+        self
+    }
+    /// Sets [`rank_tolerance`](Self::rank_tolerance).
+    #[must_use]
+    pub fn with_rank_tolerance(mut self, rank_tolerance: f64) -> Self {
+        self.rank_tolerance = rank_tolerance;
+        self
+    }
+    /// Sets [`consistency_tolerance`](Self::consistency_tolerance).
+    #[must_use]
+    pub fn with_consistency_tolerance(mut self, consistency_tolerance: f64) -> Self {
+        self.consistency_tolerance = consistency_tolerance;
         self
     }
 }

@@ -90,7 +90,7 @@ impl<const NC: usize> fmt::Display for Redundancy<NC> {
     }
 }
 
-impl KinematicSolver {
+impl<T: Real> KinematicSolver<T> {
     /// Which constraint rows are redundant at (q, t) and the mobility NV − rank that follows,
     /// next to Grübler's count NV − NC (the algorithm: [the `redundancy` module](crate::redundancy)).
     /// `q` need not satisfy the constraints exactly, but the answer is about the configuration
@@ -98,7 +98,7 @@ impl KinematicSolver {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`] for a NaN or infinite t, q or D.
-    pub fn redundancy<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn redundancy<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -106,7 +106,6 @@ impl KinematicSolver {
         t: T,
     ) -> Result<Redundancy<NC>, KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         check_time(t)?;
@@ -114,7 +113,7 @@ impl KinematicSolver {
         let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = ws;
         m.jacobian(q, t, d);
         check_rows_finite::<T, M, NV, NC>(d, t)?;
-        let tolerance = T::from_f64(self.options.rank_tolerance);
+        let tolerance = self.options.rank_tolerance;
         let mut redundant = [false; NC];
         let split = orthogonalize(d, tolerance, basis, constraint_square, &mut redundant);
         Ok(Redundancy {
@@ -129,7 +128,7 @@ impl KinematicSolver {
     }
 }
 
-impl KinematicSolver {
+impl<T: Real> KinematicSolver<T> {
     /// The reactions of least Euclidean norm that exert the same generalized constraint force
     /// as `lambda`: with redundant rows (as [`redundancy`](Self::redundancy) decides at (q, t))
     /// the multipliers are not unique — any λ + n with Dᵀn = 0 balances the same load — and the
@@ -146,7 +145,7 @@ impl KinematicSolver {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`] for a NaN or infinite t, q, D or λ.
-    pub fn minimum_norm_reactions<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn minimum_norm_reactions<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -155,7 +154,6 @@ impl KinematicSolver {
         lambda: &mut [T; NC],
     ) -> Result<(), KinematicError>
     where
-        T: Real,
         M: Kinematics<T, NQ, NV, NC>,
     {
         check_time(t)?;
@@ -165,7 +163,7 @@ impl KinematicSolver {
         m.jacobian(q, t, d);
         check_rows_finite::<T, M, NV, NC>(d, t)?;
         let mut redundant = [false; NC];
-        let split = orthogonalize(d, T::from_f64(self.options.rank_tolerance), basis, r, &mut redundant);
+        let split = orthogonalize(d, self.options.rank_tolerance, basis, r, &mut redundant);
         let rank = split.rank;
         let p = NC - rank;
         if p == 0 {

@@ -148,98 +148,42 @@ const RESIDUAL_ROUNDING: f64 = 16.0;
 /// hundred.
 const WORK_ROUNDING: f64 = 256.0;
 
-/// Options of [`StaticSolver`]. Build from [`Default`] and the `with_*` methods.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct StaticOptions {
-    /// Converged when both residuals are at most this (N or N·m for forces, m or rad for Φ) —
-    /// the force residual, or its rounding floor 16 ε (‖h‖∞ + ‖Dᵀλ‖ + ‖H‖∞ max(1, ‖q‖∞)) where
-    /// that is larger (loads of 10⁵ N on 10⁷ N/m cylinders cannot be balanced to 1e-9 N in
-    /// f64). Default [`DEFAULT_STATIC_TOLERANCE`].
-    pub tolerance: f64,
-    /// Trial steps (accepted and rejected) before giving up. Default
-    /// [`DEFAULT_STATIC_MAX_ITERATIONS`].
-    pub max_iterations: u32,
-    /// Relative pivot tolerance of the planned factorization (see [`crate::sparse::factor`]):
-    /// a velocity pivot at most this times its row's largest entry has no pivot, and a
-    /// multiplier whose pivot ratio is at most this is dependent. Default
-    /// [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
-    pub pivot_tolerance: f64,
-    /// Newton iterations of each assembly onto Φ = 0. Default
-    /// [`DEFAULT_STATIC_ASSEMBLY_ITERATIONS`].
-    pub assembly_iterations: u32,
-    /// Relative tolerance of the neutral verdict (see [`Stability`]). Default
-    /// [`DEFAULT_STATIC_NEUTRAL_TOLERANCE`].
-    pub neutral_tolerance: f64,
-    /// Largest velocity-space entry (m or rad) of the first step along a mode without
-    /// stiffness. Default [`DEFAULT_STATIC_INITIAL_STEP`].
-    pub initial_step: f64,
-    /// On reaching an unstable equilibrium, step off it along its most unstable mode and keep
-    /// going downhill (`true`, the default), or return it with [`Stability::Unstable`].
-    pub leave_unstable: bool,
-    /// A constraint row whose sine of angle to the rows eliminated before it (in the M⁻¹
-    /// metric) is at most this is dropped (redundant, or dependent at a singular pose; its
-    /// multiplier is 0). The factorization compares the squared sine, its pivot ratio, so
-    /// below √[`pivot_tolerance`](Self::pivot_tolerance) the pivot tolerance decides. Default
-    /// [`crate::DEFAULT_RANK_TOLERANCE`], as the kinematic solver's.
-    pub rank_tolerance: f64,
-}
-
-impl Default for StaticOptions {
-    fn default() -> Self {
-        StaticOptions {
-            tolerance: DEFAULT_STATIC_TOLERANCE,
-            max_iterations: DEFAULT_STATIC_MAX_ITERATIONS,
-            pivot_tolerance: DEFAULT_STATIC_PIVOT_TOLERANCE,
-            assembly_iterations: DEFAULT_STATIC_ASSEMBLY_ITERATIONS,
-            neutral_tolerance: DEFAULT_STATIC_NEUTRAL_TOLERANCE,
-            initial_step: DEFAULT_STATIC_INITIAL_STEP,
-            leave_unstable: true,
-            rank_tolerance: crate::DEFAULT_RANK_TOLERANCE,
-        }
-    }
-}
-
-impl StaticOptions {
-    /// With another residual tolerance.
-    pub const fn with_tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = tolerance;
-        self
-    }
-    /// With another cap on trial steps.
-    pub const fn with_max_iterations(mut self, max_iterations: u32) -> Self {
-        self.max_iterations = max_iterations;
-        self
-    }
-    /// With another relative pivot tolerance.
-    pub const fn with_pivot_tolerance(mut self, pivot_tolerance: f64) -> Self {
-        self.pivot_tolerance = pivot_tolerance;
-        self
-    }
-    /// With another cap on assembly iterations.
-    pub const fn with_assembly_iterations(mut self, assembly_iterations: u32) -> Self {
-        self.assembly_iterations = assembly_iterations;
-        self
-    }
-    /// With another relative tolerance of the neutral verdict.
-    pub const fn with_neutral_tolerance(mut self, neutral_tolerance: f64) -> Self {
-        self.neutral_tolerance = neutral_tolerance;
-        self
-    }
-    /// With another first step along a mode without stiffness (m or rad).
-    pub const fn with_initial_step(mut self, initial_step: f64) -> Self {
-        self.initial_step = initial_step;
-        self
-    }
-    /// Whether to step off an unstable equilibrium (default) or return it.
-    pub const fn with_leave_unstable(mut self, leave_unstable: bool) -> Self {
-        self.leave_unstable = leave_unstable;
-        self
-    }
-    /// See [`StaticOptions::rank_tolerance`].
-    pub const fn with_rank_tolerance(mut self, rank_tolerance: f64) -> Self {
-        self.rank_tolerance = rank_tolerance;
-        self
+crate::options::options! {
+    /// Options of [`StaticSolver`], in the scalar type `T` of the mechanism (default `f64`).
+    /// Build from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct StaticOptions<T> {
+        /// Converged when both residuals are at most this (N or N·m for forces, m or rad for Φ)
+        /// — the force residual, or its rounding floor 16 ε (‖h‖∞ + ‖Dᵀλ‖ + ‖H‖∞ max(1, ‖q‖∞))
+        /// where that is larger (loads of 10⁵ N on 10⁷ N/m cylinders cannot be balanced to
+        /// 1e-9 N in f64). Default [`DEFAULT_STATIC_TOLERANCE`].
+        tolerance: T = T::from_f64(DEFAULT_STATIC_TOLERANCE) => with_tolerance,
+        /// Trial steps (accepted and rejected) before giving up. Default
+        /// [`DEFAULT_STATIC_MAX_ITERATIONS`].
+        max_iterations: u32 = DEFAULT_STATIC_MAX_ITERATIONS => with_max_iterations,
+        /// Relative pivot tolerance of the planned factorization (see [`crate::sparse::factor`]):
+        /// a velocity pivot at most this times its row's largest entry has no pivot, and a
+        /// multiplier whose pivot ratio is at most this is dependent. Default
+        /// [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
+        pivot_tolerance: T = T::from_f64(DEFAULT_STATIC_PIVOT_TOLERANCE) => with_pivot_tolerance,
+        /// Newton iterations of each assembly onto Φ = 0. Default
+        /// [`DEFAULT_STATIC_ASSEMBLY_ITERATIONS`].
+        assembly_iterations: u32 = DEFAULT_STATIC_ASSEMBLY_ITERATIONS => with_assembly_iterations,
+        /// Relative tolerance of the neutral verdict (see [`Stability`]). Default
+        /// [`DEFAULT_STATIC_NEUTRAL_TOLERANCE`].
+        neutral_tolerance: T = T::from_f64(DEFAULT_STATIC_NEUTRAL_TOLERANCE) => with_neutral_tolerance,
+        /// Largest velocity-space entry (m or rad) of the first step along a mode without
+        /// stiffness. Default [`DEFAULT_STATIC_INITIAL_STEP`].
+        initial_step: T = T::from_f64(DEFAULT_STATIC_INITIAL_STEP) => with_initial_step,
+        /// On reaching an unstable equilibrium, step off it along its most unstable mode and keep
+        /// going downhill (`true`, the default), or return it with [`Stability::Unstable`].
+        leave_unstable: bool = true => with_leave_unstable,
+        /// A constraint row whose sine of angle to the rows eliminated before it (in the M⁻¹
+        /// metric) is at most this is dropped (redundant, or dependent at a singular pose; its
+        /// multiplier is 0). The factorization compares the squared sine, its pivot ratio, so
+        /// below √[`pivot_tolerance`](Self::pivot_tolerance) the pivot tolerance decides. Default
+        /// [`crate::DEFAULT_RANK_TOLERANCE`], as the kinematic solver's.
+        rank_tolerance: T = T::from_f64(crate::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
     }
 }
 
@@ -396,10 +340,16 @@ impl core::error::Error for StaticError {}
 
 /// Static-equilibrium solver that finds stable equilibria (the algorithm: [the `statics`
 /// module](crate::statics)).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct StaticSolver {
+#[derive(Clone, Copy, Debug)]
+pub struct StaticSolver<T = f64> {
     /// Tolerances, iteration caps and the choice at unstable equilibria.
-    pub options: StaticOptions,
+    pub options: StaticOptions<T>,
+}
+
+impl<T: Real> Default for StaticSolver<T> {
+    fn default() -> Self {
+        Self::new(StaticOptions::new())
+    }
 }
 
 /// A non-finite generalized force or stiffness at velocity `i`: named by the force element that
@@ -541,9 +491,9 @@ struct Mode<T, const NV: usize> {
     shift: T,
 }
 
-impl StaticSolver {
+impl<T: Real> StaticSolver<T> {
     /// A solver with the given options.
-    pub const fn new(options: StaticOptions) -> Self {
+    pub const fn new(options: StaticOptions<T>) -> Self {
         StaticSolver { options }
     }
 
@@ -566,7 +516,7 @@ impl StaticSolver {
     /// derivatives); [`StaticError::NotAssembled`]; [`StaticError::Singular`] (a velocity
     /// without mass); [`StaticError::NotConverged`], naming the velocity or constraint row with
     /// the largest residual.
-    pub fn solve<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         ws: &mut Workspace<T, NV, NC, N>,
@@ -575,7 +525,6 @@ impl StaticSolver {
         lambda: &mut [T; NC],
     ) -> Result<StaticReport, StaticError>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         if N != NV + NC {
@@ -589,12 +538,12 @@ impl StaticSolver {
             return Err(StaticError::NonFinite { t: time, row: name(M::COORDINATE_NAMES, i) });
         }
         let options = &self.options;
-        let tol = T::from_f64(options.tolerance);
+        let tol = options.tolerance;
         let half = T::from_f64(0.5);
         let mut trial = *q;
         let mut correction = [T::ZERO; NV];
 
-        self.restore::<T, M, NQ, NV, NC, N>(m, q, t, &mut correction).map_err(|e| match e {
+        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -603,9 +552,9 @@ impl StaticSolver {
 
         let (mut accepted, mut rejected) = (0u32, 0u32);
         // The trust radius: the largest velocity-space entry of a step (m or rad).
-        let mut radius = T::from_f64(options.initial_step);
+        let mut radius = options.initial_step;
         loop {
-            let it = self.evaluate::<T, M, NQ, NV, NC, N>(m, q, t)?;
+            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t)?;
             *lambda = it.lambda;
             let (force_residual, force_row) = max_abs(&it.r);
             let (constraint_residual, constraint_row) = max_abs(&it.phi);
@@ -625,14 +574,13 @@ impl StaticSolver {
             let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
             // At a converged point, its lowest mode tells stable from unstable.
             let mode = if converged && dof > 0 {
-                Some(self.lowest_mode::<T, M, NQ, NV, NC, N>(m, q, &it).ok_or_else(|| not_converged(accepted + rejected))?)
+                Some(self.lowest_mode::<M, NQ, NV, NC, N>(m, q, &it).ok_or_else(|| not_converged(accepted + rejected))?)
             } else {
                 None
             };
             // The neutral band: relative to the stiffness scale, and never below what rounding
             // leaves of ω² (about ε times the inverse iteration's shift).
-            let neutral =
-                |mode: &Mode<T, NV>| T::from_f64(options.neutral_tolerance) * it.scale.max(mode.omega_squared.abs()).max(mode.shift);
+            let neutral = |mode: &Mode<T, NV>| options.neutral_tolerance * it.scale.max(mode.omega_squared.abs()).max(mode.shift);
             let unstable = mode.as_ref().is_some_and(|mode| mode.omega_squared < -neutral(mode));
             if converged && !(unstable && options.leave_unstable) {
                 let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
@@ -647,7 +595,7 @@ impl StaticSolver {
             // no entry more than `initial_step`.
             let escape = mode.filter(|_| converged);
             if escape.is_some() {
-                radius = T::from_f64(options.initial_step);
+                radius = options.initial_step;
             }
             let mut attempts = 0u32;
             loop {
@@ -664,13 +612,13 @@ impl StaticSolver {
                         let delta: [T; NV] = core::array::from_fn(|i| y * z[i]);
                         Some((delta, f * y - half * mode.omega_squared * y * y))
                     }
-                    None => self.shifted_step::<T, M, NQ, NV, NC, N>(m, q, &it, radius),
+                    None => self.shifted_step::<M, NQ, NV, NC, N>(m, q, &it, radius),
                 };
                 let Some((delta, predicted)) = step else {
                     return Err(not_converged(accepted + rejected));
                 };
                 let step_norm = max_abs(&delta).0;
-                let ratio = self.trial::<T, M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction);
+                let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction);
                 if let Some(ratio) = ratio {
                     *q = trial;
                     accepted += 1;
@@ -703,22 +651,21 @@ impl StaticSolver {
     /// about the squared sine of the row's angle to the rows eliminated before it (in the M⁻¹
     /// metric), so the square of [`StaticOptions::rank_tolerance`], and never below the pivot
     /// tolerance (rounding).
-    fn drop_ratio<T: Real>(&self) -> T {
+    fn drop_ratio(&self) -> T {
         let o = &self.options;
-        T::from_f64((o.rank_tolerance * o.rank_tolerance).max(o.pivot_tolerance).max(f64::EPSILON))
+        (o.rank_tolerance * o.rank_tolerance).max(o.pivot_tolerance).max(T::from_f64(f64::EPSILON))
     }
 
     /// Everything the iteration needs at an assembled `q`: the two matrices, the factors of
     /// [[M, −Dᵀ], [D, 0]], the multipliers by least squares in the M⁻¹ norm
     /// ([[M, −Dᵀ], [D, 0]] [x; λ] = [h; 0]) and the residual r = h + Dᵀλ = M x.
-    fn evaluate<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn evaluate<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         t: T,
     ) -> Result<Iterate<M::NewtonStorage, T, NV, NC>, StaticError>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let time = t.to_f64();
@@ -799,13 +746,12 @@ impl StaticSolver {
     /// positive definite on the motions the joints allow: the factorization keeps the rows kept
     /// at the iterate, and its pivots' signs (velocity pivots positive, multiplier pivots
     /// negative, NV of them) say so (Sylvester's law of inertia: module documentation).
-    fn shifted_factor<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    fn shifted_factor<M, const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         mu: T,
     ) -> Option<M::NewtonStorage>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let nnz = M::JACOBIAN_PATTERN.len();
@@ -817,7 +763,7 @@ impl StaticSolver {
             }
         }
         let mut dropped = it.dropped;
-        let tolerance = T::from_f64(self.options.pivot_tolerance).max(T::EPSILON);
+        let tolerance = self.options.pivot_tolerance.max(T::EPSILON);
         M::newton_factor(&mut s, tolerance, true, &mut dropped).ok()?;
         if dropped != it.dropped {
             return None;
@@ -838,17 +784,16 @@ impl StaticSolver {
 
     /// The smallest shift of the ladder μ_k = 10^k · μ₀ (k = 0, 1, …; μ₀ = [`shift_floor`])
     /// whose reduced matrix is positive definite, with its factors.
-    fn definite_shift<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    fn definite_shift<M, const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
     ) -> Option<(T, M::NewtonStorage)>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let mut mu = shift_floor(it);
         for _ in 0..SHIFT_TRIALS {
-            if let Some(s) = self.shifted_factor::<T, M, NQ, NV, NC>(it, mu) {
+            if let Some(s) = self.shifted_factor::<M, NQ, NV, NC>(it, mu) {
                 return Some((mu, s));
             }
             mu *= T::from_f64(10.0);
@@ -863,7 +808,7 @@ impl StaticSolver {
     /// decrease the quadratic model predicts, rᵀδ + ½δᵀHδ = ½(rᵀδ + μ δᵀMδ); `None` if no
     /// shift gives a finite step.
     #[allow(clippy::too_many_arguments)]
-    fn shifted_step<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn shifted_step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
@@ -871,14 +816,13 @@ impl StaticSolver {
         radius: T,
     ) -> Option<([T; NV], T)>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         // The step at shift μ: `Err(true)` if the reduced matrix is definite but the step
         // does not fit, `Err(false)` if it is not definite (or the step not finite).
         let floor = shift_floor(it);
         let attempt = |mu: T| -> Result<([T; NV], T), bool> {
-            let factors = self.shifted_factor::<T, M, NQ, NV, NC>(it, mu).ok_or(false)?;
+            let factors = self.shifted_factor::<M, NQ, NV, NC>(it, mu).ok_or(false)?;
             let mut b = [T::ZERO; N];
             b[..NV].copy_from_slice(&it.r);
             // At the floor, Newton's own step (μ = 0) where the refinement converges to it.
@@ -941,17 +885,16 @@ impl StaticSolver {
     /// ([[μM − H, −Dᵀ], [D, 0]] [x'; ·] = [M x; 0]), which converges to the mode of smallest
     /// ω² + μ > 0, i.e. the smallest ω²; ω² from the Rayleigh quotient
     /// x'ᵀ(−H)x' / x'ᵀMx' = x'ᵀMx / x'ᵀMx' − μ, which needs no product with H.
-    fn lowest_mode<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn lowest_mode<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
     ) -> Option<Mode<T, NV>>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        let (mu, factors) = self.definite_shift::<T, M, NQ, NV, NC>(it)?;
+        let (mu, factors) = self.definite_shift::<M, NQ, NV, NC>(it)?;
         // Start from M times a vector of unequal entries (fractional parts of multiples of the
         // golden ratio): no mode is missed by a symmetry of the start.
         let mut mx: [T; NV] = core::array::from_fn(|i| {
@@ -996,7 +939,7 @@ impl StaticSolver {
     /// if the step is accepted (the work is at least [`ACCEPT_RATIO`] of the prediction, up to
     /// the rounding of the sum), `None` if it is rejected or its restoration failed.
     #[allow(clippy::too_many_arguments)]
-    fn trial<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn trial<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
@@ -1008,14 +951,13 @@ impl StaticSolver {
         correction: &mut [T; NV],
     ) -> Option<T>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let zero_v = [T::ZERO; NV];
         *trial = *q;
         m.integrate_positions(trial, delta, T::ONE);
         correction.fill(T::ZERO);
-        self.restore::<T, M, NQ, NV, NC, N>(m, trial, t, correction).ok()?;
+        self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction).ok()?;
         let displacement: [T; NV] = core::array::from_fn(|i| delta[i] + correction[i]);
         let half_way: [T; NV] = core::array::from_fn(|i| T::from_f64(0.5) * displacement[i]);
         let mut middle = *q;
@@ -1045,7 +987,7 @@ impl StaticSolver {
     /// steps are added to `correction`. A constraint row that depends on the rows eliminated
     /// before it (a redundant constraint, or a singular pose) is dropped: its multiplier is 0
     /// and what it imposes is met through the others.
-    fn restore<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn restore<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
@@ -1053,11 +995,10 @@ impl StaticSolver {
         correction: &mut [T; NV],
     ) -> Result<u32, RestoreFailure>
     where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let time = t.to_f64();
-        let tol = T::from_f64(self.options.tolerance);
+        let tol = self.options.tolerance;
         let zero_v = [T::ZERO; NV];
         let mut phi = [T::ZERO; NC];
         let mut iterations = 0;
@@ -1104,17 +1045,16 @@ impl StaticSolver {
     /// where that leaves Φ and h unchanged (to the tolerance plus the rounding of the shift,
     /// bounded by the shift's size times the largest entry of D's or H's column); then
     /// normalizes.
-    fn wrap_angles<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    fn wrap_angles<M, const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
     ) where
-        T: Real,
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        let tol = T::from_f64(self.options.tolerance);
+        let tol = self.options.tolerance;
         let names = M::COORDINATE_NAMES;
         let zero_v = [T::ZERO; NV];
         let (phi, h) = (&it.phi, &it.h);

@@ -93,7 +93,7 @@ fn alpha<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
 where
     K: NewtonMatrix<f64, NQ, NV, NC>,
 {
-    let options = GeneralizedAlphaOptions { step: 1e-3, rho_infinity: 0.8, ..GeneralizedAlphaOptions::default() };
+    let options = GeneralizedAlphaOptions::default().with_step(1e-3).with_rho_infinity(0.8);
     timed(|| {
         let mut integrator = GeneralizedAlpha::new(options);
         let mut q = [0.0; NQ];
@@ -170,9 +170,19 @@ where
             let mut q = [0.0f32; NQ];
             let options = SimulationOptions::default();
             let stats = if rk4 {
-                simulate(m32, ws32, &mut Rk4::new(1e-3f32), 0.0, &q32, &v32, &[s.t_end as f32], &options, |p| q = p.point.q)
+                simulate(
+                    m32,
+                    ws32,
+                    &mut Rk4::new(Rk4Options::default().with_step(1e-3f32)),
+                    0.0,
+                    &q32,
+                    &v32,
+                    &[s.t_end as f32],
+                    &options,
+                    |p| q = p.point.q,
+                )
             } else {
-                let o = Dopri5Options { rtol: 1e-5f32, atol: 1e-7, ..Dopri5Options::default() };
+                let o = Dopri5Options::default().with_rtol(1e-5f32).with_atol(1e-7);
                 simulate(m32, ws32, &mut Dopri5::new(o), 0.0, &q32, &v32, &[s.t_end as f32], &options, |p| q = p.point.q)
             };
             stats.map(|st| (st.steps, q.map(f64::from)))
@@ -182,9 +192,11 @@ where
         let (seconds, result) = timed(|| {
             let mut q = [0.0f64; NQ];
             let stats = if rk4 {
-                simulate(m64, ws64, &mut Rk4::new(1e-3), 0.0, s.q0, s.v0, &[s.t_end], &options, |p| q = p.point.q)
+                simulate(m64, ws64, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, s.q0, s.v0, &[s.t_end], &options, |p| {
+                    q = p.point.q
+                })
             } else {
-                let o = Dopri5Options { rtol: 1e-5, atol: 1e-7, ..Dopri5Options::default() };
+                let o = Dopri5Options::default().with_rtol(1e-5).with_atol(1e-7);
                 simulate(m64, ws64, &mut Dopri5::new(o), 0.0, s.q0, s.v0, &[s.t_end], &options, |p| q = p.point.q)
             };
             stats.map(|st| (st.steps, q))

@@ -85,7 +85,7 @@ impl Drift {
             Drift::Projection => (DynamicsOptions::without_stabilization(), Correction::projection()),
             Drift::Partitioning => (DynamicsOptions::without_stabilization(), Correction::partitioning()),
         };
-        SimulationOptions { dynamics, correction, track_work, ..SimulationOptions::default() }
+        SimulationOptions::default().with_dynamics(dynamics).with_correction(correction).with_track_work(track_work)
     }
 }
 
@@ -190,20 +190,16 @@ pub fn reference<M, const NQ: usize, const NV: usize, const NC: usize, const N: 
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
 {
-    let options = SimulationOptions {
-        dynamics: DynamicsOptions::without_stabilization(),
-        correction: Correction::None,
-        ..SimulationOptions::default()
-    };
+    let options = SimulationOptions::default().with_dynamics(DynamicsOptions::without_stabilization()).with_correction(Correction::None);
     let fail = |e: SimulationError| -> ! { panic!("{}: the reference run fails: {e}", case.name) };
     let times = output_times(case.t_end);
     let start = Instant::now();
     let (mut q, mut q2) = (Vec::new(), Vec::new());
-    let tight = Dopri5Options { rtol: 1e-13, atol: 1e-15, ..Dopri5Options::default() };
+    let tight = Dop853Options::default().with_rtol(1e-13).with_atol(1e-15);
     simulate(case.mechanism, ws, &mut Dop853::new(tight), 0.0, &case.q0, &case.v0, &times, &options, |s| q.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
     let seconds = start.elapsed().as_secs_f64();
-    let check = Dopri5Options { rtol: 1e-12, atol: 1e-14, ..Dopri5Options::default() };
+    let check = Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14);
     simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &times, &options, |s| q2.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
     let end = q.last().expect("OUTPUTS > 0");
@@ -312,22 +308,24 @@ where
     M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     match method {
-        Method::Rk4 => timed(case, ws, reference, drift, || Rk4::new(setting), |_, stats| (4 * stats.steps, 0)),
+        Method::Rk4 => {
+            timed(case, ws, reference, drift, || Rk4::new(Rk4Options::default().with_step(setting)), |_, stats| (4 * stats.steps, 0))
+        }
         Method::Dopri5 => {
-            let options = Dopri5Options { rtol: setting, atol: setting * 1e-2, ..Dopri5Options::default() };
+            let options = Dopri5Options::default().with_rtol(setting).with_atol(setting * 1e-2);
             timed(case, ws, reference, drift, || Dopri5::new(options), |i, _| (i.evaluations, 0))
         }
         Method::Dop853 => {
-            let options = Dop853Options { rtol: setting, atol: setting * 1e-2, ..Dop853Options::default() };
+            let options = Dop853Options::default().with_rtol(setting).with_atol(setting * 1e-2);
             timed(case, ws, reference, drift, || Dop853::new(options), |i, _| (i.evaluations, 0))
         }
         Method::GeneralizedAlpha { rho_infinity } => {
-            let options = GeneralizedAlphaOptions { step: setting, rho_infinity, ..GeneralizedAlphaOptions::default() };
+            let options = GeneralizedAlphaOptions::default().with_step(setting).with_rho_infinity(rho_infinity);
             timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
         }
         Method::AdaptiveGeneralizedAlpha { rho_infinity } => {
-            let control = ErrorControl { rtol: setting, atol: setting * 1e-2, ..ErrorControl::default() };
-            let options = GeneralizedAlphaOptions { rho_infinity, error_control: Some(control), ..GeneralizedAlphaOptions::default() };
+            let control = ErrorControl::default().with_rtol(setting).with_atol(setting * 1e-2);
+            let options = GeneralizedAlphaOptions::default().with_rho_infinity(rho_infinity).with_error_control(Some(control));
             timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
         }
         Method::MuJoCoRk4 => Err("MuJoCo runs in peers.rs".into()),

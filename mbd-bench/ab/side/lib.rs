@@ -339,7 +339,7 @@ macro_rules! dynamic_cases {
                 let system: &'static System<'static, M, f64> = Box::leak(Box::new(System::new(m)));
                 let from: P = system.point(0.0, q, [0.0; NV], [0.0; 2]).expect("forward dynamics");
                 // Start from a moving state: 0.05 s into the fall.
-                let mut rk4 = Rk4::new(1e-3);
+                let mut rk4 = Rk4::default(); // h = 1 ms, on both sides
                 let mut p = from;
                 let mut next = from;
                 for _ in 0..50 {

@@ -18,11 +18,42 @@
 
 use super::dopri5::{initial_step, MinExt};
 use super::{check_step, hermite_state, non_finite, Integrator, Point, SimulationError, System};
-use crate::{Dopri5Options, ForwardDynamics, Real, Workspace};
+use crate::{ForwardDynamics, Real, Workspace};
 
-/// Options of [`Dop853`]: the same tolerances and step limits as [`Dopri5`](super::Dopri5)'s
-/// (rtol default 1e-8, atol 1e-10, raised to 16 ε of the scalar type where below).
-pub type Dop853Options<T> = Dopri5Options<T>;
+crate::options::options! {
+    /// Options of [`Dop853`], in the scalar type `T` of the mechanism (default `f64`): the same
+    /// tolerances, step limits and defaults as [`Dopri5Options`](super::Dopri5Options)'. Build
+    /// from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Dop853Options<T> {
+        /// Relative tolerance on each coordinate and velocity. Default 1e-8; raised to 16 ε of
+        /// the scalar type where it is below (f32: 1.9e-6), since no step resolves less.
+        rtol: T = T::from_f64(1e-8) => with_rtol,
+        /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-10; raised likewise to 16 ε.
+        atol: T = T::from_f64(1e-10) => with_atol,
+        /// First step size (s); 0 chooses one from the initial derivatives (Hairer's rule).
+        /// Default 0.
+        initial_step: T = T::ZERO => with_initial_step,
+        /// Largest step size (s). Default 0.1 s.
+        max_step: T = T::from_f64(0.1) => with_max_step,
+        /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
+        /// 1e-12 s.
+        min_step: T = T::from_f64(1e-12) => with_min_step,
+    }
+}
+
+impl<T: Real> Dop853Options<T> {
+    /// See [`check_step_control`](super::dopri5::check_step_control).
+    fn check(&self) -> Result<(), SimulationError> {
+        super::dopri5::check_step_control(
+            [self.rtol, self.atol, self.max_step, self.min_step],
+            [
+                "rtol and atol (Dop853Options) must be non-negative, not both zero",
+                "Dop853Options::max_step must be positive, min_step non-negative",
+            ],
+        )
+    }
+}
 
 /// Stages of a step (`S`) and with the dense output's three (`SD`).
 const S: usize = 12;

@@ -12,48 +12,56 @@
 use super::{check_step, non_finite, Integrator, Point, SimulationError, System};
 use crate::{ForwardDynamics, Real, Workspace};
 
-/// Options of [`Dopri5`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dopri5Options<T> {
-    /// Relative tolerance on each coordinate and velocity. Default 1e-8; raised to 16 ε of the
-    /// scalar type where it is below (f32: 1.9e-6), since no step resolves less.
-    pub rtol: T,
-    /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-10; raised likewise to 16 ε.
-    pub atol: T,
-    /// First step size (s); 0 chooses one from the initial derivatives (Hairer's rule). Default 0.
-    pub initial_step: T,
-    /// Largest step size (s). Default 0.1 s.
-    pub max_step: T,
-    /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default 1e-12 s.
-    pub min_step: T,
+crate::options::options! {
+    /// Options of [`Dopri5`], in the scalar type `T` of the mechanism (default `f64`). Build
+    /// from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Dopri5Options<T> {
+        /// Relative tolerance on each coordinate and velocity. Default 1e-8; raised to 16 ε of
+        /// the scalar type where it is below (f32: 1.9e-6), since no step resolves less.
+        rtol: T = T::from_f64(1e-8) => with_rtol,
+        /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-10; raised likewise to 16 ε.
+        atol: T = T::from_f64(1e-10) => with_atol,
+        /// First step size (s); 0 chooses one from the initial derivatives (Hairer's rule).
+        /// Default 0.
+        initial_step: T = T::ZERO => with_initial_step,
+        /// Largest step size (s). Default 0.1 s.
+        max_step: T = T::from_f64(0.1) => with_max_step,
+        /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
+        /// 1e-12 s.
+        min_step: T = T::from_f64(1e-12) => with_min_step,
+    }
 }
 
 impl<T: Real> Dopri5Options<T> {
-    /// The tolerances non-negative and not both zero, `max_step` positive, `min_step`
-    /// non-negative (NaN fails each).
-    // `!(x >= y)` on purpose: it is also true when either side is NaN.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    /// See [`check_step_control`].
     pub(super) fn check(&self) -> Result<(), SimulationError> {
-        if !(self.rtol >= T::ZERO && self.atol >= T::ZERO && self.rtol + self.atol > T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "rtol and atol (Dopri5Options) must be non-negative, not both zero" });
-        }
-        if !(self.max_step > T::ZERO && self.min_step >= T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Dopri5Options::max_step must be positive, min_step non-negative" });
-        }
-        Ok(())
+        check_step_control(
+            [self.rtol, self.atol, self.max_step, self.min_step],
+            [
+                "rtol and atol (Dopri5Options) must be non-negative, not both zero",
+                "Dopri5Options::max_step must be positive, min_step non-negative",
+            ],
+        )
     }
 }
 
-impl<T: Real> Default for Dopri5Options<T> {
-    fn default() -> Self {
-        Self {
-            rtol: T::from_f64(1e-8),
-            atol: T::from_f64(1e-10),
-            initial_step: T::ZERO,
-            max_step: T::from_f64(0.1),
-            min_step: T::from_f64(1e-12),
-        }
+/// [rtol, atol, max_step, min_step]: the tolerances non-negative and not both zero, `max_step`
+/// positive, `min_step` non-negative (NaN fails each), else the error with the first or second
+/// of `messages`: the check of every error-controlled integrator's options.
+// `!(x >= y)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub(super) fn check_step_control<T: Real>(
+    [rtol, atol, max_step, min_step]: [T; 4],
+    messages: [&'static str; 2],
+) -> Result<(), SimulationError> {
+    if !(rtol >= T::ZERO && atol >= T::ZERO && rtol + atol > T::ZERO) {
+        return Err(SimulationError::InvalidOptions { what: messages[0] });
     }
+    if !(max_step > T::ZERO && min_step >= T::ZERO) {
+        return Err(SimulationError::InvalidOptions { what: messages[1] });
+    }
+    Ok(())
 }
 
 /// Dormand–Prince 5(4) with error control, PI step-size control and dense output (Hairer,

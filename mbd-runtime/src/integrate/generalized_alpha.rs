@@ -11,129 +11,110 @@ use crate::kinematics::name;
 use crate::linalg::LinalgError;
 use crate::{DynamicsError, Kinematics, Mechanism, NewtonMatrix, Real, Workspace};
 
-/// Options of [`GeneralizedAlpha`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GeneralizedAlphaOptions<T> {
-    /// Step size h (s). Default 1e-3 s.
-    pub step: T,
-    /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1]: 1 adds no numerical damping, 0
-    /// annihilates the highest frequencies in one step. Default 0.8. (With
-    /// [`project_velocities`](Self::project_velocities), the default, each step still loses the
-    /// kinetic energy of its O(h²) velocity violation: T + V falls by O((ωh)³ ωt), about as
-    /// much as ρ∞ = 0.8's damping costs a slow mode.)
-    pub rho_infinity: T,
-    /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction β'h²‖Δv̇‖∞ (m, rad).
-    /// Default 1e-10, raised to what the scalar type resolves at q ([`crate::RESOLUTION_ULPS`]
-    /// ε max(1, ‖q‖∞): 7.6e-6 in f32 at 1 m).
-    pub tolerance: T,
-    /// Newton tolerance on the multipliers, relative, measured by the constraint forces they
-    /// exert: ‖DᵀΔλ‖∞ ≤ `lambda_tolerance` · (the force scale max(‖Dᵀλ‖∞, ‖h‖∞, ‖M v̇‖∞), N
-    /// or N·m). Needed on its own: λ reaches the positions only through M⁻¹Dᵀ and β'h², so at
-    /// small steps a λ wrong by percents moves q by less than `tolerance`. (Dᵀλ rather than λ:
-    /// near a singular position the part of λ that exerts no force is rounding.) Default 1e-6:
-    /// reactions to six digits; 1e-8 costs a third Newton iteration in most steps (2.9 against
-    /// 2.0 on average on a 16-link chain at h = 1 ms). The force change is never asked below
-    /// what one rounding of the positions makes, m · resolution/(β'h²) (m the largest mass or
-    /// inertia): q₊ carries v̇₊ times β'h², so at small steps (1e-3 N per kg in f64 at 1e-5 s)
-    /// and in f32 (25 N per kg at 1 ms) no iteration gets below it.
-    pub lambda_tolerance: T,
-    /// Newton iterations per step before failing. Default 12.
-    pub max_iterations: u32,
-    /// Reuse the iteration matrix's factors within a step (modified Newton): the matrix factored
-    /// at a step's first iteration serves the next ones while each correction is below a
-    /// quarter of the one before (else it is evaluated and factored again). Default true: most
-    /// steps then factor once instead of once per iteration — the iterate converges to the same
-    /// tolerances, linearly instead of quadratically, which at these corrections (the
-    /// predictor's error, O(h²)) costs no extra iteration in most steps.
-    pub reuse_factors: bool,
-    /// Relative pivot tolerance of the LU of the iteration matrix ([`crate::sparse`]). Default
-    /// 1e-13. A multiplier whose pivot is at most this times its scale Σ_c D_rc²/|u_cc| belongs
-    /// to a dependent constraint row: with
-    /// [`DynamicsOptions::allow_redundant`](crate::DynamicsOptions::allow_redundant) (the
-    /// default) its Δλ is set to 0 for the rest of the step, otherwise the step fails naming it.
-    /// A velocity whose pivot is at most this times its row's largest entry fails the step
-    /// naming it ([`SimulationError::SingularIterationMatrix`]).
-    pub pivot_tolerance: T,
-    /// Project each step's velocities onto D v = ν in the metric of M
-    /// ([`crate::ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
-    /// enforce Φ = 0 but leave D v − ν = O(h²); without damping (ρ∞ = 1) that error feeds an
-    /// oscillation that grows with time at every step size (a pendulum's energy grew about 20×
-    /// per second from t = 1 s until Newton failed at 5–9 s), and a coordinate-partitioning
-    /// correction turns it into a first-order error. Default true.
-    pub project_velocities: bool,
-    /// Step-size control by a local error estimate: `None` (the default) takes fixed steps of
-    /// [`step`](Self::step); `Some` makes `step` the first step tried and adapts the rest to
-    /// the tolerances ([`ErrorControl`]).
-    pub error_control: Option<ErrorControl<T>>,
+crate::options::options! {
+    /// Options of [`GeneralizedAlpha`], in the scalar type `T` of the mechanism (default `f64`).
+    /// Build from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct GeneralizedAlphaOptions<T> {
+        /// Step size h (s). Default 1e-3 s.
+        step: T = T::from_f64(1e-3) => with_step,
+        /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1]: 1 adds no numerical damping, 0
+        /// annihilates the highest frequencies in one step. Default 0.8. (With
+        /// [`project_velocities`](Self::project_velocities), the default, each step still loses the
+        /// kinetic energy of its O(h²) velocity violation: T + V falls by O((ωh)³ ωt), about as
+        /// much as ρ∞ = 0.8's damping costs a slow mode.)
+        rho_infinity: T = T::from_f64(0.8) => with_rho_infinity,
+        /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction β'h²‖Δv̇‖∞ (m, rad).
+        /// Default 1e-10, raised to what the scalar type resolves at q ([`crate::RESOLUTION_ULPS`]
+        /// ε max(1, ‖q‖∞): 7.6e-6 in f32 at 1 m).
+        tolerance: T = T::from_f64(1e-10) => with_tolerance,
+        /// Newton tolerance on the multipliers, relative, measured by the constraint forces they
+        /// exert: ‖DᵀΔλ‖∞ ≤ `lambda_tolerance` · (the force scale max(‖Dᵀλ‖∞, ‖h‖∞, ‖M v̇‖∞), N
+        /// or N·m). Needed on its own: λ reaches the positions only through M⁻¹Dᵀ and β'h², so at
+        /// small steps a λ wrong by percents moves q by less than `tolerance`. (Dᵀλ rather than λ:
+        /// near a singular position the part of λ that exerts no force is rounding.) Default 1e-6:
+        /// reactions to six digits; 1e-8 costs a third Newton iteration in most steps (2.9 against
+        /// 2.0 on average on a 16-link chain at h = 1 ms). The force change is never asked below
+        /// what one rounding of the positions makes, m · resolution/(β'h²) (m the largest mass or
+        /// inertia): q₊ carries v̇₊ times β'h², so at small steps (1e-3 N per kg in f64 at 1e-5 s)
+        /// and in f32 (25 N per kg at 1 ms) no iteration gets below it.
+        lambda_tolerance: T = T::from_f64(1e-6) => with_lambda_tolerance,
+        /// Newton iterations per step before failing. Default 12.
+        max_iterations: u32 = 12 => with_max_iterations,
+        /// Reuse the iteration matrix's factors within a step (modified Newton): the matrix factored
+        /// at a step's first iteration serves the next ones while each correction is below a
+        /// quarter of the one before (else it is evaluated and factored again). Default true: most
+        /// steps then factor once instead of once per iteration — the iterate converges to the same
+        /// tolerances, linearly instead of quadratically, which at these corrections (the
+        /// predictor's error, O(h²)) costs no extra iteration in most steps.
+        reuse_factors: bool = true => with_reuse_factors,
+        /// Relative pivot tolerance of the LU of the iteration matrix ([`crate::sparse`]). Default
+        /// 1e-13. A multiplier whose pivot is at most this times its scale Σ_c D_rc²/|u_cc| belongs
+        /// to a dependent constraint row: with
+        /// [`DynamicsOptions::allow_redundant`](crate::DynamicsOptions::allow_redundant) (the
+        /// default) its Δλ is set to 0 for the rest of the step, otherwise the step fails naming it.
+        /// A velocity whose pivot is at most this times its row's largest entry fails the step
+        /// naming it ([`SimulationError::SingularIterationMatrix`]).
+        pivot_tolerance: T = T::from_f64(1e-13) => with_pivot_tolerance,
+        /// Project each step's velocities onto D v = ν in the metric of M
+        /// ([`crate::ForwardDynamics::project_velocities`], one sparse Schur solve). The index-3 equations
+        /// enforce Φ = 0 but leave D v − ν = O(h²); without damping (ρ∞ = 1) that error feeds an
+        /// oscillation that grows with time at every step size (a pendulum's energy grew about 20×
+        /// per second from t = 1 s until Newton failed at 5–9 s), and a coordinate-partitioning
+        /// correction turns it into a first-order error. Default true.
+        project_velocities: bool = true => with_project_velocities,
+        /// Step-size control by a local error estimate: `None` (the default) takes fixed steps of
+        /// [`step`](Self::step); `Some` makes `step` the first step tried and adapts the rest to
+        /// the tolerances ([`ErrorControl`]).
+        error_control: Option<ErrorControl<T>> = None => with_error_control,
+    }
 }
 
-/// Tolerances and step limits of the variable-step generalized-α method
-/// ([`GeneralizedAlphaOptions::error_control`]).
-///
-/// The local error of a step is estimated from the pseudo-accelerations: with δ = α_m − α_f,
-/// q₊'s Taylor expansion leaves e = (1/12 + δ²/4) h³ q⃛ + O(h⁴), and a₊ − a = h q⃛ + O(h²), so
-///
-/// ```text
-/// e ≈ (1/12 + δ²/4) h² (a₊ − a)
-/// ```
-///
-/// (for Newmark's scheme, δ = 0 and β free, this is Zienkiewicz & Xie's (1991) estimate
-/// (β − 1/6) h² (a₊ − a); here β = ¼(1 − δ)²), measured on the coordinates (q₊ ⊕ e − q₊) in
-/// the RMS of the mixed tolerance atol + rtol·max(|q|, |q₊|), as [`Dopri5`](crate::Dopri5)
-/// measures its error (only the positions: the method's velocity error is of the same order but
-/// has no estimate this cheap).
-/// A step is accepted when that RMS is at most 1, and the next one is
-/// h · clamp(0.9 err^(−1/3), 0.2, 2). A step whose Newton iteration fails to converge is retried
-/// at a quarter of its size. On a step-size change the pseudo-acceleration's lag a − v̇ ≈ δ h q⃛
-/// is rescaled to the new step (a ← v̇ + (h₊/h)(a − v̇)), so the method stays second-order: the
-/// global error falls like rtol^(2/3).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ErrorControl<T> {
-    /// Relative tolerance on each coordinate. Default 1e-6.
-    pub rtol: T,
-    /// Absolute tolerance (m, rad). Default 1e-8.
-    pub atol: T,
-    /// Largest step size (s). Default 0.1 s.
-    pub max_step: T,
-    /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
-    /// 1e-12 s.
-    pub min_step: T,
-}
-
-impl<T: Real> Default for ErrorControl<T> {
-    fn default() -> Self {
-        Self { rtol: T::from_f64(1e-6), atol: T::from_f64(1e-8), max_step: T::from_f64(0.1), min_step: T::from_f64(1e-12) }
+crate::options::options! {
+    /// Tolerances and step limits of the variable-step generalized-α method
+    /// ([`GeneralizedAlphaOptions::error_control`]).
+    ///
+    /// The local error of a step is estimated from the pseudo-accelerations: with δ = α_m − α_f,
+    /// q₊'s Taylor expansion leaves e = (1/12 + δ²/4) h³ q⃛ + O(h⁴), and a₊ − a = h q⃛ + O(h²), so
+    ///
+    /// ```text
+    /// e ≈ (1/12 + δ²/4) h² (a₊ − a)
+    /// ```
+    ///
+    /// (for Newmark's scheme, δ = 0 and β free, this is Zienkiewicz & Xie's (1991) estimate
+    /// (β − 1/6) h² (a₊ − a); here β = ¼(1 − δ)²), measured on the coordinates (q₊ ⊕ e − q₊) in
+    /// the RMS of the mixed tolerance atol + rtol·max(|q|, |q₊|), as [`Dopri5`](crate::Dopri5)
+    /// measures its error (only the positions: the method's velocity error is of the same order but
+    /// has no estimate this cheap).
+    /// A step is accepted when that RMS is at most 1, and the next one is
+    /// h · clamp(0.9 err^(−1/3), 0.2, 2). A step whose Newton iteration fails to converge is retried
+    /// at a quarter of its size. On a step-size change the pseudo-acceleration's lag a − v̇ ≈ δ h q⃛
+    /// is rescaled to the new step (a ← v̇ + (h₊/h)(a − v̇)), so the method stays second-order: the
+    /// global error falls like rtol^(2/3).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct ErrorControl<T> {
+        /// Relative tolerance on each coordinate. Default 1e-6.
+        rtol: T = T::from_f64(1e-6) => with_rtol,
+        /// Absolute tolerance (m, rad). Default 1e-8.
+        atol: T = T::from_f64(1e-8) => with_atol,
+        /// Largest step size (s). Default 0.1 s.
+        max_step: T = T::from_f64(0.1) => with_max_step,
+        /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
+        /// 1e-12 s.
+        min_step: T = T::from_f64(1e-12) => with_min_step,
     }
 }
 
 impl<T: Real> ErrorControl<T> {
-    /// Tolerances non-negative and not both zero, `max_step` positive, `min_step` non-negative.
-    // `!(x >= y)` on purpose: it is also true when either side is NaN.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    /// See [`check_step_control`](super::dopri5::check_step_control).
     fn check(&self) -> Result<(), SimulationError> {
-        if !(self.rtol >= T::ZERO && self.atol >= T::ZERO && self.rtol + self.atol > T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "rtol and atol (ErrorControl) must be non-negative, not both zero" });
-        }
-        if !(self.max_step > T::ZERO && self.min_step >= T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "ErrorControl::max_step must be positive, min_step non-negative" });
-        }
-        Ok(())
-    }
-}
-
-impl<T: Real> Default for GeneralizedAlphaOptions<T> {
-    fn default() -> Self {
-        Self {
-            step: T::from_f64(1e-3),
-            rho_infinity: T::from_f64(0.8),
-            tolerance: T::from_f64(1e-10),
-            lambda_tolerance: T::from_f64(1e-6),
-            max_iterations: 12,
-            reuse_factors: true,
-            pivot_tolerance: T::from_f64(1e-13),
-            project_velocities: true,
-            error_control: None,
-        }
+        super::dopri5::check_step_control(
+            [self.rtol, self.atol, self.max_step, self.min_step],
+            [
+                "rtol and atol (ErrorControl) must be non-negative, not both zero",
+                "ErrorControl::max_step must be positive, min_step non-negative",
+            ],
+        )
     }
 }
 

@@ -42,7 +42,7 @@ mod tests;
 pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
-pub use rk4::Rk4;
+pub use rk4::{Rk4, Rk4Options};
 pub use simulate::{project, simulate, simulate_with_events, Correction, Event, EventHit, Flow, SimulationOptions, Statistics};
 
 use core::fmt;

@@ -11,23 +11,33 @@
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::{ForwardDynamics, Real, Workspace};
 
+crate::options::options! {
+    /// Options of [`Rk4`], in the scalar type `T` of the mechanism (default `f64`). Build from
+    /// [`Default`] and the `with_*` setters: `Rk4::new(Rk4Options::default().with_step(1e-4))`.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Rk4Options<T> {
+        /// Step size h (s); the last step before an end time may be shorter. Default 1e-3 s.
+        step: T = T::from_f64(1e-3) => with_step,
+    }
+}
+
 /// Classical fourth-order Runge–Kutta with a fixed step.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rk4<T> {
-    /// Step size h (s); the last step before an end time may be shorter. Default 1e-3 s.
-    pub step: T,
+pub struct Rk4<T = f64> {
+    /// The step size.
+    pub options: Rk4Options<T>,
 }
 
 impl<T: Real> Default for Rk4<T> {
     fn default() -> Self {
-        Self { step: T::from_f64(1e-3) }
+        Self::new(Rk4Options::new())
     }
 }
 
 impl<T: Real> Rk4<T> {
-    /// RK4 with step `step` (s).
-    pub fn new(step: T) -> Self {
-        Self { step }
+    /// RK4 with the given options.
+    pub fn new(options: Rk4Options<T>) -> Self {
+        Self { options }
     }
 }
 
@@ -47,11 +57,11 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if !(self.step > T::ZERO) {
-            return Err(SimulationError::InvalidOptions { what: "Rk4::step must be positive" });
+        if !(self.options.step > T::ZERO) {
+            return Err(SimulationError::InvalidOptions { what: "Rk4Options::step must be positive" });
         }
         let mech = system.mechanism;
-        let (h, t_end) = fixed_step(from.t, self.step, t_max);
+        let (h, t_end) = fixed_step(from.t, self.options.step, t_max);
         let half = h * T::from_f64(0.5);
         let sixth = h / T::from_f64(6.0);
         let two = T::from_f64(2.0);

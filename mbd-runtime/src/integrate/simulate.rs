@@ -19,13 +19,18 @@ use crate::partition::Partition;
 use crate::{DynamicsOptions, ForwardDynamics, Real, Workspace};
 use core::ops::ControlFlow;
 
-/// What brings the state back onto the constraint manifold after each step.
+/// What brings the state back onto the constraint manifold after each step. Made by
+/// [`Correction::projection`] or [`Correction::partitioning`] (or `Correction::None`), its
+/// tolerance and iteration cap set by [`with_tolerance`](Self::with_tolerance) and
+/// [`with_max_iterations`](Self::with_max_iterations).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Correction<T> {
+#[non_exhaustive]
+pub enum Correction<T = f64> {
     /// Nothing (Baumgarte stabilization, if set, still acts through the accelerations).
     None,
     /// Mass-weighted projection (Newton on Φ = 0 with steps q ⊕ (−M⁻¹DᵀS⁻¹Φ), then the exact
     /// velocity projection), to ‖Φ‖∞ ≤ `tolerance`.
+    #[non_exhaustive]
     Projection {
         /// On ‖Φ‖∞ (m, rad).
         tolerance: T,
@@ -36,6 +41,7 @@ pub enum Correction<T> {
     /// directions are kept; the dependent ones are solved from Φ = 0 (Newton steps q ⊕ Δv with
     /// Δv zero in the independent entries) and D v = ν. The partition is chosen by full
     /// pivoting on D at the start and again whenever its pivots degrade.
+    #[non_exhaustive]
     Partitioning {
         /// On ‖Φ‖∞ (m, rad).
         tolerance: T,
@@ -52,6 +58,28 @@ impl<T: Real> Correction<T> {
     /// Coordinate partitioning to 1e-10 in at most 10 Newton steps.
     pub fn partitioning() -> Self {
         Correction::Partitioning { tolerance: T::from_f64(1e-10), max_iterations: 10 }
+    }
+
+    /// Sets the tolerance on ‖Φ‖∞ (m, rad) of a projection or partitioning (nothing for
+    /// `None`).
+    #[must_use]
+    pub fn with_tolerance(mut self, value: T) -> Self {
+        match &mut self {
+            Correction::None => {}
+            Correction::Projection { tolerance, .. } | Correction::Partitioning { tolerance, .. } => *tolerance = value,
+        }
+        self
+    }
+
+    /// Sets the Newton steps of a projection or partitioning before it fails (nothing for
+    /// `None`).
+    #[must_use]
+    pub fn with_max_iterations(mut self, value: u32) -> Self {
+        match &mut self {
+            Correction::None => {}
+            Correction::Projection { max_iterations, .. } | Correction::Partitioning { max_iterations, .. } => *max_iterations = value,
+        }
+        self
     }
 }
 
@@ -160,38 +188,30 @@ pub struct Event<'a, T, const NQ: usize, const NV: usize> {
     pub stop: bool,
 }
 
-/// Options of [`simulate`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SimulationOptions<T> {
-    /// Baumgarte α, β and the pivot rule of the forward-dynamics solve. Default
-    /// [`DynamicsOptions::without_stabilization`]: the projection after each step holds the
-    /// constraints, and Baumgarte's terms would only make the equations stiffer (DOPRI5 at rtol
-    /// 1e-8 took 40 % more steps with them for a 20× larger error on a parallelogram chain).
-    pub dynamics: DynamicsOptions<T>,
-    /// Drift correction after each step. Default [`Correction::projection`]: the constraints
-    /// to 1e-10 at every step, which also keeps a mechanism on its assembly branch where two
-    /// branches cross (a parallelogram lying flat) — Baumgarte stabilization alone drifts onto
-    /// the other branch there.
-    pub correction: Correction<T>,
-    /// Accumulate work for the energy balance. Default off.
-    pub track_work: bool,
-    /// Step budget. Default 100 million.
-    pub max_steps: u64,
-    /// Locate the instants where the mechanism's unilateral elements touch or let go and cut
-    /// the steps there. Default on (it costs two evaluations of the switching functions per
-    /// step, and nothing for a mechanism without unilateral elements).
-    pub locate_switches: bool,
-}
-
-impl<T: Real> Default for SimulationOptions<T> {
-    fn default() -> Self {
-        Self {
-            dynamics: DynamicsOptions::without_stabilization(),
-            correction: Correction::projection(),
-            track_work: false,
-            max_steps: 100_000_000,
-            locate_switches: true,
-        }
+crate::options::options! {
+    /// Options of [`simulate`], in the scalar type `T` of the mechanism (default `f64`). Build
+    /// from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct SimulationOptions<T> {
+        /// Baumgarte α, β and the pivot rule of the forward-dynamics solve. Default
+        /// [`DynamicsOptions::without_stabilization`]: the projection after each step holds the
+        /// constraints, and Baumgarte's terms would only make the equations stiffer (DOPRI5 at
+        /// rtol 1e-8 took 40 % more steps with them for a 20× larger error on a parallelogram
+        /// chain).
+        dynamics: DynamicsOptions<T> = DynamicsOptions::without_stabilization() => with_dynamics,
+        /// Drift correction after each step. Default [`Correction::projection`]: the constraints
+        /// to 1e-10 at every step, which also keeps a mechanism on its assembly branch where two
+        /// branches cross (a parallelogram lying flat) — Baumgarte stabilization alone drifts
+        /// onto the other branch there.
+        correction: Correction<T> = Correction::projection() => with_correction,
+        /// Accumulate work for the energy balance. Default off.
+        track_work: bool = false => with_track_work,
+        /// Step budget. Default 100 million.
+        max_steps: u64 = 100_000_000 => with_max_steps,
+        /// Locate the instants where the mechanism's unilateral elements touch or let go and cut
+        /// the steps there. Default on (it costs two evaluations of the switching functions per
+        /// step, and nothing for a mechanism without unilateral elements).
+        locate_switches: bool = true => with_locate_switches,
     }
 }
 

@@ -5,7 +5,8 @@
 use super::*;
 use crate::test_support::{UnitPendulum, GRAVITY, INERTIA, LENGTH, MASS};
 use crate::{
-    Correction, Dopri5, Dopri5Options, Dynamics, GeneralizedAlpha, GeneralizedAlphaOptions, Kinematics, Rk4, SimulationOptions, Workspace,
+    Correction, Dopri5, Dopri5Options, Dynamics, GeneralizedAlpha, GeneralizedAlphaOptions, Kinematics, Rk4, Rk4Options, SimulationOptions,
+    Workspace,
 };
 
 /// Output times (s): step ends and points between them, up to past the far turning point.
@@ -40,7 +41,7 @@ fn reference_angles() -> [f64; 8] {
 fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 4] {
     let m = UnitPendulum;
     let reference = reference_angles();
-    let options = SimulationOptions { correction, ..SimulationOptions::default() };
+    let options = SimulationOptions::default().with_correction(correction);
     let mut worst = [0.0f64; 4];
     let mut k = 0;
     let q0 = m.initial_positions();
@@ -75,13 +76,13 @@ fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5>>(integrator: &mut I, correct
 #[test]
 fn integrators_follow_the_unit_pendulum() {
     let alpha = || GeneralizedAlpha::<f64, 3>::new(GeneralizedAlphaOptions::default());
-    let dopri = || Dopri5::<f64, 4, 3>::new(Dopri5Options { rtol: 1e-10, atol: 1e-12, ..Dopri5Options::default() });
+    let dopri = || Dopri5::<f64, 4, 3>::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     // Tolerances: angle (rad), ‖Φ‖∞ (m), T + V (J).
     let (explicit, implicit) = ([1e-8, 1e-9, 1e-7], [1e-3, 1e-7, 1e-2]);
     let cases = [
-        ("RK4", run(&mut Rk4::new(1e-3), Correction::None), explicit),
-        ("RK4, projection", run(&mut Rk4::new(1e-3), Correction::projection()), explicit),
-        ("RK4, partitioning", run(&mut Rk4::new(1e-3), Correction::partitioning()), explicit),
+        ("RK4", run(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), Correction::None), explicit),
+        ("RK4, projection", run(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), Correction::projection()), explicit),
+        ("RK4, partitioning", run(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), Correction::partitioning()), explicit),
         ("DOPRI5", run(&mut dopri(), Correction::None), explicit),
         ("DOPRI5, projection", run(&mut dopri(), Correction::projection()), explicit),
         ("generalized-α", run(&mut alpha(), Correction::None), implicit),
@@ -104,7 +105,7 @@ fn dopri5_first_step_is_hairers_estimate() {
     let system = System { mechanism: &m, dynamics: crate::DynamicsOptions::without_stabilization(), track_work: false };
     let from = system.point(0.0, m.initial_positions(), [0.0; 3], [0.0; 2]).unwrap();
     let (rtol, atol) = (1e-3, 1e-6);
-    let mut dopri = Dopri5::<f64, 4, 3>::new(Dopri5Options { rtol, atol, ..Dopri5Options::default() });
+    let mut dopri = Dopri5::<f64, 4, 3>::new(Dopri5Options::default().with_rtol(rtol).with_atol(atol));
     let mut to = from;
     Integrator::<f64, UnitPendulum, 4, 3, 2, 5>::step(&mut dopri, &system, &mut Workspace::new(), &from, 10.0, &mut to).unwrap();
     let scale = |y: f64| atol + rtol * y.abs();
@@ -122,9 +123,8 @@ fn dopri5_first_step_is_hairers_estimate() {
 #[test]
 fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options() {
     use crate::ErrorControl;
-    let control = ErrorControl { rtol: 1e-8, atol: 1e-8, ..ErrorControl::default() };
-    let options =
-        GeneralizedAlphaOptions { step: 0.5, max_iterations: 3, error_control: Some(control), ..GeneralizedAlphaOptions::default() };
+    let control = ErrorControl::default().with_rtol(1e-8).with_atol(1e-8);
+    let options = GeneralizedAlphaOptions::default().with_step(0.5).with_max_iterations(3).with_error_control(Some(control));
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options);
     let [angle, ..] = run(&mut alpha, Correction::None);
     // Measured: 2.5e-5 rad in 700 steps at rtol 1e-8 (a second-order method's global error
@@ -135,14 +135,14 @@ fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options
 
     let m = UnitPendulum;
     let q0 = m.initial_positions();
-    let min_step = ErrorControl { min_step: 0.2, ..control };
-    let mut alpha = GeneralizedAlpha::<f64, 3>::new(GeneralizedAlphaOptions { error_control: Some(min_step), ..options });
+    let min_step = control.with_min_step(0.2);
+    let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(min_step)));
     let error =
         simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
     assert!(matches!(error, Err(SimulationError::StepSizeTooSmall { t: 0.0, .. })), "{error:?}");
 
-    let negative = ErrorControl { rtol: -1.0, ..control };
-    let mut alpha = GeneralizedAlpha::<f64, 3>::new(GeneralizedAlphaOptions { error_control: Some(negative), ..options });
+    let negative = control.with_rtol(-1.0);
+    let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(negative)));
     let error =
         simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
     assert!(matches!(error, Err(SimulationError::InvalidOptions { .. })), "{error:?}");

@@ -878,7 +878,7 @@ fn predictor_failure_is_retried_from_the_previous_solution() {
 /// a tolerance f32 can reach.
 #[test]
 fn single_crank_in_f32() {
-    const F32_TOLERANCE: f64 = 1e-6; // m: about 30 ulps of a 0.05 m coordinate in f32
+    const F32_TOLERANCE: f32 = 1e-6; // m: about 30 ulps of a 0.05 m coordinate in f32
     let m = Crank::<f32>::default();
     let solver = KinematicSolver::new(KinematicOptions::default().with_tolerance(F32_TOLERANCE));
     let mut q = m.initial_positions();
@@ -905,7 +905,7 @@ fn single_crank_in_f32() {
 /// reached in f32 and is reported as NotConverged rather than looping.
 #[test]
 fn slider_crank_in_f32() {
-    const F32_TOLERANCE: f64 = 1e-5;
+    const F32_TOLERANCE: f32 = 1e-5;
     let m = SliderCrank::<f32>::default();
     let solver = KinematicSolver::new(KinematicOptions::default().with_tolerance(F32_TOLERANCE));
     let mut q = m.initial_positions();

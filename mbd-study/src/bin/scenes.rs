@@ -153,8 +153,8 @@ where
         start.elapsed().as_secs_f64() * 1e6 / EVALUATIONS as f64
     };
     let mut step = |correction: Correction<f64>| {
-        let options = SimulationOptions { correction, ..SimulationOptions::default() };
-        let mut rk4 = Rk4::new(STEP);
+        let options = SimulationOptions::default().with_correction(correction);
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(STEP));
         let start = Instant::now();
         let stats = simulate(m, ws, &mut rk4, 0.0, &q, &v, &[RUN], &options, |s| {
             assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
