@@ -89,11 +89,11 @@ pub struct Report {
 }
 
 /// Static equilibrium, then the bump; `knuckle` is the wheel body.
-fn ride<M, const NQ: usize, const NC: usize, const N: usize>(
+fn ride<M, const NQ: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
     knuckle: PlanarBody,
     tyre_load: impl Fn(&[f64; NQ], &[f64; NQ], f64) -> f64,
-    mut ws: Box<Workspace<f64, NQ, NC, N>>,
+    mut ws: Box<Workspace<f64, NQ, NC, N, NS>>,
 ) -> Result<Report, Box<dyn std::error::Error>>
 where
     M: NewtonMatrix<f64, NQ, NQ, NC>,

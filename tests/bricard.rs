@@ -86,7 +86,7 @@ fn dropped_row(lambda: &[f64; 30]) -> usize {
     (0..30).min_by(|&a, &b| lambda[a].abs().total_cmp(&lambda[b].abs())).expect("30 rows")
 }
 
-fn assembled(m: &Bricard, ws: &mut Workspace<f64, 30, 30, 60>) -> [f64; 35] {
+fn assembled(m: &Bricard, ws: &mut Workspace<f64, 30, 30, 60, { Bricard::NEWTON_STORAGE }>) -> [f64; 35] {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(m, ws, &mut q, 0.0).expect("the Bricard linkage assembles from its rounded pose");
     q

@@ -96,7 +96,10 @@ mechanism! {
 }
 
 /// Runs `integrator` on the double pendulum from horizontal rest to t = 1 s; returns q(1).
-fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 6] {
+fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10, { DoublePendulum::NEWTON_STORAGE }>>(
+    integrator: &mut I,
+    correction: Correction<f64>,
+) -> [f64; 6] {
     let m = DoublePendulum::default();
     let options = SimulationOptions::default().with_correction(correction);
     let mut last = [0.0; 6];
@@ -207,9 +210,10 @@ fn conservative_mechanisms_conserve_energy() {
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-3));
-    for (name, bound, integrator) in
-        [("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8, 17>), ("RK4", 1e-6, &mut rk4)]
-    {
+    for (name, bound, integrator) in [
+        ("DOPRI5", 1e-7, &mut dopri as &mut dyn Integrator<f64, SpringFourBar, 9, 9, 8, 17, { SpringFourBar::NEWTON_STORAGE }>),
+        ("RK4", 1e-6, &mut rk4),
+    ] {
         let mut energies = Vec::new();
         let mut swing = (f64::INFINITY, f64::NEG_INFINITY);
         simulate(&m, &mut SpringFourBar::workspace(), &mut DynIntegrator(integrator), 0.0, &q, &[0.0; 9], &times, &options, |s| {
@@ -227,13 +231,13 @@ fn conservative_mechanisms_conserve_energy() {
 }
 
 /// Adapter so a `&mut dyn Integrator` can be passed where `simulate` wants a sized type.
-struct DynIntegrator<'a, M>(&'a mut dyn Integrator<f64, M, 9, 9, 8, 17>);
+struct DynIntegrator<'a, M, const NS: usize>(&'a mut dyn Integrator<f64, M, 9, 9, 8, 17, NS>);
 
-impl<M> Integrator<f64, M, 9, 9, 8, 17> for DynIntegrator<'_, M> {
+impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'_, M, NS> {
     fn step(
         &mut self,
         s: &System<'_, M, f64>,
-        ws: &mut Workspace<f64, 9, 8, 17>,
+        ws: &mut Workspace<f64, 9, 8, 17, NS>,
         from: &Point<f64, 9, 9, 8>,
         t_max: f64,
         to: &mut Point<f64, 9, 9, 8>,
@@ -632,7 +636,11 @@ fn adaptive_generalized_alpha_error_falls_like_tolerance_to_two_thirds() {
 fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     let m = StiffPendulum::default();
     let q = m.initial_positions();
-    fn run(m: &StiffPendulum, q: &[f64; 3], integrator: &mut impl Integrator<f64, StiffPendulum, 3, 3, 0, 3>) -> [f64; 3] {
+    fn run(
+        m: &StiffPendulum,
+        q: &[f64; 3],
+        integrator: &mut impl Integrator<f64, StiffPendulum, 3, 3, 0, 3, { StiffPendulum::NEWTON_STORAGE }>,
+    ) -> [f64; 3] {
         let mut last = [0.0; 3];
         let options = SimulationOptions::default().with_correction(Correction::None);
         simulate(m, &mut StiffPendulum::workspace(), integrator, 0.0, q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();

@@ -150,3 +150,80 @@ fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
         }
     });
 }
+
+mechanism! {
+    /// A hanging ladder of 100 four-bar loops (issue 37, item 4): 101 rungs 0.4 m wide, a left
+    /// rail of 100 links 0.3 m long pinned between them, massless 0.3 m links on the right; the
+    /// top rung held by a pin and a link to ground. 201 bodies, 503 rows, 100 degrees of
+    /// freedom; started sheared, every rail link 0.2 rad from hanging (the top rung's angle
+    /// 1e-4 rad off, so that assembly takes Newton steps).
+    pub Ladder201 {
+        gravity [0.0, -9.81];
+        body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
+        for k in 1..=100 {
+            body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
+        }
+        for k in 0..100 {
+            body a[k] {
+                mass: 0.5,
+                inertia: 0.00375,
+                at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
+            }
+            revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
+            revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
+            revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
+        }
+        revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
+        revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
+    }
+}
+
+/// The ladder's assembly, statics and every integrator on one thread with the default 2 MB stack
+/// in a debug build (issue 37, item 4). Statics alone needed about 3 MiB there when its planned
+/// Newton matrices (NEWTON_STORAGE scalars each, 120 KiB for this ladder) were copied on the
+/// stack; they now live in the work space.
+#[test]
+fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack() {
+    on_default_stack(|| {
+        let clock = std::time::Instant::now();
+        let m = Ladder201::default();
+        let mut ws = Ladder201::workspace();
+        let mut q = m.initial_positions();
+        KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the ladder assembles");
+        eprintln!("assembly: {:.1} s", clock.elapsed().as_secs_f64());
+        // Every integrator with the default correction (projection), two steps of 1 ms from the
+        // assembled, sheared ladder at rest (it starts to swing); the constraints held to 1e-8 m after them.
+        let (v0, times, options) = ([0.0; Ladder201::NV], [1e-3, 2e-3], SimulationOptions::default());
+        let check = |name: &str, q: &[f64; Ladder201::NQ]| {
+            let mut phi = [0.0; Ladder201::NC];
+            m.constraints(q, 2e-3, &mut phi);
+            let worst = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            assert!(worst < 1e-8, "{name}: ‖Φ‖∞ = {worst:e}");
+        };
+        let mut last = [0.0; Ladder201::NQ];
+        simulate(&m, &mut ws, &mut Rk4::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("RK4");
+        check("RK4", &last);
+        simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("DOPRI5");
+        check("DOPRI5", &last);
+        simulate(&m, &mut ws, &mut Dop853::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("DOP853");
+        check("DOP853", &last);
+        let mut alpha = Ladder201::generalized_alpha(GeneralizedAlphaOptions::default());
+        simulate(&m, &mut ws, &mut alpha, 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("generalized-α");
+        check("generalized-α", &last);
+        eprintln!("integrators: {:.1} s", clock.elapsed().as_secs_f64());
+        // Statics from the sheared ladder: it swings back and hangs with its rails vertical, every rung level
+        // (the verdict Stable; 1e-6 rad leaves room for the conditioning of 100 stacked loops).
+        let mut lambda = [0.0; Ladder201::NC];
+        let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("the ladder hangs");
+        eprintln!("statics: {:.1} s, {report:?}", clock.elapsed().as_secs_f64());
+        assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");
+        let index = |name: &str| Ladder201::COORDINATE_NAMES.iter().position(|c| *c == name).expect("a coordinate");
+        for k in 0..100 {
+            let (rail, rung) = (Ladder201::BODY_NAMES[101 + k], Ladder201::BODY_NAMES[k]);
+            let phi_rail = q[index(&format!("{rail}.phi"))];
+            let phi_rung = q[index(&format!("{rung}.phi"))];
+            assert!((phi_rail + std::f64::consts::FRAC_PI_2).abs() < 1e-6, "{rail} at φ = {phi_rail}");
+            assert!(phi_rung.abs() < 1e-6, "{rung} at φ = {phi_rung}");
+        }
+    });
+}

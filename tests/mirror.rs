@@ -68,9 +68,9 @@ mechanism! {
 }
 
 /// The state after 0.5 s with DOPRI5 at rtol 1e-10 from the assembled start.
-fn run<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn run<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
 ) -> ([f64; NQ], [f64; NV])
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,

@@ -111,9 +111,9 @@ fn f32_simulations_run_with_the_default_options() {
 
 /// Runs the f32 slider-crank with the default options: the largest ‖Φ‖∞ and the largest
 /// distance of the crank angle from `reference` at the outputs.
-fn run32<I: Integrator<f32, FreeSliderCrank32, 9, 9, 8, 17>>(
+fn run32<I: Integrator<f32, FreeSliderCrank32, 9, 9, 8, 17, { FreeSliderCrank32::NEWTON_STORAGE }>>(
     m: &FreeSliderCrank32,
-    ws: &mut Workspace<f32, 9, 8, 17>,
+    ws: &mut Workspace<f32, 9, 8, 17, { FreeSliderCrank32::NEWTON_STORAGE }>,
     integrator: &mut I,
     q: &[f32; 9],
     times: &[f32],

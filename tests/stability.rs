@@ -103,7 +103,7 @@ fn generalized_alpha_without_damping_runs_long() {
 }
 
 /// q and v of the double pendulum at `t_end` from horizontal rest.
-fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10>>(
+fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10, { DoublePendulum::NEWTON_STORAGE }>>(
     integrator: &mut I,
     correction: Correction<f64>,
     t_end: f64,
@@ -128,7 +128,10 @@ fn alpha(step: f64) -> GeneralizedAlpha<f64, 6> {
 }
 
 /// q and v of the pendulum at `t_end` from horizontal rest, and the steps taken.
-fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2, 5>>(integrator: &mut I, t_end: f64) -> ([f64; 3], [f64; 3], u64) {
+fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2, 5, { Pendulum::NEWTON_STORAGE }>>(
+    integrator: &mut I,
+    t_end: f64,
+) -> ([f64; 3], [f64; 3], u64) {
     let m = Pendulum::default();
     let mut last = ([0.0; 3], [0.0; 3]);
     let stats = simulate(

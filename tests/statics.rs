@@ -154,7 +154,13 @@ fn pendulum_guess(phi: f64) -> [f64; 3] {
 /// from the D the solve left in the workspace: D at the returned q, bit for bit (the start's D,
 /// which an earlier version left there, puts the pin's moment about the centre of mass off by
 /// the weight times the lever's change, 9.81 N·m for the start from horizontal).
-fn assert_hanging(q: &[f64; 3], lambda: &[f64; 2], ws: &Workspace<f64, 3, 2, 5>, report: &StaticReport, from: &str) {
+fn assert_hanging(
+    q: &[f64; 3],
+    lambda: &[f64; 2],
+    ws: &Workspace<f64, 3, 2, 5, { Pendulum::NEWTON_STORAGE }>,
+    report: &StaticReport,
+    from: &str,
+) {
     let m = Pendulum::default();
     assert!((Pendulum::ROD.phi(q) + PI / 2.0).abs() < 1e-9, "from {from}: φ = {}", Pendulum::ROD.phi(q));
     let mut d = [[0.0; 3]; 2];

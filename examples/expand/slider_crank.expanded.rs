@@ -82,6 +82,10 @@ impl SliderCrank {
     pub const NNZ: usize = 23;
     /// Number of runtime parameters.
     pub const NP: usize = 3;
+    /// Scalars of one planned Newton matrix (D's non-zeros and the factors' entries of
+    /// [[A, −Dᵀ], [D, 0]], fill included): the last size of this mechanism's
+    /// `Workspace`, which statics and generalized-α keep their matrices in.
+    pub const NEWTON_STORAGE: usize = 135;
     /// Body `crank`: its coordinates, velocities and points.
     pub const CRANK: ::mbd::PlanarBody = ::mbd::PlanarBody::new(0, "crank");
     /// Body `rod`: its coordinates, velocities and points.
@@ -125,12 +129,13 @@ impl SliderCrank {
     ::mbd::__if_std! {
         #[doc =
         r" The work space every solver takes (its O(N²) arrays: D, the saddle-point"]
+        #[doc = r" matrix, NV × NV derivatives, and three planned Newton matrices of"]
         #[doc =
-        r" matrix, NV × NV derivatives), zeroed on the heap. Make it once and pass it to"]
+        r" `NEWTON_STORAGE` scalars), zeroed on the heap. Make it once and pass it to"]
         #[doc =
         r" each analysis; without `std`, put a `Workspace::new()` of the same type in a"]
         #[doc = r" `static`."] pub fn workspace() -> ::mbd::workspace::Boxed < f64, 9, 9,
-        18 > { ::mbd::Workspace::boxed() }
+        18, 135 > { ::mbd::Workspace::boxed() }
     }
     /// A generalized-α integrator for this mechanism.
     pub fn generalized_alpha(

@@ -28,7 +28,7 @@ mechanism! {
 
 /// Per 10 s window of a 100 s run sampled every 10 ms: the largest ‖Φ‖∞ and the largest
 /// |E − E₀| (J), and the number of steps.
-fn windows<I: Integrator<f64, Chain4, 12, 12, 8, 20>>(integrator: &mut I) -> (Vec<(f64, f64)>, u64) {
+fn windows<I: Integrator<f64, Chain4, 12, 12, 8, 20, { Chain4::NEWTON_STORAGE }>>(integrator: &mut I) -> (Vec<(f64, f64)>, u64) {
     let m = Chain4::default();
     let mut ws = Chain4::workspace();
     let q0 = m.initial_positions();

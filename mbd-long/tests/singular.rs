@@ -96,7 +96,7 @@ fn exact(n: usize, t_end: f64) -> f64 {
 
 /// Runs n loops from θ = π/2 at OMEGA0 to t_end with the default options, output every 10 ms,
 /// against the exact θ(t_end) `theta`.
-fn run<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn run<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
     n: usize,
     integrator: &mut I,
@@ -105,7 +105,7 @@ fn run<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
 ) -> Kept
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
-    I: Integrator<f64, M, NQ, NV, NC, N>,
+    I: Integrator<f64, M, NQ, NV, NC, N, NS>,
 {
     let mut v0 = [0.0; NV];
     for k in 0..=n {
@@ -122,7 +122,7 @@ where
     let mut last = [0.0; NQ];
     let stats = simulate(
         m,
-        &mut Workspace::<f64, NV, NC, N>::boxed(),
+        &mut Workspace::<f64, NV, NC, N, NS>::boxed(),
         integrator,
         0.0,
         &m.initial_positions(),
@@ -164,8 +164,12 @@ enum Method {
 /// Runs each method on n loops to `t_end` and checks what it kept. Each bound is against the
 /// measurement (in the comments: 4 loops over 20 s) with a margin of 2–10; energies are
 /// relative to the starting kinetic energy E = ½ J ω₀² (4.1 J for 4 loops, 39 J for 40).
-fn check<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(m: &M, n: usize, methods: &[Method], t_end: f64)
-where
+fn check<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    m: &M,
+    n: usize,
+    methods: &[Method],
+    t_end: f64,
+) where
     M: NewtonMatrix<f64, NQ, NV, NC>,
 {
     let theta = exact(n, t_end);
@@ -178,14 +182,14 @@ where
             // rtol 1e-6 the loose tolerance's phase error grows to 3e-3 rad: bounded at 1e-2.
             Method::Dopri5(rtol) => {
                 let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
-                let kept = run::<M, _, NQ, NV, NC, 0>(m, n, &mut dopri, t_end, theta);
+                let kept = run::<M, _, NQ, NV, NC, 0, 0>(m, n, &mut dopri, t_end, theta);
                 (kept, (2e3 * rtol + 1e-7).max(if rtol >= 1e-6 { 1e-2 } else { 0.0 }), e * (5e2 * rtol + 2.5e-8))
             }
             // Fourth order: 3.7e-9 rad at 1 ms and 6.3e-7 rad at 0.1 ms (ten times the steps
             // near each flat position, each disturbed by the dropped row), energy 4.7e-9 and
             // 2.2e-7 J.
             Method::Rk4(h) => {
-                (run::<M, _, NQ, NV, NC, 0>(m, n, &mut Rk4::new(Rk4Options::default().with_step(h)), t_end, theta), 1e-5, 2.5e-7 * e)
+                (run::<M, _, NQ, NV, NC, 0, 0>(m, n, &mut Rk4::new(Rk4Options::default().with_step(h)), t_end, theta), 1e-5, 2.5e-7 * e)
             }
             // ρ∞ = 0.8 (the default): second order and dissipative, so the phase error and the
             // energy lost fall by about 100 per tenth of h (measured 1.28 rad / 0.50 J at 10 ms,
@@ -193,7 +197,7 @@ where
             // test).
             Method::Alpha(h) => {
                 let mut alpha = GeneralizedAlpha::<f64, NV>::new(GeneralizedAlphaOptions::default().with_step(h));
-                let kept = run::<M, _, NQ, NV, NC, N>(m, n, &mut alpha, t_end, theta);
+                let kept = run::<M, _, NQ, NV, NC, N, NS>(m, n, &mut alpha, t_end, theta);
                 let (error_bound, energy_bound) = if h >= 1e-2 {
                     (f64::INFINITY, 0.25 * e)
                 } else if h >= 1e-3 {
@@ -247,13 +251,13 @@ const EVERY: [Method; 9] = [
 /// iteration gets — before, it stopped at the first flat position at steps of 1e-5 s and below.
 #[test]
 fn one_parallelogram_passes_its_flat_positions() {
-    check::<_, 9, 9, 8, 17>(&Parallelograms1::default(), 1, &EVERY, 20.0);
-    check::<_, 9, 9, 8, 17>(&Parallelograms1::default(), 1, &[Method::Alpha(1e-5)], 20.0);
+    check::<_, 9, 9, 8, 17, { Parallelograms1::NEWTON_STORAGE }>(&Parallelograms1::default(), 1, &EVERY, 20.0);
+    check::<_, 9, 9, 8, 17, { Parallelograms1::NEWTON_STORAGE }>(&Parallelograms1::default(), 1, &[Method::Alpha(1e-5)], 20.0);
 }
 
 #[test]
 fn four_parallelograms_pass_their_flat_positions() {
-    check::<_, 27, 27, 26, 53>(&Parallelograms4::default(), 4, &EVERY, 20.0);
+    check::<_, 27, 27, 26, 53, { Parallelograms4::NEWTON_STORAGE }>(&Parallelograms4::default(), 4, &EVERY, 20.0);
 }
 
 /// 40 loops (81 bodies, 242 rows, 40 of them dependent at each flat position), every
@@ -265,8 +269,13 @@ fn four_parallelograms_pass_their_flat_positions() {
 #[test]
 fn forty_parallelograms_pass_their_flat_positions() {
     let m = Parallelograms40::default();
-    check::<_, 243, 243, 242, 485>(&m, 40, &[Method::Dopri5(1e-8), Method::Dopri5(1e-12), Method::Rk4(1e-3)], 20.0);
-    check::<_, 243, 243, 242, 485>(&m, 40, &[Method::Alpha(1e-3)], 20.0);
+    check::<_, 243, 243, 242, 485, { Parallelograms40::NEWTON_STORAGE }>(
+        &m,
+        40,
+        &[Method::Dopri5(1e-8), Method::Dopri5(1e-12), Method::Rk4(1e-3)],
+        20.0,
+    );
+    check::<_, 243, 243, 242, 485, { Parallelograms40::NEWTON_STORAGE }>(&m, 40, &[Method::Alpha(1e-3)], 20.0);
 }
 
 mechanism! {
@@ -310,12 +319,17 @@ fn an_isosceles_slider_crank_passes_its_crossing() {
     // the 1/(β'h²) of its constraint rows, once stopped it at the first crossing) see below.
     for (rtol, error_bound, energy_bound) in [(1e-8, 1e-4, 1e-5), (1e-12, 1e-7, 1e-8)] {
         let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
-        check(&format!("DOPRI5 rtol {rtol:e}"), isosceles_run::<_, 0>(&mut dopri, energy), error_bound, energy_bound);
+        check(&format!("DOPRI5 rtol {rtol:e}"), isosceles_run::<_, 0, 0>(&mut dopri, energy), error_bound, energy_bound);
     }
-    check("RK4 1 ms", isosceles_run::<_, 0>(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), energy), 3e-6, 1e-7);
+    check("RK4 1 ms", isosceles_run::<_, 0, 0>(&mut Rk4::new(Rk4Options::default().with_step(1e-3)), energy), 3e-6, 1e-7);
     for (h, error_bound, energy_bound) in [(1e-3, 3e-2, 1e-3), (1e-4, 3e-4, 1e-5), (1e-5, 3e-6, 1e-7)] {
         let mut alpha = IsoscelesSliderCrank::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
-        check(&format!("generalized-α h {h:e}"), isosceles_run::<_, 17>(&mut alpha, energy), error_bound, energy_bound);
+        check(
+            &format!("generalized-α h {h:e}"),
+            isosceles_run::<_, 17, { IsoscelesSliderCrank::NEWTON_STORAGE }>(&mut alpha, energy),
+            error_bound,
+            energy_bound,
+        );
     }
 }
 
@@ -349,9 +363,9 @@ fn free_spin(energy: f64, inertia: impl Fn(f64) -> f64, h: f64, t_end: f64) -> f
 
 /// Runs the isosceles slider-crank 20 s from θ = 0 with the default options: the largest
 /// deviation from its branch (rad, m), the largest |T − E| (J) and θ(20 s).
-fn isosceles_run<I, const N: usize>(integrator: &mut I, energy: f64) -> (f64, f64, f64)
+fn isosceles_run<I, const N: usize, const NS: usize>(integrator: &mut I, energy: f64) -> (f64, f64, f64)
 where
-    I: Integrator<f64, IsoscelesSliderCrank, 9, 9, 8, N>,
+    I: Integrator<f64, IsoscelesSliderCrank, 9, 9, 8, N, NS>,
 {
     let m = IsoscelesSliderCrank::default();
     let (r, omega0) = (m.r, ISOSCELES_OMEGA0);
@@ -359,7 +373,7 @@ where
     let v0 = [0.0, r / 2.0 * omega0, omega0, 0.0, r / 2.0 * omega0, -omega0, 0.0, 0.0, 0.0];
     let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.01).collect();
     let (mut branch, mut drift, mut last) = (0.0_f64, 0.0_f64, 0.0);
-    let mut ws = Workspace::<f64, 9, 8, N>::boxed();
+    let mut ws = Workspace::<f64, 9, 8, N, NS>::boxed();
     simulate(&m, &mut ws, integrator, 0.0, &m.initial_positions(), &v0, &times, &SimulationOptions::default(), |s| {
         let q = &s.point.q;
         let th = IsoscelesSliderCrank::CRANK.phi(q);
@@ -454,19 +468,24 @@ fn a_change_point_four_bar_passes_its_flat_position() {
     // Every run kept the branch to 3e-7 m.
     for (rtol, error_bound, energy_bound) in [(1e-8, 1e-4, 1e-5), (1e-12, 1e-7, 1e-9)] {
         let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol));
-        check(&format!("DOPRI5 rtol {rtol:e}"), change_point_run::<_, 0>(&mut dopri, energy), error_bound, energy_bound);
+        check(&format!("DOPRI5 rtol {rtol:e}"), change_point_run::<_, 0, 0>(&mut dopri, energy), error_bound, energy_bound);
     }
     for (h, error_bound, energy_bound) in [(1e-3, 3e-2, 1e-3), (1e-4, 1e-7, 1e-9)] {
         check(
             &format!("RK4 {h:e}"),
-            change_point_run::<_, 0>(&mut Rk4::new(Rk4Options::default().with_step(h)), energy),
+            change_point_run::<_, 0, 0>(&mut Rk4::new(Rk4Options::default().with_step(h)), energy),
             error_bound,
             energy_bound,
         );
     }
     for (h, error_bound, energy_bound) in [(1e-3, 1e-2, 3e-3), (1e-4, 3e-5, 3e-5)] {
         let mut alpha = ChangePointFourBar::generalized_alpha(GeneralizedAlphaOptions::default().with_step(h));
-        check(&format!("generalized-α h {h:e}"), change_point_run::<_, 17>(&mut alpha, energy), error_bound, energy_bound);
+        check(
+            &format!("generalized-α h {h:e}"),
+            change_point_run::<_, 17, { ChangePointFourBar::NEWTON_STORAGE }>(&mut alpha, energy),
+            error_bound,
+            energy_bound,
+        );
     }
 }
 
@@ -475,9 +494,9 @@ const CHANGE_POINT_OMEGA0: f64 = 10.0;
 
 /// Runs the change-point four-bar 20 s from θ = 0 with the default options: the largest
 /// distance of the coupler–rocker pin from the branch's (m), the largest |T − E| (J), θ(20 s).
-fn change_point_run<I, const N: usize>(integrator: &mut I, energy: f64) -> (f64, f64, f64)
+fn change_point_run<I, const N: usize, const NS: usize>(integrator: &mut I, energy: f64) -> (f64, f64, f64)
 where
-    I: Integrator<f64, ChangePointFourBar, 9, 9, 8, N>,
+    I: Integrator<f64, ChangePointFourBar, 9, 9, 8, N, NS>,
 {
     let m = ChangePointFourBar::default();
     let w = CHANGE_POINT_OMEGA0;
@@ -489,7 +508,7 @@ where
     let v0 = [0.0, 0.1 * w, w, g[0] * w, g[1] * w, beta * w, -psi * w * arm[1], psi * w * arm[0], psi * w];
     let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.01).collect();
     let (mut branch, mut drift, mut last) = (0.0_f64, 0.0_f64, 0.0);
-    let mut ws = Workspace::<f64, 9, 8, N>::boxed();
+    let mut ws = Workspace::<f64, 9, 8, N, NS>::boxed();
     simulate(&m, &mut ws, integrator, 0.0, &m.initial_positions(), &v0, &times, &SimulationOptions::default(), |s| {
         let q = &s.point.q;
         let th = ChangePointFourBar::CRANK.phi(q);

@@ -521,6 +521,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     ];
     let ForwardCode { helpers, impl_block, position_step, .. } = forward;
     let newton_impl = newton.impl_block;
+    let newton_storage = Literal::usize_unsuffixed(newton.storage);
 
     let body_names: Vec<String> = m.bodies.iter().map(|b| b.name.to_string()).collect();
     let coordinate_names = m.coordinate_names();
@@ -607,6 +608,10 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             pub const NNZ: usize = #nnz_l;
             /// Number of runtime parameters.
             pub const NP: usize = #np;
+            /// Scalars of one planned Newton matrix (D's non-zeros and the factors' entries of
+            /// [[A, −Dᵀ], [D, 0]], fill included): the last size of this mechanism's
+            /// `Workspace`, which statics and generalized-α keep their matrices in.
+            pub const NEWTON_STORAGE: usize = #newton_storage;
 
             #named
 
@@ -622,10 +627,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 
             ::mbd::__if_std! {
                 /// The work space every solver takes (its O(N²) arrays: D, the saddle-point
-                /// matrix, NV × NV derivatives), zeroed on the heap. Make it once and pass it to
+                /// matrix, NV × NV derivatives, and three planned Newton matrices of
+                /// `NEWTON_STORAGE` scalars), zeroed on the heap. Make it once and pass it to
                 /// each analysis; without `std`, put a `Workspace::new()` of the same type in a
                 /// `static`.
-                pub fn workspace() -> ::mbd::workspace::Boxed<#real, #nv_l, #nc_l, #nz_l> {
+                pub fn workspace() -> ::mbd::workspace::Boxed<#real, #nv_l, #nc_l, #nz_l, #newton_storage> {
                     ::mbd::Workspace::boxed()
                 }
             }

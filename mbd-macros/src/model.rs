@@ -778,6 +778,7 @@ const GENERATED_ITEMS: &[&str] = &[
     "DOF",
     "NNZ",
     "NP",
+    "NEWTON_STORAGE",
     "NAME",
     "BODY_NAMES",
     "COORDINATE_NAMES",

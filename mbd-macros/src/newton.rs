@@ -293,6 +293,8 @@ const GENERATED_UPDATES: usize = 1000;
 pub struct NewtonCode {
     pub impl_block: TokenStream,
     pub matrix_ops: Ops,
+    /// Scalars of `NewtonStorage`: D's non-zeros and the factors' entries.
+    pub storage: usize,
 }
 
 pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonCode {
@@ -471,7 +473,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             #solver
         }
     };
-    NewtonCode { impl_block, matrix_ops }
+    NewtonCode { impl_block, matrix_ops, storage: nnz + plan.entries() }
 }
 
 #[cfg(test)]

@@ -121,9 +121,9 @@ pub struct JointReaction<T> {
 /// Errors: `NotDriven` while degrees of freedom are left (NV > NC); `SingularJacobian` (naming
 /// a velocity and the dependent constraint) at a singular position, where λ is not unique;
 /// `NonFinite` for NaN or infinite inputs or forces.
-pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
-    ws: &mut Workspace<T, NV, NC, N>,
+    ws: &mut Workspace<T, NV, NC, N, NS>,
     q: &[T; NQ],
     v: &[T; NV],
     vd: &[T; NV],

@@ -329,10 +329,10 @@ impl<T: Real> KinematicSolver<T> {
     /// infinite t, q, Φ, D or step; [`KinematicError::SingularJacobian`] (also where the
     /// independent rows of a redundant mechanism number fewer than NV);
     /// [`KinematicError::NotConverged`].
-    pub fn solve_position<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_position<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &mut [T; NQ],
         t: T,
     ) -> Result<Convergence, KinematicError>
@@ -343,7 +343,7 @@ impl<T: Real> KinematicSolver<T> {
         let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
         if NV != NC {
             // With redundant rows the independent ones must still determine every velocity.
-            self.factor::<M, NV, NC, N>(ws, t)?;
+            self.factor::<M, NV, NC, N, NS>(ws, t)?;
         }
         Ok(convergence)
     }
@@ -374,10 +374,10 @@ impl<T: Real> KinematicSolver<T> {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
-    pub fn assemble<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn assemble<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &mut [T; NQ],
         t: T,
     ) -> Result<Convergence, KinematicError>
@@ -395,10 +395,10 @@ impl<T: Real> KinematicSolver<T> {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, D, ν or v;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_velocity<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_velocity<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &[T; NQ],
         t: T,
         v: &mut [T; NV],
@@ -410,7 +410,7 @@ impl<T: Real> KinematicSolver<T> {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         m.jacobian(q, t, &mut ws.jacobian);
-        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N, NS>(ws, t)?;
         velocity_from_factors(m, q, t, ws, &factors, v)
     }
 
@@ -421,10 +421,10 @@ impl<T: Real> KinematicSolver<T> {
     /// # Errors
     /// [`KinematicError::NotDriven`]; [`KinematicError::NonFinite`] for t, q, v, D, γ or v̇;
     /// [`KinematicError::SingularJacobian`].
-    pub fn solve_acceleration<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve_acceleration<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &[T; NQ],
         v: &[T; NV],
         t: T,
@@ -438,7 +438,7 @@ impl<T: Real> KinematicSolver<T> {
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         check_finite(v, t, NonFiniteQuantity::Velocity, M::VELOCITY_NAMES)?;
         m.jacobian(q, t, &mut ws.jacobian);
-        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N, NS>(ws, t)?;
         acceleration_from_factors(m, q, v, t, ws, &factors, vd)
     }
 
@@ -464,10 +464,10 @@ impl<T: Real> KinematicSolver<T> {
     /// curvature κ along its direction put the singular position σ/κ away with Φ about
     /// σ²/(2κ) there; where that is within 8τ, D v = ν and D v̇ = γ determine nothing (see
     /// `check_determined` in the source). A smaller tolerance resolves positions closer to it.
-    pub fn analyze<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn analyze<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &[T; NQ],
         t: T,
     ) -> Result<KinematicState<T, NQ, NV>, KinematicError>
@@ -505,10 +505,10 @@ impl<T: Real> KinematicSolver<T> {
     ///
     /// # Errors
     /// The first error of any point (each carries its t); the sweep stops there.
-    pub fn sweep<M, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn sweep<M, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &mut [T; NQ],
         times: impl IntoIterator<Item = impl core::borrow::Borrow<T>>,
         mut f: impl FnMut(T, &[T; NQ], &[T; NV], &[T; NV]) -> R,
@@ -548,12 +548,12 @@ impl<T: Real> KinematicSolver<T> {
 
     /// Position, velocity and acceleration at t into `q`, `v`, `vd` (NV ≤ NC, checked by the
     /// callers), with `jacobian` as work space.
-    fn analyze_in_place<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn analyze_in_place<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         v: &mut [T; NV],
         vd: &mut [T; NV],
     ) -> Result<Convergence, KinematicError>
@@ -571,7 +571,7 @@ impl<T: Real> KinematicSolver<T> {
             // D at the converged q (the sparse step of a square D leaves `ws.jacobian` as it was).
             m.jacobian(q, t, &mut ws.jacobian);
         }
-        let factors = self.factor::<M, NV, NC, N>(ws, t)?;
+        let factors = self.factor::<M, NV, NC, N, NS>(ws, t)?;
         if NV == NC {
             self.check_determined(m, q, t, ws, &factors)?;
         }
@@ -619,12 +619,12 @@ impl<T: Real> KinematicSolver<T> {
     /// ±h n, h = 1e-4 max(1, ‖q‖∞) (rounding leaves ε/h² ≈ 1e-8 of it). Its arrays are only on
     /// the stack while it runs: near a singular position.
     #[inline(never)]
-    fn check_determined<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn check_determined<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         t: T,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         factors: &Factors<NC>,
     ) -> Result<(), KinematicError>
     where
@@ -633,7 +633,7 @@ impl<T: Real> KinematicSolver<T> {
         let mut b: [T; NC] = core::array::from_fn(|i| T::from_f64(1.0 + ((i * 618) % 1000) as f64 / 1000.0));
         let mut n = [T::ZERO; NV];
         for _ in 0..INVERSE_ITERATIONS {
-            solve_factored::<T, M, NV, NC, N>(ws, factors, &b, &mut n, t)?;
+            solve_factored::<T, M, NV, NC, N, NS>(ws, factors, &b, &mut n, t)?;
             let size = n.iter().fold(T::ZERO, |s, &x| s + x * x).sqrt();
             if !(size > T::ZERO && size.is_finite()) {
                 return Ok(());
@@ -684,9 +684,9 @@ impl<T: Real> KinematicSolver<T> {
     /// in declaration order, those that depend on the rows before them (sine ≤
     /// [`KinematicOptions::rank_tolerance`]) left out — the independent rows must number NV,
     /// else the velocity they leave least determined is named as a singular Jacobian's.
-    fn factor<M, const NV: usize, const NC: usize, const N: usize>(
+    fn factor<M, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         t: T,
     ) -> Result<Factors<NC>, KinematicError>
     where
@@ -708,12 +708,12 @@ impl<T: Real> KinematicSolver<T> {
     /// converges, leaves `jacobian` alone; otherwise (and from where that stopped), on success,
     /// `jacobian` holds D(q, t) at the returned q (unfactored): the convergence test comes after
     /// each evaluation, so the last evaluation is at the solution.
-    fn newton<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn newton<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
         q: &mut [T; NQ],
         t: T,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         rule: StepRule,
     ) -> Result<Convergence, KinematicError>
     where
@@ -800,8 +800,8 @@ impl<T: Real> KinematicSolver<T> {
 }
 
 /// x = D⁻¹ b from the factors of D: the LU's, or over the independent rows.
-fn solve_factored<T, M, const NV: usize, const NC: usize, const N: usize>(
-    ws: &Workspace<T, NV, NC, N>,
+fn solve_factored<T, M, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    ws: &Workspace<T, NV, NC, N, NS>,
     factors: &Factors<NC>,
     b: &[T; NC],
     x: &mut [T; NV],
@@ -821,11 +821,11 @@ where
 }
 
 /// v = D⁻¹ ν from the factors of D.
-fn velocity_from_factors<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn velocity_from_factors<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
     q: &[T; NQ],
     t: T,
-    ws: &Workspace<T, NV, NC, N>,
+    ws: &Workspace<T, NV, NC, N, NS>,
     factors: &Factors<NC>,
     v: &mut [T; NV],
 ) -> Result<(), KinematicError>
@@ -838,18 +838,18 @@ where
         m.velocity_rhs(q, t, &mut nu);
         check_finite(&nu, t, NonFiniteQuantity::VelocityRhs, M::CONSTRAINT_NAMES)?;
     }
-    solve_factored::<T, M, NV, NC, N>(ws, factors, &nu, v, t)?;
+    solve_factored::<T, M, NV, NC, N, NS>(ws, factors, &nu, v, t)?;
     check_finite(v, t, NonFiniteQuantity::Velocity, M::VELOCITY_NAMES)
 }
 
 /// v̇ = D⁻¹ γ(q, v, t) from the factors of D.
 #[allow(clippy::too_many_arguments)]
-fn acceleration_from_factors<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn acceleration_from_factors<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
     q: &[T; NQ],
     v: &[T; NV],
     t: T,
-    ws: &Workspace<T, NV, NC, N>,
+    ws: &Workspace<T, NV, NC, N, NS>,
     factors: &Factors<NC>,
     vd: &mut [T; NV],
 ) -> Result<(), KinematicError>
@@ -860,7 +860,7 @@ where
     let mut gamma = [T::ZERO; NC];
     m.gamma(q, v, t, &mut gamma);
     check_finite(&gamma, t, NonFiniteQuantity::Gamma, M::CONSTRAINT_NAMES)?;
-    solve_factored::<T, M, NV, NC, N>(ws, factors, &gamma, vd, t)?;
+    solve_factored::<T, M, NV, NC, N, NS>(ws, factors, &gamma, vd, t)?;
     check_finite(vd, t, NonFiniteQuantity::Acceleration, M::VELOCITY_NAMES)
 }
 

@@ -353,7 +353,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
 {
     /// `[T; NNZ + entries]`: D's non-zeros in [`Mechanism::JACOBIAN_PATTERN`] order, then the
     /// matrix's entries over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN).
-    type NewtonStorage: Copy + AsRef<[T]> + AsMut<[T]>;
+    type NewtonStorage: crate::workspace::NewtonStorage<T>;
     /// Elimination order and fill of the Newton matrix's LU factors.
     const NEWTON_PATTERN: crate::SparsePattern;
     /// Storage of zeros.

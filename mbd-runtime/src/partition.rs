@@ -147,10 +147,10 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     /// [`SimulationError::NotConverged`] naming the worst row, or a dependent-constraint error.
     // The mechanism, its work space, the state and the two tolerances: no grouping reads better.
     #[allow(clippy::too_many_arguments)]
-    pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const N: usize>(
+    pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const N: usize, const NS: usize>(
         &mut self,
         mechanism: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         t: T,
         q: &mut [T; NQ],
         v: &mut [T; NV],

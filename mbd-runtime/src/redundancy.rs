@@ -98,10 +98,10 @@ impl<T: Real> KinematicSolver<T> {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`] for a NaN or infinite t, q or D.
-    pub fn redundancy<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn redundancy<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &[T; NQ],
         t: T,
     ) -> Result<Redundancy<NC>, KinematicError>
@@ -145,10 +145,10 @@ impl<T: Real> KinematicSolver<T> {
     ///
     /// # Errors
     /// [`KinematicError::NonFinite`] for a NaN or infinite t, q, D or λ.
-    pub fn minimum_norm_reactions<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn minimum_norm_reactions<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &[T; NQ],
         t: T,
         lambda: &mut [T; NC],

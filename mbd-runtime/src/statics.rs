@@ -81,9 +81,10 @@
 //! angles are wrapped one at a time). Spatial Euler parameters come back unit, with e0 ≥ 0
 //! (p and −p are the same rotation).
 //!
-//! Work space: the stack holds a few copies of the planned storage (D's non-zeros and the
-//! factors' entries: O(bodies) for a chain) and O(NV + NC) scalars; of the caller's
-//! [`Workspace`] only D is written, at the equilibrium, for [`crate::joint_reaction`]. Nothing
+//! Work space: the two matrices and one set of factors over the planned storage (D's
+//! non-zeros and the factors' entries: O(bodies) for a chain) live in the caller's
+//! [`Workspace`]'s three Newton slots; the stack holds O(NV + NC) scalars. Of the work space's
+//! other arrays only D is written, at the equilibrium, for [`crate::joint_reaction`]. Nothing
 //! allocates.
 
 use crate::kinematics::{first_non_finite, name};
@@ -247,6 +248,14 @@ pub enum StaticError {
         /// Rows the workspace has.
         found: usize,
     },
+    /// The workspace's Newton slots do not have the mechanism's `NEWTON_STORAGE` scalars (a
+    /// `Workspace` made by hand with another NS; `Name::workspace()` has the right one).
+    NewtonSlotSize {
+        /// Scalars the mechanism's planned Newton matrix needs.
+        expected: usize,
+        /// Scalars each slot of the workspace has (NS).
+        found: usize,
+    },
     /// The starting q could not be assembled onto Φ = 0.
     NotAssembled {
         /// Time (s).
@@ -313,6 +322,10 @@ impl fmt::Display for StaticError {
             StaticError::WorkspaceSize { expected, found } => {
                 write!(f, "static equilibrium: the workspace has {found} rows but the mechanism needs NV + NC = {expected}; use Name::workspace()")
             }
+            StaticError::NewtonSlotSize { expected, found } => write!(
+                f,
+                "static equilibrium: the workspace's Newton slots hold {found} scalars but the mechanism needs NEWTON_STORAGE = {expected}; use Name::workspace()"
+            ),
             StaticError::NotAssembled { t, iterations, worst_row, residual } => write!(
                 f,
                 "static equilibrium at t = {t} s: the start does not assemble after {iterations} iterations: |Φ| = {residual:.3e} in '{worst_row}'"
@@ -403,9 +416,9 @@ enum RestoreFailure {
 /// [[M, −Dᵀ], [D, 0]] (`mass`) and
 /// [[M − H, −Dᵀ], [D, 0]] (`stiff`, H = (∂h/∂q)B + K(λ) at the multipliers), the loads, the
 /// multipliers and the projected residual r = h + Dᵀλ.
-struct Iterate<S, T, const NV: usize, const NC: usize> {
-    mass: S,
-    stiff: S,
+struct Iterate<'a, S, T, const NV: usize, const NC: usize> {
+    mass: &'a S,
+    stiff: &'a S,
     /// The rows of D dropped as dependent on the rows eliminated before them.
     dropped: [bool; NC],
     h: [T; NV],
@@ -425,7 +438,7 @@ struct Iterate<S, T, const NV: usize, const NC: usize> {
     h_columns: [T; NV],
 }
 
-impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usize> Iterate<S, T, NV, NC> {
+impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usize> Iterate<'_, S, T, NV, NC> {
     /// Multipliers kept by the factorization of [[M, −Dᵀ], [D, 0]].
     fn kept(&self) -> usize {
         self.dropped.iter().filter(|&&d| !d).count()
@@ -508,18 +521,19 @@ impl<T: Real> StaticSolver<T> {
     /// accepted iterate.
     ///
     /// The solver works over the factorization `mechanism!` plans for generalized-α
-    /// ([`NewtonMatrix`]), on the stack: O(its non-zeros). Of `ws` it reads nothing; it writes
-    /// only D at the equilibrium, on success.
+    /// ([`NewtonMatrix`]), in `ws`'s three Newton slots (the mechanism's `NEWTON_STORAGE`
+    /// scalars each: `Name::workspace()` has them). Of `ws`'s other arrays it reads nothing; it
+    /// writes only D at the equilibrium, on success.
     ///
     /// # Errors
-    /// [`StaticError::WorkspaceSize`]; [`StaticError::NonFinite`] (t, q, Φ, D, h, its
+    /// [`StaticError::WorkspaceSize`]; [`StaticError::NewtonSlotSize`]; [`StaticError::NonFinite`] (t, q, Φ, D, h, its
     /// derivatives); [`StaticError::NotAssembled`]; [`StaticError::Singular`] (a velocity
     /// without mass); [`StaticError::NotConverged`], naming the velocity or constraint row with
     /// the largest residual.
-    pub fn solve<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    pub fn solve<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         q: &mut [T; NQ],
         t: T,
         lambda: &mut [T; NC],
@@ -530,6 +544,9 @@ impl<T: Real> StaticSolver<T> {
         if N != NV + NC {
             return Err(StaticError::WorkspaceSize { expected: NV + NC, found: N });
         }
+        let Some([mass, stiff, scratch]) = crate::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+            return Err(StaticError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
+        };
         let time = t.to_f64();
         if !t.is_finite() {
             return Err(StaticError::NonFinite { t: time, row: "t" });
@@ -543,7 +560,7 @@ impl<T: Real> StaticSolver<T> {
         let mut trial = *q;
         let mut correction = [T::ZERO; NV];
 
-        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction).map_err(|e| match e {
+        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction, scratch).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -554,7 +571,7 @@ impl<T: Real> StaticSolver<T> {
         // The trust radius: the largest velocity-space entry of a step (m or rad).
         let mut radius = options.initial_step;
         loop {
-            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t)?;
+            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch)?;
             *lambda = it.lambda;
             let (force_residual, force_row) = max_abs(&it.r);
             let (constraint_residual, constraint_row) = max_abs(&it.phi);
@@ -574,7 +591,7 @@ impl<T: Real> StaticSolver<T> {
             let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
             // At a converged point, its lowest mode tells stable from unstable.
             let mode = if converged && dof > 0 {
-                Some(self.lowest_mode::<M, NQ, NV, NC, N>(m, q, &it).ok_or_else(|| not_converged(accepted + rejected))?)
+                Some(self.lowest_mode::<M, NQ, NV, NC, N>(m, q, &it, scratch).ok_or_else(|| not_converged(accepted + rejected))?)
             } else {
                 None
             };
@@ -584,7 +601,7 @@ impl<T: Real> StaticSolver<T> {
             let unstable = mode.as_ref().is_some_and(|mode| mode.omega_squared < -neutral(mode));
             if converged && !(unstable && options.leave_unstable) {
                 let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
-                self.wrap_angles(m, q, t, &it);
+                self.wrap_angles(m, q, t, &it, scratch);
                 m.jacobian(q, t, &mut ws.jacobian);
                 return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
             }
@@ -612,13 +629,13 @@ impl<T: Real> StaticSolver<T> {
                         let delta: [T; NV] = core::array::from_fn(|i| y * z[i]);
                         Some((delta, f * y - half * mode.omega_squared * y * y))
                     }
-                    None => self.shifted_step::<M, NQ, NV, NC, N>(m, q, &it, radius),
+                    None => self.shifted_step::<M, NQ, NV, NC, N>(m, q, &it, radius, scratch),
                 };
                 let Some((delta, predicted)) = step else {
                     return Err(not_converged(accepted + rejected));
                 };
                 let step_norm = max_abs(&delta).0;
-                let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction);
+                let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction, scratch);
                 if let Some(ratio) = ratio {
                     *q = trial;
                     accepted += 1;
@@ -636,7 +653,7 @@ impl<T: Real> StaticSolver<T> {
                     // Every step off it raised the energy: unstable as it looked, but not
                     // leavable at this resolution; report it as it is.
                     let stability = classify::<T, M, NV>(escape.as_ref(), &it.mass_diagonal, neutral);
-                    self.wrap_angles(m, q, t, &it);
+                    self.wrap_angles(m, q, t, &it, scratch);
                     m.jacobian(q, t, &mut ws.jacobian);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
                 }
@@ -656,15 +673,19 @@ impl<T: Real> StaticSolver<T> {
         (o.rank_tolerance * o.rank_tolerance).max(o.pivot_tolerance).max(T::from_f64(f64::EPSILON))
     }
 
-    /// Everything the iteration needs at an assembled `q`: the two matrices, the factors of
-    /// [[M, −Dᵀ], [D, 0]], the multipliers by least squares in the M⁻¹ norm
-    /// ([[M, −Dᵀ], [D, 0]] [x; λ] = [h; 0]) and the residual r = h + Dᵀλ = M x.
-    fn evaluate<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    /// Everything the iteration needs at an assembled `q`: the two matrices (in `mass` and
+    /// `stiff`), the multipliers by least squares in the M⁻¹ norm ([[M, −Dᵀ], [D, 0]] [x; λ] =
+    /// [h; 0], factored in `factors`) and the residual r = h + Dᵀλ = M x.
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate<'a, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         t: T,
-    ) -> Result<Iterate<M::NewtonStorage, T, NV, NC>, StaticError>
+        mass: &'a mut M::NewtonStorage,
+        stiff: &'a mut M::NewtonStorage,
+        factors: &mut M::NewtonStorage,
+    ) -> Result<Iterate<'a, M::NewtonStorage, T, NV, NC>, StaticError>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
@@ -672,8 +693,7 @@ impl<T: Real> StaticSolver<T> {
         let zero_v = [T::ZERO; NV];
         let nnz = M::JACOBIAN_PATTERN.len();
         let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
-        let mut mass = M::newton_storage();
-        m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, &mut mass);
+        m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass);
         m.forces(q, &zero_v, t, &mut h);
         if let Some(i) = first_non_finite(&phi) {
             return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
@@ -681,12 +701,12 @@ impl<T: Real> StaticSolver<T> {
         if let Some(i) = first_non_finite(&h) {
             return Err(non_finite_force::<M>(time, i));
         }
-        let mut factors = mass;
+        factors.as_mut().copy_from_slice(mass.as_ref());
         let mut dropped = [false; NC];
-        M::newton_factor(&mut factors, self.drop_ratio(), true, &mut dropped).map_err(|e| factor_error::<M>(time, NV, e))?;
+        M::newton_factor(factors, self.drop_ratio(), true, &mut dropped).map_err(|e| factor_error::<M>(time, NV, e))?;
         let mut b = [T::ZERO; N];
         b[..NV].copy_from_slice(&h);
-        M::newton_solve(&factors, &mut b);
+        M::newton_solve(factors, &mut b);
         let mut lambda = [T::ZERO; NC];
         lambda.copy_from_slice(&b[NV..]);
         let mut r = h;
@@ -698,8 +718,8 @@ impl<T: Real> StaticSolver<T> {
         if let Some(i) = first_non_finite(&r) {
             return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
         }
-        let mut stiff = M::newton_storage();
-        m.newton_matrix(q, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, &mut stiff);
+        m.newton_matrix(q, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff);
+        let (mass, stiff) = (&*mass, &*stiff);
         // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
         let mut mass_diagonal = [T::ZERO; NV];
         for ((u, w), &value) in entries(&M::NEWTON_PATTERN).zip(&mass.as_ref()[nnz..]) {
@@ -750,13 +770,14 @@ impl<T: Real> StaticSolver<T> {
         &self,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         mu: T,
-    ) -> Option<M::NewtonStorage>
+        s: &mut M::NewtonStorage,
+    ) -> bool
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let nnz = M::JACOBIAN_PATTERN.len();
         let pattern = M::NEWTON_PATTERN;
-        let mut s = it.stiff;
+        s.as_mut().copy_from_slice(it.stiff.as_ref());
         for ((u, w), (x, &m0)) in entries(&pattern).zip(s.as_mut()[nnz..].iter_mut().zip(&it.mass.as_ref()[nnz..])) {
             if u < NV && w < NV {
                 *x += (mu - T::ONE) * m0;
@@ -764,9 +785,8 @@ impl<T: Real> StaticSolver<T> {
         }
         let mut dropped = it.dropped;
         let tolerance = self.options.pivot_tolerance.max(T::EPSILON);
-        M::newton_factor(&mut s, tolerance, true, &mut dropped).ok()?;
-        if dropped != it.dropped {
-            return None;
+        if M::newton_factor(s, tolerance, true, &mut dropped).is_err() || dropped != it.dropped {
+            return false;
         }
         let values = &s.as_ref()[nnz..];
         let positive = (0..pattern.size())
@@ -779,22 +799,23 @@ impl<T: Real> StaticSolver<T> {
                 }
             })
             .count();
-        (positive == NV).then_some(s)
+        positive == NV
     }
 
     /// The smallest shift of the ladder μ_k = 10^k · μ₀ (k = 0, 1, …; μ₀ = [`shift_floor`])
-    /// whose reduced matrix is positive definite, with its factors.
+    /// whose reduced matrix is positive definite, with its factors in `s`.
     fn definite_shift<M, const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
-    ) -> Option<(T, M::NewtonStorage)>
+        s: &mut M::NewtonStorage,
+    ) -> Option<T>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let mut mu = shift_floor(it);
         for _ in 0..SHIFT_TRIALS {
-            if let Some(s) = self.shifted_factor::<M, NQ, NV, NC>(it, mu) {
-                return Some((mu, s));
+            if self.shifted_factor::<M, NQ, NV, NC>(it, mu, s) {
+                return Some(mu);
             }
             mu *= T::from_f64(10.0);
         }
@@ -814,6 +835,7 @@ impl<T: Real> StaticSolver<T> {
         q: &[T; NQ],
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         radius: T,
+        factors: &mut M::NewtonStorage,
     ) -> Option<([T; NV], T)>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -821,20 +843,23 @@ impl<T: Real> StaticSolver<T> {
         // The step at shift μ: `Err(true)` if the reduced matrix is definite but the step
         // does not fit, `Err(false)` if it is not definite (or the step not finite).
         let floor = shift_floor(it);
-        let attempt = |mu: T| -> Result<([T; NV], T), bool> {
-            let factors = self.shifted_factor::<M, NQ, NV, NC>(it, mu).ok_or(false)?;
+        let mut attempt = |mu: T| -> Result<([T; NV], T), bool> {
+            if !self.shifted_factor::<M, NQ, NV, NC>(it, mu, factors) {
+                return Err(false);
+            }
+            let factors = &*factors;
             let mut b = [T::ZERO; N];
             b[..NV].copy_from_slice(&it.r);
             // At the floor, Newton's own step (μ = 0) where the refinement converges to it.
             let mut mu = mu;
-            if mu == floor && !it.shifted_solve::<M, NQ, N>(&factors, T::ZERO, &mut b) {
+            if mu == floor && !it.shifted_solve::<M, NQ, N>(factors, T::ZERO, &mut b) {
                 b = [T::ZERO; N];
                 b[..NV].copy_from_slice(&it.r);
-                it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+                it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
             } else if mu == floor {
                 mu = T::ZERO;
             } else {
-                it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+                it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
             }
             let delta: [T; NV] = core::array::from_fn(|i| b[i]);
             if first_non_finite(&delta).is_some() {
@@ -890,11 +915,13 @@ impl<T: Real> StaticSolver<T> {
         m: &M,
         q: &[T; NQ],
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
+        factors: &mut M::NewtonStorage,
     ) -> Option<Mode<T, NV>>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        let (mu, factors) = self.definite_shift::<M, NQ, NV, NC>(it)?;
+        let mu = self.definite_shift::<M, NQ, NV, NC>(it, factors)?;
+        let factors = &*factors;
         // Start from M times a vector of unequal entries (fractional parts of multiples of the
         // golden ratio): no mode is missed by a symmetry of the start.
         let mut mx: [T; NV] = core::array::from_fn(|i| {
@@ -906,7 +933,7 @@ impl<T: Real> StaticSolver<T> {
         for k in 0..INVERSE_ITERATIONS {
             let mut b = [T::ZERO; N];
             b[..NV].copy_from_slice(&mx);
-            it.shifted_solve::<M, NQ, N>(&factors, mu, &mut b);
+            it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
             let next: [T; NV] = core::array::from_fn(|i| b[i]);
             let mut m_next = [T::ZERO; NV];
             m.mass_times(q, &next, &mut m_next);
@@ -949,6 +976,7 @@ impl<T: Real> StaticSolver<T> {
         predicted: T,
         trial: &mut [T; NQ],
         correction: &mut [T; NV],
+        s: &mut M::NewtonStorage,
     ) -> Option<T>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -957,7 +985,7 @@ impl<T: Real> StaticSolver<T> {
         *trial = *q;
         m.integrate_positions(trial, delta, T::ONE);
         correction.fill(T::ZERO);
-        self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction).ok()?;
+        self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction, s).ok()?;
         let displacement: [T; NV] = core::array::from_fn(|i| delta[i] + correction[i]);
         let half_way: [T; NV] = core::array::from_fn(|i| T::from_f64(0.5) * displacement[i]);
         let mut middle = *q;
@@ -993,6 +1021,7 @@ impl<T: Real> StaticSolver<T> {
         q: &mut [T; NQ],
         t: T,
         correction: &mut [T; NV],
+        s: &mut M::NewtonStorage,
     ) -> Result<u32, RestoreFailure>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -1004,8 +1033,7 @@ impl<T: Real> StaticSolver<T> {
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            let mut s = M::newton_storage();
-            m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, &mut s);
+            m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s);
             if let Some(i) = first_non_finite(&phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
@@ -1022,13 +1050,13 @@ impl<T: Real> StaticSolver<T> {
                 return Err(RestoreFailure::NotConverged { iterations, worst, residual: norm.to_f64() });
             }
             dropped = [false; NC];
-            M::newton_factor(&mut s, self.drop_ratio(), true, &mut dropped)
+            M::newton_factor(s, self.drop_ratio(), true, &mut dropped)
                 .map_err(|e| RestoreFailure::Static(factor_error::<M>(time, NV, e)))?;
             let mut b = [T::ZERO; N];
             for (x, &p) in b[NV..].iter_mut().zip(&phi) {
                 *x = -p;
             }
-            M::newton_solve(&s, &mut b);
+            M::newton_solve(s, &mut b);
             let step: [T; NV] = core::array::from_fn(|i| b[i]);
             if let Some(i) = first_non_finite(&step) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) }));
@@ -1051,6 +1079,7 @@ impl<T: Real> StaticSolver<T> {
         q: &mut [T; NQ],
         t: T,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
+        s: &mut M::NewtonStorage,
     ) where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
@@ -1058,9 +1087,9 @@ impl<T: Real> StaticSolver<T> {
         let names = M::COORDINATE_NAMES;
         let zero_v = [T::ZERO; NV];
         let (phi, h) = (&it.phi, &it.h);
-        let (mut phi1, mut h1, mut s) = ([T::ZERO; NC], [T::ZERO; NV], M::newton_storage());
+        let (mut phi1, mut h1) = ([T::ZERO; NC], [T::ZERO; NV]);
         let mut unchanged = |candidate: &[T; NQ], d_scale: T, h_scale: T| {
-            m.newton_jacobian(candidate, t, &mut phi1, &mut s);
+            m.newton_jacobian(candidate, t, &mut phi1, s);
             m.forces(candidate, &zero_v, t, &mut h1);
             phi.iter().zip(&phi1).all(|(a, b)| (*a - *b).abs() <= tol + d_scale)
                 && h.iter().zip(&h1).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)
@@ -1160,7 +1189,7 @@ mod tests {
         for start in [[0.2, -0.4, 0.4, -0.95], [LENGTH, 0.0, 1.0, 0.0], [0.0, LENGTH, 0.0, 1.0]] {
             let mut q = start;
             let mut lambda = [123.0, -7.0];
-            let report = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 5>::new(), &mut q, 0.0, &mut lambda);
+            let report = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 5, 29>::new(), &mut q, 0.0, &mut lambda);
             let report = report.expect("equilibrium");
             assert!(report.iterations < 30, "{report:?}");
             let expected = [0.0, -LENGTH, 0.0, -1.0];
@@ -1180,6 +1209,10 @@ mod tests {
         let mut q = [0.2, -0.4, 0.4, -0.95];
         let err = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 6>::new(), &mut q, 0.0, &mut [0.0; 2]);
         assert_eq!(err, Err(StaticError::WorkspaceSize { expected: 5, found: 6 }));
+        // Newton slots of another size than the mechanism's storage (4 non-zeros of D, 25
+        // entries of the factors): named, not a panic.
+        let err = StaticSolver::default().solve(&UnitPendulum, &mut Workspace::<f64, 3, 2, 5>::new(), &mut q, 0.0, &mut [0.0; 2]);
+        assert_eq!(err, Err(StaticError::NewtonSlotSize { expected: 29, found: 0 }));
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Work space of the solvers: every array whose size grows as the square of the mechanism's
-//! size, in one value the caller owns and passes to each analysis (as Pinocchio's `Data` sits
-//! beside its `Model`).
+//! size, and the planned sparse Newton matrices, in one value the caller owns and passes to each
+//! analysis (as Pinocchio's `Data` sits beside its `Model`).
 //!
-//! The solvers themselves keep only O(NV + NC) arrays on the stack, so a mechanism of any size
+//! The solvers themselves keep only O(NV + NC) arrays on the stack (and the generated
+//! forward dynamics its planned Schur factor, O(non-zeros of D)), so a mechanism of any size
 //! runs on an ordinary thread's stack: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
@@ -15,37 +16,43 @@
 //! | constraint square | NC × NC | minimum-norm assembly steps (D Dᵀ), coordinate partitioning |
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
+//! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
-//! Statics and generalized-α need none of it: they factor over the sparse pattern `mechanism!`
-//! plans, on the stack (O(its non-zeros)). N must be NV + NC (stable Rust cannot compute it
-//! from the other two; the solvers that size their planned storage by it check it); the generated
-//! `Name::workspace()` gets it right, and the solvers check it
-//! ([`crate::SimulationError::WorkspaceSize`], [`crate::StaticError::WorkspaceSize`]).
+//! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
+//! NS = `Name::NEWTON_STORAGE` scalars (D's non-zeros and the factors' entries, fill included),
+//! kept here rather than on the stack, where statics' copies of it had overflowed a 2 MB thread
+//! for a 201-body ladder in a debug build (`tests/large.rs` runs it there now).
+//!
+//! N must be NV + NC and NS the mechanism's `NEWTON_STORAGE` (stable Rust cannot compute them
+//! from the others); the generated `Name::workspace()` gets them right, and the solvers check
+//! them ([`crate::SimulationError::WorkspaceSize`], [`crate::StaticError::WorkspaceSize`]). A
+//! work space with NS = 0 (the default) serves every solver but statics and generalized-α.
 
 use crate::Real;
 
 /// A [`Workspace`] on the heap, as [`Workspace::boxed`] and the generated `Name::workspace()`
 /// return it.
 #[cfg(feature = "std")]
-pub type Boxed<T, const NV: usize, const NC: usize, const N: usize> = std::boxed::Box<Workspace<T, NV, NC, N>>;
+pub type Boxed<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> = std::boxed::Box<Workspace<T, NV, NC, N, NS>>;
 
 /// The O(N²) work space of the solvers, for a mechanism with NV velocities and NC constraint
-/// rows; N = NV + NC. Its contents between calls mean nothing: every solver writes before it
+/// rows; N = NV + NC, NS the size of its planned Newton matrix (`Name::NEWTON_STORAGE`). Its contents between calls mean nothing: every solver writes before it
 /// reads. See [the module](self) for what each part holds.
 ///
 /// `repr(C)` and made only of arrays of `T`, so it is exactly `size_of::<Self>() /
 /// size_of::<T>()` consecutive scalars, which [`Workspace::boxed`] relies on.
 #[repr(C)]
 #[derive(Clone, Debug)]
-pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize> {
+pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
     pub(crate) jacobian: [[T; NV]; NC],
     pub(crate) jacobian_scratch: [[T; NV]; NC],
     pub(crate) constraint_square: [[T; NC]; NC],
     pub(crate) velocity_square: [[T; NV]; NV],
     pub(crate) coupling: [[T; NC]; NC],
+    pub(crate) newton: [[T; NS]; 3],
 }
 
-impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV, NC, N> {
+impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize> Workspace<T, NV, NC, N, NS> {
     /// A zeroed work space, by value: for a `static` (it is `const`) or a small mechanism. A
     /// large one on the stack defeats its purpose; use [`Workspace::boxed`] there.
     pub const fn new() -> Self {
@@ -55,6 +62,7 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV,
             constraint_square: [[T::ZERO; NC]; NC],
             velocity_square: [[T::ZERO; NV]; NV],
             coupling: [[T::ZERO; NC]; NC],
+            newton: [[T::ZERO; NS]; 3],
         }
     }
 
@@ -89,7 +97,27 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize> Workspace<T, NV,
     }
 }
 
-impl<T: Real, const NV: usize, const NC: usize, const N: usize> Default for Workspace<T, NV, NC, N> {
+/// A work space's three Newton-matrix slots (`&mut ws.newton`, borrowed apart from its other
+/// fields) as the mechanism's storage type `S` (`[T; NS]`), or `None` where NS is not its size.
+pub(crate) fn newton_slots<S: NewtonStorage<T>, T, const NS: usize>(newton: &mut [[T; NS]; 3]) -> Option<[&mut S; 3]> {
+    let [a, b, c] = newton;
+    Some([S::from_slice_mut(a)?, S::from_slice_mut(b)?, S::from_slice_mut(c)?])
+}
+
+/// The storage of a planned Newton matrix, `[T; K]` (`NewtonMatrix::NewtonStorage`): values
+/// that can be viewed in place from a work space's slot of exactly K scalars.
+pub trait NewtonStorage<T>: Copy + AsRef<[T]> + AsMut<[T]> {
+    /// `slice` as this storage, if its length is this storage's.
+    fn from_slice_mut(slice: &mut [T]) -> Option<&mut Self>;
+}
+
+impl<T: Copy, const K: usize> NewtonStorage<T> for [T; K] {
+    fn from_slice_mut(slice: &mut [T]) -> Option<&mut Self> {
+        slice.try_into().ok()
+    }
+}
+
+impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize> Default for Workspace<T, NV, NC, N, NS> {
     fn default() -> Self {
         Self::new()
     }
@@ -106,6 +134,18 @@ mod tests {
         let value = Workspace::<f64, 3, 2, 5>::new();
         assert_eq!(format!("{boxed:?}"), format!("{value:?}"));
         assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3));
+    }
+
+    /// The Newton slots are views of exactly NS scalars, and only for storage of that size.
+    #[test]
+    fn newton_slots_fit_their_storage_exactly() {
+        let mut ws = Workspace::<f64, 3, 2, 5, 4>::new();
+        assert_eq!(Workspace::<f64, 3, 2, 5, 4>::BYTES, Workspace::<f64, 3, 2, 5>::BYTES + 8 * 3 * 4);
+        let [a, b, c] = super::newton_slots::<[f64; 4], f64, 4>(&mut ws.newton).expect("NS = 4 fits [f64; 4]");
+        (a[3], b[0], c[1]) = (1.0, 2.0, 3.0);
+        assert_eq!(ws.newton, [[0.0, 0.0, 0.0, 1.0], [2.0, 0.0, 0.0, 0.0], [0.0, 3.0, 0.0, 0.0]]);
+        assert!(super::newton_slots::<[f64; 3], f64, 4>(&mut ws.newton).is_none());
+        assert!(super::newton_slots::<[f64; 5], f64, 4>(&mut ws.newton).is_none());
     }
 
     /// A work space far larger than a thread's stack is built on the heap (a copy through the

@@ -54,9 +54,9 @@ pub struct Start<'a, const NQ: usize, const NV: usize> {
 type Solved<const NQ: usize> = Result<(u64, [f64; NQ]), String>;
 
 /// Assembly from `start` (Newton on Φ = 0 with D, the only derivative it uses).
-fn assembly<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn assembly<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     k: &K,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     start: &[f64; NQ],
 ) -> (f64, Solved<NQ>)
 where
@@ -69,9 +69,9 @@ where
 }
 
 /// Statics from `start` (Newton on h + Dᵀλ = 0, Φ = 0 with ∂h/∂q, K and D).
-fn statics<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn statics<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     k: &K,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     start: &[f64; NQ],
 ) -> (f64, Solved<NQ>)
 where
@@ -85,9 +85,9 @@ where
 
 /// Generalized-α (h = 1 ms, ρ∞ = 0.8, the default projection) to t_end: its iteration matrix
 /// holds ∂h/∂q, ∂h/∂v, K and D. Counts Newton iterations.
-fn alpha<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn alpha<K, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     k: &K,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     s: &Start<'_, NQ, NV>,
 ) -> (f64, Solved<NQ>)
 where
@@ -105,9 +105,9 @@ where
 
 /// Assembly from the start moved 0.05 in every coordinate (m, rad), statics from the start, and
 /// generalized-α over the case, each with exact derivatives and by differences.
-pub fn compare<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn compare<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     s: &Start<'_, NQ, NV>,
 ) -> Vec<Row>
 where
@@ -150,9 +150,9 @@ where
 /// The same motion in f32 and in f64 generated code (RK4 at 1 ms, DOPRI5 at rtol 1e-5 — f32
 /// raises tighter tolerances to 16 ε — both with the default projection), each against the f64
 /// reference; the start is the f64 one, rounded for f32.
-pub fn precision<M32, M64, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-    m32: (&M32, &mut Workspace<f32, NV, NC, N>),
-    m64: (&M64, &mut Workspace<f64, NV, NC, N>),
+pub fn precision<M32, M64, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    m32: (&M32, &mut Workspace<f32, NV, NC, N, NS>),
+    m64: (&M64, &mut Workspace<f64, NV, NC, N, NS>),
     s: &Start<'_, NQ, NV>,
 ) -> Vec<Row>
 where

@@ -43,12 +43,12 @@ impl Study {
     /// chain of `mujoco` links, MuJoCo's RK4 on it), plots, and (with `exact`) compares exact and
     /// finite-difference derivatives; returns the start and the reference.
     #[allow(clippy::too_many_arguments)]
-    fn case<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    fn case<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &mut self,
         name: &'static str,
         title: &'static str,
         m: &M,
-        ws: &mut Workspace<f64, NV, NC, N>,
+        ws: &mut Workspace<f64, NV, NC, N, NS>,
         t_end: f64,
         track_work: bool,
         exact: bool,

@@ -183,9 +183,9 @@ where
 
 /// DOP853 at rtol 1e-13 and DOPRI5 at 1e-12, neither corrected: the first is the reference, their
 /// difference its uncertainty.
-pub fn reference<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn reference<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     case: &Case<'_, M, NQ, NV>,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
 ) -> Reference<NQ>
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
@@ -258,9 +258,9 @@ pub fn max_difference<const NQ: usize>(a: &[f64; NQ], b: &[f64; NQ]) -> f64 {
 }
 
 /// Every method, setting and drift control on `case`.
-pub fn sweep<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn sweep<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     case: &Case<'_, M, NQ, NV>,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     reference: &Reference<NQ>,
     progress: &ProgressBar,
 ) -> Vec<Row>
@@ -296,9 +296,9 @@ where
     rows
 }
 
-fn one<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn one<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     case: &Case<'_, M, NQ, NV>,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     reference: &Reference<NQ>,
     method: Method,
     setting: f64,
@@ -334,9 +334,9 @@ where
 
 /// Runs `make()` to the end time, repeated while cheap (5 runs under 0.05 s, 3 under 0.5 s),
 /// and measures the last one against the reference; the time is the median.
-fn timed<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn timed<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     case: &Case<'_, M, NQ, NV>,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
     reference: &Reference<NQ>,
     drift: Drift,
     make: impl Fn() -> I,
@@ -344,7 +344,7 @@ fn timed<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize
 ) -> Result<Measured, String>
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
-    I: Integrator<f64, M, NQ, NV, NC, N>,
+    I: Integrator<f64, M, NQ, NV, NC, N, NS>,
 {
     let options = drift.options(case.track_work);
     let times = output_times(case.t_end);

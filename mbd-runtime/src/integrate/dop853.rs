@@ -293,8 +293,8 @@ fn stage_state<T: Real, const N: usize>(y0: &[T; N], k: &[[T; N]; SD], s: usize,
     }
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
-    Integrator<T, M, NQ, NV, NC, N> for Dop853<T, NQ, NV>
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Integrator<T, M, NQ, NV, NC, N, NS> for Dop853<T, NQ, NV>
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -303,7 +303,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

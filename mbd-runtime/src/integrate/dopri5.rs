@@ -146,8 +146,8 @@ fn dense_coefficients<T: Real>(y0: T, y1: T, k: impl Fn(usize) -> T, h: T) -> [T
     [y0, r2, r3, r4, h * r5]
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
-    Integrator<T, M, NQ, NV, NC, N> for Dopri5<T, NQ, NV>
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Integrator<T, M, NQ, NV, NC, N, NS> for Dopri5<T, NQ, NV>
 {
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -156,7 +156,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

@@ -136,8 +136,9 @@ impl<T: Real> ErrorControl<T> {
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
 /// The iteration matrix is built and factored in the sparse storage whose order and fill
-/// `mechanism!` planned ([`NewtonMatrix`], [`crate::sparse`]), on the stack: O(its non-zeros),
-/// no dense matrix, and the [`Workspace`] is not used; the integrator itself holds O(NV).
+/// `mechanism!` planned ([`NewtonMatrix`], [`crate::sparse`]), in the [`Workspace`]'s first
+/// Newton slot (O(its non-zeros), no dense matrix; the work space must be the mechanism's,
+/// `Name::workspace()`); the integrator itself holds O(NV).
 ///
 /// [`Kinematics::integrate_positions`]: crate::Kinematics::integrate_positions
 ///
@@ -201,7 +202,7 @@ impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
     }
 }
 
-impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Integrator<T, M, NQ, NV, NC, N>
+impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize> Integrator<T, M, NQ, NV, NC, N, NS>
     for GeneralizedAlpha<T, NV>
 where
     M: NewtonMatrix<T, NQ, NV, NC>,
@@ -211,7 +212,7 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -219,6 +220,9 @@ where
         if N != NV + NC {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
+        let Some([s, _, _]) = crate::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+            return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
+        };
         let mut o = self.options;
         // Φ and the position correction to what the scalar type resolves at q (f32: 64 ε ≈ 7.6e-6
         // at 1 m), so the default 1e-10 converges in single precision.
@@ -260,7 +264,7 @@ where
             let a_n = self.pseudo_acceleration(&from.vd, h_try);
             self.iterations = 0;
             let result =
-                attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations);
+                attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations, s);
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
                 self.accept(result?, h_try);
@@ -393,6 +397,7 @@ fn attempt<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usi
     t1: T,
     to: &mut Point<T, NQ, NV, NC>,
     iterations: &mut u32,
+    s: &mut M::NewtonStorage,
 ) -> Result<[T; NV], SimulationError>
 where
     T: Real,
@@ -410,9 +415,9 @@ where
     let mut v = [T::ZERO; NV];
     let mut a1 = [T::ZERO; NV];
     let mut phi = [T::ZERO; NC];
-    // D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
-    // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix.
-    let mut s = M::newton_storage();
+    // `s`: D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
+    // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix, in the
+    // work space.
     let pattern = M::NEWTON_PATTERN;
     let nnz = M::JACOBIAN_PATTERN.len();
     let mut force = [T::ZERO; NV];
@@ -439,9 +444,9 @@ where
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, &mut s);
+            mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, s);
         } else {
-            mech.newton_jacobian(&q, t1, &mut phi, &mut s);
+            mech.newton_jacobian(&q, t1, &mut phi, s);
         }
         mech.forces(&q, &v, t1, &mut force);
         // Coulomb friction with the iterate's loads (its exact derivatives enter the
@@ -511,7 +516,7 @@ where
             // singular position, a redundant constraint): with `allow_redundant` its row and
             // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
             // load, as forward dynamics drops such a row.
-            let smallest_ratio = M::newton_factor(&mut s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
+            let smallest_ratio = M::newton_factor(s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
                 .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
             near_singular = smallest_ratio < T::from_f64(1e-3);
             factored = true;
@@ -521,7 +526,7 @@ where
                 rhs[NV + r] = T::ZERO;
             }
         }
-        M::newton_solve(&s, &mut rhs);
+        M::newton_solve(s, &mut rhs);
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
             return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
         }

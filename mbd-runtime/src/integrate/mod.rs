@@ -189,6 +189,15 @@ pub enum SimulationError {
         /// Rows the work space has.
         found: usize,
     },
+    /// A generalized-α work space's Newton slots do not have the mechanism's
+    /// `NEWTON_STORAGE` scalars (a `Workspace` made by hand; use the generated
+    /// `Name::workspace()`).
+    NewtonSlotSize {
+        /// Scalars the mechanism's planned Newton matrix needs.
+        expected: usize,
+        /// Scalars each slot of the work space has (NS).
+        found: usize,
+    },
 }
 
 impl From<DynamicsError> for SimulationError {
@@ -224,6 +233,10 @@ impl fmt::Display for SimulationError {
             SimulationError::WorkspaceSize { expected, found } => {
                 write!(f, "the generalized-α work space has {found} rows; this mechanism needs NV + NC = {expected}; use Name::workspace()")
             }
+            SimulationError::NewtonSlotSize { expected, found } => write!(
+                f,
+                "generalized-α: the work space's Newton slots hold {found} scalars but the mechanism needs NEWTON_STORAGE = {expected}; use Name::workspace()"
+            ),
         }
     }
 }
@@ -313,7 +326,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 }
 
 /// A one-step method for the equations of motion.
-pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> {
+pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
     /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
     /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions)).
@@ -323,7 +336,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

@@ -41,8 +41,8 @@ impl<T: Real> Rk4<T> {
     }
 }
 
-impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>
-    Integrator<T, M, NQ, NV, NC, N> for Rk4<T>
+impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Integrator<T, M, NQ, NV, NC, N, NS> for Rk4<T>
 {
     #[inline]
     // `!(x > y)` on purpose: it is also true when either side is NaN.
@@ -52,7 +52,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

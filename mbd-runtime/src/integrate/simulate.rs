@@ -230,9 +230,9 @@ crate::options::options! {
 #[allow(clippy::too_many_arguments)]
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn simulate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N>,
+    ws: &mut Workspace<T, NV, NC, N, NS>,
     integrator: &mut I,
     t0: T,
     q0: &[T; NQ],
@@ -244,7 +244,7 @@ pub fn simulate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, c
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
-    I: Integrator<T, M, NQ, NV, NC, N>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
     R: Flow,
 {
     simulate_with_events(mechanism, ws, integrator, t0, q0, v0, times, options, &mut [], output)
@@ -259,9 +259,9 @@ where
 /// As [`simulate`].
 #[allow(clippy::too_many_arguments)]
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate_with_events<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+pub fn simulate_with_events<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N>,
+    ws: &mut Workspace<T, NV, NC, N, NS>,
     integrator: &mut I,
     t0: T,
     q0: &[T; NQ],
@@ -274,7 +274,7 @@ pub fn simulate_with_events<T, M, I, R, const NQ: usize, const NV: usize, const 
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
-    I: Integrator<T, M, NQ, NV, NC, N>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
     R: Flow,
 {
     for (i, &t) in times.iter().enumerate() {
@@ -320,7 +320,7 @@ where
         }
         integrator.step(&system, ws, &from, t_end, &mut to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
-        let mut hit = first_event(mechanism, integrator, &system, &from, &to, switches, events, at_event)?;
+        let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, &from, &to, switches, events, at_event)?;
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
@@ -429,7 +429,7 @@ where
 /// within rounding of it is taken as simultaneous (delivered once, so that two chattering
 /// switches cannot hold the run at one instant).
 #[allow(clippy::too_many_arguments)]
-fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     mechanism: &M,
     integrator: &mut I,
     system: &System<'_, M, T>,
@@ -442,7 +442,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
-    I: Integrator<T, M, NQ, NV, NC, N>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
 {
     let h = end.t - from.t;
     let resolution = T::EPSILON * T::from_f64(16.0) * end.t.abs().max(h);
@@ -524,9 +524,17 @@ fn sample<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV:
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.
-fn correct<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn correct<
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    const NQ: usize,
+    const NV: usize,
+    const NC: usize,
+    const N: usize,
+    const NS: usize,
+>(
     mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N>,
+    ws: &mut Workspace<T, NV, NC, N, NS>,
     partition: &mut Partition<NV, NC>,
     options: &SimulationOptions<T>,
     t: T,

@@ -38,7 +38,7 @@ fn reference_angles() -> [f64; 8] {
 
 /// The largest errors over the samples: of (c, s) against (cos φ, sin φ), of |(c, s)| − 1, of
 /// the pin's ‖Φ‖∞, and of T + V against its initial value.
-fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 4] {
+fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5, 29>>(integrator: &mut I, correction: Correction<f64>) -> [f64; 4] {
     let m = UnitPendulum;
     let reference = reference_angles();
     let options = SimulationOptions::default().with_correction(correction);
@@ -46,7 +46,7 @@ fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5>>(integrator: &mut I, correct
     let mut k = 0;
     let q0 = m.initial_positions();
     let e0 = m.potential_energy(&q0, 0.0);
-    simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), integrator, 0.0, &q0, &[0.0; 3], &TIMES, &options, |s| {
+    simulate(&m, &mut Workspace::<f64, 3, 2, 5, 29>::new(), integrator, 0.0, &q0, &[0.0; 3], &TIMES, &options, |s| {
         let q = &s.point.q;
         let (sin, cos) = reference[k].sin_cos();
         let mut phi = [0.0; 2];
@@ -137,13 +137,37 @@ fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options
     let q0 = m.initial_positions();
     let min_step = control.with_min_step(0.2);
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(min_step)));
-    let error =
-        simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
+    let error = simulate(
+        &m,
+        &mut Workspace::<f64, 3, 2, 5, 29>::new(),
+        &mut alpha,
+        0.0,
+        &q0,
+        &[0.0; 3],
+        &[1.0],
+        &SimulationOptions::default(),
+        |_| {},
+    );
     assert!(matches!(error, Err(SimulationError::StepSizeTooSmall { t: 0.0, .. })), "{error:?}");
 
     let negative = control.with_rtol(-1.0);
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(negative)));
+    let error = simulate(
+        &m,
+        &mut Workspace::<f64, 3, 2, 5, 29>::new(),
+        &mut alpha,
+        0.0,
+        &q0,
+        &[0.0; 3],
+        &[1.0],
+        &SimulationOptions::default(),
+        |_| {},
+    );
+    assert!(matches!(error, Err(SimulationError::InvalidOptions { .. })), "{error:?}");
+
+    // A work space without the mechanism's Newton slots (NS = 0): named, not a panic.
+    let mut alpha = GeneralizedAlpha::<f64, 3>::new(options);
     let error =
         simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
-    assert!(matches!(error, Err(SimulationError::InvalidOptions { .. })), "{error:?}");
+    assert!(matches!(error, Err(SimulationError::NewtonSlotSize { expected: 29, found: 0 })), "{error:?}");
 }

@@ -130,11 +130,11 @@ fn elements_table<M: Mechanism>(title: &str) -> String {
 const RUN: f64 = 0.2;
 const STEP: f64 = 1e-3;
 
-fn measure<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+fn measure<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
     scene: &'static str,
     leaves_out: &'static str,
-    ws: &mut Workspace<f64, NV, NC, N>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
 ) -> Row
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
