@@ -3,7 +3,14 @@
 //! step) make no heap allocation after set-up (the work space is made once, before counting).
 //! Only the test's own thread is counted: the harness's other threads allocate when they
 //! please (counting them failed about one run in four).
-mod common;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/slider_crank.rs"]
+mod slider_crank;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::slider_crank;
+}
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

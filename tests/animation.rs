@@ -5,7 +5,17 @@
 //! a coupler-point trace, the quarter car of `examples/bump.rs` simulated over its bump (tyre,
 //! bump stop, spring-damper), a spatial double pendulum; and a page asked to trace a point the
 //! mechanism does not have, which must say so.
-mod common;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/bump.rs"]
+mod bump;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/four_bar.rs"]
+mod four_bar;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::{bump, four_bar};
+}
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,8 +1,7 @@
 //! `cargo doc` is warning-free, and the documentation of a generated type is one a user can live
 //! in: `doc-check/` (a crate outside the workspace holding a planar and a spatial mechanism, as a
 //! user's crate would) is documented with warnings as errors, alongside mbd, mbd-runtime and
-//! mbd-macros, and the generated pages are read back for their tables. Runs cargo itself in a
-//! target directory of its own, like `tests/no_std.rs`.
+//! mbd-macros, and the generated pages are read back for their tables. Runs cargo itself in `target/nested`, like `tests/no_std.rs`.
 use std::path::Path;
 use std::process::Command;
 
@@ -34,7 +33,7 @@ fn has_row(page: &str, row: &str) {
 #[test]
 fn generated_types_document_their_tables_without_warnings() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let target_dir = root.join("target/doc-check");
+    let target_dir = root.join("target/nested");
     let out = Command::new(env!("CARGO"))
         .args(["doc", "--quiet", "--no-deps", "-p", "mbd-doc-check", "-p", "mbd", "-p", "mbd-runtime", "-p", "mbd-macros"])
         .arg("--manifest-path")

@@ -3,8 +3,7 @@
 //! target added by `.ci/ensure_embedded_target.sh`) and the size of its forward-dynamics function
 //! is read from the library's ELF symbol table and reported. The same library holds a modal
 //! analysis (`mbd::linearize` without std, feature `alloc`), compiled for the target. (Its f32 results against f64 on the
-//! host are `tests/scalar_f32.rs`'.) Runs cargo itself in a target directory of its own, like
-//! `tests/no_std.rs`.
+//! host are `tests/scalar_f32.rs`'.) Runs cargo itself in `target/nested`, like `tests/no_std.rs`.
 use std::path::Path;
 use std::process::Command;
 
@@ -27,7 +26,7 @@ fn a_mechanism_builds_for_a_cortex_m4f() {
             return;
         }
     }
-    let target_dir = root.join("target/embedded");
+    let target_dir = root.join("target/nested");
     let out = Command::new(env!("CARGO"))
         .args(["build", "--quiet", "--release", "--target", TARGET, "--manifest-path"])
         .arg(root.join("embedded/Cargo.toml"))

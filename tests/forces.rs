@@ -5,7 +5,16 @@
 //! Tolerance: central differences with h = 1e-6 on forces of O(1–100) N carry a truncation error
 //! O(h²·|h'''|) ≲ 1e-9 and a rounding error O(ε·|h|/h) ≈ 1e-8; 1e-5 relative to max(1, |value|)
 //! separates right from wrong (a wrong term is O(1) or larger).
-mod common;
+#[path = "common/rng.rs"]
+mod rng;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/slider_crank.rs"]
+mod slider_crank;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::{rng::Rng, slider_crank};
+}
 
 use common::Rng;
 use mbd::prelude::*;

@@ -8,7 +8,13 @@
 //! from a wrong one (a wrong entry is O(1)). A double pendulum with a mass ratio of 10⁶ (1000 kg
 //! carrying 1 g, issue 10 item 6) passes the same bound: the Schur complement D M⁻¹ Dᵀ is
 //! formed with M⁻¹ exactly (M is diagonal), so the ratio costs no accuracy in either solve.
-mod common;
+#[path = "common/rng.rs"]
+mod rng;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::rng::Rng;
+}
 
 use common::Rng;
 use mbd::linalg::{lu_factor, lu_solve_in_place};

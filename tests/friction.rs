@@ -7,7 +7,16 @@
 //! with the same closed forms, for spatial joints on a guide and a hinge in general directions.
 //! Tolerances: at |v| = 1 m/s and v_s = 1e-4 the regularized law differs from the sharp one by
 //! a factor 1 − √(1 + (v_s/v)²)⁻¹ ≈ 5e-9; the fixed-point iteration stops at 1e-10 relative.
-mod common;
+#[path = "common/rng.rs"]
+mod rng;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/slider_crank.rs"]
+mod slider_crank;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::{rng::Rng, slider_crank};
+}
 
 use mbd::prelude::*;
 

@@ -3,7 +3,13 @@
 //! dense functions, nothing lies outside the planned pattern, and the generated straight-line
 //! factorization and the runtime's loop over the pattern solve it alike — dropping a redundant
 //! constraint's multiplier in both.
-mod common;
+#[path = "common/rng.rs"]
+mod rng;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::rng::Rng;
+}
 
 use common::Rng;
 use mbd::prelude::*;

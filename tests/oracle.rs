@@ -12,7 +12,39 @@
 //! The Python environment (pinned CasADi and NumPy) is created on first use by
 //! `tests/oracle/ensure_env.sh` under `target/oracle-venv`. A missing Python or CasADi is a
 //! failure of this test, never a skip.
-mod common;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/double_a_arm.rs"]
+mod double_a_arm;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/filmstrip.rs"]
+mod filmstrip;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/flywheel_engine.rs"]
+mod flywheel_engine;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/four_bar.rs"]
+mod four_bar;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/macpherson.rs"]
+mod macpherson;
+#[path = "common/rng.rs"]
+mod rng;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/slider_crank.rs"]
+mod slider_crank;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/variable_pendulum.rs"]
+mod variable_pendulum;
+#[allow(dead_code)] // each test uses a part of the example
+#[path = "../examples/web_cutter.rs"]
+mod web_cutter;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::{
+        double_a_arm, filmstrip, flywheel_engine, four_bar, macpherson, rng::Rng, slider_crank, variable_pendulum, web_cutter,
+    };
+}
 mod oracle_env;
 
 use std::path::{Path, PathBuf};

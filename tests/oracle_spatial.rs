@@ -15,7 +15,13 @@
 //! The Python environment (pinned CasADi and NumPy) comes from `tests/oracle/ensure_env.sh`, as
 //! for `tests/oracle.rs`. A missing Python or CasADi, or a non-zero exit, fails this test: it
 //! never skips.
-mod common;
+#[path = "common/rng.rs"]
+mod rng;
+/// The examples this test uses and the shared generator (`tests/common/`): each example is
+/// compiled only where a test uses it.
+mod common {
+    pub(crate) use super::rng::Rng;
+}
 mod oracle_env;
 
 use std::path::PathBuf;

@@ -51,7 +51,7 @@ def chain(n):
     let v = [0.0; Chain::NV];
     let o: SimulationOptions<f64> = SimulationOptions::default();
     let times = [0.01];
-    simulate(&m, &mut ws, &mut Rk4::new(1e-3), 0.0, &q, &v, &times, &o, |_| {}).expect("RK4");
+    simulate(&m, &mut ws, &mut Rk4::default(), 0.0, &q, &v, &times, &o, |_| {}).expect("RK4");
     simulate(&m, &mut ws, &mut Dopri5::new(Dopri5Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOPRI5");
     simulate(&m, &mut ws, &mut Dop853::new(Dop853Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOP853");
     let mut alpha = Chain::generalized_alpha(GeneralizedAlphaOptions::default());

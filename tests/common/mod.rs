@@ -1,4 +1,5 @@
-//! Shared by the integration tests: the examples' mechanisms and a reproducible generator.
+//! Every example, for `tests/examples.rs`, which runs them all; the other tests declare only the
+//! examples they use, and the reproducible generator `rng.rs`, themselves (`mod common` in each).
 #![allow(dead_code)]
 
 #[path = "../../examples/double_a_arm.rs"]
@@ -41,20 +42,3 @@ pub mod variable_pendulum;
 pub mod web_cutter;
 // slider_crank_inverse is `flywheel_engine::slider_crank_inverse`: flywheel_engine builds on it,
 // and a second `mod` would compile it twice.
-
-/// xorshift64*: deterministic, so a failing state can be reproduced.
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-    /// Uniform in [lo, hi).
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let u = (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * u
-    }
-}
