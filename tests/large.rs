@@ -179,9 +179,9 @@ mechanism! {
 }
 
 /// The ladder's assembly, statics and every integrator on one thread with the default 2 MB stack
-/// in a debug build (issue 37, item 4). Statics alone needed about 3 MiB there when its planned
-/// Newton matrices (NEWTON_STORAGE scalars each, 120 KiB for this ladder) were copied on the
-/// stack; they now live in the work space.
+/// in a debug build (issue 37, item 4). Before statics and generalized-α kept their planned
+/// Newton matrices (NEWTON_STORAGE scalars each) in the work space, statics copying them a dozen
+/// times on the stack, this test overflowed that thread (measured on a1b8d02).
 #[test]
 fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack() {
     on_default_stack(|| {

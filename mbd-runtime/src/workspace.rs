@@ -20,8 +20,9 @@
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
 //! NS = `Name::NEWTON_STORAGE` scalars (D's non-zeros and the factors' entries, fill included),
-//! kept here rather than on the stack, where statics' copies of it had overflowed a 2 MB thread
-//! for a 201-body ladder in a debug build (`tests/large.rs` runs it there now).
+//! kept here rather than on the stack, where statics' dozen copies of it and generalized-α's one
+//! had overflowed a 2 MB thread for a 201-body ladder in a debug build (`tests/large.rs` runs it
+//! there now).
 //!
 //! N must be NV + NC and NS the mechanism's `NEWTON_STORAGE` (stable Rust cannot compute them
 //! from the others); the generated `Name::workspace()` gets them right, and the solvers check
