@@ -22,7 +22,7 @@ use crate::{ForwardDynamics, Real, Workspace};
 
 crate::options::options! {
     /// Options of [`Dop853`], in the scalar type `T` of the mechanism (default `f64`): the same
-    /// tolerances, step limits and defaults as [`Dopri5Options`](super::Dopri5Options)'. Build
+    /// tolerances, step limits and defaults as [`Dopri5Options`](super::Dopri5Options). Build
     /// from [`Default`] and the `with_*` setters.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Dop853Options<T> {
