@@ -72,7 +72,8 @@ macro_rules! bench_mechanism {
         let mut lambda = [0.0; NC];
         g.bench_function("inverse dynamics (λ) at the analysed state", |b| {
             b.iter(|| {
-                mbd::inverse_dynamics(&m, &mut ws, black_box(&state.q), black_box(&state.v), black_box(&state.vd), t0 + 1e-3, &mut lambda)
+                mbd::InverseDynamics::default()
+                    .solve(&m, &mut ws, black_box(&state.q), black_box(&state.v), black_box(&state.vd), t0 + 1e-3, &mut lambda)
                     .expect("a regular D");
                 lambda
             })

@@ -9,10 +9,7 @@
 //! and projections), and the modes of the result (Schur decomposition of A and inverse
 //! iteration per eigenvalue).
 use criterion::{criterion_group, criterion_main, Criterion};
-use mbd::{
-    linearize, linearize_finite_differences, DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, LinearizeOptions,
-    Point, Rk4, Rk4Options, System,
-};
+use mbd::{DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Linearizer, Point, Rk4, Rk4Options, System};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -44,9 +41,9 @@ macro_rules! bench_linearize {
             m.project_positions_step(&mut p.q, p.t, &DynamicsOptions::default()).expect("projects");
         }
         m.project_velocities(&p.q, &mut p.v, p.t, &DynamicsOptions::default()).expect("projects");
-        let options = LinearizeOptions::default();
-        let lin = linearize(&m, &p.q, &p.v, p.t, &options).expect("exact");
-        let fd = linearize_finite_differences(&m, &p.q, &p.v, p.t, &options).expect("differences");
+        let linearizer = Linearizer::default();
+        let lin = linearizer.linearize(&m, &p.q, &p.v, p.t).expect("exact");
+        let fd = linearizer.finite_differences(&m, &p.q, &p.v, p.t).expect("differences");
         eprintln!(
             "{}: f = {}, exact vs differences max |ΔA| / max |A| = {:.1e}",
             $label,
@@ -55,10 +52,8 @@ macro_rules! bench_linearize {
         );
         let mut g = $c.benchmark_group($label);
         g.sample_size(10).measurement_time(Duration::from_secs(5));
-        g.bench_function("exact", |b| b.iter(|| linearize(&m, black_box(&p.q), black_box(&p.v), p.t, &options)));
-        g.bench_function("finite differences", |b| {
-            b.iter(|| linearize_finite_differences(&m, black_box(&p.q), black_box(&p.v), p.t, &options))
-        });
+        g.bench_function("exact", |b| b.iter(|| linearizer.linearize(&m, black_box(&p.q), black_box(&p.v), p.t)));
+        g.bench_function("finite differences", |b| b.iter(|| linearizer.finite_differences(&m, black_box(&p.q), black_box(&p.v), p.t)));
         g.bench_function("modes", |b| b.iter(|| black_box(&lin).modes()));
         g.finish();
     }};

@@ -53,7 +53,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (1..=300).map(|k| 0.005 * k as f64).collect();
     let mut events = Vec::new();
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
+    Simulation::new(&m, &mut dopri).start(0.0, &q, &[0.0; 6]).times(&times).run(&mut ws, |s| {
         if let Some(EventHit::Switch(k)) = s.event {
             let pushing = m.switching_function(k, &s.point.q, &s.point.v, s.point.t) > 0.0;
             events.push((s.point.t, QuarterCar::SWITCH_NAMES[k], pushing));
@@ -85,9 +85,7 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (0..=200).map(|k| 0.9 + 0.003 * k as f64).collect();
     let mut animation = mbd::Animation::new::<QuarterCar>(&m.params()).title("Quarter car over a 10 cm bump at 20 m/s");
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
-        animation.frame(s.point.t, &s.point.q)
-    })?;
+    Simulation::new(&m, &mut dopri).start(0.0, &q, &[0.0; 6]).times(&times).run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

@@ -119,7 +119,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut qd = q;
     solver.assemble(&driven, &mut ws, &mut qd, 0.0)?;
     let mut multipliers = [0.0; 9];
-    inverse_dynamics(&driven, &mut ws, &qd, &[0.0; 9], &[0.0; 9], 0.0, &mut multipliers)?;
+    InverseDynamics::default().solve(&driven, &mut ws, &qd, &[0.0; 9], &[0.0; 9], 0.0, &mut multipliers)?;
     // Rows: three pins (2 each), then the three drivers.
     let driven_tensions: [f64; 3] = core::array::from_fn(|i| -multipliers[6 + i]);
     let disagreement = (0..3).map(|i| ((driven_tensions[i] - held_tensions[i]) / held_tensions[i]).abs()).fold(0.0, f64::max);
@@ -132,7 +132,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     for (k, t) in [0.0, 1.0, 2.0].into_iter().enumerate() {
         let s = solver.analyze(&driven, &mut ws, &guess, t)?;
         guess = s.q;
-        inverse_dynamics(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut multipliers)?;
+        InverseDynamics::default().solve(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut multipliers)?;
         lifting[k] = -multipliers[6];
         if k == 1 {
             // The free arm, each cylinder pushing with the force its driver exerts (λ, N).

@@ -79,7 +79,7 @@ fn design() -> Result<Design, Box<dyn std::error::Error>> {
     let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
     solver.sweep(&engine, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
-        if inverse_dynamics(&engine, &mut inverse_ws, q, qd, qdd, t, &mut lambda).is_ok() {
+        if InverseDynamics::default().solve(&engine, &mut inverse_ws, q, qd, qdd, t, &mut lambda).is_ok() {
             torque.push(lambda[motor_row]);
         }
         // Kinetic energy / (½ω²): the reduced inertia at this angle.
@@ -116,7 +116,11 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
     let crank = FreeEngine::CRANK;
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &qd)
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
     // The last full revolution.
     let end_angle = last_rev.last().map(|p| p.0).unwrap_or(0.0);
     let rev: Vec<f64> = last_rev.iter().filter(|p| p.0 > end_angle - 2.0 * PI).map(|p| p.1).collect();
@@ -154,7 +158,11 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let mut animation = mbd::Animation::new::<FreeEngine>(&m.params()).title("Free engine with flywheel and generator, first second");
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &qd)
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

@@ -56,7 +56,7 @@ where
     let mut drift: f64 = 0.0;
     let mut last = 0.0;
     let start = Instant::now();
-    let stats = simulate(m, ws, integrator, 0.0, q, &[0.0; NV], &times, &options, |s| {
+    let stats = Simulation::new(m, integrator).start(0.0, q, &[0.0; NV]).times(&times).options(options).run(ws, |s| {
         drift = drift.max((s.energy.kinetic + s.energy.potential - e0).abs());
         last = FreeFourBar::ROCKER.phi(&s.point.q);
     })?;
@@ -118,7 +118,11 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * T_END / 100.0).collect();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut animation = mbd::Animation::new::<FreeFourBar>(&m.params()).title("Free four-bar released from rest under gravity");
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; FreeFourBar::NV], &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; FreeFourBar::NV])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

@@ -140,7 +140,7 @@ fn steady(base: &Gyroscope, omega: f64, duration: f64) -> Result<(f64, f64), Sim
     let times: Vec<f64> = (1..=steps).map(|k| k as f64 * 0.002).collect();
     let (mut azimuth, mut previous, mut drift, mut end) = (0.0, axis_angles(&q0).1, 0.0f64, 0.0);
     let mut ws = Gyroscope::workspace();
-    simulate(&m, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
+    Simulation::new(&m, &mut dopri()).start(0.0, &q0, &v0).times(&times).options(options()).run(&mut ws, |s| {
         let (tilt, az) = axis_angles(&s.point.q);
         let az = unwrap(az, previous);
         azimuth += az - previous;
@@ -175,7 +175,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut track = Vec::with_capacity(times.len() + 1);
     track.push((0.0, theta, axis_angles(&q0).1));
     let mut ws = Gyroscope::workspace();
-    simulate(&released, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| {
+    Simulation::new(&released, &mut dopri()).start(0.0, &q0, &v0).times(&times).options(options()).run(&mut ws, |s| {
         let (tilt, az) = axis_angles(&s.point.q);
         let previous = track.last().map_or(az, |p: &(f64, f64, f64)| p.2);
         track.push((s.point.t, tilt, unwrap(az, previous)));
@@ -269,7 +269,11 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let times: Vec<f64> = (0..=200).map(|k| k as f64 * 0.016).collect();
     let mut animation = mbd::Animation::new::<Gyroscope>(&released.params()).title("Heavy symmetric top released at 50 rev/s");
     let mut ws = Gyroscope::workspace();
-    simulate(&released, &mut ws, &mut dopri(), 0.0, &q0, &v0, &times, &options(), |s| animation.frame(s.point.t, &s.point.q))?;
+    Simulation::new(&released, &mut dopri())
+        .start(0.0, &q0, &v0)
+        .times(&times)
+        .options(options())
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

@@ -17,7 +17,7 @@ pub mod bump;
 use bump::QuarterCar;
 use mbd::nalgebra::{DMatrix, Matrix2};
 use mbd::prelude::*;
-use mbd::{linearize, linearize_finite_differences, LinearStability, LinearizeOptions, Output, StaticSolver};
+use mbd::{LinearStability, LinearizeOptions, Linearizer, Output, StaticSolver};
 
 mbd::mechanism! {
     /// A 0.6 m pole (0.2 kg) pinned on a 1 kg cart that a force `push` (N) drives along x.
@@ -79,8 +79,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
             .with_output(Output::Displacement("pole.phi"))
             .with_output(Output::Multiplier("revolute cart~pole: x"))
     };
-    let lin = linearize(&m, &q, &[0.0; 6], 0.0, &options())?;
-    let fd = linearize_finite_differences(&m, &q, &[0.0; 6], 0.0, &options())?;
+    let lin = Linearizer::new(options()).linearize(&m, &q, &[0.0; 6], 0.0)?;
+    let fd = Linearizer::new(options()).finite_differences(&m, &q, &[0.0; 6], 0.0)?;
     // [[A, B], [C, D]] entry by entry, against its largest entry.
     let system = |l: &mbd::Linearization| {
         let (n, i, o) = (l.a.nrows(), l.b.ncols(), l.c.nrows());
@@ -110,7 +110,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut qc = car.initial_positions();
     let mut ws = QuarterCar::workspace();
     StaticSolver::default().solve(&car, &mut ws, &mut qc, 0.0, &mut [0.0; 4])?;
-    let car_lin = linearize(&car, &qc, &[0.0; 6], 0.0, &LinearizeOptions::default().with_independent(&["chassis.y", "wheel.y"]))?;
+    let car_lin =
+        Linearizer::new(LinearizeOptions::default().with_independent(&["chassis.y", "wheel.y"])).linearize(&car, &qc, &[0.0; 6], 0.0)?;
     let modes = car_lin.modes();
     // The 2-DOF model by hand: z = (chassis height, wheel height).
     let (ms, mu, ks, cs, kt, ct) = (250.0, 35.0, 2.0e4, 1500.0, 2.0e5, 200.0);
@@ -169,9 +170,10 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut ws = CartPole::workspace();
     let times: Vec<f64> = (0..=200).map(|k| 0.01 * k as f64).collect();
     let mut animation = mbd::Animation::new::<CartPole>(&m.params()).title("Cart-pole released 0.01 rad off upright");
-    simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
-        animation.frame(s.point.t, &s.point.q)
-    })?;
+    Simulation::new(&m, &mut Dopri5::default())
+        .start(0.0, &q, &[0.0; 6])
+        .times(&times)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

@@ -142,7 +142,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let t_end = *times.last().expect("output times");
     // The length driver's row of Φ, and so of λ.
     let length_row = PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].row_range().start;
-    let stats = simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
+    let stats = Simulation::new(&m, &mut dopri).start(0.0, &q, &qd).times(&times).options(options).run(&mut ws, |s| {
         let t = s.point.t;
         while t_reduced < t - 1e-12 {
             let h = (t - t_reduced) / substeps as f64;
@@ -204,7 +204,11 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut animation =
         mbd::Animation::new::<PumpedPendulum>(&m.params()).title("Pumped pendulum: length driven at twice the swing frequency");
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &qd, &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &qd)
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

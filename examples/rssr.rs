@@ -129,7 +129,7 @@ pub fn closed_form(m: &Rssr, theta: f64, near: f64) -> (f64, f64, f64) {
 }
 
 /// Runs the analyses over one crank turn; prints a table when `print` is set.
-pub fn run(print: bool) -> Result<Report, KinematicError> {
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let m = Rssr::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
@@ -206,7 +206,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
 
         // Drive torque: inverse dynamics, against virtual power.
         let mut lambda = [0.0; Rssr::NC];
-        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
+        if let Err(e) = InverseDynamics::default().solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }
@@ -243,7 +243,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
     })?;
     if let Some(e) = failure {
-        return Err(e);
+        return Err(e.into());
     }
     r.swing = psi_max - psi_min;
     if print {

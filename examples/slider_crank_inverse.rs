@@ -44,7 +44,7 @@ pub struct Report {
     pub bearing_max: f64,
 }
 
-pub fn run(print: bool) -> Result<Report, KinematicError> {
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let m = Engine::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
@@ -61,10 +61,11 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     // Samples at the midpoints of n equal intervals: the mean over them is the cycle average.
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
+    let inverse = InverseDynamics::default();
     let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
     solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
         let mut lambda = [0.0; Engine::NC];
-        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, qd, qdd, t, &mut lambda) {
+        if let Err(e) = inverse.solve(&m, &mut inverse_ws, q, qd, qdd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }
@@ -91,7 +92,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
     })?;
     if let Some(e) = failure {
-        return Err(e);
+        return Err(e.into());
     }
     if print {
         println!(

@@ -89,7 +89,7 @@ pub fn stroke(m: &SpatialSliderCrank, theta: f64) -> (f64, f64, f64) {
 }
 
 /// Runs the analyses over one crank turn; prints a table when `print` is set.
-pub fn run(print: bool) -> Result<Report, KinematicError> {
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let m = SpatialSliderCrank::default();
     let solver = KinematicSolver::default();
     let mut q = m.initial_positions();
@@ -165,7 +165,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.peak_acceleration = r.peak_acceleration.max(accel.abs());
 
         let mut lambda = [0.0; SpatialSliderCrank::NC];
-        if let Err(e) = inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
+        if let Err(e) = InverseDynamics::default().solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }
@@ -204,7 +204,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         }
     })?;
     if let Some(e) = failure {
-        return Err(e);
+        return Err(e.into());
     }
     r.stroke = x_outer - x_inner;
     if print {

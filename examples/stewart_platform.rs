@@ -263,7 +263,7 @@ fn static_forces(
 }
 
 /// Runs the analysis over one period of the motion; prints tables when `print` is set.
-pub fn run(print: bool) -> Result<Report, KinematicError> {
+pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let m = StewartPlatform::default();
     // The statics: no gravity on any body, the platform's weight and the payload as forces.
     let loaded = StewartPlatform { g: 0.0, w_centre: m.m_platform * m.g, w_payload: PAYLOAD_MASS * m.g, ..m };
@@ -325,7 +325,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         m.jacobian(q, t, &mut d);
         let mut leg_forces = |mech: &StewartPlatform, v: &[f64; StewartPlatform::NV], vd: &[f64; StewartPlatform::NV]| {
             let mut lambda = [0.0; StewartPlatform::NC];
-            inverse_dynamics(mech, &mut inverse_ws, q, v, vd, t, &mut lambda).map(|()| {
+            InverseDynamics::default().solve(mech, &mut inverse_ws, q, v, vd, t, &mut lambda).map(|()| {
                 core::array::from_fn::<f64, 6, _>(|i| {
                     let e = (joints[i] - legs.base[i]) / lengths[i];
                     joint_reaction(mech, q, &d, &lambda, ACTUATORS[i])
@@ -369,7 +369,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.samples += 1;
     })?;
     if let Some(e) = failure {
-        return Err(e);
+        return Err(e.into());
     }
     if print {
         println!(

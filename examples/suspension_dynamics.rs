@@ -121,7 +121,7 @@ where
     };
     let mut balance0 = None;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11).with_max_step(2e-3));
-    let stats = simulate(m, &mut *ws, &mut dopri, 0.0, &q, &[0.0; NQ], &times, &options, |s| {
+    let stats = Simulation::new(m, &mut dopri).start(0.0, &q, &[0.0; NQ]).times(&times).options(options).run(&mut *ws, |s| {
         let p = &s.point;
         let travel = knuckle.y(&p.q) - y0;
         r.peak_travel = r.peak_travel.max(travel);
@@ -198,7 +198,11 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let times: Vec<f64> = (0..=200).map(|k| k as f64 * 7.5e-3).collect();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11).with_max_step(2e-3));
     let mut animation = mbd::Animation::new::<DoubleAArmRide>(&m.params()).title("Double A-arm over a 30 mm bump").trace("knuckle.contact");
-    simulate(&m, &mut *ws, &mut dopri, 0.0, &q, &[0.0; DoubleAArmRide::NV], &times, &options, |s| animation.frame(s.point.t, &s.point.q))?;
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; DoubleAArmRide::NV])
+        .times(&times)
+        .options(options)
+        .run(&mut *ws, |s| animation.frame(s.point.t, &s.point.q))?;
     Ok(animation)
 }
 

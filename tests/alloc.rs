@@ -117,13 +117,34 @@ fn integrators_do_not_allocate() {
         samples += 1;
         energy += s.energy.balance();
     };
-    steps += simulate(&m, &mut ws, &mut rk4, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("RK4").steps;
-    steps += simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("DOPRI5").steps;
-    steps += simulate(&m, &mut ws, &mut alpha, 0.0, &q, &[0.0; 9], &times, &options, &mut collect).expect("generalized-α").steps;
-    steps +=
-        simulate(&m, &mut ws, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, &q, &[0.0; 9], &times, &partitioned, &mut collect)
-            .expect("partitioning")
-            .steps;
+    steps += Simulation::new(&m, &mut rk4)
+        .start(0.0, &q, &[0.0; 9])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, &mut collect)
+        .expect("RK4")
+        .steps;
+    steps += Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 9])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, &mut collect)
+        .expect("DOPRI5")
+        .steps;
+    steps += Simulation::new(&m, &mut alpha)
+        .start(0.0, &q, &[0.0; 9])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, &mut collect)
+        .expect("generalized-α")
+        .steps;
+    steps += Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &q, &[0.0; 9])
+        .times(&times)
+        .options(partitioned)
+        .run(&mut ws, &mut collect)
+        .expect("partitioning")
+        .steps;
     let after = allocations();
 
     assert!(steps >= 40_000, "{steps} steps");

@@ -123,14 +123,18 @@ fn pages_draw_in_a_browser() {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8));
     let before: Vec<f64> = (0..90).map(|k| 0.01 * k as f64).collect();
     let mut state = (0.0, q, [0.0; 6]);
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &before, &SimulationOptions::default(), |s| {
-        state = (s.point.t, s.point.q, s.point.v);
-    })
-    .expect("rolls to the bump");
-    simulate(&m, &mut ws, &mut dopri, state.0, &state.1, &state.2, &times, &SimulationOptions::default(), |s| {
-        animation.frame(s.point.t, &s.point.q)
-    })
-    .expect("rides the bump");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 6])
+        .times(&before)
+        .run(&mut ws, |s| {
+            state = (s.point.t, s.point.q, s.point.v);
+        })
+        .expect("rolls to the bump");
+    Simulation::new(&m, &mut dopri)
+        .start(state.0, &state.1, &state.2)
+        .times(&times)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))
+        .expect("rides the bump");
     animation.write_html(dir.join("quarter_car.html")).expect("writes");
     drew(&load(&browser, &dir.join("quarter_car.html"), &dir.join("quarter_car.png"), false), animation.len());
 
@@ -141,10 +145,11 @@ fn pages_draw_in_a_browser() {
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
     let mut animation = Animation::new::<SpatialDoublePendulum>(&m.params()).trace("lower.tip");
     let times: Vec<f64> = (1..=100).map(|k| 0.02 * k as f64).collect();
-    simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &[0.0; 12], &times, &SimulationOptions::default(), |s| {
-        animation.frame(s.point.t, &s.point.q)
-    })
-    .expect("swings");
+    Simulation::new(&m, &mut Dopri5::default())
+        .start(0.0, &q, &[0.0; 12])
+        .times(&times)
+        .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))
+        .expect("swings");
     animation.write_html(dir.join("spatial_double_pendulum.html")).expect("writes");
     drew(&load(&browser, &dir.join("spatial_double_pendulum.html"), &dir.join("spatial_double_pendulum.png"), false), 100);
 

@@ -132,20 +132,23 @@ fn bricard_moves_with_one_degree_of_freedom() {
     let mut samples = Vec::new();
     let mut dropped = None;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &[0.0; 30], &times, &SimulationOptions::default(), |s| {
-        let q = &s.point.q;
-        let mut phi = [0.0; 30];
-        m.constraints(q, s.point.t, &mut phi);
-        worst_phi = phi.iter().fold(worst_phi, |w, x| w.max(x.abs()));
-        worst_sym = worst_sym.max(asymmetry(&m, q));
-        worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
-        moved = moved.max((m.j1_angle(q) - m.j1_angle(&q0)).abs());
-        let row = dropped_row(&s.point.lambda);
-        assert_eq!(*dropped.get_or_insert(row), row, "the dropped row is one row all along");
-        worst_dropped = worst_dropped.max(s.point.lambda[row].abs());
-        samples.push(*q);
-    })
-    .expect("the Bricard linkage moves");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q0, &[0.0; 30])
+        .times(&times)
+        .run(&mut ws, |s| {
+            let q = &s.point.q;
+            let mut phi = [0.0; 30];
+            m.constraints(q, s.point.t, &mut phi);
+            worst_phi = phi.iter().fold(worst_phi, |w, x| w.max(x.abs()));
+            worst_sym = worst_sym.max(asymmetry(&m, q));
+            worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
+            moved = moved.max((m.j1_angle(q) - m.j1_angle(&q0)).abs());
+            let row = dropped_row(&s.point.lambda);
+            assert_eq!(*dropped.get_or_insert(row), row, "the dropped row is one row all along");
+            worst_dropped = worst_dropped.max(s.point.lambda[row].abs());
+            samples.push(*q);
+        })
+        .expect("the Bricard linkage moves");
     eprintln!("Bricard 2 s: θ1 moved up to {moved:.3} rad, asymmetry {worst_sym:.1e} rad, ‖Φ‖ {worst_phi:.1e}, |ΔE| {worst_e:.1e} J, dropped λ {worst_dropped:.1e}");
     assert!(moved > 0.3, "it should swing: θ1 moved {moved} rad");
     // the symmetry, kept by the constraints and the projection (measured 2.3e-12)

@@ -104,7 +104,11 @@ fn a_spatial_block_decelerates_by_mu_times_its_normal_load() {
         let m = SpatialIncline { mu, ..SpatialIncline::default() };
         let (q, qd) = spatial_incline_state(&m, 0.0, 0.0);
         let mut last = q;
-        simulate(&m, &mut SpatialIncline::workspace(), &mut Dopri5::default(), 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q)
+        Simulation::new(&m, &mut Dopri5::default())
+            .start(0.0, &q, &qd)
+            .times(&[1.0])
+            .options(options)
+            .run(&mut SpatialIncline::workspace(), |s| last = s.point.q)
             .unwrap();
         let moved = SpatialIncline::BLOCK.position(&last).coords.norm();
         assert!((moved - expected).abs() < 1e-3 * expected + 2e-4, "μ = {mu}: slid {moved} m, expected {expected}");
@@ -163,13 +167,23 @@ fn friction_holds_a_block_on_a_shallow_slope() {
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut last = q;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8).with_atol(1e-10));
-    simulate(&m, &mut Incline::workspace(), &mut dopri, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &qd)
+        .times(&[1.0])
+        .options(options)
+        .run(&mut Incline::workspace(), |s| last = s.point.q)
+        .unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     // Creep speed v = v_s · r/√(1 − r²), r = tan θ / μ = 0.72: about 1.04 v_s.
     assert!(moved < 2e-4, "moved {moved} m in 1 s");
     // A slope steeper than the friction angle slides: 1 s at g (sin θ − μ cos θ).
     let slippery = Incline { mu: 0.3, ..Incline::default() };
-    simulate(&slippery, &mut Incline::workspace(), &mut Dopri5::default(), 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    Simulation::new(&slippery, &mut Dopri5::default())
+        .start(0.0, &q, &qd)
+        .times(&[1.0])
+        .options(options)
+        .run(&mut Incline::workspace(), |s| last = s.point.q)
+        .unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     let (sin, cos) = slippery.theta.sin_cos();
     let expected = 0.5 * 9.81 * (sin - 0.3 * cos);
@@ -207,13 +221,17 @@ fn friction_work_closes_the_energy_balance() {
     let mut worst: f64 = 0.0;
     let mut lost = 0.0;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
-    simulate(&m, &mut FrictionPendulum::workspace(), &mut dopri, 0.0, &q, &[0.0; 3], &times, &options, |s| {
-        let b = s.energy.balance();
-        let b0 = *first.get_or_insert(b);
-        worst = worst.max((b - b0).abs());
-        lost = -s.energy.nonconservative_work;
-    })
-    .unwrap();
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 3])
+        .times(&times)
+        .options(options)
+        .run(&mut FrictionPendulum::workspace(), |s| {
+            let b = s.energy.balance();
+            let b0 = *first.get_or_insert(b);
+            worst = worst.max((b - b0).abs());
+            lost = -s.energy.nonconservative_work;
+        })
+        .unwrap();
     assert!(lost > 0.01, "friction dissipates: {lost} J");
     assert!(worst < 1e-7, "energy balance drift {worst:e} J");
 }
@@ -302,7 +320,12 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     let (q, qd) = incline_state(&sticky, 0.0, 0.0);
     let mut last = q;
     let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
-    let stats = simulate(&sticky, &mut Incline::workspace(), &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+    let stats = Simulation::new(&sticky, &mut alpha)
+        .start(0.0, &q, &qd)
+        .times(&[1.0])
+        .options(options)
+        .run(&mut Incline::workspace(), |s| last = s.point.q)
+        .unwrap();
     assert_eq!(stats.steps, 1000);
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     // Creep speed v_s · r/√(1 − r²) with r = tan θ / μ = 0.72: 1.04e-4 m in 1 s.
@@ -314,7 +337,12 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     for (v0, tolerance) in [(0.5, 1e-7 * (0.5 + 0.5 * a)), (0.0, 1e-3 * a)] {
         let (q, qd) = incline_state(&slippery, 0.0, -v0);
         let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
-        simulate(&slippery, &mut Incline::workspace(), &mut alpha, 0.0, &q, &qd, &[1.0], &options, |s| last = s.point.q).unwrap();
+        Simulation::new(&slippery, &mut alpha)
+            .start(0.0, &q, &qd)
+            .times(&[1.0])
+            .options(options)
+            .run(&mut Incline::workspace(), |s| last = s.point.q)
+            .unwrap();
         let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
         let expected = v0 + 0.5 * a;
         assert!((moved - expected).abs() < tolerance, "from {v0} m/s: slid {moved} m, expected {expected}");
@@ -352,7 +380,7 @@ fn inverse_dynamics_with_coulomb_friction_matches_the_closed_form() {
     KinematicSolver::default()
         .sweep(&m, &mut ws, &mut q, [0.5, 1.0, 1.5], |t, q, v, vd| {
             let mut lambda = [0.0; 3];
-            inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).unwrap();
+            InverseDynamics::default().solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).unwrap();
             let push = joint_reaction(&m, q, inverse_ws.jacobian(), &lambda, PushedUpIncline::PUSH).and_then(|r| r.on_i).unwrap();
             assert!((push.force[0] - expected).abs() < 1e-9 * expected, "t = {t}: F = {} N, closed form {expected} N", push.force[0]);
             // without friction the push would be m g tan θ: the test sees the friction

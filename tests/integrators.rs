@@ -103,10 +103,12 @@ fn double_pendulum_at_1s<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10, { Doubl
     let m = DoublePendulum::default();
     let options = SimulationOptions::default().with_correction(correction);
     let mut last = [0.0; 6];
-    simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[1.0], &options, |s| {
-        last = s.point.q
-    })
-    .unwrap();
+    Simulation::new(&m, integrator)
+        .start(0.0, &m.initial_positions(), &[0.0; 6])
+        .times(&[1.0])
+        .options(options)
+        .run(&mut DoublePendulum::workspace(), |s| last = s.point.q)
+        .unwrap();
     last
 }
 
@@ -157,12 +159,16 @@ fn dop853_converges_at_eighth_order_and_its_dense_output_at_seventh() {
         let mut dop = Dop853::new(options);
         let mut e = [0.0f64; 2];
         let run = SimulationOptions::default().with_correction(Correction::None);
-        simulate(&m, &mut Oscillator::workspace(), &mut dop, 0.0, &m.initial_positions(), &[0.0; 3], &times, &run, |s| {
-            let error = (s.point.q[0] - (0.1 + 0.05 * (10.0 * s.point.t).cos())).abs();
-            let k = usize::from(s.point.t == 1.0);
-            e[k] = e[k].max(error);
-        })
-        .unwrap();
+        Simulation::new(&m, &mut dop)
+            .start(0.0, &m.initial_positions(), &[0.0; 3])
+            .times(&times)
+            .options(run)
+            .run(&mut Oscillator::workspace(), |s| {
+                let error = (s.point.q[0] - (0.1 + 0.05 * (10.0 * s.point.t).cos())).abs();
+                let k = usize::from(s.point.t == 1.0);
+                e[k] = e[k].max(error);
+            })
+            .unwrap();
         assert_eq!((dop.accepted, dop.rejected), ((1.0 / h).round() as u64, 0), "steps held at h = {h}");
         e
     };
@@ -216,11 +222,15 @@ fn conservative_mechanisms_conserve_energy() {
     ] {
         let mut energies = Vec::new();
         let mut swing = (f64::INFINITY, f64::NEG_INFINITY);
-        simulate(&m, &mut SpringFourBar::workspace(), &mut DynIntegrator(integrator), 0.0, &q, &[0.0; 9], &times, &options, |s| {
-            energies.push(s.energy.kinetic + s.energy.potential);
-            swing = (swing.0.min(s.energy.kinetic), swing.1.max(s.energy.kinetic));
-        })
-        .unwrap();
+        Simulation::new(&m, &mut DynIntegrator(integrator))
+            .start(0.0, &q, &[0.0; 9])
+            .times(&times)
+            .options(options)
+            .run(&mut SpringFourBar::workspace(), |s| {
+                energies.push(s.energy.kinetic + s.energy.potential);
+                swing = (swing.0.min(s.energy.kinetic), swing.1.max(s.energy.kinetic));
+            })
+            .unwrap();
         let e0 = m.potential_energy(&q, 0.0);
         let drift = energies.iter().map(|e| (e - e0).abs()).fold(0.0, f64::max);
         let exchanged = swing.1 - swing.0;
@@ -266,11 +276,15 @@ fn the_energy_balance_holds_with_dampers_and_drivers() {
     let mut balances = Vec::new();
     let mut totals = Vec::new();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
-    simulate(&m, &mut DrivenCrank::workspace(), &mut dopri, 0.0, &q, &qd, &times, &options, |s| {
-        balances.push(s.energy.balance());
-        totals.push(s.energy.kinetic + s.energy.potential);
-    })
-    .unwrap();
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &qd)
+        .times(&times)
+        .options(options)
+        .run(&mut DrivenCrank::workspace(), |s| {
+            balances.push(s.energy.balance());
+            totals.push(s.energy.kinetic + s.energy.potential);
+        })
+        .unwrap();
     let spread = |v: &[f64]| v.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b)) - v.iter().fold(f64::INFINITY, |a, &b| a.min(b));
     eprintln!("T + V spread {} J, balance spread {:e} J", spread(&totals), spread(&balances));
     assert!(spread(&totals) > 1.0, "T + V changes: {}", spread(&totals));
@@ -288,18 +302,12 @@ fn partitioning_and_projection_agree() {
     let run = |correction| {
         let options = SimulationOptions::default().with_correction(correction).with_dynamics(DynamicsOptions::without_stabilization());
         let mut out = Vec::new();
-        simulate(
-            &m,
-            &mut SpringFourBar::workspace(),
-            &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-            0.0,
-            &q,
-            &[0.0; 9],
-            &[0.5, 1.0, 2.0],
-            &options,
-            |s| out.push(s.point),
-        )
-        .unwrap();
+        Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+            .start(0.0, &q, &[0.0; 9])
+            .times(&[0.5, 1.0, 2.0])
+            .options(options)
+            .run(&mut SpringFourBar::workspace(), |s| out.push(s.point))
+            .unwrap();
         out
     };
     let projected = run(Correction::projection());
@@ -357,40 +365,28 @@ fn partitioning_chooses_again_where_its_block_turns_singular() {
     let (mut worst_phi, mut worst_e, mut turned) = (0.0f64, 0.0f64, 0.0f64);
     let e0 = 0.5 * 6.0 * 6.0;
     let times: Vec<f64> = (1..=200).map(|k| 0.01 * k as f64).collect();
-    simulate(
-        &m,
-        &mut Bead::workspace(),
-        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-        0.0,
-        &m.initial_positions(),
-        &[0.0, 6.0, 0.0],
-        &times,
-        &options,
-        |s| {
+    Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &m.initial_positions(), &[0.0, 6.0, 0.0])
+        .times(&times)
+        .options(options)
+        .run(&mut Bead::workspace(), |s| {
             let (x, y) = (Bead::BEAD.x(&s.point.q), Bead::BEAD.y(&s.point.q));
             worst_phi = worst_phi.max((x * x + y * y - 1.0).abs());
             worst_e = worst_e.max((s.energy.kinetic + s.energy.potential - e0).abs());
             turned = turned.max(y.atan2(x).rem_euclid(std::f64::consts::TAU));
-        },
-    )
-    .expect("partitioning loops the circle");
+        })
+        .expect("partitioning loops the circle");
     eprintln!("bead: off the circle {worst_phi:.1e}, |ΔE| {worst_e:.1e} J");
     assert!(turned > 6.0, "it loops: turned up to {turned} rad");
     assert!(worst_phi < 1e-9, "off the circle by {worst_phi}");
     assert!(worst_e < 1e-6, "energy changed by {worst_e} J");
     let twice = TwiceBead::default();
-    let err = simulate(
-        &twice,
-        &mut TwiceBead::workspace(),
-        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-        0.0,
-        &twice.initial_positions(),
-        &[0.0; 3],
-        &[0.1],
-        &options,
-        |_| {},
-    )
-    .unwrap_err();
+    let err = Simulation::new(&twice, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &twice.initial_positions(), &[0.0; 3])
+        .times(&[0.1])
+        .options(options)
+        .run(&mut TwiceBead::workspace(), |_| {})
+        .unwrap_err();
     assert!(
         matches!(err, SimulationError::Dynamics(DynamicsError::DependentConstraint { row, .. }) if row.starts_with("constraint")),
         "{err:?}"
@@ -404,18 +400,12 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
     let m = StiffBlock::default();
     let q = m.initial_positions();
     let options = SimulationOptions::default();
-    let err = simulate(
-        &m,
-        &mut StiffBlock::workspace(),
-        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-        0.0,
-        &q,
-        &[0.0; 3],
-        &[2.0],
-        &options,
-        |_| {},
-    )
-    .unwrap_err();
+    let err = Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &q, &[0.0; 3])
+        .times(&[2.0])
+        .options(options)
+        .run(&mut StiffBlock::workspace(), |_| {})
+        .unwrap_err();
     // The blown-up state overflows the spring's force first (named), or reaches a coordinate.
     match err {
         SimulationError::NonFinite { coordinate, .. } => assert!(coordinate.starts_with("block."), "{coordinate}"),
@@ -426,7 +416,12 @@ fn stiffness_breaks_rk4_with_a_clear_error_and_not_generalized_alpha() {
     }
     let mut alpha = StiffBlock::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-3).with_rho_infinity(0.5));
     let mut last = [0.0; 3];
-    simulate(&m, &mut StiffBlock::workspace(), &mut alpha, 0.0, &q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
+    Simulation::new(&m, &mut alpha)
+        .start(0.0, &q, &[0.0; 3])
+        .times(&[2.0])
+        .options(options)
+        .run(&mut StiffBlock::workspace(), |s| last = s.point.q)
+        .unwrap();
     eprintln!("stiff block: RK4 {err}; generalized-α x(2 s) = {}", last[0]);
     // Released 1 mm from its free length; damped (c = 20 N·s/m and numerical damping) it rests at 0.1 m.
     assert!((last[0] - 0.1).abs() < 1e-4, "x = {}", last[0]);
@@ -446,7 +441,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         let s = solver.analyze(&driven, &mut DrivenCrank::workspace(), &guess, t).unwrap();
         guess = s.q;
         let mut lambda = [0.0; 9];
-        mbd::inverse_dynamics(&driven, &mut DrivenCrank::workspace(), &s.q, &s.v, &s.vd, t, &mut lambda).unwrap();
+        mbd::InverseDynamics::default().solve(&driven, &mut DrivenCrank::workspace(), &s.q, &s.v, &s.vd, t, &mut lambda).unwrap();
         // The driver row's multiplier: Φ = φ − f(t), Φ_q = +1 on φ, so Φ_qᵀλ = λ is the torque
         // the driver applies to the crank.
         lambda[8]
@@ -489,21 +484,15 @@ fn the_csv_writer_writes_every_sample_with_named_columns() {
     let mut buffer = Vec::new();
     let mut csv = CsvWriter::new::<DoublePendulum>(&mut buffer);
     let options = SimulationOptions::default();
-    simulate(
-        &m,
-        &mut DoublePendulum::workspace(),
-        &mut Rk4::new(Rk4Options::default().with_step(1e-2)),
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 6],
-        &times,
-        &options,
-        |s| {
+    Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-2)))
+        .start(0.0, &m.initial_positions(), &[0.0; 6])
+        .times(&times)
+        .options(options)
+        .run(&mut DoublePendulum::workspace(), |s| {
             csv.write(s);
             samples.push(*s);
-        },
-    )
-    .unwrap();
+        })
+        .unwrap();
     assert_eq!(csv.finish().unwrap(), 3);
     let text = String::from_utf8(buffer).unwrap();
     let lines: Vec<&str> = text.lines().collect();
@@ -565,18 +554,12 @@ fn a_correction_out_of_iterations_names_its_worst_row() {
         Correction::projection().with_tolerance(1e-10).with_max_iterations(0),
     ] {
         let options = SimulationOptions::default().with_correction(correction);
-        let err = simulate(
-            &m,
-            &mut DoublePendulum::workspace(),
-            &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-            0.0,
-            &q,
-            &[0.0; 6],
-            &[0.01],
-            &options,
-            |_| {},
-        )
-        .unwrap_err();
+        let err = Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+            .start(0.0, &q, &[0.0; 6])
+            .times(&[0.01])
+            .options(options)
+            .run(&mut DoublePendulum::workspace(), |_| {})
+            .unwrap_err();
         match err {
             SimulationError::NotConverged { t, worst_row, residual, .. } => {
                 assert_eq!(t, 0.0, "{correction:?}");
@@ -643,7 +626,12 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     ) -> [f64; 3] {
         let mut last = [0.0; 3];
         let options = SimulationOptions::default().with_correction(Correction::None);
-        simulate(m, &mut StiffPendulum::workspace(), integrator, 0.0, q, &[0.0; 3], &[2.0], &options, |s| last = s.point.q).unwrap();
+        Simulation::new(m, integrator)
+            .start(0.0, q, &[0.0; 3])
+            .times(&[2.0])
+            .options(options)
+            .run(&mut StiffPendulum::workspace(), |s| last = s.point.q)
+            .unwrap();
         last
     }
     let exact = run(&m, &q, &mut Dopri5::new(Dopri5Options::default().with_rtol(1e-11).with_atol(1e-13)));
@@ -675,25 +663,18 @@ fn the_output_callback_stops_a_run() {
     // A run whose callback stops at `stop` (s); the times it was given.
     let run = |stop: f64| {
         let mut seen = Vec::new();
-        let stats = simulate(
-            &m,
-            &mut DoublePendulum::workspace(),
-            &mut Dopri5::default(),
-            0.0,
-            &m.initial_positions(),
-            &[0.0; 6],
-            &times,
-            &SimulationOptions::default(),
-            |s| {
+        let stats = Simulation::new(&m, &mut Dopri5::default())
+            .start(0.0, &m.initial_positions(), &[0.0; 6])
+            .times(&times)
+            .run(&mut DoublePendulum::workspace(), |s| {
                 seen.push(s.point.t);
                 if s.point.t >= stop {
                     ControlFlow::Break(())
                 } else {
                     ControlFlow::Continue(())
                 }
-            },
-        )
-        .expect("runs");
+            })
+            .expect("runs");
         (stats, seen)
     };
     let (stats, seen) = run(0.25);
@@ -717,25 +698,21 @@ fn a_progress_bar_follows_a_run() {
     let run = |stop: f64| {
         let progress = Progress::over(&times).hidden();
         let mut seen = 0;
-        simulate(
-            &m,
-            &mut DoublePendulum::workspace(),
-            &mut Dopri5::default(),
-            0.0,
-            &m.initial_positions(),
-            &[0.0; 6],
-            &times,
-            &SimulationOptions::default(),
-            progress.track(|s| {
-                seen += 1;
-                if s.point.t >= stop {
-                    ControlFlow::Break(())
-                } else {
-                    ControlFlow::Continue(())
-                }
-            }),
-        )
-        .expect("runs");
+        Simulation::new(&m, &mut Dopri5::default())
+            .start(0.0, &m.initial_positions(), &[0.0; 6])
+            .times(&times)
+            .run(
+                &mut DoublePendulum::workspace(),
+                progress.track(|s| {
+                    seen += 1;
+                    if s.point.t >= stop {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                }),
+            )
+            .expect("runs");
         (progress.fraction(), seen)
     };
     assert_eq!(run(f64::INFINITY), (1.0, 101));

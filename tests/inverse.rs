@@ -21,7 +21,7 @@ fn solve(m: &DrivenRod, t: f64) -> ([f64; 3], [[f64; 3]; 3], [f64; 3]) {
     solver.assemble(m, &mut ws, &mut q, t).expect("assembles");
     let state = solver.analyze(m, &mut ws, &q, t).expect("analysis");
     let mut lambda = [0.0; 3];
-    inverse_dynamics(m, &mut ws, &state.q, &state.v, &state.vd, t, &mut lambda).expect("inverse dynamics");
+    InverseDynamics::default().solve(m, &mut ws, &state.q, &state.v, &state.vd, t, &mut lambda).expect("inverse dynamics");
     // The work space holds D(q, t) after inverse dynamics, exactly the generated Jacobian's.
     let mut d = [[0.0; 3]; 3];
     m.jacobian(&state.q, t, &mut d);
@@ -93,7 +93,7 @@ fn inverse_dynamics_sweep_to_csv() {
         .sweep(&m, &mut ws, &mut q, &times, |t, q, v, vd| {
             progress.inc();
             let mut lambda = [0.0; 3];
-            inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).expect("inverse dynamics");
+            InverseDynamics::default().solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).expect("inverse dynamics");
             csv.write_state(t, q, v, vd, &lambda);
             torques.push(lambda[2]);
             if t >= 0.5 {

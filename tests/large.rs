@@ -85,19 +85,36 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
                 assert!(worst < 1e-6, "{name}, {correction:?}: ‖Φ‖∞ = {worst:e}");
             };
             let mut last = [0.0; 360];
-            simulate(&m, &mut ws, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, &q, &[0.0; 360], &times, &options, |s| {
-                last = s.point.q
-            })
-            .expect("RK4");
+            Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("RK4");
             check("RK4", &last);
             let mut dopri = Dopri5::new(Dopri5Options::default());
-            simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOPRI5");
+            Simulation::new(&m, &mut dopri)
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("DOPRI5");
             check("DOPRI5", &last);
             let mut dop853 = Dop853::new(Dop853Options::default());
-            simulate(&m, &mut ws, &mut dop853, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("DOP853");
+            Simulation::new(&m, &mut dop853)
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("DOP853");
             check("DOP853", &last);
             let mut alpha = Chain120::generalized_alpha(GeneralizedAlphaOptions::default().with_step(2.5e-3));
-            simulate(&m, &mut ws, &mut alpha, 0.0, &q, &[0.0; 360], &times, &options, |s| last = s.point.q).expect("generalized-α");
+            Simulation::new(&m, &mut alpha)
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("generalized-α");
             check("generalized-α", &last);
         }
     });
@@ -201,14 +218,34 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
             assert!(worst < 1e-8, "{name}: ‖Φ‖∞ = {worst:e}");
         };
         let mut last = [0.0; Ladder201::NQ];
-        simulate(&m, &mut ws, &mut Rk4::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("RK4");
+        Simulation::new(&m, &mut Rk4::default())
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("RK4");
         check("RK4", &last);
-        simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("DOPRI5");
+        Simulation::new(&m, &mut Dopri5::default())
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("DOPRI5");
         check("DOPRI5", &last);
-        simulate(&m, &mut ws, &mut Dop853::default(), 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("DOP853");
+        Simulation::new(&m, &mut Dop853::default())
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("DOP853");
         check("DOP853", &last);
         let mut alpha = Ladder201::generalized_alpha(GeneralizedAlphaOptions::default());
-        simulate(&m, &mut ws, &mut alpha, 0.0, &q, &v0, &times, &options, |s| last = s.point.q).expect("generalized-α");
+        Simulation::new(&m, &mut alpha)
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("generalized-α");
         check("generalized-α", &last);
         eprintln!("integrators: {:.1} s", clock.elapsed().as_secs_f64());
         // Statics from the sheared ladder: it swings back and hangs with its rails vertical, every rung level

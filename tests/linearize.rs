@@ -4,7 +4,7 @@
 //! spinning about each principal axis; and the exact linearization against central differences
 //! of the forward dynamics, about equilibria and about moving states, planar and spatial.
 use mbd::prelude::*;
-use mbd::{linearize, linearize_finite_differences, LinearStability, Linearization, LinearizeOptions, Output};
+use mbd::{LinearStability, Linearization, LinearizeOptions, Linearizer, Output};
 
 const G: f64 = 9.81;
 
@@ -134,7 +134,7 @@ fn pendulum_small_oscillation_and_upright_instability() {
     let m = Pendulum::default();
     let omega = (2.0 * G * 0.5 / (0.25 + 2.0 * 0.25_f64)).sqrt();
     let q = m.initial_positions();
-    let lin = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default()).expect("linearizes");
+    let lin = Linearizer::default().linearize(&m, &q, &[0.0; 3], 0.0).expect("linearizes");
     assert_eq!(lin.dof(), 1);
     let modes = lin.modes();
     assert_eq!(modes.len(), 1);
@@ -147,7 +147,7 @@ fn pendulum_small_oscillation_and_upright_instability() {
 
     // Upright: s = +ω, unstable along the swing.
     let q_up = [0.0, 0.5, std::f64::consts::FRAC_PI_2];
-    let up = linearize(&m, &q_up, &[0.0; 3], 0.0, &LinearizeOptions::default()).expect("linearizes");
+    let up = Linearizer::default().linearize(&m, &q_up, &[0.0; 3], 0.0).expect("linearizes");
     match up.stability() {
         LinearStability::Unstable { growth, .. } => assert!(close(growth, omega, 1e-12), "growth {growth} vs {omega}"),
         other => panic!("the upright pendulum is unstable, got {other:?}"),
@@ -161,7 +161,7 @@ fn mass_spring_damper_frequency_damping_and_gain() {
     let m = Oscillator::default();
     let q = m.initial_positions();
     let options = LinearizeOptions::default().with_inputs(&["push"]).with_output(Output::Displacement("block.x"));
-    let lin = linearize(&m, &q, &[0.0; 3], 0.0, &options).expect("linearizes");
+    let lin = Linearizer::new(options).linearize(&m, &q, &[0.0; 3], 0.0).expect("linearizes");
     assert_eq!(lin.state_names, ["block.x", "block.x_dot"]);
     let (k, c, mass) = (400.0, 6.0, 2.5);
     let modes = lin.modes();
@@ -182,7 +182,7 @@ fn mass_spring_damper_frequency_damping_and_gain() {
 fn double_pendulum_normal_modes() {
     let m = DoublePendulum::default();
     let q = m.initial_positions();
-    let lin = linearize(&m, &q, &[0.0; 6], 0.0, &LinearizeOptions::default()).expect("linearizes");
+    let lin = Linearizer::default().linearize(&m, &q, &[0.0; 6], 0.0).expect("linearizes");
     let (m1, m2, l1, c1, c2, j1, j2) = (1.0, 0.5, 1.0, 0.5, 0.4, 1.0 / 12.0, 0.5 * 0.64 / 12.0);
     let mm = [[j1 + m1 * c1 * c1 + m2 * l1 * l1, m2 * l1 * c2], [m2 * l1 * c2, j2 + m2 * c2 * c2]];
     let kk = [(m1 * c1 + m2 * l1) * G, m2 * c2 * G];
@@ -213,7 +213,7 @@ fn four_bar_on_a_torsion_spring_against_its_one_dof_model() {
     let mut ws = SprungFourBar::workspace();
     let mut lambda = [0.0; 8];
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("equilibrium");
-    let lin = linearize(&m, &q, &[0.0; 9], 0.0, &LinearizeOptions::default()).expect("linearizes");
+    let lin = Linearizer::default().linearize(&m, &q, &[0.0; 9], 0.0).expect("linearizes");
     // Closed form at the crank angle θ₂ the solver found.
     let (a, b, c, d) = (0.3, 0.8, 0.6, 0.7);
     let t2 = q[2];
@@ -259,7 +259,7 @@ fn free_body_spin_about_each_principal_axis() {
             _ => m.wz = w0,
         }
         let (q, v) = (m.initial_positions(), m.initial_velocities());
-        let lin = linearize(&m, &q, &v, 0.0, &LinearizeOptions::default()).expect("linearizes");
+        let lin = Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
         assert_eq!(lin.dof(), 6);
         let (i, k) = ((axis + 1) % 3, (axis + 2) % 3);
         // λ² = ω₀² (J_a − J_k)(J_i − J_a)/(J_i J_k)
@@ -308,8 +308,8 @@ fn exact_against_finite_differences_at_equilibria() {
             .with_output(Output::Multiplier("translational ground~block: normal"))
     };
     let q = m.initial_positions();
-    let exact = linearize(&m, &q, &[0.0; 3], 0.0, &options()).expect("exact");
-    let fd = linearize_finite_differences(&m, &q, &[0.0; 3], 0.0, &options()).expect("differences");
+    let exact = Linearizer::new(options()).linearize(&m, &q, &[0.0; 3], 0.0).expect("exact");
+    let fd = Linearizer::new(options()).finite_differences(&m, &q, &[0.0; 3], 0.0).expect("differences");
     agree("oscillator", &exact, &fd);
 
     let m = SprungFourBar::default();
@@ -317,8 +317,8 @@ fn exact_against_finite_differences_at_equilibria() {
     let mut ws = SprungFourBar::workspace();
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; 8]).expect("equilibrium");
     let options = || LinearizeOptions::default().with_output(Output::Multiplier(SprungFourBar::CONSTRAINT_NAMES[6]));
-    let exact = linearize(&m, &q, &[0.0; 9], 0.0, &options()).expect("exact");
-    let fd = linearize_finite_differences(&m, &q, &[0.0; 9], 0.0, &options()).expect("differences");
+    let exact = Linearizer::new(options()).linearize(&m, &q, &[0.0; 9], 0.0).expect("exact");
+    let fd = Linearizer::new(options()).finite_differences(&m, &q, &[0.0; 9], 0.0).expect("differences");
     agree("four-bar", &exact, &fd);
 }
 
@@ -342,24 +342,20 @@ fn exact_against_finite_differences_at_moving_states() {
             .with_output(Output::rate("rod.B y", |q, v| DrivenSliderCrank::default().rod_b().velocity(q, v).y))
     };
     assert!((q[2] - 0.7).abs() < 0.01 && q[6] > 0.3, "assembled off the dead centres: {q:?}");
-    let exact = linearize(&m, &q, &v, 0.0, &options()).expect("exact");
+    let exact = Linearizer::new(options()).linearize(&m, &q, &v, 0.0).expect("exact");
     assert_eq!(exact.state_names, ["crank.phi", "crank.phi_dot"]);
     assert!(exact.d.amax() > 1.0 && exact.a[(1, 1)] != 0.0, "every term in play: D {} A {}", exact.d, exact.a);
-    let fd = linearize_finite_differences(&m, &q, &v, 0.0, &options()).expect("differences");
+    let fd = Linearizer::new(options()).finite_differences(&m, &q, &v, 0.0).expect("differences");
     agree("slider-crank at 8 rad/s", &exact, &fd);
 
     let m = SpinningTop::default();
     let (q, v) = (m.initial_positions(), m.initial_velocities());
-    let exact = linearize(&m, &q, &v, 0.0, &LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])))
+    let exact = Linearizer::new(LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])))
+        .linearize(&m, &q, &v, 0.0)
         .expect("exact");
-    let fd = linearize_finite_differences(
-        &m,
-        &q,
-        &v,
-        0.0,
-        &LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])),
-    )
-    .expect("differences");
+    let fd = Linearizer::new(LinearizeOptions::default().with_output(Output::Multiplier(SpinningTop::CONSTRAINT_NAMES[2])))
+        .finite_differences(&m, &q, &v, 0.0)
+        .expect("differences");
     agree("spinning top", &exact, &fd);
 }
 
@@ -373,14 +369,14 @@ fn driver_acceleration_as_input() {
     let m = ShakenPendulum::default();
     let (q, v) = (m.initial_positions(), m.initial_velocities());
     let options = || LinearizeOptions::default().with_inputs(&["carriage"]).with_output(Output::Multiplier("carriage: x"));
-    let lin = linearize(&m, &q, &v, 0.0, &options()).expect("linearizes");
+    let lin = Linearizer::new(options()).linearize(&m, &q, &v, 0.0).expect("linearizes");
     assert_eq!(lin.state_names, ["rod.phi", "rod.phi_dot"]);
     let (mass, c, j) = (2.0, 0.5, 0.25);
     let jo = j + mass * c * c;
     assert!(close(-lin.a[(1, 0)], mass * G * c / jo, 1e-12), "{}", lin.a);
     assert!(close(lin.b[(1, 0)], -mass * c / jo, 1e-12), "{}", lin.b);
     assert!(close(lin.d[(0, 0)], 3.0 + mass - (mass * c).powi(2) / jo, 1e-12), "{}", lin.d);
-    let fd = linearize_finite_differences(&m, &q, &v, 0.0, &options()).expect("differences");
+    let fd = Linearizer::new(options()).finite_differences(&m, &q, &v, 0.0).expect("differences");
     agree("shaken pendulum", &lin, &fd);
 }
 
@@ -389,21 +385,24 @@ fn driver_acceleration_as_input() {
 #[test]
 fn errors_name_what_is_wrong() {
     let m = Pendulum::default();
-    let e = linearize(&m, &[0.0, 0.0, 0.0], &[0.0; 3], 0.0, &LinearizeOptions::default()).unwrap_err();
+    let e = Linearizer::default().linearize(&m, &[0.0, 0.0, 0.0], &[0.0; 3], 0.0).unwrap_err();
     assert!(e.to_string().contains("`pin: x`"), "{e}");
     let q = m.initial_positions();
-    let e = linearize(&m, &q, &[1.0, 0.0, 0.0], 0.0, &LinearizeOptions::default()).unwrap_err();
+    let e = Linearizer::default().linearize(&m, &q, &[1.0, 0.0, 0.0], 0.0).unwrap_err();
     assert!(e.to_string().contains("velocities violate"), "{e}");
-    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().with_inputs(&["motor"])).unwrap_err();
+    let e = Linearizer::new(LinearizeOptions::default().with_inputs(&["motor"])).linearize(&m, &q, &[0.0; 3], 0.0).unwrap_err();
     assert!(e.to_string().contains("unknown input `motor`"), "{e}");
     // A parameter that also sets the geometry is not an input.
     assert_eq!(LongRod::INPUTS, ["push"]);
     let rod = LongRod::default();
-    let e = linearize(&rod, &rod.initial_positions(), &[0.0; 3], 0.0, &LinearizeOptions::default().with_inputs(&["len"])).unwrap_err();
+    let e = Linearizer::new(LinearizeOptions::default().with_inputs(&["len"]))
+        .linearize(&rod, &rod.initial_positions(), &[0.0; 3], 0.0)
+        .unwrap_err();
     assert!(e.to_string().contains("unknown input (a parameter that also sets the geometry, the masses or friction) `len`"), "{e}");
-    let e = linearize(&ShakenPendulum::default(), &[0.0; 6], &[0.0; 6], 0.0, &LinearizeOptions::default()).unwrap_err();
+    let e = Linearizer::default().linearize(&ShakenPendulum::default(), &[0.0; 6], &[0.0; 6], 0.0).unwrap_err();
     assert!(e.to_string().contains("not assembled"), "{e}");
-    let e = linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default().with_independent(&["rod.x", "rod.y"])).unwrap_err();
+    let e =
+        Linearizer::new(LinearizeOptions::default().with_independent(&["rod.x", "rod.y"])).linearize(&m, &q, &[0.0; 3], 0.0).unwrap_err();
     assert!(e.to_string().contains("2 named, but the mechanism has 1 degrees of freedom"), "{e}");
 }
 
@@ -412,7 +411,7 @@ fn errors_name_what_is_wrong() {
 fn export_with_names() {
     let m = Oscillator::default();
     let options = LinearizeOptions::default().with_inputs(&["push"]).with_output(Output::Displacement("block.x"));
-    let lin = linearize(&m, &m.initial_positions(), &[0.0; 3], 0.0, &options).expect("linearizes");
+    let lin = Linearizer::new(options).linearize(&m, &m.initial_positions(), &[0.0; 3], 0.0).expect("linearizes");
     let dir = std::env::temp_dir().join(format!("mbd-linearize-{}", std::process::id()));
     lin.write_csv(&dir).expect("writes");
     let a = std::fs::read_to_string(dir.join("A.csv")).expect("A.csv");

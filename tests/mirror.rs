@@ -81,7 +81,7 @@ where
     m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).expect("velocities on the constraints");
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut last = (q, v);
-    simulate(m, ws, &mut dopri, 0.0, &q, &v, &[0.5], &SimulationOptions::default(), |s| last = (s.point.q, s.point.v)).expect("runs");
+    Simulation::new(m, &mut dopri).start(0.0, &q, &v).times(&[0.5]).run(ws, |s| last = (s.point.q, s.point.v)).expect("runs");
     last
 }
 

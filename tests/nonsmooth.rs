@@ -1,10 +1,7 @@
 //! Non-smooth models: unilateral contact with located switches, user events, and the kinks'
 //! derivatives at exactly the kink.
 
-use mbd::{
-    simulate, simulate_with_events, Dopri5, Dopri5Options, Dynamics, Event, EventHit, Kinematics, Mechanism, Rk4, Rk4Options,
-    SimulationOptions,
-};
+use mbd::{Dopri5, Dopri5Options, Dynamics, Event, EventHit, Kinematics, Mechanism, Rk4, Rk4Options, Simulation, SimulationOptions};
 
 mbd::mechanism! {
     /// A ball of radius 0.1 m dropped from a height of 1 m onto a stiff, undamped linear contact.
@@ -54,17 +51,20 @@ fn a_ball_bounces_at_the_closed_form_instants() {
     let e0 = m.potential_energy(&q0, 0.0);
     let times: Vec<f64> = (1..=200).map(|i| 0.01 * i as f64).collect();
     let (mut hits, mut worst_energy, mut rebound) = (Vec::new(), 0.0f64, 0.0);
-    let stats = simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
-        worst_energy = worst_energy.max((s.energy.kinetic + s.energy.potential - e0).abs());
-        if let Some(which) = s.event {
-            assert_eq!(which, EventHit::Switch(0));
-            hits.push(s.point.t);
-            if hits.len() == 2 {
-                rebound = s.point.v[1];
+    let stats = Simulation::new(&m, &mut dopri)
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&times)
+        .run(&mut ws, |s| {
+            worst_energy = worst_energy.max((s.energy.kinetic + s.energy.potential - e0).abs());
+            if let Some(which) = s.event {
+                assert_eq!(which, EventHit::Switch(0));
+                hits.push(s.point.t);
+                if hits.len() == 2 {
+                    rebound = s.point.v[1];
+                }
             }
-        }
-    })
-    .expect("the ball bounces");
+        })
+        .expect("the ball bounces");
     eprintln!("switches at {hits:?} (closed form {t1}, {t2}), rebound {rebound} (impact {v0}), |ΔE| {worst_energy:e} J, {stats:?}");
     assert_eq!(Ball::SWITCH_NAMES, ["floor"]);
     assert_eq!(hits.len(), 4, "two bounces in 2 s: {hits:?}");
@@ -93,26 +93,21 @@ fn landing_on_the_switches_keeps_a_coarse_step_right() {
     let at_half = |options: &SimulationOptions<f64>, h: f64| {
         let mut ws = DampedBall::workspace();
         let mut v = 0.0;
-        simulate(
-            &m,
-            &mut ws,
-            &mut Rk4::new(Rk4Options::default().with_step(h)),
-            0.0,
-            &m.initial_positions(),
-            &[0.0; 3],
-            &[0.5],
-            options,
-            |s| v = s.point.v[1],
-        )
-        .expect("bounces");
+        Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(h)))
+            .start(0.0, &m.initial_positions(), &[0.0; 3])
+            .times(&[0.5])
+            .options(*options)
+            .run(&mut ws, |s| v = s.point.v[1])
+            .expect("bounces");
         v
     };
     let mut ws = DampedBall::workspace();
     let mut exact = 0.0;
-    simulate(&m, &mut ws, &mut reference, 0.0, &m.initial_positions(), &[0.0; 3], &[0.5], &SimulationOptions::default(), |s| {
-        exact = s.point.v[1]
-    })
-    .expect("bounces");
+    Simulation::new(&m, &mut reference)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[0.5])
+        .run(&mut ws, |s| exact = s.point.v[1])
+        .expect("bounces");
     for h in [5e-4, 2e-4, 1e-4, 5e-5] {
         let located = (run(&mut |o| at_half(o, h), true) - exact).abs();
         let smeared = (run(&mut |o| at_half(o, h), false) - exact).abs();
@@ -129,19 +124,12 @@ fn a_users_event_stops_the_run_at_its_instant() {
     let mut dopri = Dopri5::new(Dopri5Options::default());
     let mut last = (0.0, None);
     let mut events = [Event { function: &mut |_t: f64, q: &[f64; 3], _v: &[f64; 3]| q[1] - 0.5, stop: true }];
-    let stats = simulate_with_events(
-        &m,
-        &mut ws,
-        &mut dopri,
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 3],
-        &[1.0, 2.0],
-        &SimulationOptions::default(),
-        &mut events,
-        |s| last = (s.point.t, s.event),
-    )
-    .expect("the ball falls");
+    let stats = Simulation::new(&m, &mut dopri)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[1.0, 2.0])
+        .events(&mut events)
+        .run(&mut ws, |s| last = (s.point.t, s.event))
+        .expect("the ball falls");
     let expected = (2.0 * 0.5 / G).sqrt();
     assert_eq!(stats.stopped_by, Some(EventHit::User(0)));
     assert_eq!(last.1, Some(EventHit::User(0)), "the last sample is the event's");
@@ -216,13 +204,17 @@ fn a_particle_pendulum_swings_with_the_simple_pendulums_period() {
     let mut tension_at_bottom = 0.0;
     // θ = 0 crossings: the user event x = 0 (recorded, not stopping).
     let mut events = [Event { function: &mut |_t: f64, q: &[f64; 3], _v: &[f64; 3]| q[0], stop: false }];
-    simulate_with_events(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 3], &[4.5], &SimulationOptions::default(), &mut events, |s| {
-        if s.event.is_some() {
-            crossings.push(s.point.t);
-            tension_at_bottom = -s.point.lambda[0];
-        }
-    })
-    .expect("swings");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 3])
+        .times(&[4.5])
+        .events(&mut events)
+        .run(&mut ws, |s| {
+            if s.event.is_some() {
+                crossings.push(s.point.t);
+                tension_at_bottom = -s.point.lambda[0];
+            }
+        })
+        .expect("swings");
     let (l, g): (f64, f64) = (1.2, 9.81);
     let period = simple_pendulum_period(theta0);
     assert!(crossings.len() >= 3, "{crossings:?}");
@@ -246,13 +238,17 @@ fn a_spatial_particle_pendulum_swings_with_the_same_period() {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
     let (mut crossings, mut off_plane) = (Vec::new(), 0.0f64);
     let mut events = [Event { function: &mut |_t: f64, q: &[f64; 7], _v: &[f64; 6]| q[0], stop: false }];
-    simulate_with_events(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &[4.5], &SimulationOptions::default(), &mut events, |s| {
-        off_plane = off_plane.max(s.point.q[1].abs());
-        if s.event.is_some() {
-            crossings.push(s.point.t);
-        }
-    })
-    .expect("swings");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 6])
+        .times(&[4.5])
+        .events(&mut events)
+        .run(&mut ws, |s| {
+            off_plane = off_plane.max(s.point.q[1].abs());
+            if s.event.is_some() {
+                crossings.push(s.point.t);
+            }
+        })
+        .expect("swings");
     let period = simple_pendulum_period(theta0);
     assert!(crossings.len() >= 3, "{crossings:?}");
     let measured = crossings[2] - crossings[0];
@@ -291,13 +287,17 @@ fn a_rope_on_a_floor_runs_through_its_many_switches() {
     let mut dopri = Dopri5::new(Dopri5Options::default());
     let options = SimulationOptions::default().with_max_steps(200_000);
     let (mut lowest, mut energy) = (f64::INFINITY, Vec::new());
-    let stats = simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 30], &[0.25, 0.5, 0.75, 1.0], &options, |s| {
-        lowest = (0..10).fold(lowest, |l, i| l.min(s.point.q[3 * i + 1]));
-        if s.event.is_none() {
-            energy.push(s.energy.kinetic + s.energy.potential);
-        }
-    })
-    .expect("the rope falls and settles");
+    let stats = Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 30])
+        .times(&[0.25, 0.5, 0.75, 1.0])
+        .options(options)
+        .run(&mut ws, |s| {
+            lowest = (0..10).fold(lowest, |l, i| l.min(s.point.q[3 * i + 1]));
+            if s.event.is_none() {
+                energy.push(s.energy.kinetic + s.energy.potential);
+            }
+        })
+        .expect("the rope falls and settles");
     eprintln!("{stats:?}, lowest bead {lowest} m, T + V {energy:?}");
     assert!(stats.events > 50, "{stats:?}");
     assert!(lowest > -2e-2, "a bead went {lowest} m into the floor");

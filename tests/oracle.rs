@@ -350,7 +350,7 @@ fn kinematics_match_casadi_reference_trajectories() {
 /// the cross-check of the work-precision study's reference runs.
 #[test]
 fn dop853_agrees_with_casadi_cvodes_on_the_pendulum_chain() {
-    use mbd::{simulate, Correction, Dop853, Dop853Options, DynamicsOptions, Mechanism, SimulationOptions};
+    use mbd::{Correction, Dop853, Dop853Options, DynamicsOptions, Mechanism, Simulation, SimulationOptions};
     let py = python();
     let m = pendulum_chain16::PendulumChain16::default();
     let q0 = m.initial_positions();
@@ -358,10 +358,12 @@ fn dop853_agrees_with_casadi_cvodes_on_the_pendulum_chain() {
     let options = SimulationOptions::default().with_dynamics(DynamicsOptions::without_stabilization()).with_correction(Correction::None);
     let mut q = [0.0; 48];
     let mut dop = Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-14));
-    simulate(&m, &mut pendulum_chain16::PendulumChain16::workspace(), &mut dop, 0.0, &q0, &[0.0; 48], &[t_end], &options, |s| {
-        q = s.point.q
-    })
-    .expect("DOP853 runs");
+    Simulation::new(&m, &mut dop)
+        .start(0.0, &q0, &[0.0; 48])
+        .times(&[t_end])
+        .options(options)
+        .run(&mut pendulum_chain16::PendulumChain16::workspace(), |s| q = s.point.q)
+        .expect("DOP853 runs");
 
     let dir = repo().join("target/oracle/integrate");
     std::fs::create_dir_all(&dir).unwrap();

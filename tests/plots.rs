@@ -19,18 +19,11 @@ fn run() -> Vec<Sample<f64, 3, 3, 2>> {
     let m = Swing::default();
     let times: Vec<f64> = (1..=200).map(|k| 0.01 * k as f64).collect();
     let mut samples = Vec::new();
-    simulate(
-        &m,
-        &mut Swing::workspace(),
-        &mut mbd::Dopri5::default(),
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 3],
-        &times,
-        &SimulationOptions::default(),
-        |s| samples.push(*s),
-    )
-    .expect("swings");
+    Simulation::new(&m, &mut mbd::Dopri5::default())
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&times)
+        .run(&mut Swing::workspace(), |s| samples.push(*s))
+        .expect("swings");
     samples
 }
 

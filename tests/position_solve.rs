@@ -127,7 +127,8 @@ where
         kinematic = kinematic.max(relative_difference(&state.v, &v)).max(relative_difference(&state.vd, &vd));
 
         let mut lambda = [0.0; NC];
-        inverse_dynamics(m, &mut ws, &state.q, &state.v, &state.vd, t, &mut lambda)
+        InverseDynamics::default()
+            .solve(m, &mut ws, &state.q, &state.v, &state.vd, t, &mut lambda)
             .unwrap_or_else(|e| panic!("{} at t = {t}: {e}", M::NAME));
         let (mut h, mut inertia) = ([0.0; NQ], [0.0; NQ]);
         m.forces(&state.q, &state.v, t, &mut h);

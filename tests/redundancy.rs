@@ -178,22 +178,26 @@ fn third_crank_moves_as_one_degree_of_freedom() {
     let options = SimulationOptions::default();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut k = 0;
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 12], &times, &options, |s| {
-        let q = &s.point.q;
-        let (t, theta) = exact[k];
-        assert_eq!(s.point.t, t);
-        let [a, b, c] = [ThreeCranks::C1.phi(q), ThreeCranks::C2.phi(q), ThreeCranks::C3.phi(q)];
-        assert!((a - theta).abs() < 1e-9, "t = {t}: θ₁ = {a}, 1-DOF {theta}");
-        eprintln!("t = {t}: |θ₁ − θ| = {:.1e} rad, cranks differ by {:.1e} rad", (a - theta).abs(), (a - b).abs().max((a - c).abs()));
-        assert!((a - b).abs() < 1e-12 && (a - c).abs() < 1e-12, "t = {t}: cranks {a} {b} {c}");
-        assert!(ThreeCranks::COUPLER.phi(q).abs() < 1e-9, "the coupler translates");
-        // The rule for the reactions: the dropped row carries no load (here the same row the
-        // report names, the last one, `third: y`; its pivot is rounding, weighted by < 1e-64);
-        // the others carry all of it (~40 N).
-        assert!(s.point.lambda[11].abs() < 1e-12, "t = {t}: λ = {:?}", s.point.lambda);
-        k += 1;
-    })
-    .expect("the redundant row is dropped, not an error");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 12])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| {
+            let q = &s.point.q;
+            let (t, theta) = exact[k];
+            assert_eq!(s.point.t, t);
+            let [a, b, c] = [ThreeCranks::C1.phi(q), ThreeCranks::C2.phi(q), ThreeCranks::C3.phi(q)];
+            assert!((a - theta).abs() < 1e-9, "t = {t}: θ₁ = {a}, 1-DOF {theta}");
+            eprintln!("t = {t}: |θ₁ − θ| = {:.1e} rad, cranks differ by {:.1e} rad", (a - theta).abs(), (a - b).abs().max((a - c).abs()));
+            assert!((a - b).abs() < 1e-12 && (a - c).abs() < 1e-12, "t = {t}: cranks {a} {b} {c}");
+            assert!(ThreeCranks::COUPLER.phi(q).abs() < 1e-9, "the coupler translates");
+            // The rule for the reactions: the dropped row carries no load (here the same row the
+            // report names, the last one, `third: y`; its pivot is rounding, weighted by < 1e-64);
+            // the others carry all of it (~40 N).
+            assert!(s.point.lambda[11].abs() < 1e-12, "t = {t}: λ = {:?}", s.point.lambda);
+            k += 1;
+        })
+        .expect("the redundant row is dropped, not an error");
     assert_eq!(k, times.len());
 }
 
@@ -293,7 +297,9 @@ fn a_driven_redundant_mechanism_sweeps_and_gives_its_driver_torque() {
             let coupler = DrivenThreeCranks::COUPLER;
             assert!(coupler.omega(v).abs() < 1e-9 && (coupler.velocity(v).norm() - 0.3).abs() < 1e-9, "the coupler translates at r ω");
             let mut lambda = [0.0; 13];
-            inverse_dynamics(&m, &mut inverse_ws, q, v, vd, t, &mut lambda).expect("redundant rows are dropped, not an error");
+            InverseDynamics::default()
+                .solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda)
+                .expect("redundant rows are dropped, not an error");
             let expected = 9.81 * (3.0 * 0.15 + 2.0 * 0.3) * theta.cos();
             let motor = joint_reaction(&m, q, inverse_ws.jacobian(), &lambda, DrivenThreeCranks::MOTOR).and_then(|j| j.on_i).unwrap();
             // the driver's moment on the crank is the drive torque, holding it against gravity
@@ -349,8 +355,8 @@ fn redundant_rows_that_leave_a_velocity_free_are_named() {
     let mut v = [0.0; 3];
     let err = KinematicSolver::default().solve_velocity(&m, &mut ws, &q, 0.0, &mut v).unwrap_err();
     assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
-    let err = inverse_dynamics(&m, &mut ws, &q, &[0.0; 3], &[0.0; 3], 0.0, &mut [0.0; 4]).unwrap_err();
-    assert!(matches!(err, KinematicError::SingularJacobian { coordinate: "slider.x", .. }), "{err:?}");
+    let err = InverseDynamics::default().solve(&m, &mut ws, &q, &[0.0; 3], &[0.0; 3], 0.0, &mut [0.0; 4]).unwrap_err();
+    assert!(matches!(err, InverseDynamicsError::SingularJacobian { velocity: "slider.x", .. }), "{err:?}");
     // The position solve meets Φ = 0 (the slider is on both guides) but the position along them
     // is not determined either.
     let mut q = m.initial_positions();

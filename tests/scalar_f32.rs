@@ -87,10 +87,11 @@ fn f32_simulations_run_with_the_default_options() {
         let times64: Vec<f64> = times.iter().map(|&t| t as f64).collect();
         let mut out = Vec::new();
         let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-12));
-        simulate(&m64, &mut FreeSliderCrank::workspace(), &mut dopri, 0.0, &q64, &[0.0; 9], &times64, &SimulationOptions::default(), |s| {
-            out.push(FreeSliderCrank::CRANK.phi(&s.point.q))
-        })
-        .unwrap();
+        Simulation::new(&m64, &mut dopri)
+            .start(0.0, &q64, &[0.0; 9])
+            .times(&times64)
+            .run(&mut FreeSliderCrank::workspace(), |s| out.push(FreeSliderCrank::CRANK.phi(&s.point.q)))
+            .unwrap();
         out
     };
     let run = |name: &str, outcome: Result<(f32, f64), SimulationError>| {
@@ -120,7 +121,7 @@ fn run32<I: Integrator<f32, FreeSliderCrank32, 9, 9, 8, 17, { FreeSliderCrank32:
     reference: &[f64],
 ) -> Result<(f32, f64), SimulationError> {
     let (mut worst_phi, mut worst_angle, mut k) = (0.0f32, 0.0f64, 0);
-    simulate(m, ws, integrator, 0.0, q, &[0.0; 9], times, &SimulationOptions::default(), |s| {
+    Simulation::new(m, integrator).start(0.0, q, &[0.0; 9]).times(times).run(ws, |s| {
         let mut phi = [0.0f32; 8];
         m.constraints(&s.point.q, s.point.t, &mut phi);
         worst_phi = phi.iter().fold(worst_phi, |a, x| a.max(x.abs()));

@@ -35,10 +35,11 @@ fn run<M: ForwardDynamics<f64, 9, 9, 8>>(m: &M) -> [f64; 9] {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut last = q;
     let v0 = m.initial_velocities();
-    simulate(m, &mut Workspace::<f64, 9, 8, 17>::new(), &mut dopri, 0.0, &q, &v0, &[0.5], &SimulationOptions::default(), |s| {
-        last = s.point.q
-    })
-    .expect("runs");
+    Simulation::new(m, &mut dopri)
+        .start(0.0, &q, &v0)
+        .times(&[0.5])
+        .run(&mut Workspace::<f64, 9, 8, 17>::new(), |s| last = s.point.q)
+        .expect("runs");
     last
 }
 
@@ -225,7 +226,7 @@ fn a_scene_actuating_its_drivers_follows_the_motion_inverse_dynamics_gives_its_f
         let s = solver.analyze(&driven, &mut ws, &guess, t).expect("driven");
         guess = s.q;
         let mut lambda = [0.0; 12];
-        inverse_dynamics(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut lambda).expect("inverse dynamics");
+        InverseDynamics::default().solve(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut lambda).expect("inverse dynamics");
         let force = |joint: usize| lambda[Driven::JOINTS[joint].row_range()][0];
         let free = Actuated {
             a_turn_force: force(Driven::A_TURN),
@@ -266,7 +267,7 @@ fn a_spatial_scene_actuating_its_drivers_follows_the_driven_motion() {
         let s = solver.analyze(&driven, &mut ws, &guess, t).expect("driven");
         guess = s.q;
         let mut lambda = [0.0; 12];
-        inverse_dynamics(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut lambda).expect("inverse dynamics");
+        InverseDynamics::default().solve(&driven, &mut ws, &s.q, &s.v, &s.vd, t, &mut lambda).expect("inverse dynamics");
         let force = |joint: usize| lambda[SpatialDriven::JOINTS[joint].row_range()][0];
         let free = SpatialActuated {
             e_turn_force: force(SpatialDriven::E_TURN),

@@ -140,17 +140,20 @@ fn torque_free_body() {
         let l0 = momentum(&q0, &v0);
         let e0: f64 = (0..3).map(|k| 0.5 * j[k] * w0[k] * w0[k]).sum();
         let (mut worst_e, mut worst_l, mut wobble) = (0.0f64, 0.0f64, 0.0f64);
-        simulate(&m, &mut FreeBody::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.05, 100.0), &SimulationOptions::default(), |s| {
-            let (q, v) = (&s.point.q, &s.point.v);
-            let e: f64 = (0..3).map(|k| 0.5 * j[k] * v[3 + k] * v[3 + k]).sum();
-            worst_e = worst_e.max((e - e0).abs() / e0);
-            let l = momentum(q, v);
-            let dl = ((l[0] - l0[0]).powi(2) + (l[1] - l0[1]).powi(2) + (l[2] - l0[2]).powi(2)).sqrt();
-            worst_l = worst_l.max(dl / (l0[0] * l0[0] + l0[1] * l0[1] + l0[2] * l0[2]).sqrt());
-            let off: f64 = (0..3).filter(|&k| k != axis).map(|k| v[3 + k].abs()).fold(0.0, f64::max);
-            wobble = wobble.max(off);
-        })
-        .unwrap();
+        Simulation::new(&m, &mut tight())
+            .start(0.0, &q0, &v0)
+            .times(&times(0.05, 100.0))
+            .run(&mut FreeBody::workspace(), |s| {
+                let (q, v) = (&s.point.q, &s.point.v);
+                let e: f64 = (0..3).map(|k| 0.5 * j[k] * v[3 + k] * v[3 + k]).sum();
+                worst_e = worst_e.max((e - e0).abs() / e0);
+                let l = momentum(q, v);
+                let dl = ((l[0] - l0[0]).powi(2) + (l[1] - l0[1]).powi(2) + (l[2] - l0[2]).powi(2)).sqrt();
+                worst_l = worst_l.max(dl / (l0[0] * l0[0] + l0[1] * l0[1] + l0[2] * l0[2]).sqrt());
+                let off: f64 = (0..3).filter(|&k| k != axis).map(|k| v[3 + k].abs()).fold(0.0, f64::max);
+                wobble = wobble.max(off);
+            })
+            .unwrap();
         println!("axis {axis}: energy drift {worst_e:.1e}, momentum drift {worst_l:.1e}, largest off-axis ω′ {wobble:.3} rad/s");
         // DOPRI5 at rtol 1e-10 over 2000 output intervals: the invariants drift by < 1e-7.
         assert!(worst_e < 1e-7 && worst_l < 1e-7, "axis {axis}: energy drift {worst_e:e}, momentum drift {worst_l:e}");
@@ -181,13 +184,17 @@ fn heavy_top_precesses_steadily() {
     let (q0, v0) = (top.initial_positions(), top.initial_velocities());
     let (mut last, mut worst_tilt, mut azimuth) = (0.0, 0.0f64, Vec::new());
     let options = SimulationOptions::default().with_correction(Correction::projection());
-    simulate(&top, &mut Top::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.01, 2.0), &options, |s| {
-        let axis = rotation(&s.point.q, 0).map(|row| row[2]);
-        worst_tilt = worst_tilt.max((axis[2].acos() - theta).abs());
-        azimuth.push((s.point.t, axis[1].atan2(axis[0])));
-        last = s.point.t;
-    })
-    .unwrap();
+    Simulation::new(&top, &mut tight())
+        .start(0.0, &q0, &v0)
+        .times(&times(0.01, 2.0))
+        .options(options)
+        .run(&mut Top::workspace(), |s| {
+            let axis = rotation(&s.point.q, 0).map(|row| row[2]);
+            worst_tilt = worst_tilt.max((axis[2].acos() - theta).abs());
+            azimuth.push((s.point.t, axis[1].atan2(axis[0])));
+            last = s.point.t;
+        })
+        .unwrap();
     let mut turned = 0.0;
     for pair in azimuth.windows(2) {
         let mut d = pair[1].1 - pair[0].1;
@@ -212,18 +219,21 @@ fn conical_pendulum() {
     let (mut worst_z, mut angle_error) = (0.0f64, 0.0f64);
     let mut previous = 0.0f64;
     let (mut turned, mut samples) = (0.0, 0);
-    simulate(&m, &mut ConicalPendulum::workspace(), &mut tight(), 0.0, &q0, &v0, &times(0.01, 5.0), &SimulationOptions::default(), |s| {
-        samples += 1;
-        let q = &s.point.q;
-        worst_z = worst_z.max((q[2] + len * theta.cos()).abs());
-        let angle = q[1].atan2(q[0]);
-        let mut d = angle - previous;
-        d -= (d / (2.0 * PI)).round() * 2.0 * PI;
-        turned += d;
-        previous = angle;
-        angle_error = angle_error.max((turned - omega * s.point.t).abs());
-    })
-    .unwrap();
+    Simulation::new(&m, &mut tight())
+        .start(0.0, &q0, &v0)
+        .times(&times(0.01, 5.0))
+        .run(&mut ConicalPendulum::workspace(), |s| {
+            samples += 1;
+            let q = &s.point.q;
+            worst_z = worst_z.max((q[2] + len * theta.cos()).abs());
+            let angle = q[1].atan2(q[0]);
+            let mut d = angle - previous;
+            d -= (d / (2.0 * PI)).round() * 2.0 * PI;
+            turned += d;
+            previous = angle;
+            angle_error = angle_error.max((turned - omega * s.point.t).abs());
+        })
+        .unwrap();
     println!("conical pendulum over 5 s: height error {worst_z:.1e} m, angle error {angle_error:.1e} rad");
     assert_eq!(samples, 500);
     assert!(worst_z < 1e-8 && angle_error < 1e-7, "height error {worst_z} m, angle error {angle_error} rad");

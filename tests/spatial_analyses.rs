@@ -70,34 +70,26 @@ fn run(integrator: &str, h: f64, correction: Correction<f64>) -> (f64, f64, f64)
         worst_e = worst_e.max((energy(&m, &s.point.q, &s.point.v) - e0).abs());
     };
     let result = match integrator {
-        "rk4" => simulate(
-            &m,
-            &mut SpatialDoublePendulum::workspace(),
-            &mut Rk4::new(Rk4Options::default().with_step(h)),
-            0.0,
-            &q0,
-            &v0,
-            &times,
-            &options,
-            &mut check,
-        ),
+        "rk4" => Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(h)))
+            .start(0.0, &q0, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut SpatialDoublePendulum::workspace(), &mut check),
         "dopri5" => {
             let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
-            simulate(&m, &mut SpatialDoublePendulum::workspace(), &mut dopri, 0.0, &q0, &v0, &times, &options, &mut check)
+            Simulation::new(&m, &mut dopri)
+                .start(0.0, &q0, &v0)
+                .times(&times)
+                .options(options)
+                .run(&mut SpatialDoublePendulum::workspace(), &mut check)
         }
         _ => {
             let ga = GeneralizedAlphaOptions::default().with_step(h).with_rho_infinity(0.9);
-            simulate(
-                &m,
-                &mut SpatialDoublePendulum::workspace(),
-                &mut SpatialDoublePendulum::generalized_alpha(ga),
-                0.0,
-                &q0,
-                &v0,
-                &times,
-                &options,
-                &mut check,
-            )
+            Simulation::new(&m, &mut SpatialDoublePendulum::generalized_alpha(ga))
+                .start(0.0, &q0, &v0)
+                .times(&times)
+                .options(options)
+                .run(&mut SpatialDoublePendulum::workspace(), &mut check)
         }
     };
     result.unwrap_or_else(|e| panic!("{integrator} with {correction:?}: {e}"));
@@ -152,7 +144,7 @@ fn inverse_dynamics_with_reactions() {
     solver
         .sweep(&m, &mut DrivenCrank::workspace(), &mut q, (0..40).map(|k| k as f64 * 0.05), |t, q, v, vd| {
             let mut lambda = [0.0; 6];
-            inverse_dynamics(&m, &mut DrivenCrank::workspace(), q, v, vd, t, &mut lambda).expect("inverse dynamics");
+            InverseDynamics::default().solve(&m, &mut DrivenCrank::workspace(), q, v, vd, t, &mut lambda).expect("inverse dynamics");
             let mut d = [[0.0; 6]; 6];
             m.jacobian(q, t, &mut d);
             let theta = w * t;

@@ -64,12 +64,15 @@ fn pendulum_run(h: f64, rho: f64, t_end: f64, every: f64) -> (Vec<(f64, f64)>, f
     let mut samples = Vec::with_capacity(times.len());
     let mut e0 = None;
     let mut drift = 0.0_f64;
-    simulate(&m, &mut Pendulum::workspace(), &mut alpha, 0.0, &q0, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
-        samples.push((s.point.t, Pendulum::ROD.phi(&s.point.q)));
-        let e = s.energy.kinetic + s.energy.potential;
-        drift = drift.max((e - *e0.get_or_insert(e)).abs());
-    })
-    .unwrap_or_else(|e| panic!("generalized-α, h = {h}, ρ∞ = {rho}: {e}"));
+    Simulation::new(&m, &mut alpha)
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&times)
+        .run(&mut Pendulum::workspace(), |s| {
+            samples.push((s.point.t, Pendulum::ROD.phi(&s.point.q)));
+            let e = s.energy.kinetic + s.energy.potential;
+            drift = drift.max((e - *e0.get_or_insert(e)).abs());
+        })
+        .unwrap_or_else(|e| panic!("generalized-α, h = {h}, ρ∞ = {rho}: {e}"));
     (samples, drift)
 }
 
@@ -111,10 +114,11 @@ fn double_pendulum_at<I: Integrator<f64, DoublePendulum, 6, 6, 4, 10, { DoublePe
     let m = DoublePendulum::default();
     let options = SimulationOptions::default().with_correction(correction);
     let mut last = ([0.0; 6], [0.0; 6]);
-    let stats =
-        simulate(&m, &mut DoublePendulum::workspace(), integrator, 0.0, &m.initial_positions(), &[0.0; 6], &[t_end], &options, |s| {
-            last = (s.point.q, s.point.v)
-        })
+    let stats = Simulation::new(&m, integrator)
+        .start(0.0, &m.initial_positions(), &[0.0; 6])
+        .times(&[t_end])
+        .options(options)
+        .run(&mut DoublePendulum::workspace(), |s| last = (s.point.q, s.point.v))
         .unwrap_or_else(|e| panic!("{e}"));
     (last.0, last.1, stats.steps)
 }
@@ -134,18 +138,11 @@ fn pendulum_at<I: Integrator<f64, Pendulum, 3, 3, 2, 5, { Pendulum::NEWTON_STORA
 ) -> ([f64; 3], [f64; 3], u64) {
     let m = Pendulum::default();
     let mut last = ([0.0; 3], [0.0; 3]);
-    let stats = simulate(
-        &m,
-        &mut Pendulum::workspace(),
-        integrator,
-        0.0,
-        &m.initial_positions(),
-        &[0.0; 3],
-        &[t_end],
-        &SimulationOptions::default(),
-        |s| last = (s.point.q, s.point.v),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let stats = Simulation::new(&m, integrator)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[t_end])
+        .run(&mut Pendulum::workspace(), |s| last = (s.point.q, s.point.v))
+        .unwrap_or_else(|e| panic!("{e}"));
     (last.0, last.1, stats.steps)
 }
 
@@ -331,24 +328,28 @@ fn a_force_that_turns_nan_is_named_with_its_time() {
             other => panic!("{label}: expected a named force element, got {other:?}"),
         }
     };
-    let err = simulate(
-        &m,
-        &mut FailingTorque::workspace(),
-        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-        0.0,
-        &q0,
-        &[0.0; 3],
-        &times,
-        &options,
-        |_| {},
-    )
-    .unwrap_err();
+    let err = Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&times)
+        .options(options)
+        .run(&mut FailingTorque::workspace(), |_| {})
+        .unwrap_err();
     named(err, 1e-3, "RK4");
     let mut dopri = Dopri5::new(Dopri5Options::default());
-    let err = simulate(&m, &mut FailingTorque::workspace(), &mut dopri, 0.0, &q0, &[0.0; 3], &times, &options, |_| {}).unwrap_err();
+    let err = Simulation::new(&m, &mut dopri)
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&times)
+        .options(options)
+        .run(&mut FailingTorque::workspace(), |_| {})
+        .unwrap_err();
     named(err, 0.1, "DOPRI5");
     let mut alpha = FailingTorque::generalized_alpha(GeneralizedAlphaOptions::default());
-    let err = simulate(&m, &mut FailingTorque::workspace(), &mut alpha, 0.0, &q0, &[0.0; 3], &times, &options, |_| {}).unwrap_err();
+    let err = Simulation::new(&m, &mut alpha)
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&times)
+        .options(options)
+        .run(&mut FailingTorque::workspace(), |_| {})
+        .unwrap_err();
     named(err, 1e-3, "generalized-α");
 }
 
@@ -373,10 +374,11 @@ fn scaled_run(per_metre: f64, rtol: f64, t_end: f64) -> Vec<(f64, f64)> {
     let times: Vec<f64> = (1..=(t_end / 0.05).round() as usize).map(|k| k as f64 * 0.05).collect();
     let mut samples = Vec::with_capacity(times.len());
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(rtol).with_atol(rtol * 1e-2));
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 3], &times, &SimulationOptions::default(), |s| {
-        samples.push((s.point.t, ScaledPendulum::ROD.phi(&s.point.q)))
-    })
-    .unwrap_or_else(|e| panic!("{per_metre} units per metre: {e}"));
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q, &[0.0; 3])
+        .times(&times)
+        .run(&mut ws, |s| samples.push((s.point.t, ScaledPendulum::ROD.phi(&s.point.q))))
+        .unwrap_or_else(|e| panic!("{per_metre} units per metre: {e}"));
     samples
 }
 
@@ -441,17 +443,10 @@ fn a_stiff_spring_is_stable_far_past_the_explicit_limit() {
     let mut ws = StiffBob::workspace();
     let q0 = m.initial_positions();
     let times: Vec<f64> = (1..=4000).map(|k| k as f64 * 5e-3).collect();
-    let explicit = simulate(
-        &m,
-        &mut ws,
-        &mut Rk4::new(Rk4Options::default().with_step(1e-3)),
-        0.0,
-        &q0,
-        &[0.0; 6],
-        &times,
-        &SimulationOptions::default(),
-        |_| {},
-    );
+    let explicit = Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &q0, &[0.0; 6])
+        .times(&times)
+        .run(&mut ws, |_| {});
     // The default projection meets the blow-up first and names the row it cannot close.
     match explicit {
         Err(SimulationError::NonFinite { t, coordinate }) => eprintln!("RK4 at 1 ms: non-finite `{coordinate}` at t = {t} s"),
@@ -462,12 +457,15 @@ fn a_stiff_spring_is_stable_far_past_the_explicit_limit() {
     }
     let mut alpha = StiffBob::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-2).with_rho_infinity(0.5));
     let (mut samples, mut e0, mut rise) = (Vec::new(), None, f64::NEG_INFINITY);
-    simulate(&m, &mut ws, &mut alpha, 0.0, &q0, &[0.0; 6], &times, &SimulationOptions::default(), |s| {
-        samples.push((s.point.t, StiffBob::ROD.phi(&s.point.q)));
-        let e = s.energy.kinetic + s.energy.potential;
-        rise = rise.max(e - *e0.get_or_insert(e));
-    })
-    .expect("generalized-α is stable at 140× the explicit limit");
+    Simulation::new(&m, &mut alpha)
+        .start(0.0, &q0, &[0.0; 6])
+        .times(&times)
+        .run(&mut ws, |s| {
+            samples.push((s.point.t, StiffBob::ROD.phi(&s.point.q)));
+            let e = s.energy.kinetic + s.energy.potential;
+            rise = rise.max(e - *e0.get_or_insert(e));
+        })
+        .expect("generalized-α is stable at 140× the explicit limit");
     // The compound pendulum: J_pivot = 1/3 + 0.001 + 1.2² kg·m², M g d = (0.5 + 1.2) g.
     let (j_pivot, mgd) = (1.0 / 3.0 + 0.001 + 1.44, 1.7 * G);
     let omega0 = (mgd / j_pivot).sqrt();
@@ -511,19 +509,22 @@ fn a_rod_spinning_at_1000_rad_per_s_keeps_its_speed_and_pin() {
     let times: Vec<f64> = (1..=10).map(|k| k as f64 * 0.1).collect();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     let mut worst = [0.0f64; 4];
-    simulate(&m, &mut ws, &mut dopri, 0.0, &q0, &v0, &times, &SimulationOptions::default(), |s| {
-        let (t, q, v) = (s.point.t, &s.point.q, &s.point.v);
-        // φ is not wrapped by the integrator: it grows as ω t.
-        let phi_error = (Spinner::ROD.phi(q) - 1000.0 * t).abs();
-        let mut pin = [0.0; 2];
-        m.constraints(q, t, &mut pin);
-        let force = s.point.lambda[0].hypot(s.point.lambda[1]);
-        let errors = [phi_error, (v[2] / 1000.0 - 1.0).abs(), pin[0].abs().max(pin[1].abs()), (force / 5e5 - 1.0).abs()];
-        for (w, e) in worst.iter_mut().zip(errors) {
-            *w = w.max(e);
-        }
-    })
-    .expect("the spinning rod");
+    Simulation::new(&m, &mut dopri)
+        .start(0.0, &q0, &v0)
+        .times(&times)
+        .run(&mut ws, |s| {
+            let (t, q, v) = (s.point.t, &s.point.q, &s.point.v);
+            // φ is not wrapped by the integrator: it grows as ω t.
+            let phi_error = (Spinner::ROD.phi(q) - 1000.0 * t).abs();
+            let mut pin = [0.0; 2];
+            m.constraints(q, t, &mut pin);
+            let force = s.point.lambda[0].hypot(s.point.lambda[1]);
+            let errors = [phi_error, (v[2] / 1000.0 - 1.0).abs(), pin[0].abs().max(pin[1].abs()), (force / 5e5 - 1.0).abs()];
+            for (w, e) in worst.iter_mut().zip(errors) {
+                *w = w.max(e);
+            }
+        })
+        .expect("the spinning rod");
     eprintln!("1000 rad/s: φ − ωt {:.1e} rad, ω {:.1e} rel, pin {:.1e} m, pin force {:.1e} rel", worst[0], worst[1], worst[2], worst[3]);
     assert!(worst[0] < 1e-6 && worst[1] < 1e-9, "φ or ω drifted: {worst:?}");
     assert!(worst[2] < 1e-9, "the pin opened by {} m", worst[2]);
@@ -548,8 +549,12 @@ fn generalized_alpha_out_of_iterations_reports_a_position_correction() {
     let options = GeneralizedAlphaOptions::default().with_step(1e-3).with_max_iterations(1);
     let mut alpha = FreeBlock::generalized_alpha(options);
     let run = SimulationOptions::default().with_correction(Correction::None);
-    let err =
-        simulate(&m, &mut FreeBlock::workspace(), &mut alpha, 0.0, &m.initial_positions(), &[0.0; 3], &[0.01], &run, |_| {}).unwrap_err();
+    let err = Simulation::new(&m, &mut alpha)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[0.01])
+        .options(run)
+        .run(&mut FreeBlock::workspace(), |_| {})
+        .unwrap_err();
     match err {
         SimulationError::NotConverged { worst_row, residual, .. } => {
             assert!(worst_row.starts_with("block."), "{worst_row}");
@@ -573,7 +578,12 @@ fn generalized_alpha_out_of_iterations_names_an_unsettled_multiplier() {
     let mut alpha = Pendulum::generalized_alpha(options);
     let run = SimulationOptions::default().with_correction(Correction::None);
     let (q0, v0) = (m.initial_positions(), m.initial_velocities());
-    let err = simulate(&m, &mut Pendulum::workspace(), &mut alpha, 0.0, &q0, &v0, &[0.01], &run, |_| {}).unwrap_err();
+    let err = Simulation::new(&m, &mut alpha)
+        .start(0.0, &q0, &v0)
+        .times(&[0.01])
+        .options(run)
+        .run(&mut Pendulum::workspace(), |_| {})
+        .unwrap_err();
     match err {
         SimulationError::NotConverged { worst_row, residual, .. } => {
             assert!(Pendulum::CONSTRAINT_NAMES.contains(&worst_row), "{worst_row}");

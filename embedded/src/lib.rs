@@ -14,7 +14,7 @@ use core::alloc::{GlobalAlloc, Layout};
 use core::cell::UnsafeCell;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-use mbd::{linearize, DynamicsOptions, ForwardDynamics, Kinematics, LinearizeOptions};
+use mbd::{DynamicsOptions, ForwardDynamics, Kinematics, Linearizer};
 
 mbd::mechanism! {
     /// Free slider-crank under gravity, single precision.
@@ -64,7 +64,7 @@ pub extern "C" fn mbd_pendulum_frequency(l: f64) -> f64 {
     ARENA.reset();
     let m = Pendulum { l };
     let q = m.initial_positions();
-    match linearize(&m, &q, &[0.0; 3], 0.0, &LinearizeOptions::default()) {
+    match Linearizer::default().linearize(&m, &q, &[0.0; 3], 0.0) {
         Ok(lin) => lin.modes().first().map_or(-1.0, |mode| mode.natural_frequency),
         Err(_) => -1.0,
     }

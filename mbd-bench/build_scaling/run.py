@@ -51,11 +51,11 @@ def chain(n):
     let v = [0.0; Chain::NV];
     let o: SimulationOptions<f64> = SimulationOptions::default();
     let times = [0.01];
-    simulate(&m, &mut ws, &mut Rk4::default(), 0.0, &q, &v, &times, &o, |_| {}).expect("RK4");
-    simulate(&m, &mut ws, &mut Dopri5::new(Dopri5Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOPRI5");
-    simulate(&m, &mut ws, &mut Dop853::new(Dop853Options::default()), 0.0, &q, &v, &times, &o, |_| {}).expect("DOP853");
+    Simulation::new(&m, &mut Rk4::default()).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("RK4");
+    Simulation::new(&m, &mut Dopri5::new(Dopri5Options::default())).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("DOPRI5");
+    Simulation::new(&m, &mut Dop853::new(Dop853Options::default())).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("DOP853");
     let mut alpha = Chain::generalized_alpha(GeneralizedAlphaOptions::default());
-    simulate(&m, &mut ws, &mut alpha, 0.0, &q, &v, &times, &o, |_| {}).expect("generalized-α");
+    Simulation::new(&m, &mut alpha).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("generalized-α");
     StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; Chain::NC]).expect("statics");
     println!("{}", q[0]);
 }
@@ -80,7 +80,7 @@ def driven_chain(n):
     let mut lambda = [0.0; Chain::NC];
     let start = std::time::Instant::now();
     for (t, q, v, vd) in &states {
-        inverse_dynamics(&m, &mut ws, q, v, vd, *t, &mut lambda).expect("inverse dynamics");
+        InverseDynamics::default().solve(&m, &mut ws, q, v, vd, *t, &mut lambda).expect("inverse dynamics");
     }
     println!("{sweep:.1} {:.1}", start.elapsed().as_secs_f64() / 200.0 * 1e6);
 }

@@ -37,14 +37,18 @@ fn windows<I: Integrator<f64, Chain4, 12, 12, 8, 20, { Chain4::NEWTON_STORAGE }>
     let mut out = vec![(0.0f64, 0.0f64); 10];
     let e0 = m.potential_energy(&q0, 0.0);
     let mut phi = [0.0; 8];
-    let stats = simulate(&m, &mut ws, integrator, 0.0, &q0, &[0.0; 12], &times, &options, |s| {
-        let w = ((s.point.t / 10.0 - 1e-9).max(0.0) as usize).min(9);
-        m.constraints(&s.point.q, s.point.t, &mut phi);
-        let violation = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let drift = (s.energy.kinetic + s.energy.potential - e0).abs();
-        out[w] = (out[w].0.max(violation), out[w].1.max(drift));
-    })
-    .unwrap_or_else(|e| panic!("10⁶ steps of the chain: {e}; windows so far {out:?}"));
+    let stats = Simulation::new(&m, integrator)
+        .start(0.0, &q0, &[0.0; 12])
+        .times(&times)
+        .options(options)
+        .run(&mut ws, |s| {
+            let w = ((s.point.t / 10.0 - 1e-9).max(0.0) as usize).min(9);
+            m.constraints(&s.point.q, s.point.t, &mut phi);
+            let violation = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            let drift = (s.energy.kinetic + s.energy.potential - e0).abs();
+            out[w] = (out[w].0.max(violation), out[w].1.max(drift));
+        })
+        .unwrap_or_else(|e| panic!("10⁶ steps of the chain: {e}; windows so far {out:?}"));
     (out, stats.steps)
 }
 

@@ -120,16 +120,10 @@ where
     let mut kept = Kept { branch: 0.0, phi: 0.0, energy: 0.0, rise: f64::NEG_INFINITY, error: 0.0, steps: 0 };
     let mut e0 = None;
     let mut last = [0.0; NQ];
-    let stats = simulate(
-        m,
-        &mut Workspace::<f64, NV, NC, N, NS>::boxed(),
-        integrator,
-        0.0,
-        &m.initial_positions(),
-        &v0,
-        &times,
-        &SimulationOptions::default(),
-        |s| {
+    let stats = Simulation::new(m, integrator)
+        .start(0.0, &m.initial_positions(), &v0)
+        .times(&times)
+        .run(&mut Workspace::<f64, NV, NC, N, NS>::boxed(), |s| {
             let q = &s.point.q;
             let mut phi = [0.0; NC];
             m.constraints(q, s.point.t, &mut phi);
@@ -145,9 +139,8 @@ where
             kept.energy = kept.energy.max((e - e0).abs());
             kept.rise = kept.rise.max(e - e0);
             last = *q;
-        },
-    )
-    .unwrap_or_else(|e| panic!("{n} loops: {e}"));
+        })
+        .unwrap_or_else(|e| panic!("{n} loops: {e}"));
     kept.error = wrap(last[2] - theta).abs();
     kept.steps = stats.steps;
     kept
@@ -374,16 +367,19 @@ where
     let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.01).collect();
     let (mut branch, mut drift, mut last) = (0.0_f64, 0.0_f64, 0.0);
     let mut ws = Workspace::<f64, 9, 8, N, NS>::boxed();
-    simulate(&m, &mut ws, integrator, 0.0, &m.initial_positions(), &v0, &times, &SimulationOptions::default(), |s| {
-        let q = &s.point.q;
-        let th = IsoscelesSliderCrank::CRANK.phi(q);
-        branch = branch
-            .max(wrap(IsoscelesSliderCrank::ROD.phi(q) + th).abs())
-            .max((IsoscelesSliderCrank::SLIDER.x(q) - 2.0 * r * th.cos()).abs());
-        drift = drift.max((s.energy.kinetic - energy).abs());
-        last = th;
-    })
-    .unwrap_or_else(|e| panic!("isosceles slider-crank: {e}"));
+    Simulation::new(&m, integrator)
+        .start(0.0, &m.initial_positions(), &v0)
+        .times(&times)
+        .run(&mut ws, |s| {
+            let q = &s.point.q;
+            let th = IsoscelesSliderCrank::CRANK.phi(q);
+            branch = branch
+                .max(wrap(IsoscelesSliderCrank::ROD.phi(q) + th).abs())
+                .max((IsoscelesSliderCrank::SLIDER.x(q) - 2.0 * r * th.cos()).abs());
+            drift = drift.max((s.energy.kinetic - energy).abs());
+            last = th;
+        })
+        .unwrap_or_else(|e| panic!("isosceles slider-crank: {e}"));
     (branch, drift, last)
 }
 
@@ -509,15 +505,18 @@ where
     let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.01).collect();
     let (mut branch, mut drift, mut last) = (0.0_f64, 0.0_f64, 0.0);
     let mut ws = Workspace::<f64, 9, 8, N, NS>::boxed();
-    simulate(&m, &mut ws, integrator, 0.0, &m.initial_positions(), &v0, &times, &SimulationOptions::default(), |s| {
-        let q = &s.point.q;
-        let th = ChangePointFourBar::CRANK.phi(q);
-        let pin = m.coupler_pin().position(q);
-        let c = change_point_pin(th);
-        branch = branch.max((pin.x - c[0]).hypot(pin.y - c[1]));
-        drift = drift.max((s.energy.kinetic - energy).abs());
-        last = th;
-    })
-    .unwrap_or_else(|e| panic!("change-point four-bar: {e}"));
+    Simulation::new(&m, integrator)
+        .start(0.0, &m.initial_positions(), &v0)
+        .times(&times)
+        .run(&mut ws, |s| {
+            let q = &s.point.q;
+            let th = ChangePointFourBar::CRANK.phi(q);
+            let pin = m.coupler_pin().position(q);
+            let c = change_point_pin(th);
+            branch = branch.max((pin.x - c[0]).hypot(pin.y - c[1]));
+            drift = drift.max((s.energy.kinetic - energy).abs());
+            last = th;
+        })
+        .unwrap_or_else(|e| panic!("change-point four-bar: {e}"));
     (branch, drift, last)
 }

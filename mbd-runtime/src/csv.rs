@@ -15,7 +15,7 @@ use std::io::{self, Write};
 use crate::{Mechanism, Real, Sample};
 
 /// Writes samples as CSV rows; use [`CsvWriter::write`] as (or inside) the output callback of
-/// [`crate::simulate`] and [`CsvWriter::finish`] after it for the first I/O error, if any.
+/// [`crate::Simulation`] and [`CsvWriter::finish`] after it for the first I/O error, if any.
 ///
 /// Rows are formatted straight into `out` (give it a `BufWriter` for a file): nothing is
 /// allocated per row.

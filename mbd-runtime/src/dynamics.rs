@@ -32,7 +32,7 @@ pub const DEFAULT_DYNAMICS_PIVOT_TOLERANCE: f64 = 1e-8;
 crate::options::options! {
     /// Options of one forward-dynamics solve, in the scalar type `T` of the mechanism (default
     /// `f64`). Build from [`Default`] (Baumgarte on), [`DynamicsOptions::without_stabilization`]
-    /// (the default of [`simulate`](crate::simulate)) or [`DynamicsOptions::baumgarte`], and the
+    /// (the default of [`Simulation`](crate::Simulation)) or [`DynamicsOptions::baumgarte`], and the
     /// `with_*` setters.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct DynamicsOptions<T> {

@@ -14,9 +14,7 @@ use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::mechanism::{coordinates_per_body, velocities_per_body};
 use crate::redundancy::independent_rows;
 use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
-
-/// Relative pivot tolerance of the LU factorization of Dᵀ (see [`crate::linalg::lu_factor`]).
-pub const INVERSE_PIVOT_TOLERANCE: f64 = 1e-12;
+use core::fmt;
 
 /// The force and moment a joint applies to one body, in global components, and the body's
 /// orientation to read them in its own frame. The same for planar and spatial bodies: a planar
@@ -104,170 +102,315 @@ pub struct JointReaction<T> {
     pub on_j: Option<Wrench<T>>,
 }
 
-/// Solves Dᵀ λ = M v̇ − h for the Lagrange multipliers λ of a driven mechanism (NV = NC), given
-/// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis. On success
-/// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
-/// joint's reaction in N and N·m.
-///
-/// For NV = NC the solve runs over the LDLᵀ of D Dᵀ that `mechanism!` plans at compile time,
-/// λ = (D Dᵀ)⁻¹ D b refined on the residual b − Dᵀλ to an LU's accuracy; where that finds no
-/// pivot or a value that is not finite, the dense LU of Dᵀ takes over and names what failed.
-///
-/// With redundant constraints (NC > NV) the loads are not unique; they are solved over the rows
-/// independent of the rows declared before them (sine of the angle to their span above
-/// [`crate::DEFAULT_RANK_TOLERANCE`]), and each row left out carries none (λ = 0) — the rule
-/// of forward dynamics and statics.
-///
-/// Errors: `NotDriven` while degrees of freedom are left (NV > NC); `SingularJacobian` (naming
-/// a velocity and the dependent constraint) at a singular position, where λ is not unique;
-/// `NonFinite` for NaN or infinite inputs or forces.
-pub fn inverse_dynamics<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    m: &M,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
-    q: &[T; NQ],
-    v: &[T; NV],
-    vd: &[T; NV],
-    t: T,
-    lambda: &mut [T; NC],
-) -> Result<(), KinematicError>
-where
-    T: Real,
-    M: Dynamics<T, NQ, NV, NC>,
-{
-    require_driven::<NV, NC>()?;
-    let time = t.to_f64();
-    if let Some(i) = first_non_finite(q) {
-        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Coordinate, row: name(M::COORDINATE_NAMES, i) });
+crate::options::options! {
+    /// Options of [`InverseDynamics`], in the scalar type `T` of the mechanism (default `f64`).
+    /// Build from [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct InverseDynamicsOptions<T> {
+        /// Relative pivot tolerance of the LU of Dᵀ, the fallback where the planned LDLᵀ of
+        /// D Dᵀ finds no pivot (see [`crate::linalg::lu_factor`]). Default 1e-12.
+        pivot_tolerance: T = T::from_f64(1e-12) => with_pivot_tolerance,
+        /// With redundant rows (NC > NV): a row is dependent on the rows declared before it when
+        /// the sine of its angle to their span is below this. Default
+        /// [`crate::DEFAULT_RANK_TOLERANCE`].
+        rank_tolerance: T = T::from_f64(crate::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
+        /// Coulomb friction's loads are iterated until the largest change of λ is below this
+        /// times max(1, max |λ|). Default 1e-12.
+        friction_tolerance: T = T::from_f64(1e-12) => with_friction_tolerance,
+        /// Fixed-point iterations on the friction loads before
+        /// [`InverseDynamicsError::FrictionNotConverged`]. Default 50.
+        max_friction_iterations: u32 = 50 => with_max_friction_iterations,
     }
-    for (values, quantity) in [(v, NonFiniteQuantity::Velocity), (vd, NonFiniteQuantity::Acceleration)] {
-        if let Some(i) = first_non_finite(values) {
-            return Err(KinematicError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
-        }
-    }
-    let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = ws;
-    m.jacobian(q, t, d);
-    let mut h = [T::ZERO; NV];
-    m.forces(q, v, t, &mut h);
-    let mut inertia = [T::ZERO; NV];
-    m.mass_times(q, vd, &mut inertia);
-    let base: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
-    if let Some(i) = first_non_finite(&base) {
-        return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Acceleration, row: name(M::VELOCITY_NAMES, i) });
-    }
-    // Dᵀ λ = b: with NV = NC over the LDLᵀ of D Dᵀ that `mechanism!` plans, refined on the
-    // residual (`Kinematics::sparse_multipliers`), else by the LU of Dᵀ (square: row k is
-    // velocity k, column r constraint r), which names a singular or non-finite D; with redundant
-    // rows (NC > NV) over the rows independent of those declared before them, D_I = R Q
-    // (`redundancy::orthogonalize`), λ_I = R⁻ᵀ Q b and λ = 0 on the rows left out — the rule
-    // forward dynamics and statics follow: the dropped row carries no load.
-    let pivot_tolerance = T::from_f64(INVERSE_PIVOT_TOLERANCE);
-    let sparse = NV == NC && m.sparse_multipliers(q, t, pivot_tolerance, &base, lambda);
-    let solver = if sparse {
-        Solver::Sparse
-    } else if NV == NC {
-        for (r, row) in d.iter().enumerate() {
-            for (c, &value) in row.iter().enumerate() {
-                dt[c][r] = value;
-            }
-        }
-        let permutation = lu_factor(dt, pivot_tolerance).map_err(|e| match e {
-            // Column r of Dᵀ is constraint r; the candidate row is a velocity.
-            LinalgError::Singular { column, candidate_row } => KinematicError::SingularJacobian {
-                t: time,
-                coordinate: name(M::VELOCITY_NAMES, candidate_row),
-                constraint: name(M::CONSTRAINT_NAMES, column),
-            },
-            LinalgError::NonFinite { column, .. } => {
-                KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, column) }
-            }
-            LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => KinematicError::NotDriven { dof: NV as i32 - NC as i32 },
-        })?;
-        Solver::Lu(permutation)
-    } else {
-        if let Some(i) = d.iter().position(|row| first_non_finite(row).is_some()) {
-            return Err(KinematicError::NonFinite { t: time, quantity: NonFiniteQuantity::Jacobian, row: name(M::CONSTRAINT_NAMES, i) });
-        }
-        Solver::Orthogonal(independent_rows::<T, M, NV, NC>(d, T::from_f64(crate::DEFAULT_RANK_TOLERANCE), basis, r, t)?)
-    };
-    let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
-        // The same D as the first solve: only a friction load that is not finite fails here,
-        // and its NaN ends the friction iteration below with `NotConverged`.
-        Solver::Sparse => {
-            if !m.sparse_multipliers(q, t, pivot_tolerance, b, lambda) {
-                *lambda = [T::from_f64(f64::NAN); NC];
-            }
-        }
-        Solver::Lu(permutation) => {
-            let mut x = [T::ZERO; NV];
-            x.copy_from_slice(b);
-            lu_solve_in_place(dt, permutation, &mut x);
-            lambda.copy_from_slice(&x[..NC]);
-        }
-        Solver::Orthogonal(redundant) => {
-            // Q b, then Rᵀ y = Q b by back substitution (Rᵀ upper triangular), over the kept rows.
-            let qb: [T; NV] = core::array::from_fn(|j| basis[j].iter().zip(b.iter()).fold(T::ZERO, |s, (x, y)| s + *x * *y));
-            let mut y = [T::ZERO; NV];
-            for j in (0..NV).rev() {
-                let mut value = qb[j];
-                for k in j + 1..NV {
-                    value -= r[k][j] * y[k];
-                }
-                y[j] = value / r[j][j];
-            }
-            let mut kept = 0;
-            for (l, &dropped) in lambda.iter_mut().zip(redundant.iter()) {
-                *l = if dropped {
-                    T::ZERO
-                } else {
-                    kept += 1;
-                    y[kept - 1]
-                };
-            }
-        }
-    };
-    if !sparse {
-        solve(&base, lambda);
-    }
-    // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
-    // to do for a mechanism without it, whose friction forces are all zero).
-    for _ in 0..INVERSE_FRICTION_ITERATIONS {
-        let mut friction = [T::ZERO; NV];
-        m.friction_forces(q, v, t, lambda, &mut friction);
-        if friction.iter().all(|f| *f == T::ZERO) {
-            return Ok(());
-        }
-        let rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
-        let mut next = [T::ZERO; NC];
-        solve(&rhs, &mut next);
-        let mut change = T::ZERO;
-        let mut size = T::ONE;
-        for (l, x) in lambda.iter_mut().zip(next.iter()) {
-            change = change.max((*l - *x).abs());
-            size = size.max(x.abs());
-            *l = *x;
-        }
-        if change <= T::from_f64(1e-12) * size {
-            return Ok(());
-        }
-    }
-    Err(KinematicError::NotConverged {
-        t: time,
-        iterations: INVERSE_FRICTION_ITERATIONS,
-        worst_row: name(M::CONSTRAINT_NAMES, 0),
-        residual: f64::NAN,
-    })
 }
 
-/// How [`inverse_dynamics`] solves Dᵀ λ = b: over the planned LDLᵀ of D Dᵀ, by the LU of the
+/// Inverse dynamics of a driven mechanism: the loads (λ, and from them the driver forces and
+/// joint reactions) of a known motion. Made by [`new`](Self::new) or [`Default`], holding only
+/// its options: one solver serves any number of mechanisms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InverseDynamics<T = f64> {
+    /// Tolerances and limits.
+    pub options: InverseDynamicsOptions<T>,
+}
+
+/// A failed inverse-dynamics solve ([`InverseDynamics::solve`]). Times are in s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum InverseDynamicsError {
+    /// The motion does not determine the loads: degrees of freedom are left (NV > NC; `dof`
+    /// of them), drivers are missing.
+    NotDriven {
+        /// Velocities minus constraint rows.
+        dof: i32,
+    },
+    /// D has no full rank at this position (a toggle or lock-up, where λ is not unique and
+    /// grows without bound nearby): no pivot for `velocity`, best candidate `constraint`.
+    SingularJacobian {
+        /// Time (s).
+        t: f64,
+        /// The velocity whose column of D had no acceptable pivot, from
+        /// [`Mechanism::VELOCITY_NAMES`].
+        velocity: &'static str,
+        /// The constraint row that held the best candidate pivot, from
+        /// [`Mechanism::CONSTRAINT_NAMES`].
+        constraint: &'static str,
+    },
+    /// A NaN or an infinity in the input or in an evaluated quantity.
+    NonFinite {
+        /// Time (s).
+        t: f64,
+        /// What held the value: q, v, v̇ (also M v̇ − h, the right-hand side), or D.
+        quantity: NonFiniteQuantity,
+        /// The coordinate, velocity or constraint row.
+        row: &'static str,
+    },
+    /// The loads of Coulomb friction did not settle: friction so large that it changes the
+    /// loads it depends on more than they change it (μ too large, or a wedging geometry).
+    FrictionNotConverged {
+        /// Time (s).
+        t: f64,
+        /// Iterations performed ([`InverseDynamicsOptions::max_friction_iterations`]).
+        iterations: u32,
+        /// The last change of max |λ| (N, N·m).
+        change: f64,
+    },
+}
+
+impl fmt::Display for InverseDynamicsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            InverseDynamicsError::NotDriven { dof } => write!(
+                f,
+                "inverse dynamics needs a driven mechanism, but {dof} degree(s) of freedom are left: add {dof} driver(s)"
+            ),
+            InverseDynamicsError::SingularJacobian { t, velocity, constraint } => write!(
+                f,
+                "inverse dynamics at t = {t} s: singular constraint Jacobian, no usable pivot for '{velocity}' \
+                 (best candidate: constraint '{constraint}'); at a lock-up or toggle position the loads are not unique"
+            ),
+            InverseDynamicsError::NonFinite { t, quantity, row } => {
+                write!(f, "inverse dynamics at t = {t} s: non-finite value (NaN or ±∞) in {quantity} '{row}'")
+            }
+            InverseDynamicsError::FrictionNotConverged { t, iterations, change } => write!(
+                f,
+                "inverse dynamics at t = {t} s: the Coulomb friction loads did not settle in {iterations} iterations (last change of λ: {change})"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for InverseDynamicsError {}
+
+/// An error of the checks inverse dynamics shares with kinematics (`require_driven`, the
+/// redundancy split) in this analysis's terms.
+fn shared(e: KinematicError) -> InverseDynamicsError {
+    match e {
+        KinematicError::NotDriven { dof } => InverseDynamicsError::NotDriven { dof },
+        KinematicError::SingularJacobian { t, coordinate, constraint } => {
+            InverseDynamicsError::SingularJacobian { t, velocity: coordinate, constraint }
+        }
+        KinematicError::NonFinite { t, quantity, row } => InverseDynamicsError::NonFinite { t, quantity, row },
+        // A position solve's error, which neither shared check returns: the row it names.
+        KinematicError::NotConverged { t, worst_row, .. } => {
+            InverseDynamicsError::NonFinite { t, quantity: NonFiniteQuantity::Constraint, row: worst_row }
+        }
+    }
+}
+
+impl<T: Real> Default for InverseDynamics<T> {
+    fn default() -> Self {
+        Self::new(InverseDynamicsOptions::new())
+    }
+}
+
+impl<T: Real> InverseDynamics<T> {
+    /// A solver with the given options.
+    pub const fn new(options: InverseDynamicsOptions<T>) -> Self {
+        InverseDynamics { options }
+    }
+
+    /// Solves Dᵀ λ = M v̇ − h for the Lagrange multipliers λ of a driven mechanism (NV = NC), given
+    /// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis. On success
+    /// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
+    /// joint's reaction in N and N·m.
+    ///
+    /// For NV = NC the solve runs over the LDLᵀ of D Dᵀ that `mechanism!` plans at compile time,
+    /// λ = (D Dᵀ)⁻¹ D b refined on the residual b − Dᵀλ to an LU's accuracy; where that finds no
+    /// pivot or a value that is not finite, the dense LU of Dᵀ takes over and names what failed.
+    ///
+    /// With redundant constraints (NC > NV) the loads are not unique; they are solved over the rows
+    /// independent of the rows declared before them (sine of the angle to their span above
+    /// [`InverseDynamicsOptions::rank_tolerance`]), and each row left out carries none (λ = 0) — the rule
+    /// of forward dynamics and statics.
+    ///
+    /// # Errors
+    /// [`InverseDynamicsError::NotDriven`] while degrees of freedom are left (NV > NC);
+    /// `SingularJacobian` (naming a velocity and the dependent constraint) at a singular
+    /// position, where λ is not unique; `NonFinite` for NaN or infinite inputs or forces;
+    /// `FrictionNotConverged`.
+    // The state as a kinematic sweep hands it out (q, v, v̇, t), the mechanism, its work space
+    // and the output: the arguments of `KinematicSolver`'s methods, with v̇.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+        &self,
+        m: &M,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
+        q: &[T; NQ],
+        v: &[T; NV],
+        vd: &[T; NV],
+        t: T,
+        lambda: &mut [T; NC],
+    ) -> Result<(), InverseDynamicsError>
+    where
+        M: Dynamics<T, NQ, NV, NC>,
+    {
+        require_driven::<NV, NC>().map_err(shared)?;
+        let time = t.to_f64();
+        if let Some(i) = first_non_finite(q) {
+            return Err(InverseDynamicsError::NonFinite {
+                t: time,
+                quantity: NonFiniteQuantity::Coordinate,
+                row: name(M::COORDINATE_NAMES, i),
+            });
+        }
+        for (values, quantity) in [(v, NonFiniteQuantity::Velocity), (vd, NonFiniteQuantity::Acceleration)] {
+            if let Some(i) = first_non_finite(values) {
+                return Err(InverseDynamicsError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
+            }
+        }
+        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = ws;
+        m.jacobian(q, t, d);
+        let mut h = [T::ZERO; NV];
+        m.forces(q, v, t, &mut h);
+        let mut inertia = [T::ZERO; NV];
+        m.mass_times(q, vd, &mut inertia);
+        let base: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
+        if let Some(i) = first_non_finite(&base) {
+            return Err(InverseDynamicsError::NonFinite {
+                t: time,
+                quantity: NonFiniteQuantity::Acceleration,
+                row: name(M::VELOCITY_NAMES, i),
+            });
+        }
+        // Dᵀ λ = b: with NV = NC over the LDLᵀ of D Dᵀ that `mechanism!` plans, refined on the
+        // residual (`Kinematics::sparse_multipliers`), else by the LU of Dᵀ (square: row k is
+        // velocity k, column r constraint r), which names a singular or non-finite D; with redundant
+        // rows (NC > NV) over the rows independent of those declared before them, D_I = R Q
+        // (`redundancy::orthogonalize`), λ_I = R⁻ᵀ Q b and λ = 0 on the rows left out — the rule
+        // forward dynamics and statics follow: the dropped row carries no load.
+        let pivot_tolerance = self.options.pivot_tolerance;
+        let sparse = NV == NC && m.sparse_multipliers(q, t, pivot_tolerance, &base, lambda);
+        let solver = if sparse {
+            Solver::Sparse
+        } else if NV == NC {
+            for (r, row) in d.iter().enumerate() {
+                for (c, &value) in row.iter().enumerate() {
+                    dt[c][r] = value;
+                }
+            }
+            let permutation = lu_factor(dt, pivot_tolerance).map_err(|e| match e {
+                // Column r of Dᵀ is constraint r; the candidate row is a velocity.
+                LinalgError::Singular { column, candidate_row } => InverseDynamicsError::SingularJacobian {
+                    t: time,
+                    velocity: name(M::VELOCITY_NAMES, candidate_row),
+                    constraint: name(M::CONSTRAINT_NAMES, column),
+                },
+                LinalgError::NonFinite { column, .. } => InverseDynamicsError::NonFinite {
+                    t: time,
+                    quantity: NonFiniteQuantity::Jacobian,
+                    row: name(M::CONSTRAINT_NAMES, column),
+                },
+                LinalgError::NotSquare { .. } | LinalgError::Overdetermined { .. } => {
+                    InverseDynamicsError::NotDriven { dof: NV as i32 - NC as i32 }
+                }
+            })?;
+            Solver::Lu(permutation)
+        } else {
+            if let Some(i) = d.iter().position(|row| first_non_finite(row).is_some()) {
+                return Err(InverseDynamicsError::NonFinite {
+                    t: time,
+                    quantity: NonFiniteQuantity::Jacobian,
+                    row: name(M::CONSTRAINT_NAMES, i),
+                });
+            }
+            Solver::Orthogonal(independent_rows::<T, M, NV, NC>(d, self.options.rank_tolerance, basis, r, t).map_err(shared)?)
+        };
+        let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
+            // The same D as the first solve: only a friction load that is not finite fails here,
+            // and its NaN ends the friction iteration below with `NotConverged`.
+            Solver::Sparse => {
+                if !m.sparse_multipliers(q, t, pivot_tolerance, b, lambda) {
+                    *lambda = [T::from_f64(f64::NAN); NC];
+                }
+            }
+            Solver::Lu(permutation) => {
+                let mut x = [T::ZERO; NV];
+                x.copy_from_slice(b);
+                lu_solve_in_place(dt, permutation, &mut x);
+                lambda.copy_from_slice(&x[..NC]);
+            }
+            Solver::Orthogonal(redundant) => {
+                // Q b, then Rᵀ y = Q b by back substitution (Rᵀ upper triangular), over the kept rows.
+                let qb: [T; NV] = core::array::from_fn(|j| basis[j].iter().zip(b.iter()).fold(T::ZERO, |s, (x, y)| s + *x * *y));
+                let mut y = [T::ZERO; NV];
+                for j in (0..NV).rev() {
+                    let mut value = qb[j];
+                    for k in j + 1..NV {
+                        value -= r[k][j] * y[k];
+                    }
+                    y[j] = value / r[j][j];
+                }
+                let mut kept = 0;
+                for (l, &dropped) in lambda.iter_mut().zip(redundant.iter()) {
+                    *l = if dropped {
+                        T::ZERO
+                    } else {
+                        kept += 1;
+                        y[kept - 1]
+                    };
+                }
+            }
+        };
+        if !sparse {
+            solve(&base, lambda);
+        }
+        // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
+        // to do for a mechanism without it, whose friction forces are all zero).
+        let mut change = T::ZERO;
+        for _ in 0..self.options.max_friction_iterations {
+            let mut friction = [T::ZERO; NV];
+            m.friction_forces(q, v, t, lambda, &mut friction);
+            if friction.iter().all(|f| *f == T::ZERO) {
+                return Ok(());
+            }
+            let rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
+            let mut next = [T::ZERO; NC];
+            solve(&rhs, &mut next);
+            change = T::ZERO;
+            let mut size = T::ONE;
+            for (l, x) in lambda.iter_mut().zip(next.iter()) {
+                change = change.max((*l - *x).abs());
+                size = size.max(x.abs());
+                *l = *x;
+            }
+            if change <= self.options.friction_tolerance * size {
+                return Ok(());
+            }
+        }
+        Err(InverseDynamicsError::FrictionNotConverged {
+            t: time,
+            iterations: self.options.max_friction_iterations,
+            change: change.to_f64(),
+        })
+    }
+}
+
+/// How [`InverseDynamics::solve`] solves Dᵀ λ = b: over the planned LDLᵀ of D Dᵀ, by the LU of the
 /// square Dᵀ, or over D's independent rows (the flags mark the rows left out).
 enum Solver<const N: usize, const NC: usize> {
     Sparse,
     Lu(crate::linalg::Permutation<N>),
     Orthogonal([bool; NC]),
 }
-
-/// Fixed-point iterations on the Coulomb friction loads of [`inverse_dynamics`].
-const INVERSE_FRICTION_ITERATIONS: u32 = 50;
 
 /// The reaction of a joint — by its label's generated constant `Name::LABEL`, its index into
 /// [`Mechanism::JOINTS`] — from the
@@ -319,6 +462,19 @@ where
 mod tests {
     use super::*;
     use crate::{JointInfo, OpCount};
+
+    /// The free pendulum has a degree of freedom: its loads are not determined by a motion, and
+    /// the error says how many drivers are missing.
+    #[test]
+    fn inverse_dynamics_names_what_it_cannot_solve() {
+        use crate::test_support::UnitPendulum;
+        let (m, mut ws) = (UnitPendulum, Workspace::<f64, 3, 2, 5>::new());
+        let q = [0.5, 0.0, 1.0, 0.0];
+        let error = InverseDynamics::default().solve(&m, &mut ws, &q, &[0.0; 3], &[0.0; 3], 0.0, &mut [0.0; 2]);
+        assert_eq!(error, Err(InverseDynamicsError::NotDriven { dof: 1 }));
+        let message = error.unwrap_err().to_string();
+        assert!(message.contains("add 1 driver"), "{message}");
+    }
 
     /// A spatial body `top` held by a spherical joint at its body point s′ (no generated spatial
     /// mechanism exists yet): q = (r, p), v = (ṙ, ω′), Φ = r + A s′ − r_O.

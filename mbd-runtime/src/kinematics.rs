@@ -501,7 +501,7 @@ impl<T: Real> KinematicSolver<T> {
     /// was reached: the last point on success, the last good point before an error (the failed
     /// point's iterate is discarded), so a caller can inspect it or resume. Nothing is
     /// allocated; `times` may be any iterator of times or of references to them (`&times`, as
-    /// [`simulate`](crate::simulate) takes them), in any order.
+    /// [`Simulation`](crate::Simulation) takes them), in any order.
     ///
     /// # Errors
     /// The first error of any point (each carries its t); the sweep stops there.

@@ -1,7 +1,7 @@
 //! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
 //!
 //! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
-//! Feature `alloc` (part of `std`) adds [`linearize()`], which needs a heap but not `std`.
+//! Feature `alloc` (part of `std`) adds [`Linearizer`], which needs a heap but not `std`.
 //! No solver allocates: O(N²) work space is the caller's [`Workspace`] (made once, on the heap
 //! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]
@@ -50,19 +50,17 @@ pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynami
 pub use error::{KinematicError, NonFiniteQuantity};
 pub use finite_differences::FiniteDifferences;
 pub use integrate::{
-    project, simulate, simulate_with_events, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event,
-    EventHit, Flow, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, SimulationError,
-    SimulationOptions, Statistics, System,
+    project, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit, Flow, GeneralizedAlpha,
+    GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions, Statistics,
+    System,
 };
-pub use inverse::{inverse_dynamics, joint_reaction, JointReaction, Wrench, INVERSE_PIVOT_TOLERANCE};
+pub use inverse::{joint_reaction, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench};
 pub use kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_MAX_STEP, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_RANK_TOLERANCE, DEFAULT_REUSE_SAFETY, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
 #[cfg(feature = "alloc")]
-pub use linearize::{
-    linearize, linearize_finite_differences, LinearStability, Linearization, LinearizeError, LinearizeOptions, Mode, Output,
-};
+pub use linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
 pub use mechanism::{
     ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix, OpCount, PositionStep,
 };

@@ -58,7 +58,7 @@
 //!
 //! # The finite-difference linearization
 //!
-//! [`linearize_finite_differences`] takes the same chart and differentiates the forward dynamics
+//! [`Linearizer::finite_differences`] takes the same chart and differentiates the forward dynamics
 //! itself: each state and input is moved by ±ε (ε = ∛u · max(1, |x|)), the state mapped onto the
 //! manifold (Newton on the dependent displacements, the dependent velocities from D v = ν) and
 //! v̇, λ evaluated — what a tool without symbolic derivatives does, and an independent check of
@@ -146,7 +146,7 @@ impl fmt::Debug for Output {
     }
 }
 
-/// Options of [`linearize`] and [`linearize_finite_differences`]. Build from [`Default`] and the
+/// Options of a [`Linearizer`]. Build from [`Default`] and the
 /// `with_*` setters. Unlike the solvers' options they are not generic over the scalar:
 /// linearization runs in f64 only. Not `Copy`: it holds the lists of inputs and outputs.
 #[derive(Debug)]
@@ -623,9 +623,67 @@ where
     Ok((inputs, chart))
 }
 
-/// The exact linearization of `m`'s motion about (q, v) at t (module docs). The inputs are at
-/// the values `m` holds.
-pub fn linearize<M, const NQ: usize, const NV: usize, const NC: usize>(
+/// Linearization of a mechanism's motion on its constraint manifold about a state, exact from the
+/// generated derivatives (module docs) or by central differences to check them. Made by
+/// [`new`](Self::new) or [`Default`], holding only its options: one linearizer serves any number
+/// of mechanisms and states.
+///
+/// ```ignore
+/// let lin = Linearizer::new(LinearizeOptions::default().with_inputs(&["motor"])).linearize(&m, &q, &v, 0.0)?;
+/// let modes = lin.modes()?;
+/// ```
+#[derive(Debug, Default)]
+pub struct Linearizer {
+    /// The inputs, outputs, chart and tolerances.
+    pub options: LinearizeOptions,
+}
+
+impl Linearizer {
+    /// A linearizer with the given options.
+    pub fn new(options: LinearizeOptions) -> Self {
+        Linearizer { options }
+    }
+
+    /// The exact linearization of `m`'s motion about (q, v) at t (module docs). The inputs are
+    /// at the values `m` holds.
+    ///
+    /// # Errors
+    /// A [`LinearizeError`] naming the constraint row, velocity, input or output at fault.
+    pub fn linearize<M, const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        t: f64,
+    ) -> Result<Linearization, LinearizeError>
+    where
+        M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
+    {
+        exact(m, q, v, t, &self.options)
+    }
+
+    /// The same model as [`linearize`](Self::linearize), by central differences of the forward
+    /// dynamics in the same chart (module docs): 2 (2f + inputs) forward-dynamics solves and as
+    /// many projections onto the manifold. A check of the exact one, not a substitute.
+    ///
+    /// # Errors
+    /// As [`linearize`](Self::linearize).
+    pub fn finite_differences<M, const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        t: f64,
+    ) -> Result<Linearization, LinearizeError>
+    where
+        M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC> + Clone,
+    {
+        finite_differences(m, q, v, t, &self.options)
+    }
+}
+
+/// [`Linearizer::linearize`].
+fn exact<M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
     q: &[f64; NQ],
     v: &[f64; NV],
@@ -797,10 +855,8 @@ fn assemble<M: Mechanism>(
     }
 }
 
-/// The same model as [`linearize`], by central differences of the forward dynamics in the same
-/// chart (module docs): 2 (2f + inputs) forward-dynamics solves and as many projections onto
-/// the manifold.
-pub fn linearize_finite_differences<M, const NQ: usize, const NV: usize, const NC: usize>(
+/// [`Linearizer::finite_differences`].
+fn finite_differences<M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
     q: &[f64; NQ],
     v: &[f64; NV],

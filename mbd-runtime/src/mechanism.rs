@@ -317,7 +317,7 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// Switching function `k` of [`Dynamics::SWITCH_NAMES`] at (q, v, t), positive exactly while
     /// the element's force acts: its overlap δ (penetration, stretch, tyre compression; m) out of
     /// contact, its unclamped force law (N) in contact. Where it changes sign within a step,
-    /// [`simulate`](crate::simulate) locates the instant and cuts the step there. 0 for k past
+    /// [`Simulation`](crate::Simulation) locates the instant and cuts the step there. 0 for k past
     /// the end.
     fn switching_function(&self, k: usize, q: &[T; NQ], v: &[T; NV], t: T) -> T {
         let _ = (k, q, v, t);

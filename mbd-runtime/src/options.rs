@@ -129,6 +129,7 @@ mod api {
         add("Dop853Options", format!("{:?}", Dop853Options::<f64>::default()));
         add("GeneralizedAlphaOptions", format!("{:?}", GeneralizedAlphaOptions::<f64>::default()));
         add("ErrorControl", format!("{:?}", ErrorControl::<f64>::default()));
+        add("InverseDynamicsOptions", format!("{:?}", InverseDynamicsOptions::<f64>::default()));
         #[cfg(feature = "alloc")]
         add("LinearizeOptions", format!("{:?}", LinearizeOptions::default()));
         out
@@ -219,6 +220,13 @@ mod api {
         let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
         let snapshot = manifest.join("api.txt");
         let now = surface();
+        // Every options type's defaults are in the surface: a new one must be added to `defaults`.
+        for line in now.lines() {
+            let name = line.trim_start_matches("pub struct ").split(['<', ' ', '{']).next().unwrap_or("");
+            if line.starts_with("pub struct ") && name.ends_with("Options") {
+                assert!(now.contains(&format!("\n{name}::default() = ")), "add {name}'s defaults to `defaults()` in options.rs");
+            }
+        }
         if std::env::var_os("MBD_BLESS").is_some() {
             std::fs::write(&snapshot, &now).expect("api.txt written");
         }

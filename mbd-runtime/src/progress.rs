@@ -6,7 +6,7 @@
 //! ```text
 //! let times: Vec<f64> = (0..=10_000).map(|k| k as f64 * 1e-3).collect();
 //! let progress = Progress::over(&times);
-//! simulate(&m, &mut ws, &mut Dopri5::default(), 0.0, &q, &v, &times, &options, progress.track(|sample| {
+//! Simulation::new(&m, &mut Dopri5::default()).start(0.0, &q, &v).times(&times).run(&mut ws, progress.track(|sample| {
 //!     // your own output, as without the bar
 //! }))?;
 //!
@@ -103,7 +103,7 @@ impl Progress {
         }
     }
 
-    /// A callback for [`crate::simulate`] that moves the bar to each sample's time, then hands the
+    /// A callback for [`Simulation::run`](crate::Simulation::run) that moves the bar to each sample's time, then hands the
     /// sample to `output` and returns what it returns (so `ControlFlow::Break` still stops the
     /// run).
     pub fn track<'a, T: Real, R, const NQ: usize, const NV: usize, const NC: usize>(

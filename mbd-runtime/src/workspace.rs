@@ -71,7 +71,7 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
     pub const BYTES: usize = core::mem::size_of::<Self>();
 
     /// The constraint Jacobian D = Φ_q B as the last solve that evaluated it left it: after
-    /// [`crate::inverse_dynamics`] and after a successful [`crate::StaticSolver::solve`], D(q, t)
+    /// [`crate::InverseDynamics::solve`] and after a successful [`crate::StaticSolver::solve`], D(q, t)
     /// at the q and t they return (what [`crate::joint_reaction`] takes); after other solves it
     /// may hold D at another q, or D's LU factors.
     pub fn jacobian(&self) -> &[[T; NV]; NC] {

@@ -97,7 +97,10 @@ where
     timed(|| {
         let mut integrator = GeneralizedAlpha::new(options);
         let mut q = [0.0; NQ];
-        simulate(k, ws, &mut integrator, 0.0, s.q0, s.v0, &[s.t_end], &SimulationOptions::default(), |p| q = p.point.q)
+        Simulation::new(k, &mut integrator)
+            .start(0.0, s.q0, s.v0)
+            .times(&[s.t_end])
+            .run(ws, |p| q = p.point.q)
             .map(|_| (integrator.total_iterations, q))
             .map_err(|e| e.to_string())
     })
@@ -170,20 +173,18 @@ where
             let mut q = [0.0f32; NQ];
             let options = SimulationOptions::default();
             let stats = if rk4 {
-                simulate(
-                    m32,
-                    ws32,
-                    &mut Rk4::new(Rk4Options::default().with_step(1e-3f32)),
-                    0.0,
-                    &q32,
-                    &v32,
-                    &[s.t_end as f32],
-                    &options,
-                    |p| q = p.point.q,
-                )
+                Simulation::new(m32, &mut Rk4::new(Rk4Options::default().with_step(1e-3f32)))
+                    .start(0.0, &q32, &v32)
+                    .times(&[s.t_end as f32])
+                    .options(options)
+                    .run(ws32, |p| q = p.point.q)
             } else {
                 let o = Dopri5Options::default().with_rtol(1e-5f32).with_atol(1e-7);
-                simulate(m32, ws32, &mut Dopri5::new(o), 0.0, &q32, &v32, &[s.t_end as f32], &options, |p| q = p.point.q)
+                Simulation::new(m32, &mut Dopri5::new(o))
+                    .start(0.0, &q32, &v32)
+                    .times(&[s.t_end as f32])
+                    .options(options)
+                    .run(ws32, |p| q = p.point.q)
             };
             stats.map(|st| (st.steps, q.map(f64::from)))
         });
@@ -192,12 +193,18 @@ where
         let (seconds, result) = timed(|| {
             let mut q = [0.0f64; NQ];
             let stats = if rk4 {
-                simulate(m64, ws64, &mut Rk4::new(Rk4Options::default().with_step(1e-3)), 0.0, s.q0, s.v0, &[s.t_end], &options, |p| {
-                    q = p.point.q
-                })
+                Simulation::new(m64, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+                    .start(0.0, s.q0, s.v0)
+                    .times(&[s.t_end])
+                    .options(options)
+                    .run(ws64, |p| q = p.point.q)
             } else {
                 let o = Dopri5Options::default().with_rtol(1e-5).with_atol(1e-7);
-                simulate(m64, ws64, &mut Dopri5::new(o), 0.0, s.q0, s.v0, &[s.t_end], &options, |p| q = p.point.q)
+                Simulation::new(m64, &mut Dopri5::new(o))
+                    .start(0.0, s.q0, s.v0)
+                    .times(&[s.t_end])
+                    .options(options)
+                    .run(ws64, |p| q = p.point.q)
             };
             stats.map(|st| (st.steps, q))
         });

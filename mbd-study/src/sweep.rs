@@ -196,11 +196,19 @@ where
     let start = Instant::now();
     let (mut q, mut q2) = (Vec::new(), Vec::new());
     let tight = Dop853Options::default().with_rtol(1e-13).with_atol(1e-15);
-    simulate(case.mechanism, ws, &mut Dop853::new(tight), 0.0, &case.q0, &case.v0, &times, &options, |s| q.push(s.point.q))
+    Simulation::new(case.mechanism, &mut Dop853::new(tight))
+        .start(0.0, &case.q0, &case.v0)
+        .times(&times)
+        .options(options)
+        .run(ws, |s| q.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
     let seconds = start.elapsed().as_secs_f64();
     let check = Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14);
-    simulate(case.mechanism, ws, &mut Dopri5::new(check), 0.0, &case.q0, &case.v0, &times, &options, |s| q2.push(s.point.q))
+    Simulation::new(case.mechanism, &mut Dopri5::new(check))
+        .start(0.0, &case.q0, &case.v0)
+        .times(&times)
+        .options(options)
+        .run(ws, |s| q2.push(s.point.q))
         .unwrap_or_else(|e| fail(e));
     let end = q.last().expect("OUTPUTS > 0");
     let casadi = casadi_end(case).map(|theirs| max_difference(end, &theirs));
@@ -356,15 +364,19 @@ where
         let mut integrator = make();
         let (mut constraint, mut energy_error, mut error, mut k) = (0.0f64, 0.0f64, 0.0f64, 0);
         let start = Instant::now();
-        let stats = simulate(m, ws, &mut integrator, 0.0, &case.q0, &case.v0, &times, &options, |s| {
-            let mut phi = [0.0; NC];
-            m.constraints(&s.point.q, s.point.t, &mut phi);
-            constraint = phi.iter().fold(constraint, |a, x| a.max(x.abs()));
-            energy_error = energy_error.max((energy(s) - e0).abs());
-            error = error.max(max_difference(&s.point.q, &reference.q[k]));
-            k += 1;
-        })
-        .map_err(|e| e.to_string())?;
+        let stats = Simulation::new(m, &mut integrator)
+            .start(0.0, &case.q0, &case.v0)
+            .times(&times)
+            .options(options)
+            .run(ws, |s| {
+                let mut phi = [0.0; NC];
+                m.constraints(&s.point.q, s.point.t, &mut phi);
+                constraint = phi.iter().fold(constraint, |a, x| a.max(x.abs()));
+                energy_error = energy_error.max((energy(s) - e0).abs());
+                error = error.max(max_difference(&s.point.q, &reference.q[k]));
+                k += 1;
+            })
+            .map_err(|e| e.to_string())?;
         seconds.push(start.elapsed().as_secs_f64());
         let total: f64 = seconds.iter().sum();
         let wanted = if total < 0.05 {

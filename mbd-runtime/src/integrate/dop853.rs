@@ -459,7 +459,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
 
     fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
         if !self.dense_ready {
-            // Not prepared (a caller other than `simulate`): the cubic Hermite interpolant.
+            // Not prepared (a caller other than `Simulation::run`): the cubic Hermite interpolant.
             hermite_state(mechanism, from, to, t, q, v);
             return;
         }

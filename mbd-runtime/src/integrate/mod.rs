@@ -21,7 +21,7 @@
 //! [`Kinematics::position_rates`]: crate::Kinematics::position_rates
 //! [`Kinematics::normalize_positions`]: crate::Kinematics::normalize_positions
 //!
-//! [`simulate`](simulate()) drives any of them to a list of output times, corrects drift after
+//! [`Simulation`] drives any of them to a list of output times, corrects drift after
 //! each step ([`Correction`]: mass-weighted projection or coordinate partitioning) and hands each
 //! output [`Sample`] to a callback.
 //!
@@ -43,7 +43,7 @@ pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::{Rk4, Rk4Options};
-pub use simulate::{project, simulate, simulate_with_events, Correction, Event, EventHit, Flow, SimulationOptions, Statistics};
+pub use simulate::{project, Correction, Event, EventHit, Flow, Simulation, SimulationOptions, Statistics};
 
 use core::fmt;
 
@@ -109,14 +109,14 @@ impl<T: Real> Energy<T> {
     }
 }
 
-/// One output of [`simulate`](simulate()).
+/// One output of [`Simulation`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// State, accelerations and multipliers at the output time.
     pub point: Point<T, NQ, NV, NC>,
     /// Its energies.
     pub energy: Energy<T>,
-    /// `Some` for the extra sample [`simulate`](simulate()) delivers at a located event, at its
+    /// `Some` for the extra sample [`Simulation`] delivers at a located event, at its
     /// instant; `None` at the output times.
     pub event: Option<EventHit>,
 }
@@ -167,6 +167,12 @@ pub enum SimulationError {
     InvalidOptions {
         /// The option and what it must be.
         what: &'static str,
+    },
+    /// A [`Simulation`] was run without a start or without output times (`missing` says which
+    /// and how to give it).
+    Incomplete {
+        /// What the simulation lacks.
+        missing: &'static str,
     },
     /// The output times are not non-decreasing from the initial time.
     TimesNotIncreasing {
@@ -221,6 +227,7 @@ impl fmt::Display for SimulationError {
                 write!(f, "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}")
             }
             SimulationError::InvalidOptions { what } => write!(f, "invalid option: {what}"),
+            SimulationError::Incomplete { missing } => write!(f, "the simulation was run without {missing}"),
             SimulationError::TimesNotIncreasing { index } => {
                 write!(f, "output time {index} is before the one before it or before the start")
             }
@@ -362,11 +369,11 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// gives the rates q̇ = B(q) v the interpolation of q needs. q is not normalized.
     fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]);
 
-    /// Forgets what the method carries from step to step (called by [`simulate`](simulate()) at
+    /// Forgets what the method carries from step to step (called by [`Simulation`] at
     /// its start, so an integrator can be reused for another run).
     fn restart(&mut self) {}
 
-    /// The point to go on from after [`simulate`](simulate()) corrected the drift of the step's
+    /// The point to go on from after [`Simulation`] corrected the drift of the step's
     /// end `end` to (`q`, `v`). By default v̇, λ and the powers are those of forward dynamics at
     /// the corrected state, as an explicit method needs (its next step starts from v̇ = f(q, v)).
     /// A method whose v̇ and λ are unknowns of its own equations keeps them: they are part of

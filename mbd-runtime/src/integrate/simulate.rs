@@ -1,4 +1,4 @@
-//! The driver: [`simulate`] integrates with any [`Integrator`] to a list of output times,
+//! The driver: [`Simulation`] integrates with any [`Integrator`] to a list of output times,
 //! corrects drift after each step ([`Correction`]: the mass-weighted [`project`]ion, or
 //! coordinate partitioning, Nikravesh 13.6.2), interpolates each output with the step's dense
 //! output and hands its [`Sample`] (state, v̇, λ and energies) to a callback; its
@@ -10,7 +10,7 @@
 //! overlap ([`Dynamics::switching_function`](crate::Dynamics::switching_function)) or a user's
 //! [`Event`] — the instant is located on the step's dense output (Illinois regula falsi) and the
 //! step is taken again from its start to land on that instant, so that no step straddles a
-//! switch and the force's kink is not smeared over a step ([`simulate_with_events`]).
+//! switch and the force's kink is not smeared over a step ([`Simulation::events`]).
 
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
 use crate::dynamics::kinetic_energy;
@@ -127,7 +127,7 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
     Ok(())
 }
 
-/// Statistics of a [`simulate`] run.
+/// Statistics of a [`Simulation`] run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Statistics {
     /// Steps taken (accepted).
@@ -143,7 +143,7 @@ pub struct Statistics {
     pub stopped_by_output: bool,
 }
 
-/// What an output callback of [`simulate`] returns: `()` (go on), or a [`ControlFlow`] whose
+/// What an output callback of [`Simulation::run`] returns: `()` (go on), or a [`ControlFlow`] whose
 /// `Break` ends the run after the sample it was given — to stop on a condition, at a deadline,
 /// or when the user cancels ([`Statistics::stopped_by_output`]).
 pub trait Flow {
@@ -170,14 +170,14 @@ impl<B, C> Flow for ControlFlow<B, C> {
 pub enum EventHit {
     /// Switching function `k` of the mechanism (a contact, cable or tyre touching or letting go).
     Switch(usize),
-    /// The user's event `k` of [`simulate_with_events`]' list.
+    /// The user's event `k` of [`Simulation::events`].
     User(usize),
 }
 
 /// g(t, q, v) of an [`Event`].
 pub type EventFunction<'a, T, const NQ: usize, const NV: usize> = dyn FnMut(T, &[T; NQ], &[T; NV]) -> T + 'a;
 
-/// A user's event for [`simulate_with_events`]: a function g(t, q, v) whose change of sign
+/// A user's event for [`Simulation::events`]: a function g(t, q, v) whose change of sign
 /// (g > 0 on one side, g ≤ 0 on the other) within a step is located; a sample is delivered at
 /// that instant (its [`Sample::event`](super::Sample::event) says which), and with `stop` the run
 /// ends there (e.g. a ram reaching its stroke end: `g = stroke − 0.5`).
@@ -189,7 +189,7 @@ pub struct Event<'a, T, const NQ: usize, const NV: usize> {
 }
 
 crate::options::options! {
-    /// Options of [`simulate`], in the scalar type `T` of the mechanism (default `f64`). Build
+    /// Options of a [`Simulation`], in the scalar type `T` of the mechanism (default `f64`). Build
     /// from [`Default`] and the `with_*` setters.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct SimulationOptions<T> {
@@ -215,51 +215,102 @@ crate::options::options! {
     }
 }
 
-/// Integrates from `initial` (t, q, v) and calls `output` at each of `times` (non-decreasing,
-/// not before the initial time) with the interpolated state, its v̇ and λ, and its energies.
+/// A simulation: what is integrated (a mechanism), by what ([`Integrator`]), from where
+/// ([`start`](Self::start)), to which output times ([`times`](Self::times)), with which
+/// [`options`](Self::options) and [`events`](Self::events); [`run`](Self::run) integrates it in
+/// a work space and hands each output's [`Sample`] to a callback.
 ///
-/// The initial q is normalized ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions))
-/// and the initial state corrected when a [`Correction`] is set (initial-condition correction,
-/// Nikravesh 14.3); interpolated outputs are normalized too. Nothing allocates: storage for the
-/// samples is the caller's. `output` may return `()`, or a [`ControlFlow`] whose `Break` ends
-/// the run after that sample ([`Flow`], [`Statistics::stopped_by_output`]): a stop condition, a
-/// deadline, a user's cancel, a progress bar's tick.
+/// ```ignore
+/// let stats = Simulation::new(&m, &mut Dopri5::default())
+///     .start(0.0, &q0, &v0)
+///     .times(&times)
+///     .options(SimulationOptions::new().with_track_work(true))
+///     .run(&mut ws, |s| println!("{} {:?}", s.point.t, s.point.q))?;
+/// ```
 ///
-/// # Errors
-/// The first [`SimulationError`] met; the samples before it have been delivered.
+/// The start and the times are required; the options default to [`SimulationOptions::new`],
+/// the events to none. Nothing allocates: the samples' storage is the caller's.
+#[must_use = "a simulation does nothing until it is run"]
+pub struct Simulation<'a, T, M, I, const NQ: usize, const NV: usize> {
+    mechanism: &'a M,
+    integrator: &'a mut I,
+    start: Option<(T, [T; NQ], [T; NV])>,
+    times: &'a [T],
+    options: SimulationOptions<T>,
+    events: &'a mut [Event<'a, T, NQ, NV>],
+}
+
+impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I, NQ, NV> {
+    /// A simulation of `mechanism` by `integrator`, with the default options and no events;
+    /// give it a [`start`](Self::start) and output [`times`](Self::times) before running it.
+    pub fn new(mechanism: &'a M, integrator: &'a mut I) -> Self {
+        Simulation { mechanism, integrator, start: None, times: &[], options: SimulationOptions::new(), events: &mut [] }
+    }
+
+    /// The initial state: time t0 (s), coordinates q0 and velocities v0. They need not satisfy
+    /// the constraints exactly: q0 is normalized and, with a [`Correction`], the state is
+    /// projected onto Φ = 0, D v = ν first (initial-condition correction, Nikravesh 14.3).
+    pub fn start(mut self, t0: T, q0: &[T; NQ], v0: &[T; NV]) -> Self {
+        self.start = Some((t0, *q0, *v0));
+        self
+    }
+
+    /// The output times (s): non-decreasing, none before the start's t0; the run ends at the
+    /// last. A sample is delivered at each, interpolated on the step's dense output.
+    pub fn times(mut self, times: &'a [T]) -> Self {
+        self.times = times;
+        self
+    }
+
+    /// The options (default [`SimulationOptions::new`]).
+    pub fn options(mut self, options: SimulationOptions<T>) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// The user's events, located besides the mechanism's own switches (see [`Event`]): at
+    /// each the step is cut at the instant, a sample is delivered there with
+    /// [`Sample::event`](super::Sample::event) set, and an event with `stop` ends the run
+    /// ([`Statistics::stopped_by`]).
+    pub fn events(mut self, events: &'a mut [Event<'a, T, NQ, NV>]) -> Self {
+        self.events = events;
+        self
+    }
+
+    /// Integrates from the start and calls `output` at each output time with the interpolated
+    /// state, its v̇ and λ, and its energies (interpolated q is normalized too). `output` may
+    /// return `()`, or a [`ControlFlow`] whose `Break` ends the run after that sample
+    /// ([`Flow`], [`Statistics::stopped_by_output`]): a stop condition, a deadline, a user's
+    /// cancel, a progress bar's tick.
+    ///
+    /// # Errors
+    /// [`SimulationError::Incomplete`] without a start or output times; otherwise the first
+    /// [`SimulationError`] met, the samples before it having been delivered.
+    pub fn run<R, const NC: usize, const N: usize, const NS: usize>(
+        self,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
+        output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
+    ) -> Result<Statistics, SimulationError>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+        I: Integrator<T, M, NQ, NV, NC, N, NS>,
+        R: Flow,
+    {
+        let Some((t0, q0, v0)) = self.start else {
+            return Err(SimulationError::Incomplete { missing: "a start: .start(t0, &q0, &v0)" });
+        };
+        if self.times.is_empty() {
+            return Err(SimulationError::Incomplete { missing: "output times: .times(&times)" });
+        }
+        integrate(self.mechanism, ws, self.integrator, t0, &q0, &v0, self.times, &self.options, self.events, output)
+    }
+}
+
+/// [`Simulation::run`]'s loop.
 #[allow(clippy::too_many_arguments)]
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
-    integrator: &mut I,
-    t0: T,
-    q0: &[T; NQ],
-    v0: &[T; NV],
-    times: &[T],
-    options: &SimulationOptions<T>,
-    output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
-) -> Result<Statistics, SimulationError>
-where
-    T: Real,
-    M: ForwardDynamics<T, NQ, NV, NC>,
-    I: Integrator<T, M, NQ, NV, NC, N, NS>,
-    R: Flow,
-{
-    simulate_with_events(mechanism, ws, integrator, t0, q0, v0, times, options, &mut [], output)
-}
-
-/// [`simulate`] with the user's `events` located too: at each event (and at each switch of the
-/// mechanism's unilateral elements, with [`SimulationOptions::locate_switches`]) the step is cut
-/// at the instant, a sample is delivered there with [`Sample::event`](super::Sample::event) set,
-/// and an event with `stop` ends the run ([`Statistics::stopped_by`]).
-///
-/// # Errors
-/// As [`simulate`].
-#[allow(clippy::too_many_arguments)]
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn simulate_with_events<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+fn integrate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     mechanism: &M,
     ws: &mut Workspace<T, NV, NC, N, NS>,
     integrator: &mut I,
@@ -302,10 +353,7 @@ where
             }
         };
     }
-    let t_end = match times.last() {
-        Some(&t) => t,
-        None => return Ok(stats),
-    };
+    let Some(&t_end) = times.last() else { return Ok(stats) };
     let mut next = 0;
     // Whether `from` is an event's instant: a change within rounding of it is then that event's
     // (or one simultaneous with it), not a new one.

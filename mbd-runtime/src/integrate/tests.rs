@@ -46,23 +46,27 @@ fn run<I: Integrator<f64, UnitPendulum, 4, 3, 2, 5, 29>>(integrator: &mut I, cor
     let mut k = 0;
     let q0 = m.initial_positions();
     let e0 = m.potential_energy(&q0, 0.0);
-    simulate(&m, &mut Workspace::<f64, 3, 2, 5, 29>::new(), integrator, 0.0, &q0, &[0.0; 3], &TIMES, &options, |s| {
-        let q = &s.point.q;
-        let (sin, cos) = reference[k].sin_cos();
-        let mut phi = [0.0; 2];
-        m.constraints(q, s.point.t, &mut phi);
-        let errors = [
-            (q[2] - cos).abs().max((q[3] - sin).abs()),
-            (q[2].hypot(q[3]) - 1.0).abs(),
-            phi[0].abs().max(phi[1].abs()),
-            (s.energy.kinetic + s.energy.potential - e0).abs(),
-        ];
-        for (w, e) in worst.iter_mut().zip(errors) {
-            *w = w.max(e);
-        }
-        k += 1;
-    })
-    .expect("the pendulum swings");
+    Simulation::new(&m, integrator)
+        .start(0.0, &q0, &[0.0; 3])
+        .times(&TIMES)
+        .options(options)
+        .run(&mut Workspace::<f64, 3, 2, 5, 29>::new(), |s| {
+            let q = &s.point.q;
+            let (sin, cos) = reference[k].sin_cos();
+            let mut phi = [0.0; 2];
+            m.constraints(q, s.point.t, &mut phi);
+            let errors = [
+                (q[2] - cos).abs().max((q[3] - sin).abs()),
+                (q[2].hypot(q[3]) - 1.0).abs(),
+                phi[0].abs().max(phi[1].abs()),
+                (s.energy.kinetic + s.energy.potential - e0).abs(),
+            ];
+            for (w, e) in worst.iter_mut().zip(errors) {
+                *w = w.max(e);
+            }
+            k += 1;
+        })
+        .expect("the pendulum swings");
     assert_eq!(k, TIMES.len());
     worst
 }
@@ -137,37 +141,38 @@ fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options
     let q0 = m.initial_positions();
     let min_step = control.with_min_step(0.2);
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(min_step)));
-    let error = simulate(
-        &m,
-        &mut Workspace::<f64, 3, 2, 5, 29>::new(),
-        &mut alpha,
-        0.0,
-        &q0,
-        &[0.0; 3],
-        &[1.0],
-        &SimulationOptions::default(),
-        |_| {},
-    );
+    let error =
+        Simulation::new(&m, &mut alpha).start(0.0, &q0, &[0.0; 3]).times(&[1.0]).run(&mut Workspace::<f64, 3, 2, 5, 29>::new(), |_| {});
     assert!(matches!(error, Err(SimulationError::StepSizeTooSmall { t: 0.0, .. })), "{error:?}");
 
     let negative = control.with_rtol(-1.0);
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options.with_error_control(Some(negative)));
-    let error = simulate(
-        &m,
-        &mut Workspace::<f64, 3, 2, 5, 29>::new(),
-        &mut alpha,
-        0.0,
-        &q0,
-        &[0.0; 3],
-        &[1.0],
-        &SimulationOptions::default(),
-        |_| {},
-    );
+    let error =
+        Simulation::new(&m, &mut alpha).start(0.0, &q0, &[0.0; 3]).times(&[1.0]).run(&mut Workspace::<f64, 3, 2, 5, 29>::new(), |_| {});
     assert!(matches!(error, Err(SimulationError::InvalidOptions { .. })), "{error:?}");
 
     // A work space without the mechanism's Newton slots (NS = 0): named, not a panic.
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options);
-    let error =
-        simulate(&m, &mut Workspace::<f64, 3, 2, 5>::new(), &mut alpha, 0.0, &q0, &[0.0; 3], &[1.0], &SimulationOptions::default(), |_| {});
+    let error = Simulation::new(&m, &mut alpha).start(0.0, &q0, &[0.0; 3]).times(&[1.0]).run(&mut Workspace::<f64, 3, 2, 5>::new(), |_| {});
     assert!(matches!(error, Err(SimulationError::NewtonSlotSize { expected: 29, found: 0 })), "{error:?}");
+}
+
+/// A simulation without a start or without output times is refused with an error saying what
+/// it lacks and how to give it, before anything is integrated; times out of order name the
+/// first one.
+#[test]
+fn a_simulation_without_start_or_times_says_what_it_lacks() {
+    let m = UnitPendulum;
+    let q0 = m.initial_positions();
+    let mut ws = Workspace::<f64, 3, 2, 5, 29>::new();
+    let mut rk4 = Rk4::default();
+    let mut samples = 0;
+    let error = Simulation::new(&m, &mut rk4).times(&[1.0]).run(&mut ws, |_| samples += 1);
+    assert!(matches!(error, Err(SimulationError::Incomplete { missing }) if missing.contains(".start(")), "{error:?}");
+    let error = Simulation::new(&m, &mut rk4).start(0.0, &q0, &[0.0; 3]).run(&mut ws, |_| samples += 1);
+    assert!(matches!(error, Err(SimulationError::Incomplete { missing }) if missing.contains(".times(")), "{error:?}");
+    assert_eq!(error.unwrap_err().to_string(), "the simulation was run without output times: .times(&times)", "the message a user reads");
+    let error = Simulation::new(&m, &mut rk4).start(0.5, &q0, &[0.0; 3]).times(&[1.0, 0.2]).run(&mut ws, |_| samples += 1);
+    assert!(matches!(error, Err(SimulationError::TimesNotIncreasing { index: 1 })), "{error:?}");
+    assert_eq!(samples, 0, "nothing was delivered");
 }

@@ -156,10 +156,14 @@ where
         let options = SimulationOptions::default().with_correction(correction);
         let mut rk4 = Rk4::new(Rk4Options::default().with_step(STEP));
         let start = Instant::now();
-        let stats = simulate(m, ws, &mut rk4, 0.0, &q, &v, &[RUN], &options, |s| {
-            assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
-        })
-        .unwrap_or_else(|e| panic!("{scene} runs: {e}"));
+        let stats = Simulation::new(m, &mut rk4)
+            .start(0.0, &q, &v)
+            .times(&[RUN])
+            .options(options)
+            .run(ws, |s| {
+                assert!(s.point.q.iter().all(|x| x.is_finite()), "{scene}: finite");
+            })
+            .unwrap_or_else(|e| panic!("{scene} runs: {e}"));
         start.elapsed().as_secs_f64() * 1e6 / stats.steps as f64
     };
     let step_us = step(Correction::None);

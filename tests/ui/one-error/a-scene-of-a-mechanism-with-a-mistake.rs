@@ -21,7 +21,7 @@ fn main() {
     let mut ws = FreePress::workspace();
     let q = m.initial_positions();
     let mut dopri = Dopri5::new(Dopri5Options::default());
-    let _ = simulate(&m, &mut ws, &mut dopri, 0.0, &q, &[0.0; 6], &[1.0], &SimulationOptions::default(), |s| {
+    let _ = Simulation::new(&m, &mut dopri).start(0.0, &q, &[0.0; 6]).times(&[1.0]).run(&mut ws, |s| {
         println!("{} {}", s.point.t, Press::NQ);
     });
 }
