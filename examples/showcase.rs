@@ -44,6 +44,10 @@ mod web_cutter;
 // Part of flywheel_engine, which builds on it (a second `mod` would compile it twice).
 use flywheel_engine::slider_crank_inverse;
 
+#[cfg(test)]
+#[path = "showcase/checks.rs"]
+mod checks;
+
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
     let runs: [(&str, Run); 20] = [

@@ -1,4 +1,6 @@
-//! Every example runs and its result agrees with what physics or geometry says it must be.
+//! Every example runs and its result agrees with what physics or geometry says it must be: the
+//! showcase's tests (`cargo test` builds the showcase, which holds every example, once, as a test;
+//! Cargo.toml's `[[example]] showcase`).
 //!
 //! Tolerances: the position solves stop at |Φ|∞ ≤ 1e-10 (the solver's default tolerance), and
 //! Newton's quadratic convergence usually lands far below it; positions derived from a converged
@@ -6,9 +8,7 @@
 //! (O(1–10) away from singular positions), so positions are checked to 1e-8 m. Velocities and
 //! accelerations come from exact linear solves at that configuration; with speeds of O(1–10) m/s
 //! and accelerations up to O(100) m/s², they are checked to 1e-7 relative to those scales.
-mod common;
-
-use common::*;
+use super::*;
 
 #[test]
 fn slider_crank_matches_its_closed_form() {
@@ -109,7 +109,7 @@ fn engine_drive_power_balances_gas_work() {
 /// δ ≈ 0.05, so a few per cent of δ).
 #[test]
 fn flywheel_engine_runs_at_the_speed_its_inverse_dynamics_predicts() {
-    let r = common::flywheel_engine::run(false).expect("the engine runs");
+    let r = flywheel_engine::run(false).expect("the engine runs");
     assert!((r.omega_mean - r.omega_design).abs() < 0.01 * r.omega_design, "{r:?}");
     assert!(r.delta > 0.01 && (r.delta - r.delta_predicted).abs() < 0.05 * r.delta_predicted, "{r:?}");
 }
@@ -124,7 +124,7 @@ fn flywheel_engine_runs_at_the_speed_its_inverse_dynamics_predicts() {
 /// random-walk drift of ~1e-7 J at worst: 1e-6 J, against the ~4 J the driver pumps in.
 #[test]
 fn pumped_pendulum_follows_its_reduced_model() {
-    let r = common::pumped_pendulum::run(false).expect("the pumped pendulum runs");
+    let r = pumped_pendulum::run(false).expect("the pumped pendulum runs");
     assert!(r.amplitude_end > 3.0 * r.amplitude_start, "the swing is pumped up: {r:?}");
     assert!(r.angle_error < 1e-7, "{r:?}");
     assert!(r.driver_work > 1.0, "{r:?}");
@@ -139,7 +139,7 @@ fn pumped_pendulum_follows_its_reduced_model() {
 /// balance to 1e-8 of the ~300 J stored in the springs (DOPRI5 at rtol 1e-9).
 #[test]
 fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
-    let [a, b] = common::suspension_dynamics::run(false).expect("both suspensions run");
+    let [a, b] = suspension_dynamics::run(false).expect("both suspensions run");
     for r in [a, b] {
         assert!(r.static_height > 0.27 && r.static_height < 0.30, "{r:?}");
         assert!(r.static_tyre_load > 2000.0 && r.static_tyre_load < 4000.0, "{r:?}");
@@ -155,7 +155,7 @@ fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
 /// halving, generalized-α by ~4) and with DOPRI5's tolerance, and the energy drift with them.
 #[test]
 fn free_four_bar_errors_fall_at_each_method_s_order() {
-    let runs = common::free_four_bar::run(false).expect("all runs succeed");
+    let runs = free_four_bar::run(false).expect("all runs succeed");
     let of = |method: &str| runs.iter().filter(|r| r.method == method).collect::<Vec<_>>();
     // Only where the finer run's error stays above the floor of 1e-10 rad that the projection
     // tolerance and the reference set: from 1e-8, a 16× fall still lands at 6e-10.
