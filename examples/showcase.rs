@@ -48,6 +48,33 @@ use flywheel_engine::slider_crank_inverse;
 #[path = "showcase/checks.rs"]
 mod checks;
 
+/// A function writing one example's animation.
+type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
+
+/// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
+const ANIMATIONS: [(&str, Animate); 20] = [
+    ("slider_crank", slider_crank::animation),
+    ("four_bar", four_bar::animation),
+    ("variable_pendulum", variable_pendulum::animation),
+    ("filmstrip", filmstrip::animation),
+    ("web_cutter", web_cutter::animation),
+    ("double_a_arm", double_a_arm::animation),
+    ("macpherson", macpherson::animation),
+    ("slider_crank_inverse", slider_crank_inverse::animation),
+    ("flywheel_engine", flywheel_engine::animation),
+    ("suspension_dynamics", suspension_dynamics::animation),
+    ("pumped_pendulum", pumped_pendulum::animation),
+    ("free_four_bar", free_four_bar::animation),
+    ("gyroscope", gyroscope::animation),
+    ("rssr", rssr::animation),
+    ("spatial_slider_crank", spatial_slider_crank::animation),
+    ("double_wishbone_3d", double_wishbone_3d::animation),
+    ("stewart_platform", stewart_platform::animation),
+    ("excavator", excavator::animation),
+    ("bump", bump::animation),
+    ("linear_models", linear_models::animation),
+];
+
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
     let runs: [(&str, Run); 20] = [
@@ -81,32 +108,9 @@ fn main() {
         }
     }
     // An animation of each example's main mechanism, as a page and as an animated SVG.
-    type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
-    let animations: [(&str, Animate); 20] = [
-        ("slider_crank", slider_crank::animation),
-        ("four_bar", four_bar::animation),
-        ("variable_pendulum", variable_pendulum::animation),
-        ("filmstrip", filmstrip::animation),
-        ("web_cutter", web_cutter::animation),
-        ("double_a_arm", double_a_arm::animation),
-        ("macpherson", macpherson::animation),
-        ("slider_crank_inverse", slider_crank_inverse::animation),
-        ("flywheel_engine", flywheel_engine::animation),
-        ("suspension_dynamics", suspension_dynamics::animation),
-        ("pumped_pendulum", pumped_pendulum::animation),
-        ("free_four_bar", free_four_bar::animation),
-        ("gyroscope", gyroscope::animation),
-        ("rssr", rssr::animation),
-        ("spatial_slider_crank", spatial_slider_crank::animation),
-        ("double_wishbone_3d", double_wishbone_3d::animation),
-        ("stewart_platform", stewart_platform::animation),
-        ("excavator", excavator::animation),
-        ("bump", bump::animation),
-        ("linear_models", linear_models::animation),
-    ];
     let dir = std::path::Path::new("target/showcase");
     println!("\n=== animations ===");
-    for (name, animate) in animations {
+    for (name, animate) in ANIMATIONS {
         let (html, svg) = (dir.join(format!("{name}.html")), dir.join(format!("{name}.svg")));
         let write = || -> Result<usize, Box<dyn std::error::Error>> {
             let animation = animate()?;

@@ -355,30 +355,7 @@ fn linear_models_match_their_closed_forms() {
 /// draws as an animated SVG: one frame group per frame, up to the SVG's 240.
 #[test]
 fn every_example_animates() {
-    type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
-    let animations: [(&str, Animate); 20] = [
-        ("slider_crank", slider_crank::animation),
-        ("four_bar", four_bar::animation),
-        ("variable_pendulum", variable_pendulum::animation),
-        ("filmstrip", filmstrip::animation),
-        ("web_cutter", web_cutter::animation),
-        ("double_a_arm", double_a_arm::animation),
-        ("macpherson", macpherson::animation),
-        ("slider_crank_inverse", flywheel_engine::slider_crank_inverse::animation),
-        ("flywheel_engine", flywheel_engine::animation),
-        ("suspension_dynamics", suspension_dynamics::animation),
-        ("pumped_pendulum", pumped_pendulum::animation),
-        ("free_four_bar", free_four_bar::animation),
-        ("gyroscope", gyroscope::animation),
-        ("rssr", rssr::animation),
-        ("spatial_slider_crank", spatial_slider_crank::animation),
-        ("double_wishbone_3d", double_wishbone_3d::animation),
-        ("stewart_platform", stewart_platform::animation),
-        ("excavator", excavator::animation),
-        ("bump", bump::animation),
-        ("linear_models", linear_models::animation),
-    ];
-    for (name, animate) in animations {
+    for (name, animate) in ANIMATIONS {
         let animation = animate().unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(animation.len() >= 2, "{name}: {} frames", animation.len());
         let svg = animation.to_svg().unwrap_or_else(|e| panic!("{name}: {e}"));
