@@ -336,7 +336,7 @@ impl<T: Real> InverseDynamics<T> {
         };
         let solve = |b: &[T; NV], lambda: &mut [T; NC]| match &solver {
             // The same D as the first solve: only a friction load that is not finite fails here,
-            // and its NaN ends the friction iteration below with `NotConverged`.
+            // and its NaN ends the friction iteration with `FrictionNotConverged`.
             Solver::Sparse => {
                 if !m.sparse_multipliers(q, t, pivot_tolerance, b, lambda) {
                     *lambda = [T::from_f64(f64::NAN); NC];
@@ -373,8 +373,26 @@ impl<T: Real> InverseDynamics<T> {
         if !sparse {
             solve(&base, lambda);
         }
-        // Coulomb friction depends on the loads it changes: fixed-point iteration on λ (nothing
-        // to do for a mechanism without it, whose friction forces are all zero).
+        self.settle_friction(m, q, v, t, &base, solve, lambda)
+    }
+
+    /// Coulomb friction depends on the loads it changes: fixed-point iteration on λ, each step
+    /// `solve`d for Dᵀλ = b − f(λ) (nothing to do for a mechanism without friction, whose friction
+    /// forces are all zero).
+    #[allow(clippy::too_many_arguments)]
+    fn settle_friction<M, const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        v: &[T; NV],
+        t: T,
+        base: &[T; NV],
+        solve: impl Fn(&[T; NV], &mut [T; NC]),
+        lambda: &mut [T; NC],
+    ) -> Result<(), InverseDynamicsError>
+    where
+        M: Dynamics<T, NQ, NV, NC>,
+    {
         let mut change = T::ZERO;
         for _ in 0..self.options.max_friction_iterations {
             let mut friction = [T::ZERO; NV];
@@ -397,7 +415,7 @@ impl<T: Real> InverseDynamics<T> {
             }
         }
         Err(InverseDynamicsError::FrictionNotConverged {
-            t: time,
+            t: t.to_f64(),
             iterations: self.options.max_friction_iterations,
             change: change.to_f64(),
         })
