@@ -160,13 +160,25 @@ const SAMPLES: usize = 200;
 
 /// Runs the oracle's Python module `module` with `args`; returns (success, stdout + stderr).
 fn oracle(py: &Path, module: &str, args: &[&Path]) -> (bool, String) {
-    let out = Command::new(py)
+    finish(start(py, module, args))
+}
+
+/// Starts the oracle's Python module `module` with `args` (one core each: two run side by side).
+fn start(py: &Path, module: &str, args: &[&Path]) -> std::process::Child {
+    Command::new(py)
         .arg("-m")
         .arg(module)
         .args(args)
         .current_dir(repo().join("tests/oracle"))
-        .output()
-        .expect("the oracle's Python runs");
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the oracle's Python runs")
+}
+
+/// Waits for a started module; returns (success, stdout + stderr).
+fn finish(child: std::process::Child) -> (bool, String) {
+    let out = child.wait_with_output().expect("the oracle's Python runs");
     let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     (out.status.success(), text)
 }
@@ -283,15 +295,16 @@ fn casadi_oracle() {
         samples!(EveryKink, 24),
     ];
     let args: Vec<&Path> = files.iter().map(|p| p.as_path()).collect();
+    // The oracle can fail: it must reject a perturbed Jacobian entry, γ entry, h entry, ∂h/∂q̇
+    // entry, friction force and ∂f/∂q̇ entry, and name the mechanism, the function, the row and
+    // the column. (Started first, it runs beside the comparison.)
+    let every = |name: &str| files.iter().find(|p| p.ends_with(format!("{name}.json"))).expect("written above").as_path();
+    let selftest = start(&py, "mbd_oracle.selftest", &[files[0].as_path(), every("EveryForce"), every("EveryFriction")]);
     let (ok, text) = oracle(&py, "mbd_oracle.compare", &args);
     println!("{text}");
     assert!(ok, "the CasADi oracle rejected generated functions:\n{text}");
 
-    // The oracle can fail: it must reject a perturbed Jacobian entry, γ entry, h entry, ∂h/∂q̇
-    // entry, friction force and ∂f/∂q̇ entry, and name the mechanism, the function, the row and
-    // the column.
-    let every = |name: &str| files.iter().find(|p| p.ends_with(format!("{name}.json"))).expect("checked above").as_path();
-    let (ok, text) = oracle(&py, "mbd_oracle.selftest", &[files[0].as_path(), every("EveryForce"), every("EveryFriction")]);
+    let (ok, text) = finish(selftest);
     println!("{text}");
     assert!(ok, "the oracle's self-test failed: it accepted a wrong value or did not say where:\n{text}");
 }
