@@ -3,46 +3,13 @@
 //! mechanism to `target/showcase/<name>.html` (a page) and `<name>.svg` (an animated SVG),
 //! relative to the current directory.
 
-#[path = "double_a_arm.rs"]
-mod double_a_arm;
-#[path = "double_wishbone_3d.rs"]
-mod double_wishbone_3d;
-#[path = "excavator.rs"]
-mod excavator;
-#[path = "filmstrip.rs"]
-mod filmstrip;
-#[path = "flywheel_engine.rs"]
-mod flywheel_engine;
-#[path = "four_bar.rs"]
-mod four_bar;
-#[path = "free_four_bar.rs"]
-mod free_four_bar;
-#[path = "gyroscope.rs"]
-mod gyroscope;
-#[path = "linear_models.rs"]
-mod linear_models;
-use linear_models::bump;
-#[path = "macpherson.rs"]
-mod macpherson;
-#[path = "pumped_pendulum.rs"]
-mod pumped_pendulum;
-#[path = "rssr.rs"]
-mod rssr;
-#[path = "slider_crank.rs"]
-mod slider_crank;
-#[path = "spatial_slider_crank.rs"]
-mod spatial_slider_crank;
-#[path = "stewart_platform.rs"]
-mod stewart_platform;
-#[path = "suspension_dynamics.rs"]
-mod suspension_dynamics;
-#[path = "variable_pendulum.rs"]
-mod variable_pendulum;
-#[path = "web_cutter.rs"]
-mod web_cutter;
-
-// Part of flywheel_engine, which builds on it (a second `mod` would compile it twice).
-use flywheel_engine::slider_crank_inverse;
+// Every example, compiled once in the library mbd-examples (which the tests share); each is also
+// a program of its own (`cargo run --example four_bar`).
+use mbd_examples::{
+    bump, double_a_arm, double_wishbone_3d, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope, linear_models,
+    macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank, stewart_platform, suspension_dynamics,
+    variable_pendulum, web_cutter,
+};
 
 #[cfg(test)]
 #[path = "showcase/checks.rs"]

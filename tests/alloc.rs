@@ -3,11 +3,9 @@
 //! step) make no heap allocation after set-up (the work space is made once, before counting).
 //! Only the test's own thread is counted: the harness's other threads allocate when they
 //! please (counting them failed about one run in four).
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/slider_crank.rs"]
-mod slider_crank;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+use mbd_examples::slider_crank;
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::slider_crank;
 }

@@ -5,14 +5,9 @@
 //! a coupler-point trace, the quarter car of `examples/bump.rs` simulated over its bump (tyre,
 //! bump stop, spring-damper), a spatial double pendulum; and a page asked to trace a point the
 //! mechanism does not have, which must say so.
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/bump.rs"]
-mod bump;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/four_bar.rs"]
-mod four_bar;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+use mbd_examples::{bump, four_bar};
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::{bump, four_bar};
 }

@@ -6,37 +6,13 @@
 //! ≈ 1e-12·O(1–1e3) and the rounding error O(ε_mach·|Φ|/h) ≈ 1e-10 for |Φ| = O(1): a tolerance of
 //! 1e-6 relative to max(1, |value|) separates right from wrong by orders of magnitude (a wrong
 //! term is O(1)), while the exact comparison is the CasADi oracle's job.
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/double_a_arm.rs"]
-mod double_a_arm;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/filmstrip.rs"]
-mod filmstrip;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/four_bar.rs"]
-mod four_bar;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/gyroscope.rs"]
-mod gyroscope;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/macpherson.rs"]
-mod macpherson;
+use mbd_examples::{
+    double_a_arm, filmstrip, four_bar, gyroscope, macpherson, slider_crank, suspension_dynamics, variable_pendulum, web_cutter,
+};
 #[path = "common/rng.rs"]
 mod rng;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/slider_crank.rs"]
-mod slider_crank;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/suspension_dynamics.rs"]
-mod suspension_dynamics;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/variable_pendulum.rs"]
-mod variable_pendulum;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/web_cutter.rs"]
-mod web_cutter;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::{
         double_a_arm, filmstrip, four_bar, gyroscope, macpherson, rng::Rng, slider_crank, suspension_dynamics, variable_pendulum,

@@ -7,11 +7,9 @@
 //! separates right from wrong (a wrong term is O(1) or larger).
 #[path = "common/rng.rs"]
 mod rng;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/slider_crank.rs"]
-mod slider_crank;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+use mbd_examples::slider_crank;
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::{rng::Rng, slider_crank};
 }

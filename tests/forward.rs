@@ -10,8 +10,7 @@
 //! formed with M⁻¹ exactly (M is diagonal), so the ratio costs no accuracy in either solve.
 #[path = "common/rng.rs"]
 mod rng;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+/// The shared generator (`tests/common/`).
 mod common {
     pub(crate) use super::rng::Rng;
 }

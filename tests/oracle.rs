@@ -12,34 +12,11 @@
 //! The Python environment (pinned CasADi and NumPy) is created on first use by
 //! `tests/oracle/ensure_env.sh` under `target/oracle-venv`. A missing Python or CasADi is a
 //! failure of this test, never a skip.
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/double_a_arm.rs"]
-mod double_a_arm;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/filmstrip.rs"]
-mod filmstrip;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/flywheel_engine.rs"]
-mod flywheel_engine;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/four_bar.rs"]
-mod four_bar;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/macpherson.rs"]
-mod macpherson;
+use mbd_examples::{double_a_arm, filmstrip, flywheel_engine, four_bar, macpherson, slider_crank, variable_pendulum, web_cutter};
 #[path = "common/rng.rs"]
 mod rng;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/slider_crank.rs"]
-mod slider_crank;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/variable_pendulum.rs"]
-mod variable_pendulum;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/web_cutter.rs"]
-mod web_cutter;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::{
         double_a_arm, filmstrip, flywheel_engine, four_bar, macpherson, rng::Rng, slider_crank, variable_pendulum, web_cutter,

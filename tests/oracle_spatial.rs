@@ -17,8 +17,7 @@
 //! never skips.
 #[path = "common/rng.rs"]
 mod rng;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+/// The shared generator (`tests/common/`).
 mod common {
     pub(crate) use super::rng::Rng;
 }

@@ -4,37 +4,12 @@
 //! differences of Φ_qᵀλ.
 //!
 //! Iteration counts are printed (`cargo test --test statics -- --nocapture`) and bounded.
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/double_a_arm.rs"]
-mod double_a_arm;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/excavator.rs"]
-mod excavator_example; // `excavator` is this file's own module below
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/filmstrip.rs"]
-mod filmstrip;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/four_bar.rs"]
-mod four_bar;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/macpherson.rs"]
-mod macpherson;
+use mbd_examples::excavator as excavator_example; // `excavator` is this file's own module below
+use mbd_examples::{double_a_arm, filmstrip, four_bar, macpherson, slider_crank, suspension_dynamics, variable_pendulum, web_cutter};
 #[path = "common/rng.rs"]
 mod rng;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/slider_crank.rs"]
-mod slider_crank;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/suspension_dynamics.rs"]
-mod suspension_dynamics;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/variable_pendulum.rs"]
-mod variable_pendulum;
-#[allow(dead_code)] // each test uses a part of the example
-#[path = "../examples/web_cutter.rs"]
-mod web_cutter;
-/// The examples this test uses and the shared generator (`tests/common/`): each example is
-/// compiled only where a test uses it.
+/// The examples this test uses (from mbd-examples, where they are compiled once) and the shared
+/// generator (`tests/common/`).
 mod common {
     pub(crate) use super::{
         double_a_arm, excavator_example as excavator, filmstrip, four_bar, macpherson, rng::Rng, slider_crank, suspension_dynamics,

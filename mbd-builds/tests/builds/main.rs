@@ -17,10 +17,11 @@
 //!   `alloc`), compiled for the target. (Its f32 results against f64 on the host are
 //!   `tests/scalar_f32.rs`'.)
 //!
-//! One test binary, so that its tests run side by side on the test threads: trybuild in its own
-//! target directory, and the three nested builds in `target/nested`, which they share so that
-//! what they have in common (mbd-macros and its dependencies) is built once (one after another:
-//! cargo locks the directory) — not the outer build's, whose lock the running `cargo test` holds.
+//! One test binary, so that its tests run side by side on the test threads. The nested builds
+//! use trybuild's target directory, so that what they have in common with it and with each
+//! other — mbd-macros (optimized: about 30 s of one core) and its dependencies — is built once
+//! (one build after another: cargo locks the directory); not the outer build's directory, whose
+//! lock the running `cargo test` holds.
 mod elf;
 mod html;
 
@@ -35,9 +36,9 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("mbd-builds is in the workspace").to_path_buf()
 }
 
-/// The target directory the nested builds share.
+/// The target directory the nested builds share: trybuild's, `<target>/tests/trybuild`.
 fn nested_target() -> PathBuf {
-    root().join("target/nested")
+    std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| root().join("target"), PathBuf::from).join("tests/trybuild")
 }
 
 #[test]
