@@ -322,3 +322,78 @@ fn spatial_slider_crank_stroke() {
         .unwrap();
     assert!(checked > 100);
 }
+
+/// What each entry of q and v is (`Mechanism::COORDINATES`, `VELOCITIES`), for a spatial body and
+/// for planar ones, and what reads it: the CSV header's units and names, the quantities a plot
+/// accepts, and linearization's state names. The descriptors carry the names of
+/// `COORDINATE_NAMES` and `VELOCITY_NAMES`, in order.
+#[test]
+fn descriptors_say_what_each_coordinate_and_velocity_is() {
+    use mbd::{CoordinateKind, CsvWriter, Linearizer, VelocityKind};
+    use mbd_examples::slider_crank::SliderCrank;
+    fn names_agree<M: Mechanism>() {
+        assert!(M::COORDINATES.iter().map(|c| c.name).eq(M::COORDINATE_NAMES.iter().copied()), "{}", M::NAME);
+        assert!(M::VELOCITIES.iter().map(|v| v.name).eq(M::VELOCITY_NAMES.iter().copied()), "{}", M::NAME);
+    }
+    names_agree::<Top>();
+    names_agree::<SliderCrank>();
+
+    let kinds: Vec<_> = Top::COORDINATES.iter().map(|c| c.kind).collect();
+    let quaternion = |part| CoordinateKind::Quaternion { part };
+    let expected = [
+        CoordinateKind::Length,
+        CoordinateKind::Length,
+        CoordinateKind::Length,
+        quaternion(0),
+        quaternion(1),
+        quaternion(2),
+        quaternion(3),
+    ];
+    assert_eq!(kinds, expected);
+    for (i, v) in Top::VELOCITIES.iter().enumerate() {
+        let (kind, displacement) = if i < 3 {
+            (VelocityKind::Rate { coordinate: i as u16 }, ["top.x", "top.y", "top.z"][i])
+        } else {
+            (VelocityKind::Angular { quaternion: 3, axis: (i - 3) as u8 }, ["top.rx", "top.ry", "top.rz"][i - 3])
+        };
+        assert_eq!((v.kind, v.displacement), (kind, displacement), "{}", v.name);
+    }
+    for (i, (c, v)) in SliderCrank::COORDINATES.iter().zip(SliderCrank::VELOCITIES).enumerate() {
+        let kind = if c.name.ends_with(".phi") { CoordinateKind::Angle } else { CoordinateKind::Length };
+        assert_eq!((c.kind, v.kind, v.displacement), (kind, VelocityKind::Rate { coordinate: i as u16 }, c.name));
+    }
+
+    let header = |csv: Vec<u8>| String::from_utf8(csv).expect("UTF-8").lines().next().expect("a header").to_string();
+    let mut out = Vec::new();
+    CsvWriter::states::<Top>(&mut out).finish().expect("written");
+    let spatial = header(out);
+    for column in ["top.x (m)", "top.e0 (1)", "top.vx (m/s)", "top.wz (rad/s)", "d/dt top.vx (m/s²)", "d/dt top.wz (rad/s²)"] {
+        assert!(spatial.split(',').any(|c| c == column), "{column} in {spatial}");
+    }
+    let mut out = Vec::new();
+    CsvWriter::states::<SliderCrank>(&mut out).finish().expect("written");
+    let planar = header(out);
+    for column in ["crank.phi (rad)", "d/dt crank.phi (rad/s)", "d2/dt2 slider.x (m/s²)"] {
+        assert!(planar.split(',').any(|c| c == column), "{column} in {planar}");
+    }
+
+    // The plot of a spatial simulation names its quantities as the CSV header does.
+    let m = Top { wz: 20.0, ..Default::default() };
+    let (q, v) = (m.initial_positions(), m.initial_velocities());
+    let mut samples = Vec::new();
+    Simulation::new(&m, &mut Rk4::new(Rk4Options::default().with_step(1e-3)))
+        .start(0.0, &q, &v)
+        .times(&[0.0, 0.01])
+        .run(&mut Top::workspace(), |s| samples.push(*s))
+        .expect("runs");
+    for (x, y) in [("top.e0", "top.wz"), ("top.vx", "d/dt top.wz")] {
+        Plot::xy::<Top, _, 7, 6, 3>("spatial", &samples, x, y).unwrap_or_else(|e| panic!("{x}, {y}: {e}"));
+    }
+
+    // Linearization names a spatial body's states by the displacements of its chart.
+    let lin = Linearizer::default().linearize(&m, &q, &[0.0; 6], 0.0).expect("linearizes");
+    let (positions, rates) = lin.state_names.split_at(lin.state_names.len() / 2);
+    assert!(positions.iter().all(|n| ["top.x", "top.y", "top.z", "top.rx", "top.ry", "top.rz"].contains(&n.as_str())), "{positions:?}");
+    assert!(rates.iter().all(|n| Top::VELOCITY_NAMES.contains(&n.as_str())), "{rates:?}");
+    assert_eq!(positions.len(), 3, "{positions:?}");
+}

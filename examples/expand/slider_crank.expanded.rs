@@ -379,6 +379,109 @@ impl ::mbd::Mechanism for SliderCrank {
         "slider.y",
         "slider.phi",
     ];
+    const COORDINATES: &'static [::mbd::CoordinateInfo] = &[
+        ::mbd::CoordinateInfo {
+            name: "crank.x",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "crank.y",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "crank.phi",
+            kind: ::mbd::CoordinateKind::Angle,
+        },
+        ::mbd::CoordinateInfo {
+            name: "rod.x",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "rod.y",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "rod.phi",
+            kind: ::mbd::CoordinateKind::Angle,
+        },
+        ::mbd::CoordinateInfo {
+            name: "slider.x",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "slider.y",
+            kind: ::mbd::CoordinateKind::Length,
+        },
+        ::mbd::CoordinateInfo {
+            name: "slider.phi",
+            kind: ::mbd::CoordinateKind::Angle,
+        },
+    ];
+    const VELOCITIES: &'static [::mbd::VelocityInfo] = &[
+        ::mbd::VelocityInfo {
+            name: "crank.x",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 0,
+            },
+            displacement: "crank.x",
+        },
+        ::mbd::VelocityInfo {
+            name: "crank.y",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 1,
+            },
+            displacement: "crank.y",
+        },
+        ::mbd::VelocityInfo {
+            name: "crank.phi",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 2,
+            },
+            displacement: "crank.phi",
+        },
+        ::mbd::VelocityInfo {
+            name: "rod.x",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 3,
+            },
+            displacement: "rod.x",
+        },
+        ::mbd::VelocityInfo {
+            name: "rod.y",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 4,
+            },
+            displacement: "rod.y",
+        },
+        ::mbd::VelocityInfo {
+            name: "rod.phi",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 5,
+            },
+            displacement: "rod.phi",
+        },
+        ::mbd::VelocityInfo {
+            name: "slider.x",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 6,
+            },
+            displacement: "slider.x",
+        },
+        ::mbd::VelocityInfo {
+            name: "slider.y",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 7,
+            },
+            displacement: "slider.y",
+        },
+        ::mbd::VelocityInfo {
+            name: "slider.phi",
+            kind: ::mbd::VelocityKind::Rate {
+                coordinate: 8,
+            },
+            displacement: "slider.phi",
+        },
+    ];
     const DIMENSION: u8 = 2;
     const CONSTRAINT_NAMES: &'static [&'static str] = &[
         "revolute ground~crank: x",

@@ -528,6 +528,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     // planar v = q̇: the velocities are named by their coordinates, as the runtime's messages say
     let velocity_names = if m.space == crate::model::Space::Planar { m.coordinate_names() } else { m.velocity_names() };
     let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
+    let (coordinate_infos, velocity_infos) = crate::frames::Coordinates::of(m.space).descriptors(m);
     let row_names = &f.row_names;
     let row_units = f.row_names.iter().map(|r| crate::docs::multiplier_unit(r));
     let tables = crate::docs::tables(m, &f, &force_ops);
@@ -670,6 +671,8 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const BODY_NAMES: &'static [&'static str] = &[#(#body_names),*];
             const COORDINATE_NAMES: &'static [&'static str] = &[#(#coordinate_names),*];
             const VELOCITY_NAMES: &'static [&'static str] = &[#(#velocity_names),*];
+            const COORDINATES: &'static [::mbd::CoordinateInfo] = &[#(#coordinate_infos),*];
+            const VELOCITIES: &'static [::mbd::VelocityInfo] = &[#(#velocity_infos),*];
             const DIMENSION: u8 = #dimension;
             const CONSTRAINT_NAMES: &'static [&'static str] = &[#(#row_names),*];
             const PARAM_NAMES: &'static [&'static str] = &[#(#param_names),*];

@@ -12,6 +12,9 @@
 
 use std::collections::{BTreeSet, HashMap};
 
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
 use crate::model::{BodyRef, Coord, Kink, Loc, MBin, MExpr, Model, Space, Vel};
 use crate::sym::{Func, Graph, Id, Node, Var};
 
@@ -50,6 +53,51 @@ impl Coordinates {
             Coordinates::PlanarBody => 3,
             Coordinates::SpatialBody => 6,
         }
+    }
+
+    /// The runtime's descriptors of every coordinate and velocity of `model` in this formulation
+    /// (`Mechanism::COORDINATES`, `Mechanism::VELOCITIES`): what each one is, so that no analysis
+    /// reads it from a name or a place in q. Planar velocities are named as their coordinates
+    /// (v = q̇); spatial ones `"top.vx"`, ..., `"top.wz"`.
+    pub fn descriptors(self, model: &Model) -> (Vec<TokenStream>, Vec<TokenStream>) {
+        let (mut coordinates, mut velocities) = (Vec::new(), Vec::new());
+        for (k, body) in model.bodies.iter().enumerate() {
+            let name = |c: &str| format!("{}.{c}", body.name);
+            let first = (k * self.per_body()) as u16;
+            for c in model.space.coordinates() {
+                let kind = match c {
+                    Coord::X | Coord::Y | Coord::Z => quote!(Length),
+                    Coord::Phi => quote!(Angle),
+                    Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3 => {
+                        let part = Literal::u8_unsuffixed((c.index() - 3) as u8);
+                        quote!(Quaternion { part: #part })
+                    }
+                };
+                let n = name(c.name());
+                coordinates.push(quote!(::mbd::CoordinateInfo { name: #n, kind: ::mbd::CoordinateKind::#kind }));
+            }
+            for v in model.space.velocities() {
+                let (own, kind, displacement) = match (self, v) {
+                    (Coordinates::PlanarBody, _) => {
+                        let c = model.space.coordinates()[v.index()];
+                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
+                        (name(c.name()), quote!(Rate { coordinate: #at }), name(c.name()))
+                    }
+                    (Coordinates::SpatialBody, Vel::Wx | Vel::Wy | Vel::Wz) => {
+                        let axis = v.index() - 3;
+                        let (e0, a) = (Literal::u16_unsuffixed(first + 3), Literal::u8_unsuffixed(axis as u8));
+                        (name(v.name()), quote!(Angular { quaternion: #e0, axis: #a }), name(&format!("r{}", ["x", "y", "z"][axis])))
+                    }
+                    (Coordinates::SpatialBody, _) => {
+                        let c = model.space.coordinates()[v.index()];
+                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
+                        (name(v.name()), quote!(Rate { coordinate: #at }), name(c.name()))
+                    }
+                };
+                velocities.push(quote!(::mbd::VelocityInfo { name: #own, kind: ::mbd::VelocityKind::#kind, displacement: #displacement }));
+            }
+        }
+        (coordinates, velocities)
     }
 }
 

@@ -44,20 +44,21 @@ impl<W: Write> CsvWriter<W> {
 
     fn with_header<M: Mechanism>(mut out: W, energies: bool) -> Self {
         let mut header = String::from("t (s)");
-        // Planar velocities are the coordinates' rates; spatial ones have names of their own.
-        let (velocity, acceleration) = if M::DIMENSION == 3 { ("", "d/dt ") } else { ("d/dt ", "d2/dt2 ") };
-        // The derivative order of each group, from the coordinates' (or velocities') own unit.
-        let groups = [("", M::COORDINATE_NAMES, 0), (velocity, M::VELOCITY_NAMES, 1), (acceleration, M::VELOCITY_NAMES, 2)];
-        for (prefix, names, order) in groups {
-            for name in names {
-                header.push(',');
-                header.push_str(prefix);
-                header.push_str(name);
-                if let Some(unit) = coordinate_unit(name, order - usize::from(M::DIMENSION == 3 && order > 0)) {
-                    header.push_str(" (");
-                    header.push_str(unit);
-                    header.push(')');
-                }
+        let mut column = |name: &str, unit: &str| {
+            header.push(',');
+            header.push_str(name);
+            if !unit.is_empty() {
+                header.push_str(" (");
+                header.push_str(unit);
+                header.push(')');
+            }
+        };
+        for c in M::COORDINATES {
+            column(c.name, c.kind.unit(0));
+        }
+        for order in 0..2 {
+            for v in M::VELOCITIES {
+                column(&format!("{}{}", v.prefix::<M>(order), v.name), v.unit::<M>(order));
             }
         }
         for (i, name) in M::CONSTRAINT_NAMES.iter().enumerate() {
@@ -126,25 +127,4 @@ impl<W: Write> CsvWriter<W> {
         self.out.flush()?;
         Ok(self.rows)
     }
-}
-
-/// The unit of a coordinate or velocity `body.c` differentiated `order` more times in time (a
-/// spatial velocity `top.vx` is already order 1): m, rad and Euler parameters (dimensionless,
-/// "1") per s, s².
-fn coordinate_unit(name: &str, order: usize) -> Option<&'static str> {
-    let c = name.rsplit('.').next()?;
-    let (length, angle, euler) = match order {
-        0 => ("m", "rad", "1"),
-        1 => ("m/s", "rad/s", "1/s"),
-        _ => ("m/s²", "rad/s²", "1/s²"),
-    };
-    Some(match c {
-        "x" | "y" | "z" => length,
-        "phi" => angle,
-        "e0" | "e1" | "e2" | "e3" => euler,
-        // spatial velocities: order counts from v and ω
-        "vx" | "vy" | "vz" => ["m/s", "m/s²", "m/s³"][order.min(2)],
-        "wx" | "wy" | "wz" => ["rad/s", "rad/s²", "rad/s³"][order.min(2)],
-        _ => return None,
-    })
 }

@@ -24,8 +24,8 @@
 //! into the caller's matrix.
 
 use crate::{
-    ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix,
-    OpCount, Real,
+    ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics,
+    Mechanism, NewtonMatrix, OpCount, Real, VelocityInfo,
 };
 
 /// A mechanism with finite-difference derivatives (module docs).
@@ -54,6 +54,8 @@ impl<M: Mechanism> Mechanism for FiniteDifferences<'_, M> {
     const BODY_NAMES: &'static [&'static str] = M::BODY_NAMES;
     const COORDINATE_NAMES: &'static [&'static str] = M::COORDINATE_NAMES;
     const VELOCITY_NAMES: &'static [&'static str] = M::VELOCITY_NAMES;
+    const COORDINATES: &'static [CoordinateInfo] = M::COORDINATES;
+    const VELOCITIES: &'static [VelocityInfo] = M::VELOCITIES;
     const DIMENSION: u8 = M::DIMENSION;
     const CONSTRAINT_NAMES: &'static [&'static str] = M::CONSTRAINT_NAMES;
     const PARAM_NAMES: &'static [&'static str] = M::PARAM_NAMES;

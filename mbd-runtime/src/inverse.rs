@@ -479,7 +479,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{JointInfo, OpCount};
+    use crate::{CoordinateInfo, CoordinateKind, JointInfo, OpCount, VelocityInfo, VelocityKind};
 
     /// The free pendulum has a degree of freedom: its loads are not determined by a motion, and
     /// the error says how many drivers are missing.
@@ -503,6 +503,23 @@ mod tests {
         const BODY_NAMES: &'static [&'static str] = &["top"];
         const COORDINATE_NAMES: &'static [&'static str] = &["top.x", "top.y", "top.z", "top.e0", "top.e1", "top.e2", "top.e3"];
         const VELOCITY_NAMES: &'static [&'static str] = &["top.vx", "top.vy", "top.vz", "top.wx", "top.wy", "top.wz"];
+        const COORDINATES: &'static [CoordinateInfo] = &[
+            CoordinateInfo { name: "top.x", kind: CoordinateKind::Length },
+            CoordinateInfo { name: "top.y", kind: CoordinateKind::Length },
+            CoordinateInfo { name: "top.z", kind: CoordinateKind::Length },
+            CoordinateInfo { name: "top.e0", kind: CoordinateKind::Quaternion { part: 0 } },
+            CoordinateInfo { name: "top.e1", kind: CoordinateKind::Quaternion { part: 1 } },
+            CoordinateInfo { name: "top.e2", kind: CoordinateKind::Quaternion { part: 2 } },
+            CoordinateInfo { name: "top.e3", kind: CoordinateKind::Quaternion { part: 3 } },
+        ];
+        const VELOCITIES: &'static [VelocityInfo] = &[
+            VelocityInfo { name: "top.vx", kind: VelocityKind::Rate { coordinate: 0 }, displacement: "top.x" },
+            VelocityInfo { name: "top.vy", kind: VelocityKind::Rate { coordinate: 1 }, displacement: "top.y" },
+            VelocityInfo { name: "top.vz", kind: VelocityKind::Rate { coordinate: 2 }, displacement: "top.z" },
+            VelocityInfo { name: "top.wx", kind: VelocityKind::Angular { quaternion: 3, axis: 0 }, displacement: "top.rx" },
+            VelocityInfo { name: "top.wy", kind: VelocityKind::Angular { quaternion: 3, axis: 1 }, displacement: "top.ry" },
+            VelocityInfo { name: "top.wz", kind: VelocityKind::Angular { quaternion: 3, axis: 2 }, displacement: "top.rz" },
+        ];
         const DIMENSION: u8 = 3;
         const CONSTRAINT_NAMES: &'static [&'static str] =
             &["spherical ground~top: x", "spherical ground~top: y", "spherical ground~top: z"];

@@ -62,7 +62,8 @@ pub use kinematics::{
 #[cfg(feature = "alloc")]
 pub use linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
 pub use mechanism::{
-    ConstraintForces, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix, OpCount, PositionStep,
+    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix,
+    OpCount, PositionStep, VelocityInfo, VelocityKind,
 };
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).

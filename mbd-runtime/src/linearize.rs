@@ -89,7 +89,8 @@ use std::path::Path;
 
 use nalgebra::{Cholesky, Complex, ComplexField, DMatrix, DVector, SymmetricEigen};
 
-use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Linearize, Mechanism};
+use crate::mechanism::velocities_are_rates;
+use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Linearize, Mechanism, VelocityKind};
 
 /// Default relative tolerance of the rank of D: a pivot below 1e-10 of its row's largest entry
 /// marks the row as dependent on the others.
@@ -568,12 +569,11 @@ fn input_kinds<M: Linearize<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, 
         .collect()
 }
 
-/// Ω = ∂δ̇/∂δ of spatial bodies: −½[ω₀′×] on each one's rotation, 0 on its translation
-/// (module docs; 0 in the plane).
-fn omega<const NV: usize>(v: &[f64; NV]) -> DMatrix<f64> {
+/// Ω = ∂δ̇/∂δ: −½[ω₀′×] on the rotation of each body whose orientation is a quaternion, 0 on
+/// everything else (module docs; 0 in the plane).
+fn omega<M: Mechanism, const NV: usize>(v: &[f64; NV]) -> DMatrix<f64> {
     let mut o = DMatrix::zeros(NV, NV);
-    for k in 0..NV / 6 {
-        let b = 6 * k + 3;
+    for b in angular_triples::<M>().filter(|&b| b + 3 <= NV) {
         let w = [v[b], v[b + 1], v[b + 2]];
         // −½ [w×]: [w×] = [[0, −w3, w2], [w3, 0, −w1], [−w2, w1, 0]]
         let cross = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
@@ -586,22 +586,25 @@ fn omega<const NV: usize>(v: &[f64; NV]) -> DMatrix<f64> {
     o
 }
 
-/// Names of the states: displacements, then rates.
+/// The first index into v of each body-frame angular velocity ω′ (its x′ component; y′ and z′
+/// follow).
+fn angular_triples<M: Mechanism>() -> impl Iterator<Item = usize> {
+    M::VELOCITIES.iter().enumerate().filter_map(|(i, v)| matches!(v.kind, VelocityKind::Angular { axis: 0, .. }).then_some(i))
+}
+
+/// Names of the states: displacements (`"crank.phi"`, `"top.x"`, `"top.rx"`), then rates
+/// (`"crank.phi_dot"` for a velocity named as its coordinate, else the velocity's own name,
+/// `"top.wx"`).
 fn state_names<M: Mechanism>(independent: &[usize]) -> Vec<String> {
-    let position = |i: usize| {
-        let n = M::VELOCITY_NAMES[i];
-        if M::DIMENSION == 3 {
-            // "top.vx" → "top.x", "top.wx" → "top.rx" (a rotation about x′)
-            match n.rsplit_once('.') {
-                Some((body, axis)) if axis.starts_with('v') => format!("{body}.{}", &axis[1..]),
-                Some((body, axis)) if axis.starts_with('w') => format!("{body}.r{}", &axis[1..]),
-                _ => n.to_string(),
-            }
+    let position = |i: usize| M::VELOCITIES[i].displacement.to_string();
+    let rate = |i: usize| {
+        let v = &M::VELOCITIES[i];
+        if v.is_named_rate::<M>() {
+            format!("{}_dot", v.name)
         } else {
-            n.to_string()
+            v.name.to_string()
         }
     };
-    let rate = |i: usize| if M::DIMENSION == 3 { M::VELOCITY_NAMES[i].to_string() } else { format!("{}_dot", M::VELOCITY_NAMES[i]) };
     independent.iter().map(|&i| position(i)).chain(independent.iter().map(|&i| rate(i))).collect()
 }
 
@@ -715,8 +718,8 @@ where
     // ½ Γ_v(q₀, 0) = ν_q B, and Q(a) = ∂(D a)/∂q B for a = v₀ and v̇₀.
     let (_, gamma_v0) = gamma_v_at(&[0.0; NV]);
     let (gamma_q, gamma_v) = gamma_v_at(v);
-    let (q_v, q_a) = if M::DIMENSION == 2 {
-        // In the plane Q(a)b = Φ_qq(a, b) is symmetric in a and b, so Γ_v(a) = −2 Q(a) − 2 Φ_tq
+    let (q_v, q_a) = if velocities_are_rates::<M>() {
+        // Where q̇ = v (in the plane) Q(a)b = Φ_qq(a, b) is symmetric in a and b, so Γ_v(a) = −2 Q(a) − 2 Φ_tq
         // and Q(a) = −½ (Γ_v(a) − Γ_v(0)): two evaluations of γ's derivatives.
         let (_, gamma_va) = gamma_v_at(&vd);
         ((&gamma_v - &gamma_v0) * -0.5, (gamma_va - &gamma_v0) * -0.5)
@@ -768,8 +771,8 @@ where
     let reduced_mass = z.transpose() * &mass * z;
     let s = Cholesky::new(reduced_mass).ok_or(LinearizeError::Singular)?.solve(&(z.transpose() * (&top - &mass * &particular)));
     let mut a = DMatrix::zeros(2 * f, 2 * f);
-    if M::DIMENSION == 3 {
-        let omega_z = omega(v) * z;
+    if !velocities_are_rates::<M>() {
+        let omega_z = omega::<M, NV>(v) * z;
         a.view_mut((0, 0), (f, f)).copy_from(&DMatrix::from_fn(f, f, |i, k| omega_z[(chart.independent[i], k)]));
     }
     a.view_mut((0, f), (f, f)).fill_with_identity();
@@ -1052,20 +1055,24 @@ impl Chart {
     }
 }
 
-/// δ̇ at q = q₀ ⊕ δ moving with v: v in the plane; in space v on the translations and, per body,
-/// the rate of the chart's rotation vector θ = 2 p_v / p_s, p = e₀* ⊗ e, from ṗ = ½ p ⊗ (0, ω′).
+/// δ̇ at q = q₀ ⊕ δ moving with v: v for a rate; for each body-frame angular velocity ω′, the
+/// rate of the chart's rotation vector θ = 2 p_v / p_s, p = e₀* ⊗ e, from ṗ = ½ p ⊗ (0, ω′), e the
+/// body's quaternion.
 fn displacement_rates<M: Mechanism, const NQ: usize, const NV: usize>(q0: &[f64; NQ], q: &[f64; NQ], v: &[f64; NV]) -> [f64; NV] {
     let mut rates = *v;
-    if M::DIMENSION == 3 {
-        for k in 0..NV / 6 {
-            let (e0, e) = (&q0[7 * k + 3..7 * k + 7], &q[7 * k + 3..7 * k + 7]);
-            // p = conj(e0) ⊗ e
-            let p = quaternion_product([e0[0], -e0[1], -e0[2], -e0[3]], [e[0], e[1], e[2], e[3]]);
-            let w = &v[6 * k + 3..6 * k + 6];
-            let pd = quaternion_product(p, [0.0, w[0], w[1], w[2]]).map(|x| 0.5 * x);
-            for a in 0..3 {
-                rates[6 * k + 3 + a] = 2.0 * (pd[a + 1] * p[0] - p[a + 1] * pd[0]) / (p[0] * p[0]);
-            }
+    for b in angular_triples::<M>().filter(|&b| b + 3 <= NV) {
+        let VelocityKind::Angular { quaternion, .. } = M::VELOCITIES[b].kind else { continue };
+        let c = quaternion as usize;
+        if c + 4 > NQ {
+            continue;
+        }
+        let (e0, e) = (&q0[c..c + 4], &q[c..c + 4]);
+        // p = conj(e0) ⊗ e
+        let p = quaternion_product([e0[0], -e0[1], -e0[2], -e0[3]], [e[0], e[1], e[2], e[3]]);
+        let w = &v[b..b + 3];
+        let pd = quaternion_product(p, [0.0, w[0], w[1], w[2]]).map(|x| 0.5 * x);
+        for a in 0..3 {
+            rates[b + a] = 2.0 * (pd[a + 1] * p[0] - p[a + 1] * pd[0]) / (p[0] * p[0]);
         }
     }
     rates

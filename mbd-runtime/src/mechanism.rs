@@ -88,6 +88,135 @@ pub struct ForceInfo {
     pub op_counts: &'static [OpCount],
 }
 
+/// What a generalized coordinate measures: its unit, and what may be done to it without moving
+/// the mechanism. [`Mechanism::COORDINATES`] describes each coordinate by it, so that no analysis
+/// reads a coordinate's meaning from its name or its place in q.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum CoordinateKind {
+    /// A length (m).
+    Length,
+    /// An angle (rad): adding 2π leaves the configuration as it was, so it may be wrapped into
+    /// (−π, π].
+    Angle,
+    /// Part `part` of a unit quaternion (Euler parameters, dimensionless) held in four
+    /// consecutive coordinates: 0 is e0, the scalar part, which comes first; 1–3 the vector part.
+    /// The quaternion and its negative are one orientation.
+    Quaternion {
+        /// 0 (e0) to 3 (e3).
+        part: u8,
+    },
+    /// Any other dimensionless number (a component of a unit complex number (cos φ, sin φ)).
+    Number,
+}
+
+impl CoordinateKind {
+    /// Its unit differentiated `order` times in time: m, m/s, m/s²; rad, rad/s, rad/s²; 1, 1/s,
+    /// 1/s².
+    pub const fn unit(self, order: usize) -> &'static str {
+        let units = match self {
+            CoordinateKind::Length => ["m", "m/s", "m/s²"],
+            CoordinateKind::Angle => ["rad", "rad/s", "rad/s²"],
+            CoordinateKind::Quaternion { .. } | CoordinateKind::Number => ["1", "1/s", "1/s²"],
+        };
+        units[if order < 2 { order } else { 2 }]
+    }
+}
+
+/// One generalized coordinate (an entry of q): its name and what it measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CoordinateInfo {
+    /// `"crank.phi"`: the same as its entry of [`Mechanism::COORDINATE_NAMES`].
+    pub name: &'static str,
+    /// What it measures.
+    pub kind: CoordinateKind,
+}
+
+/// How a velocity (an entry of v) moves the coordinates through q̇ = B(q) v.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum VelocityKind {
+    /// The rate of coordinate `coordinate` (an index into q), v_i = q̇_c, in its unit per second.
+    Rate {
+        /// The coordinate it is the rate of.
+        coordinate: u16,
+    },
+    /// Component `axis` (0, 1, 2 for x′, y′, z′) of a body's angular velocity ω′ in the body's own
+    /// frame (rad/s), the body's orientation being the unit quaternion e whose scalar part is
+    /// coordinate `quaternion`: ė = ½ e ⊗ (0, ω′). The three components are consecutive in v.
+    Angular {
+        /// The index into q of the quaternion's e0.
+        quaternion: u16,
+        /// 0, 1 or 2.
+        axis: u8,
+    },
+    /// Any other velocity, reaching several coordinates through B(q): angular (rad/s) or linear
+    /// (m/s).
+    Other {
+        /// rad/s if `true`, m/s if not.
+        angular: bool,
+    },
+}
+
+/// One velocity (an entry of v, and of every velocity-space quantity: v̇, h, the columns of D).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VelocityInfo {
+    /// `"crank.phi"` (a rate named as its coordinate), `"top.wx"`: the same as its entry of
+    /// [`Mechanism::VELOCITY_NAMES`].
+    pub name: &'static str,
+    /// How it moves the coordinates.
+    pub kind: VelocityKind,
+    /// The small displacement it is the rate of, as linearization names its states: the
+    /// coordinate's name for a rate, `"top.rx"` (a rotation about the body's x′ axis) for an
+    /// angular velocity.
+    pub displacement: &'static str,
+}
+
+impl VelocityInfo {
+    /// Its unit differentiated `order` more times in time: m/s, m/s², m/s³ for the rate of a
+    /// length, rad/s, ... for the rate of an angle and for an angular velocity.
+    pub fn unit<M: Mechanism + ?Sized>(&self, order: usize) -> &'static str {
+        match self.kind {
+            VelocityKind::Rate { coordinate } => match M::COORDINATES.get(coordinate as usize) {
+                Some(c) => c.kind.unit(order + 1),
+                None => "",
+            },
+            VelocityKind::Angular { .. } | VelocityKind::Other { angular: true } => ["rad/s", "rad/s²", "rad/s³"][order.min(2)],
+            VelocityKind::Other { angular: false } => ["m/s", "m/s²", "m/s³"][order.min(2)],
+        }
+    }
+
+    /// Whether it is written as its coordinate's derivative: the rate of a coordinate whose name
+    /// it carries (a planar body's velocities, `"d/dt crank.phi"`), rather than a quantity with
+    /// a name of its own (a spatial body's `"top.vx"`).
+    pub fn is_named_rate<M: Mechanism + ?Sized>(&self) -> bool {
+        match self.kind {
+            VelocityKind::Rate { coordinate } => M::COORDINATES.get(coordinate as usize).is_some_and(|c| c.name == self.name),
+            VelocityKind::Angular { .. } | VelocityKind::Other { .. } => false,
+        }
+    }
+
+    /// What goes before its name where its value (`order` 0) or its derivative (`order` 1) is
+    /// named, in the CSV header and plots: `"d/dt "` and `"d2/dt2 "` for a velocity named as its
+    /// coordinate (`"d/dt crank.phi"`), `""` and `"d/dt "` for one with a name of its own
+    /// (`"top.wx"`, `"d/dt top.wx"`).
+    pub fn prefix<M: Mechanism + ?Sized>(&self, order: usize) -> &'static str {
+        match (self.is_named_rate::<M>(), order) {
+            (true, 0) => "d/dt ",
+            (true, _) => "d2/dt2 ",
+            (false, 0) => "",
+            (false, _) => "d/dt ",
+        }
+    }
+}
+
+/// Whether every velocity is the rate of a coordinate (q̇ = B v with B a selection of ones and
+/// zeros: q moves as q + h v), as for planar bodies; not where an orientation is a quaternion.
+#[cfg(feature = "alloc")]
+pub(crate) fn velocities_are_rates<M: Mechanism + ?Sized>() -> bool {
+    M::VELOCITIES.iter().all(|v| matches!(v.kind, VelocityKind::Rate { .. }))
+}
+
 /// What every generated mechanism says about itself: sizes, names, sparsity, model description.
 ///
 /// Everything here is a compile-time constant of the mechanism; nothing depends on the scalar
@@ -104,8 +233,15 @@ pub trait Mechanism {
     /// planar v = q̇, so the coordinate names (the default); spatial `"top.vx"`, ..., `"top.wz"`
     /// (6 per body).
     const VELOCITY_NAMES: &'static [&'static str] = Self::COORDINATE_NAMES;
+    /// Each coordinate's name and kind, in the order of q: what the analyses read (units, which
+    /// coordinates are angles that may be wrapped, which are quaternions), never the names.
+    const COORDINATES: &'static [CoordinateInfo];
+    /// Each velocity's name and kind, in the order of v.
+    const VELOCITIES: &'static [VelocityInfo];
     /// 2 for planar bodies (3 coordinates and 3 velocities each, the default), 3 for spatial
-    /// bodies (7 coordinates, 6 velocities each).
+    /// bodies (7 coordinates, 6 velocities each). Read only where a body's state is still taken
+    /// from its place in q and v (joint reactions, named access, drawing) until per-body poses
+    /// and twists are generated.
     const DIMENSION: u8 = 2;
     /// Constraint rows, `"revolute crank~rod: x"`, in the order of Φ.
     const CONSTRAINT_NAMES: &'static [&'static str];

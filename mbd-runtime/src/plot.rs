@@ -70,14 +70,15 @@ const ENERGIES: [&str; 4] = ["kinetic", "potential", "nonconservative_work", "co
 
 fn column<M: Mechanism>(name: &str) -> Result<Column, PlotError> {
     let position = |names: &[&str], n: &str| names.iter().position(|&c| c == n);
-    let (v_prefix, vd_prefix) = if M::DIMENSION == 3 { ("", "d/dt ") } else { ("d/dt ", "d2/dt2 ") };
+    // As the CSV header names them (`VelocityInfo::prefix`).
+    let velocity = |order: usize| M::VELOCITIES.iter().position(|v| name.strip_prefix(v.prefix::<M>(order)) == Some(v.name));
     let found = if let Some(row) = name.strip_prefix("lambda ") {
         position(M::CONSTRAINT_NAMES, row).map(Column::Lambda)
     } else if let Some(k) = position(&ENERGIES, name) {
         Some(Column::Energy(k))
-    } else if let Some(i) = name.strip_prefix(vd_prefix).and_then(|n| position(M::VELOCITY_NAMES, n)) {
+    } else if let Some(i) = velocity(1) {
         Some(Column::Vd(i))
-    } else if let Some(i) = name.strip_prefix(v_prefix).and_then(|n| position(M::VELOCITY_NAMES, n)) {
+    } else if let Some(i) = velocity(0) {
         Some(Column::V(i))
     } else {
         position(M::COORDINATE_NAMES, name).map(Column::Q)

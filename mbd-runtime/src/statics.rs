@@ -75,11 +75,11 @@
 //! above the negative curvature makes steps proportional to the tiny force near the saddle,
 //! and the ×10/÷10 rule alternates around that curvature.
 //!
-//! **Angles** come back in a documented range: each planar angle coordinate (`"body.phi"`) is
-//! wrapped into (−π, π] when the wrap changes neither Φ nor h (the mechanism is 2π-periodic in
+//! **Angles** come back in a documented range: each angle coordinate ([`CoordinateKind::Angle`]:
+//! a planar body's `"body.phi"`) is wrapped into (−π, π] when the wrap changes neither Φ nor h (the mechanism is 2π-periodic in
 //! it: a driver or a torsion spring written linearly in φ is not, and the angle is left as is;
-//! angles are wrapped one at a time). Spatial Euler parameters come back unit, with e0 ≥ 0
-//! (p and −p are the same rotation).
+//! angles are wrapped one at a time). Quaternions ([`CoordinateKind::Quaternion`]: a spatial
+//! body's Euler parameters) come back unit, with e0 ≥ 0 (p and −p are the same rotation).
 //!
 //! Work space: the two matrices and one set of factors over the planned storage (D's
 //! non-zeros and the factors' entries: O(bodies) for a chain) live in the caller's
@@ -91,7 +91,7 @@ use crate::kinematics::{first_non_finite, name};
 use crate::linalg::LinalgError;
 #[cfg(doc)]
 use crate::{ConstraintForces, Dynamics};
-use crate::{Mechanism, NewtonMatrix, Real, Workspace};
+use crate::{CoordinateKind, Mechanism, NewtonMatrix, Real, VelocityKind, Workspace};
 use core::fmt;
 
 /// Default tolerance on max(‖h + Dᵀλ‖∞ (N, N·m), ‖Φ‖∞ (m, rad)).
@@ -1069,7 +1069,7 @@ impl<T: Real> StaticSolver<T> {
         }
     }
 
-    /// Wraps each planar angle into (−π, π] and flips each body's Euler parameters to e0 ≥ 0,
+    /// Wraps each angle coordinate into (−π, π] and flips each quaternion to e0 ≥ 0,
     /// where that leaves Φ and h unchanged (to the tolerance plus the rounding of the shift,
     /// bounded by the shift's size times the largest entry of D's or H's column); then
     /// normalizes.
@@ -1084,7 +1084,6 @@ impl<T: Real> StaticSolver<T> {
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let tol = self.options.tolerance;
-        let names = M::COORDINATE_NAMES;
         let zero_v = [T::ZERO; NV];
         let (phi, h) = (&it.phi, &it.h);
         let (mut phi1, mut h1) = ([T::ZERO; NC], [T::ZERO; NV]);
@@ -1095,28 +1094,35 @@ impl<T: Real> StaticSolver<T> {
                 && h.iter().zip(&h1).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)
         };
         let rounding = T::from_f64(16.0) * T::EPSILON;
-        for i in 0..NQ {
-            let coordinate = name(names, i);
-            if M::DIMENSION == 2 && NQ == NV && coordinate.ends_with(".phi") {
-                let wrapped = T::from_f64(wrap_angle(q[i].to_f64()));
-                if wrapped == q[i] {
-                    continue;
+        for (i, coordinate) in M::COORDINATES.iter().enumerate().take(NQ) {
+            match coordinate.kind {
+                CoordinateKind::Angle => {
+                    // The column of D and of h that moves this angle: its rate's.
+                    let Some(k) = M::VELOCITIES.iter().position(|v| v.kind == VelocityKind::Rate { coordinate: i as u16 }) else {
+                        continue;
+                    };
+                    let wrapped = T::from_f64(wrap_angle(q[i].to_f64()));
+                    if wrapped == q[i] {
+                        continue;
+                    }
+                    let shift = rounding * (q[i].abs() + T::from_f64(2.0 * core::f64::consts::PI));
+                    let mut candidate = *q;
+                    candidate[i] = wrapped;
+                    if unchanged(&candidate, shift * it.d_columns[k], shift * it.h_columns[k]) {
+                        *q = candidate;
+                    }
                 }
-                let shift = rounding * (q[i].abs() + T::from_f64(2.0 * core::f64::consts::PI));
-                let mut candidate = *q;
-                candidate[i] = wrapped;
-                if unchanged(&candidate, shift * it.d_columns[i], shift * it.h_columns[i]) {
-                    *q = candidate;
+                CoordinateKind::Quaternion { part: 0 } if i + 3 < NQ && q[i] < T::ZERO => {
+                    // p and −p are one rotation: Φ and h do not change at all.
+                    let mut candidate = *q;
+                    for x in candidate[i..i + 4].iter_mut() {
+                        *x = -*x;
+                    }
+                    if unchanged(&candidate, rounding * max_abs(phi).0, rounding * max_abs(h).0) {
+                        *q = candidate;
+                    }
                 }
-            } else if M::DIMENSION == 3 && coordinate.ends_with(".e0") && i + 3 < NQ && q[i] < T::ZERO {
-                // p and −p are one rotation: Φ and h do not change at all.
-                let mut candidate = *q;
-                for x in candidate[i..i + 4].iter_mut() {
-                    *x = -*x;
-                }
-                if unchanged(&candidate, rounding * max_abs(phi).0, rounding * max_abs(h).0) {
-                    *q = candidate;
-                }
+                _ => {}
             }
         }
         m.normalize_positions(q);

@@ -18,6 +18,7 @@
 
 use crate::linalg::{lu_factor, lu_solve_in_place};
 use crate::{ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, OpCount};
+use crate::{CoordinateInfo, CoordinateKind, VelocityInfo, VelocityKind};
 
 /// Distance from the pin to the centre of mass (m).
 pub(crate) const LENGTH: f64 = 0.5;
@@ -63,6 +64,17 @@ fn pin_gamma(q: &[f64; 4], v: &[f64; 3]) -> [f64; 2] {
 
 const COORDINATES: &[&str] = &["rod.x", "rod.y", "rod.c", "rod.s"];
 const VELOCITIES: &[&str] = &["rod.vx", "rod.vy", "rod.w"];
+const COORDINATE_INFO: &[CoordinateInfo] = &[
+    CoordinateInfo { name: "rod.x", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "rod.y", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "rod.c", kind: CoordinateKind::Number },
+    CoordinateInfo { name: "rod.s", kind: CoordinateKind::Number },
+];
+const VELOCITY_INFO: &[VelocityInfo] = &[
+    VelocityInfo { name: "rod.vx", kind: VelocityKind::Rate { coordinate: 0 }, displacement: "rod.x" },
+    VelocityInfo { name: "rod.vy", kind: VelocityKind::Rate { coordinate: 1 }, displacement: "rod.y" },
+    VelocityInfo { name: "rod.w", kind: VelocityKind::Other { angular: true }, displacement: "rod.phi" },
+];
 
 /// The free pendulum: NQ = 4, NV = 3, NC = 2.
 #[derive(Clone, Copy, Debug, Default)]
@@ -73,6 +85,8 @@ impl Mechanism for UnitPendulum {
     const BODY_NAMES: &'static [&'static str] = &["rod"];
     const COORDINATE_NAMES: &'static [&'static str] = COORDINATES;
     const VELOCITY_NAMES: &'static [&'static str] = VELOCITIES;
+    const COORDINATES: &'static [CoordinateInfo] = COORDINATE_INFO;
+    const VELOCITIES: &'static [VelocityInfo] = VELOCITY_INFO;
     const CONSTRAINT_NAMES: &'static [&'static str] = &["pin: x", "pin: y"];
     const PARAM_NAMES: &'static [&'static str] = &[];
     const DOF: i32 = 1;
@@ -262,6 +276,8 @@ impl Mechanism for DrivenUnitPendulum {
     const BODY_NAMES: &'static [&'static str] = &["rod"];
     const COORDINATE_NAMES: &'static [&'static str] = COORDINATES;
     const VELOCITY_NAMES: &'static [&'static str] = VELOCITIES;
+    const COORDINATES: &'static [CoordinateInfo] = COORDINATE_INFO;
+    const VELOCITIES: &'static [VelocityInfo] = VELOCITY_INFO;
     const CONSTRAINT_NAMES: &'static [&'static str] = &["pin: x", "pin: y", "drive: angle"];
     const PARAM_NAMES: &'static [&'static str] = &["omega"];
     const DOF: i32 = 0;

@@ -13,7 +13,7 @@
 
 use super::*;
 use crate::test_support::{DrivenUnitPendulum, UnitPendulum, LENGTH};
-use crate::{Kinematics, Mechanism, OpCount};
+use crate::{CoordinateInfo, CoordinateKind, Kinematics, Mechanism, OpCount, VelocityInfo, VelocityKind};
 use core::f64::consts::PI;
 
 /// Crank length r (m).
@@ -29,6 +29,28 @@ const NC: usize = 9;
 
 const SLIDER_CRANK_COORDINATES: &[&str] =
     &["crank.x", "crank.y", "crank.phi", "rod.x", "rod.y", "rod.phi", "slider.x", "slider.y", "slider.phi"];
+const SLIDER_CRANK_COORDINATE_INFO: &[CoordinateInfo] = &[
+    CoordinateInfo { name: "crank.x", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "crank.y", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "crank.phi", kind: CoordinateKind::Angle },
+    CoordinateInfo { name: "rod.x", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "rod.y", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "rod.phi", kind: CoordinateKind::Angle },
+    CoordinateInfo { name: "slider.x", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "slider.y", kind: CoordinateKind::Length },
+    CoordinateInfo { name: "slider.phi", kind: CoordinateKind::Angle },
+];
+const SLIDER_CRANK_VELOCITY_INFO: &[VelocityInfo] = &[
+    VelocityInfo { name: "crank.x", kind: VelocityKind::Rate { coordinate: 0 }, displacement: "crank.x" },
+    VelocityInfo { name: "crank.y", kind: VelocityKind::Rate { coordinate: 1 }, displacement: "crank.y" },
+    VelocityInfo { name: "crank.phi", kind: VelocityKind::Rate { coordinate: 2 }, displacement: "crank.phi" },
+    VelocityInfo { name: "rod.x", kind: VelocityKind::Rate { coordinate: 3 }, displacement: "rod.x" },
+    VelocityInfo { name: "rod.y", kind: VelocityKind::Rate { coordinate: 4 }, displacement: "rod.y" },
+    VelocityInfo { name: "rod.phi", kind: VelocityKind::Rate { coordinate: 5 }, displacement: "rod.phi" },
+    VelocityInfo { name: "slider.x", kind: VelocityKind::Rate { coordinate: 6 }, displacement: "slider.x" },
+    VelocityInfo { name: "slider.y", kind: VelocityKind::Rate { coordinate: 7 }, displacement: "slider.y" },
+    VelocityInfo { name: "slider.phi", kind: VelocityKind::Rate { coordinate: 8 }, displacement: "slider.phi" },
+];
 const SLIDER_CRANK_CONSTRAINTS: &[&str] = &[
     "revolute ground~crank: x",
     "revolute ground~crank: y",
@@ -78,6 +100,8 @@ impl<T: Real> Mechanism for SliderCrank<T> {
     const NAME: &'static str = "SliderCrank";
     const BODY_NAMES: &'static [&'static str] = &["crank", "rod", "slider"];
     const COORDINATE_NAMES: &'static [&'static str] = SLIDER_CRANK_COORDINATES;
+    const COORDINATES: &'static [CoordinateInfo] = SLIDER_CRANK_COORDINATE_INFO;
+    const VELOCITIES: &'static [VelocityInfo] = SLIDER_CRANK_VELOCITY_INFO;
     const CONSTRAINT_NAMES: &'static [&'static str] = SLIDER_CRANK_CONSTRAINTS;
     const PARAM_NAMES: &'static [&'static str] = &["r", "l", "omega"];
     const DOF: i32 = 0;
@@ -226,6 +250,8 @@ impl Mechanism for LockedSlider {
     const NAME: &'static str = "LockedSlider";
     const BODY_NAMES: &'static [&'static str] = SliderCrank::<f64>::BODY_NAMES;
     const COORDINATE_NAMES: &'static [&'static str] = SLIDER_CRANK_COORDINATES;
+    const COORDINATES: &'static [CoordinateInfo] = SLIDER_CRANK_COORDINATE_INFO;
+    const VELOCITIES: &'static [VelocityInfo] = SLIDER_CRANK_VELOCITY_INFO;
     const CONSTRAINT_NAMES: &'static [&'static str] = &[
         "revolute ground~crank: x",
         "revolute ground~crank: y",
@@ -314,6 +340,8 @@ impl<M: Mechanism> Mechanism for WithoutDriver<M> {
     const NAME: &'static str = "WithoutDriver";
     const BODY_NAMES: &'static [&'static str] = M::BODY_NAMES;
     const COORDINATE_NAMES: &'static [&'static str] = M::COORDINATE_NAMES;
+    const COORDINATES: &'static [CoordinateInfo] = M::COORDINATES;
+    const VELOCITIES: &'static [VelocityInfo] = M::VELOCITIES;
     /// The driver's name stays at the end of the list, unused.
     const CONSTRAINT_NAMES: &'static [&'static str] = M::CONSTRAINT_NAMES;
     const PARAM_NAMES: &'static [&'static str] = M::PARAM_NAMES;
@@ -401,6 +429,16 @@ impl<T: Real> Mechanism for Crank<T> {
     const NAME: &'static str = "Crank";
     const BODY_NAMES: &'static [&'static str] = &["crank"];
     const COORDINATE_NAMES: &'static [&'static str] = &["crank.x", "crank.y", "crank.phi"];
+    const COORDINATES: &'static [CoordinateInfo] = &[
+        CoordinateInfo { name: "crank.x", kind: CoordinateKind::Length },
+        CoordinateInfo { name: "crank.y", kind: CoordinateKind::Length },
+        CoordinateInfo { name: "crank.phi", kind: CoordinateKind::Angle },
+    ];
+    const VELOCITIES: &'static [VelocityInfo] = &[
+        VelocityInfo { name: "crank.x", kind: VelocityKind::Rate { coordinate: 0 }, displacement: "crank.x" },
+        VelocityInfo { name: "crank.y", kind: VelocityKind::Rate { coordinate: 1 }, displacement: "crank.y" },
+        VelocityInfo { name: "crank.phi", kind: VelocityKind::Rate { coordinate: 2 }, displacement: "crank.phi" },
+    ];
     const CONSTRAINT_NAMES: &'static [&'static str] = &["revolute ground~crank: x", "revolute ground~crank: y", "drive crank.phi: phi"];
     const PARAM_NAMES: &'static [&'static str] = &["r", "omega"];
     const DOF: i32 = 0;
@@ -611,6 +649,8 @@ impl<M: Mechanism> Mechanism for Counting<M> {
     const NAME: &'static str = M::NAME;
     const BODY_NAMES: &'static [&'static str] = M::BODY_NAMES;
     const COORDINATE_NAMES: &'static [&'static str] = M::COORDINATE_NAMES;
+    const COORDINATES: &'static [CoordinateInfo] = M::COORDINATES;
+    const VELOCITIES: &'static [VelocityInfo] = M::VELOCITIES;
     const CONSTRAINT_NAMES: &'static [&'static str] = M::CONSTRAINT_NAMES;
     const PARAM_NAMES: &'static [&'static str] = M::PARAM_NAMES;
     const DOF: i32 = M::DOF;
