@@ -1,24 +1,12 @@
 //! The generated type's rustdoc: what a user reads to find an index — its coordinates and
 //! velocities, named points, joints, constraint rows and force elements as tables, with the
-//! indices the arrays use and the units of every entry. And the unit of each constraint row's
-//! multiplier, which the runtime's CSV headers read from `Mechanism::CONSTRAINT_UNITS`.
+//! indices the arrays use and the units of every entry (a row's multiplier's unit is the row's
+//! own, `frames::RowUnit`, as `Mechanism::CONSTRAINT_UNITS` gives it to the runtime).
 use std::fmt::Write;
 
 use crate::emit::Ops;
 use crate::formulation::Formulation;
 use crate::model::{BodyRef, Coord, Model, Space, Vel};
-
-/// The unit of the multiplier of constraint row `name` (`"revolute crank~rod: x"`): N for a row
-/// measured in metres (points, distances, strokes), N·m for an angle or a dimensionless
-/// orientation row (docs/formulation.md's row tables); `""` for a user constraint, whose row's
-/// unit the mechanism does not know.
-pub fn multiplier_unit(name: &str) -> &'static str {
-    match name.rsplit(": ").next().unwrap_or("") {
-        "x" | "y" | "z" | "normal" | "distance" | "length" | "stroke" | "offset" | "offset_x" | "offset_y" => "N",
-        "phi" | "angle" | "cross" | "twist" | "rx" | "ry" | "rz" | "axis_x" | "axis_y" | "normal_x" | "normal_y" => "N·m",
-        _ => "",
-    }
-}
 
 fn coordinate_unit(c: Coord) -> &'static str {
     match c {
@@ -106,8 +94,8 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
              convention M v̇ − Dᵀλ = h.\n"
         );
         let _ = writeln!(w, "| r | row | λ unit |\n|---:|---|---|");
-        for (r, row) in f.row_names.iter().enumerate() {
-            let unit = match multiplier_unit(row) {
+        for (r, (row, unit)) in f.row_names.iter().zip(&f.row_units).enumerate() {
+            let unit = match unit.multiplier() {
                 "" => "J per unit of the row",
                 unit => unit,
             };
@@ -139,18 +127,74 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
 
 #[cfg(test)]
 mod tests {
-    /// Every row name the generated joints use has its unit: a row in metres gives N, an angle or
-    /// a dimensionless orientation row N·m (docs/formulation.md's row tables).
+    use crate::formulation::formulate;
+    use crate::parse::MechanismDef;
+
+    /// Every row of every joint kind, driver and fix carries its unit: a row in metres gives N,
+    /// an angle or a dimensionless orientation row N·m (docs/formulation.md's row tables), a user
+    /// constraint nothing — checked against the row names of each kind, planar and spatial.
     #[test]
     fn every_joint_row_has_a_unit() {
         let metres = ["x", "y", "z", "normal", "distance", "length", "stroke", "offset", "offset_x", "offset_y"];
         let turns = ["phi", "angle", "cross", "twist", "rx", "ry", "rz", "axis_x", "axis_y", "normal_x", "normal_y"];
-        for row in metres {
-            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), "N", "{row}");
+        let planar = "Planar {
+            body a { mass: 1.0, inertia: 0.1, at: [0.1, 0.0, 0.0] }
+            body b { mass: 1.0, inertia: 0.1, at: [0.4, 0.0, 0.0] }
+            body c { mass: 1.0, inertia: 0.1, at: [0.4, 0.5, 0.0] }
+            revolute pin: ground[0.0, 0.0] ~ a[-0.1, 0.0];
+            translational slide: ground[0.0, 0.0] along [1.0, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0];
+            revolute_translational a[0.1, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0];
+            revolute_revolute a[0.1, 0.0] ~ c[0.0, 0.0] { length: 0.5 };
+            rigid b[0.0, 0.5] ~ c[0.0, 0.0];
+            point a.tip = [0.1, 0.0];
+            point c.q = [0.0, 0.0];
+            drive angle(a, c) = t;
+            drive distance(a.tip, c.q) = 0.5 + t;
+            drive a.x = 0.1;
+            fix c.phi;
+            constraint a.y = b.y;
+        }";
+        let spatial = "Spatial {
+            spatial;
+            body b1 { mass: 1.0, inertia: [0.1, 0.2, 0.3], at: [0.1, 0.2, 0.3] }
+            body b2 { mass: 1.0, inertia: [0.1, 0.2, 0.3], at: [0.5, 0.1, 0.2] }
+            spherical ground[0.0, 0.0, 0.0] ~ b1[0.1, 0.2, 0.3];
+            universal b1[0.2, 0.0, 0.0] along [1.0, 0.0, 0.0] ~ b2[0.0, 0.0, 0.1] along [0.0, 1.0, 0.0];
+            revolute hinge: ground[0.5, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ b1[0.0, 0.1, 0.0] along [0.0, 0.0, 1.0];
+            cylindrical cyl: b1[0.1, 0.0, 0.0] along [0.0, 1.0, 0.0] ~ b2[0.0, 0.0, 0.0] along [0.0, 1.0, 0.0];
+            translational slide: ground[0.0, 1.0, 0.0] along [1.0, 0.0, 0.0] ~ b2[0.1, 0.0, 0.0] along [1.0, 0.0, 0.0];
+            planar b1[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ b2[0.0, 0.2, 0.0] along [0.0, 0.0, 1.0];
+            rigid b1[0.1, 0.0, 0.0] ~ b2[0.0, 0.0, 0.1];
+            rigid b2[0.0, 0.1, 0.0] along [0.0, 1.0, 0.0] reference [0.0, 0.0, 1.0] ~ b1[0.0, 0.0, 0.0] along [0.0, 1.0, 0.0];
+            point_on_line ground[0.0, 0.0, 1.0] along [1.0, 1.0, 0.0] ~ b2[0.0, 0.0, 0.2];
+            point_on_plane b1[0.1, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ b2[0.0, 0.0, 0.0];
+            distance b1[0.0, 0.0, 0.3] ~ b2[0.1, 0.0, 0.0] { length: 0.5 };
+            drive hinge.angle = t;
+            drive cyl.stroke = t;
+            drive slide.stroke = t;
+            drive b2.z = t;
+            fix b1.x;
+            constraint b1.x = b2.y;
+        }";
+        let (mut seen_metres, mut seen_turns) = (0, 0);
+        for src in [planar, spatial] {
+            let model = syn::parse_str::<MechanismDef>(src).expect("parses").validate().unwrap_or_else(|_| panic!("valid: {src}"));
+            let f = formulate(&model);
+            for (name, unit) in f.row_names.iter().zip(&f.row_units) {
+                let row = name.rsplit(": ").next().expect("a row name");
+                let expected = if metres.contains(&row) {
+                    seen_metres += 1;
+                    "N"
+                } else if turns.contains(&row) {
+                    seen_turns += 1;
+                    "N·m"
+                } else {
+                    assert_eq!(row, "user", "{name}: a row name of neither list");
+                    ""
+                };
+                assert_eq!(unit.multiplier(), expected, "{name}");
+            }
         }
-        for row in turns {
-            assert_eq!(super::multiplier_unit(&format!("joint a~b: {row}")), "N·m", "{row}");
-        }
-        assert_eq!(super::multiplier_unit("constraint c1: user"), "");
+        assert!(seen_metres > 20 && seen_turns > 15, "{seen_metres} rows in metres, {seen_turns} in angles");
     }
 }

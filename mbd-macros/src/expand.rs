@@ -530,7 +530,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
     let (coordinate_infos, velocity_infos) = crate::frames::Coordinates::of(m.space).descriptors(m);
     let row_names = &f.row_names;
-    let row_units = f.row_names.iter().map(|r| crate::docs::multiplier_unit(r));
+    let row_units = f.row_units.iter().map(|u| u.multiplier());
     let tables = crate::docs::tables(m, &f, &force_ops);
     let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
     let pattern: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();

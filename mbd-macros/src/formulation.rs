@@ -9,7 +9,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::forces::{gravity, Generalized};
-use crate::frames::{collect_vars, Builder, Coordinates};
+use crate::frames::{collect_vars, Builder, Coordinates, RowUnit};
 use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
@@ -29,6 +29,8 @@ pub struct Formulation {
     pub nc: usize,
     /// Constraint row names, `"revolute crank~rod: x"`, in the order of Φ.
     pub row_names: Vec<String>,
+    /// What each row measures (the unit of its multiplier), in the order of Φ.
+    pub row_units: Vec<RowUnit>,
     /// The first row of each constraint in Φ.
     pub first_rows: Vec<usize>,
     /// Φ, one node per row.
@@ -117,11 +119,12 @@ pub fn formulate(model: &Model) -> Formulation {
     let mut b = Builder::new(model);
     let (nq, nv) = (b.nq(), b.nv());
     let mut phi = Vec::new();
-    let mut row_names = Vec::new();
+    let (mut row_names, mut row_units) = (Vec::new(), Vec::new());
     for c in &model.constraints {
         b.first_rows.push(phi.len());
         for row in c.kind.rows(&mut b) {
             row_names.push(format!("{}: {}", c.name, row.name));
+            row_units.push(row.unit);
             phi.push(row.value);
         }
     }
@@ -326,6 +329,7 @@ pub fn formulate(model: &Model) -> Formulation {
     Formulation {
         nc: phi.len(),
         row_names,
+        row_units,
         first_rows,
         graph: b.g,
         nq,

@@ -101,11 +101,42 @@ impl Coordinates {
     }
 }
 
-/// One named row of Φ: the name (`"x"`, `"angle"`) and its symbolic value. A kind's rows and
-/// their names come from one function, so their counts cannot disagree.
+/// One named row of Φ: the name (`"x"`, `"angle"`), its symbolic value and what it measures. A
+/// kind's rows, their names and their units come from one function, so they cannot disagree.
 pub struct Row {
     pub name: &'static str,
     pub value: Id,
+    pub unit: RowUnit,
+}
+
+/// What a row of Φ measures, and so the unit of its multiplier λ (the work of λ along the row
+/// is in J): a length (λ in N), an angle or a product of unit vectors (λ in N·m), or something
+/// the macro does not know (a user constraint's expression).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RowUnit {
+    Length,
+    Angle,
+    Unknown,
+}
+
+impl RowUnit {
+    /// A row fixing or driving a body coordinate: a length for x, y, z, an angle for φ.
+    pub fn of(c: Coord) -> Self {
+        match c {
+            Coord::X | Coord::Y | Coord::Z => RowUnit::Length,
+            Coord::Phi => RowUnit::Angle,
+            Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3 => RowUnit::Unknown,
+        }
+    }
+
+    /// The unit of the row's multiplier: `"N"`, `"N·m"`, or `""` when not known.
+    pub fn multiplier(self) -> &'static str {
+        match self {
+            RowUnit::Length => "N",
+            RowUnit::Angle => "N·m",
+            RowUnit::Unknown => "",
+        }
+    }
 }
 
 /// The symbolic workspace in which elements build their rows and forces.

@@ -719,8 +719,9 @@ where
     let (_, gamma_v0) = gamma_v_at(&[0.0; NV]);
     let (gamma_q, gamma_v) = gamma_v_at(v);
     let (q_v, q_a) = if velocities_are_rates::<M>() {
-        // Where q̇ = v (in the plane) Q(a)b = Φ_qq(a, b) is symmetric in a and b, so Γ_v(a) = −2 Q(a) − 2 Φ_tq
-        // and Q(a) = −½ (Γ_v(a) − Γ_v(0)): two evaluations of γ's derivatives.
+        // Where q̇ = v (in the plane) Q(a)b = Φ_qq(a, b) is symmetric in a and b, so
+        // Γ_v(a) = −2 Q(a) − 2 Φ_tq and Q(a) = −½ (Γ_v(a) − Γ_v(0)): two evaluations of γ's
+        // derivatives.
         let (_, gamma_va) = gamma_v_at(&vd);
         ((&gamma_v - &gamma_v0) * -0.5, (gamma_va - &gamma_v0) * -0.5)
     } else {

@@ -76,10 +76,11 @@
 //! and the ×10/÷10 rule alternates around that curvature.
 //!
 //! **Angles** come back in a documented range: each angle coordinate ([`CoordinateKind::Angle`]:
-//! a planar body's `"body.phi"`) is wrapped into (−π, π] when the wrap changes neither Φ nor h (the mechanism is 2π-periodic in
-//! it: a driver or a torsion spring written linearly in φ is not, and the angle is left as is;
-//! angles are wrapped one at a time). Quaternions ([`CoordinateKind::Quaternion`]: a spatial
-//! body's Euler parameters) come back unit, with e0 ≥ 0 (p and −p are the same rotation).
+//! a planar body's `"body.phi"`) is wrapped into (−π, π] when the wrap changes neither Φ nor h
+//! (the mechanism is 2π-periodic in it: a driver or a torsion spring written linearly in φ is
+//! not, and the angle is left as is; angles are wrapped one at a time). Quaternions
+//! ([`CoordinateKind::Quaternion`]: a spatial body's Euler parameters) come back unit, with
+//! e0 ≥ 0 (p and −p are the same rotation).
 //!
 //! Work space: the two matrices and one set of factors over the planned storage (D's
 //! non-zeros and the factors' entries: O(bodies) for a chain) live in the caller's

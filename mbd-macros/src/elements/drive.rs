@@ -7,7 +7,7 @@ use serde_json::{json, Value};
 use syn::Ident;
 
 use super::{Driven, Joint, Resolved};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Coord, MExpr, Resolver};
 use crate::parse::DriveDef;
@@ -67,7 +67,7 @@ impl Joint for Drive {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let q = b.coord(BodyRef::Body(self.body), self.coord);
         let f = b.expr(&self.f);
-        vec![Row { name: self.coord.name(), value: b.g.sub(q, f) }]
+        vec![Row { name: self.coord.name(), value: b.g.sub(q, f), unit: RowUnit::of(self.coord) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"body": cx.body(BodyRef::Body(self.body)), "coordinate": self.coord.name(), "f": cx.expr(&self.f)})

@@ -6,7 +6,7 @@ use serde_json::{json, Value};
 use syn::Ident;
 
 use super::{Driven, Joint, Resolved};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr, Resolver};
 use crate::parse::DriveDef;
@@ -57,7 +57,7 @@ impl Joint for DriveAngle {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let rel = b.relative_angle(self.i, self.j);
         let f = b.expr(&self.f);
-        vec![Row { name: "angle", value: b.g.sub(rel, f) }]
+        vec![Row { name: "angle", value: b.g.sub(rel, f), unit: RowUnit::Angle }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.body(self.i), "j": cx.body(self.j), "f": cx.expr(&self.f)})

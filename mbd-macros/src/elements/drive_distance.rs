@@ -7,7 +7,7 @@ use serde_json::{json, Value};
 use syn::Ident;
 
 use super::{Joint, Resolved};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr, Resolver};
 use crate::parse::{DriveDef, PointRef};
@@ -55,7 +55,7 @@ impl Joint for DriveDistance {
     }
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let f = b.expr(&self.f);
-        vec![Row { name: "distance", value: b.distance_between(&self.i, &self.j, f) }]
+        vec![Row { name: "distance", value: b.distance_between(&self.i, &self.j, f), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "f": cx.expr(&self.f)})

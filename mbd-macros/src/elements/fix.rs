@@ -8,7 +8,7 @@
 use serde_json::{json, Value};
 
 use super::{Driven, Joint, Resolved};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{Body, BodyRef, Coord, MExpr, Resolver, Scope};
 use crate::parse::FixDef;
@@ -73,7 +73,7 @@ impl Joint for Fix {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let q = b.coord(BodyRef::Body(self.body), self.coord);
         let f = b.expr(&self.value);
-        vec![Row { name: self.coord.name(), value: b.g.sub(q, f) }]
+        vec![Row { name: self.coord.name(), value: b.g.sub(q, f), unit: RowUnit::of(self.coord) }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"body": cx.body(BodyRef::Body(self.body)), "coordinate": self.coord.name(), "value": cx.expr(&self.value)})

@@ -5,7 +5,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, JointSpec, Parts};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc};
 
@@ -39,7 +39,7 @@ impl Joint for Revolute {
         let pi = b.point(&self.i);
         let pj = b.point(&self.j);
         let [x, y] = b.diff2(pi, pj);
-        vec![Row { name: "x", value: x }, Row { name: "y", value: y }]
+        vec![Row { name: "x", value: x, unit: RowUnit::Length }, Row { name: "y", value: y, unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j)})

@@ -6,7 +6,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, JointSpec, Parts};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr};
 
@@ -40,7 +40,7 @@ impl Joint for RevoluteRevolute {
     }
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let l = b.expr(&self.length);
-        vec![Row { name: "length", value: b.distance_between(&self.i, &self.j, l) }]
+        vec![Row { name: "length", value: b.distance_between(&self.i, &self.j, l), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "length": cx.expr(&self.length)})

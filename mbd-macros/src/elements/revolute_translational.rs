@@ -6,7 +6,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, JointSpec, Parts};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr};
 
@@ -47,7 +47,7 @@ impl Joint for RevoluteTranslational {
         let d = b.diff2(pi, pj);
         let n = b.dot(&nj, &d);
         let l = b.expr(&self.distance);
-        vec![Row { name: "distance", value: b.g.sub(n, l) }]
+        vec![Row { name: "distance", value: b.g.sub(n, l), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc_axis(&self.j, &self.axis_j), "distance": cx.expr(&self.distance)})

@@ -6,7 +6,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, JointSpec, Parts};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr};
 
@@ -41,7 +41,11 @@ impl Joint for Rigid {
         let [x, y] = b.diff2(pi, pj);
         let rel = b.relative_angle(self.i.body, self.j.body);
         let a = b.expr(&self.angle);
-        vec![Row { name: "x", value: x }, Row { name: "y", value: y }, Row { name: "angle", value: b.g.sub(rel, a) }]
+        vec![
+            Row { name: "x", value: x, unit: RowUnit::Length },
+            Row { name: "y", value: y, unit: RowUnit::Length },
+            Row { name: "angle", value: b.g.sub(rel, a), unit: RowUnit::Angle },
+        ]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "angle": cx.expr(&self.angle)})

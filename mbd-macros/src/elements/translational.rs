@@ -7,7 +7,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, JointSpec, Parts};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Components, Loc};
 
@@ -51,7 +51,10 @@ impl Joint for Translational {
         let ni = b.perp(ui);
         let uj = b.unit(self.j.body, &self.axis_j);
         let d = b.diff2(pj, pi);
-        vec![Row { name: "normal", value: b.dot(&ni, &d) }, Row { name: "angle", value: b.dot(&ni, &uj) }]
+        vec![
+            Row { name: "normal", value: b.dot(&ni, &d), unit: RowUnit::Length },
+            Row { name: "angle", value: b.dot(&ni, &uj), unit: RowUnit::Angle },
+        ]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc_axis(&self.i, &self.axis_i), "j": cx.loc_axis(&self.j, &self.axis_j)})

@@ -5,7 +5,7 @@
 use serde_json::{json, Value};
 
 use super::{Joint, Resolved};
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MBin, MExpr, Resolver, Scope};
 use crate::parse::ConstraintDef;
@@ -35,7 +35,7 @@ impl Joint for User {
         (None, None)
     }
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
-        vec![Row { name: "user", value: b.expr(&self.expr) }]
+        vec![Row { name: "user", value: b.expr(&self.expr), unit: RowUnit::Unknown }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"expr": cx.expr(&self.expr)})

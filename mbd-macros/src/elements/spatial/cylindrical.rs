@@ -6,7 +6,7 @@ use serde_json::Value;
 
 use super::{pair_json, revolute::aligned, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -28,7 +28,10 @@ pub struct Cylindrical {
 pub fn on_axis(b: &mut Builder, i: &Marker, j: &Marker) -> Vec<Row> {
     let (fi, fj) = (b.frame(i), b.frame(j));
     let d = b.separation(&fi, &fj);
-    vec![Row { name: "offset_x", value: b.dot(&fi.x, &d) }, Row { name: "offset_y", value: b.dot(&fi.y, &d) }]
+    vec![
+        Row { name: "offset_x", value: b.dot(&fi.x, &d), unit: RowUnit::Length },
+        Row { name: "offset_y", value: b.dot(&fi.y, &d), unit: RowUnit::Length },
+    ]
 }
 
 impl Joint for Cylindrical {

@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 
 use super::{marker_json, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr};
 
@@ -42,7 +42,7 @@ impl Joint for Distance {
         let pj = b.point3(&self.j.loc);
         let d: [_; 3] = std::array::from_fn(|k| b.g.sub(pj[k], pi[k]));
         let l = b.expr(&self.length);
-        vec![Row { name: "length", value: b.distance_row(&d, l) }]
+        vec![Row { name: "length", value: b.distance_row(&d, l), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": marker_json(cx, &self.i), "j": marker_json(cx, &self.j), "length": cx.expr(&self.length)})

@@ -6,7 +6,7 @@ use serde_json::{json, Value};
 
 use super::Marker;
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr};
 use crate::sym::Func;
@@ -35,7 +35,7 @@ impl Joint for DriveAngle {
         let (sf, cf) = (b.g.call(Func::Sin, f), b.g.call(Func::Cos, f));
         let a = b.g.mul(s, cf);
         let bb = b.g.mul(c, sf);
-        vec![Row { name: "angle", value: b.g.sub(a, bb) }]
+        vec![Row { name: "angle", value: b.g.sub(a, bb), unit: RowUnit::Angle }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"joint": self.joint, "f": cx.expr(&self.f)})

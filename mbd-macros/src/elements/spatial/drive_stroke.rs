@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 
 use super::Marker;
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr};
 
@@ -28,7 +28,7 @@ impl Joint for DriveStroke {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let s = b.joint_stroke(&self.i, &self.j);
         let f = b.expr(&self.f);
-        vec![Row { name: "stroke", value: b.g.sub(s, f) }]
+        vec![Row { name: "stroke", value: b.g.sub(s, f), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"joint": self.joint, "f": cx.expr(&self.f)})

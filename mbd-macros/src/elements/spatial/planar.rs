@@ -5,7 +5,7 @@ use serde_json::Value;
 
 use super::{pair_json, revolute::aligned, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -33,7 +33,7 @@ impl Joint for Planar {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let mut rows = aligned(b, &self.i, &self.j, ["normal_x", "normal_y"]);
         let offset = b.joint_stroke(&self.i, &self.j);
-        rows.push(Row { name: "offset", value: offset });
+        rows.push(Row { name: "offset", value: offset, unit: RowUnit::Length });
         rows
     }
     fn json(&self, cx: &Ctx) -> Value {

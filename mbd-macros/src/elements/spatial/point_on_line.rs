@@ -5,7 +5,7 @@ use serde_json::Value;
 
 use super::{pair_json, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -34,7 +34,10 @@ impl Joint for PointOnLine {
         let fi = b.frame(&self.i);
         let pj = b.point3(&self.j.loc);
         let d: [_; 3] = std::array::from_fn(|k| b.g.sub(pj[k], fi.origin[k]));
-        vec![Row { name: "offset_x", value: b.dot(&fi.x, &d) }, Row { name: "offset_y", value: b.dot(&fi.y, &d) }]
+        vec![
+            Row { name: "offset_x", value: b.dot(&fi.x, &d), unit: RowUnit::Length },
+            Row { name: "offset_y", value: b.dot(&fi.y, &d), unit: RowUnit::Length },
+        ]
     }
     fn json(&self, cx: &Ctx) -> Value {
         pair_json(cx, &self.i, &self.j)

@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 
 use super::{marker_json, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, MExpr};
 
@@ -40,7 +40,7 @@ impl Joint for PointOnPlane {
         let d: [_; 3] = std::array::from_fn(|k| b.g.sub(pj[k], fi.origin[k]));
         let s = b.dot(&fi.z, &d);
         let c = b.expr(&self.distance);
-        vec![Row { name: "offset", value: b.g.sub(s, c) }]
+        vec![Row { name: "offset", value: b.g.sub(s, c), unit: RowUnit::Length }]
     }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": marker_json(cx, &self.i), "j": marker_json(cx, &self.j), "distance": cx.expr(&self.distance)})

@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::{pair_json, spherical::coincide, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -33,7 +33,10 @@ pub struct Revolute {
 /// x_iᵀ z_j and y_iᵀ z_j, named with `prefix`: z_j stays along z_i.
 pub fn aligned(b: &mut Builder, i: &Marker, j: &Marker, names: [&'static str; 2]) -> Vec<Row> {
     let (fi, fj) = (b.frame(i), b.frame(j));
-    vec![Row { name: names[0], value: b.dot(&fi.x, &fj.z) }, Row { name: names[1], value: b.dot(&fi.y, &fj.z) }]
+    vec![
+        Row { name: names[0], value: b.dot(&fi.x, &fj.z), unit: RowUnit::Angle },
+        Row { name: names[1], value: b.dot(&fi.y, &fj.z), unit: RowUnit::Angle },
+    ]
 }
 
 impl Joint for Revolute {

@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::{pair_json, spherical::coincide, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::{BodyRef, Loc, MExpr};
 
@@ -35,9 +35,9 @@ impl Joint for Rigid {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let mut rows = coincide(b, &self.i, &self.j);
         let (fi, fj) = (b.frame(&self.i), b.frame(&self.j));
-        rows.push(Row { name: "rx", value: b.dot(&fi.y, &fj.z) });
-        rows.push(Row { name: "ry", value: b.dot(&fi.z, &fj.x) });
-        rows.push(Row { name: "rz", value: b.dot(&fi.x, &fj.y) });
+        rows.push(Row { name: "rx", value: b.dot(&fi.y, &fj.z), unit: RowUnit::Angle });
+        rows.push(Row { name: "ry", value: b.dot(&fi.z, &fj.x), unit: RowUnit::Angle });
+        rows.push(Row { name: "rz", value: b.dot(&fi.x, &fj.y), unit: RowUnit::Angle });
         rows
     }
     fn json(&self, cx: &Ctx) -> Value {
@@ -79,9 +79,9 @@ impl Joint for Orientation {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let (fi, fj) = (b.frame(&self.i), b.frame(&self.j));
         vec![
-            Row { name: "rx", value: b.dot(&fi.y, &fj.z) },
-            Row { name: "ry", value: b.dot(&fi.z, &fj.x) },
-            Row { name: "rz", value: b.dot(&fi.x, &fj.y) },
+            Row { name: "rx", value: b.dot(&fi.y, &fj.z), unit: RowUnit::Angle },
+            Row { name: "ry", value: b.dot(&fi.z, &fj.x), unit: RowUnit::Angle },
+            Row { name: "rz", value: b.dot(&fi.x, &fj.y), unit: RowUnit::Angle },
         ]
     }
     fn json(&self, cx: &Ctx) -> Value {

@@ -5,7 +5,7 @@ use serde_json::Value;
 
 use super::{pair_json, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -27,7 +27,7 @@ pub struct Spherical {
 pub fn coincide(b: &mut Builder, i: &Marker, j: &Marker) -> Vec<Row> {
     let pi = b.point3(&i.loc);
     let pj = b.point3(&j.loc);
-    ["x", "y", "z"].into_iter().zip(0..3).map(|(name, k)| Row { name, value: b.g.sub(pi[k], pj[k]) }).collect()
+    ["x", "y", "z"].into_iter().zip(0..3).map(|(name, k)| Row { name, value: b.g.sub(pi[k], pj[k]), unit: RowUnit::Length }).collect()
 }
 
 impl Joint for Spherical {

@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::{cylindrical::on_axis, pair_json, revolute::aligned, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -36,7 +36,7 @@ impl Joint for Translational {
         let mut rows = aligned(b, &self.i, &self.j, ["axis_x", "axis_y"]);
         rows.extend(on_axis(b, &self.i, &self.j));
         let (fi, fj) = (b.frame(&self.i), b.frame(&self.j));
-        rows.push(Row { name: "twist", value: b.dot(&fi.x, &fj.y) });
+        rows.push(Row { name: "twist", value: b.dot(&fi.x, &fj.y), unit: RowUnit::Angle });
         rows
     }
     fn json(&self, cx: &Ctx) -> Value {

@@ -6,7 +6,7 @@ use serde_json::Value;
 
 use super::{pair_json, spherical::coincide, Axis, Marker, Parts, Spec};
 use crate::elements::Joint;
-use crate::frames::{Builder, Row};
+use crate::frames::{Builder, Row, RowUnit};
 use crate::json::Ctx;
 use crate::model::BodyRef;
 
@@ -34,7 +34,7 @@ impl Joint for Universal {
     fn rows(&self, b: &mut Builder) -> Vec<Row> {
         let mut rows = coincide(b, &self.i, &self.j);
         let (fi, fj) = (b.frame(&self.i), b.frame(&self.j));
-        rows.push(Row { name: "cross", value: b.dot(&fi.z, &fj.z) });
+        rows.push(Row { name: "cross", value: b.dot(&fi.z, &fj.z), unit: RowUnit::Angle });
         rows
     }
     fn json(&self, cx: &Ctx) -> Value {
