@@ -103,7 +103,10 @@ pub struct Energy<T> {
 }
 
 impl<T: Real> Energy<T> {
-    /// T + V − W_nc − W_c: constant for an exact solution.
+    /// T + V − W_nc − W_c: constant for an exact solution when the run tracks work
+    /// ([`SimulationOptions::track_work`](crate::SimulationOptions::track_work), off by
+    /// default). Without it both works are 0 and this is T + V, which dampers, friction,
+    /// actuators and drivers change.
     pub fn balance(&self) -> T {
         self.kinetic + self.potential - self.nonconservative_work - self.constraint_work
     }
