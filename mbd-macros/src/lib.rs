@@ -12,6 +12,9 @@
 //! solve of the equations of motion) → `expand` (the mechanism's type and trait
 //! implementations; `json` its model description). `ARCHITECTURE.md` is the map.
 
+// No function over 150 lines (`clippy.toml`).
+#![warn(clippy::too_many_lines)]
+
 mod docs;
 mod elements;
 mod emit;

@@ -880,6 +880,7 @@ impl MechanismDef {
         Ok(model)
     }
 
+    #[allow(clippy::too_many_lines)] // 201 lines: to be split by concern (issue 38, item 7)
     fn build(&self, errors: &mut Errors) -> Option<Model> {
         let mut scalar = None::<(Scalar, Span)>;
         let mut space = Space::Planar;

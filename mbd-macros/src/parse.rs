@@ -453,6 +453,7 @@ fn label(input: ParseStream) -> syn::Result<Option<Ident>> {
 }
 
 impl Parse for Item {
+    #[allow(clippy::too_many_lines)] // 156 lines: to be split by concern (issue 38, item 7)
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let kw: Ident = input.call(Ident::parse_any).map_err(|e| {
             syn::Error::new(

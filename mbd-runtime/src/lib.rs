@@ -6,6 +6,8 @@
 //! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
+// No function over 150 lines (`clippy.toml`).
+#![warn(clippy::too_many_lines)]
 
 #[cfg(feature = "alloc")]
 extern crate alloc;
