@@ -397,3 +397,98 @@ fn descriptors_say_what_each_coordinate_and_velocity_is() {
     assert!(rates.iter().all(|n| Top::VELOCITY_NAMES.contains(&n.as_str())), "{rates:?}");
     assert_eq!(positions.len(), 3, "{positions:?}");
 }
+
+/// Each body's pose, twist J_b x and J_bᵀ of a wrench (`BodyFrames`), read without a place in q:
+/// the pose moves with the twist (a central difference along q ⊕ ±h v, as the integrators move
+/// q), J_bᵀ is the adjoint of J_b (the power of a wrench on the twist is the work of its
+/// generalized force on v), the pose places the named points where named access does, and a body
+/// past the last has none. Spatial (two bodies, one turned) and planar.
+#[test]
+fn body_frames_give_pose_twist_and_wrench() {
+    use mbd_examples::slider_crank::SliderCrank;
+    fn check<M: Kinematics<f64, NQ, NV, NC> + BodyFrames<f64, NQ, NV>, const NQ: usize, const NV: usize, const NC: usize>(
+        m: &M,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) {
+        let h = 1e-6;
+        let (mut plus, mut minus) = (*q, *q);
+        m.integrate_positions(&mut plus, v, h);
+        m.integrate_positions(&mut minus, v, -h);
+        for b in 0..M::BODY_NAMES.len() {
+            let name = M::BODY_NAMES[b];
+            let (pose, twist) = (m.body_pose(b, q).expect("a body"), m.body_twist(b, q, v).expect("a body"));
+            let (p, n) = (m.body_pose(b, &plus).expect("a body"), m.body_pose(b, &minus).expect("a body"));
+            // ω̃ = Ȧ Aᵀ, Ȧ by the same central difference.
+            let a_dot: [[f64; 3]; 3] = core::array::from_fn(|i| core::array::from_fn(|j| (p.rotation[i][j] - n.rotation[i][j]) / (2.0 * h)));
+            let w_tilde: [[f64; 3]; 3] =
+                core::array::from_fn(|i| core::array::from_fn(|j| (0..3).map(|k| a_dot[i][k] * pose.rotation[j][k]).sum()));
+            let omega = [w_tilde[2][1], w_tilde[0][2], w_tilde[1][0]];
+            // Tolerance: the central difference's O(h²) truncation and the O(ε/h) rounding of
+            // O(1) values, about 1e-10; the rotation's O(h²) renormalization as much.
+            for k in 0..3 {
+                let dr = (p.position[k] - n.position[k]) / (2.0 * h);
+                assert!((dr - twist.velocity[k]).abs() < 1e-8, "{name}: ṙ[{k}] {dr} vs {:?}", twist.velocity);
+                assert!((omega[k] - twist.angular_velocity[k]).abs() < 1e-8, "{name}: ω[{k}] {omega:?} vs {:?}", twist.angular_velocity);
+            }
+            let (force, moment) = ([0.3, -1.2, 0.7], [0.4, 0.25, -0.9]);
+            let mut g = [0.0; NV];
+            assert!(m.add_body_wrench(b, q, force, moment, &mut g));
+            let work: f64 = g.iter().zip(v).map(|(g, v)| g * v).sum();
+            let planar = M::VELOCITIES.iter().all(|v| matches!(v.kind, mbd::VelocityKind::Rate { .. }));
+            // In the plane a force along z and a moment about x or y do no work.
+            let power: f64 = (0..3).map(|k| force[k] * twist.velocity[k] + moment[k] * twist.angular_velocity[k]).sum();
+            let power = if planar { power - force[2] * twist.velocity[2] } else { power };
+            // Tolerance: rounding of sums of a dozen O(1) products.
+            assert!((work - power).abs() < 1e-13, "{name}: Jᵀ is the adjoint of J: {work} vs {power}");
+            let acceleration = m.body_acceleration(b, q, v, v).expect("a body");
+            assert!(acceleration.velocity.iter().chain(&acceleration.angular_velocity).all(|x| x.is_finite()));
+        }
+        let past = M::BODY_NAMES.len();
+        assert!(m.body_pose(past, q).is_none() && m.body_twist(past, q, v).is_none());
+        assert!(!m.add_body_wrench(past, q, [1.0; 3], [1.0; 3], &mut [0.0; NV]));
+    }
+
+    let m = Tumbler::default();
+    let mut q = m.initial_positions();
+    let turn = [(0.8f64).cos(), 0.6 * (0.8f64).sin(), 0.0, -0.8 * (0.8f64).sin()];
+    q[3..7].copy_from_slice(&turn);
+    q[7..10].copy_from_slice(&[0.1, -0.2, 0.3]);
+    let v = [0.5, -0.3, 0.2, 1.5, -0.7, 2.0, -0.1, 0.4, 0.3, 0.9, 0.2, -1.1];
+    check(&m, &q, &v);
+    let pose = m.body_pose(0, &q).expect("the block");
+    let named = Tumbler::BLOCK.point([0.2, -0.1, 0.3]).position(&q);
+    let placed = pose.point([0.2, -0.1, 0.3]);
+    // Tolerance: the same products summed in another order.
+    assert!((0..3).all(|k| (placed[k] - named[k]).abs() < 1e-15), "{placed:?} vs {named:?}");
+
+    let m = SliderCrank::default();
+    let q = m.initial_positions();
+    let v: [f64; 9] = core::array::from_fn(|i| 0.3 * i as f64 - 1.0);
+    check(&m, &q, &v);
+    let pose = m.body_pose(1, &q).expect("the rod");
+    // Tolerance: atan2 of the sine and cosine of φ, a few ulps.
+    assert!((pose.angle() - SliderCrank::ROD.phi(&q)).abs() < 1e-15);
+    assert_eq!([pose.position[0], pose.position[1]], [SliderCrank::ROD.x(&q), SliderCrank::ROD.y(&q)]);
+}
+
+/// The reaction of the top's ball joint, from the generated Jacobian and any multipliers: a force
+/// of the size of λ, and no moment about the pin.
+#[test]
+fn ball_joint_reaction_of_the_top_has_no_moment_about_its_pin() {
+    let m = Top { theta: 0.9, ..Default::default() };
+    let q = m.initial_positions();
+    let mut d = [[0.0; 6]; 3];
+    m.jacobian(&q, 0.0, &mut d);
+    let lambda = [5.0, -3.0, 12.0];
+    let reaction = joint_reaction(&m, &q, &d, &lambda, 0).expect("the ball joint");
+    assert!(reaction.on_i.is_none(), "ground has no wrench");
+    let w = reaction.on_j.expect("on the top");
+    assert_eq!((w.body, w.body_index), ("top", 0));
+    let pin = m.body_pose(0, &q).expect("the top").to_global([0.0, 0.0, -m.l]);
+    // Tolerance: rounding of sums of O(10) products.
+    let size = |x: [f64; 3]| x.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!((size(w.force) - size(lambda)).abs() < 1e-13, "{w:?}");
+    assert!(size(w.moment_about(pin)) < 1e-13, "{w:?}");
+    assert!(size(w.moment) > 0.5, "the pin, 0.1 m off the centre of mass, turns a 14 N force: {w:?}");
+}

@@ -482,7 +482,6 @@ impl ::mbd::Mechanism for SliderCrank {
             displacement: "slider.phi",
         },
     ];
-    const DIMENSION: u8 = 2;
     const CONSTRAINT_NAMES: &'static [&'static str] = &[
         "revolute ground~crank: x",
         "revolute ground~crank: y",
@@ -1702,8 +1701,14 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 .chain(jv.iter())
                 .chain(m.iter())
                 .all(|x| x.is_finite());
+            const MASS_BODIES: [u16; 9] = [
+                0u16, 0u16, 0u16, 1u16, 1u16, 1u16, 2u16, 2u16, 2u16,
+            ];
             return ::core::result::Result::Err(
-                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+                ::mbd::DynamicsError::from_pivot::<
+                    Self,
+                    f64,
+                >(t, row, &m, &MASS_BODIES, finite),
             );
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -1950,8 +1955,14 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 .chain(jv.iter())
                 .chain(m.iter())
                 .all(|x| x.is_finite());
+            const MASS_BODIES: [u16; 9] = [
+                0u16, 0u16, 0u16, 1u16, 1u16, 1u16, 2u16, 2u16, 2u16,
+            ];
             return ::core::result::Result::Err(
-                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+                ::mbd::DynamicsError::from_pivot::<
+                    Self,
+                    f64,
+                >(t, row, &m, &MASS_BODIES, finite),
             );
         }
         Self::schur_solve(&l, &dinv, &mut b);
@@ -2093,8 +2104,14 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 .chain(jv.iter())
                 .chain(m.iter())
                 .all(|x| x.is_finite());
+            const MASS_BODIES: [u16; 9] = [
+                0u16, 0u16, 0u16, 1u16, 1u16, 1u16, 2u16, 2u16, 2u16,
+            ];
             return ::core::result::Result::Err(
-                ::mbd::DynamicsError::from_pivot::<Self, f64>(t, row, &m, finite),
+                ::mbd::DynamicsError::from_pivot::<
+                    Self,
+                    f64,
+                >(t, row, &m, &MASS_BODIES, finite),
             );
         }
         let mut b = [0f64; 9];
@@ -3319,6 +3336,69 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         } else {
             ::mbd::sparse::solve(&Self::NEWTON_PATTERN, &s[23..], b);
         }
+    }
+}
+#[allow(unused_variables)]
+impl ::mbd::BodyFrames<f64, 9, 9> for SliderCrank {
+    #[inline]
+    fn body_pose(
+        &self,
+        body: usize,
+        q: &[f64; 9],
+    ) -> ::core::option::Option<::mbd::BodyPose<f64>> {
+        if body >= 3 {
+            return ::core::option::Option::None;
+        }
+        let k = 3 * body;
+        ::core::option::Option::Some(::mbd::BodyPose::planar(q[k], q[k + 1], q[k + 2]))
+    }
+    #[inline]
+    fn body_twist(
+        &self,
+        body: usize,
+        q: &[f64; 9],
+        x: &[f64; 9],
+    ) -> ::core::option::Option<::mbd::BodyTwist<f64>> {
+        if body >= 3 {
+            return ::core::option::Option::None;
+        }
+        let k = 3 * body;
+        ::core::option::Option::Some(::mbd::BodyTwist {
+            velocity: [x[k], x[k + 1], <f64 as ::mbd::Real>::ZERO],
+            angular_velocity: [
+                <f64 as ::mbd::Real>::ZERO,
+                <f64 as ::mbd::Real>::ZERO,
+                x[k + 2],
+            ],
+        })
+    }
+    #[inline]
+    fn body_acceleration(
+        &self,
+        body: usize,
+        q: &[f64; 9],
+        v: &[f64; 9],
+        vd: &[f64; 9],
+    ) -> ::core::option::Option<::mbd::BodyTwist<f64>> {
+        ::mbd::BodyFrames::body_twist(self, body, q, vd)
+    }
+    #[inline]
+    fn add_body_wrench(
+        &self,
+        body: usize,
+        q: &[f64; 9],
+        force: [f64; 3],
+        moment: [f64; 3],
+        g: &mut [f64; 9],
+    ) -> bool {
+        if body >= 3 {
+            return false;
+        }
+        let k = 3 * body;
+        g[k] += force[0];
+        g[k + 1] += force[1];
+        g[k + 2] += moment[2];
+        true
     }
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]

@@ -359,7 +359,9 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             f.mass_coupling.iter().enumerate().map(|(k, &(r, c, _))| (usize_lit(k), usize_lit(r), usize_lit(c))).collect();
         (quote!(let mut mc = [#zero; #n];), quote!(#( y[#r] += mc[#k] * x[#c]; )*), quote!(#( a[#r][#c] += scale * mc[#k]; )*))
     };
-    let positions_code = position_updates(m, &e);
+    let coordinates = crate::coordinates::Coordinates::of(m.space);
+    let positions_code = coordinates.position_updates(m, &e);
+    let body_frames = coordinates.body_frames(m, name);
     let named = named_items(m, &f, &e);
     // What h, ∂h/∂q and ∂h/∂v cost with no element, and with each element alone.
     let alone = |t: &crate::formulation::ForceTerms| -> [Ops; 3] {
@@ -528,8 +530,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let coordinate_names = m.coordinate_names();
     // planar v = q̇: the velocities are named by their coordinates, as the runtime's messages say
     let velocity_names = if m.space == crate::model::Space::Planar { m.coordinate_names() } else { m.velocity_names() };
-    let dimension = Literal::u8_unsuffixed(m.space.dim() as u8);
-    let (coordinate_infos, velocity_infos) = crate::frames::Coordinates::of(m.space).descriptors(m);
+    let (coordinate_infos, velocity_infos) = crate::coordinates::Coordinates::of(m.space).descriptors(m);
     let row_names = &f.row_names;
     let row_units = f.row_units.iter().map(|u| u.multiplier());
     let tables = crate::docs::tables(m, &f, &force_ops);
@@ -674,7 +675,6 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
             const VELOCITY_NAMES: &'static [&'static str] = &[#(#velocity_names),*];
             const COORDINATES: &'static [::mbd::CoordinateInfo] = &[#(#coordinate_infos),*];
             const VELOCITIES: &'static [::mbd::VelocityInfo] = &[#(#velocity_infos),*];
-            const DIMENSION: u8 = #dimension;
             const CONSTRAINT_NAMES: &'static [&'static str] = &[#(#row_names),*];
             const PARAM_NAMES: &'static [&'static str] = &[#(#param_names),*];
             const DOF: i32 = #dof;
@@ -819,6 +819,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
 
         #impl_block
         #newton_impl
+        #body_frames
         #parts
 
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
@@ -1053,70 +1054,6 @@ fn ground_point(m: &Model, name: &str, nodes: &[u32], e: &Emitter) -> TokenStrea
             let mut p = [#zero; #dim];
             #body
             #point::from(p)
-        }
-    }
-}
-
-/// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)
-/// and `normalize_positions`. Planar: B = I and nothing to normalize. Spatial, per body:
-/// ṙ = v_r, ṗ = ½ Lᵀ(p) ω′ (docs/formulation.md), then p ← p/|p|.
-fn position_updates(m: &Model, e: &Emitter) -> TokenStream {
-    let real = real(m.scalar);
-    let (nq, nv) = (usize_lit(7 * m.bodies.len()), usize_lit(6 * m.bodies.len()));
-    if m.space == crate::model::Space::Planar {
-        let n = usize_lit(3 * m.bodies.len());
-        return quote! {
-            #[inline]
-            fn position_rates(&self, q: &[#real; #n], v: &[#real; #n], qdot: &mut [#real; #n]) {
-                *qdot = *v;
-            }
-            #[inline]
-            fn integrate_positions(&self, q: &mut [#real; #n], dv: &[#real; #n], h: #real) {
-                for i in 0..#n {
-                    q[i] += h * dv[i];
-                }
-            }
-            #[inline]
-            fn normalize_positions(&self, q: &mut [#real; #n]) {}
-        };
-    }
-    let (half, one) = (e.literal(0.5), e.literal(1.0));
-    let nb = usize_lit(m.bodies.len());
-    quote! {
-        #[inline]
-        fn position_rates(&self, q: &[#real; #nq], v: &[#real; #nv], qdot: &mut [#real; #nq]) {
-            for k in 0..#nb {
-                let (r, w) = (7 * k, 6 * k);
-                let (e0, e1, e2, e3) = (q[r + 3], q[r + 4], q[r + 5], q[r + 6]);
-                let (wx, wy, wz) = (v[w + 3], v[w + 4], v[w + 5]);
-                qdot[r] = v[w];
-                qdot[r + 1] = v[w + 1];
-                qdot[r + 2] = v[w + 2];
-                qdot[r + 3] = #half * (-e1 * wx - e2 * wy - e3 * wz);
-                qdot[r + 4] = #half * (e0 * wx - e3 * wy + e2 * wz);
-                qdot[r + 5] = #half * (e3 * wx + e0 * wy - e1 * wz);
-                qdot[r + 6] = #half * (-e2 * wx + e1 * wy + e0 * wz);
-            }
-        }
-        #[inline]
-        fn integrate_positions(&self, q: &mut [#real; #nq], dv: &[#real; #nv], h: #real) {
-            let mut rates = [<#real as ::mbd::Real>::ZERO; #nq];
-            ::mbd::Kinematics::position_rates(self, q, dv, &mut rates);
-            for i in 0..#nq {
-                q[i] += h * rates[i];
-            }
-            ::mbd::Kinematics::normalize_positions(self, q);
-        }
-        #[inline]
-        fn normalize_positions(&self, q: &mut [#real; #nq]) {
-            for k in 0..#nb {
-                let p = 7 * k + 3;
-                let norm = <#real as ::mbd::Real>::sqrt(q[p] * q[p] + q[p + 1] * q[p + 1] + q[p + 2] * q[p + 2] + q[p + 3] * q[p + 3]);
-                let scale = #one / norm;
-                for i in p..p + 4 {
-                    q[i] *= scale;
-                }
-            }
         }
     }
 }

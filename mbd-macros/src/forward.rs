@@ -290,9 +290,12 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
             }
         }
     };
+    let coordinates = crate::coordinates::Coordinates::of(m.space);
+    let mass_bodies = (0..nv).map(|i| coordinates.body_of_velocity(i) as u16);
     let fail = quote! {
         let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|x| x.is_finite());
-        return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, finite));
+        const MASS_BODIES: [u16; #nv_l] = [#(#mass_bodies),*];
+        return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, &MASS_BODIES, finite));
     };
     // With products of inertia: the evaluated blocks of M⁻¹ (`mi`) and its off-diagonal part.
     let (n_mi, n_off) = (usize_lit(f.mass_inverse.len()), usize_lit(coupling.len()));

@@ -12,94 +12,9 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
-
-use crate::model::{BodyRef, Coord, Kink, Loc, MBin, MExpr, Model, Space, Vel};
+pub use crate::coordinates::Coordinates;
+use crate::model::{BodyRef, Coord, Kink, Loc, MBin, MExpr, Model, Vel};
 use crate::sym::{Func, Graph, Id, Node, Var};
-
-/// How body frames depend on the generalized coordinates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Coordinates {
-    /// Planar body coordinates (Nikravesh ch. 7): body k owns q[3k..3k+3] = (x, y, φ), the
-    /// origin of its frame (its centre of mass) and its angle; B = I, so v = q̇.
-    PlanarBody,
-    /// Spatial body coordinates (docs/formulation.md, "Spatial bodies"): body k owns
-    /// q[7k..7k+7] = (r, p), its centre of mass and Euler parameters, and v[6k..6k+6] = (ṙ, ω′)
-    /// with ω′ in the body frame; q̇ = B(q) v with ṗ = ½ Lᵀ(p) ω′.
-    SpatialBody,
-}
-
-impl Coordinates {
-    /// The formulation of a model's space (the only one there is for each, so far).
-    pub fn of(space: Space) -> Self {
-        match space {
-            Space::Planar => Coordinates::PlanarBody,
-            Space::Spatial => Coordinates::SpatialBody,
-        }
-    }
-
-    /// Coordinates per moving body.
-    pub fn per_body(self) -> usize {
-        match self {
-            Coordinates::PlanarBody => 3,
-            Coordinates::SpatialBody => 7,
-        }
-    }
-
-    /// Velocities per moving body.
-    pub fn velocities_per_body(self) -> usize {
-        match self {
-            Coordinates::PlanarBody => 3,
-            Coordinates::SpatialBody => 6,
-        }
-    }
-
-    /// The runtime's descriptors of every coordinate and velocity of `model` in this formulation
-    /// (`Mechanism::COORDINATES`, `Mechanism::VELOCITIES`): what each one is, so that no analysis
-    /// reads it from a name or a place in q. Planar velocities are named as their coordinates
-    /// (v = q̇); spatial ones `"top.vx"`, ..., `"top.wz"`.
-    pub fn descriptors(self, model: &Model) -> (Vec<TokenStream>, Vec<TokenStream>) {
-        let (mut coordinates, mut velocities) = (Vec::new(), Vec::new());
-        for (k, body) in model.bodies.iter().enumerate() {
-            let name = |c: &str| format!("{}.{c}", body.name);
-            let first = (k * self.per_body()) as u16;
-            for c in model.space.coordinates() {
-                let kind = match c {
-                    Coord::X | Coord::Y | Coord::Z => quote!(Length),
-                    Coord::Phi => quote!(Angle),
-                    Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3 => {
-                        let part = Literal::u8_unsuffixed((c.index() - 3) as u8);
-                        quote!(Quaternion { part: #part })
-                    }
-                };
-                let n = name(c.name());
-                coordinates.push(quote!(::mbd::CoordinateInfo { name: #n, kind: ::mbd::CoordinateKind::#kind }));
-            }
-            for v in model.space.velocities() {
-                let (own, kind, displacement) = match (self, v) {
-                    (Coordinates::PlanarBody, _) => {
-                        let c = model.space.coordinates()[v.index()];
-                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
-                        (name(c.name()), quote!(Rate { coordinate: #at }), name(c.name()))
-                    }
-                    (Coordinates::SpatialBody, Vel::Wx | Vel::Wy | Vel::Wz) => {
-                        let axis = v.index() - 3;
-                        let (e0, a) = (Literal::u16_unsuffixed(first + 3), Literal::u8_unsuffixed(axis as u8));
-                        (name(v.name()), quote!(Angular { quaternion: #e0, axis: #a }), name(&format!("r{}", ["x", "y", "z"][axis])))
-                    }
-                    (Coordinates::SpatialBody, _) => {
-                        let c = model.space.coordinates()[v.index()];
-                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
-                        (name(v.name()), quote!(Rate { coordinate: #at }), name(c.name()))
-                    }
-                };
-                velocities.push(quote!(::mbd::VelocityInfo { name: #own, kind: ::mbd::VelocityKind::#kind, displacement: #displacement }));
-            }
-        }
-        (coordinates, velocities)
-    }
-}
 
 /// One named row of Φ: the name (`"x"`, `"angle"`), its symbolic value and what it measures. A
 /// kind's rows, their names and their units come from one function, so they cannot disagree.

@@ -15,6 +15,7 @@
 // No function over 150 lines (`clippy.toml`).
 #![warn(clippy::too_many_lines)]
 
+mod coordinates;
 mod docs;
 mod elements;
 mod emit;

@@ -13,7 +13,6 @@
 
 use core::fmt;
 
-use crate::mechanism::body_of_velocity;
 use crate::{Dynamics, Mechanism, Real};
 
 /// Default Baumgarte α and β (1/s): the constraint violation then decays like a critically
@@ -139,12 +138,13 @@ pub enum DynamicsError {
 impl DynamicsError {
     /// The error for a failed pivot of `row` — called by the generated code on its cold path:
     /// a non-positive mass or a non-finite input is reported as such, anything else as a
-    /// dependent row. `mass` is the diagonal of M, one entry per velocity.
+    /// dependent row. `mass` is the diagonal of M, one entry per velocity, and `bodies` the
+    /// body (an index into [`Mechanism::BODY_NAMES`]) whose mass or inertia each entry is.
     #[doc(hidden)]
-    pub fn from_pivot<M: Mechanism, T: Real>(t: T, row: usize, mass: &[T], inputs_finite: bool) -> Self {
-        for (i, &m) in mass.iter().enumerate() {
+    pub fn from_pivot<M: Mechanism, T: Real>(t: T, row: usize, mass: &[T], bodies: &[u16], inputs_finite: bool) -> Self {
+        for (&m, &b) in mass.iter().zip(bodies) {
             if !(m.is_finite() && m > T::ZERO) {
-                let body = M::BODY_NAMES.get(body_of_velocity::<M>(i)).copied().unwrap_or("?");
+                let body = M::BODY_NAMES.get(b as usize).copied().unwrap_or("?");
                 return DynamicsError::NonPositiveMass { body, value: m.to_f64() };
             }
         }

@@ -24,7 +24,7 @@
 //! into the caller's matrix.
 
 use crate::{
-    ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics,
+    BodyFrames, BodyPose, BodyTwist, ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics,
     Mechanism, NewtonMatrix, OpCount, Real, VelocityInfo,
 };
 
@@ -56,7 +56,6 @@ impl<M: Mechanism> Mechanism for FiniteDifferences<'_, M> {
     const VELOCITY_NAMES: &'static [&'static str] = M::VELOCITY_NAMES;
     const COORDINATES: &'static [CoordinateInfo] = M::COORDINATES;
     const VELOCITIES: &'static [VelocityInfo] = M::VELOCITIES;
-    const DIMENSION: u8 = M::DIMENSION;
     const CONSTRAINT_NAMES: &'static [&'static str] = M::CONSTRAINT_NAMES;
     const PARAM_NAMES: &'static [&'static str] = M::PARAM_NAMES;
     const DOF: i32 = M::DOF;
@@ -126,6 +125,21 @@ fn constraint_forces<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, con
         m.integrate_positions(&mut qp, &e, epsilon);
         m.integrate_positions(&mut qm, &e, -epsilon);
         *o = (work(&qp) - work(&qm)) / (epsilon + epsilon);
+    }
+}
+
+impl<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize> BodyFrames<T, NQ, NV> for FiniteDifferences<'_, M> {
+    fn body_pose(&self, body: usize, q: &[T; NQ]) -> Option<BodyPose<T>> {
+        self.mechanism.body_pose(body, q)
+    }
+    fn body_twist(&self, body: usize, q: &[T; NQ], x: &[T; NV]) -> Option<BodyTwist<T>> {
+        self.mechanism.body_twist(body, q, x)
+    }
+    fn body_acceleration(&self, body: usize, q: &[T; NQ], v: &[T; NV], vd: &[T; NV]) -> Option<BodyTwist<T>> {
+        self.mechanism.body_acceleration(body, q, v, vd)
+    }
+    fn add_body_wrench(&self, body: usize, q: &[T; NQ], force: [T; 3], moment: [T; 3], g: &mut [T; NV]) -> bool {
+        self.mechanism.add_body_wrench(body, q, force, moment, g)
     }
 }
 

@@ -11,9 +11,9 @@
 
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::mechanism::{coordinates_per_body, velocities_per_body};
+use crate::body::{transpose_times, BodyFrames};
 use crate::redundancy::independent_rows;
-use crate::{Dynamics, KinematicError, Mechanism, NonFiniteQuantity, Real, Workspace};
+use crate::{Dynamics, KinematicError, NonFiniteQuantity, Real, Workspace};
 use core::fmt;
 
 /// The force and moment a joint applies to one body, in global components, and the body's
@@ -50,45 +50,9 @@ impl<T: Real> Wrench<T> {
     /// n_P = n − arm × f (N·m, global). For a revolute or spherical joint taken at its pin, this
     /// is zero.
     pub fn moment_about(&self, arm: [T; 3]) -> [T; 3] {
-        let f = &self.force;
-        let cross = [arm[1] * f[2] - arm[2] * f[1], arm[2] * f[0] - arm[0] * f[2], arm[0] * f[1] - arm[1] * f[0]];
+        let cross = crate::body::cross(arm, self.force);
         core::array::from_fn(|k| self.moment[k] - cross[k])
     }
-}
-
-/// Aᵀ x.
-fn transpose_times<T: Real>(a: &[[T; 3]; 3], x: &[T; 3]) -> [T; 3] {
-    core::array::from_fn(|j| a[0][j] * x[0] + a[1][j] * x[1] + a[2][j] * x[2])
-}
-
-/// A x.
-fn times<T: Real>(a: &[[T; 3]; 3], x: &[T; 3]) -> [T; 3] {
-    core::array::from_fn(|i| a[i][0] * x[0] + a[i][1] * x[1] + a[i][2] * x[2])
-}
-
-/// The planar rotation by φ about z.
-fn planar_rotation<T: Real>(phi: T) -> [[T; 3]; 3] {
-    let (s, c) = phi.sin_cos();
-    let (zero, one) = (T::ZERO, T::ONE);
-    [[c, -s, zero], [s, c, zero], [zero, zero, one]]
-}
-
-/// A(p) = (2 e0² − 1) I + 2 (e eᵀ + e0 ẽ) of the Euler parameters p = (e0, e1, e2, e3), exactly
-/// this polynomial (docs/formulation.md, "Spatial bodies"): the rotation matrix at |p| = 1.
-pub(crate) fn euler_rotation<T: Real>(p: [T; 4]) -> [[T; 3]; 3] {
-    let [e0, e1, e2, e3] = p;
-    let two = T::from_f64(2.0);
-    let e = [e1, e2, e3];
-    // ẽ, the cross-product matrix of e.
-    let tilde = [[T::ZERO, -e3, e2], [e3, T::ZERO, -e1], [-e2, e1, T::ZERO]];
-    let mut a = [[T::ZERO; 3]; 3];
-    for (i, row) in a.iter_mut().enumerate() {
-        for (j, entry) in row.iter_mut().enumerate() {
-            *entry = two * (e[i] * e[j] + e0 * tilde[i][j]);
-        }
-        row[i] += two * e0 * e0 - T::ONE;
-    }
-    a
 }
 
 /// The reaction of one joint (or driver, or user constraint) on each moving body it connects.
@@ -148,10 +112,10 @@ pub enum InverseDynamicsError {
         /// Time (s).
         t: f64,
         /// The velocity whose column of D had no acceptable pivot, from
-        /// [`Mechanism::VELOCITY_NAMES`].
+        /// [`crate::Mechanism::VELOCITY_NAMES`].
         velocity: &'static str,
         /// The constraint row that held the best candidate pivot, from
-        /// [`Mechanism::CONSTRAINT_NAMES`].
+        /// [`crate::Mechanism::CONSTRAINT_NAMES`].
         constraint: &'static str,
     },
     /// A NaN or an infinity in the input or in an evaluated quantity.
@@ -431,13 +395,15 @@ enum Solver<const N: usize, const NC: usize> {
 }
 
 /// The reaction of a joint — by its label's generated constant `Name::LABEL`, its index into
-/// [`Mechanism::JOINTS`] — from the
-/// coordinates q, the Jacobian `d` = D(q, t) and the multipliers λ at the same state; `mechanism`
-/// is read for its type (its joints, bodies and dimension). `None` if there is no such joint.
+/// [`crate::Mechanism::JOINTS`] — from the coordinates q, the Jacobian `d` = D(q, t) and the
+/// multipliers λ at the same state. `None` if there is no such joint.
 ///
-/// Per body k it sums `g = D[R]ᵀ λ[R]` over the joint's rows R at k's velocities: planar
-/// (fx, fy, n) give the force (fx, fy, 0) and the moment (0, 0, n); spatial (f, n′) the force f
-/// and the moment A(p) n′, with p = q[7k+3..7k+7] (docs/formulation.md, "Spatial bodies").
+/// The joint's rows R give the generalized force g = D[R]ᵀ λ[R]; the wrench on each of its
+/// bodies b is J_b g, with J_b the body's twist Jacobian ([`BodyFrames::body_twist`]): the force
+/// through the centre of mass and the moment about it, both global. This holds where the bodies'
+/// twists are independent (J_b J_cᵀ = δ_bc I), as in body coordinates, where J_b picks the
+/// body's own velocities: planar (fx, fy, n), spatial (f, n′) with the moment A n′ in global
+/// components (docs/formulation.md, "Spatial bodies").
 pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     q: &[T; NQ],
@@ -447,31 +413,22 @@ pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
 ) -> Option<JointReaction<T>>
 where
     T: Real,
-    M: Mechanism,
+    M: BodyFrames<T, NQ, NV>,
 {
-    let _ = mechanism;
     let info = M::JOINTS.get(joint)?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
-    let (per_body, coordinates) = (velocities_per_body::<M>(), coordinates_per_body::<M>());
+    let mut g = [T::ZERO; NV];
+    for r in rows {
+        let (row, l) = (d.get(r)?, *lambda.get(r)?);
+        for (gk, dk) in g.iter_mut().zip(row) {
+            *gk += *dk * l;
+        }
+    }
     let wrench = |body: Option<u16>| -> Option<Wrench<T>> {
         let b = body? as usize;
-        let mut g = [T::ZERO; 6];
-        for r in rows.clone() {
-            let (row, l) = (d.get(r)?, *lambda.get(r)?);
-            for (k, gk) in g.iter_mut().enumerate().take(per_body) {
-                *gk += *row.get(per_body * b + k)? * l;
-            }
-        }
-        let first = coordinates * b;
-        let (force, moment, rotation) = if M::DIMENSION == 3 {
-            let p = [*q.get(first + 3)?, *q.get(first + 4)?, *q.get(first + 5)?, *q.get(first + 6)?];
-            let rotation = euler_rotation(p);
-            ([g[0], g[1], g[2]], times(&rotation, &[g[3], g[4], g[5]]), rotation)
-        } else {
-            let rotation = planar_rotation(*q.get(first + 2)?);
-            ([g[0], g[1], T::ZERO], [T::ZERO, T::ZERO, g[2]], rotation)
-        };
-        Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force, moment, rotation })
+        let twist = mechanism.body_twist(b, q, &g)?;
+        let rotation = mechanism.body_pose(b, q)?.rotation;
+        Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force: twist.velocity, moment: twist.angular_velocity, rotation })
     };
     Some(JointReaction { joint: info.name, on_i: wrench(info.body_i), on_j: wrench(info.body_j) })
 }
@@ -479,7 +436,9 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{CoordinateInfo, CoordinateKind, JointInfo, OpCount, VelocityInfo, VelocityKind};
+    use crate::body::{euler_rotation, planar_rotation};
+    use crate::Mechanism;
+    use crate::{BodyPose, BodyTwist, CoordinateInfo, CoordinateKind, JointInfo, OpCount, VelocityInfo, VelocityKind};
 
     /// The free pendulum has a degree of freedom: its loads are not determined by a motion, and
     /// the error says how many drivers are missing.
@@ -520,7 +479,6 @@ mod tests {
             VelocityInfo { name: "top.wy", kind: VelocityKind::Angular { quaternion: 3, axis: 1 }, displacement: "top.ry" },
             VelocityInfo { name: "top.wz", kind: VelocityKind::Angular { quaternion: 3, axis: 2 }, displacement: "top.rz" },
         ];
-        const DIMENSION: u8 = 3;
         const CONSTRAINT_NAMES: &'static [&'static str] =
             &["spherical ground~top: x", "spherical ground~top: y", "spherical ground~top: z"];
         const PARAM_NAMES: &'static [&'static str] = &[];
@@ -531,6 +489,29 @@ mod tests {
         const JOINTS: &'static [JointInfo] =
             &[JointInfo { name: "spherical ground~top", kind: "spherical", first_row: 0, rows: 3, body_i: None, body_j: Some(0) }];
         const MODEL_JSON: &'static str = "{}";
+    }
+
+    /// Body coordinates' J_b of the one body: its own velocities, ω′ turned to global.
+    impl BodyFrames<f64, 7, 6> for SphericalTop {
+        fn body_pose(&self, body: usize, q: &[f64; 7]) -> Option<BodyPose<f64>> {
+            (body == 0).then(|| BodyPose::spatial([q[0], q[1], q[2]], [q[3], q[4], q[5], q[6]]))
+        }
+        fn body_twist(&self, body: usize, q: &[f64; 7], x: &[f64; 6]) -> Option<BodyTwist<f64>> {
+            let pose = self.body_pose(body, q)?;
+            Some(BodyTwist { velocity: [x[0], x[1], x[2]], angular_velocity: pose.to_global([x[3], x[4], x[5]]) })
+        }
+        fn body_acceleration(&self, body: usize, q: &[f64; 7], _: &[f64; 6], vd: &[f64; 6]) -> Option<BodyTwist<f64>> {
+            self.body_twist(body, q, vd)
+        }
+        fn add_body_wrench(&self, body: usize, q: &[f64; 7], force: [f64; 3], moment: [f64; 3], g: &mut [f64; 6]) -> bool {
+            let Some(pose) = self.body_pose(body, q) else { return false };
+            let n = pose.to_body(moment);
+            for k in 0..3 {
+                g[k] += force[k];
+                g[3 + k] += n[k];
+            }
+            true
+        }
     }
 
     fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -14,6 +14,7 @@ extern crate alloc;
 
 #[cfg(feature = "animation")]
 mod animation;
+mod body;
 #[cfg(feature = "std")]
 mod csv;
 #[cfg(feature = "animation")]
@@ -46,6 +47,7 @@ pub mod workspace;
 
 #[cfg(feature = "animation")]
 pub use animation::{Animation, AnimationError, DEFAULT_SVG_FRAMES, DEFAULT_SVG_SHAPES};
+pub use body::{BodyFrames, BodyPose, BodyTwist};
 #[cfg(feature = "std")]
 pub use csv::CsvWriter;
 pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};

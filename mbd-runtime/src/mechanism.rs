@@ -4,12 +4,15 @@
 //! v has `NV`, and q̇ = B(q) v. Every derivative the solvers use is taken in velocity space:
 //! D = Φ_q B (NC × NV), D v̇ = γ, h and M have NV rows.
 //!
-//! - Planar bodies (`DIMENSION = 2`, Nikravesh ch. 7): body `k` (ground excluded) owns
-//!   `q[3k..3k+3] = (x, y, φ)` — its centre of mass and angle, in m and rad — and v = q̇, so
-//!   NV = NQ and B = I.
-//! - Spatial bodies (`DIMENSION = 3`): body `k` owns `q[7k..7k+7] = (x, y, z, e0, e1, e2, e3)`
-//!   (centre of mass and Euler parameters) and `v[6k..6k+6] = (vx, vy, vz, ωx′, ωy′, ωz′)`
-//!   (global ṙ and the body-frame angular velocity).
+//! The formulation `mechanism!` generates says what q and v are; the runtime reads it from the
+//! generated descriptors ([`Mechanism::COORDINATES`], [`Mechanism::VELOCITIES`]) and each body's
+//! pose and twist ([`crate::BodyFrames`]), never from a place in q. Today's formulation is body
+//! coordinates:
+//! - planar bodies (Nikravesh ch. 7): body `k` (ground excluded) owns `q[3k..3k+3] = (x, y, φ)`
+//!   — its centre of mass and angle, in m and rad — and v = q̇, so NV = NQ and B = I;
+//! - spatial bodies: body `k` owns `q[7k..7k+7] = (x, y, z, e0, e1, e2, e3)` (centre of mass and
+//!   Euler parameters) and `v[6k..6k+6] = (vx, vy, vz, ωx′, ωy′, ωz′)` (global ṙ and the
+//!   body-frame angular velocity).
 //!
 //! Constraints `Φ(q, t) = 0` stack the rows of every joint, driver and user constraint in
 //! declaration order.
@@ -238,11 +241,6 @@ pub trait Mechanism {
     const COORDINATES: &'static [CoordinateInfo];
     /// Each velocity's name and kind, in the order of v.
     const VELOCITIES: &'static [VelocityInfo];
-    /// 2 for planar bodies (3 coordinates and 3 velocities each, the default), 3 for spatial
-    /// bodies (7 coordinates, 6 velocities each). Read only where a body's state is still taken
-    /// from its place in q and v (joint reactions, named access, drawing) until per-body poses
-    /// and twists are generated.
-    const DIMENSION: u8 = 2;
     /// Constraint rows, `"revolute crank~rod: x"`, in the order of Φ.
     const CONSTRAINT_NAMES: &'static [&'static str];
     /// The unit of each row's multiplier λ, in the order of Φ: `"N"` for a row measured in
@@ -280,29 +278,6 @@ pub trait Mechanism {
     /// A JSON description of the model (bodies, points, vectors, params, constraints with their
     /// expressions), read by the CasADi oracle and by tools. Schema: `docs/formulation.md`.
     const MODEL_JSON: &'static str;
-}
-
-/// Coordinates per body of mechanism `M`: 3 (planar) or 7 (spatial).
-pub(crate) const fn coordinates_per_body<M: Mechanism + ?Sized>() -> usize {
-    if M::DIMENSION == 3 {
-        7
-    } else {
-        3
-    }
-}
-
-/// Velocities per body of mechanism `M`: 3 (planar) or 6 (spatial).
-pub(crate) const fn velocities_per_body<M: Mechanism + ?Sized>() -> usize {
-    if M::DIMENSION == 3 {
-        6
-    } else {
-        3
-    }
-}
-
-/// The body (index among the moving bodies) that owns velocity-space entry `i`.
-pub(crate) const fn body_of_velocity<M: Mechanism + ?Sized>(i: usize) -> usize {
-    i / velocities_per_body::<M>()
 }
 
 /// What [`Kinematics::sparse_position_solve`] ended with.

@@ -1,0 +1,247 @@
+//! What a formulation is to the runtime: which coordinates and velocities it has
+//! ([`Coordinates::descriptors`]), how q moves with v (`position_rates`, `integrate_positions`,
+//! `normalize_positions`) and each body's pose and twist (`mbd::BodyFrames`). The elements never
+//! see this; they build on body frames (`frames`).
+
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use crate::emit::{real, usize_lit, Emitter};
+use crate::model::{Coord, Model, Space, Vel};
+
+/// How body frames depend on the generalized coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coordinates {
+    /// Planar body coordinates (Nikravesh ch. 7): body k owns q[3k..3k+3] = (x, y, φ), the
+    /// origin of its frame (its centre of mass) and its angle; B = I, so v = q̇.
+    PlanarBody,
+    /// Spatial body coordinates (docs/formulation.md, "Spatial bodies"): body k owns
+    /// q[7k..7k+7] = (r, p), its centre of mass and Euler parameters, and v[6k..6k+6] = (ṙ, ω′)
+    /// with ω′ in the body frame; q̇ = B(q) v with ṗ = ½ Lᵀ(p) ω′.
+    SpatialBody,
+}
+
+impl Coordinates {
+    /// The formulation of a model's space (the only one there is for each, so far).
+    pub fn of(space: Space) -> Self {
+        match space {
+            Space::Planar => Coordinates::PlanarBody,
+            Space::Spatial => Coordinates::SpatialBody,
+        }
+    }
+
+    /// Coordinates per moving body.
+    pub fn per_body(self) -> usize {
+        match self {
+            Coordinates::PlanarBody => 3,
+            Coordinates::SpatialBody => 7,
+        }
+    }
+
+    /// Velocities per moving body.
+    pub fn velocities_per_body(self) -> usize {
+        match self {
+            Coordinates::PlanarBody => 3,
+            Coordinates::SpatialBody => 6,
+        }
+    }
+
+    /// The runtime's descriptors of every coordinate and velocity of `model` in this formulation
+    /// (`Mechanism::COORDINATES`, `Mechanism::VELOCITIES`): what each one is, so that no analysis
+    /// reads it from a name or a place in q. Planar velocities are named as their coordinates
+    /// (v = q̇); spatial ones `"top.vx"`, ..., `"top.wz"`.
+    pub fn descriptors(self, model: &Model) -> (Vec<TokenStream>, Vec<TokenStream>) {
+        let (mut coordinates, mut velocities) = (Vec::new(), Vec::new());
+        for (k, body) in model.bodies.iter().enumerate() {
+            let name = |c: &str| format!("{}.{c}", body.name);
+            let first = (k * self.per_body()) as u16;
+            for c in model.space.coordinates() {
+                let kind = match c {
+                    Coord::X | Coord::Y | Coord::Z => quote!(Length),
+                    Coord::Phi => quote!(Angle),
+                    Coord::E0 | Coord::E1 | Coord::E2 | Coord::E3 => {
+                        let part = Literal::u8_unsuffixed((c.index() - 3) as u8);
+                        quote!(Quaternion { part: #part })
+                    }
+                };
+                let n = name(c.name());
+                coordinates.push(quote!(::mbd::CoordinateInfo { name: #n, kind: ::mbd::CoordinateKind::#kind }));
+            }
+            for v in model.space.velocities() {
+                let (own, kind, displacement) = match (self, v) {
+                    (Coordinates::PlanarBody, _) => {
+                        let c = model.space.coordinates()[v.index()];
+                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
+                        (name(c.name()), quote!(Rate { coordinate: #at }), name(c.name()))
+                    }
+                    (Coordinates::SpatialBody, Vel::Wx | Vel::Wy | Vel::Wz) => {
+                        let axis = v.index() - 3;
+                        let (e0, a) = (Literal::u16_unsuffixed(first + 3), Literal::u8_unsuffixed(axis as u8));
+                        (name(v.name()), quote!(Angular { quaternion: #e0, axis: #a }), name(&format!("r{}", ["x", "y", "z"][axis])))
+                    }
+                    (Coordinates::SpatialBody, _) => {
+                        let c = model.space.coordinates()[v.index()];
+                        let at = Literal::u16_unsuffixed(first + c.index() as u16);
+                        (name(v.name()), quote!(Rate { coordinate: #at }), name(c.name()))
+                    }
+                };
+                velocities.push(quote!(::mbd::VelocityInfo { name: #own, kind: ::mbd::VelocityKind::#kind, displacement: #displacement }));
+            }
+        }
+        (coordinates, velocities)
+    }
+
+    /// The body whose motion velocity `i` is (an index among the moving bodies).
+    pub fn body_of_velocity(self, i: usize) -> usize {
+        i / self.velocities_per_body()
+    }
+
+    /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)
+    /// and `normalize_positions`. Planar: B = I and nothing to normalize. Spatial, per body:
+    /// ṙ = v_r, ṗ = ½ Lᵀ(p) ω′ (docs/formulation.md), then p ← p/|p|.
+    pub fn position_updates(self, m: &Model, e: &Emitter) -> TokenStream {
+        let real = real(m.scalar);
+        let (nq, nv) = (usize_lit(7 * m.bodies.len()), usize_lit(6 * m.bodies.len()));
+        if m.space == crate::model::Space::Planar {
+            let n = usize_lit(3 * m.bodies.len());
+            return quote! {
+                #[inline]
+                fn position_rates(&self, q: &[#real; #n], v: &[#real; #n], qdot: &mut [#real; #n]) {
+                    *qdot = *v;
+                }
+                #[inline]
+                fn integrate_positions(&self, q: &mut [#real; #n], dv: &[#real; #n], h: #real) {
+                    for i in 0..#n {
+                        q[i] += h * dv[i];
+                    }
+                }
+                #[inline]
+                fn normalize_positions(&self, q: &mut [#real; #n]) {}
+            };
+        }
+        let (half, one) = (e.literal(0.5), e.literal(1.0));
+        let nb = usize_lit(m.bodies.len());
+        quote! {
+            #[inline]
+            fn position_rates(&self, q: &[#real; #nq], v: &[#real; #nv], qdot: &mut [#real; #nq]) {
+                for k in 0..#nb {
+                    let (r, w) = (7 * k, 6 * k);
+                    let (e0, e1, e2, e3) = (q[r + 3], q[r + 4], q[r + 5], q[r + 6]);
+                    let (wx, wy, wz) = (v[w + 3], v[w + 4], v[w + 5]);
+                    qdot[r] = v[w];
+                    qdot[r + 1] = v[w + 1];
+                    qdot[r + 2] = v[w + 2];
+                    qdot[r + 3] = #half * (-e1 * wx - e2 * wy - e3 * wz);
+                    qdot[r + 4] = #half * (e0 * wx - e3 * wy + e2 * wz);
+                    qdot[r + 5] = #half * (e3 * wx + e0 * wy - e1 * wz);
+                    qdot[r + 6] = #half * (-e2 * wx + e1 * wy + e0 * wz);
+                }
+            }
+            #[inline]
+            fn integrate_positions(&self, q: &mut [#real; #nq], dv: &[#real; #nv], h: #real) {
+                let mut rates = [<#real as ::mbd::Real>::ZERO; #nq];
+                ::mbd::Kinematics::position_rates(self, q, dv, &mut rates);
+                for i in 0..#nq {
+                    q[i] += h * rates[i];
+                }
+                ::mbd::Kinematics::normalize_positions(self, q);
+            }
+            #[inline]
+            fn normalize_positions(&self, q: &mut [#real; #nq]) {
+                for k in 0..#nb {
+                    let p = 7 * k + 3;
+                    let norm = <#real as ::mbd::Real>::sqrt(q[p] * q[p] + q[p + 1] * q[p + 1] + q[p + 2] * q[p + 2] + q[p + 3] * q[p + 3]);
+                    let scale = #one / norm;
+                    for i in p..p + 4 {
+                        q[i] *= scale;
+                    }
+                }
+            }
+        }
+    }
+
+    /// `mbd::BodyFrames` for mechanism `name`: each body's pose, its twist J_b x, its
+    /// acceleration and J_bᵀ of a wrench. In body coordinates J_b selects the body's velocities,
+    /// its angular part turned to global components (spatial ω = A ω′), and J̇_b v = 0 (planar:
+    /// J_b is constant; spatial: d(A ω′)/dt = A ω̇′ + A ω̃′ ω′ = A ω̇′).
+    pub fn body_frames(self, m: &Model, name: &proc_macro2::Ident) -> TokenStream {
+        let real = real(m.scalar);
+        let nb = usize_lit(m.bodies.len());
+        let (nq, nv) = (usize_lit(self.per_body() * m.bodies.len()), usize_lit(self.velocities_per_body() * m.bodies.len()));
+        let zero = quote!(<#real as ::mbd::Real>::ZERO);
+        let (pose, twist, wrench) = match self {
+            Coordinates::PlanarBody => (
+                quote!(let k = 3 * body; ::core::option::Option::Some(::mbd::BodyPose::planar(q[k], q[k + 1], q[k + 2]))),
+                quote! {
+                    let k = 3 * body;
+                    ::core::option::Option::Some(::mbd::BodyTwist { velocity: [x[k], x[k + 1], #zero], angular_velocity: [#zero, #zero, x[k + 2]] })
+                },
+                quote! {
+                    let k = 3 * body;
+                    g[k] += force[0];
+                    g[k + 1] += force[1];
+                    g[k + 2] += moment[2];
+                },
+            ),
+            Coordinates::SpatialBody => (
+                quote! {
+                    let k = 7 * body;
+                    ::core::option::Option::Some(::mbd::BodyPose::spatial([q[k], q[k + 1], q[k + 2]], [q[k + 3], q[k + 4], q[k + 5], q[k + 6]]))
+                },
+                quote! {
+                    let pose = ::mbd::BodyFrames::body_pose(self, body, q)?;
+                    let w = 6 * body;
+                    ::core::option::Option::Some(::mbd::BodyTwist {
+                        velocity: [x[w], x[w + 1], x[w + 2]],
+                        angular_velocity: pose.to_global([x[w + 3], x[w + 4], x[w + 5]]),
+                    })
+                },
+                quote! {
+                    let n = ::mbd::BodyPose::spatial([#zero; 3], [q[7 * body + 3], q[7 * body + 4], q[7 * body + 5], q[7 * body + 6]]).to_body(moment);
+                    let w = 6 * body;
+                    for a in 0..3 {
+                        g[w + a] += force[a];
+                        g[w + 3 + a] += n[a];
+                    }
+                },
+            ),
+        };
+        quote! {
+            #[allow(unused_variables)]
+            impl ::mbd::BodyFrames<#real, #nq, #nv> for #name {
+                #[inline]
+                fn body_pose(&self, body: usize, q: &[#real; #nq]) -> ::core::option::Option<::mbd::BodyPose<#real>> {
+                    if body >= #nb {
+                        return ::core::option::Option::None;
+                    }
+                    #pose
+                }
+                #[inline]
+                fn body_twist(&self, body: usize, q: &[#real; #nq], x: &[#real; #nv]) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
+                    if body >= #nb {
+                        return ::core::option::Option::None;
+                    }
+                    #twist
+                }
+                #[inline]
+                fn body_acceleration(
+                    &self,
+                    body: usize,
+                    q: &[#real; #nq],
+                    v: &[#real; #nv],
+                    vd: &[#real; #nv],
+                ) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
+                    ::mbd::BodyFrames::body_twist(self, body, q, vd)
+                }
+                #[inline]
+                fn add_body_wrench(&self, body: usize, q: &[#real; #nq], force: [#real; 3], moment: [#real; 3], g: &mut [#real; #nv]) -> bool {
+                    if body >= #nb {
+                        return false;
+                    }
+                    #wrench
+                    true
+                }
+            }
+        }
+    }
+}
