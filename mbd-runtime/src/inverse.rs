@@ -3,11 +3,10 @@
 //! M v̇ − Dᵀ λ = h give the Lagrange multipliers directly, Dᵀ λ = M v̇ − h, and from them the
 //! driver forces and torques and the reaction of every joint:
 //!
-//! the generalized reaction a joint with rows R applies is g = D[R]ᵀ λ[R]; its entries at a
-//! body's velocities are the force (N, global) and the moment (N·m) about that body's centre of
-//! mass with which the joint acts on the body — planar (fx, fy, n), spatial (f, n′) with the
-//! moment n′ in body axes (ω′ is a body-frame velocity), global A n′. A driver's reaction is the
-//! force or torque the actuator must supply.
+//! the generalized reaction a joint with rows R applies is `g = D[R]ᵀ λ[R]`; each of its bodies'
+//! twist Jacobian J_b turns it into the force (N, global) and the moment (N·m, global) about that
+//! body's centre of mass with which the joint acts on the body ([`joint_reaction`]). A driver's
+//! reaction is the force or torque the actuator must supply.
 
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
@@ -398,7 +397,7 @@ enum Solver<const N: usize, const NC: usize> {
 /// [`crate::Mechanism::JOINTS`] — from the coordinates q, the Jacobian `d` = D(q, t) and the
 /// multipliers λ at the same state. `None` if there is no such joint.
 ///
-/// The joint's rows R give the generalized force g = D[R]ᵀ λ[R]; the wrench on each of its
+/// The joint's rows R give the generalized force `g = D[R]ᵀ λ[R]`; the wrench on each of its
 /// bodies b is J_b g, with J_b the body's twist Jacobian ([`BodyFrames::body_twist`]): the force
 /// through the centre of mass and the moment about it, both global. This holds where the bodies'
 /// twists are independent (J_b J_cᵀ = δ_bc I), as in body coordinates, where J_b picks the
