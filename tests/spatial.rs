@@ -420,7 +420,8 @@ fn body_frames_give_pose_twist_and_wrench() {
             let (pose, twist) = (m.body_pose(b, q).expect("a body"), m.body_twist(b, q, v).expect("a body"));
             let (p, n) = (m.body_pose(b, &plus).expect("a body"), m.body_pose(b, &minus).expect("a body"));
             // ω̃ = Ȧ Aᵀ, Ȧ by the same central difference.
-            let a_dot: [[f64; 3]; 3] = core::array::from_fn(|i| core::array::from_fn(|j| (p.rotation[i][j] - n.rotation[i][j]) / (2.0 * h)));
+            let a_dot: [[f64; 3]; 3] =
+                core::array::from_fn(|i| core::array::from_fn(|j| (p.rotation[i][j] - n.rotation[i][j]) / (2.0 * h)));
             let w_tilde: [[f64; 3]; 3] =
                 core::array::from_fn(|i| core::array::from_fn(|j| (0..3).map(|k| a_dot[i][k] * pose.rotation[j][k]).sum()));
             let omega = [w_tilde[2][1], w_tilde[0][2], w_tilde[1][0]];

@@ -115,109 +115,12 @@ impl Formulation {
 }
 
 /// Derives the symbolic equations of a model.
-#[allow(clippy::too_many_lines)] // 226 lines: to be split by concern (issue 38, item 7)
 pub fn formulate(model: &Model) -> Formulation {
     let mut b = Builder::new(model);
     let (nq, nv) = (b.nq(), b.nv());
-    let mut phi = Vec::new();
-    let (mut row_names, mut row_units) = (Vec::new(), Vec::new());
-    for c in &model.constraints {
-        b.first_rows.push(phi.len());
-        for row in c.kind.rows(&mut b) {
-            row_names.push(format!("{}: {}", c.name, row.name));
-            row_units.push(row.unit);
-            phi.push(row.value);
-        }
-    }
-    let mut q0 = Vec::with_capacity(nq);
-    let mut qd0 = Vec::with_capacity(nv);
-    let mut mass = Vec::with_capacity(nv);
-    let mut mass_coupling = Vec::new();
-    let mut mass_inverse = Vec::new();
-    for (k, body) in model.bodies.iter().enumerate() {
-        if model.space == crate::model::Space::Planar {
-            for c in 0..3 {
-                q0.push(b.expr(&body.q0[c]));
-                qd0.push(b.expr(&body.v0[c]));
-            }
-        } else {
-            q0.extend(body.q0.iter().map(|e| b.expr(e)));
-            qd0.extend(body.v0.iter().map(|e| b.expr(e)));
-        }
-        let m = b.expr(&body.mass);
-        match &body.inertia {
-            Inertia::Planar(j) => {
-                let j = b.expr(j);
-                mass.extend([m, m, j]);
-            }
-            Inertia::Tensor(t) => {
-                mass.extend([m, m, m]);
-                let base = 6 * k + 3;
-                for (r, row) in t.iter().enumerate() {
-                    mass.push(b.expr(&row[r]));
-                }
-                let before = mass_coupling.len();
-                for (r, row) in t.iter().enumerate() {
-                    for (c, entry) in row.iter().enumerate() {
-                        let e = b.expr(entry);
-                        if r != c && !b.g.is_zero(e) {
-                            mass_coupling.push((base + r, base + c, e));
-                        }
-                    }
-                }
-                if mass_coupling.len() > before {
-                    let j = t.clone().map(|row| row.map(|e| b.expr(&e)));
-                    for (r, c, e) in inverse3(&mut b, j) {
-                        mass_inverse.push((base + r, base + c, e));
-                    }
-                }
-            }
-        }
-    }
-    let zero = b.g.num(0.0);
-    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
-    if b.coordinates == Coordinates::SpatialBody {
-        gyroscopic(&mut b, &mut out.h);
-    }
-    let base_h = out.h.clone();
-    if let Some(g) = &model.gravity {
-        gravity::apply(&mut b, g, &mut out);
-    }
-    let mut switch_names = Vec::new();
-    for element in &model.forces {
-        element.kind.apply(&mut b, &mut out);
-        switch_names.resize(out.switches.len(), element.name.clone());
-    }
-    // Each element alone on the base: which velocities its generalized force reaches
-    // (structurally), for naming the element behind a NaN force at run time
-    // (`Mechanism::FORCE_ELEMENTS`), and what h and its derivatives would cost were it the only
-    // one (`ForceInfo::op_counts`). Applying an element again only revisits nodes the graph
-    // already holds.
-    let terms = |b: &mut Builder, h: Vec<Id>| {
-        let h_q = tangent(b, &h);
-        let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
-        ForceTerms { h, h_q, h_qd }
-    };
-    let base_forces = terms(&mut b, base_h.clone());
-    let mut force_velocities = Vec::new();
-    let mut alone_forces = Vec::new();
-    let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
-        // On the base (zero, or the gyroscopic terms), an entry the element reaches is a new
-        // node: adding a non-zero term never gives back what it was added to.
-        let mut alone = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
-        apply(b, &mut alone);
-        let velocities: Vec<usize> = (0..nv).filter(|&i| alone.h[i] != base_h[i] || !b.g.is_zero(alone.friction[i])).collect();
-        force_velocities.push((name.to_string(), velocities));
-        alone_forces.push(terms(b, alone.h));
-    };
-    if let Some(g) = &model.gravity {
-        reach(&mut b, "gravity", &|b, out| gravity::apply(b, g, out));
-    }
-    for element in &model.forces {
-        reach(&mut b, &element.name, &|b, out| element.kind.apply(b, out));
-    }
-    let Generalized { h, friction, potential, switches } = out;
-    let switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
+    let (phi, row_names, row_units) = constraint_rows(&mut b);
+    let MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse } = mass_and_start(&mut b);
+    let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b);
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
     let mut memo_v = HashMap::new();
@@ -233,99 +136,10 @@ pub fn formulate(model: &Model) -> Formulation {
     let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
     let friction_q = tangent(&mut b, &friction);
     let friction_qd = sparse_derivative(&mut b.g, &friction, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
-
-    // D = Φ_q B: differentiate each row only by the coordinates it contains; every other entry
-    // is a structural zero.
-    let jacobian = tangent(&mut b, &phi);
-
-    // ν = −Φ_t
-    let g = &mut b.g;
-    let mut memo_t = HashMap::new();
-    let nu: Vec<Id> = phi
-        .iter()
-        .map(|&row| {
-            let d = g.diff(row, Var::T, &mut memo_t);
-            g.neg(d)
-        })
-        .collect();
-
-    // γ = −𝒟(𝒟Φ), 𝒟 the total time derivative with v̇ = 0 along q̇ = B(q) v (the rates' nodes
-    // read q and v): one seed, one memo for all rows.
-    let rates = b.coordinate_rates();
-    let g = &mut b.g;
-    let one = g.num(1.0);
-    let seed = |v: Var| match v {
-        Var::Q(i) => Some(rates[i as usize]),
-        Var::T => Some(one),
-        Var::Qd(_) | Var::Param(_) | Var::Lambda(_) => None,
-    };
-    let mut memo = HashMap::new();
-    let first: Vec<Id> = phi.iter().map(|&row| g.directional(row, &seed, &mut memo)).collect();
-    let gamma: Vec<Id> = first
-        .iter()
-        .map(|&d1| {
-            let d2 = g.directional(d1, &seed, &mut memo);
-            g.neg(d2)
-        })
-        .collect();
-
-    // (Dᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q along B.
-    let zero = b.g.num(0.0);
-    let mut constraint_force = vec![zero; nv];
-    for &(r, c, d) in &jacobian {
-        let l = b.g.var(Var::Lambda(r as u16));
-        let term = b.g.mul(l, d);
-        constraint_force[c] = b.g.add(constraint_force[c], term);
-    }
-    let constraint_force_q = tangent(&mut b, &constraint_force);
-    // Generalized-α's Newton matrix takes them summed by entry: the stiffness part
-    // ∂h/∂q·B + K + friction's, the damping part ∂h/∂v + friction's.
-    let mut sum = |parts: [&[(usize, usize, Id)]; 3]| -> Vec<(usize, usize, Id)> {
-        let mut by_entry: std::collections::BTreeMap<(usize, usize), Id> = std::collections::BTreeMap::new();
-        for &(r, c, node) in parts.into_iter().flatten() {
-            let total = match by_entry.get(&(r, c)) {
-                Some(&before) => b.g.add(before, node),
-                None => node,
-            };
-            by_entry.insert((r, c), total);
-        }
-        by_entry.into_iter().map(|((r, c), node)| (r, c, node)).collect()
-    };
-    let stiffness = sum([&h_q, &constraint_force_q, &friction_q]);
-    let damping = sum([&h_qd, &friction_qd, &[]]);
-    // What a linearization needs beyond the rest: γ's derivatives (the forward dynamics' v̇
-    // moves with q and v through γ too) and h's by the inputs.
-    let gamma_q = tangent(&mut b, &gamma);
-    let gamma_v = sparse_derivative(&mut b.g, &gamma, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
-    let mut not_inputs = BTreeSet::new();
-    let param = |v| if let Var::Param(k) = v { Some(k) } else { None };
-    for &node in phi.iter().chain(&mass).chain(mass_coupling.iter().map(|(_, _, n)| n)).chain(&friction) {
-        collect_vars(&b.g, node, &mut not_inputs, param);
-    }
-    let mut in_h = BTreeSet::new();
-    for &node in &h {
-        collect_vars(&b.g, node, &mut in_h, param);
-    }
-    let inputs: Vec<usize> = in_h.difference(&not_inputs).map(|&k| k as usize).collect();
-    let h_u = sparse_derivative(
-        &mut b.g,
-        &h,
-        |v| if let Var::Param(k) = v { inputs.iter().position(|&i| i == k as usize).map(|i| i as u16) } else { None },
-        |i| Var::Param(inputs[i as usize] as u16),
-    );
-    let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
-    let mut joint_coordinates = Vec::new();
-    for c in &model.constraints {
-        let (Some([i, j]), true) = (c.kind.markers(), syn::parse_str::<syn::Ident>(&c.name).is_ok()) else { continue };
-        for (what, kinds) in crate::model::JOINT_COORDINATES {
-            if kinds.contains(&c.kind.kind()) {
-                let node = if *what == "angle" { b.joint_angle(i, j) } else { b.joint_stroke(i, j) };
-                let rate = b.rate(node);
-                joint_coordinates.push((format!("{}_{what}", c.name), node, rate));
-            }
-        }
-    }
-
+    let (jacobian, nu, gamma) = constraint_derivatives(&mut b, &phi);
+    let (constraint_force_q, stiffness, damping) = newton_terms(&mut b, &jacobian, [&h_q, &h_qd], [&friction_q, &friction_qd]);
+    let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
+    let (points, joint_coordinates) = accessors(&mut b);
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -366,6 +180,278 @@ pub fn formulate(model: &Model) -> Formulation {
         points,
         joint_coordinates,
     }
+}
+
+/// Φ's rows, joint by joint in declaration order (each joint's first row recorded in
+/// `b.first_rows`), with their names and units.
+fn constraint_rows(b: &mut Builder) -> (Vec<Id>, Vec<String>, Vec<RowUnit>) {
+    let mut phi = Vec::new();
+    let (mut row_names, mut row_units) = (Vec::new(), Vec::new());
+    for c in &b.model.constraints {
+        b.first_rows.push(phi.len());
+        for row in c.kind.rows(b) {
+            row_names.push(format!("{}: {}", c.name, row.name));
+            row_units.push(row.unit);
+            phi.push(row.value);
+        }
+    }
+    (phi, row_names, row_units)
+}
+
+/// The initial guesses of q and v, and M: its diagonal, its products of inertia and the blocks
+/// of M⁻¹ they couple.
+struct MassAndStart {
+    q0: Vec<Id>,
+    qd0: Vec<Id>,
+    mass: Vec<Id>,
+    mass_coupling: Vec<(usize, usize, Id)>,
+    mass_inverse: Vec<(usize, usize, Id)>,
+}
+
+/// Each body's initial pose and velocity and its mass and inertia, body by body.
+fn mass_and_start(b: &mut Builder) -> MassAndStart {
+    let model = b.model;
+    let (nq, nv) = (b.nq(), b.nv());
+    let mut q0 = Vec::with_capacity(nq);
+    let mut qd0 = Vec::with_capacity(nv);
+    let mut mass = Vec::with_capacity(nv);
+    let mut mass_coupling = Vec::new();
+    let mut mass_inverse = Vec::new();
+    for (k, body) in model.bodies.iter().enumerate() {
+        if model.space == crate::model::Space::Planar {
+            for c in 0..3 {
+                q0.push(b.expr(&body.q0[c]));
+                qd0.push(b.expr(&body.v0[c]));
+            }
+        } else {
+            q0.extend(body.q0.iter().map(|e| b.expr(e)));
+            qd0.extend(body.v0.iter().map(|e| b.expr(e)));
+        }
+        let m = b.expr(&body.mass);
+        match &body.inertia {
+            Inertia::Planar(j) => {
+                let j = b.expr(j);
+                mass.extend([m, m, j]);
+            }
+            Inertia::Tensor(t) => {
+                mass.extend([m, m, m]);
+                let base = 6 * k + 3;
+                for (r, row) in t.iter().enumerate() {
+                    mass.push(b.expr(&row[r]));
+                }
+                let before = mass_coupling.len();
+                for (r, row) in t.iter().enumerate() {
+                    for (c, entry) in row.iter().enumerate() {
+                        let e = b.expr(entry);
+                        if r != c && !b.g.is_zero(e) {
+                            mass_coupling.push((base + r, base + c, e));
+                        }
+                    }
+                }
+                if mass_coupling.len() > before {
+                    let j = t.clone().map(|row| row.map(|e| b.expr(&e)));
+                    for (r, c, e) in inverse3(b, j) {
+                        mass_inverse.push((base + r, base + c, e));
+                    }
+                }
+            }
+        }
+    }
+    MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }
+}
+
+/// The generalized forces (h, friction, V and the switching functions), and with each element
+/// alone the velocities it reaches and its terms.
+struct Forces {
+    h: Vec<Id>,
+    friction: Vec<Id>,
+    potential: Id,
+    switches: Vec<(String, Id)>,
+    force_velocities: Vec<(String, Vec<usize>)>,
+    base_forces: ForceTerms,
+    alone_forces: Vec<ForceTerms>,
+}
+
+/// h by virtual power: the gyroscopic terms (spatial), gravity and each force element.
+fn forces(b: &mut Builder) -> Forces {
+    let model = b.model;
+    let nv = b.nv();
+    let zero = b.g.num(0.0);
+    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
+    if b.coordinates == Coordinates::SpatialBody {
+        gyroscopic(b, &mut out.h);
+    }
+    let base_h = out.h.clone();
+    if let Some(g) = &model.gravity {
+        gravity::apply(b, g, &mut out);
+    }
+    let mut switch_names = Vec::new();
+    for element in &model.forces {
+        element.kind.apply(b, &mut out);
+        switch_names.resize(out.switches.len(), element.name.clone());
+    }
+    // Each element alone on the base: which velocities its generalized force reaches
+    // (structurally), for naming the element behind a NaN force at run time
+    // (`Mechanism::FORCE_ELEMENTS`), and what h and its derivatives would cost were it the only
+    // one (`ForceInfo::op_counts`). Applying an element again only revisits nodes the graph
+    // already holds.
+    let terms = |b: &mut Builder, h: Vec<Id>| {
+        let h_q = tangent(b, &h);
+        let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+        ForceTerms { h, h_q, h_qd }
+    };
+    let base_forces = terms(b, base_h.clone());
+    let mut force_velocities = Vec::new();
+    let mut alone_forces = Vec::new();
+    let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
+        // On the base (zero, or the gyroscopic terms), an entry the element reaches is a new
+        // node: adding a non-zero term never gives back what it was added to.
+        let mut alone = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
+        apply(b, &mut alone);
+        let velocities: Vec<usize> = (0..nv).filter(|&i| alone.h[i] != base_h[i] || !b.g.is_zero(alone.friction[i])).collect();
+        force_velocities.push((name.to_string(), velocities));
+        alone_forces.push(terms(b, alone.h));
+    };
+    if let Some(g) = &model.gravity {
+        reach(b, "gravity", &|b, out| gravity::apply(b, g, out));
+    }
+    for element in &model.forces {
+        reach(b, &element.name, &|b, out| element.kind.apply(b, out));
+    }
+    let Generalized { h, friction, potential, switches } = out;
+    let switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
+    Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces }
+}
+
+/// Sparse matrix entries (row, column, node).
+type Entries = Vec<(usize, usize, Id)>;
+
+/// D = Φ_q B, ν = −Φ_t and γ = −𝒟(𝒟Φ).
+fn constraint_derivatives(b: &mut Builder, phi: &[Id]) -> (Entries, Vec<Id>, Vec<Id>) {
+    // D = Φ_q B: differentiate each row only by the coordinates it contains; every other entry
+    // is a structural zero.
+    let jacobian = tangent(b, phi);
+
+    // ν = −Φ_t
+    let g = &mut b.g;
+    let mut memo_t = HashMap::new();
+    let nu: Vec<Id> = phi
+        .iter()
+        .map(|&row| {
+            let d = g.diff(row, Var::T, &mut memo_t);
+            g.neg(d)
+        })
+        .collect();
+
+    // γ = −𝒟(𝒟Φ), 𝒟 the total time derivative with v̇ = 0 along q̇ = B(q) v (the rates' nodes
+    // read q and v): one seed, one memo for all rows.
+    let rates = b.coordinate_rates();
+    let g = &mut b.g;
+    let one = g.num(1.0);
+    let seed = |v: Var| match v {
+        Var::Q(i) => Some(rates[i as usize]),
+        Var::T => Some(one),
+        Var::Qd(_) | Var::Param(_) | Var::Lambda(_) => None,
+    };
+    let mut memo = HashMap::new();
+    let first: Vec<Id> = phi.iter().map(|&row| g.directional(row, &seed, &mut memo)).collect();
+    let gamma: Vec<Id> = first
+        .iter()
+        .map(|&d1| {
+            let d2 = g.directional(d1, &seed, &mut memo);
+            g.neg(d2)
+        })
+        .collect();
+    (jacobian, nu, gamma)
+}
+
+/// ∂(Dᵀλ)/∂q B, and generalized-α's Newton matrix terms summed by entry: the stiffness
+/// ∂h/∂q·B + K + friction's, the damping ∂h/∂v + friction's.
+fn newton_terms(
+    b: &mut Builder,
+    jacobian: &[(usize, usize, Id)],
+    [h_q, h_qd]: [&Entries; 2],
+    [friction_q, friction_qd]: [&Entries; 2],
+) -> (Entries, Entries, Entries) {
+    let nv = b.nv();
+    // (Dᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q along B.
+    let zero = b.g.num(0.0);
+    let mut constraint_force = vec![zero; nv];
+    for &(r, c, d) in jacobian {
+        let l = b.g.var(Var::Lambda(r as u16));
+        let term = b.g.mul(l, d);
+        constraint_force[c] = b.g.add(constraint_force[c], term);
+    }
+    let constraint_force_q = tangent(b, &constraint_force);
+    // Generalized-α's Newton matrix takes them summed by entry: the stiffness part
+    // ∂h/∂q·B + K + friction's, the damping part ∂h/∂v + friction's.
+    let mut sum = |parts: [&[(usize, usize, Id)]; 3]| -> Vec<(usize, usize, Id)> {
+        let mut by_entry: std::collections::BTreeMap<(usize, usize), Id> = std::collections::BTreeMap::new();
+        for &(r, c, node) in parts.into_iter().flatten() {
+            let total = match by_entry.get(&(r, c)) {
+                Some(&before) => b.g.add(before, node),
+                None => node,
+            };
+            by_entry.insert((r, c), total);
+        }
+        by_entry.into_iter().map(|((r, c), node)| (r, c, node)).collect()
+    };
+    let stiffness = sum([h_q, &constraint_force_q, friction_q]);
+    let damping = sum([h_qd, friction_qd, &[]]);
+    (constraint_force_q, stiffness, damping)
+}
+
+/// What a linearization needs beyond the rest.
+struct Linear {
+    gamma_q: Entries,
+    gamma_v: Entries,
+    inputs: Vec<usize>,
+    h_u: Entries,
+}
+
+/// γ's derivatives (the forward dynamics' v̇ moves with q and v through γ too) and h's by the
+/// inputs: the parameters h reads that Φ, M and friction do not.
+fn linear_terms(b: &mut Builder, gamma: &[Id], h: &[Id], [phi, mass, friction]: [&[Id]; 3], mass_coupling: &Entries) -> Linear {
+    let gamma_q = tangent(b, gamma);
+    let gamma_v = sparse_derivative(&mut b.g, gamma, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let mut not_inputs = BTreeSet::new();
+    let param = |v| if let Var::Param(k) = v { Some(k) } else { None };
+    for &node in phi.iter().chain(mass).chain(mass_coupling.iter().map(|(_, _, n)| n)).chain(friction) {
+        collect_vars(&b.g, node, &mut not_inputs, param);
+    }
+    let mut in_h = BTreeSet::new();
+    for &node in h {
+        collect_vars(&b.g, node, &mut in_h, param);
+    }
+    let inputs: Vec<usize> = in_h.difference(&not_inputs).map(|&k| k as usize).collect();
+    let h_u = sparse_derivative(
+        &mut b.g,
+        h,
+        |v| if let Var::Param(k) = v { inputs.iter().position(|&i| i == k as usize).map(|i| i as u16) } else { None },
+        |i| Var::Param(inputs[i as usize] as u16),
+    );
+    Linear { gamma_q, gamma_v, inputs, h_u }
+}
+
+/// The body-frame coordinates of each named point and the joint coordinates of each labelled
+/// spatial joint that has them, for the generated accessors.
+#[allow(clippy::type_complexity)]
+fn accessors(b: &mut Builder) -> (Vec<Vec<Id>>, Vec<(String, Id, Id)>) {
+    let model = b.model;
+    let points = model.points.iter().map(|p| p.local.iter().map(|e| b.expr(e)).collect()).collect();
+    let mut joint_coordinates = Vec::new();
+    for c in &model.constraints {
+        let (Some([i, j]), true) = (c.kind.markers(), syn::parse_str::<syn::Ident>(&c.name).is_ok()) else { continue };
+        for (what, kinds) in crate::model::JOINT_COORDINATES {
+            if kinds.contains(&c.kind.kind()) {
+                let node = if *what == "angle" { b.joint_angle(i, j) } else { b.joint_stroke(i, j) };
+                let rate = b.rate(node);
+                joint_coordinates.push((format!("{}_{what}", c.name), node, rate));
+            }
+        }
+    }
+
+    (points, joint_coordinates)
 }
 
 /// The structural non-zeros of (∂rows/∂q) B, the derivative along the velocity map: plain

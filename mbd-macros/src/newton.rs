@@ -297,34 +297,16 @@ pub struct NewtonCode {
     pub storage: usize,
 }
 
-#[allow(clippy::too_many_lines)] // 163 lines: to be split by concern (issue 38, item 7)
-pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonCode {
-    let real = real(e.scalar);
-    let zero = e.literal(0.0);
-    let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
-    // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
-    let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
-    for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
-        velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
-    }
-    let jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
-    let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
-    let at = |u: usize, w: usize| usize_lit(nnz + plan.slot(u, w));
+/// The terms of each slot of A = M − c_v (damping) − c_q (stiffness), keyed by (row, column),
+/// each with whether it is subtracted; and the locals the body writes them into besides Φ and s,
+/// by name and length.
+type Terms = (BTreeMap<(usize, usize), Vec<(bool, TokenStream)>>, Vec<(syn::Ident, usize)>);
 
-    // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
-    // are computed once: the stiffness straight into its slot of `s`, the damping and the
-    // masses into small locals; then each slot of A is M − c_v (damping) − c_q (stiffness).
-    let (nq_l, nv_l, nc_l, nnz_l, total) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz), usize_lit(nnz + plan.entries()));
-    let mut outputs = vector_outputs("phi", &f.phi);
-    outputs.extend(jacobian_values_outputs(f, "s"));
-    let position_signature = PartSignature {
-        name: "newton_jacobian",
-        params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]),
-        args: quote!(q, t, phi, s),
-    };
-    let (position_body, _) = e.body_in_parts(&outputs, &position_signature);
+/// The outputs of A's terms, pushed after Φ and D's: the masses and the damping into small
+/// locals, the stiffness straight into its slot of `s` (`at`).
+fn a_terms(f: &Formulation, at: &dyn Fn(usize, usize) -> Literal, outputs: &mut Vec<Output>) -> Terms {
+    let nv = f.nv;
     let mut terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>> = BTreeMap::new();
-    // The locals the body writes besides Φ and s: their names and lengths.
     let mut locals: Vec<(syn::Ident, usize)> = Vec::new();
     let mass_entries: Vec<usize> = (0..nv).filter(|&i| !f.graph.is_zero(f.mass[i])).collect();
     if !mass_entries.is_empty() {
@@ -358,18 +340,18 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
         outputs.push(Output { target: quote!(s[#slot]), node });
         terms.entry((r, c)).or_default().push((true, quote!(c_q * s[#slot])));
     }
-    let local_names: Vec<&syn::Ident> = locals.iter().map(|(ident, _)| ident).collect();
-    let local_lengths: Vec<proc_macro2::Literal> = locals.iter().map(|&(_, n)| usize_lit(n)).collect();
-    let signature = PartSignature {
-        name: "newton_matrix",
-        params: quote! {
-            q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l],
-            phi: &mut [#real; #nc_l], s: &mut [#real; #total], #(#local_names: &mut [#real; #local_lengths]),*
-        },
-        args: quote!(q, v, t, lambda, phi, s, #(&mut #local_names),*),
-    };
-    let locals: Vec<TokenStream> = local_names.iter().zip(&local_lengths).map(|(ident, n)| quote!(let mut #ident = [#zero; #n];)).collect();
-    let (body, matrix_ops) = e.body_in_parts(&outputs, &signature);
+    (terms, locals)
+}
+
+/// Each slot of A summed from its terms (`sums`), and D's non-zeros copied into their two slots
+/// of [[A, −Dᵀ], [D, 0]] (`d_entries`).
+fn slot_sums(
+    f: &Formulation,
+    terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>>,
+    at: &dyn Fn(usize, usize) -> Literal,
+    real: &TokenStream,
+) -> (TokenStream, TokenStream) {
+    let nv = f.nv;
     let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).collect();
     let sums: Vec<TokenStream> = terms
         .into_iter()
@@ -403,38 +385,83 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
             }
         })
         .collect();
-    let (sums, d_entries) = (in_functions(&sums, "sums", &["c_q", "c_v"], &real), in_functions(&d_entries, "d_entries", &[], &real));
+    (in_functions(&sums, "sums", &["c_q", "c_v"], real), in_functions(&d_entries, "d_entries", &[], real))
+}
+
+/// Straight-line factorization and solve up to a size; beyond, the code would cost more to
+/// compile than it saves (the runtime runs the same plan from `NEWTON_PATTERN`): nothing.
+fn straight_line_solver(f: &Formulation, e: &Emitter, plan: &NewtonPlan, real: &TokenStream) -> TokenStream {
+    if plan.updates() > GENERATED_UPDATES {
+        return quote!();
+    }
+    let (nv, nc, nnz) = (f.nv, f.nc, f.jacobian.len());
+    let (zero, one) = (e.literal(0.0), e.literal(1.0));
+    let factor = plan.factor(nnz, &zero, &one);
+    let solve = plan.solve(nnz);
+    let (total, nc_l, n, nnz_l) = (usize_lit(nnz + plan.entries()), usize_lit(nc), usize_lit(nv + nc), usize_lit(nnz));
+    quote! {
+        fn newton_factor(
+            s: &mut [#real; #total],
+            tolerance: #real,
+            allow_redundant: bool,
+            dropped: &mut [bool; #nc_l],
+        ) -> ::core::result::Result<#real, ::mbd::linalg::LinalgError> {
+            #factor
+        }
+        fn newton_solve(s: &[#real; #total], b: &mut [#real]) {
+            if let ::core::result::Result::Ok(b) = <&mut [#real; #n]>::try_from(&mut *b) {
+                #solve
+            } else {
+                ::mbd::sparse::solve(&Self::NEWTON_PATTERN, &s[#nnz_l..], b);
+            }
+        }
+    }
+}
+
+pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonCode {
+    let real = real(e.scalar);
+    let zero = e.literal(0.0);
+    let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
+    // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
+    let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
+    for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
+        velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
+    }
+    let jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+    let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
+    let at = |u: usize, w: usize| usize_lit(nnz + plan.slot(u, w));
+
+    // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
+    // are computed once: the stiffness straight into its slot of `s`, the damping and the
+    // masses into small locals; then each slot of A is M − c_v (damping) − c_q (stiffness).
+    let (nq_l, nv_l, nc_l, nnz_l, total) = (usize_lit(nq), usize_lit(nv), usize_lit(nc), usize_lit(nnz), usize_lit(nnz + plan.entries()));
+    let mut outputs = vector_outputs("phi", &f.phi);
+    outputs.extend(jacobian_values_outputs(f, "s"));
+    let position_signature = PartSignature {
+        name: "newton_jacobian",
+        params: quote!(q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]),
+        args: quote!(q, t, phi, s),
+    };
+    let (position_body, _) = e.body_in_parts(&outputs, &position_signature);
+    let (terms, locals) = a_terms(f, &at, &mut outputs);
+    let local_names: Vec<&syn::Ident> = locals.iter().map(|(ident, _)| ident).collect();
+    let local_lengths: Vec<proc_macro2::Literal> = locals.iter().map(|&(_, n)| usize_lit(n)).collect();
+    let signature = PartSignature {
+        name: "newton_matrix",
+        params: quote! {
+            q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l],
+            phi: &mut [#real; #nc_l], s: &mut [#real; #total], #(#local_names: &mut [#real; #local_lengths]),*
+        },
+        args: quote!(q, v, t, lambda, phi, s, #(&mut #local_names),*),
+    };
+    let locals: Vec<TokenStream> = local_names.iter().zip(&local_lengths).map(|(ident, n)| quote!(let mut #ident = [#zero; #n];)).collect();
+    let (body, matrix_ops) = e.body_in_parts(&outputs, &signature);
+    let (sums, d_entries) = slot_sums(f, terms, &at, &real);
     let pattern = plan.pattern();
     // Inlined into the step of small mechanisms; kept apart in large ones (build time, as for
     // the Schur complement's helpers).
     let jacobian_inline = if plan.updates() <= GENERATED_UPDATES { quote!(#[inline]) } else { quote!(#[inline(never)]) };
-    // Straight-line factorization and solve up to a size; beyond, the code would cost more to
-    // compile than it saves (the runtime runs the same plan from `NEWTON_PATTERN`).
-    let solver = if plan.updates() <= GENERATED_UPDATES {
-        let one = e.literal(1.0);
-        let factor = plan.factor(nnz, &zero, &one);
-        let solve = plan.solve(nnz);
-        let (total, nc_l, n, nnz_l) = (usize_lit(nnz + plan.entries()), usize_lit(nc), usize_lit(nv + nc), usize_lit(nnz));
-        quote! {
-            fn newton_factor(
-                s: &mut [#real; #total],
-                tolerance: #real,
-                allow_redundant: bool,
-                dropped: &mut [bool; #nc_l],
-            ) -> ::core::result::Result<#real, ::mbd::linalg::LinalgError> {
-                #factor
-            }
-            fn newton_solve(s: &[#real; #total], b: &mut [#real]) {
-                if let ::core::result::Result::Ok(b) = <&mut [#real; #n]>::try_from(&mut *b) {
-                    #solve
-                } else {
-                    ::mbd::sparse::solve(&Self::NEWTON_PATTERN, &s[#nnz_l..], b);
-                }
-            }
-        }
-    } else {
-        quote!()
-    };
+    let solver = straight_line_solver(f, e, &plan, &real);
     let impl_block = quote! {
         // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
         #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]

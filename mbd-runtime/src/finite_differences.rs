@@ -24,8 +24,8 @@
 //! into the caller's matrix.
 
 use crate::{
-    BodyFrames, BodyPose, BodyTwist, ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo, ForwardDynamics, JointInfo, Kinematics,
-    Mechanism, NewtonMatrix, OpCount, Real, VelocityInfo,
+    BodyFrames, BodyPose, BodyTwist, ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo,
+    ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, Real, VelocityInfo,
 };
 
 /// A mechanism with finite-difference derivatives (module docs).

@@ -8,9 +8,9 @@
 //! body's centre of mass with which the joint acts on the body ([`joint_reaction`]). A driver's
 //! reaction is the force or torque the actuator must supply.
 
+use crate::body::{transpose_times, BodyFrames};
 use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::body::{transpose_times, BodyFrames};
 use crate::redundancy::independent_rows;
 use crate::{Dynamics, KinematicError, NonFiniteQuantity, Real, Workspace};
 use core::fmt;

@@ -364,7 +364,8 @@ impl<'a> Gen<'a> {
             return quote!();
         }
         let (body, _) = e.body(&friction);
-        let indices: Vec<Literal> = f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
+        let indices: Vec<Literal> =
+            f.friction.iter().enumerate().filter(|(_, &n)| !f.graph.is_zero(n)).map(|(i, _)| usize_lit(i)).collect();
         quote! {
             let mut hf = [#zero; #nv_l];
             #body

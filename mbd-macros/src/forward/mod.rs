@@ -156,7 +156,8 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
     let (impl_block, eval_ops) = plan.forward_impl();
     // The kinematic solves of a driven mechanism: the runtime calls them only where D is square;
     // elsewhere the provided methods stand, and nothing is generated to type-check.
-    let (position_step, constraint_solve, transpose_solve) = if plan.nv != plan.nc { (quote!(), quote!(), quote!()) } else { plan.driven() };
+    let (position_step, constraint_solve, transpose_solve) =
+        if plan.nv != plan.nc { (quote!(), quote!(), quote!()) } else { plan.driven() };
     let helpers = plan.helpers(constraint_solve, transpose_solve);
     ForwardCode { helpers, position_step, impl_block, eval_ops }
 }

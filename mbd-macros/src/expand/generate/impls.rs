@@ -225,7 +225,8 @@ impl Gen<'_> {
             };
             let (bi, bj) = (body(bi), body(bj));
             let name = &c.name;
-            joints.push(quote!(::mbd::JointInfo { name: #name, kind: #kind, first_row: #first_row, rows: #rows, body_i: #bi, body_j: #bj }));
+            joints
+                .push(quote!(::mbd::JointInfo { name: #name, kind: #kind, first_row: #first_row, rows: #rows, body_i: #bi, body_j: #bj }));
             first_row += rows;
         }
         joints
