@@ -10,7 +10,7 @@ use syn::{Attribute, Ident, Visibility};
 use crate::elements::spatial::{self, Marker};
 use crate::elements::{self, drive, drive_angle, drive_distance, fix, user, Constraint, Driven};
 use crate::forces::{applied, bushing, cable, contact, point_to_point, rotational, stroke, torque, tyre, ForceElement};
-use crate::parse::{self, AxisRef, BinOp, CmpOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
+use crate::parse::{self, AxisRef, BinOp, BodyDef, CmpOp, DriveTarget, Expr, ExprKind, Item, MechanismDef, PointRef, Value, VecLit};
 use crate::sym::{Cmp, Func};
 
 /// The errors of one expansion, combined into one at the end, and its warnings (a mechanism
@@ -824,6 +824,89 @@ pub fn point_accessor(body: &str, point: &str) -> String {
     format!("{body}_{point}").to_lowercase()
 }
 
+/// `scalar f32;`: the scalar type, once.
+fn declare_scalar(r: &mut Resolver, s: &Ident, scalar: &mut Option<(Scalar, Span)>) {
+    let sc = match s.to_string().as_str() {
+        "f64" => Scalar::F64,
+        "f32" => Scalar::F32,
+        other => {
+            r.errors.push(s.span(), format!("unsupported scalar type: expected `f64` or `f32`, found `{other}`"));
+            return;
+        }
+    };
+    if scalar.is_some() {
+        r.errors.push(s.span(), "the scalar type is declared twice: expected one `scalar`, found a second one");
+    }
+    *scalar = Some((sc, s.span()));
+}
+
+/// `params { ... }`: each parameter with its default, unless its name is taken or reserved.
+/// False where one has a mistake (the others are still declared).
+fn declare_params(r: &mut Resolver, ps: &[(Ident, Expr)], params: &mut Vec<Param>) -> bool {
+    let mut ok = true;
+    for (name, value) in ps {
+        if r.params.contains_key(&name.to_string()) {
+            r.errors
+                .push(name.span(), format!("duplicate parameter `{name}`: expected a new name, found `{name}` again; rename one of them"));
+            ok = false;
+            continue;
+        }
+        if ["t", "PI", "ground"].contains(&name.to_string().as_str()) {
+            r.errors.push(
+                name.span(),
+                format!(
+                    "`{name}` is reserved: expected a parameter's name, found `{name}`, which expressions read as {}",
+                    match name.to_string().as_str() {
+                        "t" => "time",
+                        "PI" => "π",
+                        _ => "the fixed frame",
+                    }
+                ),
+            );
+            ok = false;
+            continue;
+        }
+        // A default with a mistake is reported; the parameter is still declared,
+        // so that what uses it is not reported too.
+        let default = match r.expr(value, Scope::Constant).map(|d| d.constant_value().unwrap_or(f64::NAN)) {
+            Some(d) if d.is_finite() => d,
+            Some(d) => {
+                r.errors.at_expr(value, format!("the default of `{name}` is not finite: expected a finite value, found {d}"));
+                ok = false;
+                0.0
+            }
+            None => {
+                ok = false;
+                0.0
+            }
+        };
+        r.params.insert(name.to_string(), params.len());
+        r.defaults.push(default);
+        params.push(Param { name: name.clone(), default });
+    }
+    ok
+}
+
+/// A body's name, unless taken: false where it is `ground`, a duplicate, or generates an item
+/// that clashes.
+fn declare_body<'d>(r: &mut Resolver, b: &'d BodyDef, items: &mut HashMap<String, String>, bodies: &mut Vec<&'d BodyDef>) -> bool {
+    if b.name == "ground" {
+        r.errors.push(b.name.span(), "`ground` is the fixed frame, always present: expected another body name, found `ground`");
+        return false;
+    }
+    if r.bodies.contains_key(&b.name.to_string()) {
+        r.errors.push(b.name.span(), format!("duplicate body `{0}`: expected a new name, found `{0}` again; rename one of them", b.name));
+        return false;
+    }
+    let item = constant_name(&b.name.to_string());
+    if !claim_item(items, r.errors, item, format!("body `{}`", b.name), b.name.span()) {
+        return false;
+    }
+    r.bodies.insert(b.name.to_string(), bodies.len());
+    bodies.push(b);
+    true
+}
+
 /// Claims a generated item name (a body's or labelled joint's constant, a point's accessor) for
 /// `what`; an error on `span` if a generated item or an earlier name has it.
 fn claim_item(items: &mut HashMap<String, String>, errors: &mut Errors, item: String, what: String, span: Span) -> bool {
@@ -879,7 +962,62 @@ impl MechanismDef {
         Ok(model)
     }
 
-    #[allow(clippy::too_many_lines)] // 201 lines: to be split by concern (issue 38, item 7)
+    /// The named points and vectors on bodies, each once, in body coordinates.
+    fn points_and_vectors(&self, r: &mut Resolver, items: &mut HashMap<String, String>, ok: &mut bool) -> (Vec<Local>, Vec<Local>) {
+        let mut points = Vec::new();
+        let mut vectors = Vec::new();
+        for item in &self.items {
+            let (nv, is_point) = match item {
+                Item::Point(nv) => (nv, true),
+                Item::Vector(nv) => (nv, false),
+                _ => continue,
+            };
+            let Some(body) = r.body(&nv.body) else {
+                *ok = false;
+                continue;
+            };
+            let what = if is_point {
+                format!("a point `{}` in body coordinates (m)", r.shape(["ξ", "η", "ζ"]))
+            } else {
+                format!("a vector `{}` in body coordinates", r.shape(["x", "y", "z"]))
+            };
+            let Some(local) = r.components(&nv.value, Scope::Params, &what) else {
+                *ok = false;
+                continue;
+            };
+            if is_point {
+                let item = point_accessor(&nv.body.to_string(), &nv.name.to_string());
+                if !claim_item(items, r.errors, item, format!("point `{}.{}`", nv.body, nv.name), nv.name.span()) {
+                    *ok = false;
+                    continue;
+                }
+            }
+            let key = (body, nv.name.to_string());
+            let table = if is_point { &mut r.points } else { &mut r.vectors };
+            if table.insert(key, local.clone()).is_some() {
+                r.errors.push(
+                    nv.name.span(),
+                    format!(
+                        "duplicate {} `{}.{}`: expected a new name, found `{}` again; rename one of them",
+                        if is_point { "point" } else { "vector" },
+                        nv.body,
+                        nv.name,
+                        nv.name
+                    ),
+                );
+                *ok = false;
+                continue;
+            }
+            let l = Local { body, name: nv.name.to_string(), local };
+            if is_point {
+                points.push(l);
+            } else {
+                vectors.push(l);
+            }
+        }
+        (points, vectors)
+    }
+
     fn build(&self, errors: &mut Errors) -> Option<Model> {
         let mut scalar = None::<(Scalar, Span)>;
         let mut space = Space::Planar;
@@ -911,88 +1049,9 @@ impl MechanismDef {
         // Pass 1: declarations (params, bodies) so statements can refer to them in any order.
         for item in &self.items {
             match item {
-                Item::Scalar(s) => {
-                    let sc = match s.to_string().as_str() {
-                        "f64" => Scalar::F64,
-                        "f32" => Scalar::F32,
-                        other => {
-                            r.errors.push(s.span(), format!("unsupported scalar type: expected `f64` or `f32`, found `{other}`"));
-                            continue;
-                        }
-                    };
-                    if scalar.is_some() {
-                        r.errors.push(s.span(), "the scalar type is declared twice: expected one `scalar`, found a second one");
-                    }
-                    scalar = Some((sc, s.span()));
-                }
-                Item::Params(ps) => {
-                    for (name, value) in ps {
-                        if r.params.contains_key(&name.to_string()) {
-                            r.errors.push(
-                                name.span(),
-                                format!("duplicate parameter `{name}`: expected a new name, found `{name}` again; rename one of them"),
-                            );
-                            ok = false;
-                            continue;
-                        }
-                        if ["t", "PI", "ground"].contains(&name.to_string().as_str()) {
-                            r.errors.push(
-                                name.span(),
-                                format!(
-                                    "`{name}` is reserved: expected a parameter's name, found `{name}`, which expressions read as {}",
-                                    match name.to_string().as_str() {
-                                        "t" => "time",
-                                        "PI" => "π",
-                                        _ => "the fixed frame",
-                                    }
-                                ),
-                            );
-                            ok = false;
-                            continue;
-                        }
-                        // A default with a mistake is reported; the parameter is still declared,
-                        // so that what uses it is not reported too.
-                        let default = match r.expr(value, Scope::Constant).map(|d| d.constant_value().unwrap_or(f64::NAN)) {
-                            Some(d) if d.is_finite() => d,
-                            Some(d) => {
-                                r.errors
-                                    .at_expr(value, format!("the default of `{name}` is not finite: expected a finite value, found {d}"));
-                                ok = false;
-                                0.0
-                            }
-                            None => {
-                                ok = false;
-                                0.0
-                            }
-                        };
-                        r.params.insert(name.to_string(), params.len());
-                        r.defaults.push(default);
-                        params.push(Param { name: name.clone(), default });
-                    }
-                }
-                Item::Body(b) => {
-                    if b.name == "ground" {
-                        r.errors
-                            .push(b.name.span(), "`ground` is the fixed frame, always present: expected another body name, found `ground`");
-                        ok = false;
-                        continue;
-                    }
-                    if r.bodies.contains_key(&b.name.to_string()) {
-                        r.errors.push(
-                            b.name.span(),
-                            format!("duplicate body `{0}`: expected a new name, found `{0}` again; rename one of them", b.name),
-                        );
-                        ok = false;
-                        continue;
-                    }
-                    let item = constant_name(&b.name.to_string());
-                    if !claim_item(&mut items, r.errors, item, format!("body `{}`", b.name), b.name.span()) {
-                        ok = false;
-                        continue;
-                    }
-                    r.bodies.insert(b.name.to_string(), bodies.len());
-                    bodies.push(b);
-                }
+                Item::Scalar(s) => declare_scalar(&mut r, s, &mut scalar),
+                Item::Params(ps) => ok &= declare_params(&mut r, ps, &mut params),
+                Item::Body(b) => ok &= declare_body(&mut r, b, &mut items, &mut bodies),
                 _ => {}
             }
         }
@@ -1006,57 +1065,7 @@ impl MechanismDef {
         }
 
         // Pass 2: points and vectors, then joints, drivers and constraints in declaration order.
-        let mut points = Vec::new();
-        let mut vectors = Vec::new();
-        for item in &self.items {
-            let (nv, is_point) = match item {
-                Item::Point(nv) => (nv, true),
-                Item::Vector(nv) => (nv, false),
-                _ => continue,
-            };
-            let Some(body) = r.body(&nv.body) else {
-                ok = false;
-                continue;
-            };
-            let what = if is_point {
-                format!("a point `{}` in body coordinates (m)", r.shape(["ξ", "η", "ζ"]))
-            } else {
-                format!("a vector `{}` in body coordinates", r.shape(["x", "y", "z"]))
-            };
-            let Some(local) = r.components(&nv.value, Scope::Params, &what) else {
-                ok = false;
-                continue;
-            };
-            if is_point {
-                let item = point_accessor(&nv.body.to_string(), &nv.name.to_string());
-                if !claim_item(&mut items, r.errors, item, format!("point `{}.{}`", nv.body, nv.name), nv.name.span()) {
-                    ok = false;
-                    continue;
-                }
-            }
-            let key = (body, nv.name.to_string());
-            let table = if is_point { &mut r.points } else { &mut r.vectors };
-            if table.insert(key, local.clone()).is_some() {
-                r.errors.push(
-                    nv.name.span(),
-                    format!(
-                        "duplicate {} `{}.{}`: expected a new name, found `{}` again; rename one of them",
-                        if is_point { "point" } else { "vector" },
-                        nv.body,
-                        nv.name,
-                        nv.name
-                    ),
-                );
-                ok = false;
-                continue;
-            }
-            let l = Local { body, name: nv.name.to_string(), local };
-            if is_point {
-                points.push(l);
-            } else {
-                vectors.push(l);
-            }
-        }
+        let (points, vectors) = self.points_and_vectors(&mut r, &mut items, &mut ok);
 
         let body_name = |b: BodyRef| match b {
             BodyRef::Ground => "ground".to_string(),

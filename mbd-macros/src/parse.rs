@@ -453,7 +453,6 @@ fn label(input: ParseStream) -> syn::Result<Option<Ident>> {
 }
 
 impl Parse for Item {
-    #[allow(clippy::too_many_lines)] // 156 lines: to be split by concern (issue 38, item 7)
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let kw: Ident = input.call(Ident::parse_any).map_err(|e| {
             syn::Error::new(
@@ -477,57 +476,15 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::Spatial(kw)
             }
-            "params" => {
-                let content;
-                braced!(content in input);
-                let mut params = Vec::new();
-                while !content.is_empty() {
-                    let name: Ident = content.parse()?;
-                    content.parse::<Token![:]>()?;
-                    let value: Expr = content.parse()?;
-                    params.push((name, value));
-                    if !content.is_empty() {
-                        no_unit_after_value(&content)?;
-                        content.parse::<Token![,]>()?;
-                    }
-                }
-                eat_optional_semi(input)?;
-                Item::Params(params)
-            }
+            "params" => parse_params(input)?,
             "body" | "particle" => {
                 let name: Ident = input.parse()?;
                 let fields = parse_fields(input)?;
                 eat_optional_semi(input)?;
                 Item::Body(BodyDef { name, fields, particle: kw == "particle" })
             }
-            "point" | "vector" => {
-                let body: Ident = input.call(Ident::parse_any)?;
-                input.parse::<Token![.]>()?;
-                let name: Ident = input.parse()?;
-                input.parse::<Token![=]>()?;
-                let value: VecLit = input.parse()?;
-                input.parse::<Token![;]>()?;
-                let nv = NamedVector { body, name, value };
-                if kw == "point" {
-                    Item::Point(nv)
-                } else {
-                    Item::Vector(nv)
-                }
-            }
-            "fix" => {
-                let label = label(input)?;
-                let body: Ident = input.call(Ident::parse_any)?;
-                input.parse::<Token![.]>()?;
-                let coordinate: Ident = input.parse()?;
-                let value = if input.peek(Token![=]) {
-                    input.parse::<Token![=]>()?;
-                    Some(input.parse()?)
-                } else {
-                    None
-                };
-                input.parse::<Token![;]>()?;
-                Item::Fix(FixDef { keyword: kw, label, body, coordinate, value })
-            }
+            "point" | "vector" => parse_named_vector(kw, input)?,
+            "fix" => parse_fix(kw, input)?,
             "drive" => {
                 let label = label(input)?;
                 let target = parse_drive_target(input)?;
@@ -566,52 +523,107 @@ impl Parse for Item {
                 input.parse::<Token![;]>()?;
                 Item::Torque(TorqueDef { keyword: kw, label, body, value })
             }
-            k if AXIS_FORCE_KINDS.contains(&k) => {
-                let label = label(input)?;
-                let i: Ident = input.call(Ident::parse_any)?;
-                let j = if input.peek(Token![~]) {
-                    input.parse::<Token![~]>()?;
-                    Some(input.call(Ident::parse_any)?)
-                } else {
-                    None
-                };
-                let options = parse_fields(input)?;
-                input.parse::<Token![;]>()?;
-                Item::AxisForce(AxisForceDef { kind: kw, label, i, j, options })
-            }
-            k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => {
-                let label = label(input)?;
-                let i: Attach = input.parse()?;
-                if !input.peek(Token![~]) {
-                    let what = if POINT_FORCE_KINDS.contains(&k) { "acts between" } else { "joins" };
-                    return Err(input.error(format!(
-                        "expected `~` and a second attachment: a {k} {what} two bodies, `{k} a[x, y] ~ b.P` (the ground is one: `~ ground[x, y]`)"
-                    )));
-                }
-                input.parse::<Token![~]>()?;
-                let j: Attach = input.parse()?;
-                let options = if input.peek(syn::token::Brace) { parse_fields(input)? } else { Vec::new() };
-                input.parse::<Token![;]>()?;
-                let def = JointDef { kind: kw, label, i, j, options };
-                if POINT_FORCE_KINDS.contains(&k) {
-                    Item::PointForce(def)
-                } else {
-                    Item::Joint(def)
-                }
-            }
-            other => {
-                let hint = match SYNONYMS.iter().find(|(word, _)| *word == other) {
-                    Some((_, ours)) => format!(" (the same joint is called `{ours}` here)"),
-                    None => closest(other, STATEMENTS, &[]),
-                };
-                return Err(syn::Error::new(
-                    kw.span(),
-                    format!("unknown statement: expected a statement such as `body`, `revolute` or `spring`, found `{other}`{hint}"),
-                ));
-            }
+            k if AXIS_FORCE_KINDS.contains(&k) => parse_axis_force(kw, input)?,
+            k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => parse_attached(kw, k, input)?,
+            other => return Err(unknown_statement(&kw, other)),
         };
         Ok(item)
     }
+}
+
+/// `params { name: default, ... }`.
+fn parse_params(input: ParseStream) -> syn::Result<Item> {
+    let content;
+    braced!(content in input);
+    let mut params = Vec::new();
+    while !content.is_empty() {
+        let name: Ident = content.parse()?;
+        content.parse::<Token![:]>()?;
+        let value: Expr = content.parse()?;
+        params.push((name, value));
+        if !content.is_empty() {
+            no_unit_after_value(&content)?;
+            content.parse::<Token![,]>()?;
+        }
+    }
+    eat_optional_semi(input)?;
+    Ok(Item::Params(params))
+}
+
+/// `point body.name = [...];` or `vector body.name = [...];`.
+fn parse_named_vector(kw: Ident, input: ParseStream) -> syn::Result<Item> {
+    let body: Ident = input.call(Ident::parse_any)?;
+    input.parse::<Token![.]>()?;
+    let name: Ident = input.parse()?;
+    input.parse::<Token![=]>()?;
+    let value: VecLit = input.parse()?;
+    input.parse::<Token![;]>()?;
+    let nv = NamedVector { body, name, value };
+    Ok(if kw == "point" { Item::Point(nv) } else { Item::Vector(nv) })
+}
+
+/// `fix label: body.coordinate [= value];`.
+fn parse_fix(kw: Ident, input: ParseStream) -> syn::Result<Item> {
+    let label = label(input)?;
+    let body: Ident = input.call(Ident::parse_any)?;
+    input.parse::<Token![.]>()?;
+    let coordinate: Ident = input.parse()?;
+    let value = if input.peek(Token![=]) {
+        input.parse::<Token![=]>()?;
+        Some(input.parse()?)
+    } else {
+        None
+    };
+    input.parse::<Token![;]>()?;
+    Ok(Item::Fix(FixDef { keyword: kw, label, body, coordinate, value }))
+}
+
+/// A force element along an axis or about it, on one body or between two:
+/// `rotational_spring a ~ b { ... };`.
+fn parse_axis_force(kw: Ident, input: ParseStream) -> syn::Result<Item> {
+    let label = label(input)?;
+    let i: Ident = input.call(Ident::parse_any)?;
+    let j = if input.peek(Token![~]) {
+        input.parse::<Token![~]>()?;
+        Some(input.call(Ident::parse_any)?)
+    } else {
+        None
+    };
+    let options = parse_fields(input)?;
+    input.parse::<Token![;]>()?;
+    Ok(Item::AxisForce(AxisForceDef { kind: kw, label, i, j, options }))
+}
+
+/// A joint or a point-to-point force element between two attachments,
+/// `kind a[x, y] ~ b.P { ... };`.
+fn parse_attached(kw: Ident, k: &str, input: ParseStream) -> syn::Result<Item> {
+    let label = label(input)?;
+    let i: Attach = input.parse()?;
+    if !input.peek(Token![~]) {
+        let what = if POINT_FORCE_KINDS.contains(&k) { "acts between" } else { "joins" };
+        return Err(input.error(format!(
+            "expected `~` and a second attachment: a {k} {what} two bodies, `{k} a[x, y] ~ b.P` (the ground is one: `~ ground[x, y]`)"
+        )));
+    }
+    input.parse::<Token![~]>()?;
+    let j: Attach = input.parse()?;
+    let options = if input.peek(syn::token::Brace) { parse_fields(input)? } else { Vec::new() };
+    input.parse::<Token![;]>()?;
+    let def = JointDef { kind: kw, label, i, j, options };
+    Ok(if POINT_FORCE_KINDS.contains(&k) { Item::PointForce(def) } else { Item::Joint(def) })
+}
+
+/// A word that starts no statement, with a hint: our name for another program's, or the
+/// closest keyword.
+fn unknown_statement(kw: &Ident, other: &str) -> syn::Error {
+    let hint = match SYNONYMS.iter().find(|(word, _)| *word == other) {
+        Some((_, ours)) => format!(" (the same joint is called `{ours}` here)"),
+        None => closest(other, STATEMENTS, &[]),
+    };
+    syn::Error::new(
+        kw.span(),
+        format!("unknown statement: expected a statement such as `body`, `revolute` or `spring`, found `{other}`{hint}"),
+    )
 }
 
 /// Other programs' and textbooks' names of the joints and elements the DSL names otherwise.
