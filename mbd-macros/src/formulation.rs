@@ -119,8 +119,8 @@ pub fn formulate(model: &Model) -> Formulation {
     let mut b = Builder::new(model);
     let (nq, nv) = (b.nq(), b.nv());
     let (phi, row_names, row_units) = constraint_rows(&mut b);
-    let MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse } = mass_and_start(&mut b);
-    let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b);
+    let (MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }, inertia_forces) = mass_and_start(&mut b);
+    let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b, inertia_forces);
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
     let mut memo_v = HashMap::new();
@@ -208,16 +208,14 @@ struct MassAndStart {
     mass_inverse: Vec<(usize, usize, Id)>,
 }
 
-/// Each body's initial pose and velocity and its mass and inertia, body by body.
-fn mass_and_start(b: &mut Builder) -> MassAndStart {
+/// Each body's initial pose and velocity, body by body; then M and the inertia forces from the
+/// bodies' twists ([`inertia`]).
+fn mass_and_start(b: &mut Builder) -> (MassAndStart, Vec<Id>) {
     let model = b.model;
     let (nq, nv) = (b.nq(), b.nv());
     let mut q0 = Vec::with_capacity(nq);
     let mut qd0 = Vec::with_capacity(nv);
-    let mut mass = Vec::with_capacity(nv);
-    let mut mass_coupling = Vec::new();
-    let mut mass_inverse = Vec::new();
-    for (k, body) in model.bodies.iter().enumerate() {
+    for body in &model.bodies {
         if model.space == crate::model::Space::Planar {
             for c in 0..3 {
                 q0.push(b.expr(&body.q0[c]));
@@ -227,37 +225,139 @@ fn mass_and_start(b: &mut Builder) -> MassAndStart {
             q0.extend(body.q0.iter().map(|e| b.expr(e)));
             qd0.extend(body.v0.iter().map(|e| b.expr(e)));
         }
+    }
+    let (entries, blocks, inertia_forces) = inertia(b);
+    let zero = b.g.num(0.0);
+    let mass: Vec<Id> = (0..nv).map(|i| entries.get(&(i, i)).copied().unwrap_or(zero)).collect();
+    let mass_coupling: Vec<(usize, usize, Id)> = entries.iter().filter(|((r, c), _)| r != c).map(|(&(r, c), &e)| (r, c, e)).collect();
+    // M⁻¹ of each block that products of inertia couple (the Schur complement's solve reads
+    // 1/M_cc everywhere else).
+    let mut mass_inverse = Vec::new();
+    for block in blocks {
+        if !mass_coupling.iter().any(|&(r, c, _)| block.contains(&r) && block.contains(&c)) {
+            continue;
+        }
+        let [r0, r1, r2] = block[..] else { unreachable!("a body's angular velocity has three components in space") };
+        let at = |r: usize, c: usize| entries.get(&(r, c)).copied().unwrap_or(zero);
+        let j = [r0, r1, r2].map(|r| [r0, r1, r2].map(|c| at(r, c)));
+        for (r, c, e) in inverse3(b, j) {
+            mass_inverse.push((block[r], block[c], e));
+        }
+    }
+    (MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }, inertia_forces)
+}
+
+/// M's structural non-zeros by (row, column); the velocities each spatial body's angular
+/// velocity reaches (the blocks products of inertia may couple); and the inertia forces.
+type InertiaTerms = (std::collections::BTreeMap<(usize, usize), Id>, Vec<Vec<usize>>, Vec<Id>);
+
+/// The mass matrix and the inertia forces by virtual power, from each body's twist
+/// (`Builder::twist`) — the velocity ṙ of its centre of mass and its angular velocity ω′ in its
+/// own frame, both linear in v, ṙ = L(q) v and ω′ = W(q) v:
+///
+/// M = Σ_b m_b LᵀL + WᵀJ′_b W, and the inertia part of h,
+/// −Σ_b Lᵀ m_b (L̇ v) + Wᵀ (J′_b (Ẇ v) + ω′ × J′_b ω′),
+///
+/// with L̇ v and Ẇ v the twist's rates along q̇ = B(q) v at constant v. In body coordinates L
+/// and W pick the body's own velocities: M is block-diagonal and constant, L̇ = Ẇ = 0, and h
+/// has the gyroscopic term alone. A formulation whose twists depend on q (joint coordinates)
+/// gets M(q) and its velocity-quadratic terms from the same lines.
+fn inertia(b: &mut Builder) -> InertiaTerms {
+    let model = b.model;
+    let nv = b.nv();
+    let zero = b.g.num(0.0);
+    let mut entries: std::collections::BTreeMap<(usize, usize), Id> = std::collections::BTreeMap::new();
+    let mut blocks = Vec::new();
+    let mut h = vec![zero; nv];
+    let rates = b.coordinate_rates();
+    let seed = |v: Var| match v {
+        Var::Q(i) => Some(rates[i as usize]),
+        _ => None,
+    };
+    let mut memo = HashMap::new();
+    for (k, body) in model.bodies.iter().enumerate() {
+        let (linear, angular) = b.twist(crate::model::BodyRef::Body(k));
         let m = b.expr(&body.mass);
-        match &body.inertia {
-            Inertia::Planar(j) => {
-                let j = b.expr(j);
-                mass.extend([m, m, j]);
+        let j: Vec<Vec<Id>> = match &body.inertia {
+            Inertia::Planar(j) => vec![vec![b.expr(j)]],
+            Inertia::Tensor(t) => t.iter().map(|row| row.iter().map(|e| b.expr(e)).collect()).collect(),
+        };
+        let partials = |b: &mut Builder, x: &[Id]| -> Vec<Vec<(usize, Id)>> { x.iter().map(|&x| velocity_partials(&mut b.g, x)).collect() };
+        let (dl, dw) = (partials(b, &linear), partials(b, &angular));
+        let mut add = |b: &mut Builder, r: usize, c: usize, term: Id| {
+            let sum = match entries.get(&(r, c)) {
+                Some(&before) => b.g.add(before, term),
+                None => term,
+            };
+            entries.insert((r, c), sum);
+        };
+        for row in &dl {
+            for &(r, dr) in row {
+                for &(c, dc) in row {
+                    let t = b.g.mul(m, dr);
+                    let term = b.g.mul(t, dc);
+                    add(b, r, c, term);
+                }
             }
-            Inertia::Tensor(t) => {
-                mass.extend([m, m, m]);
-                let base = 6 * k + 3;
-                for (r, row) in t.iter().enumerate() {
-                    mass.push(b.expr(&row[r]));
+        }
+        for (a, row_a) in dw.iter().enumerate() {
+            for (e, row_e) in dw.iter().enumerate() {
+                if b.g.is_zero(j[a][e]) {
+                    continue;
                 }
-                let before = mass_coupling.len();
-                for (r, row) in t.iter().enumerate() {
-                    for (c, entry) in row.iter().enumerate() {
-                        let e = b.expr(entry);
-                        if r != c && !b.g.is_zero(e) {
-                            mass_coupling.push((base + r, base + c, e));
-                        }
-                    }
-                }
-                if mass_coupling.len() > before {
-                    let j = t.clone().map(|row| row.map(|e| b.expr(&e)));
-                    for (r, c, e) in inverse3(b, j) {
-                        mass_inverse.push((base + r, base + c, e));
+                for &(r, dr) in row_a {
+                    for &(c, dc) in row_e {
+                        let t = b.g.mul(dr, j[a][e]);
+                        let term = b.g.mul(t, dc);
+                        add(b, r, c, term);
                     }
                 }
             }
         }
+        if angular.len() == 3 {
+            let mut block: Vec<usize> = dw.iter().flatten().map(|&(i, _)| i).collect();
+            block.sort_unstable();
+            block.dedup();
+            blocks.push(block);
+        }
+        // The rates of the twist at constant v, then the inertia forces they and the spin give.
+        let mut rate = |b: &mut Builder, x: &[Id]| -> Vec<Id> { x.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect() };
+        let (linear_rate, angular_rate) = (rate(b, &linear), rate(b, &angular));
+        let force: Vec<Id> = linear_rate.iter().map(|&a| b.g.mul(m, a)).collect();
+        let mut moment: Vec<Id> = j.iter().map(|row| b.dot(row, &angular_rate)).collect();
+        if angular.len() == 3 {
+            let w = [angular[0], angular[1], angular[2]];
+            let jw: [Id; 3] = std::array::from_fn(|r| b.dot(&j[r], &w));
+            let wjw = b.cross(w, jw);
+            moment = moment.iter().zip(wjw).map(|(&m, g)| b.g.add(m, g)).collect();
+        }
+        for (rows, loads) in [(&dl, &force), (&dw, &moment)] {
+            for (row, &load) in rows.iter().zip(loads) {
+                if b.g.is_zero(load) {
+                    continue;
+                }
+                for &(i, d) in row {
+                    let term = b.g.mul(d, load);
+                    h[i] = b.g.sub(h[i], term);
+                }
+            }
+        }
     }
-    MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }
+    (entries, blocks, h)
+}
+
+/// ∂x/∂v_i for each velocity v_i that x depends on.
+fn velocity_partials(g: &mut Graph, x: Id) -> Vec<(usize, Id)> {
+    let mut cols = BTreeSet::new();
+    collect_vars(g, x, &mut cols, |v| if let Var::Qd(i) = v { Some(i) } else { None });
+    let mut out = Vec::new();
+    for i in cols {
+        let d = g.partial(x, Var::Qd(i));
+        if !g.is_zero(d) {
+            out.push((i as usize, d));
+        }
+    }
+    out
 }
 
 /// The generalized forces (h, friction, V and the switching functions), and with each element
@@ -272,15 +372,13 @@ struct Forces {
     alone_forces: Vec<ForceTerms>,
 }
 
-/// h by virtual power: the gyroscopic terms (spatial), gravity and each force element.
-fn forces(b: &mut Builder) -> Forces {
+/// h by virtual power: the inertia forces (`inertia`: in body coordinates the gyroscopic terms
+/// of spatial bodies), gravity and each force element.
+fn forces(b: &mut Builder, inertia_forces: Vec<Id>) -> Forces {
     let model = b.model;
     let nv = b.nv();
     let zero = b.g.num(0.0);
-    let mut out = Generalized { h: vec![zero; nv], friction: vec![zero; nv], potential: zero, switches: Vec::new() };
-    if b.coordinates == Coordinates::SpatialBody {
-        gyroscopic(b, &mut out.h);
-    }
+    let mut out = Generalized { h: inertia_forces, friction: vec![zero; nv], potential: zero, switches: Vec::new() };
     let base_h = out.h.clone();
     if let Some(g) = &model.gravity {
         gravity::apply(b, g, &mut out);
@@ -488,22 +586,6 @@ fn inverse3(b: &mut Builder, j: [[Id; 3]; 3]) -> Vec<(usize, usize, Id)> {
         }
     }
     out
-}
-
-/// The gyroscopic term of each spatial body, −ω′ × J′ω′, into h's ω′ rows (Newton–Euler).
-fn gyroscopic(b: &mut Builder, h: &mut [Id]) {
-    for (k, body) in b.model.bodies.iter().enumerate() {
-        let Inertia::Tensor(t) = &body.inertia else { continue };
-        let w = b.angular_velocity(crate::model::BodyRef::Body(k));
-        let jw: [Id; 3] = std::array::from_fn(|r| {
-            let row = [0, 1, 2].map(|c| b.expr(&t[r][c]));
-            b.dot(&row, &w)
-        });
-        let wjw = b.cross(w, jw);
-        for a in 0..3 {
-            h[6 * k + 3 + a] = b.g.sub(h[6 * k + 3 + a], wjw[a]);
-        }
-    }
 }
 
 /// The structural non-zeros of ∂rows/∂v, v ranging over the variables `pick` selects.

@@ -145,6 +145,19 @@ impl<'m> Builder<'m> {
         }
     }
 
+    /// A body's twist, linear in v: the velocity of its centre of mass (global: x, y in the
+    /// plane, x, y, z in space) and its angular velocity in its own frame (φ̇ in the plane, ω′ in
+    /// space). The mass matrix and the inertia forces are derived from it
+    /// (`formulation::inertia`), so a formulation gives its bodies' twists and gets M(q) and the
+    /// velocity-quadratic terms of h.
+    pub fn twist(&mut self, b: BodyRef) -> (Vec<Id>, Vec<Id>) {
+        let (linear, angular): (&[Vel], &[Vel]) = match self.coordinates {
+            Coordinates::PlanarBody => (&[Vel::Vx, Vel::Vy], &[Vel::Omega]),
+            Coordinates::SpatialBody => (&[Vel::Vx, Vel::Vy, Vel::Vz], &[Vel::Wx, Vel::Wy, Vel::Wz]),
+        };
+        (linear.iter().map(|&c| self.velocity(b, c)).collect(), angular.iter().map(|&c| self.velocity(b, c)).collect())
+    }
+
     /// q̇_i = (B(q) v)_i: the velocity map, one node per coordinate.
     pub fn coordinate_rates(&mut self) -> Vec<Id> {
         match self.coordinates {
@@ -524,10 +537,5 @@ impl Builder<'_> {
             let q = self.g.mul(a[j], b[i]);
             self.g.sub(p, q)
         })
-    }
-
-    /// A spatial body's angular velocity ω′ (body frame).
-    pub fn angular_velocity(&mut self, b: BodyRef) -> [Id; 3] {
-        [Vel::Wx, Vel::Wy, Vel::Wz].map(|c| self.velocity(b, c))
     }
 }
