@@ -46,7 +46,8 @@ snapshot() {
             -e "/^mbd[-a-z]* = \{.*path/s/version = \"$v\"/version = \"$v-ab$1\"/"
         echo "$2" > "$dir/.rev"
     fi
-    if [ -f "$dir/mbd-runtime/src/workspace.rs" ]; then echo "--features ab-$1/workspace"
+    if grep -qs "const NS: usize" "$dir/mbd-runtime/src/workspace.rs"; then echo "--features ab-$1/storage"
+    elif [ -f "$dir/mbd-runtime/src/workspace.rs" ]; then echo "--features ab-$1/workspace"
     elif grep -rqs "const NV: usize" "$dir/mbd-runtime/src"; then echo "--features ab-$1/nv"; fi
 }
 features=""

@@ -75,33 +75,65 @@ macro_rules! dopri_ty {
 }
 /// Any integrator of a mechanism `M` (a stand-in for `mbd::Integrator`, whose parameters differ
 /// between the APIs; N = NV + NC is used only with `workspace`).
-#[cfg(feature = "workspace")]
-pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>: mbd::Integrator<f64, M, NQ, NV, NC, N> {}
-#[cfg(feature = "workspace")]
-impl<I: mbd::Integrator<f64, M, NQ, NV, NC, N>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Step<M, NQ, NV, NC, N>
-    for I
+#[cfg(feature = "storage")]
+pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>:
+    mbd::Integrator<f64, M, NQ, NV, NC, N, NS>
+{
+}
+#[cfg(feature = "storage")]
+impl<I: mbd::Integrator<f64, M, NQ, NV, NC, N, NS>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Step<M, NQ, NV, NC, N, NS> for I
+{
+}
+#[cfg(all(feature = "workspace", not(feature = "storage")))]
+pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>: mbd::Integrator<f64, M, NQ, NV, NC, N> {}
+#[cfg(all(feature = "workspace", not(feature = "storage")))]
+impl<I: mbd::Integrator<f64, M, NQ, NV, NC, N>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Step<M, NQ, NV, NC, N, NS> for I
 {
 }
 /// Any integrator of a mechanism `M` (a stand-in for `mbd::Integrator`, whose parameters differ
 /// between the APIs; N = NV + NC is used only with `workspace`).
 #[cfg(all(feature = "nv", not(feature = "workspace")))]
-pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>: mbd::Integrator<f64, M, NQ, NV, NC> {}
+pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>: mbd::Integrator<f64, M, NQ, NV, NC> {}
 #[cfg(all(feature = "nv", not(feature = "workspace")))]
-impl<I: mbd::Integrator<f64, M, NQ, NV, NC>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Step<M, NQ, NV, NC, N>
-    for I
+impl<I: mbd::Integrator<f64, M, NQ, NV, NC>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Step<M, NQ, NV, NC, N, NS> for I
 {
 }
 /// Any integrator of a mechanism `M` (a stand-in for `mbd::Integrator`, whose parameters differ
 /// between the APIs; N = NV + NC is used only with `workspace`).
 #[cfg(not(feature = "nv"))]
-pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>: mbd::Integrator<f64, M, NQ, NC> {}
+pub trait Step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>: mbd::Integrator<f64, M, NQ, NC> {}
 #[cfg(not(feature = "nv"))]
-impl<I: mbd::Integrator<f64, M, NQ, NC>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize> Step<M, NQ, NV, NC, N>
-    for I
+impl<I: mbd::Integrator<f64, M, NQ, NC>, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+    Step<M, NQ, NV, NC, N, NS> for I
 {
 }
 /// The work space of a mechanism with NV velocities and NC constraints, N = NV + NC: what every
 /// solver takes with `workspace`; `()` without (the solvers then keep it themselves).
+#[cfg(feature = "storage")]
+macro_rules! ws_ty {
+    ($nv:expr, $nc:expr, $n:expr, $ns:expr) => { mbd::Workspace<f64, { $nv }, { $nc }, { $n }, { $ns }> };
+}
+#[cfg(all(feature = "workspace", not(feature = "storage")))]
+macro_rules! ws_ty {
+    ($nv:expr, $nc:expr, $n:expr, $ns:expr) => { mbd::Workspace<f64, { $nv }, { $nc }, { $n }> };
+}
+#[cfg(not(feature = "workspace"))]
+macro_rules! ws_ty {
+    ($nv:expr, $nc:expr, $n:expr, $ns:expr) => { () };
+}
+/// The planned Newton matrix's storage of mechanism `$ty` where the work space holds it (the
+/// runtime after 2026-11-26), 0 before.
+#[cfg(feature = "storage")]
+macro_rules! ns {
+    ($ty:ty) => { <$ty>::NEWTON_STORAGE };
+}
+#[cfg(not(feature = "storage"))]
+macro_rules! ns {
+    ($ty:ty) => { 0 };
+}
 #[cfg(feature = "workspace")]
 pub type Ws<const NV: usize, const NC: usize, const N: usize> = mbd::Workspace<f64, NV, NC, N>;
 /// The work space of a mechanism with NV velocities and NC constraints, N = NV + NC: what every
@@ -185,7 +217,8 @@ macro_rules! kinematic_cases {
             const NC: usize = <M>::NC;
             const NNZ: usize = <M>::NNZ;
             const NV: usize = nv!(M);
-            type W = Ws<NV, NC, { NV + NC }>;
+            const NS: usize = ns!(M);
+            type W = ws_ty!(NV, NC, NV + NC, NS);
             type Q = [f64; NQ];
             type C = [f64; NC];
 
@@ -305,7 +338,8 @@ macro_rules! dynamic_cases {
             const NV: usize = nv!(M);
             const NC: usize = <M>::NC;
             const N: usize = NV + NC;
-            type W = Ws<NV, NC, N>;
+            const NS: usize = ns!(M);
+            type W = ws_ty!(NV, NC, N, NS);
             type P = point_ty!(NQ, NV, NC);
 
             #[inline(never)]
@@ -322,7 +356,7 @@ macro_rules! dynamic_cases {
                 ws_call!(dopri, step(system, ws, p, f64::INFINITY, next)).expect("step");
             }
             #[inline(never)]
-            fn alpha_step<I: Step<M, NQ, NV, NC, N>>(alpha: &mut I, system: &System<'_, M, f64>, ws: &mut W, p: &P, next: &mut P) {
+            fn alpha_step<I: Step<M, NQ, NV, NC, N, NS>>(alpha: &mut I, system: &System<'_, M, f64>, ws: &mut W, p: &P, next: &mut P) {
                 ws_call!(alpha, step(system, ws, p, f64::INFINITY, next)).expect("step");
             }
 
