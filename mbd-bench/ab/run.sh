@@ -46,8 +46,10 @@ snapshot() {
             -e "/^mbd[-a-z]* = \{.*path/s/version = \"$v\"/version = \"$v-ab$1\"/"
         echo "$2" > "$dir/.rev"
     fi
-    if grep -qs "const NS: usize" "$dir/mbd-runtime/src/workspace.rs"; then echo "--features ab-$1/storage"
-    elif [ -f "$dir/mbd-runtime/src/workspace.rs" ]; then echo "--features ab-$1/workspace"
+    local ws="$dir/mbd-runtime/src/workspace.rs"
+    [ -f "$ws" ] || ws="$dir/mbd-runtime/src/model/workspace.rs"  # 2026-11-29 and later
+    if grep -qs "const NS: usize" "$ws"; then echo "--features ab-$1/storage"
+    elif [ -f "$ws" ]; then echo "--features ab-$1/workspace"
     elif grep -rqs "const NV: usize" "$dir/mbd-runtime/src"; then echo "--features ab-$1/nv"; fi
 }
 features=""

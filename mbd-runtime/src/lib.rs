@@ -12,77 +12,71 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
-#[cfg(feature = "animation")]
-mod animation;
-mod body;
-#[cfg(feature = "std")]
-mod csv;
-#[cfg(feature = "animation")]
-mod drawing;
-mod dynamics;
-mod error;
-mod finite_differences;
+// The modules by layer, each built on those above it in this list (a test keeps it so:
+// `layering` below): the scalar and the options pattern; linear algebra; the model (the traits
+// generated mechanisms implement, bodies, work space); the analyses at a state; the
+// integrators; output.
 mod integrate;
-mod inverse;
-mod kinematics;
 pub mod linalg;
-#[cfg(feature = "alloc")]
-pub mod linearize;
-mod mechanism;
-mod named;
+mod model;
 mod options;
-mod partition;
-mod planar;
-#[cfg(feature = "plots")]
-mod plot;
-#[cfg(feature = "progress")]
-mod progress;
+mod output;
 mod real;
-pub mod redundancy;
-pub mod sparse;
-pub mod statics;
+mod solvers;
 #[cfg(test)]
 mod test_support;
-pub mod workspace;
 
-#[cfg(feature = "animation")]
-pub use animation::{Animation, AnimationError, DEFAULT_SVG_FRAMES, DEFAULT_SVG_SHAPES};
-pub use body::{BodyFrames, BodyPose, BodyTwist};
-#[cfg(feature = "std")]
-pub use csv::CsvWriter;
-pub use dynamics::{kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE};
-pub use error::{KinematicError, NonFiniteQuantity};
-pub use finite_differences::FiniteDifferences;
+pub use linalg::sparse;
+pub use model::workspace;
+#[cfg(feature = "alloc")]
+pub use solvers::linearize;
+pub use solvers::{redundancy, statics};
+
+pub use integrate::partition::Partition;
 pub use integrate::{
-    project, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit, Flow, GeneralizedAlpha,
+    project, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit, GeneralizedAlpha,
     GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions, Statistics,
     System,
 };
-pub use inverse::{joint_reaction, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench};
-pub use kinematics::{
+pub use linalg::sparse::SparsePattern;
+pub use model::body::{BodyFrames, BodyPose, BodyTwist};
+pub use model::dynamics::{
+    kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
+};
+pub use model::mechanism::{
+    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix,
+    OpCount, PositionStep, VelocityInfo, VelocityKind,
+};
+pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
+pub use model::planar::{point_acceleration, point_position, point_velocity};
+pub use model::workspace::Workspace;
+/// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
+/// points come out as its types).
+pub use nalgebra;
+#[cfg(feature = "animation")]
+pub use output::animation::{Animation, AnimationError, DEFAULT_SVG_FRAMES, DEFAULT_SVG_SHAPES};
+#[cfg(feature = "std")]
+pub use output::csv::CsvWriter;
+#[cfg(feature = "plots")]
+pub use output::plot::{Plot, PlotError};
+#[cfg(feature = "progress")]
+pub use output::progress::Progress;
+pub use real::Real;
+pub use solvers::error::{KinematicError, NonFiniteQuantity};
+pub use solvers::finite_differences::FiniteDifferences;
+pub use solvers::flow::Flow;
+pub use solvers::inverse::{joint_reaction, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench};
+pub use solvers::kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_MAX_STEP, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_RANK_TOLERANCE, DEFAULT_REUSE_SAFETY, DEFAULT_TOLERANCE, RESOLUTION_ULPS,
 };
 #[cfg(feature = "alloc")]
-pub use linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
-pub use mechanism::{
-    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix,
-    OpCount, PositionStep, VelocityInfo, VelocityKind,
+pub use solvers::linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
+pub use solvers::redundancy::Redundancy;
+pub use solvers::statics::{
+    Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS, DEFAULT_STATIC_INITIAL_STEP,
+    DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE, DEFAULT_STATIC_TOLERANCE,
 };
-/// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
-/// points come out as its types).
-pub use nalgebra;
-pub use named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
-pub use partition::Partition;
-pub use planar::{point_acceleration, point_position, point_velocity};
-#[cfg(feature = "plots")]
-pub use plot::{Plot, PlotError};
-#[cfg(feature = "progress")]
-pub use progress::Progress;
-pub use real::Real;
-pub use redundancy::Redundancy;
-pub use sparse::SparsePattern;
-pub use workspace::Workspace;
 
 /// Its items when the runtime has `std`, nothing without (the generated code's `workspace()`,
 /// which boxes).
@@ -100,7 +94,80 @@ macro_rules! __if_std {
 macro_rules! __if_std {
     ($($tokens:tt)*) => {};
 }
-pub use statics::{
-    Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS, DEFAULT_STATIC_INITIAL_STEP,
-    DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE, DEFAULT_STATIC_TOLERANCE,
-};
+
+/// The layers of `mod` declarations above, as their order says: every module imports only from
+/// its own layer and the layers above it, by the module's path (`crate::model::body::BodyPose`),
+/// never through this file's re-exports (`crate::BodyPose`) — so the folders show the
+/// architecture and no cycle runs between them. Doc comments, which name items by their public
+/// paths, and `$crate` in macros are not imports.
+#[cfg(test)]
+mod layering {
+    const LAYERS: [&[&str]; 6] = [&["options", "real"], &["linalg"], &["model"], &["solvers"], &["integrate"], &["output"]];
+
+    fn layer(module: &str) -> Option<usize> {
+        LAYERS.iter().position(|l| l.contains(&module))
+    }
+
+    /// Every `crate::name` in the code of `text` (comments left out).
+    fn crate_paths(text: &str) -> Vec<String> {
+        let mut out = Vec::new();
+        for line in text.lines() {
+            let code = line.split("//").next().unwrap_or("");
+            let mut rest = code;
+            while let Some(at) = rest.find("crate::") {
+                let before = rest[..at].chars().next_back();
+                let after = &rest[at + "crate::".len()..];
+                let name: String = after.chars().take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '*' || *c == '{').collect();
+                if before != Some('$') && !before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+                    out.push(name);
+                }
+                rest = after;
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn each_module_imports_from_its_own_layer_and_those_above_it() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let mut files = vec![root.clone()];
+        let mut problems = Vec::new();
+        let mut checked = 0;
+        while let Some(path) = files.pop() {
+            if path.is_dir() {
+                files.extend(std::fs::read_dir(&path).expect("the sources").map(|e| e.expect("an entry").path()));
+                continue;
+            }
+            let relative = path.strip_prefix(&root).expect("under src").to_string_lossy().replace('\\', "/");
+            let top = relative.split('/').next().unwrap_or("").trim_end_matches(".rs").to_string();
+            let Some(own) = layer(&top) else {
+                // lib.rs (the re-exports) and the test doubles.
+                assert!(["lib", "test_support"].contains(&top.as_str()), "{relative}: a module in no layer; add it to LAYERS");
+                continue;
+            };
+            checked += 1;
+            let text = std::fs::read_to_string(&path).expect("a source");
+            for name in crate_paths(&text) {
+                // The API test reads the public surface as a user does.
+                if relative == "options.rs" && name == "*" || name == "test_support" {
+                    continue;
+                }
+                match layer(&name) {
+                    Some(l) if l <= own => {}
+                    Some(_) => problems.push(format!("{relative} imports `crate::{name}`, a layer below its own")),
+                    None => problems.push(format!("{relative} imports `crate::{name}` through lib.rs; use the module's path")),
+                }
+            }
+        }
+        assert!(checked > 30, "only {checked} files checked");
+        assert!(problems.is_empty(), "{}", problems.join("\n"));
+    }
+
+    /// The check sees a path through lib.rs and one into a lower layer, and not a `$crate` or a
+    /// comment.
+    #[test]
+    fn the_check_reads_paths_not_comments() {
+        let text = "use crate::Mechanism;\nlet x = crate::output::csv::f(); // crate::Real\n$crate::Real\n";
+        assert_eq!(crate_paths(text), ["Mechanism", "output"]);
+    }
+}

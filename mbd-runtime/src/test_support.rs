@@ -17,8 +17,9 @@
 //! (0, 0, c cos Ωt + s sin Ωt), ν = Ω (c cos Ωt + s sin Ωt) and γ = (ω − Ω)² (s cos Ωt − c sin Ωt).
 
 use crate::linalg::{lu_factor, lu_solve_in_place};
-use crate::{ConstraintForces, Dynamics, DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, OpCount};
-use crate::{CoordinateInfo, CoordinateKind, VelocityInfo, VelocityKind};
+use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
+use crate::model::mechanism::{ConstraintForces, Dynamics, Kinematics, Mechanism, OpCount};
+use crate::model::mechanism::{CoordinateInfo, CoordinateKind, VelocityInfo, VelocityKind};
 
 /// Distance from the pin to the centre of mass (m).
 pub(crate) const LENGTH: f64 = 0.5;
@@ -348,9 +349,9 @@ impl Kinematics<f64, 4, 3, 3> for DrivenUnitPendulum {
 }
 
 /// The Newton matrix dense, in the order v̇ then λ (every multiplier after the velocities).
-impl crate::NewtonMatrix<f64, 4, 3, 2> for UnitPendulum {
+impl crate::model::mechanism::NewtonMatrix<f64, 4, 3, 2> for UnitPendulum {
     type NewtonStorage = [f64; 4 + 25];
-    const NEWTON_PATTERN: crate::SparsePattern = crate::SparsePattern {
+    const NEWTON_PATTERN: crate::linalg::sparse::SparsePattern = crate::linalg::sparse::SparsePattern {
         unknown: &[0, 1, 2, 3, 4],
         position: &[0, 1, 2, 3, 4],
         row_start: &[0, 5, 10, 15, 20, 25],

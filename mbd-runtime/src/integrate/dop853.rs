@@ -18,7 +18,9 @@
 
 use super::dopri5::{initial_step, MinExt};
 use super::{check_step, hermite_state, non_finite, Integrator, Point, SimulationError, System};
-use crate::{ForwardDynamics, Real, Workspace};
+use crate::model::dynamics::ForwardDynamics;
+use crate::model::workspace::Workspace;
+use crate::real::Real;
 
 crate::options::options! {
     /// Options of [`Dop853`], in the scalar type `T` of the mechanism (default `f64`): the same

@@ -10,7 +10,9 @@
 //! y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))).
 
 use super::{check_step, non_finite, Integrator, Point, SimulationError, System};
-use crate::{ForwardDynamics, Real, Workspace};
+use crate::model::dynamics::ForwardDynamics;
+use crate::model::workspace::Workspace;
+use crate::real::Real;
 
 crate::options::options! {
     /// Options of [`Dopri5`], in the scalar type `T` of the mechanism (default `f64`). Build

@@ -7,9 +7,12 @@
 //! ∂(Dᵀλ)/∂q·B (the equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
-use crate::kinematics::name;
 use crate::linalg::LinalgError;
-use crate::{DynamicsError, Kinematics, Mechanism, NewtonMatrix, Real, Workspace};
+use crate::model::dynamics::DynamicsError;
+use crate::model::mechanism::{Kinematics, Mechanism, NewtonMatrix};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::kinematics::name;
 
 crate::options::options! {
     /// Options of [`GeneralizedAlpha`], in the scalar type `T` of the mechanism (default `f64`).
@@ -220,13 +223,13 @@ where
         if N != NV + NC {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
-        let Some([s, _, _]) = crate::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
             return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
         };
         let mut o = self.options;
         // Φ and the position correction to what the scalar type resolves at q (f32: 64 ε ≈ 7.6e-6
         // at 1 m), so the default 1e-10 converges in single precision.
-        let resolution = crate::kinematics::resolution(&from.q);
+        let resolution = crate::solvers::kinematics::resolution(&from.q);
         o.tolerance = o.tolerance.max(resolution);
         if !(o.step > T::ZERO) {
             return Err(SimulationError::InvalidOptions { what: "GeneralizedAlphaOptions::step must be positive" });
@@ -471,7 +474,7 @@ where
         // A NaN or infinity in a force: name the force element; in Φ or the state: the row
         // it surfaced in.
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-            return Err(match crate::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
+            return Err(match crate::model::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
                 force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
                 _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
             });

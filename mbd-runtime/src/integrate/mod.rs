@@ -34,6 +34,7 @@
 mod dop853;
 mod dopri5;
 mod generalized_alpha;
+pub(crate) mod partition;
 mod rk4;
 mod simulate;
 #[cfg(test)]
@@ -43,12 +44,15 @@ pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::{Rk4, Rk4Options};
-pub use simulate::{project, Correction, Event, EventHit, Flow, Simulation, SimulationOptions, Statistics};
+pub use simulate::{project, Correction, Event, EventHit, Simulation, SimulationOptions, Statistics};
 
 use core::fmt;
 
-use crate::kinematics::name;
-use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Kinematics, Mechanism, Real, Workspace};
+use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
+use crate::model::mechanism::{Kinematics, Mechanism};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::kinematics::name;
 
 /// The state of the mechanism at the end of a step: time, coordinates, velocities and their
 /// derivatives, multipliers, and the accumulated work.
@@ -291,7 +295,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
         // M⁻¹(h + Dᵀλ) multiplies every λ_r into the velocities of its row, so a non-finite λ
         // makes v̇ non-finite too.
         if !vd.iter().all(|x| x.is_finite()) {
-            return Err(crate::dynamics::non_finite(self.mechanism, q, v, t, lambda));
+            return Err(crate::model::dynamics::non_finite(self.mechanism, q, v, t, lambda));
         }
         if !self.track_work {
             return Ok([T::ZERO; 2]);

@@ -9,7 +9,9 @@
 //! weights on the stage powers; dense output is cubic Hermite.
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
-use crate::{ForwardDynamics, Real, Workspace};
+use crate::model::dynamics::ForwardDynamics;
+use crate::model::workspace::Workspace;
+use crate::real::Real;
 
 crate::options::options! {
     /// Options of [`Rk4`], in the scalar type `T` of the mechanism (default `f64`). Build from

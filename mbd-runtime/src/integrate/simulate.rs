@@ -13,11 +13,13 @@
 //! switch and the force's kink is not smeared over a step ([`Simulation::events`]).
 
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
-use crate::dynamics::kinetic_energy;
-use crate::kinematics::name;
-use crate::partition::Partition;
-use crate::{DynamicsOptions, ForwardDynamics, Real, Workspace};
-use core::ops::ControlFlow;
+use crate::integrate::partition::Partition;
+use crate::model::dynamics::kinetic_energy;
+use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::flow::Flow;
+use crate::solvers::kinematics::name;
 
 /// What brings the state back onto the constraint manifold after each step. Made by
 /// [`Correction::projection`] or [`Correction::partitioning`] (or `Correction::None`), its
@@ -98,7 +100,7 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
     tolerance: T,
     max_iterations: u32,
 ) -> Result<(), SimulationError> {
-    let tolerance = tolerance.max(crate::kinematics::resolution(q));
+    let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
     let mut iterations = 0;
     loop {
         if iterations == max_iterations {
@@ -138,29 +140,9 @@ pub struct Statistics {
     pub events: u64,
     /// The event that stopped the run, if one did.
     pub stopped_by: Option<EventHit>,
-    /// Whether the output callback stopped the run (it returned [`ControlFlow::Break`]); the
+    /// Whether the output callback stopped the run (it returned [`ControlFlow::Break`](core::ops::ControlFlow::Break)); the
     /// sample it was given was the last.
     pub stopped_by_output: bool,
-}
-
-/// What an output callback of [`Simulation::run`] returns: `()` (go on), or a [`ControlFlow`] whose
-/// `Break` ends the run after the sample it was given — to stop on a condition, at a deadline,
-/// or when the user cancels ([`Statistics::stopped_by_output`]).
-pub trait Flow {
-    /// Whether the run should end here.
-    fn stops(&self) -> bool;
-}
-
-impl Flow for () {
-    fn stops(&self) -> bool {
-        false
-    }
-}
-
-impl<B, C> Flow for ControlFlow<B, C> {
-    fn stops(&self) -> bool {
-        self.is_break()
-    }
 }
 
 /// Which switching function changed sign: one of the mechanism's
@@ -279,7 +261,7 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
 
     /// Integrates from the start and calls `output` at each output time with the interpolated
     /// state, its v̇ and λ, and its energies (interpolated q is normalized too). `output` may
-    /// return `()`, or a [`ControlFlow`] whose `Break` ends the run after that sample
+    /// return `()`, or a [`ControlFlow`](core::ops::ControlFlow) whose `Break` ends the run after that sample
     /// ([`Flow`], [`Statistics::stopped_by_output`]): a stop condition, a deadline, a user's
     /// cancel, a progress bar's tick.
     ///

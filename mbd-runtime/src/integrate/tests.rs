@@ -3,11 +3,10 @@
 //! equation φ̈ = −m g L cos φ / (J + m L²), from horizontal rest.
 
 use super::*;
+use crate::integrate::{Correction, Dopri5, Dopri5Options, GeneralizedAlpha, GeneralizedAlphaOptions, Rk4, Rk4Options, SimulationOptions};
+use crate::model::mechanism::{Dynamics, Kinematics};
+use crate::model::workspace::Workspace;
 use crate::test_support::{UnitPendulum, GRAVITY, INERTIA, LENGTH, MASS};
-use crate::{
-    Correction, Dopri5, Dopri5Options, Dynamics, GeneralizedAlpha, GeneralizedAlphaOptions, Kinematics, Rk4, Rk4Options, SimulationOptions,
-    Workspace,
-};
 
 /// Output times (s): step ends and points between them, up to past the far turning point.
 const TIMES: [f64; 8] = [0.1, 0.25, 0.3333, 0.5, 0.6, 0.75, 0.9, 1.0];
@@ -106,7 +105,7 @@ fn integrators_follow_the_unit_pendulum() {
 #[test]
 fn dopri5_first_step_is_hairers_estimate() {
     let m = UnitPendulum;
-    let system = System { mechanism: &m, dynamics: crate::DynamicsOptions::without_stabilization(), track_work: false };
+    let system = System { mechanism: &m, dynamics: crate::model::dynamics::DynamicsOptions::without_stabilization(), track_work: false };
     let from = system.point(0.0, m.initial_positions(), [0.0; 3], [0.0; 2]).unwrap();
     let (rtol, atol) = (1e-3, 1e-6);
     let mut dopri = Dopri5::<f64, 4, 3>::new(Dopri5Options::default().with_rtol(rtol).with_atol(atol));
@@ -126,7 +125,7 @@ fn dopri5_first_step_is_hairers_estimate() {
 /// tolerances are refused.
 #[test]
 fn adaptive_generalized_alpha_retries_failed_newton_steps_and_checks_its_options() {
-    use crate::ErrorControl;
+    use crate::integrate::ErrorControl;
     let control = ErrorControl::default().with_rtol(1e-8).with_atol(1e-8);
     let options = GeneralizedAlphaOptions::default().with_step(0.5).with_max_iterations(3).with_error_control(Some(control));
     let mut alpha = GeneralizedAlpha::<f64, 3>::new(options);

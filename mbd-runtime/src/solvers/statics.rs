@@ -88,11 +88,13 @@
 //! other arrays only D is written, at the equilibrium, for [`crate::joint_reaction`]. Nothing
 //! allocates.
 
-use crate::kinematics::{first_non_finite, name};
 use crate::linalg::LinalgError;
 #[cfg(doc)]
-use crate::{ConstraintForces, Dynamics};
-use crate::{CoordinateKind, Mechanism, NewtonMatrix, Real, VelocityKind, Workspace};
+use crate::model::mechanism::{ConstraintForces, Dynamics};
+use crate::model::mechanism::{CoordinateKind, Mechanism, NewtonMatrix, VelocityKind};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::kinematics::{first_non_finite, name};
 use core::fmt;
 
 /// Default tolerance on max(‖h + Dᵀλ‖∞ (N, N·m), ‖Φ‖∞ (m, rad)).
@@ -163,7 +165,7 @@ crate::options::options! {
         /// Trial steps (accepted and rejected) before giving up. Default
         /// [`DEFAULT_STATIC_MAX_ITERATIONS`].
         max_iterations: u32 = DEFAULT_STATIC_MAX_ITERATIONS => with_max_iterations,
-        /// Relative pivot tolerance of the planned factorization (see [`crate::sparse::factor`]):
+        /// Relative pivot tolerance of the planned factorization (see [`crate::linalg::sparse::factor`]):
         /// a velocity pivot at most this times its row's largest entry has no pivot, and a
         /// multiplier whose pivot ratio is at most this is dependent. Default
         /// [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
@@ -185,7 +187,7 @@ crate::options::options! {
         /// multiplier is 0). The factorization compares the squared sine, its pivot ratio, so
         /// below √[`pivot_tolerance`](Self::pivot_tolerance) the pivot tolerance decides. Default
         /// [`crate::DEFAULT_RANK_TOLERANCE`], as the kinematic solver's.
-        rank_tolerance: T = T::from_f64(crate::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
+        rank_tolerance: T = T::from_f64(crate::solvers::kinematics::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
     }
 }
 
@@ -370,7 +372,7 @@ impl<T: Real> Default for StaticSolver<T> {
 /// reaches it (else by the velocity: the constraint stiffness K(λ) or a gyroscopic term).
 fn non_finite_force<M: Mechanism>(t: f64, i: usize) -> StaticError {
     let velocity = name(M::VELOCITY_NAMES, i);
-    match crate::dynamics::force_element::<M>(i) {
+    match crate::model::dynamics::force_element::<M>(i) {
         Some((element, others)) => StaticError::NonFiniteForce { t, element, others, velocity },
         None => StaticError::NonFinite { t, row: velocity },
     }
@@ -400,7 +402,7 @@ fn dot<T: Real>(a: &[T], b: &[T]) -> T {
 
 /// Each stored entry of the Newton pattern with the unknowns of its row and column (v̇ entries
 /// 0..NV, then multipliers), in storage order (after D's non-zeros).
-fn entries(pattern: &crate::SparsePattern) -> impl Iterator<Item = (usize, usize)> + '_ {
+fn entries(pattern: &crate::linalg::sparse::SparsePattern) -> impl Iterator<Item = (usize, usize)> + '_ {
     (0..pattern.size()).flat_map(move |p| {
         let row = pattern.row_start[p] as usize..pattern.row_start[p + 1] as usize;
         pattern.columns[row].iter().map(move |&c| (pattern.unknown[p] as usize, pattern.unknown[c as usize] as usize))
@@ -545,7 +547,7 @@ impl<T: Real> StaticSolver<T> {
         if N != NV + NC {
             return Err(StaticError::WorkspaceSize { expected: NV + NC, found: N });
         }
-        let Some([mass, stiff, scratch]) = crate::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+        let Some([mass, stiff, scratch]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
             return Err(StaticError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
         };
         let time = t.to_f64();

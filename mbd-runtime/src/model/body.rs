@@ -11,7 +11,8 @@
 //! velocities, its angular part turned to global components (spatial ω = A ω′), so J_b J_cᵀ is
 //! I for c = b and 0 otherwise; the twists of different bodies are independent.
 
-use crate::{Mechanism, Real};
+use crate::model::mechanism::Mechanism;
+use crate::real::Real;
 
 /// Where a body is and how it is turned at a state: the position r of its centre of mass (m)
 /// and its rotation A (body-frame components → global, `rotation[i][j]` = A_ij), both global.

@@ -17,10 +17,13 @@
 //! caller's [`Workspace`]; the stack holds only O(NV + NC) scalars, so large mechanisms run on
 //! an ordinary thread's stack.
 
-use crate::error::{KinematicError, NonFiniteQuantity};
+use crate::linalg::orthogonal::{least_determined, orthogonalize, rank_revealing_step, solve_orthogonalized};
 use crate::linalg::{self, LinalgError, Permutation};
-use crate::redundancy::{independent_rows, rank_revealing_step, solve_orthogonalized};
-use crate::{Kinematics, Mechanism, PositionStep, Real, Workspace};
+use crate::model::mechanism::{Kinematics, Mechanism, PositionStep};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::error::{KinematicError, NonFiniteQuantity};
+use crate::solvers::flow::Flow;
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
 /// coordinate in f64. Below what f32 resolves (its ulp at 1 m is 1.2e-7): every tolerance is
@@ -515,7 +518,7 @@ impl<T: Real> KinematicSolver<T> {
     ) -> Result<(), KinematicError>
     where
         M: Kinematics<T, NQ, NV, NC>,
-        R: crate::Flow,
+        R: Flow,
     {
         require_driven::<NV, NC>()?;
         let mut v = [T::ZERO; NV];
@@ -791,7 +794,7 @@ impl<T: Real> KinematicSolver<T> {
                 }
             }?;
             check_finite(&step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
-            crate::sparse::limit_step(&mut step, max_step);
+            crate::linalg::sparse::limit_step(&mut step, max_step);
             m.integrate_positions(q, &step, T::ONE);
             iterations += 1;
             factorizations += 1;
@@ -866,3 +869,25 @@ where
 
 #[cfg(test)]
 mod tests;
+
+/// The rows of a driven mechanism's D with redundant ones (NC > NV): orthogonalized as in
+/// [`orthogonalize`], the redundant rows marked; `Err` — a singular Jacobian naming the velocity
+/// least determined and the first row left out — when the independent rows number fewer than NV.
+pub(crate) fn independent_rows<T: Real, M: Mechanism, const NV: usize, const NC: usize>(
+    d: &[[T; NV]; NC],
+    tolerance: T,
+    basis: &mut [[T; NV]; NC],
+    r: &mut [[T; NC]; NC],
+    t: T,
+) -> Result<[bool; NC], KinematicError> {
+    let mut redundant = [false; NC];
+    let split = orthogonalize(d, tolerance, basis, r, &mut redundant);
+    if split.rank < NV {
+        return Err(KinematicError::SingularJacobian {
+            t: t.to_f64(),
+            coordinate: name(M::VELOCITY_NAMES, least_determined(basis, split.rank)),
+            constraint: name(M::CONSTRAINT_NAMES, redundant.iter().position(|&x| x).unwrap_or(0)),
+        });
+    }
+    Ok(redundant)
+}

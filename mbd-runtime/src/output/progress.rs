@@ -18,7 +18,8 @@
 //! of the interval) formats its text; indicatif redraws at most 20 times a second.
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::{Real, Sample};
+use crate::integrate::Sample;
+use crate::real::Real;
 
 /// Steps of a bar over time: its position is the fraction of the interval done, in thousandths.
 const TIME_STEPS: u64 = 1000;

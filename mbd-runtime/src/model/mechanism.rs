@@ -17,7 +17,7 @@
 //! Constraints `Φ(q, t) = 0` stack the rows of every joint, driver and user constraint in
 //! declaration order.
 
-use crate::Real;
+use crate::real::Real;
 
 /// Operation count of one generated function, after common-subexpression elimination:
 /// what one call costs at least, whatever the compiler does.
@@ -327,7 +327,7 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// generated code. A step expected to end the iteration keeps D and its factors (simplified
     /// Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
     /// `reuse` evaluates and factors D at every step. A step longer than `max_step` (‖Δv‖∞) is
-    /// shortened to it along its direction ([`crate::sparse::limit_step`]). Returns what it
+    /// shortened to it along its direction ([`crate::linalg::sparse::limit_step`]). Returns what it
     /// ended with, the steps taken and the factorizations of D made, q at the last iterate and
     /// Φ(q, t) in `phi`:
     /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
@@ -460,16 +460,16 @@ pub trait ConstraintForces<T: Real, const NQ: usize, const NV: usize, const NC: 
 /// not generated (a wrapper such as [`crate::FiniteDifferences`], a hand-written test model):
 /// they put O(NV²) on the stack.
 pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usize>:
-    crate::ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>
+    crate::model::dynamics::ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>
 {
     /// `[T; NNZ + entries]`: D's non-zeros in [`Mechanism::JACOBIAN_PATTERN`] order, then the
     /// matrix's entries over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN).
-    type NewtonStorage: crate::workspace::NewtonStorage<T>;
+    type NewtonStorage: crate::model::workspace::NewtonStorage<T>;
     /// Elimination order and fill of the Newton matrix's LU factors.
-    const NEWTON_PATTERN: crate::SparsePattern;
+    const NEWTON_PATTERN: crate::linalg::sparse::SparsePattern;
     /// Storage of zeros.
     fn newton_storage() -> Self::NewtonStorage;
-    /// Factors the matrix in `s` in place ([`crate::sparse::factor`], whose arguments and errors
+    /// Factors the matrix in `s` in place ([`crate::linalg::sparse::factor`], whose arguments and errors
     /// these are; unknowns as errors name them: v̇ entries, then multipliers). `mechanism!`
     /// generates it straight-line for small mechanisms; larger ones run the planned pattern.
     fn newton_factor(
@@ -479,12 +479,12 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         dropped: &mut [bool; NC],
     ) -> Result<T, crate::linalg::LinalgError> {
         let nnz = Self::JACOBIAN_PATTERN.len();
-        crate::sparse::factor(&Self::NEWTON_PATTERN, &mut s.as_mut()[nnz..], NV, tolerance, allow_redundant, dropped)
+        crate::linalg::sparse::factor(&Self::NEWTON_PATTERN, &mut s.as_mut()[nnz..], NV, tolerance, allow_redundant, dropped)
     }
     /// Solves with the factors in `s`, in place: `b` holds NV + NC entries, v̇'s then λ's.
     fn newton_solve(s: &Self::NewtonStorage, b: &mut [T]) {
         let nnz = Self::JACOBIAN_PATTERN.len();
-        crate::sparse::solve(&Self::NEWTON_PATTERN, &s.as_ref()[nnz..], b);
+        crate::linalg::sparse::solve(&Self::NEWTON_PATTERN, &s.as_ref()[nnz..], b);
     }
     /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`.
     fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {

@@ -1,7 +1,7 @@
 //! Kinematics of points and vectors on planar bodies, for reading results (positions, velocities
 //! and accelerations of points of interest) in body coordinates `q[3k..3k+3] = (x, y, φ)`.
 
-use crate::Real;
+use crate::real::Real;
 
 /// Global position r^P = r_k + A(φ_k) s'^P of the point with body-fixed coordinates `local` (m)
 /// on body `body` (its index among the moving bodies).

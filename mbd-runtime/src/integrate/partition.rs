@@ -15,9 +15,12 @@
 //! partition is chosen anew when that measure falls below 1e-2 of its value at the choice.
 
 use crate::integrate::SimulationError;
-use crate::kinematics::name;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::{DynamicsError, Kinematics, Mechanism, Real, Workspace};
+use crate::model::dynamics::DynamicsError;
+use crate::model::mechanism::{Kinematics, Mechanism};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::kinematics::name;
 
 /// Fraction of the chosen partition's conditioning below which D_d is chosen anew.
 const REPARTITION_RATIO: f64 = 1e-2;
@@ -158,7 +161,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
         let mut phi = [T::ZERO; NC];
-        let tolerance = tolerance.max(crate::kinematics::resolution(q));
+        let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
         let Workspace { jacobian: d, jacobian_scratch: scratch, constraint_square: block, .. } = ws;
         let mut iterations = 0;
         loop {

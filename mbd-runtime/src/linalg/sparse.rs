@@ -24,7 +24,7 @@
 //! before, without moving rows.
 
 use crate::linalg::LinalgError;
-use crate::Real;
+use crate::real::Real;
 
 /// The pattern of a Newton matrix's LU factors, planned by `mechanism!` at compile time.
 ///

@@ -8,11 +8,14 @@
 //! body's centre of mass with which the joint acts on the body ([`joint_reaction`]). A driver's
 //! reaction is the force or torque the actuator must supply.
 
-use crate::body::{transpose_times, BodyFrames};
-use crate::kinematics::{first_non_finite, name, require_driven};
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::redundancy::independent_rows;
-use crate::{Dynamics, KinematicError, NonFiniteQuantity, Real, Workspace};
+use crate::model::body::{transpose_times, BodyFrames};
+use crate::model::mechanism::Dynamics;
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+use crate::solvers::error::{KinematicError, NonFiniteQuantity};
+use crate::solvers::kinematics::independent_rows;
+use crate::solvers::kinematics::{first_non_finite, name, require_driven};
 use core::fmt;
 
 /// The force and moment a joint applies to one body, in global components, and the body's
@@ -49,7 +52,7 @@ impl<T: Real> Wrench<T> {
     /// n_P = n − arm × f (N·m, global). For a revolute or spherical joint taken at its pin, this
     /// is zero.
     pub fn moment_about(&self, arm: [T; 3]) -> [T; 3] {
-        let cross = crate::body::cross(arm, self.force);
+        let cross = crate::model::body::cross(arm, self.force);
         core::array::from_fn(|k| self.moment[k] - cross[k])
     }
 }
@@ -76,7 +79,7 @@ crate::options::options! {
         /// With redundant rows (NC > NV): a row is dependent on the rows declared before it when
         /// the sine of its angle to their span is below this. Default
         /// [`crate::DEFAULT_RANK_TOLERANCE`].
-        rank_tolerance: T = T::from_f64(crate::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
+        rank_tolerance: T = T::from_f64(crate::solvers::kinematics::DEFAULT_RANK_TOLERANCE) => with_rank_tolerance,
         /// Coulomb friction's loads are iterated until the largest change of λ is below this
         /// times max(1, max |λ|). Default 1e-12.
         friction_tolerance: T = T::from_f64(1e-12) => with_friction_tolerance,
@@ -435,9 +438,10 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::{euler_rotation, planar_rotation};
-    use crate::Mechanism;
-    use crate::{BodyPose, BodyTwist, CoordinateInfo, CoordinateKind, JointInfo, OpCount, VelocityInfo, VelocityKind};
+    use crate::model::body::{euler_rotation, planar_rotation};
+    use crate::model::body::{BodyPose, BodyTwist};
+    use crate::model::mechanism::Mechanism;
+    use crate::model::mechanism::{CoordinateInfo, CoordinateKind, JointInfo, OpCount, VelocityInfo, VelocityKind};
 
     /// The free pendulum has a degree of freedom: its loads are not determined by a motion, and
     /// the error says how many drivers are missing.

@@ -11,8 +11,8 @@
 
 use nalgebra::{Matrix3, Point2, Point3, Quaternion, UnitQuaternion, Vector2, Vector3};
 
-use crate::body::euler_rotation;
-use crate::Real;
+use crate::model::body::euler_rotation;
+use crate::real::Real;
 
 /// A planar body: coordinates q[3k..3k+3] = (x, y, φ), velocities the same entries of v = q̇.
 /// Generated as `Name::BODY`.

@@ -27,8 +27,8 @@ use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
 
-use crate::drawing::Drawing;
-use crate::Mechanism;
+use crate::model::mechanism::Mechanism;
+use crate::output::drawing::Drawing;
 
 /// Why an animation cannot be written: a traced point the mechanism does not name (the message
 /// lists those it does), or a model description the drawing cannot read.

@@ -23,10 +23,12 @@
 //! No work array is larger than O(NQ + NV + NC): the differences are taken a column at a time
 //! into the caller's matrix.
 
-use crate::{
-    BodyFrames, BodyPose, BodyTwist, ConstraintForces, CoordinateInfo, Dynamics, DynamicsError, DynamicsOptions, ForceInfo,
-    ForwardDynamics, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, Real, VelocityInfo,
+use crate::model::body::{BodyFrames, BodyPose, BodyTwist};
+use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
+use crate::model::mechanism::{
+    ConstraintForces, CoordinateInfo, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, VelocityInfo,
 };
+use crate::real::Real;
 
 /// A mechanism with finite-difference derivatives (module docs).
 #[derive(Clone, Copy, Debug)]
@@ -296,7 +298,7 @@ impl<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, const NV: usize, 
     for FiniteDifferences<'_, M>
 {
     type NewtonStorage = M::NewtonStorage;
-    const NEWTON_PATTERN: crate::SparsePattern = M::NEWTON_PATTERN;
+    const NEWTON_PATTERN: crate::linalg::sparse::SparsePattern = M::NEWTON_PATTERN;
     fn newton_storage() -> M::NewtonStorage {
         M::newton_storage()
     }

@@ -24,7 +24,10 @@
 //! original index of the row holding the best candidate: the first row of largest magnitude among
 //! the rows not yet used, in their current (permuted) order.
 
-use crate::Real;
+pub(crate) mod orthogonal;
+pub mod sparse;
+
+use crate::real::Real;
 use core::fmt;
 
 /// Why a factorization or solve failed. Indices are 0-based.

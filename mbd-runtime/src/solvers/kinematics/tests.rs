@@ -12,8 +12,8 @@
 //!   a unit complex number.
 
 use super::*;
+use crate::model::mechanism::{CoordinateInfo, CoordinateKind, Kinematics, Mechanism, OpCount, VelocityInfo, VelocityKind};
 use crate::test_support::{DrivenUnitPendulum, UnitPendulum, LENGTH};
-use crate::{CoordinateInfo, CoordinateKind, Kinematics, Mechanism, OpCount, VelocityInfo, VelocityKind};
 use core::f64::consts::PI;
 
 /// Crank length r (m).

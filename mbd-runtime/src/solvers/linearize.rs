@@ -89,8 +89,9 @@ use std::path::Path;
 
 use nalgebra::{Cholesky, Complex, ComplexField, DMatrix, DVector, SymmetricEigen};
 
-use crate::mechanism::velocities_are_rates;
-use crate::{DynamicsError, DynamicsOptions, ForwardDynamics, Linearize, Mechanism, VelocityKind};
+use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
+use crate::model::mechanism::velocities_are_rates;
+use crate::model::mechanism::{Linearize, Mechanism, VelocityKind};
 
 /// Default relative tolerance of the rank of D: a pivot below 1e-10 of its row's largest entry
 /// marks the row as dependent on the others.
@@ -547,7 +548,7 @@ enum Input {
 fn input_kinds<M: Linearize<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     options: &LinearizeOptions,
 ) -> Result<Vec<Input>, LinearizeError> {
-    let is_driver = |j: &&crate::JointInfo| j.kind.starts_with("drive") && j.rows == 1;
+    let is_driver = |j: &&crate::model::mechanism::JointInfo| j.kind.starts_with("drive") && j.rows == 1;
     options
         .inputs
         .iter()

@@ -29,7 +29,7 @@
 //! them ([`crate::SimulationError::WorkspaceSize`], [`crate::StaticError::WorkspaceSize`]). A
 //! work space with NS = 0 (the default) serves every solver but statics and generalized-α.
 
-use crate::Real;
+use crate::real::Real;
 
 /// A [`Workspace`] on the heap, as [`Workspace::boxed`] and the generated `Name::workspace()`
 /// return it.

@@ -13,7 +13,8 @@
 
 use core::fmt;
 
-use crate::{Dynamics, Mechanism, Real};
+use crate::model::mechanism::{Dynamics, Mechanism};
+use crate::real::Real;
 
 /// Default Baumgarte α and β (1/s): the constraint violation then decays like a critically
 /// damped oscillator with a time constant of 0.2 s. Zero turns stabilization off.

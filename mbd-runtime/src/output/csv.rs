@@ -12,7 +12,9 @@
 
 use std::io::{self, Write};
 
-use crate::{Mechanism, Real, Sample};
+use crate::integrate::Sample;
+use crate::model::mechanism::Mechanism;
+use crate::real::Real;
 
 /// Writes samples as CSV rows; use [`CsvWriter::write`] as (or inside) the output callback of
 /// [`crate::Simulation`] and [`CsvWriter::finish`] after it for the first I/O error, if any.

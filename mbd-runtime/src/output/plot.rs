@@ -14,7 +14,9 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::{Mechanism, Real, Sample};
+use crate::integrate::Sample;
+use crate::model::mechanism::Mechanism;
+use crate::real::Real;
 
 /// A plot of one or more named series of (x, y) points, written as SVG.
 #[derive(Clone, Debug, PartialEq)]
