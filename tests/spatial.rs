@@ -400,8 +400,8 @@ fn descriptors_say_what_each_coordinate_and_velocity_is() {
 
 /// Each body's pose, twist J_b x and J_bᵀ of a wrench (`BodyFrames`), read without a place in q:
 /// the pose moves with the twist (a central difference along q ⊕ ±h v, as the integrators move
-/// q), J_bᵀ is the adjoint of J_b (the power of a wrench on the twist is the work of its
-/// generalized force on v), the pose places the named points where named access does, and a body
+/// q), the acceleration is the twist's rate along the motion, J_bᵀ is the adjoint of J_b (the
+/// power of a wrench on the twist is the work of its generalized force on v), the pose places the named points where named access does, and a body
 /// past the last has none. Spatial (two bodies, one turned) and planar.
 #[test]
 fn body_frames_give_pose_twist_and_wrench() {
@@ -442,8 +442,19 @@ fn body_frames_give_pose_twist_and_wrench() {
             let power = if planar { power - force[2] * twist.velocity[2] } else { power };
             // Tolerance: rounding of sums of a dozen O(1) products.
             assert!((work - power).abs() < 1e-13, "{name}: Jᵀ is the adjoint of J: {work} vs {power}");
-            let acceleration = m.body_acceleration(b, q, v, v).expect("a body");
-            assert!(acceleration.velocity.iter().chain(&acceleration.angular_velocity).all(|x| x.is_finite()));
+            // The acceleration is the twist's rate along the motion: q ⊕ ±h v with v ± h v̇.
+            let vd: [f64; NV] = core::array::from_fn(|i| 0.1 * i as f64 - 0.3);
+            let (v_plus, v_minus): ([f64; NV], [f64; NV]) =
+                (core::array::from_fn(|i| v[i] + h * vd[i]), core::array::from_fn(|i| v[i] - h * vd[i]));
+            let (ahead, behind) = (m.body_twist(b, &plus, &v_plus).expect("a body"), m.body_twist(b, &minus, &v_minus).expect("a body"));
+            let acceleration = m.body_acceleration(b, q, v, &vd).expect("a body");
+            for k in 0..3 {
+                let linear = (ahead.velocity[k] - behind.velocity[k]) / (2.0 * h);
+                let angular = (ahead.angular_velocity[k] - behind.angular_velocity[k]) / (2.0 * h);
+                // Tolerance: as for the twist above.
+                assert!((linear - acceleration.velocity[k]).abs() < 1e-8, "{name}: r̈[{k}] {linear} vs {acceleration:?}");
+                assert!((angular - acceleration.angular_velocity[k]).abs() < 1e-8, "{name}: ω̇[{k}] {angular} vs {acceleration:?}");
+            }
         }
         let past = M::BODY_NAMES.len();
         assert!(m.body_pose(past, q).is_none() && m.body_twist(past, q, v).is_none());
