@@ -221,7 +221,11 @@ impl Chart {
 /// δ̇ at q = q₀ ⊕ δ moving with v: v for a rate; for each body-frame angular velocity ω′, the
 /// rate of the chart's rotation vector θ = 2 p_v / p_s, p = e₀* ⊗ e, from ṗ = ½ p ⊗ (0, ω′), e the
 /// body's quaternion.
-pub(super) fn displacement_rates<M: Mechanism, const NQ: usize, const NV: usize>(q0: &[f64; NQ], q: &[f64; NQ], v: &[f64; NV]) -> [f64; NV] {
+pub(super) fn displacement_rates<M: Mechanism, const NQ: usize, const NV: usize>(
+    q0: &[f64; NQ],
+    q: &[f64; NQ],
+    v: &[f64; NV],
+) -> [f64; NV] {
     let mut rates = *v;
     for b in angular_triples::<M>().filter(|&b| b + 3 <= NV) {
         let VelocityKind::Angular { quaternion, .. } = M::VELOCITIES[b].kind else { continue };
