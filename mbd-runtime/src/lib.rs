@@ -12,10 +12,10 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
-// The modules by layer, each built on those above it in this list (a test keeps it so:
-// `layering` below): the scalar and the options pattern; linear algebra; the model (the traits
-// generated mechanisms implement, bodies, work space); the analyses at a state; the
-// integrators; output.
+// The modules form layers, each built only on the layers before it: `real` and `options` (the
+// scalar, the options pattern); `linalg`; `model` (the traits generated mechanisms implement,
+// bodies, work space); `solvers` (the analyses at a state); `integrate`; `output`. The test
+// `layering` below keeps it so.
 mod integrate;
 pub mod linalg;
 mod model;
@@ -95,8 +95,8 @@ macro_rules! __if_std {
     ($($tokens:tt)*) => {};
 }
 
-/// The layers of `mod` declarations above, as their order says: every module imports only from
-/// its own layer and the layers above it, by the module's path (`crate::model::body::BodyPose`),
+/// The layers named above (`LAYERS`, in order): every module imports only from its own layer
+/// and the layers before it, by the module's path (`crate::model::body::BodyPose`),
 /// never through this file's re-exports (`crate::BodyPose`) — so the folders show the
 /// architecture and no cycle runs between them. Doc comments, which name items by their public
 /// paths, and `$crate` in macros are not imports.
@@ -128,7 +128,7 @@ mod layering {
     }
 
     #[test]
-    fn each_module_imports_from_its_own_layer_and_those_above_it() {
+    fn each_module_imports_from_its_own_layer_and_those_before_it() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
         let mut files = vec![root.clone()];
         let mut problems = Vec::new();
@@ -154,7 +154,7 @@ mod layering {
                 }
                 match layer(&name) {
                     Some(l) if l <= own => {}
-                    Some(_) => problems.push(format!("{relative} imports `crate::{name}`, a layer below its own")),
+                    Some(_) => problems.push(format!("{relative} imports `crate::{name}`, a layer after its own")),
                     None => problems.push(format!("{relative} imports `crate::{name}` through lib.rs; use the module's path")),
                 }
             }
