@@ -9,7 +9,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::forces::{gravity, Generalized};
-use crate::frames::{collect_vars, Builder, Coordinates, RowUnit};
+use crate::frames::{collect_vars, velocity_partials, Builder, Coordinates, RowUnit};
 use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
 
@@ -344,20 +344,6 @@ fn inertia(b: &mut Builder) -> InertiaTerms {
         }
     }
     (entries, blocks, h)
-}
-
-/// ∂x/∂v_i for each velocity v_i that x depends on.
-fn velocity_partials(g: &mut Graph, x: Id) -> Vec<(usize, Id)> {
-    let mut cols = BTreeSet::new();
-    collect_vars(g, x, &mut cols, |v| if let Var::Qd(i) = v { Some(i) } else { None });
-    let mut out = Vec::new();
-    for i in cols {
-        let d = g.partial(x, Var::Qd(i));
-        if !g.is_zero(d) {
-            out.push((i as usize, d));
-        }
-    }
-    out
 }
 
 /// The generalized forces (h, friction, V and the switching functions), and with each element

@@ -389,25 +389,33 @@ pub fn collect_vars(g: &Graph, root: Id, out: &mut BTreeSet<u16>, pick: impl Fn(
 }
 
 impl Builder<'_> {
-    /// h[k] += w where v[k] is component `a` of the velocity of body `body`'s origin (its centre
-    /// of mass): where a force at the centre works.
+    /// h += (∂ṙ_a/∂v)ᵀ w: the generalized force of component `a` (global) of a force w through
+    /// body `body`'s origin (its centre of mass), by the body's twist (`twist`).
     pub fn add_to_origin_velocity(&mut self, h: &mut [Id], body: usize, a: usize, w: Id) {
-        let k = self.coordinates.velocities_per_body() * body + a;
-        h[k] = self.g.add(h[k], w);
+        let (linear, _) = self.twist(BodyRef::Body(body));
+        self.add_along_velocity(h, linear[a], w);
     }
 
-    /// h[k] += τ where v[k] is body `body`'s (planar) angular velocity: where a torque works.
+    /// h += (∂φ̇/∂v)ᵀ τ: the generalized force of a torque τ on a planar body.
     pub fn add_to_angular_velocity(&mut self, h: &mut [Id], body: usize, tau: Id) {
-        let k = 3 * body + 2;
-        h[k] = self.g.add(h[k], tau);
+        let (_, angular) = self.twist(BodyRef::Body(body));
+        self.add_along_velocity(h, angular[0], tau);
     }
 
-    /// h[6 body + 3 + a] += T′_a: a torque with body-frame components T′ (spatial), where ω′
-    /// works.
+    /// h += Wᵀ T′ with ω′ = W v: the generalized force of a torque with body-frame components T′
+    /// on a spatial body.
     pub fn add_to_body_angular_velocity(&mut self, h: &mut [Id], body: usize, torque: [Id; 3]) {
-        for (a, t) in torque.into_iter().enumerate() {
-            let k = 6 * body + 3 + a;
-            h[k] = self.g.add(h[k], t);
+        let (_, angular) = self.twist(BodyRef::Body(body));
+        for (w, t) in angular.into_iter().zip(torque) {
+            self.add_along_velocity(h, w, t);
+        }
+    }
+
+    /// h += (∂x/∂v)ᵀ w for a quantity x linear in v (a component of a twist).
+    fn add_along_velocity(&mut self, h: &mut [Id], x: Id, w: Id) {
+        for (i, d) in velocity_partials(&mut self.g, x) {
+            let term = self.g.mul(d, w);
+            h[i] = self.g.add(h[i], term);
         }
     }
 
@@ -538,4 +546,18 @@ impl Builder<'_> {
             self.g.sub(p, q)
         })
     }
+}
+
+/// ∂x/∂v_i for each velocity v_i that x depends on.
+pub fn velocity_partials(g: &mut Graph, x: Id) -> Vec<(usize, Id)> {
+    let mut cols = BTreeSet::new();
+    collect_vars(g, x, &mut cols, |v| if let Var::Qd(i) = v { Some(i) } else { None });
+    let mut out = Vec::new();
+    for i in cols {
+        let d = g.partial(x, Var::Qd(i));
+        if !g.is_zero(d) {
+            out.push((i as usize, d));
+        }
+    }
+    out
 }
