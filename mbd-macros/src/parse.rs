@@ -525,7 +525,14 @@ impl Parse for Item {
             }
             k if AXIS_FORCE_KINDS.contains(&k) => parse_axis_force(kw, input)?,
             k if crate::elements::is_joint_keyword(k) || POINT_FORCE_KINDS.contains(&k) => parse_attached(kw, k, input)?,
-            other => return Err(unknown_statement(&kw, other)),
+            other => {
+                // `motor: drive ...`: the keyword after the colon, if the word is a label.
+                let fork = input.fork();
+                let keyword = (input.peek(Token![:]) && !input.peek(Token![::]))
+                    .then(|| fork.parse::<Token![:]>().and_then(|_| fork.call(Ident::parse_any)).ok())
+                    .flatten();
+                return Err(unknown_statement(&kw, other, keyword));
+            }
         };
         Ok(item)
     }
@@ -613,12 +620,16 @@ fn parse_attached(kw: Ident, k: &str, input: ParseStream) -> syn::Result<Item> {
     Ok(if POINT_FORCE_KINDS.contains(&k) { Item::PointForce(def) } else { Item::Joint(def) })
 }
 
-/// A word that starts no statement, with a hint: our name for another program's, or the
+/// A word that starts no statement, with a hint: our name for another program's; for a label
+/// written before its statement's `keyword` (`motor: drive ...`), that it goes after it; or the
 /// closest keyword.
-fn unknown_statement(kw: &Ident, other: &str) -> syn::Error {
+fn unknown_statement(kw: &Ident, other: &str, labelled: Option<Ident>) -> syn::Error {
     let hint = match SYNONYMS.iter().find(|(word, _)| *word == other) {
         Some((_, ours)) => format!(" (the same joint is called `{ours}` here)"),
-        None => closest(other, STATEMENTS, &[]),
+        None => match labelled {
+            Some(keyword) => format!(" (a label goes after its statement's keyword: `{keyword} {other}: ...`)"),
+            None => closest(other, STATEMENTS, &[]),
+        },
     };
     syn::Error::new(
         kw.span(),
