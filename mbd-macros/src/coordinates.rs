@@ -6,7 +6,8 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use crate::emit::{real, usize_lit, Emitter};
+use crate::emit::{real, usize_lit, Emitter, Output};
+use crate::formulation::Formulation;
 use crate::model::{Coord, Model, Space, Vel};
 
 /// How body frames depend on the generalized coordinates.
@@ -19,29 +20,36 @@ pub enum Coordinates {
     /// q[7k..7k+7] = (r, p), its centre of mass and Euler parameters, and v[6k..6k+6] = (ṙ, ω′)
     /// with ω′ in the body frame; q̇ = B(q) v with ṗ = ½ Lᵀ(p) ω′.
     SpatialBody,
+    /// Planar joint coordinates (Nikravesh ch. 9; `joint_coordinates;`): the relative
+    /// coordinates of a spanning tree of the joints (`tree`) — a revolute joint's angle
+    /// θ = φ_j − φ_i, a translational joint's stroke s = u_iᵀ(r^P_j − r^P_i), a floating body's
+    /// x, y, φ — and v = q̇. Each body's pose is a function of them, built along the tree.
+    PlanarJoint,
 }
 
 impl Coordinates {
-    /// The formulation of a model's space (the only one there is for each, so far).
-    pub fn of(space: Space) -> Self {
-        match space {
-            Space::Planar => Coordinates::PlanarBody,
-            Space::Spatial => Coordinates::SpatialBody,
+    /// The formulation of a model: its space's body coordinates, or joint coordinates.
+    pub fn of(model: &Model) -> Self {
+        match (model.space, &model.tree) {
+            (Space::Planar, Some(_)) => Coordinates::PlanarJoint,
+            (Space::Planar, None) => Coordinates::PlanarBody,
+            (Space::Spatial, _) => Coordinates::SpatialBody,
         }
     }
 
-    /// Coordinates per moving body.
+    /// Coordinates per moving body, in body coordinates (joint coordinates have no such
+    /// layout: `Tree::links` says which coordinates carry which body).
     pub fn per_body(self) -> usize {
         match self {
-            Coordinates::PlanarBody => 3,
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => 3,
             Coordinates::SpatialBody => 7,
         }
     }
 
-    /// Velocities per moving body.
+    /// Velocities per moving body, in body coordinates.
     pub fn velocities_per_body(self) -> usize {
         match self {
-            Coordinates::PlanarBody => 3,
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => 3,
             Coordinates::SpatialBody => 6,
         }
     }
@@ -52,6 +60,17 @@ impl Coordinates {
     /// (v = q̇); spatial ones `"top.vx"`, ..., `"top.wz"`.
     pub fn descriptors(self, model: &Model) -> (Vec<TokenStream>, Vec<TokenStream>) {
         let (mut coordinates, mut velocities) = (Vec::new(), Vec::new());
+        if let Some(tree) = &model.tree {
+            for (i, (name, angle)) in tree.coordinate_names(model).into_iter().enumerate() {
+                let kind = if angle { quote!(Angle) } else { quote!(Length) };
+                let at = Literal::u16_unsuffixed(i as u16);
+                coordinates.push(quote!(::mbd::CoordinateInfo { name: #name, kind: ::mbd::CoordinateKind::#kind }));
+                velocities.push(
+                    quote!(::mbd::VelocityInfo { name: #name, kind: ::mbd::VelocityKind::Rate { coordinate: #at }, displacement: #name }),
+                );
+            }
+            return (coordinates, velocities);
+        }
         for (k, body) in model.bodies.iter().enumerate() {
             let name = |c: &str| format!("{}.{c}", body.name);
             let first = (k * self.per_body()) as u16;
@@ -69,7 +88,7 @@ impl Coordinates {
             }
             for v in model.space.velocities() {
                 let (own, kind, displacement) = match (self, v) {
-                    (Coordinates::PlanarBody, _) => {
+                    (Coordinates::PlanarBody | Coordinates::PlanarJoint, _) => {
                         let c = model.space.coordinates()[v.index()];
                         let at = Literal::u16_unsuffixed(first + c.index() as u16);
                         (name(c.name()), quote!(Rate { coordinate: #at }), name(c.name()))
@@ -91,9 +110,13 @@ impl Coordinates {
         (coordinates, velocities)
     }
 
-    /// The body whose motion velocity `i` is (an index among the moving bodies).
-    pub fn body_of_velocity(self, i: usize) -> usize {
-        i / self.velocities_per_body()
+    /// The body whose motion velocity `i` is (an index among the moving bodies); in joint
+    /// coordinates the body its joint carries.
+    pub fn body_of_velocity(self, m: &Model, i: usize) -> usize {
+        match &m.tree {
+            Some(tree) => tree.body_of_coordinate(i),
+            None => i / self.velocities_per_body(),
+        }
     }
 
     /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)
@@ -103,7 +126,7 @@ impl Coordinates {
         let real = real(m.scalar);
         let (nq, nv) = (usize_lit(7 * m.bodies.len()), usize_lit(6 * m.bodies.len()));
         if m.space == crate::model::Space::Planar {
-            let n = usize_lit(3 * m.bodies.len());
+            let n = usize_lit(m.tree.as_ref().map_or(3 * m.bodies.len(), |tree| tree.nq));
             return quote! {
                 #[inline]
                 fn position_rates(&self, q: &[#real; #n], v: &[#real; #n], qdot: &mut [#real; #n]) {
@@ -164,12 +187,14 @@ impl Coordinates {
     /// acceleration and J_bᵀ of a wrench. In body coordinates J_b selects the body's velocities,
     /// its angular part turned to global components (spatial ω = A ω′), and J̇_b v = 0 (planar:
     /// J_b is constant; spatial: d(A ω′)/dt = A ω̇′ + A ω̃′ ω′ = A ω̇′).
-    pub fn body_frames(self, m: &Model, name: &proc_macro2::Ident) -> TokenStream {
+    pub fn body_frames(self, m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
+        let name = &m.name;
         let real = real(m.scalar);
         let nb = usize_lit(m.bodies.len());
         let (nq, nv) = (usize_lit(self.per_body() * m.bodies.len()), usize_lit(self.velocities_per_body() * m.bodies.len()));
         let zero = quote!(<#real as ::mbd::Real>::ZERO);
         let (pose, twist, wrench) = match self {
+            Coordinates::PlanarJoint => return joint_body_frames(m, f, e),
             Coordinates::PlanarBody => (
                 quote!(let k = 3 * body; ::core::option::Option::Some(::mbd::BodyPose::planar(q[k], q[k + 1], q[k + 2]))),
                 quote! {
@@ -241,6 +266,131 @@ impl Coordinates {
                     #wrench
                     true
                 }
+            }
+        }
+    }
+}
+
+/// `mbd::BodyFrames` in joint coordinates, from the frames' nodes (`FrameNodes`): every body's
+/// pose, twist and twist rate evaluated at once (O(N) for a chain, the subexpressions of the
+/// recursion shared) and the one asked for returned; J_bᵀ of a wrench by body, over J_b's
+/// structural non-zeros.
+fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
+    let name = &m.name;
+    let real = real(m.scalar);
+    let nb = usize_lit(m.bodies.len());
+    let n = usize_lit(f.nq);
+    let zero = quote!(<#real as ::mbd::Real>::ZERO);
+    let all = |array: &str, pick: &dyn Fn(&crate::formulation::FrameNodes) -> [crate::sym::Id; 3]| -> TokenStream {
+        let array = proc_macro2::Ident::new(array, proc_macro2::Span::call_site());
+        let outputs: Vec<Output> = f
+            .frames
+            .iter()
+            .enumerate()
+            .flat_map(|(k, frame)| {
+                let k = usize_lit(k);
+                let array = array.clone();
+                pick(frame).into_iter().enumerate().map(move |(c, node)| {
+                    let c = usize_lit(c);
+                    Output { target: quote!(#array[#k][#c]), node }
+                })
+            })
+            .collect();
+        e.body(&outputs).0
+    };
+    let poses = all("poses", &|frame| frame.pose);
+    let twists = all("twists", &|frame| frame.twist);
+    let biases = all("biases", &|frame| frame.bias);
+    let wrench_arms: Vec<TokenStream> = f
+        .frames
+        .iter()
+        .enumerate()
+        .map(|(k, frame)| {
+            let k = usize_lit(k);
+            let outputs: Vec<Output> = frame
+                .jacobian
+                .iter()
+                .enumerate()
+                .flat_map(|(a, row)| row.iter().enumerate().map(move |(j, &(_, node))| (a, j, node)))
+                .enumerate()
+                .map(|(slot, (_, _, node))| {
+                    let slot = usize_lit(slot);
+                    Output { target: quote!(jac[#slot]), node }
+                })
+                .collect();
+            let (body, _) = e.body(&outputs);
+            let size = usize_lit(outputs.len().max(1));
+            let adds = frame.jacobian.iter().enumerate().flat_map(|(a, row)| row.iter().map(move |&(i, _)| (a, i))).enumerate().map(
+                |(slot, (a, i))| {
+                    let (slot, a, i) = (usize_lit(slot), usize_lit(a), usize_lit(i));
+                    quote!(g[#i] += jac[#slot] * w[#a];)
+                },
+            );
+            quote!(#k => {
+                let mut jac = [#zero; #size];
+                #body
+                #(#adds)*
+            })
+        })
+        .collect();
+    let table = |array: TokenStream| quote!(let mut #array = [[#zero; 3]; #nb];);
+    let (pose_table, twist_table, bias_table) = (table(quote!(poses)), table(quote!(twists)), table(quote!(biases)));
+    let twist_of = |x: TokenStream| {
+        quote! {
+            #[allow(clippy::redundant_locals)]
+            let v = #x;
+            #twist_table
+            #twists
+            let [vx, vy, w] = twists[body];
+        }
+    };
+    let (twist_x, twist_vd) = (twist_of(quote!(x)), twist_of(quote!(vd)));
+    quote! {
+        #[allow(unused_variables, unused_mut, unused_parens, clippy::approx_constant)]
+        impl ::mbd::BodyFrames<#real, #n, #n> for #name {
+            #[inline]
+            fn body_pose(&self, body: usize, q: &[#real; #n]) -> ::core::option::Option<::mbd::BodyPose<#real>> {
+                if body >= #nb {
+                    return ::core::option::Option::None;
+                }
+                #pose_table
+                #poses
+                let [x, y, phi] = poses[body];
+                ::core::option::Option::Some(::mbd::BodyPose::planar(x, y, phi))
+            }
+            #[inline]
+            fn body_twist(&self, body: usize, q: &[#real; #n], x: &[#real; #n]) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
+                if body >= #nb {
+                    return ::core::option::Option::None;
+                }
+                #twist_x
+                ::core::option::Option::Some(::mbd::BodyTwist { velocity: [vx, vy, #zero], angular_velocity: [#zero, #zero, w] })
+            }
+            #[inline]
+            fn body_acceleration(
+                &self,
+                body: usize,
+                q: &[#real; #n],
+                v: &[#real; #n],
+                vd: &[#real; #n],
+            ) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
+                if body >= #nb {
+                    return ::core::option::Option::None;
+                }
+                #bias_table
+                #biases
+                let [bx, by, bw] = biases[body];
+                #twist_vd
+                ::core::option::Option::Some(::mbd::BodyTwist { velocity: [vx + bx, vy + by, #zero], angular_velocity: [#zero, #zero, w + bw] })
+            }
+            #[inline]
+            fn add_body_wrench(&self, body: usize, q: &[#real; #n], force: [#real; 3], moment: [#real; 3], g: &mut [#real; #n]) -> bool {
+                let w = [force[0], force[1], moment[2]];
+                match body {
+                    #(#wrench_arms)*
+                    _ => return false,
+                }
+                true
             }
         }
     }

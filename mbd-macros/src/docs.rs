@@ -23,6 +23,24 @@ fn velocity_unit(v: Vel) -> &'static str {
     }
 }
 
+/// The coordinates table of a mechanism in joint coordinates: each tree joint's angle or stroke,
+/// each floating body's pose.
+fn joint_coordinates(w: &mut String, m: &Model) {
+    let _ = writeln!(
+        w,
+        "Joint coordinates: `q[i]` in every `[f64; {}::NQ]` is a tree joint's angle θ = φ_j − φ_i (rad) or \
+         stroke s along its first axis (m), or a floating body's x, y (m) and φ (rad); velocities are their \
+         rates, `v[i]` = q̇ᵢ, and v̇, h and the columns of D are indexed the same way. Each body's pose is \
+         read through `mbd::BodyFrames`.\n",
+        m.name
+    );
+    let _ = writeln!(w, "| i | coordinate | unit |\n|---:|---|---|");
+    let names = m.tree.as_ref().map(|tree| tree.coordinate_names(m)).unwrap_or_default();
+    for (i, (name, angle)) in names.iter().enumerate() {
+        let _ = writeln!(w, "| {i} | `{name}` | {} |", if *angle { "rad" } else { "m" });
+    }
+}
+
 /// The tables of the type's documentation, as markdown (one `#[doc]` string).
 /// `force_ops`: the operations of `forces`, `forces_q` and `forces_v` with no element, and with
 /// each element alone (in the order of `f.force_velocities`).
@@ -33,6 +51,7 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
     let w = &mut out;
     let _ = writeln!(w, "\n# Coordinates and velocities\n");
     match m.space {
+        Space::Planar if m.tree.is_some() => joint_coordinates(w, m),
         Space::Planar => {
             let _ = writeln!(
                 w,
@@ -67,7 +86,7 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
             }
         }
     }
-    let moving: Vec<_> = m.points.iter().filter(|p| p.body != BodyRef::Ground).collect();
+    let moving: Vec<_> = m.points.iter().filter(|p| p.body != BodyRef::Ground && m.tree.is_none()).collect();
     if !moving.is_empty() {
         let _ =
             writeln!(w, "\n# Points\n\nEach named point has an accessor giving its position, velocity and acceleration in m, m/s, m/s².\n");
@@ -85,7 +104,11 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
         let _ = writeln!(w, "| index | joint | kind | rows of Φ |\n|---:|---|---|---|");
         for (k, c) in m.constraints.iter().enumerate() {
             let (first, end) = (f.first_rows[k], f.first_rows.get(k + 1).copied().unwrap_or(f.row_names.len()));
-            let rows = if end == first + 1 { first.to_string() } else { format!("{first}–{}", end - 1) };
+            let rows = match end - first {
+                0 => "none: carried by the joint coordinates".to_string(),
+                1 => first.to_string(),
+                _ => format!("{first}–{}", end - 1),
+            };
             let _ = writeln!(w, "| {k} | `{}` | {} | {rows} |", c.name, c.kind.kind());
         }
         let _ = writeln!(

@@ -53,6 +53,14 @@ pub struct Formulation {
     /// For each spatial body with products of inertia, the structural non-zeros of its block of
     /// M⁻¹, J′⁻¹ = adj(J′)/det(J′), as (row, column, node); (M⁻¹)_cc = 1/M_cc everywhere else.
     pub mass_inverse: Vec<(usize, usize, Id)>,
+    /// Whether M is constant and block-diagonal, each coupled block inverted in
+    /// `mass_inverse` (body coordinates): the forward dynamics then solve with the Schur
+    /// complement D M⁻¹ Dᵀ planned at compile time. Otherwise (joint coordinates: M(q)) they
+    /// factor M at each call.
+    pub mass_blocks: bool,
+    /// Where M depends on q, the structural non-zeros of (∂(M x)/∂q) B with x standing in for
+    /// the velocities' variables (`Dynamics::add_mass_derivative`); empty otherwise.
+    pub mass_q: Vec<(usize, usize, Id)>,
     /// h(q, q̇, t), one node per coordinate.
     pub h: Vec<Id>,
     /// Each force element (gravity first, as `"gravity"`) with the velocities its generalized
@@ -105,6 +113,19 @@ pub struct Formulation {
     /// (accessor name `hinge_angle`, its value, its rate along q̇ = B(q) v), for the generated
     /// accessors.
     pub joint_coordinates: Vec<(String, Id, Id)>,
+    /// In joint coordinates, each body's frame as functions of q and v (`mbd::BodyFrames`);
+    /// empty in body coordinates, whose frames are q's own entries.
+    pub frames: Vec<FrameNodes>,
+}
+
+/// A planar body's frame in joint coordinates: its pose (x, y, φ), its twist J_b v
+/// (ẋ, ẏ, φ̇, linear in v), the twist's rate at constant v (J̇_b v) and J_b's structural
+/// non-zeros, one list per twist component.
+pub struct FrameNodes {
+    pub pose: [Id; 3],
+    pub twist: [Id; 3],
+    pub bias: [Id; 3],
+    pub jacobian: [Vec<(usize, Id)>; 3],
 }
 
 impl Formulation {
@@ -120,6 +141,14 @@ pub fn formulate(model: &Model) -> Formulation {
     let (nq, nv) = (b.nq(), b.nv());
     let (phi, row_names, row_units) = constraint_rows(&mut b);
     let (MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }, inertia_forces) = mass_and_start(&mut b);
+    let mass_blocks = {
+        let mut reads = BTreeSet::new();
+        for &node in mass.iter().chain(mass_coupling.iter().map(|(_, _, n)| n)) {
+            collect_vars(&b.g, node, &mut reads, |v| if let Var::Q(i) = v { Some(i) } else { None });
+        }
+        reads.is_empty() && mass_coupling.iter().all(|&(r, c, _)| mass_inverse.iter().any(|&(ri, ci, _)| (ri, ci) == (r, c)))
+    };
+    let mass_q = if mass_blocks { Vec::new() } else { mass_derivative(&mut b, &mass, &mass_coupling) };
     let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b, inertia_forces);
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
@@ -140,6 +169,7 @@ pub fn formulate(model: &Model) -> Formulation {
     let (constraint_force_q, stiffness, damping) = newton_terms(&mut b, &jacobian, [&h_q, &h_qd], [&friction_q, &friction_qd]);
     let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
     let (points, joint_coordinates) = accessors(&mut b);
+    let frames = if model.tree.is_some() { frame_nodes(&mut b) } else { Vec::new() };
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -158,6 +188,8 @@ pub fn formulate(model: &Model) -> Formulation {
         mass,
         mass_coupling,
         mass_inverse,
+        mass_blocks,
+        mass_q,
         h,
         force_velocities,
         base_forces,
@@ -179,16 +211,61 @@ pub fn formulate(model: &Model) -> Formulation {
         damping,
         points,
         joint_coordinates,
+        frames,
     }
 }
 
+/// (∂(M x)/∂q) B, x standing in for the velocities' variables: M x = Σ_c M_rc x_c by row.
+fn mass_derivative(b: &mut Builder, mass: &[Id], coupling: &[(usize, usize, Id)]) -> Entries {
+    let mut product: Vec<Id> = mass
+        .iter()
+        .enumerate()
+        .map(|(i, &m)| {
+            let x = b.g.var(Var::Qd(i as u16));
+            b.g.mul(m, x)
+        })
+        .collect();
+    for &(r, c, m) in coupling {
+        let x = b.g.var(Var::Qd(c as u16));
+        let term = b.g.mul(m, x);
+        product[r] = b.g.add(product[r], term);
+    }
+    tangent(b, &product)
+}
+
+/// Each body's frame as functions of q and v ([`FrameNodes`]).
+fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
+    use crate::model::{BodyRef, Coord, Vel};
+    let rates = b.coordinate_rates();
+    let seed = |v: Var| match v {
+        Var::Q(i) => Some(rates[i as usize]),
+        _ => None,
+    };
+    let mut memo = HashMap::new();
+    (0..b.model.bodies.len())
+        .map(|k| {
+            let body = BodyRef::Body(k);
+            let pose = [Coord::X, Coord::Y, Coord::Phi].map(|c| b.coord(body, c));
+            let twist = [Vel::Vx, Vel::Vy, Vel::Omega].map(|c| b.velocity(body, c));
+            let bias = twist.map(|x| b.g.directional(x, &seed, &mut memo));
+            let jacobian = twist.map(|x| velocity_partials(&mut b.g, x));
+            FrameNodes { pose, twist, bias, jacobian }
+        })
+        .collect()
+}
+
 /// Φ's rows, joint by joint in declaration order (each joint's first row recorded in
-/// `b.first_rows`), with their names and units.
+/// `b.first_rows`), with their names and units; in joint coordinates the cut joints', drivers'
+/// and user constraints' only.
 fn constraint_rows(b: &mut Builder) -> (Vec<Id>, Vec<String>, Vec<RowUnit>) {
     let mut phi = Vec::new();
     let (mut row_names, mut row_units) = (Vec::new(), Vec::new());
-    for c in &b.model.constraints {
+    for (index, c) in b.model.constraints.iter().enumerate() {
         b.first_rows.push(phi.len());
+        // A joint the tree carries holds by the coordinates themselves: it has no rows.
+        if b.model.tree.as_ref().is_some_and(|tree| tree.joints.contains(&index)) {
+            continue;
+        }
         for row in c.kind.rows(b) {
             row_names.push(format!("{}: {}", c.name, row.name));
             row_units.push(row.unit);
@@ -215,7 +292,10 @@ fn mass_and_start(b: &mut Builder) -> (MassAndStart, Vec<Id>) {
     let (nq, nv) = (b.nq(), b.nv());
     let mut q0 = Vec::with_capacity(nq);
     let mut qd0 = Vec::with_capacity(nv);
-    for body in &model.bodies {
+    if let Some(tree) = &model.tree {
+        (q0, qd0) = crate::tree::initial(b, tree);
+    }
+    for body in model.bodies.iter().filter(|_| model.tree.is_none()) {
         if model.space == crate::model::Space::Planar {
             for c in 0..3 {
                 q0.push(b.expr(&body.q0[c]));
@@ -542,7 +622,9 @@ fn accessors(b: &mut Builder) -> (Vec<Vec<Id>>, Vec<(String, Id, Id)>) {
 /// ∂/∂q in the plane.
 fn tangent(b: &mut Builder, rows: &[Id]) -> Vec<(usize, usize, Id)> {
     match b.coordinates {
-        Coordinates::PlanarBody => sparse_derivative(&mut b.g, rows, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q),
+        Coordinates::PlanarBody | Coordinates::PlanarJoint => {
+            sparse_derivative(&mut b.g, rows, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q)
+        }
         Coordinates::SpatialBody => {
             rows.iter().enumerate().flat_map(|(r, &row)| b.gradient(row).into_iter().map(move |(c, d)| (r, c, d))).collect::<Vec<_>>()
         }

@@ -62,19 +62,42 @@ pub struct Builder<'m> {
     /// The first row of each constraint in Φ, filled as the rows are built (Coulomb friction
     /// reads its joint's multipliers by them).
     pub first_rows: Vec<usize>,
+    /// In joint coordinates, each body's pose (x, y, φ) as a function of q, and its rate along
+    /// v = q̇ (`tree::poses`); empty in body coordinates, where they are q's own entries.
+    poses: Vec<[Id; 3]>,
+    pose_rates: Vec<[Id; 3]>,
 }
 
 impl<'m> Builder<'m> {
     pub fn new(model: &'m Model) -> Self {
-        Builder { g: Graph::new(), model, coordinates: Coordinates::of(model.space), first_rows: Vec::new() }
+        let coordinates = Coordinates::of(model);
+        let mut b = Builder { g: Graph::new(), model, coordinates, first_rows: Vec::new(), poses: Vec::new(), pose_rates: Vec::new() };
+        if let Some(tree) = &model.tree {
+            let poses = crate::tree::poses(&mut b, tree);
+            let rates = b.coordinate_rates();
+            let seed = |v: Var| match v {
+                Var::Q(i) => Some(rates[i as usize]),
+                _ => None,
+            };
+            let mut memo = HashMap::new();
+            b.pose_rates = poses.iter().map(|pose| pose.map(|x| b.g.directional(x, &seed, &mut memo))).collect();
+            b.poses = poses;
+        }
+        b
     }
 
     pub fn nq(&self) -> usize {
-        self.coordinates.per_body() * self.model.bodies.len()
+        match &self.model.tree {
+            Some(tree) => tree.nq,
+            None => self.coordinates.per_body() * self.model.bodies.len(),
+        }
     }
 
     pub fn nv(&self) -> usize {
-        self.coordinates.velocities_per_body() * self.model.bodies.len()
+        match &self.model.tree {
+            Some(tree) => tree.nq,
+            None => self.coordinates.velocities_per_body() * self.model.bodies.len(),
+        }
     }
 
     pub fn expr(&mut self, e: &MExpr) -> Id {
@@ -133,6 +156,7 @@ impl<'m> Builder<'m> {
     pub fn coord(&mut self, b: BodyRef, c: Coord) -> Id {
         match b {
             BodyRef::Ground => self.g.num(if c == Coord::E0 { 1.0 } else { 0.0 }),
+            BodyRef::Body(k) if !self.poses.is_empty() => self.poses[k][c.index()],
             BodyRef::Body(k) => self.g.var(Var::Q((self.coordinates.per_body() * k + c.index()) as u16)),
         }
     }
@@ -141,6 +165,7 @@ impl<'m> Builder<'m> {
     pub fn velocity(&mut self, b: BodyRef, c: Vel) -> Id {
         match b {
             BodyRef::Ground => self.g.num(0.0),
+            BodyRef::Body(k) if !self.pose_rates.is_empty() => self.pose_rates[k][c.index()],
             BodyRef::Body(k) => self.g.var(Var::Qd((self.coordinates.velocities_per_body() * k + c.index()) as u16)),
         }
     }
@@ -152,7 +177,7 @@ impl<'m> Builder<'m> {
     /// velocity-quadratic terms of h.
     pub fn twist(&mut self, b: BodyRef) -> (Vec<Id>, Vec<Id>) {
         let (linear, angular): (&[Vel], &[Vel]) = match self.coordinates {
-            Coordinates::PlanarBody => (&[Vel::Vx, Vel::Vy], &[Vel::Omega]),
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => (&[Vel::Vx, Vel::Vy], &[Vel::Omega]),
             Coordinates::SpatialBody => (&[Vel::Vx, Vel::Vy, Vel::Vz], &[Vel::Wx, Vel::Wy, Vel::Wz]),
         };
         (linear.iter().map(|&c| self.velocity(b, c)).collect(), angular.iter().map(|&c| self.velocity(b, c)).collect())
@@ -161,7 +186,7 @@ impl<'m> Builder<'m> {
     /// q̇_i = (B(q) v)_i: the velocity map, one node per coordinate.
     pub fn coordinate_rates(&mut self) -> Vec<Id> {
         match self.coordinates {
-            Coordinates::PlanarBody => (0..self.nq()).map(|i| self.g.var(Var::Qd(i as u16))).collect(),
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => (0..self.nq()).map(|i| self.g.var(Var::Qd(i as u16))).collect(),
             Coordinates::SpatialBody => {
                 let mut rates = Vec::with_capacity(self.nq());
                 for k in 0..self.model.bodies.len() {
@@ -306,7 +331,7 @@ impl<'m> Builder<'m> {
         collect_vars(&self.g, s, &mut cols, |v| if let Var::Q(i) = v { Some(i) } else { None });
         let partials: Vec<(usize, Id)> = cols.into_iter().map(|c| (c as usize, self.g.partial(s, Var::Q(c)))).collect();
         match self.coordinates {
-            Coordinates::PlanarBody => partials,
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => partials,
             Coordinates::SpatialBody => self.through_velocity_map(partials),
         }
     }
@@ -424,7 +449,7 @@ impl Builder<'_> {
     /// The global position of a body point, 2 or 3 components.
     pub fn point_n(&mut self, loc: &Loc) -> Vec<Id> {
         match self.coordinates {
-            Coordinates::PlanarBody => self.point(loc).to_vec(),
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => self.point(loc).to_vec(),
             Coordinates::SpatialBody => self.point3(loc).to_vec(),
         }
     }
@@ -432,7 +457,7 @@ impl Builder<'_> {
     /// A body-frame vector in global components, 2 or 3 of them.
     pub fn rotate_n(&mut self, b: BodyRef, v: Vec<Id>) -> Vec<Id> {
         match self.coordinates {
-            Coordinates::PlanarBody => self.rotate(b, [v[0], v[1]]).to_vec(),
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => self.rotate(b, [v[0], v[1]]).to_vec(),
             Coordinates::SpatialBody => self.rotate3(b, [v[0], v[1], v[2]]).to_vec(),
         }
     }
@@ -454,7 +479,7 @@ impl Builder<'_> {
     /// A body's position coordinates (x, y[, z]): where gravity does work.
     pub fn origin(&mut self, b: BodyRef) -> Vec<Id> {
         let cs: &[Coord] = match self.coordinates {
-            Coordinates::PlanarBody => &[Coord::X, Coord::Y],
+            Coordinates::PlanarBody | Coordinates::PlanarJoint => &[Coord::X, Coord::Y],
             Coordinates::SpatialBody => &[Coord::X, Coord::Y, Coord::Z],
         };
         cs.iter().map(|&c| self.coord(b, c)).collect()

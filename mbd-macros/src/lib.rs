@@ -38,6 +38,7 @@ mod scalar;
 mod scene;
 mod schur;
 mod sym;
+mod tree;
 mod wording;
 
 use proc_macro::TokenStream;

@@ -4,7 +4,7 @@
 //!
 //! ```text
 //! mechanism   := attr* vis? Ident '{' item* '}'
-//! item        := 'scalar' Ident ';' | 'spatial' ';'
+//! item        := 'scalar' Ident ';' | 'spatial' ';' | 'joint_coordinates' ';'
 //!              | 'params' '{' (Ident ':' expr),* '}'
 //!              | 'body' Ident '{' (Ident ':' value),* '}'
 //!              | 'point' Ident '.' Ident '=' vec ';'
@@ -42,6 +42,9 @@ pub enum Item {
     Scalar(Ident),
     /// `spatial;`: the mechanism lives in 3D.
     Spatial(Ident),
+    /// `joint_coordinates;`: the mechanism is described by the relative coordinates of a
+    /// spanning tree of its joints (`tree`), not by each body's pose.
+    JointCoordinates(Ident),
     Params(Vec<(Ident, Expr)>),
     Body(BodyDef),
     Point(NamedVector),
@@ -277,6 +280,7 @@ pub const AXIS_FORCE_KINDS: &[&str] =
 pub const STATEMENTS: &[&str] = &[
     "scalar",
     "spatial",
+    "joint_coordinates",
     "params",
     "body",
     "particle",
@@ -460,7 +464,7 @@ impl Parse for Item {
                 "expected a statement: `scalar`, `params`, `body`, `point`, `vector`, a joint \
                  (`revolute`, `translational`, `revolute_revolute`, `revolute_translational`, `rigid`; \
                  in space also `spherical`, `universal`, `cylindrical`, `planar`, `point_on_line`, `point_on_plane`, \
-                 `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial`, a force element (`spring`, `damper`, \
+                 `distance`), `fix`, `drive`, `constraint`, `gravity`, `spatial`, `joint_coordinates`, a force element (`spring`, `damper`, \
                  `actuator`, `bushing`, `rotational_spring`, `rotational_damper`, `torque_actuator`, \
                  in space also `translational_spring`, `translational_damper`, `force_actuator`; `force`, `local_force`, \
                  `torque`, `local_torque`), a `for` loop or a `scene`",
@@ -475,6 +479,10 @@ impl Parse for Item {
             "spatial" => {
                 input.parse::<Token![;]>()?;
                 Item::Spatial(kw)
+            }
+            "joint_coordinates" => {
+                input.parse::<Token![;]>()?;
+                Item::JointCoordinates(kw)
             }
             "params" => parse_params(input)?,
             "body" | "particle" => {

@@ -602,14 +602,12 @@ impl Graph {
     }
 
     /// Evaluates a node for given variable values.
-    #[cfg(test)]
     pub fn eval(&self, root: Id, value: &dyn Fn(Var) -> f64) -> f64 {
         let mut memo: HashMap<Id, f64> = HashMap::new();
         self.eval_memo(root, value, &mut memo)
     }
 
     /// Evaluates several nodes sharing one cache.
-    #[cfg(test)]
     pub fn eval_memo(&self, root: Id, value: &dyn Fn(Var) -> f64, memo: &mut HashMap<Id, f64>) -> f64 {
         let mut stack = vec![(root, false)];
         while let Some((id, children_done)) = stack.pop() {

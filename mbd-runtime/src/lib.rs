@@ -28,6 +28,7 @@ mod test_support;
 
 pub use linalg::sparse;
 pub use model::workspace;
+pub use solvers::dense_forward;
 #[cfg(feature = "alloc")]
 pub use solvers::linearize;
 pub use solvers::{redundancy, statics};
@@ -44,8 +45,8 @@ pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };
 pub use model::mechanism::{
-    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, JointInfo, Kinematics, Linearize, Mechanism, NewtonMatrix,
-    OpCount, PositionStep, VelocityInfo, VelocityKind,
+    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, Formulation, JointInfo, Kinematics, Linearize, Mechanism,
+    NewtonMatrix, OpCount, PositionStep, VelocityInfo, VelocityKind,
 };
 pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use model::planar::{point_acceleration, point_position, point_velocity};

@@ -52,6 +52,40 @@ pub trait Joint: Debug {
     fn markers(&self) -> Option<[&spatial::Marker; 2]> {
         None
     }
+    /// How the joint moves body j relative to body i, where that is a relative-coordinate form
+    /// a spanning tree can carry (`tree`); `None` for a joint that is always cut (its rows stay).
+    fn relative(&self) -> Option<Relative<'_>> {
+        None
+    }
+}
+
+/// A planar joint's relative-coordinate form: where body j is, given body i and the joint's
+/// coordinates.
+#[derive(Clone, Copy, Debug)]
+pub enum Relative<'a> {
+    /// P_j = P_i and φ_j = φ_i + θ, θ the joint's one coordinate.
+    Revolute { i: &'a Loc, j: &'a Loc },
+    /// u_j = u_i (the axes stay parallel: φ_j − φ_i is constant) and P_j = P_i + s u_i, s the
+    /// joint's one coordinate (its stroke).
+    Translational { i: &'a Loc, axis_i: &'a Components, j: &'a Loc, axis_j: &'a Components },
+    /// P_j = P_i and φ_j = φ_i + angle: no coordinate.
+    Rigid { i: &'a Loc, j: &'a Loc, angle: &'a MExpr },
+}
+
+impl Relative<'_> {
+    /// The joint's coordinates in the tree (rows it would have as a constraint: 3 − this).
+    pub fn coordinates(self) -> usize {
+        match self {
+            Relative::Revolute { .. } | Relative::Translational { .. } => 1,
+            Relative::Rigid { .. } => 0,
+        }
+    }
+    /// Its two bodies, i then j.
+    pub fn bodies(self) -> [BodyRef; 2] {
+        match self {
+            Relative::Revolute { i, j } | Relative::Translational { i, j, .. } | Relative::Rigid { i, j, .. } => [i.body, j.body],
+        }
+    }
 }
 
 /// A validated joint, driver or user constraint with its name.

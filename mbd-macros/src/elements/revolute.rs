@@ -41,6 +41,9 @@ impl Joint for Revolute {
         let [x, y] = b.diff2(pi, pj);
         vec![Row { name: "x", value: x, unit: RowUnit::Length }, Row { name: "y", value: y, unit: RowUnit::Length }]
     }
+    fn relative(&self) -> Option<super::Relative<'_>> {
+        Some(super::Relative::Revolute { i: &self.i, j: &self.j })
+    }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j)})
     }

@@ -47,6 +47,9 @@ impl Joint for Rigid {
             Row { name: "angle", value: b.g.sub(rel, a), unit: RowUnit::Angle },
         ]
     }
+    fn relative(&self) -> Option<super::Relative<'_>> {
+        Some(super::Relative::Rigid { i: &self.i, j: &self.j, angle: &self.angle })
+    }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc(&self.i), "j": cx.loc(&self.j), "angle": cx.expr(&self.angle)})
     }

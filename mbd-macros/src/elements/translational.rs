@@ -56,6 +56,9 @@ impl Joint for Translational {
             Row { name: "angle", value: b.dot(&ni, &uj), unit: RowUnit::Angle },
         ]
     }
+    fn relative(&self) -> Option<super::Relative<'_>> {
+        Some(super::Relative::Translational { i: &self.i, axis_i: &self.axis_i, j: &self.j, axis_j: &self.axis_j })
+    }
     fn json(&self, cx: &Ctx) -> Value {
         json!({"i": cx.loc_axis(&self.i, &self.axis_i), "j": cx.loc_axis(&self.j, &self.axis_j)})
     }

@@ -18,7 +18,10 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
         crate::model::Space::Planar => (quote!(::mbd::PlanarBody), quote!(::mbd::PlanarPoint)),
         crate::model::Space::Spatial => (quote!(::mbd::SpatialBody), quote!(::mbd::SpatialPoint)),
     };
-    let bodies = m.bodies.iter().enumerate().map(|(k, b)| {
+    // In joint coordinates a body's pose is not in q: it is read through `mbd::BodyFrames`
+    // (named body and point access on it is not generated yet).
+    let in_q = if m.tree.is_none() { m.bodies.len() } else { 0 };
+    let bodies = m.bodies.iter().take(in_q).enumerate().map(|(k, b)| {
         let (name, constant) = (b.name.to_string(), format_ident!("{}", crate::model::constant_name(&b.name.to_string())));
         let (doc, k) = (format!(" Body `{name}`: its coordinates, velocities and points."), usize_lit(k));
         quote!(#[doc = #doc] pub const #constant: #body_type = #body_type::new(#k, #name);)
@@ -29,7 +32,7 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
         quote!(#[doc = #doc] pub const #constant: usize = #k;)
     });
     let dim = usize_lit(m.space.dim());
-    let points = m.points.iter().zip(&f.points).map(|(p, nodes)| {
+    let points = m.points.iter().zip(&f.points).take(if in_q > 0 { m.points.len() } else { 0 }).map(|(p, nodes)| {
         let crate::model::BodyRef::Body(k) = p.body else { return ground_point(m, &p.name, nodes, e) };
         let body = m.bodies[k].name.to_string();
         let accessor = format_ident!("{}", crate::model::point_accessor(&body, &p.name));
@@ -79,7 +82,7 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
             }
         }
     });
-    let inertia = body_inertia(m, f, e);
+    let inertia = if in_q > 0 { body_inertia(m, f, e) } else { quote!() };
     quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)* #inertia)
 }
 

@@ -138,6 +138,9 @@ impl Force for RevoluteCoulomb {
     fn effect(&self) -> &'static str {
         "Coulomb joint friction"
     }
+    fn reads_multipliers_of(&self) -> Option<usize> {
+        Some(self.joint)
+    }
     fn kind(&self) -> &'static str {
         "revolute_coulomb"
     }
@@ -179,6 +182,9 @@ pub struct TranslationalCoulomb {
 impl Force for TranslationalCoulomb {
     fn effect(&self) -> &'static str {
         "Coulomb joint friction"
+    }
+    fn reads_multipliers_of(&self) -> Option<usize> {
+        Some(self.joint)
     }
     fn kind(&self) -> &'static str {
         "translational_coulomb"
@@ -267,6 +273,9 @@ pub struct SpatialCoulomb {
 impl Force for SpatialCoulomb {
     fn effect(&self) -> &'static str {
         "Coulomb joint friction"
+    }
+    fn reads_multipliers_of(&self) -> Option<usize> {
+        Some(self.index)
     }
     fn kind(&self) -> &'static str {
         if self.radius.is_some() {

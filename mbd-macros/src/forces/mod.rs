@@ -48,6 +48,11 @@ pub trait Force: Debug {
     fn apply(&self, b: &mut Builder, out: &mut Generalized);
     /// Its model JSON object without `"kind"` and `"name"`.
     fn json(&self, cx: &Ctx) -> Value;
+    /// The constraint (index into `Model::constraints`) whose multipliers it reads — a joint's
+    /// Coulomb friction reads its normal load —, if any.
+    fn reads_multipliers_of(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// A resolved force statement: label, default name, keyword span, element.

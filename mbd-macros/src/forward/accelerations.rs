@@ -164,8 +164,8 @@ impl Plan<'_> {
     fn factor_call(&self) -> TokenStream {
         let Plan { real, zero, nv, nv_l, nc_l, nl_l, .. } = self;
         let (minv, minv_off) = self.inverse_mass();
-        let coordinates = crate::coordinates::Coordinates::of(self.m.space);
-        let mass_bodies = (0..*nv).map(|i| coordinates.body_of_velocity(i) as u16);
+        let coordinates = crate::coordinates::Coordinates::of(self.m);
+        let mass_bodies = (0..*nv).map(|i| coordinates.body_of_velocity(self.m, i) as u16);
         let (minv_off_decl, minv_off_arg) = if self.coupled() {
             let n_off = usize_lit(self.coupling.len());
             (quote!(let mut minv_off = [#zero; #n_off]; #(#minv_off)*), quote!(&minv_off,))

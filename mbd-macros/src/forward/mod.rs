@@ -153,6 +153,9 @@ impl<'a> Plan<'a> {
 /// implementation, the helpers it calls, and a driven mechanism's kinematic solves.
 pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode {
     let plan = Plan::new(m, f, e);
+    if !f.mass_blocks {
+        return plan.dense();
+    }
     let (impl_block, eval_ops) = plan.forward_impl();
     // The kinematic solves of a driven mechanism: the runtime calls them only where D is square;
     // elsewhere the provided methods stand, and nothing is generated to type-check.
@@ -160,4 +163,69 @@ pub fn forward_dynamics(m: &Model, f: &Formulation, e: &Emitter) -> ForwardCode 
         if plan.nv != plan.nc { (quote!(), quote!(), quote!()) } else { plan.driven() };
     let helpers = plan.helpers(constraint_solve, transpose_solve);
     ForwardCode { helpers, position_step, impl_block, eval_ops }
+}
+
+impl Plan<'_> {
+    /// Where M depends on q (joint coordinates): the `ForwardDynamics` implementation by the
+    /// runtime's dense factorizations of M(q) and S (`mbd::dense_forward`), and a driven
+    /// mechanism's kinematic solves as in body coordinates (they weigh by I, not M). Its
+    /// evaluation counts Φ, D, ν, γ, h and M's entries.
+    fn dense(&self) -> ForwardCode {
+        let Plan { m, f, e, real, nq_l, nv_l, nc_l, .. } = self;
+        let name = &m.name;
+        let coordinates = crate::coordinates::Coordinates::of(m);
+        let mass_bodies: Vec<u16> = (0..self.nv).map(|i| coordinates.body_of_velocity(m, i) as u16).collect();
+        let mass_bodies = quote!(&[#(#mass_bodies),*]);
+        let friction = !crate::emit::friction_outputs(f).is_empty();
+        let mut outputs = crate::emit::vector_outputs("phi", &f.phi);
+        outputs.extend(crate::emit::jacobian_values_outputs(f, "jv"));
+        outputs.extend(crate::emit::vector_outputs("nu", &f.nu));
+        outputs.extend(crate::emit::vector_outputs("gamma", &f.gamma));
+        outputs.extend(crate::emit::vector_outputs("h", &f.h));
+        outputs.extend(crate::emit::vector_outputs("m", &f.mass));
+        outputs.extend(f.mass_coupling.iter().enumerate().map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            crate::emit::Output { target: quote!(mc[#k]), node }
+        }));
+        let (_, eval_ops) = e.body(&outputs);
+        let (position_step, constraint_solve, transpose_solve) =
+            if self.nv != self.nc { (quote!(), quote!(), quote!()) } else { self.driven() };
+        let helpers = if self.nv != self.nc { quote!() } else { self.helpers(constraint_solve, transpose_solve) };
+        let impl_block = quote! {
+            impl ::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
+                #[inline]
+                fn accelerations(
+                    &self,
+                    q: &[#real; #nq_l],
+                    v: &[#real; #nv_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                    vd: &mut [#real; #nv_l],
+                    lambda: &mut [#real; #nc_l],
+                ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::accelerations(self, q, v, t, options, #friction, #mass_bodies, vd, lambda)
+                }
+                #[inline]
+                fn project_positions_step(
+                    &self,
+                    q: &mut [#real; #nq_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::project_positions_step(self, q, t, options, #mass_bodies)
+                }
+                #[inline]
+                fn project_velocities(
+                    &self,
+                    q: &[#real; #nq_l],
+                    v: &mut [#real; #nv_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::project_velocities(self, q, v, t, options, #mass_bodies)
+                }
+            }
+        };
+        ForwardCode { helpers, position_step, impl_block, eval_ops }
+    }
 }

@@ -261,6 +261,9 @@ pub struct Model {
     /// Gravitational acceleration (m/s²), if declared.
     pub gravity: Option<Components>,
     pub forces: Vec<ForceElement>,
+    /// In joint coordinates (`joint_coordinates;`), the spanning tree of the joints; `None` in
+    /// body coordinates.
+    pub tree: Option<crate::tree::Tree>,
     /// What the macro can see is likely a mistake but is valid (an angle driver in degrees).
     pub warnings: Vec<(Span, String)>,
 }
@@ -272,8 +275,12 @@ impl Model {
             BodyRef::Body(k) => self.bodies[k].name.to_string(),
         }
     }
-    /// Coordinate names, `"crank.phi"`.
+    /// Coordinate names, `"crank.phi"`; in joint coordinates a tree joint's `"pin.angle"` or
+    /// `"slide.stroke"`, a floating body's `"float.x"`.
     pub fn coordinate_names(&self) -> Vec<String> {
+        if let Some(tree) = &self.tree {
+            return tree.coordinate_names(self).into_iter().map(|(name, _)| name).collect();
+        }
         let cs = self.space.coordinates();
         self.bodies.iter().flat_map(|b| cs.iter().map(move |c| format!("{}.{}", b.name, c.name()))).collect()
     }
@@ -404,6 +411,7 @@ impl MechanismDef {
                 space = Space::Spatial;
             }
         }
+        let joint_coordinates = self.joint_coordinates(space, errors);
         let f32 = self.items.iter().any(|i| matches!(i, Item::Scalar(s) if s == "f32"));
         let mut r = Resolver {
             errors,
@@ -461,6 +469,27 @@ impl MechanismDef {
         if !ok {
             return None;
         }
+        let tree = joint_coordinates.then(|| spanning_tree(model_bodies.len(), &constraints));
+        if let Some(tree) = &tree {
+            // Coulomb friction reads its joint's normal load from λ: a tree joint has none.
+            let kw = self.items.iter().find_map(|i| if let Item::JointCoordinates(kw) = i { Some(kw.span()) } else { None });
+            for element in &forces {
+                let Some(joint) = element.kind.reads_multipliers_of().filter(|j| tree.joints.contains(j)) else { continue };
+                r.errors.push(
+                    kw.unwrap_or_else(|| self.name.span()),
+                    format!(
+                        "Coulomb friction on a joint of the tree is not implemented yet: `{}` needs the normal \
+                         load of `{}`, which joint coordinates carry in the tree, not as a multiplier; expected \
+                         body coordinates (no `joint_coordinates;`) or no `coulomb:` on that joint, found both",
+                        element.name, constraints[joint].name
+                    ),
+                );
+                ok = false;
+            }
+        }
+        if !ok {
+            return None;
+        }
         Some(Model {
             attrs: self.attrs.clone(),
             vis: self.vis.clone(),
@@ -473,10 +502,38 @@ impl MechanismDef {
             vectors,
             constraints,
             gravity,
+            tree,
             forces,
             warnings: Vec::new(),
         })
     }
+
+    /// Whether `joint_coordinates;` is stated (once, and in the plane).
+    fn joint_coordinates(&self, space: Space, errors: &mut Errors) -> bool {
+        let mut stated = false;
+        for item in &self.items {
+            if let Item::JointCoordinates(kw) = item {
+                if stated {
+                    errors.push(kw.span(), "`joint_coordinates;` is stated twice: expected it once, found it again");
+                } else if space == Space::Spatial {
+                    errors.push(
+                        kw.span(),
+                        "joint coordinates are planar only so far (spatial trees are not implemented yet): expected \
+                         `joint_coordinates;` without `spatial;`, found both",
+                    );
+                }
+                stated = true;
+            }
+        }
+        stated && space == Space::Planar
+    }
+}
+
+/// The spanning tree of the joints that have a relative-coordinate form (`crate::tree`).
+fn spanning_tree(bodies: usize, constraints: &[Constraint]) -> crate::tree::Tree {
+    let candidates: Vec<crate::tree::Candidate> =
+        constraints.iter().enumerate().filter_map(|(index, c)| c.kind.relative().map(|r| (index, r.bodies(), r.coordinates()))).collect();
+    crate::tree::plan(bodies, &candidates)
 }
 
 #[cfg(test)]

@@ -278,6 +278,21 @@ pub trait Mechanism {
     /// A JSON description of the model (bodies, points, vectors, params, constraints with their
     /// expressions), read by the CasADi oracle and by tools. Schema: `docs/formulation.md`.
     const MODEL_JSON: &'static str;
+    /// What q and v are: each body's own pose and velocity (body coordinates, the default), or
+    /// the relative coordinates of a spanning tree of the joints (`joint_coordinates;`).
+    const FORMULATION: Formulation = Formulation::BodyCoordinates;
+}
+
+/// What a mechanism's coordinates are ([`Mechanism::FORMULATION`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    /// Each body's pose in q, its velocity in v (Nikravesh ch. 7; Wallrapp's absolute
+    /// coordinates): constraints at every joint, M constant.
+    BodyCoordinates,
+    /// The relative coordinates of a spanning tree of the joints (Nikravesh ch. 9): cut joints,
+    /// drivers and user constraints are the only rows, M depends on q, and a body's pose is read
+    /// through [`BodyFrames`](crate::BodyFrames).
+    JointCoordinates,
 }
 
 /// What [`Kinematics::sparse_position_solve`] ended with.
@@ -389,12 +404,18 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
 /// from the bodies' masses and the declared force elements; a force element the mechanism does
 /// not declare generates no code.
 pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: Kinematics<T, NQ, NV, NC> {
-    /// y = M(q) x for the NV × NV mass matrix M: diag(m, m, J) per planar body,
-    /// blockdiag(m I₃, J′) per spatial body (kg, kg·m²). Constant today; q leaves room for a
-    /// configuration-dependent M.
+    /// y = M(q) x for the NV × NV mass matrix M: in body coordinates diag(m, m, J) per planar
+    /// body, blockdiag(m I₃, J′) per spatial body (kg, kg·m²), constant; in joint coordinates
+    /// M(q) = Σ_b m_b J_rᵀJ_r + J_ωᵀ J_b J_ω over the bodies' twist Jacobians.
     fn mass_times(&self, q: &[T; NQ], x: &[T; NV], y: &mut [T; NV]);
     /// a += scale · M(q); only M's structural non-zeros are touched.
     fn add_mass_matrix(&self, q: &[T; NQ], scale: T, a: &mut [[T; NV]; NV]);
+    /// a += scale · (∂(M(q) x)/∂q) B at fixed x: the change of the inertia forces M v̇ with the
+    /// configuration, which a linearization and an implicit Newton matrix need where M depends
+    /// on q. Nothing where M is constant (body coordinates), as this provided method does.
+    fn add_mass_derivative(&self, q: &[T; NQ], x: &[T; NV], scale: T, a: &mut [[T; NV]; NV]) {
+        let _ = (q, x, scale, a);
+    }
     /// h(q, v, t): the generalized applied forces — gravity, springs, dampers, actuators,
     /// applied forces and torques, and (spatial) the gyroscopic term — in N (translational rows)
     /// and N·m (rotational rows).

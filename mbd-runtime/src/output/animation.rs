@@ -74,6 +74,13 @@ impl Animation {
     /// An animation of mechanism `M` with these parameter values (in [`Mechanism::PARAM_NAMES`]
     /// order: `Name::params()`), no frames yet.
     pub fn new<M: Mechanism>(params: &[f64]) -> Self {
+        const {
+            assert!(
+                matches!(M::FORMULATION, crate::model::mechanism::Formulation::BodyCoordinates),
+                "animations draw the bodies from their coordinates in q: a mechanism in joint coordinates is not \
+                 animated yet"
+            );
+        }
         Animation {
             title: M::NAME.to_string(),
             model: M::MODEL_JSON,

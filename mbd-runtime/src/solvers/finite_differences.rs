@@ -202,6 +202,9 @@ impl<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, cons
     fn add_mass_matrix(&self, q: &[T; NQ], scale: T, a: &mut [[T; NV]; NV]) {
         self.mechanism.add_mass_matrix(q, scale, a);
     }
+    fn add_mass_derivative(&self, q: &[T; NQ], x: &[T; NV], scale: T, a: &mut [[T; NV]; NV]) {
+        self.mechanism.add_mass_derivative(q, x, scale, a);
+    }
     fn forces(&self, q: &[T; NQ], v: &[T; NV], t: T, h: &mut [T; NV]) {
         self.mechanism.forces(q, v, t, h);
     }

@@ -417,6 +417,13 @@ where
     T: Real,
     M: BodyFrames<T, NQ, NV>,
 {
+    const {
+        assert!(
+            matches!(M::FORMULATION, crate::model::mechanism::Formulation::BodyCoordinates),
+            "joint reactions are read from λ in body coordinates only: in joint coordinates a tree joint has no \
+             multiplier (its reaction comes from the Newton–Euler recursion, not implemented yet)"
+        );
+    }
     let info = M::JOINTS.get(joint)?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
     let mut g = [T::ZERO; NV];

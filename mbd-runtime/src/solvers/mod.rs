@@ -3,6 +3,7 @@
 //! linearization, and finite-difference derivatives of a mechanism. Built on the model and
 //! `linalg`; the integrators are built on them.
 
+pub mod dense_forward;
 pub(crate) mod error;
 pub(crate) mod finite_differences;
 pub(crate) mod flow;

@@ -155,7 +155,7 @@ impl Gen<'_> {
         let coordinate_names = m.coordinate_names();
         // planar v = q̇: the velocities are named by their coordinates, as the runtime's messages say
         let velocity_names = if m.space == crate::model::Space::Planar { m.coordinate_names() } else { m.velocity_names() };
-        let (coordinate_infos, velocity_infos) = crate::coordinates::Coordinates::of(m.space).descriptors(m);
+        let (coordinate_infos, velocity_infos) = crate::coordinates::Coordinates::of(m).descriptors(m);
         let row_names = &f.row_names;
         let row_units = f.row_units.iter().map(|u| u.multiplier());
         let param_names: Vec<String> = m.params.iter().map(|p| p.name.to_string()).collect();
@@ -166,6 +166,11 @@ impl Gen<'_> {
         });
         let phi_t_zero = f.phi_t_is_zero();
         let json = model_json(m, &f.row_names, &f.first_rows, &pattern);
+        let formulation = m.tree.as_ref().map(|_| {
+            quote!(
+                const FORMULATION: ::mbd::Formulation = ::mbd::Formulation::JointCoordinates;
+            )
+        });
         let name_str = name.to_string();
         let joints = self.joint_infos();
         let effects = effects(m);
@@ -201,6 +206,7 @@ impl Gen<'_> {
                 // the trait documents it; the type's page would show the whole JSON text
                 #[doc(hidden)]
                 const MODEL_JSON: &'static str = #json;
+                #formulation
             }
         }
     }
@@ -315,6 +321,7 @@ impl Gen<'_> {
             friction_derivatives: friction_derivatives_fn,
             ..
         } = d;
+        let mass_derivative = self.mass_derivative();
         quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -354,6 +361,7 @@ impl Gen<'_> {
                     }
                     #h_v_body
                 }
+                #mass_derivative
                 #inline
                 fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
                     let mut energy = [#zero; 1];
@@ -387,11 +395,45 @@ impl Gen<'_> {
         }
     }
 
+    /// `Dynamics::add_mass_derivative` where M depends on q (the provided no-op otherwise):
+    /// its entries evaluated with x in place of v, then added scaled.
+    fn mass_derivative(&self) -> TokenStream {
+        let Gen { f, e, real, zero, inline, nq_l, nv_l, .. } = self;
+        if f.mass_q.is_empty() {
+            return quote!();
+        }
+        let outputs: Vec<crate::emit::Output> = f
+            .mass_q
+            .iter()
+            .enumerate()
+            .map(|(k, &(_, _, node))| {
+                let k = crate::emit::usize_lit(k);
+                crate::emit::Output { target: quote!(dm[#k]), node }
+            })
+            .collect();
+        let (body, _) = e.body(&outputs);
+        let n = crate::emit::usize_lit(outputs.len());
+        let adds = f.mass_q.iter().enumerate().map(|(k, &(r, c, _))| {
+            let (k, r, c) = (crate::emit::usize_lit(k), crate::emit::usize_lit(r), crate::emit::usize_lit(c));
+            quote!(a[#r][#c] += scale * dm[#k];)
+        });
+        quote! {
+            #inline
+            fn add_mass_derivative(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
+                #[allow(clippy::redundant_locals)]
+                let v = x;
+                let mut dm = [#zero; #n];
+                #body
+                #( #adds )*
+            }
+        }
+    }
+
     /// `impl Kinematics`: the initial guesses, the velocity map, Φ, D, ν, γ, the fused
     /// evaluations and a driven mechanism's planned position solve.
     pub(super) fn kinematics_impl(&self, c: &ConstraintFunctions, position_step: &TokenStream) -> TokenStream {
         let Gen { m, e, real, name, zero, inline, nq_l, nv_l, nc_l, .. } = self;
-        let positions_code = crate::coordinates::Coordinates::of(m.space).position_updates(m, e);
+        let positions_code = crate::coordinates::Coordinates::of(m).position_updates(m, e);
         let ConstraintFunctions {
             phi: phi_body,
             jacobian: jac_body,

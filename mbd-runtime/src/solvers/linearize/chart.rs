@@ -210,6 +210,11 @@ impl Chart {
             let r = self.rows[i];
             nu[r] - self.independent.iter().map(|&c| d[r][c] * v[c]).sum::<f64>()
         });
+        if self.rows.is_empty() {
+            // No constraint (a tree in joint coordinates): v is w (nalgebra's LU solve of a
+            // 0 × 0 system underflows an index).
+            return Ok(v);
+        }
         let vd = dd.lu().solve(&rhs).ok_or(LinearizeError::Singular)?;
         for (&c, &value) in self.dependent.iter().zip(vd.iter()) {
             v[c] = value;

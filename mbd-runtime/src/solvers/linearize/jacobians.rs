@@ -63,6 +63,13 @@ where
     let (mut h, h_v) = (dense(&a1), dense(&a2));
     m.constraint_force_q(q, t, &lambda, &mut a1);
     h += dense(&a1);
+    // M(q) v̇ − Dᵀλ = h: where M depends on q (joint coordinates) its change at the solved v̇
+    // acts as a force, −(∂(M v̇)/∂q) B.
+    for row in a1.iter_mut() {
+        *row = [0.0; NV];
+    }
+    m.add_mass_derivative(q, &vd, -1.0, &mut a1);
+    h += dense(&a1);
     let (mut g1, mut g2) = (boxed::<NC, NV>(), boxed::<NC, NV>());
     let mut gamma_v_at = |a: &[f64; NV]| {
         m.gamma_derivatives(q, a, t, &mut g1, &mut g2);

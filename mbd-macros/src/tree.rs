@@ -1,0 +1,411 @@
+//! The spanning tree of a mechanism in joint coordinates (`joint_coordinates;`; Nikravesh ch. 9,
+//! Wallrapp 2.6.2): which joints carry the bodies from ground by their relative coordinates,
+//! and which are cut and stay as rows of Φ (loop closures).
+//!
+//! The joint graph has ground and the bodies as nodes and each joint with a relative-coordinate
+//! form (`elements::Relative`: revolute, translational, rigid) as an edge. The tree keeps the
+//! joints that cut the fewest rows: a maximum-weight spanning forest by Kruskal's rule, each
+//! joint weighted by the rows it would have (3 − its coordinates), ties kept in declaration
+//! order — so of equals the later-declared joint is cut. Every other joint, driver and user
+//! constraint keeps its rows. A body with no path to ground floats on a free joint (x, y, φ of
+//! the first-declared body of its group, relative to ground). Coordinates are numbered body by
+//! body in declaration order: body k's link owns q[first..first + count].
+
+use std::collections::{BTreeSet, VecDeque};
+
+use crate::elements::Relative;
+use crate::frames::Builder;
+use crate::model::{BodyRef, MExpr};
+use crate::sym::{Func, Id, Var};
+
+/// How one body hangs from its parent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Link {
+    pub parent: BodyRef,
+    /// The joint (index into `Model::constraints`) that carries it; `None`: a free joint.
+    pub joint: Option<usize>,
+    /// Whether the body is its joint's first (i) side, so the parent is the second (j).
+    pub reversed: bool,
+    /// Its coordinates are q[first..first + count].
+    pub first: usize,
+    pub count: usize,
+}
+
+/// The spanning tree.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tree {
+    /// One link per moving body, in declaration order.
+    pub links: Vec<Link>,
+    /// The bodies, each after its parent.
+    pub order: Vec<usize>,
+    /// The joints the tree carries (their rows are not in Φ).
+    pub joints: BTreeSet<usize>,
+    /// The number of coordinates (= velocities: v = q̇ in the plane).
+    pub nq: usize,
+}
+
+/// A joint the tree may carry: its index into `Model::constraints`, its bodies (i, j) and its
+/// number of coordinates.
+pub type Candidate = (usize, [BodyRef; 2], usize);
+
+/// Coordinates of a free planar body: x, y, φ.
+const FREE: usize = 3;
+
+/// The tree of `bodies` moving bodies over the candidate joints.
+pub fn plan(bodies: usize, candidates: &[Candidate]) -> Tree {
+    let node = |b: BodyRef| match b {
+        BodyRef::Ground => 0,
+        BodyRef::Body(k) => k + 1,
+    };
+    // Kruskal: the joints with the most rows first, ties in declaration order.
+    let mut by_weight: Vec<&Candidate> = candidates.iter().filter(|(_, [i, j], _)| i != j).collect();
+    by_weight.sort_by_key(|&&(index, _, coordinates)| (coordinates, index));
+    let mut root: Vec<usize> = (0..=bodies).collect();
+    fn find(root: &mut [usize], mut x: usize) -> usize {
+        while root[x] != x {
+            root[x] = root[root[x]];
+            x = root[x];
+        }
+        x
+    }
+    let mut kept: Vec<&Candidate> = Vec::new();
+    for &candidate in &by_weight {
+        let [i, j] = candidate.1;
+        let (a, b) = (find(&mut root, node(i)), find(&mut root, node(j)));
+        if a != b {
+            root[a] = b;
+            kept.push(candidate);
+        }
+    }
+    // Orient from ground, then from the first-declared body of each floating group.
+    let mut links: Vec<Option<Link>> = vec![None; bodies];
+    let mut order = Vec::with_capacity(bodies);
+    let mut queue = VecDeque::new();
+    let mut reached = vec![false; bodies + 1];
+    reached[0] = true;
+    queue.push_back(BodyRef::Ground);
+    let mut next_free = 0;
+    loop {
+        while let Some(parent) = queue.pop_front() {
+            for &&(index, [i, j], count) in &kept {
+                let (child, reversed) = if i == parent {
+                    (j, false)
+                } else if j == parent {
+                    (i, true)
+                } else {
+                    continue;
+                };
+                let BodyRef::Body(k) = child else { continue };
+                if reached[k + 1] {
+                    continue;
+                }
+                reached[k + 1] = true;
+                links[k] = Some(Link { parent, joint: Some(index), reversed, first: 0, count });
+                order.push(k);
+                queue.push_back(child);
+            }
+        }
+        while next_free < bodies && reached[next_free + 1] {
+            next_free += 1;
+        }
+        if next_free == bodies {
+            break;
+        }
+        let k = next_free;
+        reached[k + 1] = true;
+        links[k] = Some(Link { parent: BodyRef::Ground, joint: None, reversed: false, first: 0, count: FREE });
+        order.push(k);
+        queue.push_back(BodyRef::Body(k));
+    }
+    let mut nq = 0;
+    let links: Vec<Link> = links
+        .into_iter()
+        .map(|link| {
+            let mut link = link.expect("every body is reached: from ground or as the root of its group");
+            link.first = nq;
+            nq += link.count;
+            link
+        })
+        .collect();
+    let joints = kept.iter().map(|&&(index, _, _)| index).collect();
+    Tree { links, order, joints, nq }
+}
+
+impl Tree {
+    /// Each coordinate's name and whether it is an angle (else a length): a revolute joint's
+    /// `"pin.angle"`, a translational joint's `"slide.stroke"`, a floating body's `"float.x"`,
+    /// `"float.y"`, `"float.phi"`.
+    pub fn coordinate_names(&self, model: &crate::model::Model) -> Vec<(String, bool)> {
+        let mut names = Vec::with_capacity(self.nq);
+        for (k, link) in self.links.iter().enumerate() {
+            match link.joint {
+                None => {
+                    let body = &model.bodies[k].name;
+                    names.extend([("x", false), ("y", false), ("phi", true)].map(|(c, angle)| (format!("{body}.{c}"), angle)));
+                }
+                Some(index) => {
+                    let joint = &model.constraints[index];
+                    match joint.kind.relative() {
+                        Some(Relative::Revolute { .. }) => names.push((format!("{}.angle", joint.name), true)),
+                        Some(Relative::Translational { .. }) => names.push((format!("{}.stroke", joint.name), false)),
+                        Some(Relative::Rigid { .. }) | None => {}
+                    }
+                }
+            }
+        }
+        names
+    }
+
+    /// The body whose link owns coordinate `i`.
+    pub fn body_of_coordinate(&self, i: usize) -> usize {
+        self.links.iter().position(|l| (l.first..l.first + l.count).contains(&i)).unwrap_or(0)
+    }
+}
+
+// --- the bodies' poses along the tree ---------------------------------------------------------
+
+/// A planar pose (x, y, φ).
+type Pose = [Id; 3];
+
+/// Each body's pose as a function of the joint coordinates, built parents first (Nikravesh
+/// 9.2): for a joint declared `Pi ~ Pj` whose parent side is i,
+///
+/// - revolute: φ_j = φ_i + θ, r_j = r_i + A_i s′_i − A_j s′_j;
+/// - rigid: the same with θ the joint's constant angle;
+/// - translational: φ_j = φ_i + α_i − α_j (+ π where the axes point apart at the bodies' `at:`
+///   poses), α the angle of a body-frame axis, so that u_j = ±u_i; r_j = r_i + A_i s′_i + s u_i
+///   − A_j s′_j;
+///
+/// and the same relations solved for body i where the parent is j. A free body's pose is its
+/// coordinates.
+pub fn poses(b: &mut Builder, tree: &Tree) -> Vec<[Id; 3]> {
+    let model = b.model;
+    let mut poses: Vec<Option<Pose>> = vec![None; tree.links.len()];
+    let zero = b.g.num(0.0);
+    for &k in &tree.order {
+        let link = &tree.links[k];
+        let q = |b: &mut Builder, i: usize| b.g.var(Var::Q((link.first + i) as u16));
+        let Some(index) = link.joint else {
+            poses[k] = Some([q(b, 0), q(b, 1), q(b, 2)]);
+            continue;
+        };
+        let parent = match link.parent {
+            BodyRef::Ground => [zero; 3],
+            BodyRef::Body(p) => poses[p].expect("a parent is placed before its children"),
+        };
+        let relative = model.constraints[index].kind.relative().expect("a tree joint has a relative form");
+        let coordinate = (link.count == 1).then(|| q(b, 0));
+        poses[k] = Some(child_pose(b, relative, link.reversed, parent, coordinate));
+    }
+    poses.into_iter().map(|p| p.expect("every body is placed")).collect()
+}
+
+/// The pose of a joint's child from its parent's: body j from body i, or body i from body j
+/// where `reversed`.
+fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose, coordinate: Option<Id>) -> Pose {
+    let [fp, fc] = if reversed { [-1.0, 1.0] } else { [1.0, -1.0] };
+    let (sign_p, sign_c) = (b.g.num(fp), b.g.num(fc));
+    let (parent_point, child_point, turn) = match relative {
+        Relative::Revolute { i, j } => {
+            let (pi, pj) = (local(b, &i.point), local(b, &j.point));
+            let theta = coordinate.expect("a revolute joint has its angle");
+            (if reversed { pj } else { pi }, if reversed { pi } else { pj }, theta)
+        }
+        Relative::Rigid { i, j, angle } => {
+            let (pi, pj) = (local(b, &i.point), local(b, &j.point));
+            let theta = b.expr(angle);
+            (if reversed { pj } else { pi }, if reversed { pi } else { pj }, theta)
+        }
+        Relative::Translational { i, axis_i, j, axis_j } => {
+            let (pi, pj) = (local(b, &i.point), local(b, &j.point));
+            let offset = axis_offset(b, [i.body, j.body], [axis_i, axis_j]);
+            (if reversed { pj } else { pi }, if reversed { pi } else { pj }, offset)
+        }
+    };
+    // φ_child = φ_parent ± turn; r_child = r_parent + A_parent s′_parent − A_child s′_child
+    let signed_turn = b.g.mul(sign_p, turn);
+    let phi = b.g.add(parent[2], signed_turn);
+    let arm_p = rotate(b, parent[2], parent_point);
+    let arm_c = rotate(b, phi, child_point);
+    let mut r = [0, 1].map(|a| {
+        let at = b.g.add(parent[a], arm_p[a]);
+        b.g.sub(at, arm_c[a])
+    });
+    if let (Relative::Translational { axis_i, .. }, Some(s)) = (relative, coordinate) {
+        // P_j = P_i + s u_i, u_i on body i: the parent, or the child where reversed.
+        let phi_i = if reversed { phi } else { parent[2] };
+        let u = unit(b, axis_i);
+        let u = rotate(b, phi_i, u);
+        for a in 0..2 {
+            let su = b.g.mul(s, u[a]);
+            let signed = b.g.mul(sign_c, su);
+            r[a] = b.g.sub(r[a], signed);
+        }
+    }
+    [r[0], r[1], phi]
+}
+
+/// α_i − α_j (+ π where the axes point apart at the bodies' `at:` poses, evaluated at the
+/// parameters' defaults): φ_j − φ_i of a translational joint whose axes stay parallel.
+fn axis_offset(b: &mut Builder, bodies: [BodyRef; 2], axes: [&Vec<MExpr>; 2]) -> Id {
+    let [alpha_i, alpha_j] = axes.map(|axis| {
+        let [x, y] = local(b, axis);
+        b.g.atan2(y, x)
+    });
+    let offset = b.g.sub(alpha_i, alpha_j);
+    let model = b.model;
+    let [phi_i, phi_j] = bodies.map(|body| match body {
+        BodyRef::Ground => b.g.num(0.0),
+        BodyRef::Body(k) => b.expr(&model.bodies[k].q0[2]),
+    });
+    // cos(φ_j + α_j − φ_i − α_i) at the initial poses
+    let relative = b.g.sub(phi_j, phi_i);
+    let apart = b.g.sub(relative, offset);
+    let cos = b.g.call(Func::Cos, apart);
+    let params = &b.model.params;
+    let value = b.g.eval(cos, &|v| match v {
+        Var::Param(k) => params[k as usize].default,
+        _ => 0.0,
+    });
+    if value < 0.0 {
+        let pi = b.g.num(std::f64::consts::PI);
+        b.g.add(offset, pi)
+    } else {
+        offset
+    }
+}
+
+/// The initial joint coordinates and their rates from the bodies' `at:` poses and `velocity:`
+/// (docs/formulation.md, "Joint coordinates"): a revolute joint's θ = φ_j − φ_i, a translational
+/// joint's stroke s = u_iᵀ(r^P_j − r^P_i) — P_j projected on the axis — and a free body's pose;
+/// their rates θ̇ = ω_j − ω_i, ṡ = u̇_iᵀ d + u_iᵀ ḋ. Where the poses do not close a loop, the
+/// kinematic solve (assembly) moves these guesses onto Φ = 0.
+pub fn initial(b: &mut Builder, tree: &Tree) -> (Vec<Id>, Vec<Id>) {
+    let model = b.model;
+    let (mut q0, mut v0) = (Vec::with_capacity(tree.nq), Vec::with_capacity(tree.nq));
+    let zero = b.g.num(0.0);
+    let start = |b: &mut Builder, body: BodyRef| -> (Pose, Pose) {
+        match body {
+            BodyRef::Ground => ([zero; 3], [zero; 3]),
+            BodyRef::Body(k) => {
+                let at = &model.bodies[k];
+                ([0, 1, 2].map(|c| b.expr(&at.q0[c])), [0, 1, 2].map(|c| b.expr(&at.v0[c])))
+            }
+        }
+    };
+    for (k, link) in tree.links.iter().enumerate() {
+        let Some(index) = link.joint else {
+            let (pose, rate) = start(b, BodyRef::Body(k));
+            q0.extend(pose);
+            v0.extend(rate);
+            continue;
+        };
+        match model.constraints[index].kind.relative().expect("a tree joint has a relative form") {
+            Relative::Rigid { .. } => {}
+            Relative::Revolute { i, j } => {
+                let ((pi, wi), (pj, wj)) = (start(b, i.body), start(b, j.body));
+                q0.push(b.g.sub(pj[2], pi[2]));
+                v0.push(b.g.sub(wj[2], wi[2]));
+            }
+            Relative::Translational { i, axis_i, j, .. } => {
+                let ((pi, vi), (pj, vj)) = (start(b, i.body), start(b, j.body));
+                let (si, sj) = (local(b, &i.point), local(b, &j.point));
+                let (arm_i, arm_j) = (rotate(b, pi[2], si), rotate(b, pj[2], sj));
+                let u = unit(b, axis_i);
+                let u = rotate(b, pi[2], u);
+                // d = r_j + A_j s′_j − r_i − A_i s′_i, ḋ = v_j + ω_j ⊥(A_j s′_j) − v_i − ω_i ⊥(A_i s′_i)
+                let d = [0, 1].map(|a| {
+                    let at_j = b.g.add(pj[a], arm_j[a]);
+                    let at_i = b.g.add(pi[a], arm_i[a]);
+                    b.g.sub(at_j, at_i)
+                });
+                let swing = |b: &mut Builder, w: Id, arm: [Id; 2]| {
+                    let minus_y = b.g.neg(arm[1]);
+                    [b.g.mul(w, minus_y), b.g.mul(w, arm[0])]
+                };
+                let (turn_j, turn_i) = (swing(b, vj[2], arm_j), swing(b, vi[2], arm_i));
+                let d_rate = [0, 1].map(|a| {
+                    let at_j = b.g.add(vj[a], turn_j[a]);
+                    let at_i = b.g.add(vi[a], turn_i[a]);
+                    b.g.sub(at_j, at_i)
+                });
+                let u_rate = swing(b, vi[2], u);
+                q0.push(b.dot(&u, &d));
+                let along = b.dot(&u_rate, &d);
+                let stretch = b.dot(&u, &d_rate);
+                v0.push(b.g.add(along, stretch));
+            }
+        }
+    }
+    (q0, v0)
+}
+
+/// A body-frame point or axis's two components.
+fn local(b: &mut Builder, v: &[MExpr]) -> [Id; 2] {
+    [b.expr(&v[0]), b.expr(&v[1])]
+}
+
+/// v/|v|.
+fn unit(b: &mut Builder, v: &[MExpr]) -> [Id; 2] {
+    let [x, y] = local(b, v);
+    let x2 = b.g.powi(x, 2);
+    let y2 = b.g.powi(y, 2);
+    let n2 = b.g.add(x2, y2);
+    let norm = b.g.call(Func::Sqrt, n2);
+    [b.g.div(x, norm), b.g.div(y, norm)]
+}
+
+/// A(φ) v.
+fn rotate(b: &mut Builder, phi: Id, v: [Id; 2]) -> [Id; 2] {
+    let (s, c) = (b.g.call(Func::Sin, phi), b.g.call(Func::Cos, phi));
+    let cx = b.g.mul(c, v[0]);
+    let sy = b.g.mul(s, v[1]);
+    let sx = b.g.mul(s, v[0]);
+    let cy = b.g.mul(c, v[1]);
+    [b.g.sub(cx, sy), b.g.add(sx, cy)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: BodyRef = BodyRef::Ground;
+    fn b(k: usize) -> BodyRef {
+        BodyRef::Body(k)
+    }
+
+    /// An open chain declared from its tip: the links point back to ground, each body after its
+    /// parent, coordinates by body.
+    #[test]
+    fn chain_from_ground() {
+        let tree = plan(3, &[(0, [b(1), b(2)], 1), (1, [b(0), b(1)], 1), (2, [G, b(0)], 1)]);
+        let parents: Vec<(BodyRef, Option<usize>, bool)> = tree.links.iter().map(|l| (l.parent, l.joint, l.reversed)).collect();
+        assert_eq!(parents, [(G, Some(2), false), (b(0), Some(1), false), (b(1), Some(0), false)]);
+        assert_eq!(tree.order, [0, 1, 2]);
+        assert_eq!((tree.nq, tree.joints.len()), (3, 3));
+        // a joint declared child ~ parent is reversed
+        let tree = plan(1, &[(0, [b(0), G], 1)]);
+        assert_eq!((tree.links[0].parent, tree.links[0].reversed), (G, true));
+    }
+
+    /// The slider-crank's loop (crank, rod, slider; four joints of two rows): the last-declared
+    /// of equals is cut; a rigid joint (three rows) is kept over a revolute one.
+    #[test]
+    fn loop_cuts_the_later_joint_of_equals() {
+        let joints = [(0, [G, b(0)], 1), (1, [b(0), b(1)], 1), (2, [b(1), b(2)], 1), (3, [G, b(2)], 1)];
+        let tree = plan(3, &joints);
+        assert_eq!(tree.joints, BTreeSet::from([0, 1, 2]));
+        let tree = plan(1, &[(0, [G, b(0)], 1), (1, [G, b(0)], 0)]);
+        assert_eq!((tree.joints, tree.nq), (BTreeSet::from([1]), 0));
+    }
+
+    /// A body on no candidate joint floats on a free joint; so does the first-declared body of a
+    /// group joined to ground only by cut joints' rows, its partners hanging from it.
+    #[test]
+    fn floating_groups_get_a_free_joint() {
+        let tree = plan(3, &[(0, [b(2), b(1)], 1)]);
+        let links: Vec<(BodyRef, Option<usize>, usize, usize)> = tree.links.iter().map(|l| (l.parent, l.joint, l.first, l.count)).collect();
+        assert_eq!(links, [(G, None, 0, 3), (G, None, 3, 3), (b(1), Some(0), 6, 1)]);
+        assert_eq!(tree.order, [0, 1, 2]);
+    }
+}
