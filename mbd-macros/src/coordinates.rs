@@ -88,7 +88,8 @@ impl Coordinates {
             }
             for v in model.space.velocities() {
                 let (own, kind, displacement) = match (self, v) {
-                    (Coordinates::PlanarBody | Coordinates::PlanarJoint, _) => {
+                    (Coordinates::PlanarJoint, _) => unreachable!("joint coordinates are described by the tree, above"),
+                    (Coordinates::PlanarBody, _) => {
                         let c = model.space.coordinates()[v.index()];
                         let at = Literal::u16_unsuffixed(first + c.index() as u16);
                         (name(c.name()), quote!(Rate { coordinate: #at }), name(c.name()))
@@ -307,25 +308,23 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
         .enumerate()
         .map(|(k, frame)| {
             let k = usize_lit(k);
-            let outputs: Vec<Output> = frame
-                .jacobian
+            // J_b's non-zeros (twist component a, velocity i), one slot each.
+            let entries: Vec<(usize, usize, crate::sym::Id)> =
+                frame.jacobian.iter().enumerate().flat_map(|(a, row)| row.iter().map(move |&(i, node)| (a, i, node))).collect();
+            let outputs: Vec<Output> = entries
                 .iter()
                 .enumerate()
-                .flat_map(|(a, row)| row.iter().enumerate().map(move |(j, &(_, node))| (a, j, node)))
-                .enumerate()
-                .map(|(slot, (_, _, node))| {
+                .map(|(slot, &(_, _, node))| {
                     let slot = usize_lit(slot);
                     Output { target: quote!(jac[#slot]), node }
                 })
                 .collect();
             let (body, _) = e.body(&outputs);
             let size = usize_lit(outputs.len().max(1));
-            let adds = frame.jacobian.iter().enumerate().flat_map(|(a, row)| row.iter().map(move |&(i, _)| (a, i))).enumerate().map(
-                |(slot, (a, i))| {
-                    let (slot, a, i) = (usize_lit(slot), usize_lit(a), usize_lit(i));
-                    quote!(g[#i] += jac[#slot] * w[#a];)
-                },
-            );
+            let adds = entries.iter().enumerate().map(|(slot, &(a, i, _))| {
+                let (slot, a, i) = (usize_lit(slot), usize_lit(a), usize_lit(i));
+                quote!(g[#i] += jac[#slot] * w[#a];)
+            });
             quote!(#k => {
                 let mut jac = [#zero; #size];
                 #body
