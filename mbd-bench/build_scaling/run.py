@@ -3,6 +3,7 @@
 
     python3 mbd-bench/build_scaling/run.py            # N = 10, 30, 60, 120, 240
     python3 mbd-bench/build_scaling/run.py --driven   # the kinematic user's crate, below
+    python3 mbd-bench/build_scaling/run.py --joint    # the same chain in joint coordinates
 
 For each N it writes a crate under target/build-scaling/ whose binary declares a pendulum chain
 of N links with a torsion spring at every pin, assembles it and simulates it with RK4, DOPRI5,
@@ -14,6 +15,9 @@ Prints a markdown table. Targets (issue 11): at most 30 s and 1 GB at 120 bodies
 With --driven the chain has every joint angle driven (NV = NC) and no springs, and the binary
 runs a kinematic sweep of 200 points and inverse dynamics at each, as a kinematic user's
 program would; it also prints the microseconds per point of each, run once after the build.
+
+With --joint the chain (not driven) is declared in joint coordinates (`joint_coordinates;`):
+N coordinates and no rows, M(q) dense (issue 38's goal: the same 30 s and 1 GB at 120).
 """
 import os
 import pathlib
@@ -92,12 +96,16 @@ def main():
     if sys.argv[1:2] == ["--measure"]:
         return measure(int(sys.argv[2]))
     driven = "--driven" in sys.argv[1:]
-    sizes = [int(a) for a in sys.argv[1:] if a != "--driven"] or [10, 30, 60, 120, 240]
+    joint = "--joint" in sys.argv[1:]
+    sizes = [int(a) for a in sys.argv[1:] if not a.startswith("--")] or [10, 30, 60, 120, 240]
     (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
     (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
                                       f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
     for n in sizes:
-        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(driven_chain(n) if driven else chain(n))
+        text = driven_chain(n) if driven else chain(n)
+        if joint:
+            text = text.replace("gravity [0.0, -9.81];", "joint_coordinates;\n        gravity [0.0, -9.81];", 1)
+        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(text)
     env = dict(os.environ, CARGO_TARGET_DIR=str(CRATE / "target"))
     # Dependencies first (mbd, nalgebra, the macro crate), so each timing is the mechanism's crate alone.
     (CRATE / "src" / "bin" / "dependencies.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")

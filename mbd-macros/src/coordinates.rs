@@ -274,8 +274,8 @@ impl Coordinates {
 
 /// `mbd::BodyFrames` in joint coordinates, from the frames' nodes (`FrameNodes`): every body's
 /// pose, twist and twist rate evaluated at once (O(N) for a chain, the subexpressions of the
-/// recursion shared) and the one asked for returned; J_bᵀ of a wrench by body, over J_b's
-/// structural non-zeros.
+/// recursion shared) and the one asked for returned; J_bᵀ of a wrench by the tree's backward
+/// pass with the other bodies' wrenches zero (O(N) code; `formulation::joint`).
 fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let name = &m.name;
     let real = real(m.scalar);
@@ -302,36 +302,9 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let poses = all("poses", &|frame| frame.pose);
     let twists = all("twists", &|frame| frame.twist);
     let biases = all("biases", &|frame| frame.bias);
-    let wrench_arms: Vec<TokenStream> = f
-        .frames
-        .iter()
-        .enumerate()
-        .map(|(k, frame)| {
-            let k = usize_lit(k);
-            // J_b's non-zeros (twist component a, velocity i), one slot each.
-            let entries: Vec<(usize, usize, crate::sym::Id)> =
-                frame.jacobian.iter().enumerate().flat_map(|(a, row)| row.iter().map(move |&(i, node)| (a, i, node))).collect();
-            let outputs: Vec<Output> = entries
-                .iter()
-                .enumerate()
-                .map(|(slot, &(_, _, node))| {
-                    let slot = usize_lit(slot);
-                    Output { target: quote!(jac[#slot]), node }
-                })
-                .collect();
-            let (body, _) = e.body(&outputs);
-            let size = usize_lit(outputs.len().max(1));
-            let adds = entries.iter().enumerate().map(|(slot, &(a, i, _))| {
-                let (slot, a, i) = (usize_lit(slot), usize_lit(a), usize_lit(i));
-                quote!(g[#i] += jac[#slot] * w[#a];)
-            });
-            quote!(#k => {
-                let mut jac = [#zero; #size];
-                #body
-                #(#adds)*
-            })
-        })
-        .collect();
+    // Σ_b J_bᵀ w_b over every body's wrench w_b = dir[3b..3b + 3], one backward pass.
+    let wrench = f.tree.as_ref().map(|terms| e.body(&crate::emit::vector_outputs("out", &terms.wrench)).0);
+    let n_wrench = usize_lit(3 * m.bodies.len());
     let table = |array: TokenStream| quote!(let mut #array = [[#zero; 3]; #nb];);
     let (pose_table, twist_table, bias_table) = (table(quote!(poses)), table(quote!(twists)), table(quote!(biases)));
     let twist_of = |x: TokenStream| {
@@ -384,10 +357,15 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             }
             #[inline]
             fn add_body_wrench(&self, body: usize, q: &[#real; #n], force: [#real; 3], moment: [#real; 3], g: &mut [#real; #n]) -> bool {
-                let w = [force[0], force[1], moment[2]];
-                match body {
-                    #(#wrench_arms)*
-                    _ => return false,
+                if body >= #nb {
+                    return false;
+                }
+                let mut dir = [#zero; #n_wrench];
+                dir[3 * body..3 * body + 3].copy_from_slice(&[force[0], force[1], moment[2]]);
+                let mut out = [#zero; #n];
+                #wrench
+                for (g, out) in g.iter_mut().zip(&out) {
+                    *g += *out;
                 }
                 true
             }

@@ -31,6 +31,33 @@ impl Ops {
     pub fn total(&self) -> u32 {
         self.add + self.mul + self.div + self.call
     }
+
+    /// What one node costs written out (`Emitter::definition`): a negation is folded into its
+    /// reader, x² and x³ are products, 1/x^k a division, a comparison an addition.
+    fn of(node: Node) -> Ops {
+        let (add, mul, div, call) = match node {
+            Node::Const(_) | Node::Var(_) | Node::Neg(_) => (0, 0, 0, 0),
+            Node::Add(..) | Node::Select(..) => (1, 0, 0, 0),
+            Node::Mul(..) => (0, 1, 0, 0),
+            Node::Div(..) => (0, 0, 1, 0),
+            Node::PowI(_, 2) => (0, 1, 0, 0),
+            Node::PowI(_, 3) => (0, 2, 0, 0),
+            Node::PowI(_, -1) => (0, 0, 1, 0),
+            Node::PowI(_, -2) => (0, 1, 1, 0),
+            Node::PowI(_, -3) => (0, 2, 1, 0),
+            Node::PowI(..) | Node::Pow(..) | Node::Call(..) | Node::Atan2(..) => (0, 0, 0, 1),
+        };
+        Ops { add, mul, div, call }
+    }
+}
+
+impl std::ops::AddAssign for Ops {
+    fn add_assign(&mut self, o: Ops) {
+        self.add += o.add;
+        self.mul += o.mul;
+        self.div += o.div;
+        self.call += o.call;
+    }
 }
 
 /// Where an output goes: an lvalue expression such as `phi[3]` or `d[2][5]`.
@@ -203,6 +230,26 @@ impl Emitter<'_> {
         self.reached(outputs).into_iter().filter(|&id| !matches!(self.graph.node(id), Node::Const(_) | Node::Var(_))).count()
     }
 
+    /// What [`Emitter::body`] would count for the outputs, without writing the code: every
+    /// operation the outputs reach is written once (bound if read twice, in place if once), and
+    /// a sine and cosine of one argument are one `sin_cos` call.
+    pub fn count(&self, outputs: &[Output]) -> Ops {
+        let g = self.graph;
+        let mut ops = Ops::default();
+        let (mut sines, mut cosines) = (HashSet::new(), HashSet::new());
+        for id in self.reached(outputs) {
+            let node = g.node(id);
+            ops += Ops::of(node);
+            match node {
+                Node::Call(Func::Sin, a) => sines.insert(a),
+                Node::Call(Func::Cos, a) => cosines.insert(a),
+                _ => false,
+            };
+        }
+        ops.call -= sines.intersection(&cosines).count() as u32;
+        ops
+    }
+
     /// Readable names for sin/cos of a body angle (`s_crank`, `c_crank`).
     fn trig_names(&self, arg: Id, s: Id, c: Id) -> (Ident, Ident) {
         if let Node::Var(Var::Q(i)) = self.graph.node(arg) {
@@ -231,6 +278,10 @@ impl Emitter<'_> {
                 let i = Literal::usize_unsuffixed(i as usize);
                 quote!(lambda[#i])
             }
+            Var::Dir(i) => {
+                let i = Literal::usize_unsuffixed(i as usize);
+                quote!(dir[#i])
+            }
             Var::Param(k) => {
                 let p = &self.params[k as usize];
                 quote!(self.#p)
@@ -254,33 +305,29 @@ impl Emitter<'_> {
             let f = format_ident!("{}", name);
             quote!(<#real as ::mbd::Real>::#f)
         };
+        *ops += Ops::of(g.node(id));
         match g.node(id) {
             Node::Const(bits) => self.literal(f64::from_bits(bits)),
             Node::Var(v) => self.var(v),
-            Node::Add(a, b) => {
-                ops.add += 1;
-                match (g.node(a), g.node(b)) {
-                    (Node::Neg(x), _) => {
-                        let (b, x) = (self.expr(b, plan, ops), self.expr(x, plan, ops));
-                        quote!((#b - #x))
-                    }
-                    (_, Node::Neg(y)) => {
-                        let (a, y) = (self.expr(a, plan, ops), self.expr(y, plan, ops));
-                        quote!((#a - #y))
-                    }
-                    _ => {
-                        let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
-                        quote!((#a + #b))
-                    }
+            Node::Add(a, b) => match (g.node(a), g.node(b)) {
+                (Node::Neg(x), _) => {
+                    let (b, x) = (self.expr(b, plan, ops), self.expr(x, plan, ops));
+                    quote!((#b - #x))
                 }
-            }
+                (_, Node::Neg(y)) => {
+                    let (a, y) = (self.expr(a, plan, ops), self.expr(y, plan, ops));
+                    quote!((#a - #y))
+                }
+                _ => {
+                    let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
+                    quote!((#a + #b))
+                }
+            },
             Node::Mul(a, b) => {
-                ops.mul += 1;
                 let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
                 quote!((#a * #b))
             }
             Node::Div(a, b) => {
-                ops.div += 1;
                 let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
                 quote!((#a / #b))
             }
@@ -293,29 +340,21 @@ impl Emitter<'_> {
                 let one = self.literal(1.0);
                 match n {
                     2 => {
-                        ops.mul += 1;
                         quote!((#base * #base))
                     }
                     3 => {
-                        ops.mul += 2;
                         quote!((#base * #base * #base))
                     }
                     -1 => {
-                        ops.div += 1;
                         quote!((#one / #base))
                     }
                     -2 => {
-                        ops.mul += 1;
-                        ops.div += 1;
                         quote!((#one / (#base * #base)))
                     }
                     -3 => {
-                        ops.mul += 2;
-                        ops.div += 1;
                         quote!((#one / (#base * #base * #base)))
                     }
                     n => {
-                        ops.call += 1;
                         let f = call("powi");
                         let n = Literal::i32_unsuffixed(n);
                         quote!(#f(#base, #n))
@@ -323,19 +362,16 @@ impl Emitter<'_> {
                 }
             }
             Node::Pow(a, b) => {
-                ops.call += 1;
                 let f = call("powf");
                 let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
                 quote!(#f(#a, #b))
             }
             Node::Call(func, a) => {
-                ops.call += 1;
                 let f = call(func.name());
                 let a = self.expr(a, plan, ops);
                 quote!(#f(#a))
             }
             Node::Atan2(y, x) => {
-                ops.call += 1;
                 let f = call("atan2");
                 let (y, x) = (self.expr(y, plan, ops), self.expr(x, plan, ops));
                 quote!(#f(#y, #x))
@@ -343,7 +379,6 @@ impl Emitter<'_> {
             // A branch read only here is computed inside it; a shared one is a temporary. A
             // comparison counts as an addition.
             Node::Select(cmp, a, b, x, y) => {
-                ops.add += 1;
                 let (a, b) = (self.expr(a, plan, ops), self.expr(b, plan, ops));
                 let (x, y) = (self.expr(x, plan, ops), self.expr(y, plan, ops));
                 match cmp {
@@ -407,7 +442,7 @@ impl Emitter<'_> {
         let mut state: HashSet<Id> = HashSet::new();
         for &id in &reached {
             let reads_state = match g.node(id) {
-                Node::Var(v) => matches!(v, Var::Q(_) | Var::Qd(_) | Var::Lambda(_)),
+                Node::Var(v) => matches!(v, Var::Q(_) | Var::Qd(_) | Var::Lambda(_) | Var::Dir(_)),
                 _ => g.children(id).into_iter().flatten().any(|c| state.contains(&c)),
             };
             if reads_state {
@@ -585,10 +620,7 @@ impl Emitter<'_> {
         let PartSignature { name, params, args } = signature;
         for group in groups {
             let (code, part_ops) = self.body(&group);
-            ops.add += part_ops.add;
-            ops.mul += part_ops.mul;
-            ops.div += part_ops.div;
-            ops.call += part_ops.call;
+            ops += part_ops;
             let method = format_ident!("__mbd_{}_{}", name, parts.len());
             parts.push(quote! {
                 #[inline(never)]
@@ -844,6 +876,43 @@ mod tests {
         assert_eq!(ops.call, 1, "one sin_cos");
         // Outputs written through bindings of the elements (`crate::scalar`).
         assert!(code.contains("(* __phi_0) =") && code.contains("(* __phi_1) ="), "{code}");
+    }
+
+    /// `count` is what `body` counts writing the code, on functions with every kind of node
+    /// (powers, divisions, square roots, selects of a contact and a tyre, sin/cos pairs), in the
+    /// plane, in space and in joint coordinates.
+    #[test]
+    fn counting_agrees_with_writing() {
+        let sources = [
+            "P { gravity [0.0, -9.81]; body a { mass: 1.0, inertia: 0.1, at: [0.5, 0.1, 0.2] } body b { mass: 2.0, inertia: 0.2 }
+               revolute ground[0.0, 0.0] ~ a[-0.5, 0.0]; revolute_translational a[0.5, 0.0] ~ b[0.0, 0.0] along [1.0, 0.0];
+               spring ground[0.2, 0.0] ~ b[0.1, 0.0] { k: 10.0, length: 0.3, c: 0.5 };
+               contact b[0.0, -0.1] ~ ground[0.0, -1.0] along [0.0, 1.0] { k: 1.0e4, exponent: 1.5, c: 10.0 };
+               torque a = 0.1 * t^3 / (1.0 + a.phi^2); }",
+            "J { joint_coordinates; gravity [0.0, -9.81]; body a { mass: 1.0, inertia: 0.1, at: [0.5, 0.0, 0.0] }
+               body b { mass: 2.0, inertia: 0.2, at: [1.0, 0.0, 0.0] } revolute ground[0.0, 0.0] ~ a[-0.5, 0.0];
+               revolute a[0.5, 0.0] ~ b[0.0, 0.0]; revolute_revolute ground[1.0, 1.0] ~ b[0.3, 0.0] { length: 1.2 };
+               rotational_spring a ~ b { k: 3.0, angle: 0.1, c: 0.2 }; }",
+        ];
+        for src in sources.iter().copied().chain(std::iter::once(crate::formulation::tests::SPATIAL)) {
+            let model = syn::parse_str::<MechanismDef>(src).unwrap().validate().unwrap();
+            let f = crate::formulation::formulate(&model);
+            let e = emitter(&model, &f);
+            let mut outputs = vector_outputs("h", &f.h);
+            outputs.extend(vector_outputs("gamma", &f.gamma));
+            outputs.extend(vector_outputs("phi", &f.phi));
+            for (name, entries) in [("dh", &f.h_q), ("dv", &f.h_qd), ("g", &f.gamma_q)] {
+                let name = format_ident!("{}", name);
+                outputs.extend(entries.iter().map(|&(r, c, node)| Output { target: quote!(#name[#r][#c]), node }));
+            }
+            if let Some(terms) = &f.tree {
+                outputs.extend(vector_outputs("dq", &terms.h_dq));
+                outputs.extend(vector_outputs("mx", &terms.mass_x_dq));
+            }
+            let ops = e.count(&outputs);
+            assert!(ops.total() > 50 && ops.call > 0 && ops.div > 0, "{src}: {ops:?}");
+            assert_eq!(ops, e.body(&outputs).1, "{src}");
+        }
     }
 
     /// A chain's `accelerations` is cut into parts (they repeat 0.4 % of it); outputs that all

@@ -86,17 +86,31 @@ impl<'m> Builder<'m> {
         b
     }
 
+    /// A builder in the model's bodies' own coordinates (x, y, φ per body, v = q̇), whatever
+    /// the model's formulation: where joint coordinates write the elements' rows and forces
+    /// before mapping them through the tree (`formulation::joint`).
+    pub fn body_level(model: &'m Model) -> Self {
+        Builder {
+            g: Graph::new(),
+            model,
+            coordinates: Coordinates::PlanarBody,
+            first_rows: Vec::new(),
+            poses: Vec::new(),
+            pose_rates: Vec::new(),
+        }
+    }
+
     pub fn nq(&self) -> usize {
-        match &self.model.tree {
-            Some(tree) => tree.nq,
-            None => self.coordinates.per_body() * self.model.bodies.len(),
+        match (&self.model.tree, self.coordinates) {
+            (Some(tree), Coordinates::PlanarJoint) => tree.nq,
+            _ => self.coordinates.per_body() * self.model.bodies.len(),
         }
     }
 
     pub fn nv(&self) -> usize {
-        match &self.model.tree {
-            Some(tree) => tree.nq,
-            None => self.coordinates.velocities_per_body() * self.model.bodies.len(),
+        match (&self.model.tree, self.coordinates) {
+            (Some(tree), Coordinates::PlanarJoint) => tree.nq,
+            _ => self.coordinates.velocities_per_body() * self.model.bodies.len(),
         }
     }
 

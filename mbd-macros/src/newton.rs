@@ -427,8 +427,15 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
         velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
     }
+    if f.tree.is_some() {
+        // Joint coordinates: M(q) and the derivatives are dense.
+        velocity.extend((0..nv).flat_map(|r| (0..nv).map(move |c| (r, c))));
+    }
     let jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
     let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
+    if f.tree.is_some() {
+        return dense_newton(f, e, name, &plan);
+    }
     let at = |u: usize, w: usize| usize_lit(nnz + plan.slot(u, w));
 
     // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
@@ -502,6 +509,32 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
         }
     };
     NewtonCode { impl_block, matrix_ops, storage: nnz + plan.entries() }
+}
+
+/// The `NewtonMatrix` of joint coordinates: the planned dense pattern, its storage and solver;
+/// the matrix filled by the trait's provided `newton_matrix` from the dense `Dynamics`
+/// functions (`expand::generate::joint`).
+fn dense_newton(f: &Formulation, e: &Emitter, name: &syn::Ident, plan: &NewtonPlan) -> NewtonCode {
+    let real = real(e.scalar);
+    let zero = e.literal(0.0);
+    let (nq_l, nv_l, nc_l) = (usize_lit(f.nq), usize_lit(f.nv), usize_lit(f.nc));
+    let storage = f.jacobian.len() + plan.entries();
+    let total = usize_lit(storage);
+    let pattern = plan.pattern();
+    let solver = straight_line_solver(f, e, plan, &real);
+    let impl_block = quote! {
+        #[doc(hidden)]
+        impl ::mbd::NewtonMatrix<#real, #nq_l, #nv_l, #nc_l> for #name {
+            type NewtonStorage = [#real; #total];
+            const NEWTON_PATTERN: ::mbd::SparsePattern = #pattern;
+            #[inline]
+            fn newton_storage() -> [#real; #total] {
+                [#zero; #total]
+            }
+            #solver
+        }
+    };
+    NewtonCode { impl_block, matrix_ops: Ops::default(), storage }
 }
 
 #[cfg(test)]

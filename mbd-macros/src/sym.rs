@@ -24,6 +24,11 @@ pub enum Var {
     Param(u16),
     /// Lagrange multiplier `λ[i]` of constraint row `i`.
     Lambda(u16),
+    /// Component `i` of a direction `dir[i]`: the seed of a derivative taken at run time one
+    /// column at a time ((∂h/∂q) dir), or the vector a generated product applies an operator
+    /// to (J_bᵀ w). Joint coordinates emit their dense derivatives this way: O(N) code for each,
+    /// where the entries one by one would be O(N²) and more.
+    Dir(u16),
 }
 
 /// Elementary functions of one argument.
@@ -582,6 +587,39 @@ impl Graph {
         }
     }
 
+    /// A node of another graph copied into this one, each of its variables replaced by the node
+    /// `var` gives (folding what the substitution makes constant). `memo` maps `other`'s nodes
+    /// already copied, for one `var`.
+    pub fn import(&mut self, other: &Graph, root: Id, var: &dyn Fn(&mut Graph, Var) -> Id, memo: &mut HashMap<Id, Id>) -> Id {
+        let mut stack = vec![(root, false)];
+        while let Some((id, children_done)) = stack.pop() {
+            if memo.contains_key(&id) {
+                continue;
+            }
+            if !children_done {
+                stack.push((id, true));
+                stack.extend(other.children(id).into_iter().flatten().filter(|c| !memo.contains_key(c)).map(|c| (c, false)));
+                continue;
+            }
+            let c = |x: Id| memo[&x];
+            let copy = match other.node(id) {
+                Node::Const(bits) => self.num(f64::from_bits(bits)),
+                Node::Var(v) => var(self, v),
+                Node::Add(a, b) => self.add(c(a), c(b)),
+                Node::Mul(a, b) => self.mul(c(a), c(b)),
+                Node::Neg(a) => self.neg(c(a)),
+                Node::Div(a, b) => self.div(c(a), c(b)),
+                Node::PowI(a, n) => self.powi(c(a), n),
+                Node::Pow(a, b) => self.pow(c(a), c(b)),
+                Node::Call(f, a) => self.call(f, c(a)),
+                Node::Atan2(y, x) => self.atan2(c(y), c(x)),
+                Node::Select(cmp, a, b, x, y) => self.select(cmp, c(a), c(b), c(x), c(y)),
+            };
+            memo.insert(id, copy);
+        }
+        memo[&root]
+    }
+
     /// ∂root/∂v.
     pub fn diff(&mut self, root: Id, v: Var, memo: &mut HashMap<Id, Id>) -> Id {
         let one = self.num(1.0);
@@ -763,7 +801,7 @@ mod tests {
                 Var::Q(i) => p[i as usize],
                 Var::Qd(i) => v[i as usize],
                 Var::T => p[3],
-                Var::Param(_) | Var::Lambda(_) => 0.0,
+                Var::Param(_) | Var::Lambda(_) | Var::Dir(_) => 0.0,
             };
             let chain: f64 = (0..3).map(|i| g.eval(partials[i], &value) * v[i]).sum::<f64>() + g.eval(partials[3], &value);
             let direct = g.eval(total, &value);

@@ -14,6 +14,7 @@ use crate::forward::{forward_dynamics, ForwardCode};
 use crate::model::Model;
 
 mod impls;
+mod joint;
 
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
@@ -23,10 +24,19 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let g = Gen::new(m, &f, &e);
     let constraints = g.constraint_functions();
     let dynamics = g.dynamics_functions();
+    // A tree's M and dense derivatives by columns (`joint`): their op counts are one column's.
+    let (dynamics_impl, dynamics_ops) = match &f.tree {
+        Some(terms) => {
+            let (code, columns) = g.joint_dynamics_impl(&dynamics, terms);
+            let kept = dynamics.ops.iter().filter(|(name, _)| !["forces_q", "forces_v"].contains(name));
+            (code, kept.chain(&columns).copied().collect())
+        }
+        None => (g.dynamics_impl(&dynamics), dynamics.ops.clone()),
+    };
     // Their parts go into the type's inherent `impl` (`Emitter::body_in_parts`): in this order.
     let forward = forward_dynamics(m, &f, &e);
     let newton = crate::newton::newton_matrix(&f, &e, &m.name);
-    let mut op_counts: Vec<TokenStream> = constraints.ops.iter().chain(&dynamics.ops).map(|&(name, ops)| op_count(name, ops)).collect();
+    let mut op_counts: Vec<TokenStream> = constraints.ops.iter().chain(&dynamics_ops).map(|&(name, ops)| op_count(name, ops)).collect();
     op_counts.push(op_count("accelerations (evaluation, before the solve)", forward.eval_ops));
     op_counts.push(op_count("newton_matrix (Φ, D and generalized-α's matrix, before the factorization)", newton.matrix_ops));
     let ForwardCode { helpers, impl_block, position_step, .. } = forward;
@@ -34,7 +44,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let inherent = g.inherent_impl(&constraints, newton.storage);
     let mechanism = g.mechanism_impl(&op_counts, &dynamics.force_ops);
     let linearize = g.linearize_impl(&dynamics);
-    let dynamics = g.dynamics_impl(&dynamics);
+    let dynamics = dynamics_impl;
     let kinematics = g.kinematics_impl(&constraints, &position_step);
     let body_frames = crate::coordinates::Coordinates::of(m).body_frames(m, &f, &e);
     let newton_impl = newton.impl_block;
@@ -72,10 +82,11 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     })
 }
 
-/// What h, ∂h/∂q and ∂h/∂v cost with no element, and with each element alone.
+/// What h, ∂h/∂q and ∂h/∂v cost with no element, and with each element alone (counted, not
+/// written: in joint coordinates each is a pass over the whole tree).
 fn force_ops(f: &Formulation, e: &Emitter) -> ([Ops; 3], Vec<[Ops; 3]>) {
     let alone = |t: &crate::formulation::ForceTerms| -> [Ops; 3] {
-        [e.body(&vector_outputs("h", &t.h)).1, e.body(&matrix_outputs("dh", &t.h_q)).1, e.body(&matrix_outputs("dh", &t.h_qd)).1]
+        [e.count(&vector_outputs("h", &t.h)), e.count(&matrix_outputs("dh", &t.h_q)), e.count(&matrix_outputs("dh", &t.h_qd))]
     };
     (alone(&f.base_forces), f.alone_forces.iter().map(alone).collect::<Vec<_>>())
 }

@@ -169,7 +169,7 @@ impl Plan<'_> {
     /// Where M depends on q (joint coordinates): the `ForwardDynamics` implementation by the
     /// runtime's dense factorizations of M(q) and S (`mbd::dense_forward`), and a driven
     /// mechanism's kinematic solves as in body coordinates (they weigh by I, not M). Its
-    /// evaluation counts Φ, D, ν, γ, h and M's entries.
+    /// evaluation counts Φ, D, ν, γ and h (M is NV products `mass_times`, counted apart).
     fn dense(&self) -> ForwardCode {
         let Plan { m, f, e, real, nq_l, nv_l, nc_l, .. } = self;
         let name = &m.name;

@@ -321,7 +321,6 @@ impl Gen<'_> {
             friction_derivatives: friction_derivatives_fn,
             ..
         } = d;
-        let mass_derivative = self.mass_derivative();
         quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -361,7 +360,6 @@ impl Gen<'_> {
                     }
                     #h_v_body
                 }
-                #mass_derivative
                 #inline
                 fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
                     let mut energy = [#zero; 1];
@@ -391,40 +389,6 @@ impl Gen<'_> {
                     #power_body
                     power[0]
                 }
-            }
-        }
-    }
-
-    /// `Dynamics::add_mass_derivative` where M depends on q (the provided no-op otherwise):
-    /// its entries evaluated with x in place of v, then added scaled.
-    fn mass_derivative(&self) -> TokenStream {
-        let Gen { f, e, real, zero, inline, nq_l, nv_l, .. } = self;
-        if f.mass_q.is_empty() {
-            return quote!();
-        }
-        let outputs: Vec<crate::emit::Output> = f
-            .mass_q
-            .iter()
-            .enumerate()
-            .map(|(k, &(_, _, node))| {
-                let k = crate::emit::usize_lit(k);
-                crate::emit::Output { target: quote!(dm[#k]), node }
-            })
-            .collect();
-        let (body, _) = e.body(&outputs);
-        let n = crate::emit::usize_lit(outputs.len());
-        let adds = f.mass_q.iter().enumerate().map(|(k, &(r, c, _))| {
-            let (k, r, c) = (crate::emit::usize_lit(k), crate::emit::usize_lit(r), crate::emit::usize_lit(c));
-            quote!(a[#r][#c] += scale * dm[#k];)
-        });
-        quote! {
-            #inline
-            fn add_mass_derivative(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
-                #[allow(clippy::redundant_locals)]
-                let v = x;
-                let mut dm = [#zero; #n];
-                #body
-                #( #adds )*
             }
         }
     }

@@ -6,12 +6,16 @@
 //! ν = −Φ_t and γ = −𝒟(𝒟Φ) with 𝒟f = f_q B v + f_t (a directional derivative taken twice; no
 //! Hessian is formed); M; h and its derivatives (∂h/∂q) B and ∂h/∂v.
 
+mod joint;
+
 use std::collections::{BTreeSet, HashMap};
 
 use crate::forces::{gravity, Generalized};
 use crate::frames::{collect_vars, velocity_partials, Builder, Coordinates, RowUnit};
 use crate::model::{Inertia, Model};
 use crate::sym::{Graph, Id, Var};
+
+pub use joint::TreeTerms;
 
 /// h and its structural derivatives ∂h/∂q and ∂h/∂q̇ as (row, column, node).
 pub struct ForceTerms {
@@ -58,9 +62,6 @@ pub struct Formulation {
     /// complement D M⁻¹ Dᵀ planned at compile time. Otherwise (joint coordinates: M(q)) they
     /// factor M at each call.
     pub mass_blocks: bool,
-    /// Where M depends on q, the structural non-zeros of (∂(M x)/∂q) B with x standing in for
-    /// the velocities' variables (`Dynamics::add_mass_derivative`); empty otherwise.
-    pub mass_q: Vec<(usize, usize, Id)>,
     /// h(q, q̇, t), one node per coordinate.
     pub h: Vec<Id>,
     /// Each force element (gravity first, as `"gravity"`) with the velocities its generalized
@@ -116,16 +117,18 @@ pub struct Formulation {
     /// In joint coordinates, each body's frame as functions of q and v (`mbd::BodyFrames`);
     /// empty in body coordinates, whose frames are q's own entries.
     pub frames: Vec<FrameNodes>,
+    /// In joint coordinates, M x and the dense derivatives as products with a direction
+    /// (`joint`); `None` in body coordinates, whose M is `mass` and whose derivatives are the
+    /// sparse entries above.
+    pub tree: Option<TreeTerms>,
 }
 
 /// A planar body's frame in joint coordinates: its pose (x, y, φ), its twist J_b v
-/// (ẋ, ẏ, φ̇, linear in v), the twist's rate at constant v (J̇_b v) and J_b's structural
-/// non-zeros, one list per twist component.
+/// (ẋ, ẏ, φ̇, linear in v) and the twist's rate at constant v (J̇_b v).
 pub struct FrameNodes {
     pub pose: [Id; 3],
     pub twist: [Id; 3],
     pub bias: [Id; 3],
-    pub jacobian: [Vec<(usize, Id)>; 3],
 }
 
 impl Formulation {
@@ -137,6 +140,9 @@ impl Formulation {
 
 /// Derives the symbolic equations of a model.
 pub fn formulate(model: &Model) -> Formulation {
+    if let Some(tree) = &model.tree {
+        return joint::formulate(model, tree);
+    }
     let mut b = Builder::new(model);
     let (nq, nv) = (b.nq(), b.nv());
     let (phi, row_names, row_units) = constraint_rows(&mut b);
@@ -148,7 +154,6 @@ pub fn formulate(model: &Model) -> Formulation {
         }
         reads.is_empty() && mass_coupling.iter().all(|&(r, c, _)| mass_inverse.iter().any(|&(ri, ci, _)| (ri, ci) == (r, c)))
     };
-    let mass_q = if mass_blocks { Vec::new() } else { mass_derivative(&mut b, &mass, &mass_coupling) };
     let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b, inertia_forces);
     // dV/dt = V_q q̇ + V_t
     let v_rate = b.rate(potential);
@@ -169,7 +174,6 @@ pub fn formulate(model: &Model) -> Formulation {
     let (constraint_force_q, stiffness, damping) = newton_terms(&mut b, &jacobian, [&h_q, &h_qd], [&friction_q, &friction_qd]);
     let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
     let (points, joint_coordinates) = accessors(&mut b);
-    let frames = if model.tree.is_some() { frame_nodes(&mut b) } else { Vec::new() };
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -189,7 +193,6 @@ pub fn formulate(model: &Model) -> Formulation {
         mass_coupling,
         mass_inverse,
         mass_blocks,
-        mass_q,
         h,
         force_velocities,
         base_forces,
@@ -211,26 +214,9 @@ pub fn formulate(model: &Model) -> Formulation {
         damping,
         points,
         joint_coordinates,
-        frames,
+        frames: Vec::new(),
+        tree: None,
     }
-}
-
-/// (∂(M x)/∂q) B, x standing in for the velocities' variables: M x = Σ_c M_rc x_c by row.
-fn mass_derivative(b: &mut Builder, mass: &[Id], coupling: &[(usize, usize, Id)]) -> Entries {
-    let mut product: Vec<Id> = mass
-        .iter()
-        .enumerate()
-        .map(|(i, &m)| {
-            let x = b.g.var(Var::Qd(i as u16));
-            b.g.mul(m, x)
-        })
-        .collect();
-    for &(r, c, m) in coupling {
-        let x = b.g.var(Var::Qd(c as u16));
-        let term = b.g.mul(m, x);
-        product[r] = b.g.add(product[r], term);
-    }
-    tangent(b, &product)
 }
 
 /// Each body's frame as functions of q and v ([`FrameNodes`]).
@@ -248,8 +234,7 @@ fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
             let pose = [Coord::X, Coord::Y, Coord::Phi].map(|c| b.coord(body, c));
             let twist = [Vel::Vx, Vel::Vy, Vel::Omega].map(|c| b.velocity(body, c));
             let bias = twist.map(|x| b.g.directional(x, &seed, &mut memo));
-            let jacobian = twist.map(|x| velocity_partials(&mut b.g, x));
-            FrameNodes { pose, twist, bias, jacobian }
+            FrameNodes { pose, twist, bias }
         })
         .collect()
 }
@@ -515,7 +500,7 @@ fn constraint_derivatives(b: &mut Builder, phi: &[Id]) -> (Entries, Vec<Id>, Vec
     let seed = |v: Var| match v {
         Var::Q(i) => Some(rates[i as usize]),
         Var::T => Some(one),
-        Var::Qd(_) | Var::Param(_) | Var::Lambda(_) => None,
+        Var::Qd(_) | Var::Param(_) | Var::Lambda(_) | Var::Dir(_) => None,
     };
     let mut memo = HashMap::new();
     let first: Vec<Id> = phi.iter().map(|&row| g.directional(row, &seed, &mut memo)).collect();
@@ -678,7 +663,7 @@ fn sparse_derivative(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::parse::MechanismDef;
 
@@ -693,7 +678,7 @@ mod tests {
             Var::Q(i) => q[i as usize],
             Var::Qd(i) => qd[i as usize],
             Var::T => t,
-            Var::Param(_) | Var::Lambda(_) => 0.0,
+            Var::Param(_) | Var::Lambda(_) | Var::Dir(_) => 0.0,
         })
     }
 
@@ -741,7 +726,7 @@ mod tests {
         assert_eq!(pattern, [(0, 0), (0, 2), (1, 1), (1, 2), (2, 2)]);
     }
 
-    const SPATIAL: &str = "S { spatial; params { k: 30.0 } gravity [0.0, 0.0, -9.81];
+    pub(crate) const SPATIAL: &str = "S { spatial; params { k: 30.0 } gravity [0.0, 0.0, -9.81];
         body a { mass: 1.0, inertia: [0.1, 0.2, 0.3], at: [0.1, 0.2, 0.3], angles: [0.3, 0.2, 0.1] }
         body b { mass: 2.0, inertia: [0.2, 0.25, 0.1, 0.01, 0.0, 0.02], at: [0.5, 0.1, 0.2], velocity: [0.1, 0.0, 0.0] }
         revolute hinge: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ a[0.1, 0.0, 0.0] along [0.0, 0.3, 1.0] { viscous: 0.2 };

@@ -1,0 +1,138 @@
+//! `impl Dynamics` in joint coordinates (`formulation::joint`): M x, h, V and the power as
+//! straight-line code, O(N) each; M and the dense derivatives ∂h/∂q, ∂h/∂v, ∂(M x)/∂q and the
+//! friction's filled one column at a time from their products with a direction (a private
+//! method each, O(N) code; O(N) work per column). Their op counts are one column's.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::{DynamicsFunctions, Gen};
+use crate::emit::{vector_outputs, Ops};
+use crate::formulation::TreeTerms;
+use crate::sym::Id;
+
+impl Gen<'_> {
+    /// A private method `name(&self, <params>, out)` writing `out = nodes` (every entry), for
+    /// the mechanism's inherent `impl`; its op counts.
+    fn product(&self, name: &str, nodes: &[Id], params: TokenStream) -> Ops {
+        let Gen { e, real, zero, nv_l, .. } = self;
+        let (body, ops) = e.body(&vector_outputs("out", nodes));
+        let name = format_ident!("{}", name);
+        e.parts.borrow_mut().push(quote! {
+            #[inline(never)]
+            fn #name(&self, #params, out: &mut [#real; #nv_l]) {
+                *out = [#zero; #nv_l];
+                #body
+            }
+        });
+        ops
+    }
+
+    /// `matrix[r][c] (op)= scale · column_c[r]` for every column c, each from `call` with the
+    /// unit vector `dir = e_c`.
+    fn by_columns(&self, call: TokenStream, matrix: TokenStream, assign: TokenStream) -> TokenStream {
+        let Gen { e, zero, nv_l, .. } = self;
+        let one = e.literal(1.0);
+        quote! {
+            let mut dir = [#zero; #nv_l];
+            let mut out = [#zero; #nv_l];
+            for c in 0..#nv_l {
+                dir[c] = #one;
+                #call;
+                dir[c] = #zero;
+                for (row, &value) in #matrix.iter_mut().zip(&out) {
+                    row[c] #assign value;
+                }
+            }
+        }
+    }
+
+    /// The `Dynamics` implementation of a tree, and one column's op counts of the dense
+    /// functions.
+    pub(super) fn joint_dynamics_impl(&self, d: &DynamicsFunctions, terms: &TreeTerms) -> (TokenStream, Vec<(&'static str, Ops)>) {
+        let Gen { real, name, zero, inline, nq_l, nv_l, nc_l, .. } = self;
+        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, .. } = d;
+        let state = quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real);
+        let direction = quote!(dir: &[#real; #nv_l]);
+        let mass_ops = self.product("mbd_mass_times", &terms.mass_x, quote!(q: &[#real; #nq_l], v: &[#real; #nv_l]));
+        let mass_q_ops =
+            self.product("mbd_mass_derivative_along", &terms.mass_x_dq, quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], #direction));
+        let h_q_ops = self.product("mbd_forces_q_along", &terms.h_dq, quote!(#state, #direction));
+        let h_v_ops = self.product("mbd_forces_v_along", &terms.h_dv, quote!(#state, #direction));
+        let mass_matrix = self.by_columns(quote!(self.mbd_mass_times(q, &dir, &mut out)), quote!(a), quote!(+= scale *));
+        let mass_derivative = self.by_columns(quote!(self.mbd_mass_derivative_along(q, x, &dir, &mut out)), quote!(a), quote!(+= scale *));
+        let forces_q = self.by_columns(quote!(self.mbd_forces_q_along(q, v, t, &dir, &mut out)), quote!(dh), quote!(=));
+        let forces_v = self.by_columns(quote!(self.mbd_forces_v_along(q, v, t, &dir, &mut out)), quote!(dh), quote!(=));
+        let friction_derivatives = if terms.friction_dq.is_empty() {
+            quote!()
+        } else {
+            let params = quote!(#state, lambda: &[#real; #nc_l], #direction);
+            self.product("mbd_friction_q_along", &terms.friction_dq, params.clone());
+            self.product("mbd_friction_v_along", &terms.friction_dv, params);
+            let along_q = self.by_columns(quote!(self.mbd_friction_q_along(q, v, t, lambda, &dir, &mut out)), quote!(d_q), quote!(+=));
+            let along_v = self.by_columns(quote!(self.mbd_friction_v_along(q, v, t, lambda, &dir, &mut out)), quote!(d_v), quote!(+=));
+            quote!({ #along_q } { #along_v })
+        };
+        let ops = vec![
+            ("mass_times", mass_ops),
+            ("add_mass_derivative (one column)", mass_q_ops),
+            ("forces_q (one column)", h_q_ops),
+            ("forces_v (one column)", h_v_ops),
+        ];
+        let code = quote! {
+            // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
+            #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
+            impl ::mbd::Dynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
+                #inline
+                fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
+                    self.mbd_mass_times(q, x, y);
+                }
+                fn add_mass_matrix(&self, q: &[#real; #nq_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
+                    #mass_matrix
+                }
+                fn add_mass_derivative(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
+                    #mass_derivative
+                }
+                #inline
+                fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
+                    #h_body
+                }
+                fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
+                    #forces_q
+                }
+                fn forces_v(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
+                    #forces_v
+                }
+                #inline
+                fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
+                    let mut energy = [#zero; 1];
+                    #v_body
+                    energy[0]
+                }
+                #switching
+                #inline
+                fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
+                    #friction_fn
+                }
+                fn friction_derivatives(
+                    &self,
+                    q: &[#real; #nq_l],
+                    v: &[#real; #nv_l],
+                    t: #real,
+                    lambda: &[#real; #nc_l],
+                    d_q: &mut [[#real; #nv_l]; #nv_l],
+                    d_v: &mut [[#real; #nv_l]; #nv_l],
+                ) {
+                    #friction_derivatives
+                }
+                #inline
+                fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
+                    let mut power = [#zero; 1];
+                    #power_body
+                    power[0]
+                }
+            }
+        };
+        (code, ops)
+    }
+}
