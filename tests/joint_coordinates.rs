@@ -339,3 +339,119 @@ fn generalized_alpha_integrates_joint_coordinates() {
     let error = (0..2).map(|i| (last[i] - reference[i]).abs()).fold(0.0, f64::max);
     assert!(error < 1e-4, "generalized-α error {error:e}: {last:?} vs {reference:?}");
 }
+
+both_ways! {
+    /// A two-link pendulum whose tip's mass is a parameter (`tip_mass`), for a massless branch.
+    TipBody, TipJoint {
+        params { tip_mass: 0.5 }
+        gravity [0.0, -9.81];
+        body link { mass: 1.0, inertia: 0.02, at: [0.25, 0.0, 0.0] }
+        body tip { mass: tip_mass, inertia: 0.1 * tip_mass, at: [0.6, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ link[-0.25, 0.0];
+        revolute link[0.25, 0.0] ~ tip[-0.1, 0.0];
+    }
+}
+
+/// `solve_mass` (the articulated-body recursion) inverts `mass_times` on every tree and loop
+/// above: the free joint's 3×3 pivot block, a translational joint run backwards, a cut loop
+/// (tolerance: M's condition here is below 1e4, so 1e-12 relative to |x|).
+#[test]
+fn the_articulated_body_solve_inverts_the_mass_matrix() {
+    fn check<M: Dynamics<f64, N, N, NC>, const N: usize, const NC: usize>(m: &M) {
+        for (q, x, _) in states::<N>(10) {
+            let mut y = [0.0; N];
+            m.mass_times(&q, &x, &mut y);
+            assert_eq!(m.solve_mass(&q, &mut y), Some(Ok(())), "{}", M::NAME);
+            let scale = x.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+            for i in 0..N {
+                assert!((y[i] - x[i]).abs() < 1e-12 * scale, "{}: M⁻¹(M x)[{i}] = {} for x = {}", M::NAME, y[i], x[i]);
+            }
+            // The fused M⁻¹h is the solve of h (x for the velocities).
+            let (mut h, mut free) = ([0.0; N], [0.0; N]);
+            m.forces(&q, &x, 0.3, &mut h);
+            assert_eq!(m.solve_mass(&q, &mut h), Some(Ok(())));
+            assert_eq!(m.free_accelerations(&q, &x, 0.3, &mut free), Some(Ok(())));
+            let scale = h.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+            for i in 0..N {
+                assert!((free[i] - h[i]).abs() < 1e-12 * scale, "{}: free accelerations [{i}] {} vs M⁻¹h {}", M::NAME, free[i], h[i]);
+            }
+        }
+    }
+    check(&DoubleJoint::default());
+    check(&CartJoint::default());
+    check(&CrankJoint::default());
+    check(&FloatJoint::default());
+    // Body coordinates solve by their planned Schur complement: no recursion.
+    assert_eq!(DoubleBody::default().solve_mass(&[0.0; 6], &mut [1.0; 6]), None);
+    assert_eq!(DoubleBody::default().free_accelerations(&[0.0; 6], &[0.0; 6], 0.0, &mut [0.0; 6]), None);
+}
+
+/// A massless tip: the recursion's pivot there is zero, and forward dynamics name the body, as
+/// in body coordinates.
+#[test]
+fn a_massless_branch_is_named() {
+    let m = TipJoint { tip_mass: 0.0 };
+    assert_eq!(m.solve_mass(&[0.3, 0.2], &mut [1.0, 1.0]), Some(Err(1)));
+    assert_eq!(m.free_accelerations(&[0.3, 0.2], &[0.0; 2], 0.0, &mut [0.0; 2]), Some(Err(1)));
+    let (mut vd, mut lambda) = ([0.0; 2], [0.0; 0]);
+    let err = m.accelerations(&[0.3, 0.2], &[0.0; 2], 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap_err();
+    assert_eq!(err, DynamicsError::NonPositiveMass { body: "tip", value: 0.0 });
+    let b = TipBody { tip_mass: 0.0 };
+    let (mut vd, mut lambda) = ([0.0; 6], [0.0; 4]);
+    let (qb, _) = to_bodies::<TipJoint, 2, 6>(&TipJoint::default(), &[0.3, 0.2], &[0.0; 2]);
+    let err = b.accelerations(&qb, &[0.0; 6], 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap_err();
+    assert_eq!(err, DynamicsError::NonPositiveMass { body: "tip", value: 0.0 });
+}
+
+both_ways! {
+    /// The slider-crank with Coulomb friction in its cut joint (the slide), loaded by its
+    /// multipliers.
+    FrictionBody, FrictionJoint {
+        gravity [0.0, -9.81];
+        body crank  { mass: 2.0, inertia: 0.01, at: [0.05, 0.0, 0.0] }
+        body rod    { mass: 0.8, inertia: 0.006, at: [0.25, 0.0, 0.0] }
+        body piston { mass: 0.5, inertia: 1.0e-4, at: [0.4, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ crank[-0.05, 0.0];
+        revolute crank[0.05, 0.0] ~ rod[-0.15, 0.0];
+        revolute rod[0.15, 0.0] ~ piston[0.0, 0.0];
+        translational ground[0.0, 0.0] along [1.0, 0.0] ~ piston[0.0, 0.0] along [1.0, 0.0]
+            { coulomb: 0.3, slip_velocity: 0.05 };
+    }
+}
+
+/// Coulomb friction in a cut joint: the same accelerations both ways (the fixed point over
+/// the multipliers included), and its generated derivatives (a column at a time) against
+/// central differences at fixed λ (tolerance as for the frames: O(h²) and rounding, 1e-7
+/// relative to the forces' scale).
+#[test]
+fn friction_in_a_cut_joint_agrees_and_differentiates() {
+    let (b, j) = (FrictionBody::default(), FrictionJoint::default());
+    for (mut q, mut v, t) in states::<3>(10) {
+        on_constraints(&j, &mut q, &mut v, t);
+        agree(&b, &j, &q, &v, t);
+        let lambda = [40.0, -3.0];
+        let (mut d_q, mut d_v) = ([[0.0; 3]; 3], [[0.0; 3]; 3]);
+        j.friction_derivatives(&q, &v, t, &lambda, &mut d_q, &mut d_v);
+        let friction = |q: &[f64; 3], v: &[f64; 3]| {
+            let mut h = [0.0; 3];
+            j.friction_forces(q, v, t, &lambda, &mut h);
+            h
+        };
+        let scale = friction(&q, &v).iter().fold(1.0f64, |a, b| a.max(b.abs()));
+        let e = 1e-6;
+        for c in 0..3 {
+            let (mut qp, mut qm, mut vp, mut vm) = (q, q, v, v);
+            qp[c] += e;
+            qm[c] -= e;
+            vp[c] += e;
+            vm[c] -= e;
+            let (fqp, fqm, fvp, fvm) = (friction(&qp, &v), friction(&qm, &v), friction(&q, &vp), friction(&q, &vm));
+            for r in 0..3 {
+                let (dq, dv) = ((fqp[r] - fqm[r]) / (2.0 * e), (fvp[r] - fvm[r]) / (2.0 * e));
+                assert!((dq - d_q[r][c]).abs() < 1e-7 * scale.max(dq.abs()), "∂f_{r}/∂q_{c}: {} vs {dq}", d_q[r][c]);
+                assert!((dv - d_v[r][c]).abs() < 1e-7 * scale.max(dv.abs()), "∂f_{r}/∂v_{c}: {} vs {dv}", d_v[r][c]);
+            }
+        }
+        assert!(d_v.iter().flatten().any(|x| x.abs() > 1e-6), "friction depends on the slip velocity");
+    }
+}

@@ -53,6 +53,15 @@ pub struct TreeTerms {
     /// Σ_b J_bᵀ w_b with body b's wrench w_b = dir[3b..3b + 3] (force x, y through its centre of
     /// mass, moment): `BodyFrames::add_body_wrench`.
     pub wrench: Vec<Id>,
+    /// M⁻¹ dir by the articulated-body recursion ([`Kinematics::mass_solve`]):
+    /// `Dynamics::solve_mass`.
+    pub mass_solve: Vec<Id>,
+    /// Its pivots, each with the first velocity of its link: every one must be positive.
+    pub pivots: Vec<(usize, Id)>,
+    /// M⁻¹ h by the same recursion with h's nodes for τ: one function for the accelerations
+    /// without constraint forces, its sines and cosines computed once
+    /// (`Dynamics::free_accelerations`).
+    pub free_accelerations: Vec<Id>,
 }
 
 /// The tree's kinematics the passes read: each body's pose and its link's screws.
@@ -157,7 +166,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
 
-    let terms = tree_terms(&mut b, &kinematics, mass_x, &h, &friction);
+    let terms = tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction);
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -206,8 +215,11 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
 }
 
 /// M x, and the dense functions as products with a direction ([`TreeTerms`]).
-fn tree_terms(b: &mut Builder, kinematics: &Kinematics, mass_x: Vec<Id>, h: &[Id], friction: &[Id]) -> TreeTerms {
+fn tree_terms(b: &mut Builder, kinematics: &Kinematics, inertia: &[BodyInertia], mass_x: Vec<Id>, h: &[Id], friction: &[Id]) -> TreeTerms {
     let nv = kinematics.tree.nq;
+    let directions: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
+    let (mass_solve, pivots) = kinematics.mass_solve(b, inertia, &directions);
+    let (free_accelerations, _) = kinematics.mass_solve(b, inertia, h);
     let dirs: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
     // rows differentiated along dir, the coordinates (Var::Q) or the velocities (Var::Qd)
     let along = |b: &mut Builder, rows: &[Id], moving: fn(u16) -> Var| -> Vec<Id> {
@@ -229,6 +241,9 @@ fn tree_terms(b: &mut Builder, kinematics: &Kinematics, mass_x: Vec<Id>, h: &[Id
         friction_dv: if has_friction { along(b, friction, Var::Qd) } else { Vec::new() },
         wrench: kinematics.backward(b, wrenches),
         mass_x,
+        mass_solve,
+        pivots,
+        free_accelerations,
     }
 }
 
@@ -254,6 +269,167 @@ fn inertias(b: &mut Builder, model: &Model) -> Vec<BodyInertia> {
             BodyInertia { mass: b.expr(&body.mass), inertia: b.expr(j) }
         })
         .collect()
+}
+
+/// a · b of two 3-vectors.
+fn dot3(b: &mut Builder, x: [Id; 3], y: [Id; 3]) -> Id {
+    b.dot(&x, &y)
+}
+
+/// A twist at r_p moved to r_k = r_p + d: (ṙ + ω ⊥d, ω).
+fn twist_moved(b: &mut Builder, t: [Id; 3], d: [Id; 2]) -> [Id; 3] {
+    let (wy, wx) = (b.g.mul(t[2], d[1]), b.g.mul(t[2], d[0]));
+    [b.g.sub(t[0], wy), b.g.add(t[1], wx), t[2]]
+}
+
+/// A wrench at r_k moved to r_p = r_k − d: (F, n + d × F), the transpose of [`twist_moved`].
+fn force_moved(b: &mut Builder, f: [Id; 3], d: [Id; 2]) -> [Id; 3] {
+    let (a, c) = (b.g.mul(d[0], f[1]), b.g.mul(d[1], f[0]));
+    let arm = b.g.sub(a, c);
+    [f[0], f[1], b.g.add(f[2], arm)]
+}
+
+/// A symmetric 3×3 matrix of nodes (a planar inertia at a point): each entry below the diagonal
+/// is the node above it, so each is computed once.
+#[derive(Clone)]
+struct Matrix([[Id; 3]; 3]);
+
+impl Matrix {
+    fn diagonal(b: &mut Builder, d: [Id; 3]) -> Self {
+        let zero = b.g.num(0.0);
+        Matrix(std::array::from_fn(|r| std::array::from_fn(|c| if r == c { d[r] } else { zero })))
+    }
+
+    /// The symmetric matrix of the entries `upper(r, c)` gives for r ≤ c.
+    fn symmetric(b: &mut Builder, mut upper: impl FnMut(&mut Builder, usize, usize) -> Id) -> Self {
+        let mut m = [[0; 3]; 3];
+        for (r, c) in [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)] {
+            m[r][c] = upper(b, r, c);
+            m[c][r] = m[r][c];
+        }
+        Matrix(m)
+    }
+
+    fn times(&self, b: &mut Builder, x: [Id; 3]) -> [Id; 3] {
+        std::array::from_fn(|r| b.dot(&self.0[r], &x))
+    }
+
+    fn add(&mut self, b: &mut Builder, other: &Matrix) {
+        let (this, other) = (self.0, other.0);
+        *self = Matrix::symmetric(b, |b, r, c| b.g.add(this[r][c], other[r][c]));
+    }
+
+    /// self −= w wᵀ / d.
+    fn subtract_outer(&mut self, b: &mut Builder, w: [Id; 3], d: Id) {
+        let one = b.g.num(1.0);
+        let inverse = b.g.div(one, d);
+        let scaled = w.map(|x| b.g.mul(x, inverse));
+        let this = self.0;
+        *self = Matrix::symmetric(b, |b, r, c| {
+            let t = b.g.mul(w[r], scaled[c]);
+            b.g.sub(this[r][c], t)
+        });
+    }
+
+    /// Xᵀ I X for the twist transform X from r_p to r_p + d (what the inertia at r_p + d is
+    /// at r_p): with X = [[1, 0, −d_y], [0, 1, d_x], [0, 0, 1]], the first two rows and columns
+    /// keep theirs, and the third is moved: e = I (−d_y, d_x, 1)ᵀ, R_a2 = e_a (a < 2),
+    /// R_22 = (−d_y, d_x, 1) · e.
+    fn transformed(&self, b: &mut Builder, d: [Id; 2]) -> Matrix {
+        let minus_dy = b.g.neg(d[1]);
+        let arm = [minus_dy, d[0], b.g.num(1.0)];
+        let e = self.times(b, arm);
+        let last = b.dot(&arm, &e);
+        let i = self.0;
+        Matrix::symmetric(b, |_, r, c| match (r, c) {
+            (2, 2) => last,
+            (r, 2) => e[r],
+            (r, c) => i[r][c],
+        })
+    }
+}
+
+/// What the articulated-body recursion's forward pass reads of a link: U = I^A S by columns,
+/// D's factors and u.
+struct Articulated {
+    u_columns: Vec<[Id; 3]>,
+    ldl: Ldl,
+    u: Vec<Id>,
+}
+
+/// The LDLᵀ factors of a link's D = Sᵀ I^A S (1×1, or 3×3 for a free body), as nodes.
+struct Ldl {
+    /// Strictly lower L by rows.
+    lower: Vec<Vec<Id>>,
+    pivots: Vec<Id>,
+}
+
+impl Ldl {
+    fn new(b: &mut Builder, d: Vec<Vec<Id>>) -> Self {
+        let n = d.len();
+        let (mut lower, mut pivots): (Vec<Vec<Id>>, Vec<Id>) = (vec![Vec::new(); n], Vec::new());
+        for i in 0..n {
+            for j in 0..i {
+                let mut s = d[i][j];
+                for k in 0..j {
+                    let t = b.g.mul(lower[i][k], lower[j][k]);
+                    let t = b.g.mul(t, pivots[k]);
+                    s = b.g.sub(s, t);
+                }
+                let l = b.g.div(s, pivots[j]);
+                lower[i].push(l);
+            }
+            let mut p = d[i][i];
+            for k in 0..i {
+                let l2 = b.g.mul(lower[i][k], lower[i][k]);
+                let t = b.g.mul(l2, pivots[k]);
+                p = b.g.sub(p, t);
+            }
+            pivots.push(p);
+        }
+        Ldl { lower, pivots }
+    }
+
+    /// L⁻¹ applied to each of n rows of 3-vectors (Uᵀ's rows: U's columns).
+    fn forward(&self, b: &mut Builder, rows: &[[Id; 3]]) -> Vec<[Id; 3]> {
+        let mut out: Vec<[Id; 3]> = Vec::with_capacity(rows.len());
+        for (i, row) in rows.iter().enumerate() {
+            let mut r = *row;
+            for (k, &l) in self.lower[i].iter().enumerate() {
+                r = std::array::from_fn(|c| {
+                    let t = b.g.mul(l, out[k][c]);
+                    b.g.sub(r[c], t)
+                });
+            }
+            out.push(r);
+        }
+        out
+    }
+
+    /// D⁻¹ x.
+    fn solve(&self, b: &mut Builder, x: &[Id]) -> Vec<Id> {
+        let n = x.len();
+        // L z = x, then y = D⁻¹ z, then Lᵀ y ← y
+        let mut y: Vec<Id> = Vec::with_capacity(n);
+        for (&xi, lower) in x.iter().zip(&self.lower) {
+            let mut s = xi;
+            for (&l, &yk) in lower.iter().zip(&y) {
+                let t = b.g.mul(l, yk);
+                s = b.g.sub(s, t);
+            }
+            y.push(s);
+        }
+        for (yi, &d) in y.iter_mut().zip(&self.pivots) {
+            *yi = b.g.div(*yi, d);
+        }
+        for i in (0..n).rev() {
+            for k in i + 1..n {
+                let t = b.g.mul(self.lower[k][i], y[k]);
+                y[i] = b.g.sub(y[i], t);
+            }
+        }
+        y
+    }
 }
 
 impl<'t> Kinematics<'t> {
@@ -294,6 +470,100 @@ impl<'t> Kinematics<'t> {
             }
         }
         g
+    }
+
+    /// x = M⁻¹ τ by the articulated-body algorithm (Featherstone; planar, each body's
+    /// twist and wrench at its centre of mass in global axes), O(N) operations, and its pivots
+    /// (the diagonal of each link's D = Sᵀ I^A S in LDLᵀ form: all positive where M is).
+    ///
+    /// Tips first: I^A_k = M_k + Σ_c X_cᵀ I^a_c X_c and p_k = Σ_c X_cᵀ p^a_c over k's children
+    /// c, X_c the twist transform from r_k to r_c; then for k's link with screws S (3 × n),
+    /// U = I^A S, D = Sᵀ U, u = τ_k − Sᵀ p_k, I^a = I^A − U D⁻¹ Uᵀ, p^a = p_k + U D⁻¹ u.
+    /// Root first: a′ = X a_parent (a = 0 at ground), x_k = D⁻¹(u − Uᵀ a′), a_k = a′ + S x_k.
+    fn mass_solve(&self, b: &mut Builder, inertia: &[BodyInertia], tau: &[Id]) -> (Vec<Id>, Vec<(usize, Id)>) {
+        let tree = self.tree;
+        let zero = b.g.num(0.0);
+        let mut articulated: Vec<Matrix> = inertia.iter().map(|m| Matrix::diagonal(b, [m.mass, m.mass, m.inertia])).collect();
+        let mut bias: Vec<[Id; 3]> = vec![[zero; 3]; inertia.len()];
+        let mut links: Vec<Option<Articulated>> = (0..inertia.len()).map(|_| None).collect();
+        let mut pivots = Vec::new();
+        for &k in tree.order.iter().rev() {
+            let link = &tree.links[k];
+            let screws = &self.screws[k];
+            let (mut child_inertia, mut child_bias) = (articulated[k].clone(), bias[k]);
+            if !screws.is_empty() {
+                let u_columns: Vec<[Id; 3]> = screws.iter().map(|s| articulated[k].times(b, *s)).collect();
+                let d: Vec<Vec<Id>> = screws.iter().map(|s| u_columns.iter().map(|u| dot3(b, *s, *u)).collect()).collect();
+                let ldl = Ldl::new(b, d);
+                pivots.extend(ldl.pivots.iter().map(|&p| (link.first, p)));
+                let u: Vec<Id> = screws
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| {
+                        let sp = dot3(b, *s, bias[k]);
+                        b.g.sub(tau[link.first + i], sp)
+                    })
+                    .collect();
+                // I^a = I^A − U D⁻¹ Uᵀ = I^A − Σ_j w_j w_jᵀ / d_j with W = L⁻¹ Uᵀ.
+                let w = ldl.forward(b, &u_columns);
+                for (wj, &dj) in w.iter().zip(&ldl.pivots) {
+                    child_inertia.subtract_outer(b, *wj, dj);
+                }
+                // p^a = p + U D⁻¹ u
+                let x = ldl.solve(b, &u);
+                for (column, &xj) in u_columns.iter().zip(&x) {
+                    child_bias = std::array::from_fn(|r| {
+                        let t = b.g.mul(column[r], xj);
+                        b.g.add(child_bias[r], t)
+                    });
+                }
+                links[k] = Some(Articulated { u_columns, ldl, u });
+            }
+            if let BodyRef::Body(p) = link.parent {
+                let d = self.offset(b, k, p);
+                let moved = child_inertia.transformed(b, d);
+                articulated[p].add(b, &moved);
+                let f = force_moved(b, child_bias, d);
+                bias[p] = std::array::from_fn(|r| b.g.add(bias[p][r], f[r]));
+            }
+        }
+        let mut x = vec![zero; tree.nq];
+        let mut acceleration: Vec<[Id; 3]> = vec![[zero; 3]; inertia.len()];
+        for &k in &tree.order {
+            let link = &tree.links[k];
+            let mut a = match link.parent {
+                BodyRef::Ground => [zero; 3],
+                BodyRef::Body(p) => {
+                    let d = self.offset(b, k, p);
+                    twist_moved(b, acceleration[p], d)
+                }
+            };
+            if let Some(Articulated { u_columns, ldl, u }) = &links[k] {
+                let rhs: Vec<Id> = u_columns
+                    .iter()
+                    .zip(u)
+                    .map(|(column, &ui)| {
+                        let ua = dot3(b, *column, a);
+                        b.g.sub(ui, ua)
+                    })
+                    .collect();
+                let xs = ldl.solve(b, &rhs);
+                for (i, (&xi, s)) in xs.iter().zip(&self.screws[k]).enumerate() {
+                    x[link.first + i] = xi;
+                    a = std::array::from_fn(|r| {
+                        let t = b.g.mul(s[r], xi);
+                        b.g.add(a[r], t)
+                    });
+                }
+            }
+            acceleration[k] = a;
+        }
+        (x, pivots)
+    }
+
+    /// r_k − r_p.
+    fn offset(&self, b: &mut Builder, k: usize, p: usize) -> [Id; 2] {
+        [b.g.sub(self.poses[k][0], self.poses[p][0]), b.g.sub(self.poses[k][1], self.poses[p][1])]
     }
 
     /// The joint coordinates a wrench on the given body-level velocities (3k + c) reaches: those

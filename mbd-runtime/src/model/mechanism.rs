@@ -416,6 +416,24 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     fn add_mass_derivative(&self, q: &[T; NQ], x: &[T; NV], scale: T, a: &mut [[T; NV]; NV]) {
         let _ = (q, x, scale, a);
     }
+    /// x ← M(q)⁻¹ x by the mechanism's own recursion, where it has one: a tree in joint
+    /// coordinates solves by the articulated-body algorithm, O(N) operations, without forming
+    /// M. `Some(Ok(()))` when solved; `Some(Err(i))` when an articulated inertia is not positive
+    /// (a body without mass at the end of a branch), i the first velocity of its link, x
+    /// unchanged; `None` where the mechanism has no recursion and the caller factors M, as this
+    /// provided method says.
+    fn solve_mass(&self, q: &[T; NQ], x: &mut [T; NV]) -> Option<Result<(), usize>> {
+        let _ = (q, x);
+        None
+    }
+    /// v̇ = M(q)⁻¹ h(q, v, t), the accelerations without constraint forces, by the
+    /// mechanism's own recursion where it has one (one pass for h and the solve: what
+    /// [`solve_mass`](Self::solve_mass) of [`forces`](Self::forces) gives, for less); the
+    /// same `Some` and `None` as `solve_mass`.
+    fn free_accelerations(&self, q: &[T; NQ], v: &[T; NV], t: T, vd: &mut [T; NV]) -> Option<Result<(), usize>> {
+        let _ = (q, v, t, vd);
+        None
+    }
     /// h(q, v, t): the generalized applied forces — gravity, springs, dampers, actuators,
     /// applied forces and torques, and (spatial) the gyroscopic term — in N (translational rows)
     /// and N·m (rotational rows).

@@ -1,5 +1,7 @@
 //! Forward dynamics by dense factorizations of M(q) and S = D M⁻¹ Dᵀ: what `mechanism!`
-//! generates where M depends on q (joint coordinates), and a reference for any mechanism.
+//! generates where M depends on q (joint coordinates), and a reference for any mechanism. M⁻¹
+//! is applied by the mechanism's own recursion where it has one (`Dynamics::solve_mass`: a
+//! tree's articulated-body algorithm, O(N) per solve), else by M's Cholesky factor.
 //!
 //! The equations are those of the generated sparse solve (docs/formulation.md, "Forward
 //! dynamics"): M v̇ − Dᵀλ = h, D v̇ = γ − 2α(D v − ν) − β²Φ, solved as
@@ -7,7 +9,7 @@
 //! S = L_S D_S L_Sᵀ whose pivots follow the same rule (`sparse::schur_pivot`: a dependent row
 //! fails or, with `allow_redundant`, fades smoothly). Rows are eliminated in Φ's order.
 //!
-//! Cost per call: NV³/6 for M's factor, NC·NV² for M⁻¹Dᵀ, NC²·NV for S and NC³/6 for its
+//! Cost per call: NV³/6 for M's factor (O(N) per solve by the recursion instead), NC·NV² for M⁻¹Dᵀ, NC²·NV for S and NC³/6 for its
 //! factor, against the generated sparse solve's cost in the non-zeros; the arrays live on the
 //! stack (NV² + 2 NC·NV + NC² values).
 
@@ -17,7 +19,7 @@
 
 use crate::linalg::sparse::{max_abs_finite, schur_pivot};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions};
-use crate::model::mechanism::{Dynamics, Mechanism};
+use crate::model::mechanism::Dynamics;
 use crate::real::Real;
 
 /// M = L Lᵀ in place (lower triangle), or the velocity whose pivot is not positive and finite
@@ -63,9 +65,16 @@ fn cholesky_solve<T: Real, const NV: usize>(l: &[[T; NV]; NV], x: &mut [T; NV]) 
     }
 }
 
+/// How M⁻¹ is applied: by the mechanism's recursion (`Dynamics::solve_mass`, O(N)), or by the
+/// Cholesky factor of M.
+enum MassInverse<T, const NV: usize> {
+    Recursion,
+    Cholesky([[T; NV]; NV]),
+}
+
 /// The factors of M and of S = D M⁻¹ Dᵀ at one configuration, and M⁻¹Dᵀ.
 struct Factors<T, const NV: usize, const NC: usize> {
-    l: [[T; NV]; NV],
+    l: MassInverse<T, NV>,
     /// Row r: M⁻¹ D_rᵀ.
     y: [[T; NV]; NC],
     /// S's LDLᵀ: L_S below the diagonal, 1/d (weighted) on it.
@@ -75,25 +84,38 @@ struct Factors<T, const NV: usize, const NC: usize> {
 impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
     /// Factors M and S, or the error naming the body (`mass_bodies[i]`: the body velocity i
     /// moves) or the constraint row.
-    fn new<M: Mechanism>(
-        mass: [[T; NV]; NV],
+    fn new<M: Dynamics<T, NQ, NV, NC>, const NQ: usize>(
+        m: &M,
+        q: &[T; NQ],
         d: &[[T; NV]; NC],
         t: T,
         options: &DynamicsOptions<T>,
         mass_bodies: &[u16],
     ) -> Result<Self, DynamicsError> {
-        let mut l = mass;
-        if let Err((i, pivot)) = cholesky(&mut l) {
-            let body = M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
-            if !pivot.is_finite() || !t.is_finite() {
-                return Err(DynamicsError::NonFinite { t: t.to_f64(), row: M::VELOCITY_NAMES.get(i).copied().unwrap_or("?") });
-            }
-            return Err(DynamicsError::NonPositiveMass { body, value: pivot.to_f64() });
-        }
+        let body = |i: usize| M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
         let mut y = *d;
-        for row in y.iter_mut() {
-            cholesky_solve(&l, row);
-        }
+        let l = if let Some(solved) = y.first_mut().map_or_else(|| m.solve_mass(q, &mut [T::ZERO; NV]), |row| m.solve_mass(q, row)) {
+            if let Err(i) = solved {
+                return Err(non_positive::<T, M, NQ, NV, NC>(q, t, i, mass_bodies));
+            }
+            for row in y.iter_mut().skip(1) {
+                // The same configuration: the pivots checked above hold.
+                let _ = m.solve_mass(q, row);
+            }
+            MassInverse::Recursion
+        } else {
+            let mut l = mass_matrix(m, q);
+            if let Err((i, pivot)) = cholesky(&mut l) {
+                if !pivot.is_finite() || !t.is_finite() {
+                    return Err(DynamicsError::NonFinite { t: t.to_f64(), row: M::VELOCITY_NAMES.get(i).copied().unwrap_or("?") });
+                }
+                return Err(DynamicsError::NonPositiveMass { body: body(i), value: pivot.to_f64() });
+            }
+            for row in y.iter_mut() {
+                cholesky_solve(&l, row);
+            }
+            MassInverse::Cholesky(l)
+        };
         let mut s = [[T::ZERO; NC]; NC];
         for i in 0..NC {
             for j in 0..=i {
@@ -134,6 +156,17 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
         Ok(Factors { l, y, s })
     }
 
+    /// x ← M⁻¹ x.
+    fn mass_solve<M: Dynamics<T, NQ, NV, NC>, const NQ: usize>(&self, m: &M, q: &[T; NQ], x: &mut [T; NV]) {
+        match &self.l {
+            // The configuration the factors were made at: its pivots were checked then.
+            MassInverse::Recursion => {
+                let _ = m.solve_mass(q, x);
+            }
+            MassInverse::Cholesky(l) => cholesky_solve(l, x),
+        }
+    }
+
     /// b ← S⁻¹ b.
     fn schur_solve(&self, b: &mut [T; NC]) {
         for i in 0..NC {
@@ -159,6 +192,21 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
             }
         }
     }
+}
+
+/// The error of a non-positive pivot of `Dynamics::solve_mass` at velocity i: non-finite where
+/// t or q is, else the body velocity i moves without mass.
+fn non_positive<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    q: &[T; NQ],
+    t: T,
+    i: usize,
+    mass_bodies: &[u16],
+) -> DynamicsError {
+    if !t.is_finite() || q.iter().any(|x| !x.is_finite()) {
+        return DynamicsError::NonFinite { t: t.to_f64(), row: M::VELOCITY_NAMES.get(i).copied().unwrap_or("?") };
+    }
+    let body = M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
+    DynamicsError::NonPositiveMass { body, value: 0.0 }
 }
 
 /// The mechanism's M(q).
@@ -194,9 +242,17 @@ where
     T: Real,
     M: Dynamics<T, NQ, NV, NC>,
 {
+    if NC == 0 {
+        // A tree: v̇ = M⁻¹h, by the recursion where there is one (no rows, so no friction).
+        match m.free_accelerations(q, v, t, vd) {
+            Some(Ok(())) => return Ok(()),
+            Some(Err(i)) => return Err(non_positive::<T, M, NQ, NV, NC>(q, t, i, mass_bodies)),
+            None => {}
+        }
+    }
     let (mut phi, mut d, mut nu, mut gamma) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC], [T::ZERO; NC]);
     m.full_eval(q, v, t, &mut phi, &mut d, &mut nu, &mut gamma);
-    let factors = Factors::<T, NV, NC>::new::<M>(mass_matrix(m, q), &d, t, options, mass_bodies)?;
+    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
     let mut applied = [T::ZERO; NV];
     m.forces(q, v, t, &mut applied);
     let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -210,7 +266,7 @@ where
         }
         // v̇ = M⁻¹h, then S λ = γ − D M⁻¹h − 2α(D v − ν) − β²Φ, v̇ += M⁻¹Dᵀλ
         *vd = h;
-        cholesky_solve(&factors.l, vd);
+        factors.mass_solve(m, q, vd);
         for r in 0..NC {
             let (mut d_vd, mut d_v) = (T::ZERO, T::ZERO);
             for c in 0..NV {
@@ -258,10 +314,14 @@ where
     T: Real,
     M: Dynamics<T, NQ, NV, NC>,
 {
+    if NC == 0 {
+        // Nothing to project onto.
+        return Ok(T::ZERO);
+    }
     let (mut phi, mut d) = ([T::ZERO; NC], [[T::ZERO; NV]; NC]);
     m.position_eval(q, t, &mut phi, &mut d);
     let (worst, _) = max_abs_finite(&phi);
-    let factors = Factors::<T, NV, NC>::new::<M>(mass_matrix(m, q), &d, t, options, mass_bodies)?;
+    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
     factors.schur_solve(&mut phi);
     let mut dv = [T::ZERO; NV];
     factors.subtract_correction(&phi, &mut dv);
@@ -287,6 +347,9 @@ where
     T: Real,
     M: Dynamics<T, NQ, NV, NC>,
 {
+    if NC == 0 {
+        return Ok(T::ZERO);
+    }
     let (mut phi, mut d, mut nu) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC]);
     m.position_eval(q, t, &mut phi, &mut d);
     m.velocity_rhs(q, t, &mut nu);
@@ -299,7 +362,7 @@ where
         b[r] = x;
     }
     let (worst, _) = max_abs_finite(&b);
-    let factors = Factors::<T, NV, NC>::new::<M>(mass_matrix(m, q), &d, t, options, mass_bodies)?;
+    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
     factors.schur_solve(&mut b);
     factors.subtract_correction(&b, v);
     Ok(worst)

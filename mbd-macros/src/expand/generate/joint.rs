@@ -7,7 +7,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::{DynamicsFunctions, Gen};
-use crate::emit::{vector_outputs, Ops};
+use crate::emit::{usize_lit, vector_outputs, Ops};
 use crate::formulation::TreeTerms;
 use crate::sym::Id;
 
@@ -47,6 +47,70 @@ impl Gen<'_> {
         }
     }
 
+    /// `Dynamics::solve_mass` by the articulated-body recursion: the pivots checked before x is
+    /// written.
+    fn solve_mass(&self, terms: &TreeTerms) -> (TokenStream, Ops) {
+        let Gen { e, real, zero, nq_l, nv_l, .. } = self;
+        let mut outputs = vector_outputs("out", &terms.mass_solve);
+        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
+        outputs.extend(vector_outputs("pivots", &pivot_nodes));
+        let (body, ops) = e.body(&outputs);
+        let n = usize_lit(pivot_nodes.len());
+        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
+        let code = quote! {
+            #[inline(never)]
+            fn solve_mass(&self, q: &[#real; #nq_l], x: &mut [#real; #nv_l]) -> ::core::option::Option<::core::result::Result<(), usize>> {
+                let dir = *x;
+                let mut out = [#zero; #nv_l];
+                let mut pivots = [#zero; #n];
+                #body
+                const VELOCITY: [usize; #n] = [#(#velocities),*];
+                for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
+                    if !(pivot.is_finite() && pivot > #zero) {
+                        return ::core::option::Option::Some(::core::result::Result::Err(velocity));
+                    }
+                }
+                *x = out;
+                ::core::option::Option::Some(::core::result::Result::Ok(()))
+            }
+        };
+        (code, ops)
+    }
+
+    /// `Dynamics::free_accelerations`: M⁻¹h by the recursion, h's nodes for τ.
+    fn free_accelerations(&self, terms: &TreeTerms) -> (TokenStream, Ops) {
+        let Gen { e, real, zero, nq_l, nv_l, .. } = self;
+        let mut outputs = vector_outputs("out", &terms.free_accelerations);
+        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
+        outputs.extend(vector_outputs("pivots", &pivot_nodes));
+        let (body, ops) = e.body(&outputs);
+        let n = usize_lit(pivot_nodes.len());
+        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
+        let code = quote! {
+            #[inline(never)]
+            fn free_accelerations(
+                &self,
+                q: &[#real; #nq_l],
+                v: &[#real; #nv_l],
+                t: #real,
+                vd: &mut [#real; #nv_l],
+            ) -> ::core::option::Option<::core::result::Result<(), usize>> {
+                let mut out = [#zero; #nv_l];
+                let mut pivots = [#zero; #n];
+                #body
+                const VELOCITY: [usize; #n] = [#(#velocities),*];
+                for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
+                    if !(pivot.is_finite() && pivot > #zero) {
+                        return ::core::option::Option::Some(::core::result::Result::Err(velocity));
+                    }
+                }
+                *vd = out;
+                ::core::option::Option::Some(::core::result::Result::Ok(()))
+            }
+        };
+        (code, ops)
+    }
+
     /// The `Dynamics` implementation of a tree, and one column's op counts of the dense
     /// functions.
     pub(super) fn joint_dynamics_impl(&self, d: &DynamicsFunctions, terms: &TreeTerms) -> (TokenStream, Vec<(&'static str, Ops)>) {
@@ -73,7 +137,11 @@ impl Gen<'_> {
             let along_v = self.by_columns(quote!(self.mbd_friction_v_along(q, v, t, lambda, &dir, &mut out)), quote!(d_v), quote!(+=));
             quote!({ #along_q } { #along_v })
         };
+        let (solve_mass, solve_ops) = self.solve_mass(terms);
+        let (free_accelerations, free_ops) = self.free_accelerations(terms);
         let ops = vec![
+            ("solve_mass", solve_ops),
+            ("free_accelerations", free_ops),
             ("mass_times", mass_ops),
             ("add_mass_derivative (one column)", mass_q_ops),
             ("forces_q (one column)", h_q_ops),
@@ -93,6 +161,8 @@ impl Gen<'_> {
                 fn add_mass_derivative(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
                     #mass_derivative
                 }
+                #solve_mass
+                #free_accelerations
                 #inline
                 fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
                     #h_body
