@@ -455,3 +455,51 @@ fn friction_in_a_cut_joint_agrees_and_differentiates() {
         assert!(d_v.iter().flatten().any(|x| x.abs() > 1e-6), "friction depends on the slip velocity");
     }
 }
+
+both_ways! {
+    /// A hanging chain of 16 links held straight out by weak torsion springs: its statics swing
+    /// the whole chain down.
+    LimpBody, LimpJoint {
+        gravity [0.0, -9.81];
+        for k in 0..16 { body l[k] { mass: 0.1, inertia: 8.3e-5, at: [0.05 + 0.1 * k, 0.0, 0.0] } }
+        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+        for k in 1..16 {
+            revolute l[k - 1][0.05, 0.0] ~ l[k][-0.05, 0.0];
+            rotational_spring l[k - 1] ~ l[k] { k: 0.5, angle: 0.0 };
+        }
+    }
+}
+
+/// Statics with the defaults finds the same equilibrium both ways from the straight pose
+/// (tolerance: both converge to 1e-10 in force; the poses' condition is about 1e2), and the
+/// joint coordinates' trust region measures a step by the bodies it moves
+/// (`Dynamics::motion_size`: the largest component of any body's twist).
+#[test]
+fn statics_of_a_chain_agree_with_body_coordinates() {
+    let (b, j) = (LimpBody::default(), LimpJoint::default());
+    let mut qj = j.initial_positions();
+    let report_j = StaticSolver::default().solve(&j, &mut LimpJoint::workspace(), &mut qj, 0.0, &mut []).expect("joint statics");
+    let mut qb = b.initial_positions();
+    let report_b = StaticSolver::default().solve(&b, &mut LimpBody::workspace(), &mut qb, 0.0, &mut [0.0; 32]).expect("body statics");
+    let (mapped, _) = to_bodies::<LimpJoint, 16, 48>(&j, &qj, &[0.0; 16]);
+    for i in 0..48 {
+        let (x, y) = (mapped[i], qb[i]);
+        // angles compared modulo 2π (statics wraps them into (−π, π])
+        let d = if i % 3 == 2 { ((x - y + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)) - std::f64::consts::PI } else { x - y };
+        assert!(d.abs() < 1e-8, "q_body[{i}]: {x} from joint coordinates, {y} in body coordinates");
+    }
+    println!(
+        "statics: {} + {} iterations in joint coordinates, {} + {} in body coordinates",
+        report_j.iterations, report_j.rejected, report_b.iterations, report_b.rejected
+    );
+    // motion_size: the largest twist component over the bodies
+    let x: [f64; 16] = core::array::from_fn(|i| 0.1 * (i as f64 - 7.5));
+    let largest = (0..16)
+        .map(|k| {
+            let t = j.body_twist(k, &qj, &x).expect("a body");
+            [t.velocity[0], t.velocity[1], t.angular_velocity[2]].iter().fold(0.0f64, |a, c| a.max(c.abs()))
+        })
+        .fold(0.0f64, f64::max);
+    assert!((j.motion_size(&qj, &x) - largest).abs() < 1e-14 * largest, "{} vs {largest}", j.motion_size(&qj, &x));
+    assert_eq!(b.motion_size(&qb, &[0.5; 48]), 0.5, "body coordinates: the largest entry");
+}

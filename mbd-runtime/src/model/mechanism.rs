@@ -426,6 +426,15 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
         let _ = (q, x);
         None
     }
+    /// The size of a velocity-space vector x as a motion: the largest component of any body's
+    /// twist J_b x (m or rad). In body coordinates that is x's largest entry (a spatial body's
+    /// angular components in its own frame), as this provided method says; in joint
+    /// coordinates a joint near ground moves every body beyond it, farther than its own entry.
+    /// Statics measures its steps by it.
+    fn motion_size(&self, q: &[T; NQ], x: &[T; NV]) -> T {
+        let _ = q;
+        x.iter().fold(T::ZERO, |size, x| size.max(x.abs()))
+    }
     /// v̇ = M(q)⁻¹ h(q, v, t), the accelerations without constraint forces, by the
     /// mechanism's own recursion where it has one (one pass for h and the solve: what
     /// [`solve_mass`](Self::solve_mass) of [`forces`](Self::forces) gives, for less); the

@@ -43,7 +43,8 @@
 //!    the minimizer of the quadratic model of the energy −rᵀδ − ½δᵀHδ plus ½μ δᵀMδ on the
 //!    manifold's tangent. Newton's step (μ = 0) when the matrix at the floor shift √ε · s
 //!    (s = max |H_ij| / √(M_ii M_jj), the stiffness scale; √ε ≈ 1.5e-8) is definite and the
-//!    step's largest entry fits the trust radius (m or rad; the first one is
+//!    step's largest motion of a body (`Dynamics::motion_size`: its largest entry in body
+//!    coordinates) fits the trust radius (m or rad; the first one is
 //!    [`StaticOptions::initial_step`]) — the floor's factors, refined against the unshifted
 //!    matrix, give it exactly; else the smallest μ (to 5 %) that is definite and fits: the step
 //!    on the radius. Modes whose force is zero are not moved (a compressed spring pushing
@@ -176,8 +177,8 @@ crate::options::options! {
         /// Relative tolerance of the neutral verdict (see [`Stability`]). Default
         /// [`DEFAULT_STATIC_NEUTRAL_TOLERANCE`].
         neutral_tolerance: T = T::from_f64(DEFAULT_STATIC_NEUTRAL_TOLERANCE) => with_neutral_tolerance,
-        /// Largest velocity-space entry (m or rad) of the first step along a mode without
-        /// stiffness. Default [`DEFAULT_STATIC_INITIAL_STEP`].
+        /// Largest motion of a body (m or rad; `Dynamics::motion_size`, a step's largest entry
+        /// in body coordinates) of the first step along a mode without stiffness. Default [`DEFAULT_STATIC_INITIAL_STEP`].
         initial_step: T = T::from_f64(DEFAULT_STATIC_INITIAL_STEP) => with_initial_step,
         /// On reaching an unstable equilibrium, step off it along its most unstable mode and keep
         /// going downhill (`true`, the default), or return it with [`Stability::Unstable`].
@@ -571,7 +572,8 @@ impl<T: Real> StaticSolver<T> {
         })?;
 
         let (mut accepted, mut rejected) = (0u32, 0u32);
-        // The trust radius: the largest velocity-space entry of a step (m or rad).
+        // The trust radius: the largest motion of a body under a step (m or rad;
+        // `Dynamics::motion_size`: its largest entry in body coordinates).
         let mut radius = options.initial_step;
         loop {
             let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch)?;
@@ -612,7 +614,7 @@ impl<T: Real> StaticSolver<T> {
                 return Err(not_converged(accepted + rejected));
             }
             // Off an unstable equilibrium: along its most unstable mode, the first step moving
-            // no entry more than `initial_step`.
+            // no body more than `initial_step`.
             let escape = mode.filter(|_| converged);
             if escape.is_some() {
                 radius = options.initial_step;
@@ -627,7 +629,7 @@ impl<T: Real> StaticSolver<T> {
                         let z = &mode.shape;
                         let f = dot(z, &it.r);
                         let sign = if f != T::ZERO { f } else { z[max_abs(z).1] };
-                        let size = radius / max_abs(z).0;
+                        let size = radius / m.motion_size(q, z);
                         let y = if sign < T::ZERO { -size } else { size };
                         let delta: [T; NV] = core::array::from_fn(|i| y * z[i]);
                         Some((delta, f * y - half * mode.omega_squared * y * y))
@@ -637,7 +639,7 @@ impl<T: Real> StaticSolver<T> {
                 let Some((delta, predicted)) = step else {
                     return Err(not_converged(accepted + rejected));
                 };
-                let step_norm = max_abs(&delta).0;
+                let step_norm = m.motion_size(q, &delta);
                 let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction, scratch);
                 if let Some(ratio) = ratio {
                     *q = trial;
@@ -828,7 +830,7 @@ impl<T: Real> StaticSolver<T> {
     /// The Levenberg–Marquardt step in the M norm along the motions the joints allow:
     /// (μM − H)δ − Dᵀy = r, Dδ = 0 (the iterate is assembled; the restoration after the step
     /// meets Φ = 0 again), with the smallest shift of the ladder that makes the reduced matrix
-    /// positive definite, raised ×4 until no entry of δ exceeds `radius`. Returns δ and the
+    /// positive definite, raised ×4 until δ moves no body more than `radius`. Returns δ and the
     /// decrease the quadratic model predicts, rᵀδ + ½δᵀHδ = ½(rᵀδ + μ δᵀMδ); `None` if no
     /// shift gives a finite step.
     #[allow(clippy::too_many_arguments)]
@@ -868,7 +870,7 @@ impl<T: Real> StaticSolver<T> {
             if first_non_finite(&delta).is_some() {
                 return Err(false);
             }
-            if max_abs(&delta).0 > radius {
+            if m.motion_size(q, &delta) > radius {
                 return Err(true);
             }
             let mut md = [T::ZERO; NV];
@@ -894,7 +896,7 @@ impl<T: Real> StaticSolver<T> {
         // trust-region step (step length falls as μ grows past the definite threshold).
         if low > T::ZERO {
             for _ in 0..SHIFT_TRIALS {
-                if max_abs(&step.0).0 >= T::from_f64(ON_RADIUS) * radius || high <= T::from_f64(1.05) * low {
+                if m.motion_size(q, &step.0) >= T::from_f64(ON_RADIUS) * radius || high <= T::from_f64(1.05) * low {
                     break;
                 }
                 let middle = (low * high).sqrt();

@@ -111,6 +111,24 @@ impl Gen<'_> {
         (code, ops)
     }
 
+    /// `Dynamics::motion_size`: every body's twist J_b x (one pass over the tree), its largest
+    /// component.
+    fn motion_size(&self) -> TokenStream {
+        let Gen { f, e, real, zero, nq_l, nv_l, .. } = self;
+        let twists: Vec<Id> = f.frames.iter().flat_map(|frame| frame.twist).collect();
+        let (body, _) = e.body(&vector_outputs("twists", &twists));
+        let n = usize_lit(twists.len());
+        quote! {
+            fn motion_size(&self, q: &[#real; #nq_l], x: &[#real; #nv_l]) -> #real {
+                #[allow(clippy::redundant_locals)]
+                let v = x;
+                let mut twists = [#zero; #n];
+                #body
+                twists.iter().fold(#zero, |size, &x| <#real as ::mbd::Real>::max(size, <#real as ::mbd::Real>::abs(x)))
+            }
+        }
+    }
+
     /// The `Dynamics` implementation of a tree, and one column's op counts of the dense
     /// functions.
     pub(super) fn joint_dynamics_impl(&self, d: &DynamicsFunctions, terms: &TreeTerms) -> (TokenStream, Vec<(&'static str, Ops)>) {
@@ -139,6 +157,7 @@ impl Gen<'_> {
         };
         let (solve_mass, solve_ops) = self.solve_mass(terms);
         let (free_accelerations, free_ops) = self.free_accelerations(terms);
+        let motion_size = self.motion_size();
         let ops = vec![
             ("solve_mass", solve_ops),
             ("free_accelerations", free_ops),
@@ -163,6 +182,7 @@ impl Gen<'_> {
                 }
                 #solve_mass
                 #free_accelerations
+                #motion_size
                 #inline
                 fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
                     #h_body
