@@ -2279,6 +2279,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         &self,
         q: &[f64; 9],
         v: &[f64; 9],
+        vd: &[f64; 9],
         t: f64,
         lambda: &[f64; 9],
         c_v: f64,

@@ -490,6 +490,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 &self,
                 q: &[#real; #nq_l],
                 v: &[#real; #nv_l],
+                vd: &[#real; #nv_l],
                 t: #real,
                 lambda: &[#real; #nc_l],
                 c_v: #real,

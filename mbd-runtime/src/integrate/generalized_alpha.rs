@@ -447,7 +447,7 @@ where
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            mech.newton_matrix(&q, &v, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, s);
+            mech.newton_matrix(&q, &v, &vd, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, s);
         } else {
             mech.newton_jacobian(&q, t1, &mut phi, s);
         }

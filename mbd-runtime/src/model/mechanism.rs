@@ -543,13 +543,14 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         }
     }
     /// What [`newton_jacobian`](Self::newton_jacobian) writes, and the matrix's entries at
-    /// (q, v, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
-    /// evaluation for both.
+    /// (q, v, v̇, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
+    /// evaluation for both. v̇ enters where M depends on q, through c_q ∂(M v̇)/∂q.
     #[allow(clippy::too_many_arguments)]
     fn newton_matrix(
         &self,
         q: &[T; NQ],
         v: &[T; NV],
+        vd: &[T; NV],
         t: T,
         lambda: &[T; NC],
         c_v: T,
@@ -574,6 +575,8 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
             }
         }
         self.add_mass_matrix(q, T::ONE, &mut a);
+        // ∂(M v̇)/∂q through q₊'s dependence on v̇ (c_q = β'h²): nothing where M is constant.
+        self.add_mass_derivative(q, vd, c_q, &mut a);
         // D from the front of the storage, densely.
         let nnz = Self::JACOBIAN_PATTERN.len();
         let mut d = [[T::ZERO; NV]; NC];

@@ -698,7 +698,7 @@ impl<T: Real> StaticSolver<T> {
         let zero_v = [T::ZERO; NV];
         let nnz = M::JACOBIAN_PATTERN.len();
         let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
-        m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass);
+        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass);
         m.forces(q, &zero_v, t, &mut h);
         if let Some(i) = first_non_finite(&phi) {
             return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
@@ -723,7 +723,7 @@ impl<T: Real> StaticSolver<T> {
         if let Some(i) = first_non_finite(&r) {
             return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
         }
-        m.newton_matrix(q, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff);
+        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff);
         let (mass, stiff) = (&*mass, &*stiff);
         // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
         let mut mass_diagonal = [T::ZERO; NV];
@@ -1038,7 +1038,7 @@ impl<T: Real> StaticSolver<T> {
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            m.newton_matrix(q, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s);
+            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s);
             if let Some(i) = first_non_finite(&phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
