@@ -510,3 +510,50 @@ fn statics_of_a_chain_agree_with_body_coordinates() {
     assert!((j.motion_size(&qj, &x) - largest).abs() < 1e-14 * largest, "{} vs {largest}", j.motion_size(&qj, &x));
     assert_eq!(b.motion_size(&qb, &[0.5; 48]), 0.5, "body coordinates: the largest entry");
 }
+
+/// Every planar example's mechanism, written once in `examples/`, compiled both ways
+/// (`mbd-examples/build.rs` adds `joint_coordinates;`): from the joint coordinates' assembly at
+/// rest, mapped to body coordinates, both simulate 0.2 s with DOPRI5 at rtol 1e-11 and end at
+/// the same poses (tolerance: each run's error is about 1e-11 here — measured differences
+/// 1e-17 to 7e-13 on 2026-11-29 — and 1e-9 leaves room for both; a wrong term moves a body by
+/// far more in 0.2 s). Driven examples test the kinematics, free ones the dynamics.
+#[test]
+fn every_example_agrees_both_ways() {
+    let mut count = 0;
+    macro_rules! check {
+        ($joint:ty, $body:ty, $label:expr) => {{
+            type J = $joint;
+            type B = $body;
+            let (mj, mb) = (J::default(), B::default());
+            let mut wj = J::workspace();
+            let mut qj = mj.initial_positions();
+            KinematicSolver::default().assemble(&mj, &mut wj, &mut qj, 0.0).expect($label);
+            let mut qb = [0.0; B::NQ];
+            for k in 0..B::NQ / 3 {
+                let p = mj.body_pose(k, &qj).expect("a body");
+                qb[3 * k..3 * k + 3].copy_from_slice(&[p.position[0], p.position[1], p.angle()]);
+            }
+            let options = Dopri5Options::default().with_rtol(1e-11).with_atol(1e-13);
+            let (mut end_j, mut end_b) = (qj, qb);
+            Simulation::new(&mj, &mut Dopri5::new(options))
+                .start(0.0, &qj, &[0.0; J::NV])
+                .times(&[0.2])
+                .run(&mut wj, |s| end_j = s.point.q)
+                .expect($label);
+            Simulation::new(&mb, &mut Dopri5::new(options))
+                .start(0.0, &qb, &[0.0; B::NV])
+                .times(&[0.2])
+                .run(&mut B::workspace(), |s| end_b = s.point.q)
+                .expect($label);
+            for k in 0..B::NQ / 3 {
+                let p = mj.body_pose(k, &end_j).expect("a body");
+                let turn = (p.angle() - end_b[3 * k + 2] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+                let worst = (p.position[0] - end_b[3 * k]).abs().max((p.position[1] - end_b[3 * k + 1]).abs()).max(turn.abs());
+                assert!(worst < 1e-9, "{}: body {} differs by {worst:e} at 0.2 s", $label, B::BODY_NAMES[k]);
+            }
+            count += 1;
+        }};
+    }
+    mbd_examples::every_example_both_ways!(check);
+    assert!(count >= 16, "{count} examples checked");
+}
