@@ -557,3 +557,52 @@ fn every_example_agrees_both_ways() {
     mbd_examples::every_example_both_ways!(check);
     assert!(count >= 16, "{count} examples checked");
 }
+
+both_ways! {
+    /// A two-link arm with both joints driven, carrying a load: inverse dynamics give the
+    /// drivers' torques.
+    ArmBody, ArmJoint {
+        gravity [0.0, -9.81];
+        body upper { mass: 2.0, inertia: 0.08, at: [0.3, 0.0, 0.0] }
+        body lower { mass: 1.2, inertia: 0.04, at: [0.85, 0.0, 0.0] }
+        revolute shoulder: ground[0.0, 0.0] ~ upper[-0.3, 0.0];
+        revolute elbow: upper[0.3, 0.0] ~ lower[-0.25, 0.0];
+        spring ground[0.0, 0.5] ~ lower[0.25, 0.0] { k: 40.0, length: 0.6, c: 0.5 };
+        drive lift: angle(ground, upper) = 0.5 * sin(2.0 * t);
+        drive bend: angle(upper, lower) = 0.3 * t + 0.2;
+    }
+}
+
+/// Inverse dynamics in joint coordinates: the drivers' multipliers are the joint torques
+/// (N·m), the same as the body-coordinate drivers' at the same motion (tolerance as `agree`).
+#[test]
+fn inverse_dynamics_gives_the_same_joint_torques() {
+    let (b, j) = (ArmBody::default(), ArmJoint::default());
+    assert_eq!(ArmJoint::CONSTRAINT_NAMES, &["lift: angle", "bend: angle"]);
+    let mut q = j.initial_positions();
+    let mut states = Vec::new();
+    KinematicSolver::default()
+        .sweep(&j, &mut ArmJoint::workspace(), &mut q, [0.0, 0.4, 1.3], |t, q, v, vd| states.push((t, *q, *v, *vd)))
+        .unwrap();
+    for (t, q, v, vd) in states {
+        let mut torques = [0.0; 2];
+        InverseDynamics::default().solve(&j, &mut ArmJoint::workspace(), &q, &v, &vd, t, &mut torques).expect("joint coordinates");
+        let (qb, vb) = to_bodies::<ArmJoint, 2, 6>(&j, &q, &v);
+        let vdb: [f64; 6] = core::array::from_fn(|i| {
+            let a = j.body_acceleration(i / 3, &q, &v, &vd).expect("a body");
+            [a.velocity[0], a.velocity[1], a.angular_velocity[2]][i % 3]
+        });
+        let mut lambda = [0.0; 6];
+        InverseDynamics::default().solve(&b, &mut ArmBody::workspace(), &qb, &vb, &vdb, t, &mut lambda).expect("body coordinates");
+        for (k, name) in ArmJoint::CONSTRAINT_NAMES.iter().enumerate() {
+            let r = ArmBody::CONSTRAINT_NAMES.iter().position(|n| n == name).expect("the same driver");
+            assert!(
+                close(torques[k], lambda[r]),
+                "{name} at t = {t}: {} N·m in joint coordinates, {} in body coordinates",
+                torques[k],
+                lambda[r]
+            );
+            assert!(torques[k].abs() > 0.1, "{name}: a real load");
+        }
+    }
+}
