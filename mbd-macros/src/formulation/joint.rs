@@ -30,7 +30,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use super::{
-    accessors, constraint_derivatives, constraint_rows, forces, linear_terms, tangent, ForceTerms, Forces, Formulation, FrameNodes,
+    accessors, constraint_derivatives, constraint_rows, forces, linear_terms, newton_terms, ForceTerms, Forces, Formulation, FrameNodes,
 };
 use crate::frames::Builder;
 use crate::model::{BodyRef, Inertia, Model};
@@ -143,26 +143,12 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         .collect();
     let force_velocities = force_velocities.into_iter().map(|(name, reached)| (name, kinematics.reached(&reached))).collect();
 
-    // dV/dt + v·h, as in body coordinates.
-    let v_rate = b.rate(potential);
-    let v_t = b.g.diff(potential, Var::T, &mut HashMap::new());
-    let mut power = b.g.add(v_rate, v_t);
-    for (i, &hi) in h.iter().enumerate() {
-        let v = b.g.var(Var::Qd(i as u16));
-        let p = b.g.mul(v, hi);
-        power = b.g.add(power, p);
-    }
+    let power = super::power(&mut b, potential, &h);
 
     let (jacobian, nu, gamma) = constraint_derivatives(&mut b, &phi);
-    // ∂(Dᵀλ)/∂q over the rows' coordinates.
+    // ∂(Dᵀλ)/∂q over the rows' coordinates (the Newton matrix's other terms are by columns).
+    let (constraint_force_q, _, _) = newton_terms(&mut b, &jacobian, [&Vec::new(), &Vec::new()], [&Vec::new(), &Vec::new()]);
     let zero = b.g.num(0.0);
-    let mut constraint_force = vec![zero; nv];
-    for &(r, c, d) in &jacobian {
-        let l = b.g.var(Var::Lambda(r as u16));
-        let term = b.g.mul(l, d);
-        constraint_force[c] = b.g.add(constraint_force[c], term);
-    }
-    let constraint_force_q = tangent(&mut b, &constraint_force);
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
 

@@ -155,16 +155,7 @@ pub fn formulate(model: &Model) -> Formulation {
         reads.is_empty() && mass_coupling.iter().all(|&(r, c, _)| mass_inverse.iter().any(|&(ri, ci, _)| (ri, ci) == (r, c)))
     };
     let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b, inertia_forces);
-    // dV/dt = V_q q̇ + V_t
-    let v_rate = b.rate(potential);
-    let mut memo_v = HashMap::new();
-    let v_t = b.g.diff(potential, Var::T, &mut memo_v);
-    let mut power = b.g.add(v_rate, v_t);
-    for (i, &hi) in h.iter().enumerate() {
-        let qd = b.g.var(Var::Qd(i as u16));
-        let p = b.g.mul(qd, hi);
-        power = b.g.add(power, p);
-    }
+    let power = power(&mut b, potential, &h);
     let first_rows = std::mem::take(&mut b.first_rows);
     let h_q = tangent(&mut b, &h);
     let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
@@ -217,6 +208,19 @@ pub fn formulate(model: &Model) -> Formulation {
         frames: Vec::new(),
         tree: None,
     }
+}
+
+/// The power of the non-conservative forces, dV/dt + vᵀh with dV/dt = V_q q̇ + V_t.
+fn power(b: &mut Builder, potential: Id, h: &[Id]) -> Id {
+    let v_rate = b.rate(potential);
+    let v_t = b.g.diff(potential, Var::T, &mut HashMap::new());
+    let mut power = b.g.add(v_rate, v_t);
+    for (i, &hi) in h.iter().enumerate() {
+        let v = b.g.var(Var::Qd(i as u16));
+        let p = b.g.mul(v, hi);
+        power = b.g.add(power, p);
+    }
+    power
 }
 
 /// Each body's frame as functions of q and v ([`FrameNodes`]).

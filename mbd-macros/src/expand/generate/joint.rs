@@ -47,46 +47,18 @@ impl Gen<'_> {
         }
     }
 
-    /// `Dynamics::solve_mass` by the articulated-body recursion: the pivots checked before x is
-    /// written.
-    fn solve_mass(&self, terms: &TreeTerms) -> (TokenStream, Ops) {
-        let Gen { e, real, zero, nq_l, nv_l, .. } = self;
-        let mut outputs = vector_outputs("out", &terms.mass_solve);
-        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
-        outputs.extend(vector_outputs("pivots", &pivot_nodes));
-        let (body, ops) = e.body(&outputs);
-        let n = usize_lit(pivot_nodes.len());
-        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
+    /// `Dynamics::solve_mass` (x ← M⁻¹x, `dir` = x) and `Dynamics::free_accelerations`
+    /// (v̇ = M⁻¹h) by the articulated-body recursion.
+    fn recursions(&self, terms: &TreeTerms) -> (TokenStream, [Ops; 2]) {
+        let Gen { real, nq_l, nv_l, .. } = self;
+        let (solve_body, solve_ops) = self.pivot_checked(&terms.mass_solve, terms, quote!(x));
+        let (free_body, free_ops) = self.pivot_checked(&terms.free_accelerations, terms, quote!(vd));
         let code = quote! {
             #[inline(never)]
             fn solve_mass(&self, q: &[#real; #nq_l], x: &mut [#real; #nv_l]) -> ::core::option::Option<::core::result::Result<(), usize>> {
                 let dir = *x;
-                let mut out = [#zero; #nv_l];
-                let mut pivots = [#zero; #n];
-                #body
-                const VELOCITY: [usize; #n] = [#(#velocities),*];
-                for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
-                    if !(pivot.is_finite() && pivot > #zero) {
-                        return ::core::option::Option::Some(::core::result::Result::Err(velocity));
-                    }
-                }
-                *x = out;
-                ::core::option::Option::Some(::core::result::Result::Ok(()))
+                #solve_body
             }
-        };
-        (code, ops)
-    }
-
-    /// `Dynamics::free_accelerations`: M⁻¹h by the recursion, h's nodes for τ.
-    fn free_accelerations(&self, terms: &TreeTerms) -> (TokenStream, Ops) {
-        let Gen { e, real, zero, nq_l, nv_l, .. } = self;
-        let mut outputs = vector_outputs("out", &terms.free_accelerations);
-        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
-        outputs.extend(vector_outputs("pivots", &pivot_nodes));
-        let (body, ops) = e.body(&outputs);
-        let n = usize_lit(pivot_nodes.len());
-        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
-        let code = quote! {
             #[inline(never)]
             fn free_accelerations(
                 &self,
@@ -95,18 +67,35 @@ impl Gen<'_> {
                 t: #real,
                 vd: &mut [#real; #nv_l],
             ) -> ::core::option::Option<::core::result::Result<(), usize>> {
-                let mut out = [#zero; #nv_l];
-                let mut pivots = [#zero; #n];
-                #body
-                const VELOCITY: [usize; #n] = [#(#velocities),*];
-                for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
-                    if !(pivot.is_finite() && pivot > #zero) {
-                        return ::core::option::Option::Some(::core::result::Result::Err(velocity));
-                    }
-                }
-                *vd = out;
-                ::core::option::Option::Some(::core::result::Result::Ok(()))
+                #free_body
             }
+        };
+        (code, [solve_ops, free_ops])
+    }
+
+    /// The recursion's outputs and pivots evaluated, the pivots checked (each positive and
+    /// finite, else `Some(Err(the first velocity of its link))`), then the outputs written to
+    /// `target`.
+    fn pivot_checked(&self, outputs: &[Id], terms: &TreeTerms, target: TokenStream) -> (TokenStream, Ops) {
+        let Gen { e, zero, nv_l, .. } = self;
+        let mut all = vector_outputs("out", outputs);
+        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
+        all.extend(vector_outputs("pivots", &pivot_nodes));
+        let (body, ops) = e.body(&all);
+        let n = usize_lit(pivot_nodes.len());
+        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
+        let code = quote! {
+            let mut out = [#zero; #nv_l];
+            let mut pivots = [#zero; #n];
+            #body
+            const VELOCITY: [usize; #n] = [#(#velocities),*];
+            for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
+                if !(pivot.is_finite() && pivot > #zero) {
+                    return ::core::option::Option::Some(::core::result::Result::Err(velocity));
+                }
+            }
+            *#target = out;
+            ::core::option::Option::Some(::core::result::Result::Ok(()))
         };
         (code, ops)
     }
@@ -155,8 +144,7 @@ impl Gen<'_> {
             let along_v = self.by_columns(quote!(self.mbd_friction_v_along(q, v, t, lambda, &dir, &mut out)), quote!(d_v), quote!(+=));
             quote!({ #along_q } { #along_v })
         };
-        let (solve_mass, solve_ops) = self.solve_mass(terms);
-        let (free_accelerations, free_ops) = self.free_accelerations(terms);
+        let (recursions, [solve_ops, free_ops]) = self.recursions(terms);
         let motion_size = self.motion_size();
         let ops = vec![
             ("solve_mass", solve_ops),
@@ -180,8 +168,7 @@ impl Gen<'_> {
                 fn add_mass_derivative(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
                     #mass_derivative
                 }
-                #solve_mass
-                #free_accelerations
+                #recursions
                 #motion_size
                 #inline
                 fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
