@@ -18,6 +18,10 @@ program would; it also prints the microseconds per point of each, run once after
 
 With --joint the chain (not driven) is declared in joint coordinates (`joint_coordinates;`):
 N coordinates and no rows, M(q) dense (issue 38's goal: the same 30 s and 1 GB at 120).
+
+With --run (not with --driven) the binary is run once after the build: the microseconds per
+RK4 step (1 ms, default drift control, 200 steps from the straight pose) and the iterations
+(accepted and rejected) of the default statics from there.
 """
 import os
 import pathlib
@@ -60,8 +64,12 @@ def chain(n):
     Simulation::new(&m, &mut Dop853::new(Dop853Options::default())).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("DOP853");
     let mut alpha = Chain::generalized_alpha(GeneralizedAlphaOptions::default());
     Simulation::new(&m, &mut alpha).start(0.0, &q, &v).times(&times).options(o).run(&mut ws, |_| {}).expect("generalized-α");
-    StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; Chain::NC]).expect("statics");
-    println!("{}", q[0]);
+    // Timed (--run): 200 RK4 steps of 1 ms from the straight pose, and statics from there.
+    let start = std::time::Instant::now();
+    Simulation::new(&m, &mut Rk4::default()).start(0.0, &q, &v).times(&[0.2]).options(o).run(&mut ws, |_| {}).expect("RK4");
+    let rk4 = start.elapsed().as_secs_f64() / 200.0 * 1e6;
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut [0.0; Chain::NC]).expect("statics");
+    println!("{rk4:.1} {}", report.iterations + report.rejected);
 }
 """]
     return "\n".join(lines)
@@ -97,6 +105,7 @@ def main():
         return measure(int(sys.argv[2]))
     driven = "--driven" in sys.argv[1:]
     joint = "--joint" in sys.argv[1:]
+    run = "--run" in sys.argv[1:] and not driven
     sizes = [int(a) for a in sys.argv[1:] if not a.startswith("--")] or [10, 30, 60, 120, 240]
     (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
     (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
@@ -112,6 +121,8 @@ def main():
     subprocess.run(["cargo", "build", "--release", "--bin", "dependencies"], cwd=CRATE, env=env, check=True)
     if driven:
         print("| bodies | release build (s) | peak memory (MB) | sweep (µs/point) | inverse dynamics (µs/point) |\n|---|---|---|---|---|")
+    elif run:
+        print("| bodies | release build (s) | peak memory (MB) | RK4 step (µs) | statics iterations |\n|---|---|---|---|---|")
     else:
         print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
     for n in sizes:
@@ -120,10 +131,10 @@ def main():
         out = subprocess.run([sys.executable, __file__, "--measure", str(n)], env=env, check=True, capture_output=True, text=True)
         seconds, peak_kb = out.stdout.split()
         row = f"| {n} | {float(seconds):.1f} | {int(peak_kb) / 1024:.0f} |"
-        if driven:
-            run = subprocess.run([str(CRATE / "target" / "release" / f"chain{n}")], check=True, capture_output=True, text=True)
-            sweep, inverse = run.stdout.split()
-            row += f" {sweep} | {inverse} |"
+        if driven or run:
+            out = subprocess.run([str(CRATE / "target" / "release" / f"chain{n}")], check=True, capture_output=True, text=True)
+            first, second = out.stdout.split()
+            row += f" {first} | {second} |"
         print(row, flush=True)
 
 
