@@ -45,8 +45,8 @@ pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };
 pub use model::mechanism::{
-    ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, Formulation, JointInfo, Kinematics, Linearize, Mechanism,
-    NewtonMatrix, OpCount, PositionStep, VelocityInfo, VelocityKind,
+    BodyCoordinates, ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, Formulation, JointInfo, Kinematics, Linearize,
+    Mechanism, NewtonMatrix, OpCount, PositionStep, VelocityInfo, VelocityKind,
 };
 pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
 pub use model::planar::{point_acceleration, point_position, point_velocity};

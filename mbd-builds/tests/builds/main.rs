@@ -66,7 +66,7 @@ fn every_message_says_what_was_expected_and_what_was_found() {
             if file.extension().is_some_and(|e| e == "stderr") {
                 cases += 1;
                 let text = std::fs::read_to_string(&file).unwrap();
-                let errors: Vec<&str> = text.lines().filter(|l| l.starts_with("error:")).collect();
+                let errors: Vec<&str> = text.lines().filter(|l| l.starts_with("error:") || l.starts_with("error[")).collect();
                 assert!(!errors.is_empty(), "{}: no error", file.display());
                 messages.extend(errors.into_iter().map(|e| (file.clone(), e.to_string())));
             }

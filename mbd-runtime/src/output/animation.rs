@@ -27,7 +27,7 @@ use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
 
-use crate::model::mechanism::Mechanism;
+use crate::model::mechanism::BodyCoordinates;
 use crate::output::drawing::Drawing;
 
 /// Why an animation cannot be written: a traced point the mechanism does not name (the message
@@ -73,14 +73,7 @@ pub struct Animation {
 impl Animation {
     /// An animation of mechanism `M` with these parameter values (in [`Mechanism::PARAM_NAMES`]
     /// order: `Name::params()`), no frames yet.
-    pub fn new<M: Mechanism>(params: &[f64]) -> Self {
-        const {
-            assert!(
-                matches!(M::FORMULATION, crate::model::mechanism::Formulation::BodyCoordinates),
-                "animations draw the bodies from their coordinates in q: a mechanism in joint coordinates is not \
-                 animated yet"
-            );
-        }
+    pub fn new<M: BodyCoordinates>(params: &[f64]) -> Self {
         Animation {
             title: M::NAME.to_string(),
             model: M::MODEL_JSON,

@@ -415,15 +415,8 @@ pub fn joint_reaction<T, M, const NQ: usize, const NV: usize, const NC: usize>(
 ) -> Option<JointReaction<T>>
 where
     T: Real,
-    M: BodyFrames<T, NQ, NV>,
+    M: BodyFrames<T, NQ, NV> + crate::model::mechanism::BodyCoordinates,
 {
-    const {
-        assert!(
-            matches!(M::FORMULATION, crate::model::mechanism::Formulation::BodyCoordinates),
-            "joint reactions are read from λ in body coordinates only: in joint coordinates a tree joint has no \
-             multiplier (its reaction comes from the Newton–Euler recursion, not implemented yet)"
-        );
-    }
     let info = M::JOINTS.get(joint)?;
     let rows = (info.first_row as usize)..(info.first_row as usize + info.rows as usize);
     let mut g = [T::ZERO; NV];
@@ -467,6 +460,7 @@ mod tests {
     /// mechanism exists yet): q = (r, p), v = (ṙ, ω′), Φ = r + A s′ − r_O.
     struct SphericalTop;
 
+    impl crate::model::mechanism::BodyCoordinates for SphericalTop {}
     impl Mechanism for SphericalTop {
         const NAME: &'static str = "SphericalTop";
         const BODY_NAMES: &'static [&'static str] = &["top"];
