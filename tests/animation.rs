@@ -168,6 +168,58 @@ fn pages_draw_in_a_browser() {
     // The animated SVG draws in the browser too.
     four_bar.write_svg(dir.join("four_bar.svg")).expect("writes");
     load(&browser, &dir.join("four_bar.svg"), &dir.join("four_bar_svg.png"), false);
+
+    // The four-bar in joint coordinates, drawn from its bodies' poses.
+    joint_four_bar_page().write_html(dir.join("four_bar_joint.html")).expect("writes");
+    drew(&load(&browser, &dir.join("four_bar_joint.html"), &dir.join("four_bar_joint.png"), false), 121);
+}
+
+/// The four-bar of `examples/four_bar.rs` in joint coordinates (`mbd_examples::joint`), swept
+/// through one crank turn, its frames the bodies' poses (`Animation::from_bodies`).
+fn joint_four_bar_page() -> Animation {
+    use mbd_examples::joint::four_bar_0::FourBar as JointFourBar;
+    let m = JointFourBar::default();
+    let mut ws = JointFourBar::workspace();
+    let mut q = m.initial_positions();
+    let solver = KinematicSolver::default();
+    solver.assemble(&m, &mut ws, &mut q, 0.0).expect("assembles");
+    let mut animation = Animation::from_bodies::<JointFourBar>(&m.params()).title("Four-bar, one crank turn").trace("coupler.P");
+    let period = 2.0 * std::f64::consts::PI / m.omega;
+    let times = (0..=120).map(|k| period * k as f64 / 120.0);
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _, _| animation.body_frame(&m, t, q)).expect("sweeps");
+    animation
+}
+
+/// A mechanism in joint coordinates draws what the same mechanism in body coordinates draws:
+/// the four-bar's animated SVG from its bodies' poses has the body-coordinate one's frames,
+/// and in each the same pins, centres of mass and traced point where they are (both sweeps meet
+/// the loop to 1e-10 m; the picture rounds to 0.01 px, so a coordinate may differ by one
+/// rounding; the bodies' outlines may list a point on a straight edge or not, so they are not
+/// compared); and `from_bodies` refuses a spatial mechanism, saying which constructor draws it.
+#[test]
+fn joint_coordinates_draw_from_the_bodies_poses() {
+    let (joint, body) = (joint_four_bar_page().to_svg().expect("draws"), four_bar_page().to_svg().expect("draws"));
+    // every number of every `<circle …>`, and of the trace's polyline, in order
+    let marks = |svg: &str| -> Vec<f64> {
+        let trace = svg.split("<polyline points=\"").nth(1).and_then(|t| t.split('"').next()).unwrap_or("").to_string();
+        let circles = svg.split("<circle ").skip(1).map(|c| c.split("/>").next().unwrap_or("").to_string());
+        std::iter::once(trace)
+            .chain(circles)
+            .flat_map(|s| {
+                s.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-')).filter_map(|x| x.parse::<f64>().ok()).collect::<Vec<_>>()
+            })
+            .collect()
+    };
+    let (j, b) = (marks(&joint), marks(&body));
+    assert_eq!(joint.matches("<g visibility=").count(), 121);
+    assert!(j.len() > 121 * 6 * 3 && j.len() == b.len(), "{} and {} numbers", j.len(), b.len());
+    let worst = j.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    assert!(worst <= 0.0100001, "a mark differs by {worst} px");
+    let mut spatial = Animation::from_bodies::<SpatialDoublePendulum>(&SpatialDoublePendulum::default().params());
+    let m = SpatialDoublePendulum::default();
+    spatial.body_frame(&m, 0.0, &m.initial_positions());
+    let e = spatial.to_svg().expect_err("planar only");
+    assert!(e.to_string().contains("expected a planar mechanism, found a spatial one"), "{e}");
 }
 
 /// A traced point the mechanism does not name is an error when the page or picture is written,

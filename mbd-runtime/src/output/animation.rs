@@ -27,7 +27,8 @@ use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
 
-use crate::model::mechanism::BodyCoordinates;
+use crate::model::body::BodyFrames;
+use crate::model::mechanism::{BodyCoordinates, Mechanism};
 use crate::output::drawing::Drawing;
 
 /// Why an animation cannot be written: a traced point the mechanism does not name (the message
@@ -59,7 +60,9 @@ pub const DEFAULT_SVG_SHAPES: usize = 20_000;
 #[derive(Clone, Debug)]
 pub struct Animation {
     title: String,
-    model: &'static str,
+    /// The mechanism's `MODEL_JSON`; for [`Animation::from_bodies`] with its coordinates
+    /// renamed to the bodies' poses the frames hold.
+    model: String,
     param_names: &'static [&'static str],
     params: Vec<f64>,
     nq: usize,
@@ -68,6 +71,8 @@ pub struct Animation {
     traces: Vec<String>,
     /// Set by [`Animation::svg_frames`]; `None`: the defaults' budget.
     svg_frames: Option<usize>,
+    /// Why the drawing cannot be made ([`Animation::from_bodies`] of a spatial mechanism).
+    refused: Option<&'static str>,
 }
 
 impl Animation {
@@ -76,7 +81,7 @@ impl Animation {
     pub fn new<M: BodyCoordinates>(params: &[f64]) -> Self {
         Animation {
             title: M::NAME.to_string(),
-            model: M::MODEL_JSON,
+            model: M::MODEL_JSON.to_string(),
             param_names: M::PARAM_NAMES,
             params: params.to_vec(),
             nq: M::COORDINATE_NAMES.len(),
@@ -84,6 +89,53 @@ impl Animation {
             coordinates: Vec::new(),
             traces: Vec::new(),
             svg_frames: None,
+            refused: None,
+        }
+    }
+
+    /// An animation of a planar mechanism in any coordinates — joint coordinates included —
+    /// drawn from its bodies' poses: each frame, added by [`Animation::body_frame`], holds every
+    /// body's x, y and φ (read through [`BodyFrames`]) where [`Animation::new`]'s hold q.
+    pub fn from_bodies<M: Mechanism>(params: &[f64]) -> Self {
+        let poses: Vec<String> = M::BODY_NAMES.iter().flat_map(|b| ["x", "y", "phi"].map(|c| format!("{b}.{c}"))).collect();
+        let mut refused = None;
+        let model = match serde_json::from_str::<serde_json::Value>(M::MODEL_JSON) {
+            Ok(mut model) => {
+                if model["dimension"].as_u64() == Some(3) {
+                    refused = Some(
+                        "Animation::from_bodies draws planar mechanisms: expected a planar mechanism, found a spatial one \
+                         (Animation::new draws it from q)",
+                    );
+                }
+                model["coordinates"] = serde_json::json!(poses);
+                model.to_string()
+            }
+            // Unreadable: left as it is, for the drawing to report.
+            Err(_) => M::MODEL_JSON.to_string(),
+        };
+        Animation {
+            title: M::NAME.to_string(),
+            model,
+            param_names: M::PARAM_NAMES,
+            params: params.to_vec(),
+            nq: poses.len(),
+            times: Vec::new(),
+            coordinates: Vec::new(),
+            traces: Vec::new(),
+            svg_frames: None,
+            refused,
+        }
+    }
+
+    /// A frame of an animation [`from_bodies`](Animation::from_bodies): the bodies' poses at
+    /// (t, q) (planar: x, y and φ of each).
+    pub fn body_frame<M: BodyFrames<f64, NQ, NV>, const NQ: usize, const NV: usize>(&mut self, m: &M, t: f64, q: &[f64; NQ]) {
+        self.times.push(t);
+        for k in 0..self.nq / 3 {
+            match m.body_pose(k, q) {
+                Some(p) => self.coordinates.extend([p.position[0], p.position[1], p.angle()]),
+                None => self.coordinates.extend([f64::NAN; 3]),
+            }
         }
     }
 
@@ -160,7 +212,7 @@ impl Animation {
         // `</` cannot appear inside a script element: JSON never needs it unescaped.
         let safe = |s: &str| s.replace("</", "<\\/");
         let title = self.title.replace('&', "&amp;").replace('<', "&lt;");
-        PAGE.replace("@TITLE@", &title).replace("@MODEL@", &safe(self.model)).replace("@DATA@", &safe(&data)).replace("@SCRIPT@", SCRIPT)
+        PAGE.replace("@TITLE@", &title).replace("@MODEL@", &safe(&self.model)).replace("@DATA@", &safe(&data)).replace("@SCRIPT@", SCRIPT)
     }
 
     /// Writes [`Animation::to_html`] to `path`, after checking that every traced point exists
@@ -171,7 +223,10 @@ impl Animation {
     }
 
     fn drawing(&self) -> Result<Drawing, AnimationError> {
-        Drawing::from_json(self.model, self.param_names, &self.params).map_err(AnimationError)
+        if let Some(why) = self.refused {
+            return Err(AnimationError(why.to_string()));
+        }
+        Drawing::from_json(&self.model, self.param_names, &self.params).map_err(AnimationError)
     }
 
     /// The animated SVG (module docs): at most [`Animation::svg_frames`] frames, played in real
