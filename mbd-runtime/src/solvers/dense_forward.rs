@@ -9,9 +9,9 @@
 //! S = L_S D_S L_Sᵀ whose pivots follow the same rule (`sparse::schur_pivot`: a dependent row
 //! fails or, with `allow_redundant`, fades smoothly). Rows are eliminated in Φ's order.
 //!
-//! Cost per call: NV³/6 for M's factor (O(N) per solve by the recursion instead), NC·NV² for M⁻¹Dᵀ, NC²·NV for S and NC³/6 for its
-//! factor, against the generated sparse solve's cost in the non-zeros; the arrays live on the
-//! stack (NV² + 2 NC·NV + NC² values).
+//! Cost per call: NV³/6 for M's factor and NC·NV² for M⁻¹Dᵀ (with the recursion instead: NC + 1
+//! solves of O(N) each), NC²·NV for S and NC³/6 for its factor, against the generated sparse
+//! solve's cost in the non-zeros; the arrays live on the stack (NV² + 2 NC·NV + NC² values).
 
 // The factorizations index rows and columns as the formulas do (L_ij, S_kj d_j): iterators over
 // rows would hide which entry is which.
@@ -195,7 +195,8 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
 }
 
 /// The error of a non-positive pivot of `Dynamics::solve_mass` at velocity i: non-finite where
-/// t or q is, else the body velocity i moves without mass.
+/// t or q is, else the body velocity i moves without mass (`value` 0: the recursion names the
+/// link, not its pivot).
 fn non_positive<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     q: &[T; NQ],
     t: T,
