@@ -994,6 +994,18 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
         a[8][8] += scale * m[8];
     }
     #[inline]
+    fn forces_q(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+        for row in dh.iter_mut() {
+            *row = [0f64; 9];
+        }
+    }
+    #[inline]
+    fn forces_v(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
+        for row in dh.iter_mut() {
+            *row = [0f64; 9];
+        }
+    }
+    #[inline]
     fn forces(&self, q: &[f64; 9], v: &[f64; 9], t: f64, h: &mut [f64; 9]) {
         use ::mbd::sparse::Elements as _;
         let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
@@ -1007,18 +1019,6 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
         (*__h_6) = 0f64;
         (*__h_7) = 0f64;
         (*__h_8) = 0f64;
-    }
-    #[inline]
-    fn forces_q(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
-        for row in dh.iter_mut() {
-            *row = [0f64; 9];
-        }
-    }
-    #[inline]
-    fn forces_v(&self, q: &[f64; 9], v: &[f64; 9], t: f64, dh: &mut [[f64; 9]; 9]) {
-        for row in dh.iter_mut() {
-            *row = [0f64; 9];
-        }
     }
     #[inline]
     fn potential_energy(&self, q: &[f64; 9], t: f64) -> f64 {

@@ -311,16 +311,12 @@ impl Gen<'_> {
             coupling_decl,
             coupling_times,
             coupling_add,
-            h: h_body,
             h_q: h_q_body,
             h_v: h_v_body,
-            potential: v_body,
-            switching,
-            power: power_body,
-            friction: friction_fn,
-            friction_derivatives: friction_derivatives_fn,
+            friction_derivatives,
             ..
         } = d;
+        let common = self.common_dynamics_items(d, friction_derivatives);
         quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -343,10 +339,6 @@ impl Gen<'_> {
                     #coupling_add
                 }
                 #inline
-                fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
-                    #h_body
-                }
-                #inline
                 fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
                     for row in dh.iter_mut() {
                         *row = [#zero; #nv_l];
@@ -360,35 +352,49 @@ impl Gen<'_> {
                     }
                     #h_v_body
                 }
-                #inline
-                fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
-                    let mut energy = [#zero; 1];
-                    #v_body
-                    energy[0]
-                }
-                #switching
-                #inline
-                fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
-                    #friction_fn
-                }
-                #inline
-                fn friction_derivatives(
-                    &self,
-                    q: &[#real; #nq_l],
-                    v: &[#real; #nv_l],
-                    t: #real,
-                    lambda: &[#real; #nc_l],
-                    d_q: &mut [[#real; #nv_l]; #nv_l],
-                    d_v: &mut [[#real; #nv_l]; #nv_l],
-                ) {
-                    #friction_derivatives_fn
-                }
-                #inline
-                fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
-                    let mut power = [#zero; 1];
-                    #power_body
-                    power[0]
-                }
+                #common
+            }
+        }
+    }
+
+    /// The `Dynamics` items every formulation writes alike: h, V, the switching functions,
+    /// friction (its derivatives' body given: entries or columns) and the non-conservative power.
+    pub(super) fn common_dynamics_items(&self, d: &DynamicsFunctions, friction_derivatives: &TokenStream) -> TokenStream {
+        let Gen { real, zero, inline, nq_l, nv_l, nc_l, .. } = self;
+        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, .. } = d;
+        quote! {
+            #inline
+            fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
+                #h_body
+            }
+            #inline
+            fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
+                let mut energy = [#zero; 1];
+                #v_body
+                energy[0]
+            }
+            #switching
+            #inline
+            fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
+                #friction_fn
+            }
+            #inline
+            fn friction_derivatives(
+                &self,
+                q: &[#real; #nq_l],
+                v: &[#real; #nv_l],
+                t: #real,
+                lambda: &[#real; #nc_l],
+                d_q: &mut [[#real; #nv_l]; #nv_l],
+                d_v: &mut [[#real; #nv_l]; #nv_l],
+            ) {
+                #friction_derivatives
+            }
+            #inline
+            fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
+                let mut power = [#zero; 1];
+                #power_body
+                power[0]
             }
         }
     }

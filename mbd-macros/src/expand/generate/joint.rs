@@ -121,8 +121,7 @@ impl Gen<'_> {
     /// The `Dynamics` implementation of a tree, and one column's op counts of the dense
     /// functions.
     pub(super) fn joint_dynamics_impl(&self, d: &DynamicsFunctions, terms: &TreeTerms) -> (TokenStream, Vec<(&'static str, Ops)>) {
-        let Gen { real, name, zero, inline, nq_l, nv_l, nc_l, .. } = self;
-        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, .. } = d;
+        let Gen { real, name, inline, nq_l, nv_l, nc_l, .. } = self;
         let state = quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real);
         let direction = quote!(dir: &[#real; #nv_l]);
         let mass_ops = self.product("mbd_mass_times", &terms.mass_x, quote!(q: &[#real; #nq_l], v: &[#real; #nv_l]));
@@ -146,6 +145,7 @@ impl Gen<'_> {
         };
         let (recursions, [solve_ops, free_ops]) = self.recursions(terms);
         let motion_size = self.motion_size();
+        let common = self.common_dynamics_items(d, &friction_derivatives);
         let ops = vec![
             ("solve_mass", solve_ops),
             ("free_accelerations", free_ops),
@@ -170,44 +170,13 @@ impl Gen<'_> {
                 }
                 #recursions
                 #motion_size
-                #inline
-                fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
-                    #h_body
-                }
                 fn forces_q(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
                     #forces_q
                 }
                 fn forces_v(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, dh: &mut [[#real; #nv_l]; #nv_l]) {
                     #forces_v
                 }
-                #inline
-                fn potential_energy(&self, q: &[#real; #nq_l], t: #real) -> #real {
-                    let mut energy = [#zero; 1];
-                    #v_body
-                    energy[0]
-                }
-                #switching
-                #inline
-                fn friction_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, lambda: &[#real; #nc_l], h: &mut [#real; #nv_l]) {
-                    #friction_fn
-                }
-                fn friction_derivatives(
-                    &self,
-                    q: &[#real; #nq_l],
-                    v: &[#real; #nv_l],
-                    t: #real,
-                    lambda: &[#real; #nc_l],
-                    d_q: &mut [[#real; #nv_l]; #nv_l],
-                    d_v: &mut [[#real; #nv_l]; #nv_l],
-                ) {
-                    #friction_derivatives
-                }
-                #inline
-                fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
-                    let mut power = [#zero; 1];
-                    #power_body
-                    power[0]
-                }
+                #common
             }
         };
         (code, ops)
