@@ -6,7 +6,7 @@
 //! so common subexpressions are shared by construction and emission computes each node once.
 //! A child is always created before its parent, so ascending `Id` order is a topological order.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Index of a node in a [`Graph`].
 pub type Id = u32;
@@ -440,26 +440,30 @@ impl Graph {
         if let Some(&d) = memo.get(&root) {
             return d;
         }
-        // Iterative post-order walk: mechanisms produce deep graphs (long chains of sums).
-        let mut stack = vec![(root, false)];
-        while let Some((id, children_done)) = stack.pop() {
-            if memo.contains_key(&id) {
-                continue;
-            }
-            let children = self.children(id);
-            if !children_done {
-                stack.push((id, true));
-                for c in children.into_iter().flatten() {
-                    if !memo.contains_key(&c) {
-                        stack.push((c, false));
-                    }
-                }
-                continue;
-            }
+        for id in self.post_order(root, |id| memo.contains_key(&id)) {
             let d = self.derivative_rule(id, seed, memo);
             memo.insert(id, d);
         }
         memo[&root]
+    }
+
+    /// The nodes `root` reaches that `done` does not hold, each once, children before parents.
+    /// Iterative: mechanisms make deep graphs (long chains of sums).
+    pub fn post_order(&self, root: Id, done: impl Fn(Id) -> bool) -> Vec<Id> {
+        let (mut order, mut seen) = (Vec::new(), HashSet::new());
+        let mut stack = vec![(root, false)];
+        while let Some((id, children_done)) = stack.pop() {
+            if done(id) {
+                continue;
+            }
+            if children_done {
+                order.push(id);
+            } else if seen.insert(id) {
+                stack.push((id, true));
+                stack.extend(self.children(id).into_iter().flatten().filter(|&c| !done(c) && !seen.contains(&c)).map(|c| (c, false)));
+            }
+        }
+        order
     }
 
     /// Children of a node (at most four).
@@ -591,16 +595,7 @@ impl Graph {
     /// `var` gives (folding what the substitution makes constant). `memo` maps `other`'s nodes
     /// already copied, for one `var`.
     pub fn import(&mut self, other: &Graph, root: Id, var: &dyn Fn(&mut Graph, Var) -> Id, memo: &mut HashMap<Id, Id>) -> Id {
-        let mut stack = vec![(root, false)];
-        while let Some((id, children_done)) = stack.pop() {
-            if memo.contains_key(&id) {
-                continue;
-            }
-            if !children_done {
-                stack.push((id, true));
-                stack.extend(other.children(id).into_iter().flatten().filter(|c| !memo.contains_key(c)).map(|c| (c, false)));
-                continue;
-            }
+        for id in other.post_order(root, |id| memo.contains_key(&id)) {
             let c = |x: Id| memo[&x];
             let copy = match other.node(id) {
                 Node::Const(bits) => self.num(f64::from_bits(bits)),
@@ -647,18 +642,7 @@ impl Graph {
 
     /// Evaluates several nodes sharing one cache.
     pub fn eval_memo(&self, root: Id, value: &dyn Fn(Var) -> f64, memo: &mut HashMap<Id, f64>) -> f64 {
-        let mut stack = vec![(root, false)];
-        while let Some((id, children_done)) = stack.pop() {
-            if memo.contains_key(&id) {
-                continue;
-            }
-            if !children_done {
-                stack.push((id, true));
-                for c in self.children(id).into_iter().flatten() {
-                    stack.push((c, false));
-                }
-                continue;
-            }
+        for id in self.post_order(root, |id| memo.contains_key(&id)) {
             let v = |c: Id| memo[&c];
             let x = match self.node(id) {
                 Node::Const(bits) => f64::from_bits(bits),
