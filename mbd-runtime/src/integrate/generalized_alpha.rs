@@ -421,8 +421,6 @@ where
     // `s`: D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
     // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix, in the
     // work space.
-    let pattern = M::NEWTON_PATTERN;
-    let nnz = M::JACOBIAN_PATTERN.len();
     let mut force = [T::ZERO; NV];
     let mut inertia = [T::ZERO; NV];
     let mut rhs = [T::ZERO; N];
@@ -457,20 +455,7 @@ where
         // slope ≤ μ).
         mech.friction_forces(&q, &v, t1, &lambda, &mut force);
         mech.mass_times(&q, &vd, &mut inertia);
-        // Residuals: r = M v̇ − Dᵀλ − h, Φ/(β'h²).
-        let mut worst = (T::ZERO, 0usize);
-        for i in 0..NV {
-            rhs[i] = force[i] - inertia[i];
-        }
-        for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-            rhs[c as usize] += value * lambda[r as usize];
-        }
-        for (r, &p) in phi.iter().enumerate() {
-            rhs[NV + r] = -p / (beta_p * h * h);
-            if p.abs() > worst.0 {
-                worst = (p.abs(), r);
-            }
-        }
+        let worst = residual::<T, M, NQ, NV, NC, N>(s, &force, &inertia, &lambda, &phi, beta_p * h * h, &mut rhs);
         // A NaN or infinity in a force: name the force element; in Φ or the state: the row
         // it surfaced in.
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
@@ -494,34 +479,11 @@ where
             continue;
         }
         if iteration >= o.max_iterations {
-            // Name the violated constraint, or, with every constraint met, the velocity or
-            // multiplier whose correction would not settle.
-            let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
-            let (worst_row, residual) = if worst.0 > o.tolerance {
-                (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
-            } else if (step[k] * beta_p * h * h).abs() > o.tolerance || NC == 0 {
-                (name(M::VELOCITY_NAMES, k), (step[k] * beta_p * h * h).abs())
-            } else {
-                let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
-                (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
-            };
-            return Err(SimulationError::NotConverged { t: t1.to_f64(), iterations: iteration, worst_row, residual: residual.to_f64() });
+            return Err(not_converged::<T, M, NV, NC, N>(t1, iteration, worst, &step, beta_p * h * h, o.tolerance));
         }
         if factor {
-            let lu = &s.as_ref()[nnz..];
-            // The force change that one rounding of the positions makes: q₊ carries v̇₊ times
-            // β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it —
-            // uncertain by about m · resolution/(β'h²) (1e-7 N per kg in f64 at h = 1 ms, but
-            // 1e-3 N at 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it.
-            let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
-            rounding_floor = mass_scale * resolution / (beta_p * h * h);
-            // A multiplier without a pivot belongs to a row that depends on the others (a
-            // singular position, a redundant constraint): with `allow_redundant` its row and
-            // column are replaced by Δλ_r = 0 for the rest of the step and the others carry the
-            // load, as forward dynamics drops such a row.
-            let smallest_ratio = M::newton_factor(s, o.pivot_tolerance, system.dynamics.allow_redundant, &mut dropped)
-                .map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
-            near_singular = smallest_ratio < T::from_f64(1e-3);
+            (rounding_floor, near_singular) =
+                factor_newton::<T, M, NQ, NV, NC>(s, o, system.dynamics.allow_redundant, resolution / (beta_p * h * h), t1, &mut dropped)?;
             factored = true;
         }
         for r in 0..NC {
@@ -547,35 +509,19 @@ where
         // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
         // near a singular position the part of λ along D's (near-)null space is not
         // determined — rounding moves it by ε/σ² — and exerts no force.
-        let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
-        for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-            let (r, c) = (r as usize, c as usize);
-            change[c] += value * rhs[NV + r];
-            total[c] += value * lambda[r];
-        }
-        let lambda_change = change.iter().fold(T::ZERO, |m, c| m.max(c.abs()));
+        let (lambda_change, total) = constraint_force_change::<T, M, NQ, NV, NC, N>(s, &rhs, &lambda);
         // Modified Newton: keep the factors while each correction shrinks at least 4×.
         refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
         force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
         iteration += 1;
         *iterations = iteration;
-        // Converged when Φ, the position correction and the force change are all below
-        // tolerance. With Φ met, a correction or force change that stopped shrinking (not
-        // smaller than the last iteration's) counts as met too near a singular position (a
-        // multiplier's pivot below 1e-3 of its column), and a force change within 100× its
-        // tolerance anywhere: it is the rounding of an ill-conditioned solve — ε/σ in λ and
-        // v̇, and Φ's rounding amplified by the 1/(β'h²) of the constraint rows at small
-        // steps — which no further iteration removes. Beyond that band the test stays
-        // strict: Coulomb friction's loads converge linearly and not always monotonically.
-        let stalled = |now: T, before: T, band: bool| (near_singular || band) && iteration > 1 && !(now < before);
-        let correction_met = correction <= o.tolerance || stalled(correction, last_change[0], false);
-        let force_tolerance = (o.lambda_tolerance * force_scale).max(rounding_floor);
-        let force_met = lambda_change <= force_tolerance
-            || stalled(lambda_change, last_change[1], lambda_change <= T::from_f64(100.0) * force_tolerance);
-        if worst.0 <= o.tolerance && correction_met && force_met {
+        let changes = [correction, lambda_change];
+        if worst.0 <= o.tolerance
+            && converged(o, changes, last_change, (o.lambda_tolerance * force_scale).max(rounding_floor), near_singular, iteration > 1)
+        {
             break;
         }
-        last_change = [correction, lambda_change];
+        last_change = changes;
     }
     // The state of the converged iterate (the last correction is below tolerance).
     state(mech, from, a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
@@ -589,6 +535,134 @@ where
     to.lambda = lambda;
     check_step::<T, M, NQ, NV, NC>(from, to)?;
     Ok(a1)
+}
+
+/// Factors the Newton matrix in `s`; returns the rounding floor of the force change and
+/// whether a kept multiplier's pivot is near singular (below 1e-3 of its column).
+///
+/// The floor is the force change one rounding of the positions makes: q₊ carries v̇₊ times
+/// β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it — uncertain by
+/// about m · resolution/(β'h²) (`per_mass`; 1e-7 N per kg in f64 at h = 1 ms, but 1e-3 N at
+/// 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it. A multiplier without a
+/// pivot belongs to a row that depends on the others (a singular position, a redundant
+/// constraint): with `allow_redundant` its row and column are replaced by Δλ_r = 0 for the
+/// rest of the step and the others carry the load, as forward dynamics drops such a row.
+fn factor_newton<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    s: &mut M::NewtonStorage,
+    o: &GeneralizedAlphaOptions<T>,
+    allow_redundant: bool,
+    per_mass: T,
+    t1: T,
+    dropped: &mut [bool; NC],
+) -> Result<(T, bool), SimulationError>
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    let pattern = M::NEWTON_PATTERN;
+    let lu = &s.as_ref()[M::JACOBIAN_PATTERN.len()..];
+    let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
+    let smallest_ratio =
+        M::newton_factor(s, o.pivot_tolerance, allow_redundant, dropped).map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
+    Ok((mass_scale * per_mass, smallest_ratio < T::from_f64(1e-3)))
+}
+
+/// Whether the position correction and the force change (`now`, against the last iteration's
+/// `before`) are below tolerance, Φ being met. A correction or force change that stopped
+/// shrinking (not smaller than the last iteration's) counts as met too near a singular position
+/// (a multiplier's pivot below 1e-3 of its column: `near_singular`), and a force change within
+/// 100× its tolerance anywhere: it is the rounding of an ill-conditioned solve — ε/σ in λ and
+/// v̇, and Φ's rounding amplified by the 1/(β'h²) of the constraint rows at small steps — which
+/// no further iteration removes. Beyond that band the test stays strict: Coulomb friction's
+/// loads converge linearly and not always monotonically. `repeated`: a last iteration exists.
+// `!(x < y)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn converged<T: Real>(
+    o: &GeneralizedAlphaOptions<T>,
+    now: [T; 2],
+    before: [T; 2],
+    force_tolerance: T,
+    near_singular: bool,
+    repeated: bool,
+) -> bool {
+    let stalled = |now: T, before: T, band: bool| (near_singular || band) && repeated && !(now < before);
+    let correction_met = now[0] <= o.tolerance || stalled(now[0], before[0], false);
+    let force_met = now[1] <= force_tolerance || stalled(now[1], before[1], now[1] <= T::from_f64(100.0) * force_tolerance);
+    correction_met && force_met
+}
+
+/// The Newton residuals into `rhs`: r = h − M v̇ + Dᵀλ in the momentum rows (D's non-zeros at
+/// the front of `s`), −Φ/(β'h²) in the constraint rows; returns the largest |Φ| and its row.
+#[allow(clippy::too_many_arguments)]
+fn residual<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    s: &M::NewtonStorage,
+    force: &[T; NV],
+    inertia: &[T; NV],
+    lambda: &[T; NC],
+    phi: &[T; NC],
+    beta_h2: T,
+    rhs: &mut [T; N],
+) -> (T, usize)
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    let mut worst = (T::ZERO, 0usize);
+    for i in 0..NV {
+        rhs[i] = force[i] - inertia[i];
+    }
+    for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+        rhs[c as usize] += value * lambda[r as usize];
+    }
+    for (r, &p) in phi.iter().enumerate() {
+        rhs[NV + r] = -p / beta_h2;
+        if p.abs() > worst.0 {
+            worst = (p.abs(), r);
+        }
+    }
+    worst
+}
+
+/// The change of the constraint forces Dᵀλ by a Newton correction (its multipliers' part of
+/// `rhs`), largest over the velocities, and the forces Dᵀλ themselves.
+fn constraint_force_change<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    s: &M::NewtonStorage,
+    rhs: &[T; N],
+    lambda: &[T; NC],
+) -> (T, [T; NV])
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
+    for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
+        let (r, c) = (r as usize, c as usize);
+        change[c] += value * rhs[NV + r];
+        total[c] += value * lambda[r];
+    }
+    (change.iter().fold(T::ZERO, |m, c| m.max(c.abs())), total)
+}
+
+/// Newton did not converge: name the violated constraint, or, with every constraint met, the
+/// velocity or multiplier whose correction would not settle (`step`: the last correction).
+fn not_converged<T: Real, M: Mechanism, const NV: usize, const NC: usize, const N: usize>(
+    t1: T,
+    iterations: u32,
+    worst: (T, usize),
+    step: &[T; N],
+    beta_h2: T,
+    tolerance: T,
+) -> SimulationError {
+    let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
+    let (worst_row, residual) = if worst.0 > tolerance {
+        (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
+    } else if (step[k] * beta_h2).abs() > tolerance || NC == 0 {
+        (name(M::VELOCITY_NAMES, k), (step[k] * beta_h2).abs())
+    } else {
+        let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
+        (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
+    };
+    SimulationError::NotConverged { t: t1.to_f64(), iterations, worst_row, residual: residual.to_f64() }
 }
 
 /// Name of row `i` of the iteration matrix: a velocity (the momentum rows) or a constraint.
