@@ -1,8 +1,9 @@
-//! The examples' planar mechanisms again in joint coordinates: each `mechanism!` of
-//! `examples/*.rs` that is not spatial, with `joint_coordinates;` added as its first statement,
-//! in a module of its own (`joint::<file>_<n>`), and the macro `every_example_both_ways!` that
-//! names each pair (joint type, body-coordinate type, label) for the test that the two agree
-//! (`tests/joint_coordinates.rs`). Text, not tokens: the examples are read as a user wrote them,
+//! The examples' mechanisms again in joint coordinates: each `mechanism!` of `examples/*.rs`
+//! with `joint_coordinates;` added as its first statement, in a module of its own
+//! (`joint::<file>_<n>`), and the macros `every_example_both_ways!` (planar) and
+//! `every_spatial_example_both_ways!` that name each pair (joint type, body-coordinate type,
+//! label) for the tests that the two agree (`tests/joint_coordinates.rs`,
+//! `tests/spatial_joint_coordinates.rs`). Text, not tokens: the examples are read as a user wrote them,
 //! so an example added to `examples/` is checked both ways without a list to keep. A mechanism
 //! joint coordinates cannot express yet says so with a `// body coordinates only` comment
 //! inside its `mechanism!`, and is left out.
@@ -19,14 +20,15 @@ fn main() {
         .filter(|p| p.extension().is_some_and(|e| e == "rs"))
         .collect();
     files.sort();
-    let (mut modules, mut pairs) = (String::new(), String::new());
+    let (mut modules, mut pairs, mut spatial_pairs) = (String::new(), String::new(), String::new());
     for file in files {
         println!("cargo:rerun-if-changed={}", file.display());
         let text = std::fs::read_to_string(&file).expect("an example");
         let stem = file.file_stem().and_then(|s| s.to_str()).expect("a file name");
-        if text.contains("spatial;") || stem == "showcase" {
+        if stem == "showcase" {
             continue;
         }
+        let pairs = if text.contains("spatial;") { &mut spatial_pairs } else { &mut pairs };
         for (n, block) in mechanisms(&text).into_iter().enumerate().filter(|(_, b)| !b.contains("// body coordinates only")) {
             let (name, open) = name_and_body(block);
             let module = format!("{stem}_{n}");
@@ -36,9 +38,11 @@ fn main() {
         }
     }
     let out = format!(
-        "/// The examples' planar mechanisms in joint coordinates (build.rs).\npub mod joint {{\n{modules}}}\n\n\
+        "/// The examples' mechanisms in joint coordinates (build.rs).\npub mod joint {{\n{modules}}}\n\n\
          /// Calls `$check!(joint type, body-coordinate type, label)` for every planar example's mechanism.\n\
-         #[macro_export]\nmacro_rules! every_example_both_ways {{\n    ($check:ident) => {{\n{pairs}    }};\n}}\n"
+         #[macro_export]\nmacro_rules! every_example_both_ways {{\n    ($check:ident) => {{\n{pairs}    }};\n}}\n\n\
+         /// Calls `$check!(joint type, body-coordinate type, label)` for every spatial example's mechanism.\n\
+         #[macro_export]\nmacro_rules! every_spatial_example_both_ways {{\n    ($check:ident) => {{\n{spatial_pairs}    }};\n}}\n"
     );
     std::fs::write(Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("both_ways.rs"), out).expect("written");
 }

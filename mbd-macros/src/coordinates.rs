@@ -25,6 +25,11 @@ pub enum Coordinates {
     /// θ = φ_j − φ_i, a translational joint's stroke s = u_iᵀ(r^P_j − r^P_i), a floating body's
     /// x, y, φ — and v = q̇. Each body's pose is a function of them, built along the tree.
     PlanarJoint,
+    /// Spatial joint coordinates (Wallrapp 2.6.2; `joint_coordinates;` with `spatial;`): the
+    /// tree's angles and strokes, spherical joints' quaternions (with relative angular
+    /// velocities in the child's frame) and free bodies' (r, p) with (ṙ, ω′); q̇ = B(q) v
+    /// (`tree::spatial`).
+    SpatialJoint,
 }
 
 impl Coordinates {
@@ -33,7 +38,8 @@ impl Coordinates {
         match (model.space, &model.tree) {
             (Space::Planar, Some(_)) => Coordinates::PlanarJoint,
             (Space::Planar, None) => Coordinates::PlanarBody,
-            (Space::Spatial, _) => Coordinates::SpatialBody,
+            (Space::Spatial, Some(_)) => Coordinates::SpatialJoint,
+            (Space::Spatial, None) => Coordinates::SpatialBody,
         }
     }
 
@@ -42,7 +48,7 @@ impl Coordinates {
     pub fn per_body(self) -> usize {
         match self {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => 3,
-            Coordinates::SpatialBody => 7,
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => 7,
         }
     }
 
@@ -50,8 +56,13 @@ impl Coordinates {
     pub fn velocities_per_body(self) -> usize {
         match self {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => 3,
-            Coordinates::SpatialBody => 6,
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => 6,
         }
+    }
+
+    /// Whether these are joint coordinates (a tree's).
+    pub fn is_joint(self) -> bool {
+        matches!(self, Coordinates::PlanarJoint | Coordinates::SpatialJoint)
     }
 
     /// The runtime's descriptors of every coordinate and velocity of `model` in this formulation
@@ -61,13 +72,30 @@ impl Coordinates {
     pub fn descriptors(self, model: &Model) -> (Vec<TokenStream>, Vec<TokenStream>) {
         let (mut coordinates, mut velocities) = (Vec::new(), Vec::new());
         if let Some(tree) = &model.tree {
-            for (i, (name, angle)) in tree.coordinate_names(model).into_iter().enumerate() {
-                let kind = if angle { quote!(Angle) } else { quote!(Length) };
-                let at = Literal::u16_unsuffixed(i as u16);
+            use crate::tree::{CoordinateKind, VelocityKind};
+            for (name, kind) in tree.coordinate_names(model) {
+                let kind = match kind {
+                    CoordinateKind::Angle => quote!(Angle),
+                    CoordinateKind::Length => quote!(Length),
+                    CoordinateKind::Quaternion(part) => {
+                        let part = Literal::u8_unsuffixed(part);
+                        quote!(Quaternion { part: #part })
+                    }
+                };
                 coordinates.push(quote!(::mbd::CoordinateInfo { name: #name, kind: ::mbd::CoordinateKind::#kind }));
-                velocities.push(
-                    quote!(::mbd::VelocityInfo { name: #name, kind: ::mbd::VelocityKind::Rate { coordinate: #at }, displacement: #name }),
-                );
+            }
+            for (name, kind, displacement) in tree.velocity_names(model) {
+                let kind = match kind {
+                    VelocityKind::Rate(at) => {
+                        let at = Literal::u16_unsuffixed(at as u16);
+                        quote!(Rate { coordinate: #at })
+                    }
+                    VelocityKind::Angular { quaternion, axis } => {
+                        let (e0, a) = (Literal::u16_unsuffixed(quaternion as u16), Literal::u8_unsuffixed(axis));
+                        quote!(Angular { quaternion: #e0, axis: #a })
+                    }
+                };
+                velocities.push(quote!(::mbd::VelocityInfo { name: #name, kind: ::mbd::VelocityKind::#kind, displacement: #displacement }));
             }
             return (coordinates, velocities);
         }
@@ -88,7 +116,9 @@ impl Coordinates {
             }
             for v in model.space.velocities() {
                 let (own, kind, displacement) = match (self, v) {
-                    (Coordinates::PlanarJoint, _) => unreachable!("joint coordinates are described by the tree, above"),
+                    (Coordinates::PlanarJoint | Coordinates::SpatialJoint, _) => {
+                        unreachable!("joint coordinates are described by the tree, above")
+                    }
                     (Coordinates::PlanarBody, _) => {
                         let c = model.space.coordinates()[v.index()];
                         let at = Literal::u16_unsuffixed(first + c.index() as u16);
@@ -115,17 +145,17 @@ impl Coordinates {
     /// coordinates the body its joint carries.
     pub fn body_of_velocity(self, m: &Model, i: usize) -> usize {
         match &m.tree {
-            Some(tree) => tree.body_of_coordinate(i),
+            Some(tree) => tree.body_of_velocity(i),
             None => i / self.velocities_per_body(),
         }
     }
 
     /// The velocity map's code: `position_rates` (q̇ = B(q) v), `integrate_positions` (q ⊕ h dv)
-    /// and `normalize_positions`. Planar: B = I and nothing to normalize. Spatial, per body:
-    /// ṙ = v_r, ṗ = ½ Lᵀ(p) ω′ (docs/formulation.md), then p ← p/|p|.
+    /// and `normalize_positions`. Planar: B = I and nothing to normalize. Spatial: ṗ = ½ Lᵀ(p) ω′
+    /// for each quaternion (each body's; in joint coordinates each free body's and spherical
+    /// joint's), q̇ = v for the rest (docs/formulation.md), then p ← p/|p|.
     pub fn position_updates(self, m: &Model, e: &Emitter) -> TokenStream {
         let real = real(m.scalar);
-        let (nq, nv) = (usize_lit(7 * m.bodies.len()), usize_lit(6 * m.bodies.len()));
         if m.space == crate::model::Space::Planar {
             let n = usize_lit(m.tree.as_ref().map_or(3 * m.bodies.len(), |tree| tree.nq));
             return quote! {
@@ -144,21 +174,49 @@ impl Coordinates {
             };
         }
         let (half, one) = (e.literal(0.5), e.literal(1.0));
-        let nb = usize_lit(m.bodies.len());
+        // (coordinate, velocity) pairs with q̇_i = v_j, and (e0's coordinate, ω′'s first
+        // velocity) of each quaternion: per body in body coordinates, per free body and
+        // spherical joint in joint coordinates
+        let (rates, quaternions): (Vec<(usize, usize)>, Vec<(usize, usize)>) = match &m.tree {
+            None => ((0..m.bodies.len()).flat_map(|k| (0..3).map(move |c| (7 * k + c, 6 * k + c))).collect(), (0..m.bodies.len()).map(|k| (7 * k + 3, 6 * k + 3)).collect()),
+            Some(tree) => {
+                let (mut rates, mut quaternions) = (Vec::new(), Vec::new());
+                for link in &tree.links {
+                    let at = match (link.count, link.count_v) {
+                        (7, 6) => 3,
+                        (4, 3) => 0,
+                        (n, _) => n,
+                    };
+                    rates.extend((0..at).map(|c| (link.first + c, link.first_v + c)));
+                    if at < link.count {
+                        quaternions.push((link.first + at, link.first_v + at));
+                    }
+                }
+                (rates, quaternions)
+            }
+        };
+        let (nq, nv) = (usize_lit(self.nq(m)), usize_lit(self.nv(m)));
+        let pair = |(a, b): (usize, usize)| {
+            let (a, b) = (usize_lit(a), usize_lit(b));
+            quote!((#a, #b))
+        };
+        let (n_rates, n_quaternions) = (usize_lit(rates.len()), usize_lit(quaternions.len()));
+        let (rates, quaternions): (Vec<_>, Vec<_>) = (rates.into_iter().map(pair).collect(), quaternions.into_iter().map(pair).collect());
         quote! {
             #[inline]
             fn position_rates(&self, q: &[#real; #nq], v: &[#real; #nv], qdot: &mut [#real; #nq]) {
-                for k in 0..#nb {
-                    let (r, w) = (7 * k, 6 * k);
-                    let (e0, e1, e2, e3) = (q[r + 3], q[r + 4], q[r + 5], q[r + 6]);
-                    let (wx, wy, wz) = (v[w + 3], v[w + 4], v[w + 5]);
-                    qdot[r] = v[w];
-                    qdot[r + 1] = v[w + 1];
-                    qdot[r + 2] = v[w + 2];
-                    qdot[r + 3] = #half * (-e1 * wx - e2 * wy - e3 * wz);
-                    qdot[r + 4] = #half * (e0 * wx - e3 * wy + e2 * wz);
-                    qdot[r + 5] = #half * (e3 * wx + e0 * wy - e1 * wz);
-                    qdot[r + 6] = #half * (-e2 * wx + e1 * wy + e0 * wz);
+                const RATES: [(usize, usize); #n_rates] = [#(#rates),*];
+                const QUATERNIONS: [(usize, usize); #n_quaternions] = [#(#quaternions),*];
+                for (i, j) in RATES {
+                    qdot[i] = v[j];
+                }
+                for (r, w) in QUATERNIONS {
+                    let (e0, e1, e2, e3) = (q[r], q[r + 1], q[r + 2], q[r + 3]);
+                    let (wx, wy, wz) = (v[w], v[w + 1], v[w + 2]);
+                    qdot[r] = #half * (-e1 * wx - e2 * wy - e3 * wz);
+                    qdot[r + 1] = #half * (e0 * wx - e3 * wy + e2 * wz);
+                    qdot[r + 2] = #half * (e3 * wx + e0 * wy - e1 * wz);
+                    qdot[r + 3] = #half * (-e2 * wx + e1 * wy + e0 * wz);
                 }
             }
             #[inline]
@@ -172,8 +230,8 @@ impl Coordinates {
             }
             #[inline]
             fn normalize_positions(&self, q: &mut [#real; #nq]) {
-                for k in 0..#nb {
-                    let p = 7 * k + 3;
+                const QUATERNIONS: [(usize, usize); #n_quaternions] = [#(#quaternions),*];
+                for (p, _) in QUATERNIONS {
                     let norm = <#real as ::mbd::Real>::sqrt(q[p] * q[p] + q[p + 1] * q[p + 1] + q[p + 2] * q[p + 2] + q[p + 3] * q[p + 3]);
                     let scale = #one / norm;
                     for i in p..p + 4 {
@@ -182,6 +240,15 @@ impl Coordinates {
                 }
             }
         }
+    }
+
+    /// The numbers of coordinates and velocities of a model.
+    pub fn nq(self, m: &Model) -> usize {
+        m.tree.as_ref().map_or(self.per_body() * m.bodies.len(), |tree| tree.nq)
+    }
+
+    pub fn nv(self, m: &Model) -> usize {
+        m.tree.as_ref().map_or(self.velocities_per_body() * m.bodies.len(), |tree| tree.nv)
     }
 
     /// `mbd::BodyFrames` for mechanism `name`: each body's pose, its twist J_b x, its
@@ -195,7 +262,7 @@ impl Coordinates {
         let (nq, nv) = (usize_lit(self.per_body() * m.bodies.len()), usize_lit(self.velocities_per_body() * m.bodies.len()));
         let zero = quote!(<#real as ::mbd::Real>::ZERO);
         let (pose, twist, wrench) = match self {
-            Coordinates::PlanarJoint => return joint_body_frames(m, f, e),
+            Coordinates::PlanarJoint | Coordinates::SpatialJoint => return joint_body_frames(m, f, e),
             Coordinates::PlanarBody => (
                 quote!(let k = 3 * body; ::core::option::Option::Some(::mbd::BodyPose::planar(q[k], q[k + 1], q[k + 2]))),
                 quote! {
@@ -280,9 +347,10 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let name = &m.name;
     let real = real(m.scalar);
     let nb = usize_lit(m.bodies.len());
-    let n = usize_lit(f.nq);
+    let (nq, nv) = (usize_lit(f.nq), usize_lit(f.nv));
     let zero = quote!(<#real as ::mbd::Real>::ZERO);
-    let all = |array: &str, pick: &dyn Fn(&crate::formulation::FrameNodes) -> [crate::sym::Id; 3]| -> TokenStream {
+    let spatial = m.space == crate::model::Space::Spatial;
+    let all = |array: &str, pick: &dyn Fn(&crate::formulation::FrameNodes) -> &[crate::sym::Id]| -> TokenStream {
         let array = proc_macro2::Ident::new(array, proc_macro2::Span::call_site());
         let outputs: Vec<Output> = f
             .frames
@@ -291,7 +359,7 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             .flat_map(|(k, frame)| {
                 let k = usize_lit(k);
                 let array = array.clone();
-                pick(frame).into_iter().enumerate().map(move |(c, node)| {
+                pick(frame).iter().enumerate().map(move |(c, &node)| {
                     let c = usize_lit(c);
                     Output { target: quote!(#array[#k][#c]), node }
                 })
@@ -299,70 +367,100 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             .collect();
         e.body(&outputs).0
     };
-    let poses = all("poses", &|frame| frame.pose);
-    let twists = all("twists", &|frame| frame.twist);
-    let biases = all("biases", &|frame| frame.bias);
-    // Σ_b J_bᵀ w_b over every body's wrench w_b = dir[3b..3b + 3], one backward pass.
+    let poses = all("poses", &|frame| &frame.pose);
+    let twists = all("twists", &|frame| &frame.twist);
+    let biases = all("biases", &|frame| &frame.bias);
+    // Σ_b J_bᵀ w_b over every body's wrench w_b = dir[nw b..nw (b + 1)], one backward pass.
     let wrench = f.tree.as_ref().map(|terms| e.body(&crate::emit::vector_outputs("out", &terms.wrench)).0);
-    let n_wrench = usize_lit(3 * m.bodies.len());
-    let table = |array: TokenStream| quote!(let mut #array = [[#zero; 3]; #nb];);
-    let (pose_table, twist_table, bias_table) = (table(quote!(poses)), table(quote!(twists)), table(quote!(biases)));
+    let (n_pose, n_twist) = if spatial { (7, 6) } else { (3, 3) };
+    let n_wrench = usize_lit(n_twist * m.bodies.len());
+    let table = |array: TokenStream, n: usize| {
+        let n = usize_lit(n);
+        quote!(let mut #array = [[#zero; #n]; #nb];)
+    };
+    let (pose_table, twist_table, bias_table) = (table(quote!(poses), n_pose), table(quote!(twists), n_twist), table(quote!(biases), n_twist));
     let twist_of = |x: TokenStream| {
         quote! {
             #[allow(clippy::redundant_locals)]
             let v = #x;
             #twist_table
             #twists
-            let [vx, vy, w] = twists[body];
+            let t = twists[body];
         }
     };
     let (twist_x, twist_vd) = (twist_of(quote!(x)), twist_of(quote!(vd)));
+    // the twist t (+ the bias b) as a BodyTwist: ω′ turned to global components in space
+    let (pose_out, twist_out, acceleration_out, wrench_in) = if spatial {
+        (
+            quote!(::mbd::BodyPose::spatial([p[0], p[1], p[2]], [p[3], p[4], p[5], p[6]])),
+            quote! {
+                let pose = ::mbd::BodyFrames::body_pose(self, body, q)?;
+                ::mbd::BodyTwist { velocity: [t[0], t[1], t[2]], angular_velocity: pose.to_global([t[3], t[4], t[5]]) }
+            },
+            quote! {
+                let pose = ::mbd::BodyFrames::body_pose(self, body, q)?;
+                ::mbd::BodyTwist {
+                    velocity: [t[0] + b[0], t[1] + b[1], t[2] + b[2]],
+                    angular_velocity: pose.to_global([t[3] + b[3], t[4] + b[4], t[5] + b[5]]),
+                }
+            },
+            quote!([force[0], force[1], force[2], moment[0], moment[1], moment[2]]),
+        )
+    } else {
+        (
+            quote!(::mbd::BodyPose::planar(p[0], p[1], p[2])),
+            quote!(::mbd::BodyTwist { velocity: [t[0], t[1], #zero], angular_velocity: [#zero, #zero, t[2]] }),
+            quote!(::mbd::BodyTwist { velocity: [t[0] + b[0], t[1] + b[1], #zero], angular_velocity: [#zero, #zero, t[2] + b[2]] }),
+            quote!([force[0], force[1], moment[2]]),
+        )
+    };
+    let nw = usize_lit(n_twist);
     quote! {
         #[allow(unused_variables, unused_mut, unused_parens, clippy::approx_constant)]
-        impl ::mbd::BodyFrames<#real, #n, #n> for #name {
+        impl ::mbd::BodyFrames<#real, #nq, #nv> for #name {
             #[inline]
-            fn body_pose(&self, body: usize, q: &[#real; #n]) -> ::core::option::Option<::mbd::BodyPose<#real>> {
+            fn body_pose(&self, body: usize, q: &[#real; #nq]) -> ::core::option::Option<::mbd::BodyPose<#real>> {
                 if body >= #nb {
                     return ::core::option::Option::None;
                 }
                 #pose_table
                 #poses
-                let [x, y, phi] = poses[body];
-                ::core::option::Option::Some(::mbd::BodyPose::planar(x, y, phi))
+                let p = poses[body];
+                ::core::option::Option::Some(#pose_out)
             }
             #[inline]
-            fn body_twist(&self, body: usize, q: &[#real; #n], x: &[#real; #n]) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
+            fn body_twist(&self, body: usize, q: &[#real; #nq], x: &[#real; #nv]) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
                 if body >= #nb {
                     return ::core::option::Option::None;
                 }
                 #twist_x
-                ::core::option::Option::Some(::mbd::BodyTwist { velocity: [vx, vy, #zero], angular_velocity: [#zero, #zero, w] })
+                ::core::option::Option::Some({ #twist_out })
             }
             #[inline]
             fn body_acceleration(
                 &self,
                 body: usize,
-                q: &[#real; #n],
-                v: &[#real; #n],
-                vd: &[#real; #n],
+                q: &[#real; #nq],
+                v: &[#real; #nv],
+                vd: &[#real; #nv],
             ) -> ::core::option::Option<::mbd::BodyTwist<#real>> {
                 if body >= #nb {
                     return ::core::option::Option::None;
                 }
                 #bias_table
                 #biases
-                let [bx, by, bw] = biases[body];
+                let b = biases[body];
                 #twist_vd
-                ::core::option::Option::Some(::mbd::BodyTwist { velocity: [vx + bx, vy + by, #zero], angular_velocity: [#zero, #zero, w + bw] })
+                ::core::option::Option::Some({ #acceleration_out })
             }
             #[inline]
-            fn add_body_wrench(&self, body: usize, q: &[#real; #n], force: [#real; 3], moment: [#real; 3], g: &mut [#real; #n]) -> bool {
+            fn add_body_wrench(&self, body: usize, q: &[#real; #nq], force: [#real; 3], moment: [#real; 3], g: &mut [#real; #nv]) -> bool {
                 if body >= #nb {
                     return false;
                 }
                 let mut dir = [#zero; #n_wrench];
-                dir[3 * body..3 * body + 3].copy_from_slice(&[force[0], force[1], moment[2]]);
-                let mut out = [#zero; #n];
+                dir[#nw * body..#nw * (body + 1)].copy_from_slice(&#wrench_in);
+                let mut out = [#zero; #nv];
                 #wrench
                 for (g, out) in g.iter_mut().zip(&out) {
                     *g += *out;

@@ -28,16 +28,34 @@ fn velocity_unit(v: Vel) -> &'static str {
 fn joint_coordinates(w: &mut String, m: &Model) {
     let _ = writeln!(
         w,
-        "Joint coordinates: `q[i]` in every `[f64; {}::NQ]` is a tree joint's angle θ = φ_j − φ_i (rad) or \
-         stroke s along its first axis (m), or a floating body's x, y (m) and φ (rad); velocities are their \
-         rates, `v[i]` = q̇ᵢ, and v̇, h and the columns of D are indexed the same way. Each body's pose is \
-         read through `mbd::BodyFrames`.\n",
+        "Joint coordinates: `q[i]` in every `[f64; {}::NQ]` is a tree joint's angle (rad) or stroke along \
+         its first axis (m), a spherical joint's Euler parameters (body j's orientation in body i's \
+         frame), or a floating body's position (m) and angle (rad) or Euler parameters. Velocities \
+         are their rates, except a quaternion's: an angular velocity in the child's (or floating \
+         body's) own axes (rad/s); they index v̇, h and the columns of D. Each body's pose is read \
+         through `mbd::BodyFrames`.\n",
         m.name
     );
-    let _ = writeln!(w, "| i | coordinate | unit |\n|---:|---|---|");
-    let names = m.tree.as_ref().map(|tree| tree.coordinate_names(m)).unwrap_or_default();
-    for (i, (name, angle)) in names.iter().enumerate() {
-        let _ = writeln!(w, "| {i} | `{name}` | {} |", if *angle { "rad" } else { "m" });
+    let _ = writeln!(w, "| i | coordinate q | unit |\n|---:|---|---|");
+    let Some(tree) = &m.tree else { return };
+    for (i, (name, kind)) in tree.coordinate_names(m).iter().enumerate() {
+        let unit = match kind {
+            crate::tree::CoordinateKind::Angle => "rad",
+            crate::tree::CoordinateKind::Length => "m",
+            crate::tree::CoordinateKind::Quaternion(_) => "1",
+        };
+        let _ = writeln!(w, "| {i} | `{name}` | {unit} |");
+    }
+    if tree.nv != tree.nq {
+        let _ = writeln!(w, "\n| i | velocity v | unit |\n|---:|---|---|");
+        for (i, (name, kind, _)) in tree.velocity_names(m).iter().enumerate() {
+            let unit = match kind {
+                crate::tree::VelocityKind::Angular { .. } => "rad/s",
+                crate::tree::VelocityKind::Rate(c) if tree.coordinate_names(m)[*c].1 == crate::tree::CoordinateKind::Angle => "rad/s",
+                crate::tree::VelocityKind::Rate(_) => "m/s",
+            };
+            let _ = writeln!(w, "| {i} | `{name}` | {unit} |");
+        }
     }
 }
 
@@ -51,7 +69,7 @@ pub fn tables(m: &Model, f: &Formulation, force_ops: &([Ops; 3], Vec<[Ops; 3]>))
     let w = &mut out;
     let _ = writeln!(w, "\n# Coordinates and velocities\n");
     match m.space {
-        Space::Planar if m.tree.is_some() => joint_coordinates(w, m),
+        _ if m.tree.is_some() => joint_coordinates(w, m),
         Space::Planar => {
             let _ = writeln!(
                 w,

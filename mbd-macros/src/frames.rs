@@ -62,54 +62,48 @@ pub struct Builder<'m> {
     /// The first row of each constraint in Φ, filled as the rows are built (Coulomb friction
     /// reads its joint's multipliers by them).
     pub first_rows: Vec<usize>,
-    /// In joint coordinates, each body's pose (x, y, φ) as a function of q, and its rate along
-    /// v = q̇ (`tree::poses`); empty in body coordinates, where they are q's own entries.
-    poses: Vec<[Id; 3]>,
-    pose_rates: Vec<[Id; 3]>,
+    /// In joint coordinates, each body's pose and twist as functions of (q, v), built along the
+    /// tree (`tree::frames`); empty in body coordinates, where they are q's and v's own entries.
+    tree_frames: Vec<crate::tree::TreeFrame>,
 }
 
 impl<'m> Builder<'m> {
     pub fn new(model: &'m Model) -> Self {
         let coordinates = Coordinates::of(model);
-        let mut b = Builder { g: Graph::new(), model, coordinates, first_rows: Vec::new(), poses: Vec::new(), pose_rates: Vec::new() };
+        let mut b = Builder { g: Graph::new(), model, coordinates, first_rows: Vec::new(), tree_frames: Vec::new() };
         if let Some(tree) = &model.tree {
-            let poses = crate::tree::poses(&mut b, tree);
-            let rates = b.coordinate_rates();
-            let seed = |v: Var| match v {
-                Var::Q(i) => Some(rates[i as usize]),
-                _ => None,
-            };
-            let mut memo = HashMap::new();
-            b.pose_rates = poses.iter().map(|pose| pose.map(|x| b.g.directional(x, &seed, &mut memo))).collect();
-            b.poses = poses;
+            b.tree_frames = crate::tree::frames(&mut b, tree);
         }
         b
     }
 
-    /// A builder in the model's bodies' own coordinates (x, y, φ per body, v = q̇), whatever
-    /// the model's formulation: where joint coordinates write the elements' rows and forces
-    /// before mapping them through the tree (`formulation::joint`).
+    /// In joint coordinates, body k's twist in global components (ṙ, ω), of which its link's
+    /// screws are the partials by the link's velocities.
+    pub fn global_twist(&self, k: usize) -> &[Id] {
+        &self.tree_frames[k].global
+    }
+
+    /// A builder in the model's bodies' own coordinates (x, y, φ per body, v = q̇; r, p and
+    /// ṙ, ω′ in space), whatever the model's formulation: where joint coordinates write the
+    /// elements' rows and forces before mapping them through the tree (`formulation::joint`).
     pub fn body_level(model: &'m Model) -> Self {
-        Builder {
-            g: Graph::new(),
-            model,
-            coordinates: Coordinates::PlanarBody,
-            first_rows: Vec::new(),
-            poses: Vec::new(),
-            pose_rates: Vec::new(),
-        }
+        let coordinates = match model.space {
+            crate::model::Space::Planar => Coordinates::PlanarBody,
+            crate::model::Space::Spatial => Coordinates::SpatialBody,
+        };
+        Builder { g: Graph::new(), model, coordinates, first_rows: Vec::new(), tree_frames: Vec::new() }
     }
 
     pub fn nq(&self) -> usize {
-        match (&self.model.tree, self.coordinates) {
-            (Some(tree), Coordinates::PlanarJoint) => tree.nq,
+        match (&self.model.tree, self.coordinates.is_joint()) {
+            (Some(tree), true) => tree.nq,
             _ => self.coordinates.per_body() * self.model.bodies.len(),
         }
     }
 
     pub fn nv(&self) -> usize {
-        match (&self.model.tree, self.coordinates) {
-            (Some(tree), Coordinates::PlanarJoint) => tree.nq,
+        match (&self.model.tree, self.coordinates.is_joint()) {
+            (Some(tree), true) => tree.nv,
             _ => self.coordinates.velocities_per_body() * self.model.bodies.len(),
         }
     }
@@ -170,7 +164,7 @@ impl<'m> Builder<'m> {
     pub fn coord(&mut self, b: BodyRef, c: Coord) -> Id {
         match b {
             BodyRef::Ground => self.g.num(if c == Coord::E0 { 1.0 } else { 0.0 }),
-            BodyRef::Body(k) if !self.poses.is_empty() => self.poses[k][c.index()],
+            BodyRef::Body(k) if !self.tree_frames.is_empty() => self.tree_frames[k].pose[c.index()],
             BodyRef::Body(k) => self.g.var(Var::Q((self.coordinates.per_body() * k + c.index()) as u16)),
         }
     }
@@ -179,7 +173,7 @@ impl<'m> Builder<'m> {
     pub fn velocity(&mut self, b: BodyRef, c: Vel) -> Id {
         match b {
             BodyRef::Ground => self.g.num(0.0),
-            BodyRef::Body(k) if !self.pose_rates.is_empty() => self.pose_rates[k][c.index()],
+            BodyRef::Body(k) if !self.tree_frames.is_empty() => self.tree_frames[k].twist[c.index()],
             BodyRef::Body(k) => self.g.var(Var::Qd((self.coordinates.velocities_per_body() * k + c.index()) as u16)),
         }
     }
@@ -192,7 +186,7 @@ impl<'m> Builder<'m> {
     pub fn twist(&mut self, b: BodyRef) -> (Vec<Id>, Vec<Id>) {
         let (linear, angular): (&[Vel], &[Vel]) = match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => (&[Vel::Vx, Vel::Vy], &[Vel::Omega]),
-            Coordinates::SpatialBody => (&[Vel::Vx, Vel::Vy, Vel::Vz], &[Vel::Wx, Vel::Wy, Vel::Wz]),
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => (&[Vel::Vx, Vel::Vy, Vel::Vz], &[Vel::Wx, Vel::Wy, Vel::Wz]),
         };
         (linear.iter().map(|&c| self.velocity(b, c)).collect(), angular.iter().map(|&c| self.velocity(b, c)).collect())
     }
@@ -201,6 +195,10 @@ impl<'m> Builder<'m> {
     pub fn coordinate_rates(&mut self) -> Vec<Id> {
         match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => (0..self.nq()).map(|i| self.g.var(Var::Qd(i as u16))).collect(),
+            Coordinates::SpatialJoint => {
+                let tree = self.model.tree.as_ref().expect("joint coordinates have a tree");
+                crate::tree::spatial::coordinate_rates(self, tree)
+            }
             Coordinates::SpatialBody => {
                 let mut rates = Vec::with_capacity(self.nq());
                 for k in 0..self.model.bodies.len() {
@@ -223,9 +221,8 @@ impl<'m> Builder<'m> {
 
     /// Lᵀ(p) (4×3) of a spatial body, with ṗ = ½ Lᵀ ω′ (docs/formulation.md).
     fn l_transpose(&mut self, b: BodyRef) -> [[Id; 3]; 4] {
-        let [e0, e1, e2, e3] = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
-        let [n1, n2, n3] = [e1, e2, e3].map(|e| self.g.neg(e));
-        [[n1, n2, n3], [e0, n3, e2], [e3, e0, n1], [n2, e1, e0]]
+        let p = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
+        crate::tree::spatial::l_transpose(self, p)
     }
 
     /// A body's angle φ (planar).
@@ -347,6 +344,11 @@ impl<'m> Builder<'m> {
         match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => partials,
             Coordinates::SpatialBody => self.through_velocity_map(partials),
+            // ∂ṡ/∂v with ṡ = s_q B(q) v, B along the tree
+            Coordinates::SpatialJoint => {
+                let rate = self.rate(s);
+                velocity_partials(&mut self.g, rate)
+            }
         }
     }
 
@@ -464,7 +466,7 @@ impl Builder<'_> {
     pub fn point_n(&mut self, loc: &Loc) -> Vec<Id> {
         match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => self.point(loc).to_vec(),
-            Coordinates::SpatialBody => self.point3(loc).to_vec(),
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => self.point3(loc).to_vec(),
         }
     }
 
@@ -472,7 +474,7 @@ impl Builder<'_> {
     pub fn rotate_n(&mut self, b: BodyRef, v: Vec<Id>) -> Vec<Id> {
         match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => self.rotate(b, [v[0], v[1]]).to_vec(),
-            Coordinates::SpatialBody => self.rotate3(b, [v[0], v[1], v[2]]).to_vec(),
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => self.rotate3(b, [v[0], v[1], v[2]]).to_vec(),
         }
     }
 
@@ -494,7 +496,7 @@ impl Builder<'_> {
     pub fn origin(&mut self, b: BodyRef) -> Vec<Id> {
         let cs: &[Coord] = match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => &[Coord::X, Coord::Y],
-            Coordinates::SpatialBody => &[Coord::X, Coord::Y, Coord::Z],
+            Coordinates::SpatialBody | Coordinates::SpatialJoint => &[Coord::X, Coord::Y, Coord::Z],
         };
         cs.iter().map(|&c| self.coord(b, c)).collect()
     }
@@ -503,34 +505,8 @@ impl Builder<'_> {
 
     /// A(p) = (2 e0² − 1) I + 2 (e eᵀ + e0 ẽ) of a spatial body; I on ground.
     pub fn rotation(&mut self, b: BodyRef) -> [[Id; 3]; 3] {
-        if b == BodyRef::Ground {
-            let (zero, one) = (self.g.num(0.0), self.g.num(1.0));
-            return [[one, zero, zero], [zero, one, zero], [zero, zero, one]];
-        }
-        let [e0, e1, e2, e3] = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
-        let e = [e1, e2, e3];
-        let two = self.g.num(2.0);
-        let one = self.g.num(1.0);
-        let e00 = self.g.powi(e0, 2);
-        let two_e00 = self.g.mul(two, e00);
-        let diag = self.g.sub(two_e00, one);
-        // ẽ: rows (0, −e3, e2), (e3, 0, −e1), (−e2, e1, 0)
-        let zero = self.g.num(0.0);
-        let (n1, n2, n3) = (self.g.neg(e1), self.g.neg(e2), self.g.neg(e3));
-        let tilde = [[zero, n3, e2], [e3, zero, n1], [n2, e1, zero]];
-        std::array::from_fn(|r| {
-            std::array::from_fn(|c| {
-                let ee = self.g.mul(e[r], e[c]);
-                let et = self.g.mul(e0, tilde[r][c]);
-                let sum = self.g.add(ee, et);
-                let twice = self.g.mul(two, sum);
-                if r == c {
-                    self.g.add(diag, twice)
-                } else {
-                    twice
-                }
-            })
-        })
+        let p = [Coord::E0, Coord::E1, Coord::E2, Coord::E3].map(|c| self.coord(b, c));
+        rotation_matrix(&mut self.g, p)
     }
 
     /// A v′ for a body-frame 3-vector.
@@ -559,6 +535,11 @@ impl Builder<'_> {
     /// The unit triad (x, y, z) of a marker, global components: z′ = a′/|a′|, x′ the reference
     /// b′ made orthogonal to z′ (Gram–Schmidt) and normalized, y′ = z′ × x′, each turned by A.
     pub fn triad(&mut self, body: BodyRef, axis: &[MExpr], reference: &[MExpr]) -> [[Id; 3]; 3] {
+        self.local_triad(axis, reference).map(|v| self.rotate3(body, v))
+    }
+
+    /// The unit triad (x′, y′, z′) of a marker in its body's frame (`triad`).
+    pub fn local_triad(&mut self, axis: &[MExpr], reference: &[MExpr]) -> [[Id; 3]; 3] {
         let a = [0, 1, 2].map(|k| self.expr(&axis[k]));
         let r = [0, 1, 2].map(|k| self.expr(&reference[k]));
         let z = self.normalized(a);
@@ -567,7 +548,7 @@ impl Builder<'_> {
         let ortho: [Id; 3] = std::array::from_fn(|k| self.g.sub(r[k], along[k]));
         let x = self.normalized(ortho);
         let y = self.cross(z, x);
-        [x, y, z].map(|v| self.rotate3(body, v))
+        [x, y, z]
     }
 
     fn normalized(&mut self, v: [Id; 3]) -> [Id; 3] {
@@ -585,6 +566,33 @@ impl Builder<'_> {
             self.g.sub(p, q)
         })
     }
+}
+
+/// A(p) = (2 e0² − 1) I + 2 (e eᵀ + e0 ẽ) for Euler parameters p = (e0, e); I for p = (1, 0).
+pub fn rotation_matrix(g: &mut Graph, [e0, e1, e2, e3]: [Id; 4]) -> [[Id; 3]; 3] {
+    let e = [e1, e2, e3];
+    let two = g.num(2.0);
+    let one = g.num(1.0);
+    let e00 = g.powi(e0, 2);
+    let two_e00 = g.mul(two, e00);
+    let diag = g.sub(two_e00, one);
+    // ẽ: rows (0, −e3, e2), (e3, 0, −e1), (−e2, e1, 0)
+    let zero = g.num(0.0);
+    let (n1, n2, n3) = (g.neg(e1), g.neg(e2), g.neg(e3));
+    let tilde = [[zero, n3, e2], [e3, zero, n1], [n2, e1, zero]];
+    std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            let ee = g.mul(e[r], e[c]);
+            let et = g.mul(e0, tilde[r][c]);
+            let sum = g.add(ee, et);
+            let twice = g.mul(two, sum);
+            if r == c {
+                g.add(diag, twice)
+            } else {
+                twice
+            }
+        })
+    })
 }
 
 /// ∂x/∂v_i for each velocity v_i that x depends on.

@@ -59,7 +59,7 @@ pub trait Joint: Debug {
     }
 }
 
-/// A planar joint's relative-coordinate form: where body j is, given body i and the joint's
+/// A joint's relative-coordinate form: where body j is, given body i and the joint's
 /// coordinates.
 #[derive(Clone, Copy, Debug)]
 pub enum Relative<'a> {
@@ -70,20 +70,47 @@ pub enum Relative<'a> {
     Translational { i: &'a Loc, axis_i: &'a Components, j: &'a Loc, axis_j: &'a Components },
     /// P_j = P_i and φ_j = φ_i + angle: no coordinate.
     Rigid { i: &'a Loc, j: &'a Loc, angle: &'a MExpr },
+    /// A spatial joint: marker j's frame relative to marker i's (`tree::spatial`).
+    Spatial { kind: SpatialKind, i: &'a spatial::Marker, j: &'a spatial::Marker },
+}
+
+/// The spatial joints a tree carries, by their relative motion of marker j in marker i's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpatialKind {
+    /// A turn θ about z_i: x_j = cos θ x_i + sin θ y_i.
+    Revolute,
+    /// A slide s along z_i: P_j = P_i + s z_i, the frames parallel.
+    Translational,
+    /// A turn θ about z_i and a slide s along it.
+    Cylindrical,
+    /// Any turn of body j relative to body i about P_i = P_j: a unit quaternion, with the
+    /// relative angular velocity in body j's frame.
+    Spherical,
+    /// None: the frames stay together.
+    Rigid,
 }
 
 impl Relative<'_> {
-    /// The joint's coordinates in the tree (rows it would have as a constraint: 3 − this).
-    pub fn coordinates(self) -> usize {
-        match self {
-            Relative::Revolute { .. } | Relative::Translational { .. } => 1,
-            Relative::Rigid { .. } => 0,
-        }
+    /// The joint's velocities in the tree (the rows it would have as a constraint: 3 or 6 −
+    /// this) and its coordinates (a spherical joint's quaternion has 4).
+    pub fn counts(self) -> crate::tree::Counts {
+        let (q, v) = match self {
+            Relative::Revolute { .. } | Relative::Translational { .. } => (1, 1),
+            Relative::Rigid { .. } => (0, 0),
+            Relative::Spatial { kind, .. } => match kind {
+                SpatialKind::Revolute | SpatialKind::Translational => (1, 1),
+                SpatialKind::Cylindrical => (2, 2),
+                SpatialKind::Spherical => (4, 3),
+                SpatialKind::Rigid => (0, 0),
+            },
+        };
+        crate::tree::Counts { q, v }
     }
     /// Its two bodies, i then j.
     pub fn bodies(self) -> [BodyRef; 2] {
         match self {
             Relative::Revolute { i, j } | Relative::Translational { i, j, .. } | Relative::Rigid { i, j, .. } => [i.body, j.body],
+            Relative::Spatial { i, j, .. } => [i.loc.body, j.loc.body],
         }
     }
 }

@@ -64,21 +64,14 @@ pub struct TreeTerms {
     pub free_accelerations: Vec<Id>,
 }
 
-/// The tree's kinematics the passes read: each body's pose and its link's screws.
-struct Kinematics<'t> {
-    tree: &'t Tree,
-    poses: Vec<[Id; 3]>,
-    /// ∂(ẋ_k, ẏ_k, φ̇_k)/∂v_i for each coordinate i of body k's link.
-    screws: Vec<Vec<[Id; 3]>>,
-}
-
 /// The symbolic equations of a model in joint coordinates.
 pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     // The body level: rows, forces and energies as in body coordinates.
     let mut body = Builder::body_level(model);
     let (phi_body, row_names, row_units) = constraint_rows(&mut body);
     let zero_body = body.g.num(0.0);
-    let body_forces = forces(&mut body, vec![zero_body; 3 * model.bodies.len()]);
+    let (np, nt) = (model.space.coordinates().len(), model.space.velocities().len());
+    let body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
     let first_rows = std::mem::take(&mut body.first_rows);
 
     // The joint level: the frames along the tree.
@@ -90,8 +83,8 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let mut memo = HashMap::new();
     let mut import = |b: &mut Builder, node: Id| {
         let var = |g: &mut Graph, v: Var| match v {
-            Var::Q(i) => frames[i as usize / 3].pose[i as usize % 3],
-            Var::Qd(i) => frames[i as usize / 3].twist[i as usize % 3],
+            Var::Q(i) => frames[i as usize / np].pose[i as usize % np],
+            Var::Qd(i) => frames[i as usize / nt].twist[i as usize % nt],
             other => g.var(other),
         };
         b.g.import(&body.g, node, &var, &mut memo)
@@ -99,16 +92,35 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let phi: Vec<Id> = phi_body.iter().map(|&row| import(&mut b, row)).collect();
     let (q0, qd0) = crate::tree::initial(&mut b, tree);
 
-    // h = Σ J_bᵀ (f_b − M_b J̇_b v); M x = Σ J_bᵀ M_b J_b x.
+    // h = Σ J_bᵀ (f_b − M_b J̇_b v − ω′ × J′ω′); M x = Σ J_bᵀ M_b J_b x.
     let inertia = inertias(&mut b, model);
-    let bias: Vec<[Id; 3]> = frames.iter().zip(&inertia).map(|(frame, m)| m.times(&mut b, frame.bias)).collect();
-    let wrenches_of = |b: &mut Builder, import: &mut dyn FnMut(&mut Builder, Id) -> Id, generalized: &[Id]| -> Vec<[Id; 3]> {
+    let bias: Vec<Vec<Id>> = frames
+        .iter()
+        .zip(&inertia)
+        .map(|(frame, m)| {
+            let mut bias = m.times(&mut b, &frame.bias);
+            if let [_, _, _, wx, wy, wz] = frame.twist[..] {
+                // the gyroscopic moment ω′ × J′ω′, in the body's frame as the bias is
+                let w = [wx, wy, wz];
+                let jw = m.times(&mut b, &frame.twist)[3..].to_vec();
+                let gyroscopic = b.cross(w, [jw[0], jw[1], jw[2]]);
+                for (c, g) in gyroscopic.into_iter().enumerate() {
+                    bias[3 + c] = b.g.add(bias[3 + c], g);
+                }
+            }
+            bias
+        })
+        .collect();
+    let wrenches_of = |b: &mut Builder, import: &mut dyn FnMut(&mut Builder, Id) -> Id, generalized: &[Id]| -> Vec<Vec<Id>> {
         (0..bias.len())
             .map(|k| {
-                std::array::from_fn(|c| {
-                    let f = import(b, generalized[3 * k + c]);
-                    b.g.sub(f, bias[k][c])
-                })
+                let wrench: Vec<Id> = (0..nt)
+                    .map(|c| {
+                        let f = import(b, generalized[nt * k + c]);
+                        b.g.sub(f, bias[k][c])
+                    })
+                    .collect();
+                kinematics.global_wrench(b, k, wrench)
             })
             .collect()
     };
@@ -118,19 +130,31 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let friction = if friction_body.iter().all(|&f| body.g.is_zero(f)) {
         vec![b.g.num(0.0); nv]
     } else {
-        let wrenches: Vec<[Id; 3]> =
-            (0..model.bodies.len()).map(|k| std::array::from_fn(|c| import(&mut b, friction_body[3 * k + c]))).collect();
+        let wrenches: Vec<Vec<Id>> = (0..model.bodies.len())
+            .map(|k| {
+                let wrench = (0..nt).map(|c| import(&mut b, friction_body[nt * k + c])).collect();
+                kinematics.global_wrench(&mut b, k, wrench)
+            })
+            .collect();
         kinematics.backward(&mut b, wrenches)
     };
     let potential = import(&mut b, potential);
     let switches: Vec<(String, Id)> = switches.into_iter().map(|(name, s)| (name, import(&mut b, s))).collect();
-    let momenta: Vec<[Id; 3]> = frames.iter().zip(&inertia).map(|(frame, m)| m.times(&mut b, frame.twist)).collect();
+    let momenta: Vec<Vec<Id>> = frames
+        .iter()
+        .zip(&inertia)
+        .enumerate()
+        .map(|(k, (frame, m))| {
+            let momentum = m.times(&mut b, &frame.twist);
+            kinematics.global_wrench(&mut b, k, momentum)
+        })
+        .collect();
     let mass_x = kinematics.backward(&mut b, momenta);
 
     // Each element alone (its op counts; the velocities its force reaches, for naming it
     // behind a NaN): the inertia terms and its wrenches through the same pass.
     let base_h = {
-        let zeros = vec![zero_body; 3 * model.bodies.len()];
+        let zeros = vec![zero_body; nt * model.bodies.len()];
         let wrenches = wrenches_of(&mut b, &mut import, &zeros);
         kinematics.backward(&mut b, wrenches)
     };
@@ -141,7 +165,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
             ForceTerms { h: kinematics.backward(&mut b, wrenches), h_q: Vec::new(), h_qd: Vec::new() }
         })
         .collect();
-    let force_velocities = force_velocities.into_iter().map(|(name, reached)| (name, kinematics.reached(&reached))).collect();
+    let force_velocities = force_velocities.into_iter().map(|(name, reached)| (name, kinematics.reached(&reached, nt))).collect();
 
     let power = super::power(&mut b, potential, &h);
 
@@ -202,29 +226,38 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
 
 /// M x, and the dense functions as products with a direction ([`TreeTerms`]).
 fn tree_terms(b: &mut Builder, kinematics: &Kinematics, inertia: &[BodyInertia], mass_x: Vec<Id>, h: &[Id], friction: &[Id]) -> TreeTerms {
-    let nv = kinematics.tree.nq;
+    let nv = kinematics.tree.nv;
     let directions: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
     let (mass_solve, pivots) = kinematics.mass_solve(b, inertia, &directions);
     let (free_accelerations, _) = kinematics.mass_solve(b, inertia, h);
-    let dirs: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
-    // rows differentiated along dir, the coordinates (Var::Q) or the velocities (Var::Qd)
-    let along = |b: &mut Builder, rows: &[Id], moving: fn(u16) -> Var| -> Vec<Id> {
+    // rows differentiated along dir: the coordinates along q̇ = B(q) dir (the tangent; B = I in
+    // the plane), or the velocities along dir
+    let rates = b.coordinate_rates();
+    let to_dir = |v: Var| match v {
+        Var::Qd(i) => Some(directions[i as usize]),
+        _ => None,
+    };
+    let mut memo = HashMap::new();
+    let rates_along: Vec<Id> = rates.iter().map(|&rate| b.g.directional(rate, &to_dir, &mut memo)).collect();
+    let along = |b: &mut Builder, rows: &[Id], coordinates: bool| -> Vec<Id> {
         let seed = |v: Var| match v {
-            Var::Q(i) | Var::Qd(i) if moving(i) == v => Some(dirs[i as usize]),
+            Var::Q(i) if coordinates => Some(rates_along[i as usize]),
+            Var::Qd(i) if !coordinates => Some(directions[i as usize]),
             _ => None,
         };
         let mut memo = HashMap::new();
         rows.iter().map(|&row| b.g.directional(row, &seed, &mut memo)).collect()
     };
     let has_friction = friction.iter().any(|&f| !b.g.is_zero(f));
-    let wrenches: Vec<[Id; 3]> =
-        (0..kinematics.poses.len()).map(|k| std::array::from_fn(|c| b.g.var(Var::Dir((3 * k + c) as u16)))).collect();
+    let nt = kinematics.twist_size();
+    let wrenches: Vec<Vec<Id>> =
+        (0..kinematics.origins.len()).map(|k| (0..nt).map(|c| b.g.var(Var::Dir((nt * k + c) as u16))).collect()).collect();
     TreeTerms {
-        mass_x_dq: along(b, &mass_x, Var::Q),
-        h_dq: along(b, h, Var::Q),
-        h_dv: along(b, h, Var::Qd),
-        friction_dq: if has_friction { along(b, friction, Var::Q) } else { Vec::new() },
-        friction_dv: if has_friction { along(b, friction, Var::Qd) } else { Vec::new() },
+        mass_x_dq: along(b, &mass_x, true),
+        h_dq: along(b, h, true),
+        h_dv: along(b, h, false),
+        friction_dq: if has_friction { along(b, friction, true) } else { Vec::new() },
+        friction_dv: if has_friction { along(b, friction, false) } else { Vec::new() },
         wrench: kinematics.backward(b, wrenches),
         mass_x,
         mass_solve,
@@ -233,16 +266,21 @@ fn tree_terms(b: &mut Builder, kinematics: &Kinematics, inertia: &[BodyInertia],
     }
 }
 
-/// A planar body's mass and moment of inertia about its centre of mass.
+/// A body's mass and its moment of inertia about its centre of mass: J (planar) or the tensor
+/// J′ in its own frame (3×3).
 struct BodyInertia {
     mass: Id,
-    inertia: Id,
+    inertia: Vec<Vec<Id>>,
 }
 
 impl BodyInertia {
-    /// M_b x for a twist-shaped x = (ẋ, ẏ, φ̇): (m ẋ, m ẏ, J φ̇).
-    fn times(&self, b: &mut Builder, x: [Id; 3]) -> [Id; 3] {
-        [b.g.mul(self.mass, x[0]), b.g.mul(self.mass, x[1]), b.g.mul(self.inertia, x[2])]
+    /// M_b x for a twist-shaped x as body coordinates have it, (ṙ, φ̇) or (ṙ, ω′):
+    /// (m ṙ, J φ̇) or (m ṙ, J′ ω′).
+    fn times(&self, b: &mut Builder, x: &[Id]) -> Vec<Id> {
+        let linear = x.len() - self.inertia.len();
+        let mut out: Vec<Id> = x[..linear].iter().map(|&x| b.g.mul(self.mass, x)).collect();
+        out.extend(self.inertia.iter().map(|row| b.dot(row, &x[linear..])));
+        out
     }
 }
 
@@ -251,99 +289,113 @@ fn inertias(b: &mut Builder, model: &Model) -> Vec<BodyInertia> {
         .bodies
         .iter()
         .map(|body| {
-            let Inertia::Planar(j) = &body.inertia else { unreachable!("joint coordinates are planar (refused in space by the model)") };
-            BodyInertia { mass: b.expr(&body.mass), inertia: b.expr(j) }
+            let inertia = match &body.inertia {
+                Inertia::Planar(j) => vec![vec![b.expr(j)]],
+                Inertia::Tensor(t) => t.iter().map(|row| row.iter().map(|e| b.expr(e)).collect()).collect(),
+            };
+            BodyInertia { mass: b.expr(&body.mass), inertia }
         })
         .collect()
 }
 
-/// a · b of two 3-vectors.
-fn dot3(b: &mut Builder, x: [Id; 3], y: [Id; 3]) -> Id {
-    b.dot(&x, &y)
+/// A twist (ṙ, ω) at r_p moved to r_k = r_p + d: (ṙ + ω × d, ω), global components; in the
+/// plane ω × d = ω (−d_y, d_x).
+fn twist_moved(b: &mut Builder, t: &[Id], d: &[Id]) -> Vec<Id> {
+    let mut out = t.to_vec();
+    if let [dx, dy] = d[..] {
+        let (wy, wx) = (b.g.mul(t[2], dy), b.g.mul(t[2], dx));
+        out[0] = b.g.sub(t[0], wy);
+        out[1] = b.g.add(t[1], wx);
+    } else {
+        let swing = b.cross([t[3], t[4], t[5]], [d[0], d[1], d[2]]);
+        for c in 0..3 {
+            out[c] = b.g.add(t[c], swing[c]);
+        }
+    }
+    out
 }
 
-/// A twist at r_p moved to r_k = r_p + d: (ṙ + ω ⊥d, ω).
-fn twist_moved(b: &mut Builder, t: [Id; 3], d: [Id; 2]) -> [Id; 3] {
-    let (wy, wx) = (b.g.mul(t[2], d[1]), b.g.mul(t[2], d[0]));
-    [b.g.sub(t[0], wy), b.g.add(t[1], wx), t[2]]
+/// A wrench (F, N) at r_k moved to r_p = r_k − d: (F, N + d × F), the transpose of
+/// [`twist_moved`].
+fn force_moved(b: &mut Builder, f: &[Id], d: &[Id]) -> Vec<Id> {
+    let mut out = f.to_vec();
+    if let [dx, dy] = d[..] {
+        let (a, c) = (b.g.mul(dx, f[1]), b.g.mul(dy, f[0]));
+        let arm = b.g.sub(a, c);
+        out[2] = b.g.add(f[2], arm);
+    } else {
+        let arm = b.cross([d[0], d[1], d[2]], [f[0], f[1], f[2]]);
+        for c in 0..3 {
+            out[3 + c] = b.g.add(f[3 + c], arm[c]);
+        }
+    }
+    out
 }
 
-/// A wrench at r_k moved to r_p = r_k − d: (F, n + d × F), the transpose of [`twist_moved`].
-fn force_moved(b: &mut Builder, f: [Id; 3], d: [Id; 2]) -> [Id; 3] {
-    let (a, c) = (b.g.mul(d[0], f[1]), b.g.mul(d[1], f[0]));
-    let arm = b.g.sub(a, c);
-    [f[0], f[1], b.g.add(f[2], arm)]
-}
-
-/// A symmetric 3×3 matrix of nodes (a planar inertia at a point): each entry below the diagonal
-/// is the node above it, so each is computed once.
+/// A symmetric matrix of nodes (a body's inertia at a point, 3×3 in the plane, 6×6 in space):
+/// each entry below the diagonal is the node above it, so each is computed once.
 #[derive(Clone)]
-struct Matrix([[Id; 3]; 3]);
+struct Matrix(Vec<Vec<Id>>);
 
 impl Matrix {
-    fn diagonal(b: &mut Builder, d: [Id; 3]) -> Self {
-        let zero = b.g.num(0.0);
-        Matrix(std::array::from_fn(|r| std::array::from_fn(|c| if r == c { d[r] } else { zero })))
-    }
-
-    /// The symmetric matrix of the entries `upper(r, c)` gives for r ≤ c.
-    fn symmetric(b: &mut Builder, mut upper: impl FnMut(&mut Builder, usize, usize) -> Id) -> Self {
-        let mut m = [[0; 3]; 3];
-        for (r, c) in [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)] {
-            m[r][c] = upper(b, r, c);
-            m[c][r] = m[r][c];
+    /// The symmetric n×n matrix of the entries `upper(r, c)` gives for r ≤ c.
+    fn symmetric(b: &mut Builder, n: usize, mut upper: impl FnMut(&mut Builder, usize, usize) -> Id) -> Self {
+        let mut m = vec![vec![0; n]; n];
+        for r in 0..n {
+            for c in r..n {
+                m[r][c] = upper(b, r, c);
+                m[c][r] = m[r][c];
+            }
         }
         Matrix(m)
     }
 
-    fn times(&self, b: &mut Builder, x: [Id; 3]) -> [Id; 3] {
-        std::array::from_fn(|r| b.dot(&self.0[r], &x))
+    fn times(&self, b: &mut Builder, x: &[Id]) -> Vec<Id> {
+        self.0.iter().map(|row| b.dot(row, x)).collect()
     }
 
     fn add(&mut self, b: &mut Builder, other: &Matrix) {
-        let (this, other) = (self.0, other.0);
-        *self = Matrix::symmetric(b, |b, r, c| b.g.add(this[r][c], other[r][c]));
+        let this = std::mem::take(&mut self.0);
+        *self = Matrix::symmetric(b, this.len(), |b, r, c| b.g.add(this[r][c], other.0[r][c]));
     }
 
     /// self −= w wᵀ / d.
-    fn subtract_outer(&mut self, b: &mut Builder, w: [Id; 3], d: Id) {
+    fn subtract_outer(&mut self, b: &mut Builder, w: &[Id], d: Id) {
         let one = b.g.num(1.0);
         let inverse = b.g.div(one, d);
-        let scaled = w.map(|x| b.g.mul(x, inverse));
-        let this = self.0;
-        *self = Matrix::symmetric(b, |b, r, c| {
+        let scaled: Vec<Id> = w.iter().map(|&x| b.g.mul(x, inverse)).collect();
+        let this = std::mem::take(&mut self.0);
+        *self = Matrix::symmetric(b, this.len(), |b, r, c| {
             let t = b.g.mul(w[r], scaled[c]);
             b.g.sub(this[r][c], t)
         });
     }
 
-    /// Xᵀ I X for the twist transform X from r_p to r_p + d (what the inertia at r_p + d is
-    /// at r_p): with X = [[1, 0, −d_y], [0, 1, d_x], [0, 0, 1]], the first two rows and columns
-    /// keep theirs, and the third is moved: e = I (−d_y, d_x, 1)ᵀ, R_a2 = e_a (a < 2),
-    /// R_22 = (−d_y, d_x, 1) · e.
-    fn transformed(&self, b: &mut Builder, d: [Id; 2]) -> Matrix {
-        let minus_dy = b.g.neg(d[1]);
-        let arm = [minus_dy, d[0], b.g.num(1.0)];
-        let e = self.times(b, arm);
-        let last = b.dot(&arm, &e);
-        let i = self.0;
-        Matrix::symmetric(b, |_, r, c| match (r, c) {
-            (2, 2) => last,
-            (r, 2) => e[r],
-            (r, c) => i[r][c],
-        })
+    /// Xᵀ I X for the twist transform X from r_p to r_p + d ([`twist_moved`]): what the inertia
+    /// at r_p + d is at r_p. Column c of X is the unit twist e_c moved; the constant entries of
+    /// X fold, so the rows and columns of the linear velocities keep their entries.
+    fn transformed(&self, b: &mut Builder, d: &[Id]) -> Matrix {
+        let n = self.0.len();
+        let columns: Vec<Vec<Id>> = (0..n)
+            .map(|c| {
+                let unit: Vec<Id> = (0..n).map(|r| b.g.num(if r == c { 1.0 } else { 0.0 })).collect();
+                twist_moved(b, &unit, d)
+            })
+            .collect();
+        let moved: Vec<Vec<Id>> = columns.iter().map(|x| self.times(b, x)).collect();
+        Matrix::symmetric(b, n, |b, r, c| b.dot(&columns[r], &moved[c]))
     }
 }
 
 /// What the articulated-body recursion's forward pass reads of a link: U = I^A S by columns,
 /// D's factors and u.
 struct Articulated {
-    u_columns: Vec<[Id; 3]>,
+    u_columns: Vec<Vec<Id>>,
     ldl: Ldl,
     u: Vec<Id>,
 }
 
-/// The LDLᵀ factors of a link's D = Sᵀ I^A S (1×1, or 3×3 for a free body), as nodes.
+/// The LDLᵀ factors of a link's D = Sᵀ I^A S (its velocities square), as nodes.
 struct Ldl {
     /// Strictly lower L by rows.
     lower: Vec<Vec<Id>>,
@@ -376,16 +428,16 @@ impl Ldl {
         Ldl { lower, pivots }
     }
 
-    /// L⁻¹ applied to each of n rows of 3-vectors (Uᵀ's rows: U's columns).
-    fn forward(&self, b: &mut Builder, rows: &[[Id; 3]]) -> Vec<[Id; 3]> {
-        let mut out: Vec<[Id; 3]> = Vec::with_capacity(rows.len());
+    /// L⁻¹ applied to each of the rows (Uᵀ's rows: U's columns).
+    fn forward(&self, b: &mut Builder, rows: &[Vec<Id>]) -> Vec<Vec<Id>> {
+        let mut out: Vec<Vec<Id>> = Vec::with_capacity(rows.len());
         for (i, row) in rows.iter().enumerate() {
-            let mut r = *row;
+            let mut r = row.clone();
             for (k, &l) in self.lower[i].iter().enumerate() {
-                r = std::array::from_fn(|c| {
+                for (c, x) in r.iter_mut().enumerate() {
                     let t = b.g.mul(l, out[k][c]);
-                    b.g.sub(r[c], t)
-                });
+                    *x = b.g.sub(*x, t);
+                }
             }
             out.push(r);
         }
@@ -418,110 +470,168 @@ impl Ldl {
     }
 }
 
+/// The tree's kinematics the passes read: each body's origin (its centre of mass), its rotation
+/// in space, and its link's screws.
+struct Kinematics<'t> {
+    tree: &'t Tree,
+    origins: Vec<Vec<Id>>,
+    rotations: Vec<Option<[[Id; 3]; 3]>>,
+    /// ∂(ṙ_k, ω_k)/∂v_i (global; (ẋ, ẏ, φ̇) in the plane) for each velocity i of body k's link.
+    screws: Vec<Vec<Vec<Id>>>,
+}
+
 impl<'t> Kinematics<'t> {
     fn of(b: &mut Builder, tree: &'t Tree, frames: &[FrameNodes]) -> Self {
-        let poses: Vec<[Id; 3]> = frames.iter().map(|f| f.pose).collect();
-        // A link's screw: its body's pose differentiated by the link's own coordinates (the
-        // body's twist per unit rate of each).
+        let spatial = b.model.space == crate::model::Space::Spatial;
+        let lin = if spatial { 3 } else { 2 };
+        let origins = frames.iter().map(|f| f.pose[..lin].to_vec()).collect();
+        let rotations = (0..frames.len()).map(|k| spatial.then(|| b.rotation(BodyRef::Body(k)))).collect();
+        // A link's screw: its body's global twist per unit rate of each of its velocities.
         let screws = tree
             .links
             .iter()
             .enumerate()
-            .map(|(k, link)| (link.first..link.first + link.count).map(|i| poses[k].map(|x| b.g.partial(x, Var::Q(i as u16)))).collect())
+            .map(|(k, link)| {
+                let global = b.global_twist(k).to_vec();
+                (link.first_v..link.first_v + link.count_v).map(|i| global.iter().map(|&x| b.g.partial(x, Var::Qd(i as u16))).collect()).collect()
+            })
             .collect();
-        Kinematics { tree, poses, screws }
+        Kinematics { tree, origins, rotations, screws }
     }
 
-    /// g = Σ_b J_bᵀ w_b for the bodies' wrenches w_b = (F_x, F_y, n): the moments of each
-    /// subtree's wrenches about its root, summed from the tips, projected on each link's screws.
-    fn backward(&self, b: &mut Builder, mut total: Vec<[Id; 3]>) -> Vec<Id> {
+    /// Entries of a twist: 3 in the plane, 6 in space.
+    fn twist_size(&self) -> usize {
+        if self.rotations.first().is_some_and(Option::is_some) {
+            6
+        } else {
+            3
+        }
+    }
+
+    /// A body wrench as body coordinates have it (F global, n′ in the body's frame in space)
+    /// in global components (F, A n′).
+    fn global_wrench(&self, b: &mut Builder, k: usize, mut w: Vec<Id>) -> Vec<Id> {
+        if let Some(a) = &self.rotations[k] {
+            let n = [w[3], w[4], w[5]];
+            for r in 0..3 {
+                w[3 + r] = b.dot(&a[r], &n);
+            }
+        }
+        w
+    }
+
+    /// g = Σ_b J_bᵀ w_b for the bodies' wrenches w_b = (F, N) at their centres of mass, global:
+    /// the wrench of each subtree about its root, summed from the tips, projected on each
+    /// link's screws.
+    fn backward(&self, b: &mut Builder, mut total: Vec<Vec<Id>>) -> Vec<Id> {
         let zero = b.g.num(0.0);
-        let mut g = vec![zero; self.tree.nq];
+        let mut g = vec![zero; self.tree.nv];
         for &k in self.tree.order.iter().rev() {
             let link = &self.tree.links[k];
-            let [fx, fy, n] = total[k];
             for (i, s) in self.screws[k].iter().enumerate() {
-                let terms = [b.g.mul(s[0], fx), b.g.mul(s[1], fy), b.g.mul(s[2], n)];
-                let xy = b.g.add(terms[0], terms[1]);
-                g[link.first + i] = b.g.add(xy, terms[2]);
+                g[link.first_v + i] = b.dot(s, &total[k]);
             }
             if let BodyRef::Body(p) = link.parent {
                 // N_p += N_k + (r_k − r_p) × F_k
-                let dx = b.g.sub(self.poses[k][0], self.poses[p][0]);
-                let dy = b.g.sub(self.poses[k][1], self.poses[p][1]);
-                let (a, c) = (b.g.mul(dx, fy), b.g.mul(dy, fx));
-                let arm = b.g.sub(a, c);
-                let moment = b.g.add(n, arm);
-                total[p] = [b.g.add(total[p][0], fx), b.g.add(total[p][1], fy), b.g.add(total[p][2], moment)];
+                let d = self.offset(b, k, p);
+                let moved = force_moved(b, &total[k], &d);
+                total[p] = total[p].iter().zip(&moved).map(|(&x, &y)| b.g.add(x, y)).collect();
             }
         }
         g
     }
 
-    /// x = M⁻¹ τ by the articulated-body algorithm (Featherstone; planar, each body's
-    /// twist and wrench at its centre of mass in global axes), O(N) operations, and its pivots
-    /// (the diagonal of each link's D = Sᵀ I^A S in LDLᵀ form: all positive where M is).
+    /// A body's inertia at its centre of mass in global components: diag(m, m, J), or
+    /// [[m I, 0], [0, A J′ Aᵀ]].
+    fn global_inertia(&self, b: &mut Builder, k: usize, m: &BodyInertia) -> Matrix {
+        let zero = b.g.num(0.0);
+        let Some(a) = &self.rotations[k] else {
+            let d = [m.mass, m.mass, m.inertia[0][0]];
+            return Matrix::symmetric(b, 3, |_, r, c| if r == c { d[r] } else { zero });
+        };
+        let aj: Vec<Vec<Id>> = (0..3).map(|r| (0..3).map(|c| b.dot(&a[r], &[m.inertia[0][c], m.inertia[1][c], m.inertia[2][c]])).collect()).collect();
+        Matrix::symmetric(b, 6, |b, r, c| match (r, c) {
+            (r, c) if r < 3 && c < 3 => {
+                if r == c {
+                    m.mass
+                } else {
+                    zero
+                }
+            }
+            (r, c) if r < 3 || c < 3 => zero,
+            (r, c) => b.dot(&aj[r - 3], &a[c - 3]),
+        })
+    }
+
+    /// x = M⁻¹ τ by the articulated-body algorithm (Featherstone; each body's twist and wrench
+    /// at its centre of mass in global components), O(N) operations, and its pivots (the
+    /// diagonal of each link's D = Sᵀ I^A S in LDLᵀ form: all positive where M is).
     ///
     /// Tips first: I^A_k = M_k + Σ_c X_cᵀ I^a_c X_c and p_k = Σ_c X_cᵀ p^a_c over k's children
-    /// c, X_c the twist transform from r_k to r_c; then for k's link with screws S (3 × n),
+    /// c, X_c the twist transform from r_k to r_c; then for k's link with screws S,
     /// U = I^A S, D = Sᵀ U, u = τ_k − Sᵀ p_k, I^a = I^A − U D⁻¹ Uᵀ, p^a = p_k + U D⁻¹ u.
     /// Root first: a′ = X a_parent (a = 0 at ground), x_k = D⁻¹(u − Uᵀ a′), a_k = a′ + S x_k.
     fn mass_solve(&self, b: &mut Builder, inertia: &[BodyInertia], tau: &[Id]) -> (Vec<Id>, Vec<(usize, Id)>) {
         let tree = self.tree;
         let zero = b.g.num(0.0);
-        let mut articulated: Vec<Matrix> = inertia.iter().map(|m| Matrix::diagonal(b, [m.mass, m.mass, m.inertia])).collect();
-        let mut bias: Vec<[Id; 3]> = vec![[zero; 3]; inertia.len()];
+        let n = self.twist_size();
+        let mut articulated: Vec<Matrix> = inertia.iter().enumerate().map(|(k, m)| self.global_inertia(b, k, m)).collect();
+        let mut bias: Vec<Vec<Id>> = vec![vec![zero; n]; inertia.len()];
         let mut links: Vec<Option<Articulated>> = (0..inertia.len()).map(|_| None).collect();
         let mut pivots = Vec::new();
         for &k in tree.order.iter().rev() {
             let link = &tree.links[k];
             let screws = &self.screws[k];
-            let (mut child_inertia, mut child_bias) = (articulated[k].clone(), bias[k]);
+            let (mut child_inertia, mut child_bias) = (articulated[k].clone(), bias[k].clone());
             if !screws.is_empty() {
-                let u_columns: Vec<[Id; 3]> = screws.iter().map(|s| articulated[k].times(b, *s)).collect();
-                let d: Vec<Vec<Id>> = screws.iter().map(|s| u_columns.iter().map(|u| dot3(b, *s, *u)).collect()).collect();
+                let u_columns: Vec<Vec<Id>> = screws.iter().map(|s| articulated[k].times(b, s)).collect();
+                let d: Vec<Vec<Id>> = screws.iter().map(|s| u_columns.iter().map(|u| b.dot(s, u)).collect()).collect();
                 let ldl = Ldl::new(b, d);
-                pivots.extend(ldl.pivots.iter().map(|&p| (link.first, p)));
+                pivots.extend(ldl.pivots.iter().map(|&p| (link.first_v, p)));
                 let u: Vec<Id> = screws
                     .iter()
                     .enumerate()
                     .map(|(i, s)| {
-                        let sp = dot3(b, *s, bias[k]);
-                        b.g.sub(tau[link.first + i], sp)
+                        let sp = b.dot(s, &bias[k]);
+                        b.g.sub(tau[link.first_v + i], sp)
                     })
                     .collect();
                 // I^a = I^A − U D⁻¹ Uᵀ = I^A − Σ_j w_j w_jᵀ / d_j with W = L⁻¹ Uᵀ.
                 let w = ldl.forward(b, &u_columns);
                 for (wj, &dj) in w.iter().zip(&ldl.pivots) {
-                    child_inertia.subtract_outer(b, *wj, dj);
+                    child_inertia.subtract_outer(b, wj, dj);
                 }
                 // p^a = p + U D⁻¹ u
                 let x = ldl.solve(b, &u);
                 for (column, &xj) in u_columns.iter().zip(&x) {
-                    child_bias = std::array::from_fn(|r| {
-                        let t = b.g.mul(column[r], xj);
-                        b.g.add(child_bias[r], t)
-                    });
+                    child_bias = child_bias
+                        .iter()
+                        .zip(column)
+                        .map(|(&p, &c)| {
+                            let t = b.g.mul(c, xj);
+                            b.g.add(p, t)
+                        })
+                        .collect();
                 }
                 links[k] = Some(Articulated { u_columns, ldl, u });
             }
             if let BodyRef::Body(p) = link.parent {
                 let d = self.offset(b, k, p);
-                let moved = child_inertia.transformed(b, d);
+                let moved = child_inertia.transformed(b, &d);
                 articulated[p].add(b, &moved);
-                let f = force_moved(b, child_bias, d);
-                bias[p] = std::array::from_fn(|r| b.g.add(bias[p][r], f[r]));
+                let f = force_moved(b, &child_bias, &d);
+                bias[p] = bias[p].iter().zip(&f).map(|(&x, &y)| b.g.add(x, y)).collect();
             }
         }
-        let mut x = vec![zero; tree.nq];
-        let mut acceleration: Vec<[Id; 3]> = vec![[zero; 3]; inertia.len()];
+        let mut x = vec![zero; tree.nv];
+        let mut acceleration: Vec<Vec<Id>> = vec![vec![zero; n]; inertia.len()];
         for &k in &tree.order {
             let link = &tree.links[k];
             let mut a = match link.parent {
-                BodyRef::Ground => [zero; 3],
+                BodyRef::Ground => vec![zero; n],
                 BodyRef::Body(p) => {
                     let d = self.offset(b, k, p);
-                    twist_moved(b, acceleration[p], d)
+                    twist_moved(b, &acceleration[p], &d)
                 }
             };
             if let Some(Articulated { u_columns, ldl, u }) = &links[k] {
@@ -529,17 +639,21 @@ impl<'t> Kinematics<'t> {
                     .iter()
                     .zip(u)
                     .map(|(column, &ui)| {
-                        let ua = dot3(b, *column, a);
+                        let ua = b.dot(column, &a);
                         b.g.sub(ui, ua)
                     })
                     .collect();
                 let xs = ldl.solve(b, &rhs);
                 for (i, (&xi, s)) in xs.iter().zip(&self.screws[k]).enumerate() {
-                    x[link.first + i] = xi;
-                    a = std::array::from_fn(|r| {
-                        let t = b.g.mul(s[r], xi);
-                        b.g.add(a[r], t)
-                    });
+                    x[link.first_v + i] = xi;
+                    a = a
+                        .iter()
+                        .zip(s)
+                        .map(|(&ar, &sr)| {
+                            let t = b.g.mul(sr, xi);
+                            b.g.add(ar, t)
+                        })
+                        .collect();
                 }
             }
             acceleration[k] = a;
@@ -548,19 +662,19 @@ impl<'t> Kinematics<'t> {
     }
 
     /// r_k − r_p.
-    fn offset(&self, b: &mut Builder, k: usize, p: usize) -> [Id; 2] {
-        [b.g.sub(self.poses[k][0], self.poses[p][0]), b.g.sub(self.poses[k][1], self.poses[p][1])]
+    fn offset(&self, b: &mut Builder, k: usize, p: usize) -> Vec<Id> {
+        self.origins[k].iter().zip(&self.origins[p]).map(|(&x, &y)| b.g.sub(x, y)).collect()
     }
 
-    /// The joint coordinates a wrench on the given body-level velocities (3k + c) reaches: those
-    /// of every link from each such body down to ground.
-    fn reached(&self, body_velocities: &[usize]) -> Vec<usize> {
+    /// The joint velocities a wrench on the given body-level velocities (nt k + c) reaches:
+    /// those of every link from each such body down to ground.
+    fn reached(&self, body_velocities: &[usize], nt: usize) -> Vec<usize> {
         let mut out = BTreeSet::new();
-        for k in body_velocities.iter().map(|&i| i / 3).collect::<BTreeSet<_>>() {
+        for k in body_velocities.iter().map(|&i| i / nt).collect::<BTreeSet<_>>() {
             let mut at = BodyRef::Body(k);
             while let BodyRef::Body(j) = at {
                 let link = &self.tree.links[j];
-                out.extend(link.first..link.first + link.count);
+                out.extend(link.first_v..link.first_v + link.count_v);
                 at = link.parent;
             }
         }

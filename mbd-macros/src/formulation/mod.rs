@@ -123,12 +123,12 @@ pub struct Formulation {
     pub tree: Option<TreeTerms>,
 }
 
-/// A planar body's frame in joint coordinates: its pose (x, y, φ), its twist J_b v
-/// (ẋ, ẏ, φ̇, linear in v) and the twist's rate at constant v (J̇_b v).
+/// A body's frame in joint coordinates: its pose (x, y, φ; or r, p), its twist J_b v (ẋ, ẏ, φ̇;
+/// or ṙ, ω′ in its own frame; linear in v) and the twist's rate at constant v (J̇_b v).
 pub struct FrameNodes {
-    pub pose: [Id; 3],
-    pub twist: [Id; 3],
-    pub bias: [Id; 3],
+    pub pose: Vec<Id>,
+    pub twist: Vec<Id>,
+    pub bias: Vec<Id>,
 }
 
 impl Formulation {
@@ -225,7 +225,7 @@ fn power(b: &mut Builder, potential: Id, h: &[Id]) -> Id {
 
 /// Each body's frame as functions of q and v ([`FrameNodes`]).
 fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
-    use crate::model::{BodyRef, Coord, Vel};
+    use crate::model::BodyRef;
     let rates = b.coordinate_rates();
     let seed = |v: Var| match v {
         Var::Q(i) => Some(rates[i as usize]),
@@ -235,9 +235,9 @@ fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
     (0..b.model.bodies.len())
         .map(|k| {
             let body = BodyRef::Body(k);
-            let pose = [Coord::X, Coord::Y, Coord::Phi].map(|c| b.coord(body, c));
-            let twist = [Vel::Vx, Vel::Vy, Vel::Omega].map(|c| b.velocity(body, c));
-            let bias = twist.map(|x| b.g.directional(x, &seed, &mut memo));
+            let pose: Vec<Id> = b.model.space.coordinates().iter().map(|&c| b.coord(body, c)).collect();
+            let twist: Vec<Id> = b.model.space.velocities().iter().map(|&c| b.velocity(body, c)).collect();
+            let bias = twist.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
             FrameNodes { pose, twist, bias }
         })
         .collect()
@@ -614,7 +614,7 @@ fn tangent(b: &mut Builder, rows: &[Id]) -> Vec<(usize, usize, Id)> {
         Coordinates::PlanarBody | Coordinates::PlanarJoint => {
             sparse_derivative(&mut b.g, rows, |v| if let Var::Q(i) = v { Some(i) } else { None }, Var::Q)
         }
-        Coordinates::SpatialBody => {
+        Coordinates::SpatialBody | Coordinates::SpatialJoint => {
             rows.iter().enumerate().flat_map(|(r, &row)| b.gradient(row).into_iter().map(move |(c, d)| (r, c, d))).collect::<Vec<_>>()
         }
     }

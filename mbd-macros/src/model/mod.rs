@@ -286,6 +286,9 @@ impl Model {
     }
     /// Velocity names, `"crank.omega"`, `"top.wz"`.
     pub fn velocity_names(&self) -> Vec<String> {
+        if let Some(tree) = &self.tree {
+            return tree.velocity_names(self).into_iter().map(|(name, _, _)| name).collect();
+        }
         let vs = self.space.velocities();
         self.bodies.iter().flat_map(|b| vs.iter().map(move |c| format!("{}.{}", b.name, c.name()))).collect()
     }
@@ -411,7 +414,7 @@ impl MechanismDef {
                 space = Space::Spatial;
             }
         }
-        let joint_coordinates = self.joint_coordinates(space, errors);
+        let joint_coordinates = self.joint_coordinates(errors);
         let f32 = self.items.iter().any(|i| matches!(i, Item::Scalar(s) if s == "f32"));
         let mut r = Resolver {
             errors,
@@ -469,7 +472,7 @@ impl MechanismDef {
         if !ok {
             return None;
         }
-        let tree = joint_coordinates.then(|| spanning_tree(model_bodies.len(), &constraints));
+        let tree = joint_coordinates.then(|| spanning_tree(model_bodies.len(), &constraints, space));
         if let Some(tree) = &tree {
             // Coulomb friction reads its joint's normal load from λ: a tree joint has none.
             let kw = self.items.iter().find_map(|i| if let Item::JointCoordinates(kw) = i { Some(kw.span()) } else { None });
@@ -508,32 +511,26 @@ impl MechanismDef {
         })
     }
 
-    /// Whether `joint_coordinates;` is stated (once, and in the plane).
-    fn joint_coordinates(&self, space: Space, errors: &mut Errors) -> bool {
+    /// Whether `joint_coordinates;` is stated (once).
+    fn joint_coordinates(&self, errors: &mut Errors) -> bool {
         let mut stated = false;
         for item in &self.items {
             if let Item::JointCoordinates(kw) = item {
                 if stated {
                     errors.push(kw.span(), "`joint_coordinates;` is stated twice: expected it once, found it again");
-                } else if space == Space::Spatial {
-                    errors.push(
-                        kw.span(),
-                        "joint coordinates are planar only so far (spatial trees are not implemented yet): expected \
-                         `joint_coordinates;` without `spatial;`, found both",
-                    );
                 }
                 stated = true;
             }
         }
-        stated && space == Space::Planar
+        stated
     }
 }
 
 /// The spanning tree of the joints that have a relative-coordinate form (`crate::tree`).
-fn spanning_tree(bodies: usize, constraints: &[Constraint]) -> crate::tree::Tree {
+fn spanning_tree(bodies: usize, constraints: &[Constraint], space: Space) -> crate::tree::Tree {
     let candidates: Vec<crate::tree::Candidate> =
-        constraints.iter().enumerate().filter_map(|(index, c)| c.kind.relative().map(|r| (index, r.bodies(), r.coordinates()))).collect();
-    crate::tree::plan(bodies, &candidates)
+        constraints.iter().enumerate().filter_map(|(index, c)| c.kind.relative().map(|r| (index, r.bodies(), r.counts()))).collect();
+    crate::tree::plan(bodies, &candidates, space)
 }
 
 #[cfg(test)]

@@ -104,7 +104,7 @@ impl Gen<'_> {
     /// component.
     fn motion_size(&self) -> TokenStream {
         let Gen { f, e, real, zero, nq_l, nv_l, .. } = self;
-        let twists: Vec<Id> = f.frames.iter().flat_map(|frame| frame.twist).collect();
+        let twists: Vec<Id> = f.frames.iter().flat_map(|frame| frame.twist.iter().copied()).collect();
         let (body, _) = e.body(&vector_outputs("twists", &twists));
         let n = usize_lit(twists.len());
         quote! {

@@ -1,168 +1,31 @@
-//! The spanning tree of a mechanism in joint coordinates (`joint_coordinates;`; Nikravesh ch. 9,
-//! Wallrapp 2.6.2): which joints carry the bodies from ground by their relative coordinates,
-//! and which are cut and stay as rows of Φ (loop closures).
-//!
-//! The joint graph has ground and the bodies as nodes and each joint with a relative-coordinate
-//! form (`elements::Relative`: revolute, translational, rigid) as an edge. The tree keeps the
-//! joints that cut the fewest rows: a maximum-weight spanning forest by Kruskal's rule, each
-//! joint weighted by the rows it would have (3 − its coordinates), ties kept in declaration
-//! order — so of equals the later-declared joint is cut. Every other joint, driver and user
-//! constraint keeps its rows. A body with no path to ground floats on a free joint (x, y, φ of
-//! the first-declared body of its group, relative to ground). Coordinates are numbered body by
-//! body in declaration order: body k's link owns q[first..first + count].
+//! Planar trees: each body's pose (x, y, φ) along the tree, and the initial joint coordinates.
 
-use std::collections::{BTreeSet, VecDeque};
+use std::collections::HashMap;
 
+use super::{Tree, TreeFrame};
 use crate::elements::Relative;
 use crate::frames::Builder;
 use crate::model::{BodyRef, MExpr};
 use crate::sym::{Func, Id, Var};
 
-/// How one body hangs from its parent.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Link {
-    pub parent: BodyRef,
-    /// The joint (index into `Model::constraints`) that carries it; `None`: a free joint.
-    pub joint: Option<usize>,
-    /// Whether the body is its joint's first (i) side, so the parent is the second (j).
-    pub reversed: bool,
-    /// Its coordinates are q[first..first + count].
-    pub first: usize,
-    pub count: usize,
-}
-
-/// The spanning tree.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Tree {
-    /// One link per moving body, in declaration order.
-    pub links: Vec<Link>,
-    /// The bodies, each after its parent.
-    pub order: Vec<usize>,
-    /// The joints the tree carries (their rows are not in Φ).
-    pub joints: BTreeSet<usize>,
-    /// The number of coordinates (= velocities: v = q̇ in the plane).
-    pub nq: usize,
-}
-
-/// A joint the tree may carry: its index into `Model::constraints`, its bodies (i, j) and its
-/// number of coordinates.
-pub type Candidate = (usize, [BodyRef; 2], usize);
-
-/// Coordinates of a free planar body: x, y, φ.
-const FREE: usize = 3;
-
-/// The tree of `bodies` moving bodies over the candidate joints.
-pub fn plan(bodies: usize, candidates: &[Candidate]) -> Tree {
-    let node = |b: BodyRef| match b {
-        BodyRef::Ground => 0,
-        BodyRef::Body(k) => k + 1,
+/// Each body's frame: its pose ([`poses`]) and its twist, the pose's rate along v = q̇ (global
+/// components either way in the plane).
+pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
+    let poses = poses(b, tree);
+    let rates: Vec<Id> = (0..tree.nq).map(|i| b.g.var(Var::Qd(i as u16))).collect();
+    let seed = |v: Var| match v {
+        Var::Q(i) => Some(rates[i as usize]),
+        _ => None,
     };
-    // Kruskal: the joints with the most rows first, ties in declaration order.
-    let mut by_weight: Vec<&Candidate> = candidates.iter().filter(|(_, [i, j], _)| i != j).collect();
-    by_weight.sort_by_key(|&&(index, _, coordinates)| (coordinates, index));
-    let mut root: Vec<usize> = (0..=bodies).collect();
-    fn find(root: &mut [usize], mut x: usize) -> usize {
-        while root[x] != x {
-            root[x] = root[root[x]];
-            x = root[x];
-        }
-        x
-    }
-    let mut kept: Vec<&Candidate> = Vec::new();
-    for &candidate in &by_weight {
-        let [i, j] = candidate.1;
-        let (a, b) = (find(&mut root, node(i)), find(&mut root, node(j)));
-        if a != b {
-            root[a] = b;
-            kept.push(candidate);
-        }
-    }
-    // Orient from ground, then from the first-declared body of each floating group.
-    let mut links: Vec<Option<Link>> = vec![None; bodies];
-    let mut order = Vec::with_capacity(bodies);
-    let mut queue = VecDeque::new();
-    let mut reached = vec![false; bodies + 1];
-    reached[0] = true;
-    queue.push_back(BodyRef::Ground);
-    let mut next_free = 0;
-    loop {
-        while let Some(parent) = queue.pop_front() {
-            for &&(index, [i, j], count) in &kept {
-                let (child, reversed) = if i == parent {
-                    (j, false)
-                } else if j == parent {
-                    (i, true)
-                } else {
-                    continue;
-                };
-                let BodyRef::Body(k) = child else { continue };
-                if reached[k + 1] {
-                    continue;
-                }
-                reached[k + 1] = true;
-                links[k] = Some(Link { parent, joint: Some(index), reversed, first: 0, count });
-                order.push(k);
-                queue.push_back(child);
-            }
-        }
-        while next_free < bodies && reached[next_free + 1] {
-            next_free += 1;
-        }
-        if next_free == bodies {
-            break;
-        }
-        let k = next_free;
-        reached[k + 1] = true;
-        links[k] = Some(Link { parent: BodyRef::Ground, joint: None, reversed: false, first: 0, count: FREE });
-        order.push(k);
-        queue.push_back(BodyRef::Body(k));
-    }
-    let mut nq = 0;
-    let links: Vec<Link> = links
+    let mut memo = HashMap::new();
+    poses
         .into_iter()
-        .map(|link| {
-            let mut link = link.expect("every body is reached: from ground or as the root of its group");
-            link.first = nq;
-            nq += link.count;
-            link
+        .map(|pose| {
+            let twist: Vec<Id> = pose.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
+            TreeFrame { pose: pose.to_vec(), global: twist.clone(), twist }
         })
-        .collect();
-    let joints = kept.iter().map(|&&(index, _, _)| index).collect();
-    Tree { links, order, joints, nq }
+        .collect()
 }
-
-impl Tree {
-    /// Each coordinate's name and whether it is an angle (else a length): a revolute joint's
-    /// `"pin.angle"`, a translational joint's `"slide.stroke"`, a floating body's `"float.x"`,
-    /// `"float.y"`, `"float.phi"`.
-    pub fn coordinate_names(&self, model: &crate::model::Model) -> Vec<(String, bool)> {
-        let mut names = Vec::with_capacity(self.nq);
-        for (k, link) in self.links.iter().enumerate() {
-            match link.joint {
-                None => {
-                    let body = &model.bodies[k].name;
-                    names.extend([("x", false), ("y", false), ("phi", true)].map(|(c, angle)| (format!("{body}.{c}"), angle)));
-                }
-                Some(index) => {
-                    let joint = &model.constraints[index];
-                    match joint.kind.relative() {
-                        Some(Relative::Revolute { .. }) => names.push((format!("{}.angle", joint.name), true)),
-                        Some(Relative::Translational { .. }) => names.push((format!("{}.stroke", joint.name), false)),
-                        Some(Relative::Rigid { .. }) | None => {}
-                    }
-                }
-            }
-        }
-        names
-    }
-
-    /// The body whose link owns coordinate `i`.
-    pub fn body_of_coordinate(&self, i: usize) -> usize {
-        self.links.iter().position(|l| (l.first..l.first + l.count).contains(&i)).unwrap_or(0)
-    }
-}
-
-// --- the bodies' poses along the tree ---------------------------------------------------------
 
 /// A planar pose (x, y, φ).
 type Pose = [Id; 3];
@@ -178,7 +41,7 @@ type Pose = [Id; 3];
 ///
 /// and the same relations solved for body i where the parent is j. A free body's pose is its
 /// coordinates.
-pub fn poses(b: &mut Builder, tree: &Tree) -> Vec<[Id; 3]> {
+fn poses(b: &mut Builder, tree: &Tree) -> Vec<[Id; 3]> {
     let model = b.model;
     let mut poses: Vec<Option<Pose>> = vec![None; tree.links.len()];
     let zero = b.g.num(0.0);
@@ -221,6 +84,7 @@ fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose,
             let offset = axis_offset(b, [i.body, j.body], [axis_i, axis_j]);
             (if reversed { pj } else { pi }, if reversed { pi } else { pj }, offset)
         }
+        Relative::Spatial { .. } => unreachable!("a planar tree has planar joints"),
     };
     // φ_child = φ_parent ± turn; r_child = r_parent + A_parent s′_parent − A_child s′_child
     let signed_turn = b.g.mul(sign_p, turn);
@@ -301,7 +165,7 @@ pub fn initial(b: &mut Builder, tree: &Tree) -> (Vec<Id>, Vec<Id>) {
             continue;
         };
         match model.constraints[index].kind.relative().expect("a tree joint has a relative form") {
-            Relative::Rigid { .. } => {}
+            Relative::Rigid { .. } | Relative::Spatial { .. } => {}
             Relative::Revolute { i, j } => {
                 let ((pi, wi), (pj, wj)) = (start(b, i.body), start(b, j.body));
                 q0.push(b.g.sub(pj[2], pi[2]));
@@ -365,47 +229,3 @@ fn rotate(b: &mut Builder, phi: Id, v: [Id; 2]) -> [Id; 2] {
     [b.g.sub(cx, sy), b.g.add(sx, cy)]
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const G: BodyRef = BodyRef::Ground;
-    fn b(k: usize) -> BodyRef {
-        BodyRef::Body(k)
-    }
-
-    /// An open chain declared from its tip: the links point back to ground, each body after its
-    /// parent, coordinates by body.
-    #[test]
-    fn chain_from_ground() {
-        let tree = plan(3, &[(0, [b(1), b(2)], 1), (1, [b(0), b(1)], 1), (2, [G, b(0)], 1)]);
-        let parents: Vec<(BodyRef, Option<usize>, bool)> = tree.links.iter().map(|l| (l.parent, l.joint, l.reversed)).collect();
-        assert_eq!(parents, [(G, Some(2), false), (b(0), Some(1), false), (b(1), Some(0), false)]);
-        assert_eq!(tree.order, [0, 1, 2]);
-        assert_eq!((tree.nq, tree.joints.len()), (3, 3));
-        // a joint declared child ~ parent is reversed
-        let tree = plan(1, &[(0, [b(0), G], 1)]);
-        assert_eq!((tree.links[0].parent, tree.links[0].reversed), (G, true));
-    }
-
-    /// The slider-crank's loop (crank, rod, slider; four joints of two rows): the last-declared
-    /// of equals is cut; a rigid joint (three rows) is kept over a revolute one.
-    #[test]
-    fn loop_cuts_the_later_joint_of_equals() {
-        let joints = [(0, [G, b(0)], 1), (1, [b(0), b(1)], 1), (2, [b(1), b(2)], 1), (3, [G, b(2)], 1)];
-        let tree = plan(3, &joints);
-        assert_eq!(tree.joints, BTreeSet::from([0, 1, 2]));
-        let tree = plan(1, &[(0, [G, b(0)], 1), (1, [G, b(0)], 0)]);
-        assert_eq!((tree.joints, tree.nq), (BTreeSet::from([1]), 0));
-    }
-
-    /// A body on no candidate joint floats on a free joint; so does the first-declared body of a
-    /// group joined to ground only by cut joints' rows, its partners hanging from it.
-    #[test]
-    fn floating_groups_get_a_free_joint() {
-        let tree = plan(3, &[(0, [b(2), b(1)], 1)]);
-        let links: Vec<(BodyRef, Option<usize>, usize, usize)> = tree.links.iter().map(|l| (l.parent, l.joint, l.first, l.count)).collect();
-        assert_eq!(links, [(G, None, 0, 3), (G, None, 3, 3), (b(1), Some(0), 6, 1)]);
-        assert_eq!(tree.order, [0, 1, 2]);
-    }
-}
