@@ -178,7 +178,10 @@ impl Coordinates {
         // velocity) of each quaternion: per body in body coordinates, per free body and
         // spherical joint in joint coordinates
         let (rates, quaternions): (Vec<(usize, usize)>, Vec<(usize, usize)>) = match &m.tree {
-            None => ((0..m.bodies.len()).flat_map(|k| (0..3).map(move |c| (7 * k + c, 6 * k + c))).collect(), (0..m.bodies.len()).map(|k| (7 * k + 3, 6 * k + 3)).collect()),
+            None => (
+                (0..m.bodies.len()).flat_map(|k| (0..3).map(move |c| (7 * k + c, 6 * k + c))).collect(),
+                (0..m.bodies.len()).map(|k| (7 * k + 3, 6 * k + 3)).collect(),
+            ),
             Some(tree) => {
                 let (mut rates, mut quaternions) = (Vec::new(), Vec::new());
                 for link in &tree.links {
@@ -378,7 +381,8 @@ fn joint_body_frames(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
         let n = usize_lit(n);
         quote!(let mut #array = [[#zero; #n]; #nb];)
     };
-    let (pose_table, twist_table, bias_table) = (table(quote!(poses), n_pose), table(quote!(twists), n_twist), table(quote!(biases), n_twist));
+    let (pose_table, twist_table, bias_table) =
+        (table(quote!(poses), n_pose), table(quote!(twists), n_twist), table(quote!(biases), n_twist));
     let twist_of = |x: TokenStream| {
         quote! {
             #[allow(clippy::redundant_locals)]

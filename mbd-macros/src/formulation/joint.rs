@@ -493,7 +493,9 @@ impl<'t> Kinematics<'t> {
             .enumerate()
             .map(|(k, link)| {
                 let global = b.global_twist(k).to_vec();
-                (link.first_v..link.first_v + link.count_v).map(|i| global.iter().map(|&x| b.g.partial(x, Var::Qd(i as u16))).collect()).collect()
+                (link.first_v..link.first_v + link.count_v)
+                    .map(|i| global.iter().map(|&x| b.g.partial(x, Var::Qd(i as u16))).collect())
+                    .collect()
             })
             .collect();
         Kinematics { tree, origins, rotations, screws }
@@ -549,7 +551,8 @@ impl<'t> Kinematics<'t> {
             let d = [m.mass, m.mass, m.inertia[0][0]];
             return Matrix::symmetric(b, 3, |_, r, c| if r == c { d[r] } else { zero });
         };
-        let aj: Vec<Vec<Id>> = (0..3).map(|r| (0..3).map(|c| b.dot(&a[r], &[m.inertia[0][c], m.inertia[1][c], m.inertia[2][c]])).collect()).collect();
+        let aj: Vec<Vec<Id>> =
+            (0..3).map(|r| (0..3).map(|c| b.dot(&a[r], &[m.inertia[0][c], m.inertia[1][c], m.inertia[2][c]])).collect()).collect();
         Matrix::symmetric(b, 6, |b, r, c| match (r, c) {
             (r, c) if r < 3 && c < 3 => {
                 if r == c {

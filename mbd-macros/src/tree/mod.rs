@@ -20,8 +20,8 @@ use std::collections::{BTreeSet, VecDeque};
 
 use crate::elements::{Relative, SpatialKind};
 use crate::frames::Builder;
-use crate::sym::Id;
 use crate::model::{BodyRef, Space};
+use crate::sym::Id;
 
 pub mod planar;
 pub mod spatial;
@@ -180,7 +180,8 @@ pub fn plan(bodies: usize, candidates: &[Candidate], space: Space) -> Tree {
         let k = next_free;
         reached[k + 1] = true;
         let count = free(space);
-        links[k] = Some(Link { parent: BodyRef::Ground, joint: None, reversed: false, first: 0, count: count.q, first_v: 0, count_v: count.v });
+        links[k] =
+            Some(Link { parent: BodyRef::Ground, joint: None, reversed: false, first: 0, count: count.q, first_v: 0, count_v: count.v });
         order.push(k);
         queue.push_back(BodyRef::Body(k));
     }

@@ -228,4 +228,3 @@ fn rotate(b: &mut Builder, phi: Id, v: [Id; 2]) -> [Id; 2] {
     let cy = b.g.mul(c, v[1]);
     [b.g.sub(cx, sy), b.g.add(sx, cy)]
 }
-

@@ -56,7 +56,8 @@ impl Joint for Revolute {
     }
     fn markers(&self) -> Option<[&Marker; 2]> {
         Some([&self.i, &self.j])
-    }    fn relative(&self) -> Option<crate::elements::Relative<'_>> {
+    }
+    fn relative(&self) -> Option<crate::elements::Relative<'_>> {
         Some(crate::elements::Relative::Spatial { kind: crate::elements::SpatialKind::Revolute, i: &self.i, j: &self.j })
     }
 }

@@ -45,7 +45,8 @@ impl Joint for Spherical {
     }
     fn markers(&self) -> Option<[&Marker; 2]> {
         Some([&self.i, &self.j])
-    }    fn relative(&self) -> Option<crate::elements::Relative<'_>> {
+    }
+    fn relative(&self) -> Option<crate::elements::Relative<'_>> {
         Some(crate::elements::Relative::Spatial { kind: crate::elements::SpatialKind::Spherical, i: &self.i, j: &self.j })
     }
 }
