@@ -29,6 +29,7 @@ both_ways! {
         body base { mass: 2.0, inertia: [0.02, 0.02, 0.03], at: [0.0, 0.0, 0.1] }
         body upper { mass: 1.2, inertia: [0.05, 0.048, 0.006, 0.001, -0.002, 0.0015], at: [0.0, 0.0, 0.45], angles: [0.3, 0.0, 0.0] }
         body fore { mass: 0.6, inertia: [0.02, 0.021, 0.003, 0.0, 0.001, 0.0], at: [0.1, 0.1, 0.8], axis_angle: [1.0, 1.0, 0.0, 0.4] }
+        point fore.tip = [0.02, -0.01, 0.15];
         revolute yaw: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ base[0.0, 0.0, -0.1] along [0.0, 0.0, 1.0];
         revolute shoulder: base[0.0, 0.0, 0.1] along [0.0, 1.0, 0.0] ~ upper[0.0, 0.0, -0.25] along [0.0, 1.0, 0.0];
         spherical wrist: upper[0.0, 0.0, 0.25] ~ fore[0.0, 0.0, -0.15];
@@ -387,4 +388,27 @@ fn spatial_statics_agree_both_ways() {
     let mut g = [0.0; 5];
     j.forces(&qj, &[0.0; 5], 0.0, &mut g);
     assert!(g.iter().all(|x| x.abs() < 1e-9), "generalized forces at rest {g:?}");
+}
+
+/// Named access in joint coordinates (`Name::BODY` a `TreeBody`, `m.body_point()` a
+/// `TreePoint`, read through the body frames) gives what body coordinates' named access gives
+/// at the same state (tolerance: rounding of O(1) values).
+#[test]
+fn named_points_and_bodies_agree_both_ways() {
+    let (b, j) = (ArmBody::default(), ArmJoint::default());
+    for (q, v, t) in states(&j, 5) {
+        let (qb, vb) = to_bodies::<ArmJoint, 6, 5, 21, 18>(&j, &q, &v);
+        let options = DynamicsOptions::without_stabilization();
+        let (mut vd, mut lambda) = ([0.0; 5], [0.0; 0]);
+        j.accelerations(&q, &v, t, &options, &mut vd, &mut lambda).expect("joint dynamics");
+        let (mut vdb, mut lambda_b) = ([0.0; 18], [0.0; 13]);
+        b.accelerations(&qb, &vb, t, &options, &mut vdb, &mut lambda_b).expect("body dynamics");
+        let (pj, pb) = (j.fore_tip(), b.fore_tip());
+        assert!((pj.position(&q) - pb.position(&qb)).norm() < 1e-12);
+        assert!((pj.velocity(&q, &v) - pb.velocity(&qb, &vb)).norm() < 1e-12);
+        assert!((pj.acceleration(&q, &v, &vd) - pb.acceleration(&qb, &vb, &vdb)).norm() < 1e-9);
+        assert!((ArmJoint::UPPER.position(&j, &q) - ArmBody::UPPER.position(&qb)).norm() < 1e-12);
+        let (_, w) = ArmJoint::UPPER.velocity(&j, &q, &v);
+        assert!((w - ArmBody::UPPER.angular_velocity(&qb, &vb)).norm() < 1e-12);
+    }
 }

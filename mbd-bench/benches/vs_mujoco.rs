@@ -1,6 +1,6 @@
 //! One RK4 step of the spatial pendulum chains of 4 and 16 links (`mechanisms/spatial_chain*.rs`,
-//! spherical joints) in mbd against MuJoCo's RK4 on the same physical chain (ball joints), in the
-//! same run: `cargo bench -p mbd-bench --bench vs_mujoco -- --warm-up-time 1 --measurement-time 3`.
+//! spherical joints), in body and in joint coordinates (`*_joint.rs`), in mbd against MuJoCo's
+//! RK4 on the same physical chain (ball joints), in the same run: `cargo bench -p mbd-bench --bench vs_mujoco -- --warm-up-time 1 --measurement-time 3`.
 //!
 //! First, MuJoCo's side: `peers/ensure_env.sh` creates the pinned Python environment
 //! (`peers/requirements.txt`, under `target/peers-venv`) on first use, and `peers/mujoco_chain.py`
@@ -9,8 +9,8 @@
 //! from a moving state 50 ms into the fall); mbd integrates the same 0.5 s at both step sizes.
 //! Last, a table: per-step times, their ratio, and the distance between the two tips at 0.5 s.
 //!
-//! The two integrate different coordinates (mbd: 7 per body with 3 constraint rows per joint;
-//! MuJoCo: a quaternion per ball joint), so their tips agree to the integration error, which must
+//! The two integrate different coordinates in body coordinates (mbd: 7 per body with 3 constraint
+//! rows per joint; MuJoCo: a quaternion per ball joint; mbd's joint coordinates are MuJoCo's), so their tips agree to the integration error, which must
 //! shrink with the step (RK4: about 256 times from 1 ms to 0.25 ms) — the check that both
 //! simulate the same motion. It fails the run if the tips differ by more than 1e-4 m at 1 ms.
 use criterion::Criterion;
@@ -27,8 +27,16 @@ mod spatial_chain4 {
 mod spatial_chain16 {
     include!("../mechanisms/spatial_chain16.rs");
 }
+mod spatial_chain4_joint {
+    include!("../mechanisms/spatial_chain4_joint.rs");
+}
+mod spatial_chain16_joint {
+    include!("../mechanisms/spatial_chain16_joint.rs");
+}
 use spatial_chain16::SpatialChain16;
+use spatial_chain16_joint::SpatialChain16Joint;
 use spatial_chain4::SpatialChain4;
+use spatial_chain4_joint::SpatialChain4Joint;
 
 /// Tip positions of mbd and MuJoCo at 0.5 s closer than this (m) at h = 1 ms count as the same
 /// motion: 1e-4 m is 6e-5 of the 16-link chain's length, far above what either RK4 leaves
@@ -122,6 +130,7 @@ fn micros(s: f64) -> String {
 
 struct Row {
     links: usize,
+    coordinates: &'static str,
     group: &'static str,
     mujoco_step: f64,
     tips: Vec<(f64, f64)>,
@@ -129,7 +138,7 @@ struct Row {
 }
 
 macro_rules! chain {
-    ($c:expr, $peers:expr, $group:literal, $ty:ty, $tip:ident) => {{
+    ($c:expr, $peers:expr, $group:literal, $ty:ty, $tip:ident, $coordinates:literal) => {{
         const NV: usize = <$ty>::NV;
         const NC: usize = <$ty>::NC;
         let m = <$ty>::default();
@@ -157,7 +166,14 @@ macro_rules! chain {
         let mut g = $c.benchmark_group($group);
         g.bench_function("mbd_rk4_step", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         g.finish();
-        Row { links, group: $group, mujoco_step: peer["step_seconds"].as_f64().expect("step_seconds"), tips, drift: worst_drift }
+        Row {
+            links,
+            coordinates: $coordinates,
+            group: $group,
+            mujoco_step: peer["step_seconds"].as_f64().expect("step_seconds"),
+            tips,
+            drift: worst_drift,
+        }
     }};
 }
 
@@ -167,20 +183,32 @@ fn main() {
     let output = target.join("criterion");
     let started = SystemTime::now();
     let mut c = Criterion::default().output_directory(&output).configure_from_args();
-    let rows =
-        [chain!(c, peers, "vs_mujoco_chain4", SpatialChain4, l3_tip), chain!(c, peers, "vs_mujoco_chain16", SpatialChain16, l15_tip)];
+    let rows = [
+        chain!(c, peers, "vs_mujoco_chain4", SpatialChain4, l3_tip, "body"),
+        chain!(c, peers, "vs_mujoco_chain4_joint", SpatialChain4Joint, l3_tip, "joint"),
+        chain!(c, peers, "vs_mujoco_chain16", SpatialChain16, l15_tip, "body"),
+        chain!(c, peers, "vs_mujoco_chain16_joint", SpatialChain16Joint, l15_tip, "joint"),
+    ];
     c.final_summary();
 
     println!();
     println!("Spatial pendulum chains, one RK4 step at h = 1 ms (MuJoCo {}):", peers["mujoco"].as_str().unwrap_or("?"));
-    println!("| links | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| links | mbd's coordinates | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
+    println!("|---|---|---|---|---|---|---|---|");
     for r in &rows {
         let (mbd, ratio) = match median(&output, r.group, "mbd_rk4_step", started) {
             Some(s) => (micros(s), format!("{:.2}", s / r.mujoco_step)),
             None => ("not timed in this run".into(), "—".into()),
         };
         let apart: Vec<String> = r.tips.iter().map(|(_, d)| format!("{d:.1e} m")).collect();
-        println!("| {} | {mbd} | {} | {ratio} | {} | {} | {:.1e} m |", r.links, micros(r.mujoco_step), apart[0], apart[1], r.drift);
+        println!(
+            "| {} | {} | {mbd} | {} | {ratio} | {} | {} | {:.1e} m |",
+            r.links,
+            r.coordinates,
+            micros(r.mujoco_step),
+            apart[0],
+            apart[1],
+            r.drift
+        );
     }
 }

@@ -48,7 +48,7 @@ pub use model::mechanism::{
     BodyCoordinates, ConstraintForces, CoordinateInfo, CoordinateKind, Dynamics, ForceInfo, Formulation, JointInfo, Kinematics, Linearize,
     Mechanism, NewtonMatrix, OpCount, PositionStep, VelocityInfo, VelocityKind,
 };
-pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint};
+pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint, TreeBody, TreePoint};
 pub use model::planar::{point_acceleration, point_position, point_velocity};
 pub use model::workspace::Workspace;
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and

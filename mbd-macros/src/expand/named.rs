@@ -8,20 +8,21 @@ use crate::emit::{real, usize_lit, vector_outputs, Emitter, Output};
 use crate::formulation::Formulation;
 use crate::model::Model;
 
-/// Named access: a constant per body (`Name::CRANK`, a `PlanarBody` or `SpatialBody`) and per
+/// Named access: a constant per body (`Name::CRANK`, a `PlanarBody` or `SpatialBody`; a
+/// `TreeBody` in joint coordinates) and per
 /// labelled joint, driver or constraint (`Name::MOTOR`, its index into `JOINTS`), and an
 /// accessor per named point on a body (`crank_a()`, its coordinates evaluated from the
 /// parameters).
 pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let real = real(m.scalar);
-    let (body_type, point_type) = match m.space {
-        crate::model::Space::Planar => (quote!(::mbd::PlanarBody), quote!(::mbd::PlanarPoint)),
-        crate::model::Space::Spatial => (quote!(::mbd::SpatialBody), quote!(::mbd::SpatialPoint)),
+    let (nq, nv) = (usize_lit(f.nq), usize_lit(f.nv));
+    let (body_type, point_type) = match (m.space, &m.tree) {
+        // in joint coordinates a body's pose is no entry of q: read through `mbd::BodyFrames`
+        (_, Some(_)) => (quote!(::mbd::TreeBody), quote!(::mbd::TreePoint<'_, Self, #real, #nq, #nv>)),
+        (crate::model::Space::Planar, None) => (quote!(::mbd::PlanarBody), quote!(::mbd::PlanarPoint<#real>)),
+        (crate::model::Space::Spatial, None) => (quote!(::mbd::SpatialBody), quote!(::mbd::SpatialPoint<#real>)),
     };
-    // In joint coordinates a body's pose is not in q: it is read through `mbd::BodyFrames`
-    // (named body and point access on it is not generated yet).
-    let in_q = if m.tree.is_none() { m.bodies.len() } else { 0 };
-    let bodies = m.bodies.iter().take(in_q).enumerate().map(|(k, b)| {
+    let bodies = m.bodies.iter().enumerate().map(|(k, b)| {
         let (name, constant) = (b.name.to_string(), format_ident!("{}", crate::model::constant_name(&b.name.to_string())));
         let (doc, k) = (format!(" Body `{name}`: its coordinates, velocities and points."), usize_lit(k));
         quote!(#[doc = #doc] pub const #constant: #body_type = #body_type::new(#k, #name);)
@@ -32,24 +33,28 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
         quote!(#[doc = #doc] pub const #constant: usize = #k;)
     });
     let dim = usize_lit(m.space.dim());
-    let points = m.points.iter().zip(&f.points).take(if in_q > 0 { m.points.len() } else { 0 }).map(|(p, nodes)| {
+    let points = m.points.iter().zip(&f.points).map(|(p, nodes)| {
         let crate::model::BodyRef::Body(k) = p.body else { return ground_point(m, &p.name, nodes, e) };
         let body = m.bodies[k].name.to_string();
         let accessor = format_ident!("{}", crate::model::point_accessor(&body, &p.name));
         let (doc, constant) = (format!(" Point `{body}.{}`.", p.name), format_ident!("{}", crate::model::constant_name(&body)));
         let (local, _) = e.body(&vector_outputs("local", nodes));
         let zero = e.literal(0.0);
+        let point = if m.tree.is_some() {
+            quote!(::mbd::TreePoint { mechanism: self, body: Self::#constant, local: [local[0], local[1], local.get(2).copied().unwrap_or(#zero)] })
+        } else {
+            quote!(Self::#constant.point(local))
+        };
         quote! {
             #[doc = #doc]
             #[allow(unused_parens)]
-            pub fn #accessor(&self) -> #point_type<#real> {
+            pub fn #accessor(&self) -> #point_type {
                 let mut local = [#zero; #dim];
                 #local
-                Self::#constant.point(local)
+                #point
             }
         }
     });
-    let (nq, nv) = (usize_lit(f.nq), usize_lit(f.nv));
     let coordinates = f.joint_coordinates.iter().map(|(accessor, node, rate)| {
         let (what, unit, joint) = match accessor.rsplit_once('_') {
             Some((joint, "angle")) => {
@@ -82,7 +87,8 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
             }
         }
     });
-    let inertia = if in_q > 0 { body_inertia(m, f, e) } else { quote!() };
+    // M is no constant diagonal in joint coordinates: its entries are not the bodies' masses
+    let inertia = if m.tree.is_none() { body_inertia(m, f, e) } else { quote!() };
     quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)* #inertia)
 }
 

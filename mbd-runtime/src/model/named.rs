@@ -3,6 +3,10 @@
 //! `engine.crank_a().velocity(&q, &v)`) and never by an index into q. A labelled joint gets a
 //! constant too, its index into `JOINTS` (`joint_reaction(.., Engine::MOTOR)`).
 //!
+//! In joint coordinates a body's pose is no entry of q: `Name::BODY` is a [`TreeBody`] and a
+//! named point a [`TreePoint`], both read through the generated `BodyFrames` (the tree's poses,
+//! twists and accelerations), in three components in the plane too (z = 0).
+//!
 //! Positions, velocities and accelerations go out as nalgebra types (`Point3`, `Vector3`,
 //! `UnitQuaternion`, `Matrix3`; `Point2`, `Vector2` in the plane). The state goes in as slices,
 //! so arrays (`&q`) and nalgebra vectors (`q.as_slice()`) both work. A slice shorter than the
@@ -11,7 +15,7 @@
 
 use nalgebra::{Matrix3, Point2, Point3, Quaternion, UnitQuaternion, Vector2, Vector3};
 
-use crate::model::body::euler_rotation;
+use crate::model::body::{euler_rotation, BodyFrames};
 use crate::real::Real;
 
 /// A planar body: coordinates q[3k..3k+3] = (x, y, φ), velocities the same entries of v = q̇.
@@ -194,6 +198,99 @@ impl<T: Real> SpatialPoint<T> {
     }
     fn local_vector(&self) -> Vector3<T> {
         Vector3::new(self.local[0], self.local[1], self.local[2])
+    }
+}
+
+/// A body of a mechanism in joint coordinates (`joint_coordinates;`): its pose, twist and
+/// acceleration computed from the joint state through the mechanism's `BodyFrames`. Generated
+/// as `Name::BODY`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TreeBody {
+    /// Its index among the moving bodies.
+    pub index: usize,
+    /// Its name.
+    pub name: &'static str,
+}
+
+impl TreeBody {
+    /// Body number `index`, named `name`.
+    pub const fn new(index: usize, name: &'static str) -> Self {
+        TreeBody { index, name }
+    }
+    /// Its centre of mass (m).
+    pub fn position<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(&self, m: &M, q: &[T; NQ]) -> Point3<T> {
+        let r = self.pose(m, q).position;
+        Point3::new(r[0], r[1], r[2])
+    }
+    /// Its rotation matrix: body-frame components → global.
+    pub fn rotation<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(&self, m: &M, q: &[T; NQ]) -> Matrix3<T> {
+        let a = self.pose(m, q).rotation;
+        Matrix3::from_fn(|r, c| a[r][c])
+    }
+    /// The velocity of its centre of mass and its angular velocity, global (m/s, rad/s).
+    pub fn velocity<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        v: &[T; NV],
+    ) -> (Vector3<T>, Vector3<T>) {
+        let t = m.body_twist(self.index, q, v).expect("a body of this mechanism");
+        (Vector3::from(t.velocity), Vector3::from(t.angular_velocity))
+    }
+    /// The acceleration of its centre of mass and its angular acceleration, global (m/s²,
+    /// rad/s²), from the accelerations v̇.
+    pub fn acceleration<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+        v: &[T; NV],
+        vd: &[T; NV],
+    ) -> (Vector3<T>, Vector3<T>) {
+        let a = m.body_acceleration(self.index, q, v, vd).expect("a body of this mechanism");
+        (Vector3::from(a.velocity), Vector3::from(a.angular_velocity))
+    }
+    fn pose<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(
+        &self,
+        m: &M,
+        q: &[T; NQ],
+    ) -> crate::model::body::BodyPose<T> {
+        m.body_pose(self.index, q).expect("a body of this mechanism")
+    }
+}
+
+/// A point fixed on a body of a mechanism in joint coordinates, by its body-frame coordinates
+/// (z = 0 in the plane), with the mechanism that places its body. Generated for each named point
+/// as a method `body_point()` of the mechanism.
+#[derive(Clone, Copy, Debug)]
+pub struct TreePoint<'m, M, T, const NQ: usize, const NV: usize> {
+    /// The mechanism.
+    pub mechanism: &'m M,
+    /// The body it is on.
+    pub body: TreeBody,
+    /// Its coordinates in the body frame (m).
+    pub local: [T; 3],
+}
+
+impl<M: BodyFrames<T, NQ, NV>, T: Real, const NQ: usize, const NV: usize> TreePoint<'_, M, T, NQ, NV> {
+    /// r^P = r + A s′ (m).
+    pub fn position(&self, q: &[T; NQ]) -> Point3<T> {
+        self.body.position(self.mechanism, q) + self.arm(q)
+    }
+    /// ṙ^P = ṙ + ω × (A s′) (m/s).
+    pub fn velocity(&self, q: &[T; NQ], v: &[T; NV]) -> Vector3<T> {
+        let (velocity, w) = self.body.velocity(self.mechanism, q, v);
+        velocity + w.cross(&self.arm(q))
+    }
+    /// r̈^P = r̈ + ω̇ × (A s′) + ω × (ω × A s′) (m/s²).
+    pub fn acceleration(&self, q: &[T; NQ], v: &[T; NV], vd: &[T; NV]) -> Vector3<T> {
+        let arm = self.arm(q);
+        let (_, w) = self.body.velocity(self.mechanism, q, v);
+        let (acceleration, wd) = self.body.acceleration(self.mechanism, q, v, vd);
+        acceleration + wd.cross(&arm) + w.cross(&w.cross(&arm))
+    }
+    /// A s′, global (m).
+    fn arm(&self, q: &[T; NQ]) -> Vector3<T> {
+        self.body.rotation(self.mechanism, q) * Vector3::from(self.local)
     }
 }
 
