@@ -114,7 +114,7 @@ fn euler_parameters(a: &[[f64; 3]; 3]) -> [f64; 4] {
     let trace = a[0][0] + a[1][1] + a[2][2];
     let candidates = [trace, a[0][0], a[1][1], a[2][2]];
     let k = (0..4).fold(0, |best, k| if candidates[k] > candidates[best] { k } else { best });
-    let e = match k {
+    match k {
         0 => {
             let e0 = 0.5 * (1.0 + trace).sqrt();
             [e0, (a[2][1] - a[1][2]) / (4.0 * e0), (a[0][2] - a[2][0]) / (4.0 * e0), (a[1][0] - a[0][1]) / (4.0 * e0)]
@@ -131,8 +131,7 @@ fn euler_parameters(a: &[[f64; 3]; 3]) -> [f64; 4] {
             let e3 = 0.5 * (1.0 - a[0][0] - a[1][1] + a[2][2]).sqrt();
             [(a[1][0] - a[0][1]) / (4.0 * e3), (a[0][2] + a[2][0]) / (4.0 * e3), (a[1][2] + a[2][1]) / (4.0 * e3), e3]
         }
-    };
-    e
+    }
 }
 
 fn close(a: f64, b: f64) -> bool {

@@ -177,7 +177,8 @@ impl Coordinates {
         // (coordinate, velocity) pairs with q̇_i = v_j, and (e0's coordinate, ω′'s first
         // velocity) of each quaternion: per body in body coordinates, per free body and
         // spherical joint in joint coordinates
-        let (rates, quaternions): (Vec<(usize, usize)>, Vec<(usize, usize)>) = match &m.tree {
+        type Pairs = Vec<(usize, usize)>;
+        let (rates, quaternions): (Pairs, Pairs) = match &m.tree {
             None => (
                 (0..m.bodies.len()).flat_map(|k| (0..3).map(move |c| (7 * k + c, 6 * k + c))).collect(),
                 (0..m.bodies.len()).map(|k| (7 * k + 3, 6 * k + 3)).collect(),

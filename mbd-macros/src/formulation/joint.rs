@@ -341,11 +341,9 @@ impl Matrix {
     /// The symmetric n×n matrix of the entries `upper(r, c)` gives for r ≤ c.
     fn symmetric(b: &mut Builder, n: usize, mut upper: impl FnMut(&mut Builder, usize, usize) -> Id) -> Self {
         let mut m = vec![vec![0; n]; n];
-        for r in 0..n {
-            for c in r..n {
-                m[r][c] = upper(b, r, c);
-                m[c][r] = m[r][c];
-            }
+        for (r, c) in (0..n).flat_map(|r| (r..n).map(move |c| (r, c))) {
+            m[r][c] = upper(b, r, c);
+            m[c][r] = m[r][c];
         }
         Matrix(m)
     }
