@@ -87,7 +87,15 @@ mbd::mechanism! {
     }
 }
 
-mbd::mechanism! {
+/// The same statements as a body-coordinate and a joint-coordinate mechanism.
+macro_rules! both_ways {
+    ($(#[$doc:meta])* $body:ident, $joint:ident { $($statements:tt)* }) => {
+        mbd::mechanism! { $(#[$doc])* pub $body { $($statements)* } }
+        mbd::mechanism! { $(#[$doc])* pub $joint { joint_coordinates; $($statements)* } }
+    };
+}
+
+both_ways! {
     /// Every spatial force element: gravity in a general direction; point-to-point spring,
     /// damper and actuator, alone and combined, with ground on either side; a bushing with and
     /// without damping and preload; rotational spring-damper-actuators on a revolute and a
@@ -95,7 +103,9 @@ mbd::mechanism! {
     /// cylindrical joint's stroke; forces at points in global and body components and torques in global
     /// and body components (state-, velocity- and time-dependent); viscous friction in a
     /// revolute and a translational joint. Products of inertia on one body.
-    pub SpatialEveryForce {
+    /// In joint coordinates (`SpatialEveryForceJoint`) the tree carries the hinge, the slide
+    /// and the sleeve, and the cap floats: every element's force reaches the joints through it.
+    SpatialEveryForce, SpatialEveryForceJoint {
         spatial;
         params { k: 300.0, c: 4.0, g: 9.81, f0: 12.0 }
         gravity [0.3, -0.2, -g];
@@ -146,9 +156,10 @@ mbd::mechanism! {
 
 const SAMPLES: usize = 200;
 
-/// Evaluates a spatial mechanism's generated functions at random states — positions within
-/// ±0.5 m of the initial guess, random unit Euler parameters, velocities in ±3, t in [0, 2],
-/// parameters within ±10 % — and writes the samples file (keys in tests/oracle/README.md).
+/// Evaluates a spatial mechanism's generated functions at random states — positions and strokes
+/// within ±0.5 m of the initial guess, angles in ±3.1 rad, random unit quaternions, velocities in
+/// ±3, t in [0, 2], parameters within ±10 % — and writes the samples file (keys in
+/// tests/oracle/README.md).
 fn write_samples<M, const NQ: usize, const NV: usize, const NC: usize>(make: impl Fn(&[f64]) -> M, defaults: &[f64], seed: u64) -> PathBuf
 where
     M: ForwardDynamics<f64, NQ, NV, NC> + mbd::Linearize<f64, NQ, NV, NC>,
@@ -160,12 +171,12 @@ where
         let params: Vec<f64> = defaults.iter().map(|d| d * rng.uniform(0.9, 1.1)).collect();
         let m = make(&params);
         let mut q = m.initial_positions();
-        for body in 0..NQ / 7 {
-            for x in &mut q[7 * body..7 * body + 3] {
-                *x += rng.uniform(-0.5, 0.5);
-            }
-            for e in &mut q[7 * body + 3..7 * body + 7] {
-                *e = rng.uniform(-1.0, 1.0);
+        // by what each coordinate is (body or joint coordinates alike)
+        for (x, info) in q.iter_mut().zip(M::COORDINATES) {
+            match info.kind {
+                mbd::CoordinateKind::Quaternion { .. } => *x = rng.uniform(-1.0, 1.0),
+                mbd::CoordinateKind::Angle => *x = rng.uniform(-3.1, 3.1),
+                _ => *x += rng.uniform(-0.5, 0.5),
             }
         }
         m.normalize_positions(&mut q);
@@ -248,6 +259,91 @@ fn generated_spatial_code_matches_casadi() {
     let (ok, text) = oracle(&args);
     println!("{text}");
     assert!(ok, "the generated spatial code disagrees with the CasADi oracle:\n{text}");
+}
+
+mod arm_joint {
+    mbd::mechanism! {
+        /// A 7-joint arm in joint coordinates (a Panda-like chain of revolute joints whose axes
+        /// alternate, products of inertia, a spring and a damper across two joints, a force at
+        /// the flange), for the oracle.
+        pub ArmJoint7 {
+            spatial;
+            joint_coordinates;
+            params { m_link: 1.2, k: 20.0 }
+            gravity [0.0, 0.0, -9.81];
+            body l1 { mass: 3.0, inertia: [0.02, 0.02, 0.01, 0.001, 0.0, 0.0], at: [0.0, 0.0, 0.2] }
+            body l2 { mass: 2.5, inertia: [0.02, 0.015, 0.01], at: [0.0, 0.0, 0.4], angles: [0.3, 0.0, 0.0] }
+            body l3 { mass: 2.0, inertia: [0.015, 0.015, 0.008, 0.0, 0.001, 0.0], at: [0.0, 0.05, 0.6] }
+            body l4 { mass: m_link, inertia: [0.01, 0.012, 0.006], at: [0.05, 0.05, 0.8], axis_angle: [1.0, 0.0, 0.0, 0.5] }
+            body l5 { mass: 1.0, inertia: [0.008, 0.008, 0.004], at: [0.1, 0.05, 0.95] }
+            body l6 { mass: 0.8, inertia: [0.005, 0.006, 0.003, 0.0, 0.0, 0.0005], at: [0.15, 0.05, 1.05] }
+            body l7 { mass: 0.5, inertia: [0.002, 0.002, 0.001], at: [0.2, 0.05, 1.1] }
+            point l7.flange = [0.0, 0.0, 0.05];
+            revolute j1: ground[0.0, 0.0, 0.0] along [0.0, 0.0, 1.0] ~ l1[0.0, 0.0, -0.2] along [0.0, 0.0, 1.0];
+            revolute j2: l1[0.0, 0.0, 0.1] along [0.0, 1.0, 0.0] ~ l2[0.0, 0.0, -0.1] along [0.0, 1.0, 0.0];
+            revolute j3: l2[0.0, 0.0, 0.1] along [0.0, 0.0, 1.0] ~ l3[0.0, -0.05, -0.1] along [0.0, 0.0, 1.0];
+            revolute j4: l3[0.0, 0.0, 0.1] along [0.0, -1.0, 0.0] ~ l4[-0.05, 0.0, -0.1] along [0.0, 1.0, 0.0];
+            revolute j5: l4[0.05, 0.0, 0.05] along [0.0, 0.0, 1.0] ~ l5[0.0, 0.0, -0.1] along [0.0, 0.0, 1.0];
+            revolute j6: l5[0.0, 0.0, 0.05] along [0.0, 1.0, 0.0] ~ l6[-0.05, 0.0, -0.05] along [0.0, 1.0, 0.0];
+            revolute j7: l6[0.05, 0.0, 0.0] along [1.0, 0.0, 0.0] ~ l7[0.0, 0.0, -0.05] along [1.0, 0.0, 0.0] reference [0.0, 1.0, 0.0];
+            rotational_spring j2 { k: k, angle: 0.1, c: 0.3 };
+            torque_actuator j4 { torque: 2.0 * sin(t) + l5.wz };
+            spring ground[0.3, 0.0, 0.5] ~ l5[0.0, 0.0, 0.0] { k: 50.0, length: 0.4, c: 1.0 };
+            force l7.flange = [1.0, 0.0, -2.0 * t];
+        }
+    }
+
+    mbd::mechanism! {
+        /// A body on no joint (a free joint: r, p and ṙ, ω′) tied by springs to a pendulum on a
+        /// ball joint and to the ground, in joint coordinates, for the oracle.
+        pub FloatingJoint {
+            spatial;
+            joint_coordinates;
+            gravity [0.0, 0.0, -9.81];
+            body float { mass: 0.4, inertia: [0.004, 0.005, 0.006, 0.0005, 0.0, 0.0], at: [0.5, 0.2, 0.3], angles: [0.2, -0.1, 0.4] }
+            body arm { mass: 1.0, inertia: [0.08, 0.08, 0.01], at: [0.0, 0.0, -0.5] }
+            spherical ground[0.0, 0.0, 0.0] ~ arm[0.0, 0.0, 0.5];
+            spring float[0.05, 0.0, 0.0] ~ arm[0.0, 0.0, -0.5] { k: 30.0, length: 0.6, c: 0.2 };
+            spring float[-0.05, 0.0, 0.0] ~ ground[0.6, 0.0, 0.5] { k: 10.0, length: 0.2 };
+            local_torque float = [0.1 * float.wx, 0.0, 0.2 * sin(t)];
+        }
+    }
+}
+
+/// The generated joint-coordinate functions (`joint_coordinates;`) — Φ of the cut rows, D, ν, γ,
+/// M(q), h, (∂h/∂q) B, ∂h/∂v, V and the forward dynamics through the tree's recursions — at 200
+/// random states each, against the CasADi rebuild of `mbd_oracle/joint.py`, which places the
+/// bodies by its own quaternion products and takes their twists by differentiation (not by
+/// screws), then projects the bodies' equations on the tree's velocities (Jourdain). Six
+/// mechanisms: every force element through a tree with a free body, a 7-joint arm, a floating
+/// body on springs, the RSSR four-bar and the double-wishbone suspension (cut loops; examples
+/// compiled both ways), and the 16-link ball-joint chain of the MuJoCo benchmark.
+#[test]
+fn generated_joint_coordinate_code_matches_casadi() {
+    mod chain16 {
+        include!("../mbd-bench/mechanisms/spatial_chain16_joint.rs");
+    }
+    let files = [
+        samples!(SpatialEveryForceJoint, 41),
+        samples!(arm_joint::ArmJoint7, 42),
+        samples!(arm_joint::FloatingJoint, 43),
+        samples!(mbd_examples::joint::rssr_0::Rssr, 44),
+        samples!(mbd_examples::joint::double_wishbone_3d_0::DoubleWishbone, 45),
+        samples!(chain16::SpatialChain16Joint, 46),
+    ];
+    let mut args: Vec<&str> = vec!["mbd_oracle.compare"];
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    args.extend(names.iter().map(|s| s.as_str()));
+    let (ok, text) = oracle(&args);
+    println!("{text}");
+    assert!(ok, "the generated joint-coordinate code disagrees with the CasADi oracle:\n{text}");
+    // ... and the comparison can fail on them: each function's largest entry put off by a
+    // relative 1e-9 is rejected, named (a loop with rows, a tree with every force, the arm).
+    let mut args = vec!["mbd_oracle.selftest", "--largest"];
+    args.extend([&names[4], &names[0], &names[1]].map(|s| s.as_str()));
+    let (ok, text) = oracle(&args);
+    println!("{text}");
+    assert!(ok, "the joint-coordinate oracle accepted a wrong value or did not say where:\n{text}");
 }
 
 /// Runs `python -m <args>` in `tests/oracle`; returns (success, stdout + stderr).

@@ -344,11 +344,7 @@ impl<'m> Builder<'m> {
         match self.coordinates {
             Coordinates::PlanarBody | Coordinates::PlanarJoint => partials,
             Coordinates::SpatialBody => self.through_velocity_map(partials),
-            // ∂ṡ/∂v with ṡ = s_q B(q) v, B along the tree
-            Coordinates::SpatialJoint => {
-                let rate = self.rate(s);
-                velocity_partials(&mut self.g, rate)
-            }
+            Coordinates::SpatialJoint => self.through_tree_velocity_map(partials),
         }
     }
 
@@ -376,6 +372,25 @@ impl<'m> Builder<'m> {
                     let term = self.g.mul(hd, l);
                     add(self, nv * k + 3 + m, term);
                 }
+            }
+        }
+        out.into_iter().filter(|&(_, d)| !self.g.is_zero(d)).collect()
+    }
+
+    /// (∂s/∂q) B for joint coordinates: each coordinate's partial carried to the velocities its
+    /// rate reads, B_ij = ∂q̇_i/∂v_j (q̇ = B(q) v along the tree: one entry per angle or stroke,
+    /// ½ Lᵀ of a quaternion).
+    fn through_tree_velocity_map(&mut self, partials: Vec<(usize, Id)>) -> Vec<(usize, Id)> {
+        let rates = self.coordinate_rates();
+        let mut out: std::collections::BTreeMap<usize, Id> = std::collections::BTreeMap::new();
+        for (i, d) in partials {
+            for (j, b) in velocity_partials(&mut self.g, rates[i]) {
+                let term = self.g.mul(d, b);
+                let sum = match out.get(&j) {
+                    Some(&acc) => self.g.add(acc, term),
+                    None => term,
+                };
+                out.insert(j, sum);
             }
         }
         out.into_iter().filter(|&(_, d)| !self.g.is_zero(d)).collect()

@@ -120,10 +120,26 @@ pub fn model_json(m: &Model, row_names: &[String], first_rows: &[usize], jacobia
         "gravity": m.gravity.as_ref().map_or(Value::Null, |g| cx.list(g)),
         "forces": m.forces.iter().map(|f| tagged(f.kind.json(&cx), f.kind.kind(), &f.name)).collect::<Vec<_>>(),
     });
-    if m.space == Space::Spatial {
-        if let Value::Object(map) = &mut v {
+    if let Value::Object(map) = &mut v {
+        if m.space == Space::Spatial {
             map.insert("dimension".to_string(), json!(3));
             map.insert("velocities".to_string(), json!(m.velocity_names()));
+        }
+        if let Some(tree) = &m.tree {
+            // joint coordinates: how each body hangs, parents first, and its slots in q and v
+            let links: Vec<Value> = tree
+                .order
+                .iter()
+                .map(|&k| {
+                    let link = &tree.links[k];
+                    json!({
+                        "body": m.bodies[k].name.to_string(), "parent": m.body_name(link.parent),
+                        "joint": link.joint.map(|j| m.constraints[j].name.clone()), "reversed": link.reversed,
+                        "q": link.first, "nq": link.count, "v": link.first_v, "nv": link.count_v,
+                    })
+                })
+                .collect();
+            map.insert("tree".to_string(), json!(links));
         }
     }
     v.to_string()

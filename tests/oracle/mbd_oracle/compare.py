@@ -17,7 +17,8 @@ is accepted too), "phi", "jacobian" (the non-zeros of D = Φ_q B in jacobian_pat
 "gamma", "mass" (dense NV×NV), "h", "h_q" (dense NV×NV, (∂h/∂q) B), "h_v" (dense NV×NV),
 "potential"; optionally "friction_lambda", "friction", "friction_q" ((∂f/∂q) B), "friction_v",
 and "qdd" (v̇, NV), "lambda", "alpha", "beta". Row, coordinate and velocity names must be the
-spec's.
+spec's. A spatial model in JOINT coordinates (a "tree" in its JSON) is rebuilt by joint.py and
+compared the same way, its samples' unit quaternions being the tree's.
 Exit status 1 if any entry disagrees or a generated structural zero is wrong.
 """
 
@@ -29,6 +30,7 @@ import numpy as np
 from .dynamics import Dynamics, NoFixedPoint
 from .model import Model
 from .spatial import Spatial, is_spatial
+from .joint import JointSpatial, has_tree
 
 # Relative tolerance of the comparison.
 RTOL = 1e-12
@@ -202,7 +204,31 @@ class SpatialLayout:
 UNIT_TOL = 1e-14
 
 
+class SpatialJointLayout(SpatialLayout):
+    """Spatial samples in joint coordinates (a model with a "tree", joint.py): as spatial ones,
+    the unit quaternions being the tree's (ball joints', free bodies')."""
+
+    def __init__(self, model_json):
+        self.model = JointSpatial(model_json)
+        self.dyn = self.model
+        self.columns = model_json.get("velocities", self.model.velocity_names)
+
+    def sample_failures(self, k, s):
+        m = self.model
+        if len(s["q"]) != m.nq or len(s[self.velocity]) != m.nv:
+            return [f"{m.name}: sample {k} has {len(s['q'])} coordinates and {len(s[self.velocity])} velocities, "
+                    f"the model {m.nq} and {m.nv}"]
+        out = []
+        for at in m.quaternions:
+            norm = float(np.linalg.norm(np.asarray(s["q"][at:at + 4], dtype=float)))
+            if abs(norm - 1.0) > UNIT_TOL:
+                out.append(f"{m.name}: sample {k}: the quaternion at q[{at}] has |p| = {norm!r}; samples use unit p")
+        return out
+
+
 def layout_of(model_json):
+    if has_tree(model_json):
+        return SpatialJointLayout(model_json)
     return SpatialLayout(model_json) if is_spatial(model_json) else PlanarLayout(model_json)
 
 

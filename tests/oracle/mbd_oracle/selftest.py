@@ -4,6 +4,14 @@ and column named.
 Usage: python -m mbd_oracle.selftest SAMPLES.json [SAMPLES.json ...]
        python -m mbd_oracle.selftest --spatial [MODEL.json ...]   (default: the spatial fixtures
        every_joint, every_force, every_friction of fixtures/spatial/)
+       python -m mbd_oracle.selftest --largest SAMPLES.json [SAMPLES.json ...]
+
+With --largest (any samples file; joint coordinates' among them), for every function the samples
+hold — Φ, the Jacobian, ν, γ, M, h, ∂h/∂q, ∂h/∂v, V, q̈ — the entry of largest magnitude over
+the first SAMPLES samples (q̈: in the best-conditioned sample) is put off by a relative 1e-9 (q̈:
+1e-8, as below), and each must be rejected with the mechanism and the function named. Run it on
+samples whose functions are well above the comparison's floor (a function that stays below
+1e-3 everywhere moves by less than the floor).
 
 With --spatial, each spatial model JSON gets fake "mbd" samples made from the oracle's own
 values at 16 random states (unit Euler parameters) — fine for a self-test, which tests the
@@ -153,6 +161,14 @@ def main(argv):
     if not argv:
         print(__doc__)
         return 2
+    if argv[0] == "--largest":
+        ok = True
+        for path in argv[1:]:
+            with open(path) as f:
+                data = json.load(f)
+            data["samples"] = data["samples"][:SAMPLES]
+            ok &= largest_selftest(data)
+        return 0 if ok else 1
     if argv[0] == "--spatial":
         paths = argv[1:] or [os.path.join(FIXTURES, f"{n}.json") for n in ("every_joint", "every_force", "every_friction")]
         ok = True
@@ -218,6 +234,42 @@ def spatial_samples(model_json, n=16, seed=5):
             pass
         samples.append(sample)
     return {"model": model_json, "samples": samples}
+
+
+def largest_selftest(data):
+    """For each function the samples hold, its entry of largest magnitude off by a relative 1e-9
+    (q̈: 1e-8); True when every one is rejected with mechanism and function named."""
+    name = data["model"]["name"]
+    if compare_model(copy.deepcopy(data), out=lambda *_: None):
+        print(f"selftest: the unperturbed samples of {name} do not pass; nothing to show")
+        return False
+    ok = True
+    lay = layout_of(data["model"])
+
+    def conditioning(s):
+        return lay.model.forward(*lay.args(s), s["alpha"], s["beta"])[2]
+
+    for function in ("phi", "jacobian", "nu", "gamma", "mass", "h", "h_q", "h_v", "potential", "qdd"):
+        best = None
+        holding = [(k, s) for k, s in enumerate(data["samples"]) if function in s]
+        if function == "qdd" and holding:
+            # q̈ in the best-conditioned sample, whose bound is the tightest
+            holding = [min(holding, key=lambda ks: conditioning(ks[1]))]
+        for k, s in holding:
+            a = np.abs(np.asarray(s[function], dtype=float)).reshape(-1)
+            if a.size and (best is None or a.max() > best[2]):
+                best = (k, int(np.argmax(a)), float(a.max()))
+        if best is None or best[2] == 0.0:
+            continue
+        k, i, _ = best
+        bad = copy.deepcopy(data)
+        flat = np.asarray(bad["samples"][k][function], dtype=float)
+        shape = flat.shape
+        flat = flat.reshape(-1)
+        flat[i] *= 1 + (1e-8 if function == "qdd" else 1e-9)
+        bad["samples"][k][function] = flat.reshape(shape).tolist() if shape else float(flat[0])
+        ok &= expect_rejection(bad, f"the largest {function} entry off (sample {k})", [name, function, f"sample {k}"])
+    return ok
 
 
 def selftest(data):

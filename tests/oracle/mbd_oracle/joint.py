@@ -1,0 +1,318 @@
+"""Rebuilds a SPATIAL mechanism in JOINT coordinates ("dimension": 3 with a "tree") from mbd's
+model JSON with CasADi SX, independently of mbd's own symbolic engine and of its recursions,
+as docs/formulation.md, "Spatial joint coordinates", specifies it.
+
+The model JSON's "tree" says, parents first, how each body hangs: its parent, the joint that
+carries it (or none: a free body), whether the tree runs the joint from its j side, and its
+slots in q and v. Everything else is derived here from the joint table of the spec:
+
+- each body's Euler parameters and position as functions of q, by quaternion products
+  (p_j = p_i ⊗ c_i ⊗ z(θ) ⊗ f ⊗ c_j*, or p_i = p_j ⊗ c_j ⊗ f* ⊗ z(−θ) ⊗ c_i* where the tree runs
+  the joint backwards; p_c = p_p ⊗ s for a ball joint), with c the marker triad's quaternion and
+  f the half-turn nearest the bodies' `at:` poses, both evaluated here;
+- q̇ = B(q) v: v = q̇ for angles and strokes, ṡ = ½ Lᵀ(s) ω for a quaternion;
+- each body's twist NOT by screws (mbd's route) but by differentiation: ṙ_b = (∂r_b/∂q) q̇ and
+  ω′_b = 2 L(p_b) ṗ_b, ṗ_b = (∂p_b/∂q) q̇ (CasADi's jtimes);
+- the body-coordinate rebuild (`spatial.Spatial`, every row and force of the spec) evaluated at
+  those poses and twists; Φ keeps the rows of the joints the tree does not carry;
+- D = Φ_q B, ν = −Φ_t, γ = −𝒟(𝒟Φ) by CasADi, as for body coordinates;
+- with J = ∂v_b/∂v: M = Jᵀ M_b J and h = Jᵀ (h_b − M_b J̇ v), J̇ v = (∂v_b/∂q) q̇ at fixed v
+  (Jourdain: the bodies' equations projected on the tree's velocities); V the bodies' V;
+  h_q = (∂h/∂q) B, h_v = ∂h/∂v; Coulomb friction of a cut joint at its rows' λ.
+
+The class has the attributes and Functions of `spatial.Spatial` that compare.py reads.
+"""
+
+import casadi as ca
+import numpy as np
+
+from .dynamics import solve_friction_fixed_point
+from .spatial import Spatial, dot, l_matrix, rotation
+
+TURNING = ("revolute", "cylindrical")
+SLIDING = ("translational", "cylindrical")
+TREE_KINDS = ("revolute", "translational", "cylindrical", "spherical", "rigid")
+
+
+def has_tree(model_json):
+    return model_json.get("dimension", 2) == 3 and "tree" in model_json
+
+
+def qmul(a, b):
+    """The Hamilton product a ⊗ b of two SX 4-vectors."""
+    a0, av = a[0], a[1:4]
+    b0, bv = b[0], b[1:4]
+    return ca.vertcat(a0 * b0 - dot(av, bv), a0 * bv + b0 * av + ca.cross(av, bv))
+
+
+def qconj(a):
+    return ca.vertcat(a[0], -a[1:4])
+
+
+class JointSpatial:
+    """The symbolic equations of a spatial mechanism in joint coordinates (see the module)."""
+
+    def __init__(self, model):
+        if not has_tree(model):
+            raise ValueError(f"{model.get('name')}: not a spatial model in joint coordinates")
+        self.json = model
+        self.name = model["name"]
+        body_json = {k: v for k, v in model.items() if k not in ("tree", "coordinates", "velocities")}
+        self.body = Spatial(body_json)
+        b = self.body
+        self.bodies = b.bodies
+        self.param_names = b.param_names
+        self.t, self.p = b.t, b.p
+        self.tree = model["tree"]
+        self.nq = sum(link["nq"] for link in self.tree)
+        self.nv = sum(link["nv"] for link in self.tree)
+        self.q = ca.SX.sym("q", self.nq)
+        self.v = ca.SX.sym("v", self.nv)
+        self.constraints = {c["name"]: c for c in model["constraints"]}
+        self.defaults = np.array(b.params_vector({}), dtype=float)
+        self.q0_bodies, _ = b.initial_state()
+
+        # q̇ = B(q) v per link, and the names of the spec's table
+        self.B = ca.SX(self.nq, self.nv)
+        self.coordinate_names, self.velocity_names, self.quaternions = [], [], []
+        for link in sorted(self.tree, key=lambda link: link["q"]):  # q's order: the bodies declared
+            self.link_map(link)
+        self.qdot = self.B @ self.v
+
+        # poses along the tree, then the body-coordinate state
+        placed = {}
+        for link in self.tree:
+            placed[link["body"]] = self.place(link, placed)
+        qb = ca.vertcat(*[ca.vertcat(placed[n][0], placed[n][1]) for n in self.bodies])
+        rates = lambda x: ca.jtimes(x, self.q, self.qdot)  # noqa: E731  (v held fixed)
+        twists = []
+        for n in self.bodies:
+            r, p = placed[n]
+            twists.append(ca.vertcat(rates(r), 2 * l_matrix(p) @ rates(p)))
+        vb = ca.vertcat(*twists)
+        self.qb, self.vb = qb, vb
+
+        # kinematics: the cut rows
+        carried = {link["joint"] for link in self.tree if link["joint"] is not None}
+        keep = []
+        for c in model["constraints"]:
+            first = b.first_row[c["name"]]
+            count = len(b.constraint(c)[0])
+            if c["name"] not in carried:
+                keep.extend(range(first, first + count))
+        self.keep = keep
+        self.row_names = [b.row_names[r] for r in keep]
+        at = lambda f: f(qb, vb, self.t, self.p)  # noqa: E731
+        phi_all = ca.Function("phi_b", [b.q, b.t, b.p], [b.phi])(qb, self.t, self.p)
+        self.phi = ca.vertcat(*[phi_all[r] for r in keep]) if keep else ca.SX(0, 1)
+        self.nc = self.phi.shape[0]
+        self.lam = ca.SX.sym("lambda", self.nc)
+        self.D = ca.jacobian(self.phi, self.q) @ self.B
+        self.nu = -ca.jacobian(self.phi, self.t)
+        self.gamma = -self.rate(self.rate(self.phi))
+
+        # dynamics by Jourdain's principle over the bodies
+        jac = ca.jacobian(vb, self.v)
+        bias = rates(vb)
+        mass_b = b.mass
+        self.mass = jac.T @ mass_b @ jac
+        body_args = [b.q, b.v, b.t, b.p]
+        contributions = []
+        for k, (name, q_b, v_b, conservative) in enumerate(b.contributions):
+            q_of = ca.Function(f"Q{k}", body_args, [q_b, v_b])
+            qj, vj = q_of(qb, vb, self.t, self.p)
+            contributions.append((name, jac.T @ qj, vj, conservative))
+        contributions.append(("inertia of the tree", -jac.T @ (mass_b @ bias), ca.SX(0), True))
+        self.contributions = contributions
+        zero = ca.SX(self.nv, 1)
+        self.h = sum((c[1] for c in contributions), zero)
+        self.potential = sum((c[2] for c in contributions), ca.SX(0))
+        self.h_q = ca.jacobian(self.h, self.q) @ self.B
+        self.h_v = ca.jacobian(self.h, self.v)
+        mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
+                sum((ca.fabs(ca.jacobian(c[1], self.q) @ self.B) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
+        # Coulomb friction of cut joints: the body model's at λ_b with the cut rows' λ in place
+        self.has_friction = b.has_friction
+        lam_b = [ca.SX(0)] * b.nc
+        for i, r in enumerate(keep):
+            lam_b[r] = self.lam[i]
+        friction_b = ca.Function("friction_b", body_args + [b.lam], [b.friction])(qb, vb, self.t, self.p, ca.vertcat(*lam_b) if lam_b else ca.SX(0, 1))
+        self.friction = jac.T @ friction_b
+        self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
+        self.friction_v = ca.jacobian(self.friction, self.v)
+        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
+
+        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
+        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
+        self.f_phi = F("phi", [self.phi], ["phi"])
+        self.f_jac = F("jacobian", [self.D], ["jacobian"])
+        self.f_nu = F("nu", [self.nu], ["nu"])
+        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
+        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
+                                     ["gamma_q", "gamma_v"])
+        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
+        self.f_B = F("B", [self.B], ["B"])
+        self.f_mass = F("mass", [self.mass], ["mass"])
+        self.f_h = F("h", [self.h], ["h"])
+        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
+        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
+        self.f_potential = F("potential", [self.potential], ["potential"])
+        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
+        self.f_bodies = F("bodies", [qb, vb], ["qb", "vb"])
+        fargs, fnames = args + [self.lam], names + ["lambda"]
+        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
+                                      ["friction", "friction_q", "friction_v"])
+        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
+                                             ["friction_lambda"])
+        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
+                                                 ["friction", "friction_q", "friction_v"])
+
+    # --- the tree ------------------------------------------------------------------------------
+    def link_map(self, link):
+        """B's block, the coordinates' and velocities' names of one link."""
+        q0, v0, nq, nv = link["q"], link["v"], link["nq"], link["nv"]
+        joint = link["joint"]
+        owner = link["body"] if joint is None else joint
+        if joint is None:
+            names, quaternion_at = ["x", "y", "z", "e0", "e1", "e2", "e3"], 3
+        else:
+            kind = self.constraints[joint]["kind"]
+            names = {"revolute": ["angle"], "translational": ["stroke"], "cylindrical": ["angle", "stroke"],
+                     "spherical": ["e0", "e1", "e2", "e3"], "rigid": []}[kind]
+            quaternion_at = 0 if kind == "spherical" else None
+        if len(names) != nq:
+            raise ValueError(f"{self.name}: the tree gives {link['body']} {nq} coordinates, its joint has {len(names)}")
+        self.coordinate_names += [f"{owner}.{n}" for n in names]
+        if quaternion_at is None:
+            for i in range(nq):
+                self.B[q0 + i, v0 + i] = 1
+            self.velocity_names += [f"{owner}.{n}" for n in names]
+            return
+        for i in range(quaternion_at):
+            self.B[q0 + i, v0 + i] = 1
+        e = self.q[q0 + quaternion_at:q0 + quaternion_at + 4]
+        self.B[q0 + quaternion_at:q0 + quaternion_at + 4, v0 + quaternion_at:v0 + quaternion_at + 3] = 0.5 * l_matrix(e).T
+        self.quaternions.append(q0 + quaternion_at)
+        self.velocity_names += [f"{owner}.v{a}" for a in "xyz"][:quaternion_at] + [f"{owner}.w{a}" for a in "xyz"]
+
+    def local_triad(self, marker):
+        """C = [x′ y′ z′] of a marker in its body's axes (SX 3×3)."""
+        b = self.body
+        a = b.vec(marker["axis"])
+        z = a / ca.norm_2(a)
+        r = b.vec(marker["reference"])
+        xr = r - dot(r, z) * z
+        x = xr / ca.norm_2(xr)
+        return ca.horzcat(x, ca.cross(z, x), z)
+
+    def numeric(self, x):
+        """An SX expression of the parameters at their defaults."""
+        return np.array(ca.Function("n", [self.p], [x])(self.defaults))
+
+    def marker_quaternion(self, marker):
+        """The quaternion of a marker's triad: Shepperd's formula on the branch of the largest of
+        1 + tr C, 1 + 2 C_kk − tr C at the defaults (each exact where its root is real)."""
+        c = self.local_triad(marker)
+        tr = c[0, 0] + c[1, 1] + c[2, 2]
+        candidates = [1 + tr] + [1 + 2 * c[k, k] - tr for k in range(3)]
+        k = int(np.argmax([float(self.numeric(x)) for x in candidates]))
+        w = 0.5 * ca.sqrt(candidates[k])
+        if k == 0:
+            return ca.vertcat(w, (c[2, 1] - c[1, 2]) / (4 * w), (c[0, 2] - c[2, 0]) / (4 * w), (c[1, 0] - c[0, 1]) / (4 * w))
+        if k == 1:
+            return ca.vertcat((c[2, 1] - c[1, 2]) / (4 * w), w, (c[0, 1] + c[1, 0]) / (4 * w), (c[0, 2] + c[2, 0]) / (4 * w))
+        if k == 2:
+            return ca.vertcat((c[0, 2] - c[2, 0]) / (4 * w), (c[0, 1] + c[1, 0]) / (4 * w), w, (c[1, 2] + c[2, 1]) / (4 * w))
+        return ca.vertcat((c[1, 0] - c[0, 1]) / (4 * w), (c[0, 2] + c[2, 0]) / (4 * w), (c[1, 2] + c[2, 1]) / (4 * w), w)
+
+    def initial_rotation(self, body):
+        if body == "ground":
+            return np.eye(3)
+        k = self.bodies.index(body)
+        e0, e = self.q0_bodies[7 * k + 3], np.asarray(self.q0_bodies[7 * k + 4:7 * k + 7])
+        tilde = np.array([[0, -e[2], e[1]], [e[2], 0, -e[0]], [-e[1], e[0], 0]])
+        return (2 * e0**2 - 1) * np.eye(3) + 2 * (np.outer(e, e) + e0 * tilde)
+
+    def half_turn(self, kind, i, j):
+        """f: the identity or a half-turn about x, y or z, nearest C_iᵀ A_iᵀ A_j C_j at the bodies'
+        initial poses (for a turning joint: the identity or the half-turn about x, by z_iᵀ z_j)."""
+        ci, cj = self.numeric(self.local_triad(i)), self.numeric(self.local_triad(j))
+        d = ci.T @ self.initial_rotation(i["body"]).T @ self.initial_rotation(j["body"]) @ cj
+        signs = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)]
+        if kind in TURNING:
+            best = 1 if d[2, 2] < 0 else 0
+        else:
+            best = int(np.argmax([sum(s[k] * d[k, k] for k in range(3)) for s in signs]))
+        quaternion = ca.SX(4, 1)
+        quaternion[best] = 1.0  # 1, or the half-turn (0, e_k) about axis k
+        return quaternion
+
+    def place(self, link, placed):
+        """(r, p) of a link's body from its parent's."""
+        q = self.q[link["q"]:link["q"] + link["nq"]]
+        if link["joint"] is None:
+            return q[0:3], q[3:7]
+        joint = self.constraints[link["joint"]]
+        kind = joint["kind"]
+        if kind not in TREE_KINDS:
+            raise ValueError(f"{self.name}: the tree carries {joint['name']}, a {kind} joint, which has no relative coordinates")
+        i, j = joint["i"], joint["j"]
+        parent_side, child_side = (j, i) if link["reversed"] else (i, j)
+        if parent_side["body"] != link["parent"] or child_side["body"] != link["body"]:
+            raise ValueError(f"{self.name}: the tree's link of {link['body']} does not match {joint['name']}'s bodies")
+        rp, pp = (ca.SX.zeros(3, 1), ca.vertcat(1, 0, 0, 0)) if link["parent"] == "ground" else placed[link["parent"]]
+        b = self.body
+        if kind == "spherical":
+            relative = q[0:4]
+        else:
+            theta = q[0] if kind in TURNING else ca.SX(0)
+            ci, cj = self.marker_quaternion(i), self.marker_quaternion(j)
+            f = self.half_turn(kind, i, j)
+            if link["reversed"]:
+                z = ca.vertcat(ca.cos(-theta / 2), 0, 0, ca.sin(-theta / 2))
+                relative = qmul(qmul(qmul(cj, qconj(f)), z), qconj(ci))
+            else:
+                z = ca.vertcat(ca.cos(theta / 2), 0, 0, ca.sin(theta / 2))
+                relative = qmul(qmul(qmul(ci, z), f), qconj(cj))
+        p = qmul(pp, relative)
+        a_parent, a_child = rotation(pp), rotation(p)
+        r = rp + a_parent @ b.vec(parent_side["point"]) - a_child @ b.vec(child_side["point"])
+        if kind in SLIDING:
+            s = q[1] if kind == "cylindrical" else q[0]
+            a_i = a_child if link["reversed"] else a_parent
+            z_i = a_i @ self.local_triad(i)[:, 2]
+            r = r + (-s if link["reversed"] else s) * z_i
+        return r, p
+
+    # --- as spatial.Spatial ----------------------------------------------------------------------
+    def rate(self, s):
+        """𝒟s = (∂s/∂q) B(q) v + ∂s/∂t."""
+        return ca.jtimes(s, self.q, self.qdot) + ca.jacobian(s, self.t)
+
+    def params_vector(self, named):
+        return self.body.params_vector(named)
+
+    def structural_jacobian(self):
+        sp = self.D.sparsity()
+        return set(zip(sp.row(), sp.get_col()))
+
+    def forward(self, q, v, t, p, alpha, beta):
+        """[M, −Dᵀ; D, 0] [v̇; λ] = [h; γ − 2α (D v − ν) − β² Φ] by LU, as spatial.Spatial."""
+        nv, nc = self.nv, self.nc
+        args = (q, v, t, p)
+        mass = np.array(self.f_mass(*args))
+        h = np.array(self.f_h(*args)).reshape(-1)
+        phi, jac, nu, gamma = (np.array(x) for x in self.f_kinematics(*args))
+        phi, nu, gamma = phi.reshape(-1), nu.reshape(-1), gamma.reshape(-1)
+        kkt = np.zeros((nv + nc, nv + nc))
+        kkt[:nv, :nv] = mass
+        kkt[:nv, nv:] = -jac.T
+        kkt[nv:, :nv] = jac
+        rhs = np.concatenate([h, gamma - 2.0 * alpha * (jac @ np.asarray(v, dtype=float) - nu) - beta**2 * phi])
+        if self.has_friction:
+            x = solve_friction_fixed_point(self.name, kkt, rhs, h, args, nv, self.f_friction, self.f_friction_lambda)
+        else:
+            x = np.linalg.solve(kkt, rhs)
+        return x[:nv], x[nv:], float(np.linalg.cond(kkt))
