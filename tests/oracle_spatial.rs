@@ -310,14 +310,16 @@ mod arm_joint {
     }
 }
 
-/// The generated joint-coordinate functions (`joint_coordinates;`) — Φ of the cut rows, D, ν, γ,
+/// The generated joint-coordinate functions (`joint_coordinates;`, planar and spatial) — Φ of the cut rows, D, ν, γ,
 /// M(q), h, (∂h/∂q) B, ∂h/∂v, V and the forward dynamics through the tree's recursions — at 200
 /// random states each, against the CasADi rebuild of `mbd_oracle/joint.py`, which places the
 /// bodies by its own quaternion products and takes their twists by differentiation (not by
-/// screws), then projects the bodies' equations on the tree's velocities (Jourdain). Six
-/// mechanisms: every force element through a tree with a free body, a 7-joint arm, a floating
-/// body on springs, the RSSR four-bar and the double-wishbone suspension (cut loops; examples
-/// compiled both ways), and the 16-link ball-joint chain of the MuJoCo benchmark.
+/// screws), then projects the bodies' equations on the tree's velocities (Jourdain). Nine
+/// mechanisms: in space every force element through a tree with a free body, a 7-joint arm, a
+/// floating body on springs, the RSSR four-bar and the double-wishbone suspension (cut loops;
+/// examples compiled both ways) and the 16-link ball-joint chain of the MuJoCo benchmark; in
+/// the plane the free slider-crank engine (a closed loop) and the double A-arm and MacPherson
+/// suspensions with their coil-overs and tyres (Nikravesh 9.6.1, 9.6.2).
 #[test]
 fn generated_joint_coordinate_code_matches_casadi() {
     mod chain16 {
@@ -330,6 +332,9 @@ fn generated_joint_coordinate_code_matches_casadi() {
         samples!(mbd_examples::joint::rssr_0::Rssr, 44),
         samples!(mbd_examples::joint::double_wishbone_3d_0::DoubleWishbone, 45),
         samples!(chain16::SpatialChain16Joint, 46),
+        samples!(mbd_examples::joint::flywheel_engine_0::FreeEngine, 47),
+        samples!(mbd_examples::joint::suspension_dynamics_0::DoubleAArmRide, 48),
+        samples!(mbd_examples::joint::suspension_dynamics_1::MacPhersonRide, 49),
     ];
     let mut args: Vec<&str> = vec!["mbd_oracle.compare"];
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();

@@ -140,6 +140,7 @@ pub fn model_json(m: &Model, row_names: &[String], first_rows: &[usize], jacobia
                 })
                 .collect();
             map.insert("tree".to_string(), json!(links));
+            map.insert("velocities".to_string(), json!(m.velocity_names()));
         }
     }
     v.to_string()

@@ -30,7 +30,7 @@ import numpy as np
 from .dynamics import Dynamics, NoFixedPoint
 from .model import Model
 from .spatial import Spatial, is_spatial
-from .joint import JointSpatial, has_tree
+from .joint import JointPlanar, JointSpatial, has_tree
 
 # Relative tolerance of the comparison.
 RTOL = 1e-12
@@ -209,7 +209,7 @@ class SpatialJointLayout(SpatialLayout):
     the unit quaternions being the tree's (ball joints', free bodies')."""
 
     def __init__(self, model_json):
-        self.model = JointSpatial(model_json)
+        self.model = JointSpatial(model_json) if is_spatial(model_json) else JointPlanar(model_json)
         self.dyn = self.model
         self.columns = model_json.get("velocities", self.model.velocity_names)
 

@@ -35,7 +35,8 @@ TREE_KINDS = ("revolute", "translational", "cylindrical", "spherical", "rigid")
 
 
 def has_tree(model_json):
-    return model_json.get("dimension", 2) == 3 and "tree" in model_json
+    """A model in joint coordinates (planar or spatial)."""
+    return "tree" in model_json
 
 
 def qmul(a, b):
@@ -316,3 +317,196 @@ class JointSpatial:
         else:
             x = np.linalg.solve(kkt, rhs)
         return x[:nv], x[nv:], float(np.linalg.cond(kkt))
+
+
+# Row labels of the planar constraint kinds (docs/formulation.md, "Constraint rows").
+PLANAR_ROWS = {"revolute": ("x", "y"), "translational": ("normal", "angle"), "revolute_revolute": ("length",),
+               "revolute_translational": ("distance",), "rigid": ("x", "y", "angle"), "drive_angle": ("angle",),
+               "drive_distance": ("distance",), "constraint": ("user",)}
+
+
+def planar_row_names(c):
+    """"name: label" of each row of a planar constraint of the model JSON."""
+    labels = (c["coordinate"],) if c["kind"] in ("drive", "fix") else PLANAR_ROWS[c["kind"]]
+    return [f"{c['name']}: {label}" for label in labels]
+
+
+class JointPlanar:
+    """A PLANAR mechanism in joint coordinates ("tree" without "dimension": 3), as
+    docs/formulation.md, "Planar joint coordinates", specifies it: each body's pose from its
+    parent's (revolute φ_j = φ_i + θ; rigid φ_j = φ_i + angle; translational φ_j = φ_i + α_i − α_j
+    (+ π where the axes point apart at the bodies' `at:` poses) and P_j = P_i + s u_i), v = q̇, the
+    twists by differentiation, the body-coordinate rebuild (model.py, dynamics.py) evaluated there
+    and projected on the tree's velocities (M = Jᵀ M_b J, h = Jᵀ (h_b − M_b J̇ v)). Samples use
+    the spatial keys ("v", dense "mass", "h_v"), so the comparison is `SpatialJointLayout`'s."""
+
+    def __init__(self, model):
+        from .dynamics import Dynamics
+        from .model import Model
+
+        self.json = model
+        self.name = model["name"]
+        body_json = {k: v for k, v in model.items() if k not in ("tree", "velocities")}
+        body_json["coordinates"] = [f"{b['name']}.{c}" for b in model["bodies"] for c in ("x", "y", "phi")]
+        self.body = b = Model(body_json)
+        self.body_dynamics = db = Dynamics(b)
+        self.bodies = b.bodies
+        self.param_names = b.param_names
+        self.t, self.p = b.t, b.p
+        self.tree = model["tree"]
+        self.nq = self.nv = sum(link["nq"] for link in self.tree)
+        self.q = ca.SX.sym("q", self.nq)
+        self.v = ca.SX.sym("v", self.nv)
+        self.qdot = self.v
+        self.B = ca.SX.eye(self.nq)
+        self.quaternions = []
+        self.constraints = {c["name"]: c for c in model["constraints"]}
+        self.defaults = np.array([p["default"] for p in model["params"]], dtype=float)
+        self.coordinate_names = []
+        for link in sorted(self.tree, key=lambda link: link["q"]):
+            if link["joint"] is None:
+                self.coordinate_names += [f"{link['body']}.{c}" for c in ("x", "y", "phi")]
+            else:
+                kind = self.constraints[link["joint"]]["kind"]
+                self.coordinate_names += {"revolute": [f"{link['joint']}.angle"], "translational": [f"{link['joint']}.stroke"],
+                                          "rigid": []}[kind]
+        self.velocity_names = list(self.coordinate_names)
+
+        placed = {}
+        for link in self.tree:
+            placed[link["body"]] = self.place(link, placed)
+        qb = ca.vertcat(*[ca.vertcat(*placed[n]) for n in self.bodies])
+        vb = ca.jtimes(qb, self.q, self.v)
+
+        carried = {link["joint"] for link in self.tree if link["joint"] is not None}
+        keep, first = [], 0
+        for c in model["constraints"]:
+            count = len(b.constraint(c))
+            if c["name"] not in carried:
+                keep.extend(range(first, first + count))
+            first += count
+        self.keep = keep
+        self.row_names = [name for c in model["constraints"] if c["name"] not in carried for name in planar_row_names(c)]
+        body_args = [b.q, b.qd, b.t, b.p]
+        phi_all = ca.Function("phi_b", body_args, [b.phi])(qb, vb, self.t, self.p)
+        self.phi = ca.vertcat(*[phi_all[r] for r in keep]) if keep else ca.SX(0, 1)
+        self.nc = self.phi.shape[0]
+        self.lam = ca.SX.sym("lambda", self.nc)
+        self.D = ca.jacobian(self.phi, self.q)
+        self.nu = -ca.jacobian(self.phi, self.t)
+        self.gamma = -self.rate(self.rate(self.phi))
+
+        jac = ca.jacobian(vb, self.v)
+        bias = ca.jtimes(vb, self.q, self.v)
+        mass_b = ca.diag(db.mass)
+        self.mass = jac.T @ mass_b @ jac
+        contributions = []
+        for k, (name, q_b, v_b) in enumerate(db.contributions):
+            qj, vj = ca.Function(f"Q{k}", body_args, [q_b, v_b])(qb, vb, self.t, self.p)
+            contributions.append((name, jac.T @ qj, vj, True))
+        contributions.append(("inertia of the tree", -jac.T @ (mass_b @ bias), ca.SX(0), True))
+        self.contributions = contributions
+        zero = ca.SX(self.nv, 1)
+        self.h = sum((c[1] for c in contributions), zero)
+        self.potential = sum((c[2] for c in contributions), ca.SX(0))
+        self.h_q = ca.jacobian(self.h, self.q)
+        self.h_v = ca.jacobian(self.h, self.v)
+        mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
+                sum((ca.fabs(ca.jacobian(c[1], self.q)) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
+        self.has_friction = db.has_friction
+        lam_b = [ca.SX(0)] * b.nc
+        for i, r in enumerate(keep):
+            lam_b[r] = self.lam[i]
+        friction_b = ca.Function("friction_b", body_args + [db.lam], [db.friction])(qb, vb, self.t, self.p,
+                                                                                   ca.vertcat(*lam_b) if lam_b else ca.SX(0, 1))
+        self.friction = jac.T @ friction_b
+        self.friction_q = ca.jacobian(self.friction, self.q)
+        self.friction_v = ca.jacobian(self.friction, self.v)
+        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
+        self._functions(mags, fmags)
+
+    def _functions(self, mags, fmags):
+        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
+        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
+        self.f_phi = F("phi", [self.phi], ["phi"])
+        self.f_jac = F("jacobian", [self.D], ["jacobian"])
+        self.f_nu = F("nu", [self.nu], ["nu"])
+        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
+        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q), ca.jacobian(self.gamma, self.v)],
+                                     ["gamma_q", "gamma_v"])
+        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
+        self.f_mass = F("mass", [self.mass], ["mass"])
+        self.f_h = F("h", [self.h], ["h"])
+        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
+        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
+        self.f_potential = F("potential", [self.potential], ["potential"])
+        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
+        fargs, fnames = args + [self.lam], names + ["lambda"]
+        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
+                                      ["friction", "friction_q", "friction_v"])
+        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
+                                             ["friction_lambda"])
+        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
+                                                 ["friction", "friction_q", "friction_v"])
+
+    def initial_pose(self, body):
+        """(x, y, φ) of a body's `at:` at the parameters' defaults; the ground's zeros."""
+        if body == "ground":
+            return np.zeros(3)
+        at = next(b for b in self.json["bodies"] if b["name"] == body)["q0"]
+        return np.array([float(ca.Function("n", [self.p], [self.body.expr(e)])(self.defaults)) for e in at])
+
+    def place(self, link, placed):
+        """(x, y, φ) of a link's body from its parent's."""
+        q = self.q[link["q"]:link["q"] + link["nq"]]
+        if link["joint"] is None:
+            return [q[0], q[1], q[2]]
+        joint = self.constraints[link["joint"]]
+        kind, i, j = joint["kind"], joint["i"], joint["j"]
+        parent_side, child_side = (j, i) if link["reversed"] else (i, j)
+        parent = [ca.SX(0)] * 3 if link["parent"] == "ground" else placed[link["parent"]]
+        sign = -1 if link["reversed"] else 1
+        if kind == "revolute":
+            turn = q[0]
+        elif kind == "rigid":
+            turn = self.body.expr(joint["angle"])
+        elif kind == "translational":
+            alpha = [ca.atan2(self.body.expr(side["axis"][1]), self.body.expr(side["axis"][0])) for side in (i, j)]
+            turn = alpha[0] - alpha[1]
+            pi0, pj0 = self.initial_pose(i["body"]), self.initial_pose(j["body"])
+            if np.cos(pj0[2] + float(ca.Function("n", [self.p], [alpha[1] - alpha[0]])(self.defaults)) - pi0[2]) < 0:
+                turn = turn + np.pi
+        else:
+            raise ValueError(f"{self.name}: the tree carries {joint['name']}, a {kind} joint, which has no relative coordinates")
+        phi = parent[2] + sign * turn
+
+        def rot(angle, point):
+            x, y = self.body.expr(point[0]), self.body.expr(point[1])
+            return [ca.cos(angle) * x - ca.sin(angle) * y, ca.sin(angle) * x + ca.cos(angle) * y]
+
+        arm_p, arm_c = rot(parent[2], parent_side["point"]), rot(phi, child_side["point"])
+        r = [parent[a] + arm_p[a] - arm_c[a] for a in range(2)]
+        if kind == "translational":
+            phi_i = phi if link["reversed"] else parent[2]
+            a = [self.body.expr(x) for x in i["axis"]]
+            norm = ca.sqrt(a[0] ** 2 + a[1] ** 2)
+            u = [(ca.cos(phi_i) * a[0] - ca.sin(phi_i) * a[1]) / norm, (ca.sin(phi_i) * a[0] + ca.cos(phi_i) * a[1]) / norm]
+            r = [r[k] + sign * q[0] * u[k] for k in range(2)]
+        return [r[0], r[1], phi]
+
+    def rate(self, s):
+        return ca.jtimes(s, self.q, self.v) + ca.jacobian(s, self.t)
+
+    def params_vector(self, named):
+        if isinstance(named, (list, tuple, np.ndarray)):
+            return [float(x) for x in named]
+        defaults = {p["name"]: p["default"] for p in self.json["params"]}
+        return [named.get(n, defaults[n]) for n in self.param_names]
+
+    def structural_jacobian(self):
+        sp = self.D.sparsity()
+        return set(zip(sp.row(), sp.get_col()))
+
+    forward = JointSpatial.forward
