@@ -410,4 +410,7 @@ fn named_points_and_bodies_agree_both_ways() {
         let (_, w) = ArmJoint::UPPER.velocity(&j, &q, &v);
         assert!((w - ArmBody::UPPER.angular_velocity(&qb, &vb)).norm() < 1e-12);
     }
+    assert_eq!(j.mass_of(ArmJoint::FORE), 0.6);
+    assert_eq!(j.inertia_of(ArmJoint::UPPER), b.inertia_of(ArmBody::UPPER));
+    assert_eq!(j.inertia_of(ArmJoint::UPPER)[(0, 1)], 0.001, "a product of inertia");
 }

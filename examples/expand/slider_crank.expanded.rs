@@ -106,13 +106,11 @@ impl SliderCrank {
     /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
     #[allow(unused_parens, clippy::approx_constant)]
     pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> f64 {
-        let mut out = [0f64; 3];
-        use ::mbd::sparse::Elements as _;
-        let [__out_0, __out_1, __out_2] = out.window_mut::<0, 3>();
-        (*__out_0) = 0.002f64;
-        (*__out_1) = 0.015f64;
-        (*__out_2) = 0.001f64;
-        out[body.index]
+        let mut out = [[[0f64; 1]; 1]; 3];
+        out[0][0][0] = 0.002f64;
+        out[1][0][0] = 0.015f64;
+        out[2][0][0] = 0.001f64;
+        out[body.index][0][0]
     }
     /// Parameter values in declaration order (see `PARAM_NAMES`).
     pub fn params(&self) -> [f64; 3] {

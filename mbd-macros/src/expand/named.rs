@@ -87,76 +87,66 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
             }
         }
     });
-    // M is no constant diagonal in joint coordinates: its entries are not the bodies' masses
-    let inertia = if m.tree.is_none() { body_inertia(m, f, e) } else { quote!() };
+    let inertia = body_inertia(m, f, e);
     quote!(#(#bodies)* #(#joints)* #(#points)* #(#coordinates)* #inertia)
 }
 
 /// `mass_of(Name::BODY)` (kg) and `inertia_of(Name::BODY)`: J (kg·m²) about the centre of mass
 /// in the plane, the 3×3 tensor J′ in the body frame in space — read from the model, so a
-/// parameter-dependent mass reads the parameters' current values.
+/// parameter-dependent mass reads the parameters' current values. In joint coordinates the body
+/// is a `TreeBody`.
 fn body_inertia(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let real = real(m.scalar);
-    let n = m.bodies.len();
-    let per_body = f.nv / n.max(1);
-    let masses: Vec<Output> = (0..n)
-        .map(|k| {
+    let nb = usize_lit(m.bodies.len());
+    let zero = e.literal(0.0);
+    let body_type = match (m.space, &m.tree) {
+        (_, Some(_)) => quote!(::mbd::TreeBody),
+        (crate::model::Space::Planar, None) => quote!(::mbd::PlanarBody),
+        (crate::model::Space::Spatial, None) => quote!(::mbd::SpatialBody),
+    };
+    let masses: Vec<Output> = f
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(k, body)| {
             let kl = usize_lit(k);
-            Output { target: quote!(out[#kl]), node: f.mass[per_body * k] }
+            Output { target: quote!(out[#kl]), node: body.mass }
         })
         .collect();
     let (mass_body, _) = e.body(&masses);
-    let zero = e.literal(0.0);
-    let nb = usize_lit(n);
-    let (body_type, inertia_of) = match m.space {
-        crate::model::Space::Planar => {
-            let js: Vec<Output> = (0..n)
-                .map(|k| {
-                    let kl = usize_lit(k);
-                    Output { target: quote!(out[#kl]), node: f.mass[3 * k + 2] }
-                })
-                .collect();
-            let (j_body, _) = e.body(&js);
-            let inertia_of = quote! {
-                /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
-                #[allow(unused_parens, clippy::approx_constant)]
-                pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> #real {
-                    let mut out = [#zero; #nb];
-                    #j_body
-                    out[body.index]
-                }
-            };
-            (quote!(::mbd::PlanarBody), inertia_of)
-        }
-        crate::model::Space::Spatial => {
-            // out[k][r][c] = J′_rc of body k: the diagonal from M's, the products from its coupling.
-            let mut js: Vec<Output> = Vec::new();
-            for k in 0..n {
-                let kl = usize_lit(k);
-                for r in 0..3 {
-                    let rl = usize_lit(r);
-                    js.push(Output { target: quote!(out[#kl][#rl][#rl]), node: f.mass[6 * k + 3 + r] });
-                }
-            }
-            for &(r, c, node) in &f.mass_coupling {
-                let (kl, rl, cl) = (usize_lit(r / 6), usize_lit(r % 6 - 3), usize_lit(c % 6 - 3));
+    // out[k][r][c] = J_rc of body k (1×1 in the plane)
+    let mut js: Vec<Output> = Vec::new();
+    for (k, body) in f.bodies.iter().enumerate() {
+        for (r, row) in body.inertia.iter().enumerate() {
+            for (c, &node) in row.iter().enumerate() {
+                let (kl, rl, cl) = (usize_lit(k), usize_lit(r), usize_lit(c));
                 js.push(Output { target: quote!(out[#kl][#rl][#cl]), node });
             }
-            let (j_body, _) = e.body(&js);
-            let inertia_of = quote! {
-                /// The inertia tensor J′ (kg·m²) of a body (`Name::BODY`) about its centre of mass,
-                /// in body-frame components.
-                #[allow(unused_parens, clippy::approx_constant)]
-                pub fn inertia_of(&self, body: ::mbd::SpatialBody) -> ::mbd::nalgebra::Matrix3<#real> {
-                    let mut out = [[[#zero; 3]; 3]; #nb];
-                    #j_body
-                    ::mbd::nalgebra::Matrix3::from_fn(|r, c| out[body.index][r][c])
-                }
-            };
-            (quote!(::mbd::SpatialBody), inertia_of)
         }
+    }
+    let (j_body, _) = e.body(&js);
+    let inertia_of = match m.space {
+        crate::model::Space::Planar => quote! {
+            /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
+            #[allow(unused_parens, clippy::approx_constant)]
+            pub fn inertia_of(&self, body: #body_type) -> #real {
+                let mut out = [[[#zero; 1]; 1]; #nb];
+                #j_body
+                out[body.index][0][0]
+            }
+        },
+        crate::model::Space::Spatial => quote! {
+            /// The inertia tensor J′ (kg·m²) of a body (`Name::BODY`) about its centre of mass,
+            /// in body-frame components.
+            #[allow(unused_parens, clippy::approx_constant)]
+            pub fn inertia_of(&self, body: #body_type) -> ::mbd::nalgebra::Matrix3<#real> {
+                let mut out = [[[#zero; 3]; 3]; #nb];
+                #j_body
+                ::mbd::nalgebra::Matrix3::from_fn(|r, c| out[body.index][r][c])
+            }
+        },
     };
-    let mass_of = quote! {
+    quote! {
         /// The mass (kg) of a body (`Name::BODY`).
         #[allow(unused_parens, clippy::approx_constant)]
         pub fn mass_of(&self, body: #body_type) -> #real {
@@ -164,8 +154,8 @@ fn body_inertia(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
             #mass_body
             out[body.index]
         }
-    };
-    quote!(#mass_of #inertia_of)
+        #inertia_of
+    }
 }
 
 /// The accessor of a named point on ground, `ground_o()`: its fixed position (global).

@@ -33,7 +33,7 @@ use super::{
     accessors, constraint_derivatives, constraint_rows, forces, linear_terms, newton_terms, ForceTerms, Forces, Formulation, FrameNodes,
 };
 use crate::frames::Builder;
-use crate::model::{BodyRef, Inertia, Model};
+use crate::model::{BodyRef, Model};
 use crate::sym::{Graph, Id, Var};
 use crate::tree::Tree;
 
@@ -93,7 +93,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let (q0, qd0) = crate::tree::initial(&mut b, tree);
 
     // h = Σ J_bᵀ (f_b − M_b J̇_b v − ω′ × J′ω′); M x = Σ J_bᵀ M_b J_b x.
-    let inertia = inertias(&mut b, model);
+    let inertia = super::inertias(&mut b, model);
     let bias: Vec<Vec<Id>> = frames
         .iter()
         .zip(&inertia)
@@ -218,6 +218,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         damping: Vec::new(),
         points,
         joint_coordinates,
+        bodies: inertia,
         frames,
         tree: Some(terms),
         graph: b.g,
@@ -225,7 +226,14 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
 }
 
 /// M x, and the dense functions as products with a direction ([`TreeTerms`]).
-fn tree_terms(b: &mut Builder, kinematics: &Kinematics, inertia: &[BodyInertia], mass_x: Vec<Id>, h: &[Id], friction: &[Id]) -> TreeTerms {
+fn tree_terms(
+    b: &mut Builder,
+    kinematics: &Kinematics,
+    inertia: &[super::BodyInertia],
+    mass_x: Vec<Id>,
+    h: &[Id],
+    friction: &[Id],
+) -> TreeTerms {
     let nv = kinematics.tree.nv;
     let directions: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
     let (mass_solve, pivots) = kinematics.mass_solve(b, inertia, &directions);
@@ -264,38 +272,6 @@ fn tree_terms(b: &mut Builder, kinematics: &Kinematics, inertia: &[BodyInertia],
         pivots,
         free_accelerations,
     }
-}
-
-/// A body's mass and its moment of inertia about its centre of mass: J (planar) or the tensor
-/// J′ in its own frame (3×3).
-struct BodyInertia {
-    mass: Id,
-    inertia: Vec<Vec<Id>>,
-}
-
-impl BodyInertia {
-    /// M_b x for a twist-shaped x as body coordinates have it, (ṙ, φ̇) or (ṙ, ω′):
-    /// (m ṙ, J φ̇) or (m ṙ, J′ ω′).
-    fn times(&self, b: &mut Builder, x: &[Id]) -> Vec<Id> {
-        let linear = x.len() - self.inertia.len();
-        let mut out: Vec<Id> = x[..linear].iter().map(|&x| b.g.mul(self.mass, x)).collect();
-        out.extend(self.inertia.iter().map(|row| b.dot(row, &x[linear..])));
-        out
-    }
-}
-
-fn inertias(b: &mut Builder, model: &Model) -> Vec<BodyInertia> {
-    model
-        .bodies
-        .iter()
-        .map(|body| {
-            let inertia = match &body.inertia {
-                Inertia::Planar(j) => vec![vec![b.expr(j)]],
-                Inertia::Tensor(t) => t.iter().map(|row| row.iter().map(|e| b.expr(e)).collect()).collect(),
-            };
-            BodyInertia { mass: b.expr(&body.mass), inertia }
-        })
-        .collect()
 }
 
 /// A twist (ṙ, ω) at r_p moved to r_k = r_p + d: (ṙ + ω × d, ω), global components; in the
@@ -543,7 +519,7 @@ impl<'t> Kinematics<'t> {
 
     /// A body's inertia at its centre of mass in global components: diag(m, m, J), or
     /// [[m I, 0], [0, A J′ Aᵀ]].
-    fn global_inertia(&self, b: &mut Builder, k: usize, m: &BodyInertia) -> Matrix {
+    fn global_inertia(&self, b: &mut Builder, k: usize, m: &super::BodyInertia) -> Matrix {
         let zero = b.g.num(0.0);
         let Some(a) = &self.rotations[k] else {
             let d = [m.mass, m.mass, m.inertia[0][0]];
@@ -572,7 +548,7 @@ impl<'t> Kinematics<'t> {
     /// c, X_c the twist transform from r_k to r_c; then for k's link with screws S,
     /// U = I^A S, D = Sᵀ U, u = τ_k − Sᵀ p_k, I^a = I^A − U D⁻¹ Uᵀ, p^a = p_k + U D⁻¹ u.
     /// Root first: a′ = X a_parent (a = 0 at ground), x_k = D⁻¹(u − Uᵀ a′), a_k = a′ + S x_k.
-    fn mass_solve(&self, b: &mut Builder, inertia: &[BodyInertia], tau: &[Id]) -> (Vec<Id>, Vec<(usize, Id)>) {
+    fn mass_solve(&self, b: &mut Builder, inertia: &[super::BodyInertia], tau: &[Id]) -> (Vec<Id>, Vec<(usize, Id)>) {
         let tree = self.tree;
         let zero = b.g.num(0.0);
         let n = self.twist_size();

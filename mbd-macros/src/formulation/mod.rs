@@ -114,6 +114,8 @@ pub struct Formulation {
     /// (accessor name `hinge_angle`, its value, its rate along q̇ = B(q) v), for the generated
     /// accessors.
     pub joint_coordinates: Vec<(String, Id, Id)>,
+    /// Each body's mass and inertia about its centre of mass (`mass_of`, `inertia_of`).
+    pub bodies: Vec<BodyInertia>,
     /// In joint coordinates, each body's frame as functions of q and v (`mbd::BodyFrames`);
     /// empty in body coordinates, whose frames are q's own entries.
     pub frames: Vec<FrameNodes>,
@@ -165,8 +167,10 @@ pub fn formulate(model: &Model) -> Formulation {
     let (constraint_force_q, stiffness, damping) = newton_terms(&mut b, &jacobian, [&h_q, &h_qd], [&friction_q, &friction_qd]);
     let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
     let (points, joint_coordinates) = accessors(&mut b);
+    let bodies = inertias(&mut b, model);
     b.g.forget_partials();
     Formulation {
+        bodies,
         nc: phi.len(),
         row_names,
         row_units,
@@ -208,6 +212,38 @@ pub fn formulate(model: &Model) -> Formulation {
         frames: Vec::new(),
         tree: None,
     }
+}
+
+/// A body's mass and its moment of inertia about its centre of mass: J (planar) or the tensor
+/// J′ in its own frame (3×3).
+pub struct BodyInertia {
+    pub mass: Id,
+    pub inertia: Vec<Vec<Id>>,
+}
+
+impl BodyInertia {
+    /// M_b x for a twist-shaped x as body coordinates have it, (ṙ, φ̇) or (ṙ, ω′):
+    /// (m ṙ, J φ̇) or (m ṙ, J′ ω′).
+    fn times(&self, b: &mut Builder, x: &[Id]) -> Vec<Id> {
+        let linear = x.len() - self.inertia.len();
+        let mut out: Vec<Id> = x[..linear].iter().map(|&x| b.g.mul(self.mass, x)).collect();
+        out.extend(self.inertia.iter().map(|row| b.dot(row, &x[linear..])));
+        out
+    }
+}
+
+fn inertias(b: &mut Builder, model: &Model) -> Vec<BodyInertia> {
+    model
+        .bodies
+        .iter()
+        .map(|body| {
+            let inertia = match &body.inertia {
+                Inertia::Planar(j) => vec![vec![b.expr(j)]],
+                Inertia::Tensor(t) => t.iter().map(|row| row.iter().map(|e| b.expr(e)).collect()).collect(),
+            };
+            BodyInertia { mass: b.expr(&body.mass), inertia }
+        })
+        .collect()
 }
 
 /// The power of the non-conservative forces, dV/dt + vᵀh with dV/dt = V_q q̇ + V_t.
