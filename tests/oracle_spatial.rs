@@ -21,7 +21,11 @@ mod rng;
 mod common {
     pub(crate) use super::rng::Rng;
 }
+#[path = "common/joint.rs"]
+#[allow(dead_code)] // this file uses the macro only
+mod joint;
 mod oracle_env;
+use joint::both_ways;
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -85,14 +89,6 @@ mbd::mechanism! {
         distance ground[0.0, 0.0, 0.2] ~ dot[0.0, 0.0, 0.0] { length: 1.0 };
         spring dot[0.0, 0.0, 0.0] ~ bead[0.0, 0.0, 0.0] { k: 200.0, length: 0.3, c: 1.5 };
     }
-}
-
-/// The same statements as a body-coordinate and a joint-coordinate mechanism.
-macro_rules! both_ways {
-    ($(#[$doc:meta])* $body:ident, $joint:ident { $($statements:tt)* }) => {
-        mbd::mechanism! { $(#[$doc])* pub $body { $($statements)* } }
-        mbd::mechanism! { $(#[$doc])* pub $joint { joint_coordinates; $($statements)* } }
-    };
 }
 
 both_ways! {

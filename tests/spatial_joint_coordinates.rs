@@ -11,13 +11,9 @@
 
 use mbd::prelude::*;
 
-/// The same statements as a body-coordinate and a joint-coordinate mechanism.
-macro_rules! both_ways {
-    ($(#[$doc:meta])* $body:ident, $joint:ident { $($statements:tt)* }) => {
-        mechanism! { $(#[$doc])* pub $body { $($statements)* } }
-        mechanism! { $(#[$doc])* pub $joint { joint_coordinates; $($statements)* } }
-    };
-}
+#[path = "common/joint.rs"]
+mod joint;
+use joint::{both_ways, close, on_constraints};
 
 both_ways! {
     /// An arm: a base turning about z, an upper arm on a pin about the base's y axis, a forearm
@@ -134,10 +130,6 @@ fn euler_parameters(a: &[[f64; 3]; 3]) -> [f64; 4] {
     }
 }
 
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-10 * a.abs().max(b.abs()).max(1.0)
-}
-
 /// At a joint state on the constraints: the body-coordinate constraints vanish there, and the
 /// energies and each body's acceleration agree.
 fn agree<B, J, const NQB: usize, const NVB: usize, const NCB: usize, const NQJ: usize, const NVJ: usize, const NCJ: usize>(
@@ -193,26 +185,6 @@ fn states<J: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize,
         j.normalize_positions(&mut q);
         (q, core::array::from_fn(|i| x(i + NQ, 2.0)), 0.1 * s as f64)
     })
-}
-
-/// A state of the joint mechanism on its constraints: `q` moved onto Φ = 0 and `v` onto
-/// D v = ν by the mass-weighted projections.
-fn on_constraints<J: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
-    j: &J,
-    q: &mut [f64; NQ],
-    v: &mut [f64; NV],
-    t: f64,
-) {
-    let options = DynamicsOptions::default();
-    for _ in 0..30 {
-        if j.project_positions_step(q, t, &options).expect("a regular position") < 1e-13 {
-            break;
-        }
-    }
-    j.project_velocities(q, v, t, &options).expect("a regular position");
-    let mut phi = [0.0; NC];
-    j.constraints(q, t, &mut phi);
-    assert!(phi.iter().all(|x| x.abs() < 1e-12), "{}: the projection reached Φ = {phi:?}", J::NAME);
 }
 
 #[test]

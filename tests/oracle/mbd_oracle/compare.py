@@ -156,6 +156,10 @@ class SpatialLayout:
         self.dyn = self.model
         self.columns = model_json.get("velocities", self.model.velocity_names)
 
+    def quaternions(self):
+        """(where in q, whose) of each unit quaternion: every body's Euler parameters."""
+        return [(7 * b + 3, f"{body}'s Euler parameters") for b, body in enumerate(self.model.bodies)]
+
     def args(self, s):
         p = s["p"] if "p" in s else s["params"]
         return (s["q"], s["v"], s["t"], self.model.params_vector(p))
@@ -191,10 +195,10 @@ class SpatialLayout:
             return [f"{m.name}: sample {k} has {len(s['q'])} coordinates and {len(s[self.velocity])} velocities, "
                     f"the model {m.nq} and {m.nv}"]
         out = []
-        for b, body in enumerate(m.bodies):
-            norm = float(np.linalg.norm(np.asarray(s["q"][7 * b + 3:7 * b + 7], dtype=float)))
+        for at, whose in self.quaternions():
+            norm = float(np.linalg.norm(np.asarray(s["q"][at:at + 4], dtype=float)))
             if abs(norm - 1.0) > UNIT_TOL:
-                out.append(f"{m.name}: sample {k}: {body}'s Euler parameters have |p| = {norm!r}; samples use unit p "
+                out.append(f"{m.name}: sample {k}: {whose} have |p| = {norm!r}; samples use unit p "
                            f"(|p| − 1 within {UNIT_TOL:g})")
         return out
 
@@ -213,17 +217,9 @@ class SpatialJointLayout(SpatialLayout):
         self.dyn = self.model
         self.columns = model_json.get("velocities", self.model.velocity_names)
 
-    def sample_failures(self, k, s):
-        m = self.model
-        if len(s["q"]) != m.nq or len(s[self.velocity]) != m.nv:
-            return [f"{m.name}: sample {k} has {len(s['q'])} coordinates and {len(s[self.velocity])} velocities, "
-                    f"the model {m.nq} and {m.nv}"]
-        out = []
-        for at in m.quaternions:
-            norm = float(np.linalg.norm(np.asarray(s["q"][at:at + 4], dtype=float)))
-            if abs(norm - 1.0) > UNIT_TOL:
-                out.append(f"{m.name}: sample {k}: the quaternion at q[{at}] has |p| = {norm!r}; samples use unit p")
-        return out
+    def quaternions(self):
+        """The tree's unit quaternions: its ball joints' and free bodies' (none in the plane)."""
+        return [(at, f"the quaternion at q[{at}]") for at in self.model.quaternions]
 
 
 def layout_of(model_json):

@@ -50,7 +50,122 @@ def qconj(a):
     return ca.vertcat(a[0], -a[1:4])
 
 
-class JointSpatial:
+class _Tree:
+    """What both formulations share once their symbols and expressions are built: the
+    Functions compare.py reads, 𝒟, and the KKT forward dynamics. Needs q, v, qdot, t, p, lam,
+    B, phi, D, nu, gamma, mass, h, h_q, h_v, potential, friction (+ _q, _v)."""
+
+    def _functions(self, mags, fmags):
+        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
+        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
+        self.f_phi = F("phi", [self.phi], ["phi"])
+        self.f_jac = F("jacobian", [self.D], ["jacobian"])
+        self.f_nu = F("nu", [self.nu], ["nu"])
+        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
+        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
+                                     ["gamma_q", "gamma_v"])
+        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
+        self.f_B = F("B", [self.B], ["B"])
+        self.f_mass = F("mass", [self.mass], ["mass"])
+        self.f_h = F("h", [self.h], ["h"])
+        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
+        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
+        self.f_potential = F("potential", [self.potential], ["potential"])
+        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
+        fargs, fnames = args + [self.lam], names + ["lambda"]
+        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
+                                      ["friction", "friction_q", "friction_v"])
+        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
+                                             ["friction_lambda"])
+        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
+                                                 ["friction", "friction_q", "friction_v"])
+
+    def _kinematics(self, phi_all, keep):
+        """Φ: the cut rows `keep` of the body model's rows at the tree's poses; D = Φ_q B, ν, γ."""
+        self.keep = keep
+        self.phi = ca.vertcat(*[phi_all[r] for r in keep]) if keep else ca.SX(0, 1)
+        self.nc = self.phi.shape[0]
+        self.lam = ca.SX.sym("lambda", self.nc)
+        self.D = ca.jacobian(self.phi, self.q) @ self.B
+        self.nu = -ca.jacobian(self.phi, self.t)
+        self.gamma = -self.rate(self.rate(self.phi))
+
+    def _project(self, qb, vb, body_args, mass_b, body_contributions, body_lam, body_friction, nc_body):
+        """The bodies' equations on the tree's velocities (Jourdain): with J = ∂v_b/∂v and J̇ v =
+        (∂v_b/∂q) q̇ at fixed v, M = Jᵀ M_b J and each contribution Q_b to h as Jᵀ Q_b, plus the
+        tree's inertia −Jᵀ M_b J̇ v; Coulomb friction of the cut joints as Jᵀ f_b(λ_b)."""
+        jac = ca.jacobian(vb, self.v)
+        bias = ca.jtimes(vb, self.q, self.qdot)
+        self.mass = jac.T @ mass_b @ jac
+        contributions = []
+        for k, (name, q_b, v_b) in enumerate(body_contributions):
+            qj, vj = ca.Function(f"Q{k}", body_args, [q_b, v_b])(qb, vb, self.t, self.p)
+            contributions.append((name, jac.T @ qj, vj))
+        contributions.append(("inertia of the tree", -jac.T @ (mass_b @ bias), ca.SX(0)))
+        friction_b = ca.Function("friction_b", body_args + [body_lam], [body_friction])(qb, vb, self.t, self.p, self.cut_multipliers(nc_body))
+        self._dynamics(contributions, friction_b, jac)
+
+    def _dynamics(self, contributions, friction_b, jac):
+        """h, V, their derivatives and magnitudes from the projected contributions, and the
+        friction forces Jᵀ f_b; then the Functions."""
+        self.contributions = contributions
+        zero = ca.SX(self.nv, 1)
+        self.h = sum((c[1] for c in contributions), zero)
+        self.potential = sum((c[2] for c in contributions), ca.SX(0))
+        self.h_q = ca.jacobian(self.h, self.q) @ self.B
+        self.h_v = ca.jacobian(self.h, self.v)
+        mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
+                sum((ca.fabs(ca.jacobian(c[1], self.q) @ self.B) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(self.nv, self.nv)),
+                sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
+        self.friction = jac.T @ friction_b
+        self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
+        self.friction_v = ca.jacobian(self.friction, self.v)
+        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
+        self._functions(mags, fmags)
+
+    def cut_multipliers(self, nc_body):
+        """λ_b of the body model: the cut rows' λ in their places, zero for the tree's rows."""
+        lam_b = [ca.SX(0)] * nc_body
+        for i, r in enumerate(self.keep):
+            lam_b[r] = self.lam[i]
+        return ca.vertcat(*lam_b) if lam_b else ca.SX(0, 1)
+
+    def rate(self, s):
+        """𝒟s = (∂s/∂q) B(q) v + ∂s/∂t."""
+        return ca.jtimes(s, self.q, self.qdot) + ca.jacobian(s, self.t)
+
+    def params_vector(self, named):
+        if isinstance(named, (list, tuple, np.ndarray)):
+            return [float(x) for x in named]
+        defaults = {p["name"]: p["default"] for p in self.json["params"]}
+        return [named.get(n, defaults[n]) for n in self.param_names]
+
+    def structural_jacobian(self):
+        sp = self.D.sparsity()
+        return set(zip(sp.row(), sp.get_col()))
+
+    def forward(self, q, v, t, p, alpha, beta):
+        """[M, −Dᵀ; D, 0] [v̇; λ] = [h; γ − 2α (D v − ν) − β² Φ] by LU, as spatial.Spatial."""
+        nv, nc = self.nv, self.nc
+        args = (q, v, t, p)
+        mass = np.array(self.f_mass(*args))
+        h = np.array(self.f_h(*args)).reshape(-1)
+        phi, jac, nu, gamma = (np.array(x) for x in self.f_kinematics(*args))
+        phi, nu, gamma = phi.reshape(-1), nu.reshape(-1), gamma.reshape(-1)
+        kkt = np.zeros((nv + nc, nv + nc))
+        kkt[:nv, :nv] = mass
+        kkt[:nv, nv:] = -jac.T
+        kkt[nv:, :nv] = jac
+        rhs = np.concatenate([h, gamma - 2.0 * alpha * (jac @ np.asarray(v, dtype=float) - nu) - beta**2 * phi])
+        if self.has_friction:
+            x = solve_friction_fixed_point(self.name, kkt, rhs, h, args, nv, self.f_friction, self.f_friction_lambda)
+        else:
+            x = np.linalg.solve(kkt, rhs)
+        return x[:nv], x[nv:], float(np.linalg.cond(kkt))
+
+
+class JointSpatial(_Tree):
     """The symbolic equations of a spatial mechanism in joint coordinates (see the module)."""
 
     def __init__(self, model):
@@ -86,12 +201,11 @@ class JointSpatial:
             placed[link["body"]] = self.place(link, placed)
         qb = ca.vertcat(*[ca.vertcat(placed[n][0], placed[n][1]) for n in self.bodies])
         rates = lambda x: ca.jtimes(x, self.q, self.qdot)  # noqa: E731  (v held fixed)
-        twists = []
+        twists = []  # ṙ and ω′ = 2 L(p) ṗ
         for n in self.bodies:
             r, p = placed[n]
             twists.append(ca.vertcat(rates(r), 2 * l_matrix(p) @ rates(p)))
         vb = ca.vertcat(*twists)
-        self.qb, self.vb = qb, vb
 
         # kinematics: the cut rows
         carried = {link["joint"] for link in self.tree if link["joint"] is not None}
@@ -101,74 +215,11 @@ class JointSpatial:
             count = len(b.constraint(c)[0])
             if c["name"] not in carried:
                 keep.extend(range(first, first + count))
-        self.keep = keep
         self.row_names = [b.row_names[r] for r in keep]
-        at = lambda f: f(qb, vb, self.t, self.p)  # noqa: E731
-        phi_all = ca.Function("phi_b", [b.q, b.t, b.p], [b.phi])(qb, self.t, self.p)
-        self.phi = ca.vertcat(*[phi_all[r] for r in keep]) if keep else ca.SX(0, 1)
-        self.nc = self.phi.shape[0]
-        self.lam = ca.SX.sym("lambda", self.nc)
-        self.D = ca.jacobian(self.phi, self.q) @ self.B
-        self.nu = -ca.jacobian(self.phi, self.t)
-        self.gamma = -self.rate(self.rate(self.phi))
-
-        # dynamics by Jourdain's principle over the bodies
-        jac = ca.jacobian(vb, self.v)
-        bias = rates(vb)
-        mass_b = b.mass
-        self.mass = jac.T @ mass_b @ jac
-        body_args = [b.q, b.v, b.t, b.p]
-        contributions = []
-        for k, (name, q_b, v_b, conservative) in enumerate(b.contributions):
-            q_of = ca.Function(f"Q{k}", body_args, [q_b, v_b])
-            qj, vj = q_of(qb, vb, self.t, self.p)
-            contributions.append((name, jac.T @ qj, vj, conservative))
-        contributions.append(("inertia of the tree", -jac.T @ (mass_b @ bias), ca.SX(0), True))
-        self.contributions = contributions
-        zero = ca.SX(self.nv, 1)
-        self.h = sum((c[1] for c in contributions), zero)
-        self.potential = sum((c[2] for c in contributions), ca.SX(0))
-        self.h_q = ca.jacobian(self.h, self.q) @ self.B
-        self.h_v = ca.jacobian(self.h, self.v)
-        mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
-                sum((ca.fabs(ca.jacobian(c[1], self.q) @ self.B) for c in contributions), ca.SX(self.nv, self.nv)),
-                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(self.nv, self.nv)),
-                sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
-        # Coulomb friction of cut joints: the body model's at λ_b with the cut rows' λ in place
+        self._kinematics(ca.Function("phi_b", [b.q, b.t, b.p], [b.phi])(qb, self.t, self.p), keep)
+        # dynamics by Jourdain's principle over the bodies; Coulomb friction of the cut joints
         self.has_friction = b.has_friction
-        lam_b = [ca.SX(0)] * b.nc
-        for i, r in enumerate(keep):
-            lam_b[r] = self.lam[i]
-        friction_b = ca.Function("friction_b", body_args + [b.lam], [b.friction])(qb, vb, self.t, self.p, ca.vertcat(*lam_b) if lam_b else ca.SX(0, 1))
-        self.friction = jac.T @ friction_b
-        self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
-        self.friction_v = ca.jacobian(self.friction, self.v)
-        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
-
-        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
-        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
-        self.f_phi = F("phi", [self.phi], ["phi"])
-        self.f_jac = F("jacobian", [self.D], ["jacobian"])
-        self.f_nu = F("nu", [self.nu], ["nu"])
-        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
-        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
-                                     ["gamma_q", "gamma_v"])
-        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
-        self.f_B = F("B", [self.B], ["B"])
-        self.f_mass = F("mass", [self.mass], ["mass"])
-        self.f_h = F("h", [self.h], ["h"])
-        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
-        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
-        self.f_potential = F("potential", [self.potential], ["potential"])
-        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
-        self.f_bodies = F("bodies", [qb, vb], ["qb", "vb"])
-        fargs, fnames = args + [self.lam], names + ["lambda"]
-        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
-                                      ["friction", "friction_q", "friction_v"])
-        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
-                                             ["friction_lambda"])
-        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
-                                                 ["friction", "friction_q", "friction_v"])
+        self._project(qb, vb, [b.q, b.v, b.t, b.p], b.mass, [c[:3] for c in b.contributions], b.lam, b.friction, b.nc)
 
     # --- the tree ------------------------------------------------------------------------------
     def link_map(self, link):
@@ -287,37 +338,6 @@ class JointSpatial:
             r = r + (-s if link["reversed"] else s) * z_i
         return r, p
 
-    # --- as spatial.Spatial ----------------------------------------------------------------------
-    def rate(self, s):
-        """𝒟s = (∂s/∂q) B(q) v + ∂s/∂t."""
-        return ca.jtimes(s, self.q, self.qdot) + ca.jacobian(s, self.t)
-
-    def params_vector(self, named):
-        return self.body.params_vector(named)
-
-    def structural_jacobian(self):
-        sp = self.D.sparsity()
-        return set(zip(sp.row(), sp.get_col()))
-
-    def forward(self, q, v, t, p, alpha, beta):
-        """[M, −Dᵀ; D, 0] [v̇; λ] = [h; γ − 2α (D v − ν) − β² Φ] by LU, as spatial.Spatial."""
-        nv, nc = self.nv, self.nc
-        args = (q, v, t, p)
-        mass = np.array(self.f_mass(*args))
-        h = np.array(self.f_h(*args)).reshape(-1)
-        phi, jac, nu, gamma = (np.array(x) for x in self.f_kinematics(*args))
-        phi, nu, gamma = phi.reshape(-1), nu.reshape(-1), gamma.reshape(-1)
-        kkt = np.zeros((nv + nc, nv + nc))
-        kkt[:nv, :nv] = mass
-        kkt[:nv, nv:] = -jac.T
-        kkt[nv:, :nv] = jac
-        rhs = np.concatenate([h, gamma - 2.0 * alpha * (jac @ np.asarray(v, dtype=float) - nu) - beta**2 * phi])
-        if self.has_friction:
-            x = solve_friction_fixed_point(self.name, kkt, rhs, h, args, nv, self.f_friction, self.f_friction_lambda)
-        else:
-            x = np.linalg.solve(kkt, rhs)
-        return x[:nv], x[nv:], float(np.linalg.cond(kkt))
-
 
 # Row labels of the planar constraint kinds (docs/formulation.md, "Constraint rows").
 PLANAR_ROWS = {"revolute": ("x", "y"), "translational": ("normal", "angle"), "revolute_revolute": ("length",),
@@ -331,7 +351,7 @@ def planar_row_names(c):
     return [f"{c['name']}: {label}" for label in labels]
 
 
-class JointPlanar:
+class JointPlanar(_Tree):
     """A PLANAR mechanism in joint coordinates ("tree" without "dimension": 3), as
     docs/formulation.md, "Planar joint coordinates", specifies it: each body's pose from its
     parent's (revolute φ_j = φ_i + θ; rigid φ_j = φ_i + angle; translational φ_j = φ_i + α_i − α_j
@@ -349,7 +369,7 @@ class JointPlanar:
         body_json = {k: v for k, v in model.items() if k not in ("tree", "velocities")}
         body_json["coordinates"] = [f"{b['name']}.{c}" for b in model["bodies"] for c in ("x", "y", "phi")]
         self.body = b = Model(body_json)
-        self.body_dynamics = db = Dynamics(b)
+        db = Dynamics(b)
         self.bodies = b.bodies
         self.param_names = b.param_names
         self.t, self.p = b.t, b.p
@@ -385,71 +405,11 @@ class JointPlanar:
             if c["name"] not in carried:
                 keep.extend(range(first, first + count))
             first += count
-        self.keep = keep
         self.row_names = [name for c in model["constraints"] if c["name"] not in carried for name in planar_row_names(c)]
         body_args = [b.q, b.qd, b.t, b.p]
-        phi_all = ca.Function("phi_b", body_args, [b.phi])(qb, vb, self.t, self.p)
-        self.phi = ca.vertcat(*[phi_all[r] for r in keep]) if keep else ca.SX(0, 1)
-        self.nc = self.phi.shape[0]
-        self.lam = ca.SX.sym("lambda", self.nc)
-        self.D = ca.jacobian(self.phi, self.q)
-        self.nu = -ca.jacobian(self.phi, self.t)
-        self.gamma = -self.rate(self.rate(self.phi))
-
-        jac = ca.jacobian(vb, self.v)
-        bias = ca.jtimes(vb, self.q, self.v)
-        mass_b = ca.diag(db.mass)
-        self.mass = jac.T @ mass_b @ jac
-        contributions = []
-        for k, (name, q_b, v_b) in enumerate(db.contributions):
-            qj, vj = ca.Function(f"Q{k}", body_args, [q_b, v_b])(qb, vb, self.t, self.p)
-            contributions.append((name, jac.T @ qj, vj, True))
-        contributions.append(("inertia of the tree", -jac.T @ (mass_b @ bias), ca.SX(0), True))
-        self.contributions = contributions
-        zero = ca.SX(self.nv, 1)
-        self.h = sum((c[1] for c in contributions), zero)
-        self.potential = sum((c[2] for c in contributions), ca.SX(0))
-        self.h_q = ca.jacobian(self.h, self.q)
-        self.h_v = ca.jacobian(self.h, self.v)
-        mags = [sum((ca.fabs(c[1]) for c in contributions), zero),
-                sum((ca.fabs(ca.jacobian(c[1], self.q)) for c in contributions), ca.SX(self.nv, self.nv)),
-                sum((ca.fabs(ca.jacobian(c[1], self.v)) for c in contributions), ca.SX(self.nv, self.nv)),
-                sum((ca.fabs(c[2]) for c in contributions), ca.SX(0))]
+        self._kinematics(ca.Function("phi_b", body_args, [b.phi])(qb, vb, self.t, self.p), keep)
         self.has_friction = db.has_friction
-        lam_b = [ca.SX(0)] * b.nc
-        for i, r in enumerate(keep):
-            lam_b[r] = self.lam[i]
-        friction_b = ca.Function("friction_b", body_args + [db.lam], [db.friction])(qb, vb, self.t, self.p,
-                                                                                   ca.vertcat(*lam_b) if lam_b else ca.SX(0, 1))
-        self.friction = jac.T @ friction_b
-        self.friction_q = ca.jacobian(self.friction, self.q)
-        self.friction_v = ca.jacobian(self.friction, self.v)
-        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
-        self._functions(mags, fmags)
-
-    def _functions(self, mags, fmags):
-        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
-        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
-        self.f_phi = F("phi", [self.phi], ["phi"])
-        self.f_jac = F("jacobian", [self.D], ["jacobian"])
-        self.f_nu = F("nu", [self.nu], ["nu"])
-        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
-        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q), ca.jacobian(self.gamma, self.v)],
-                                     ["gamma_q", "gamma_v"])
-        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
-        self.f_mass = F("mass", [self.mass], ["mass"])
-        self.f_h = F("h", [self.h], ["h"])
-        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
-        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
-        self.f_potential = F("potential", [self.potential], ["potential"])
-        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
-        fargs, fnames = args + [self.lam], names + ["lambda"]
-        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
-                                      ["friction", "friction_q", "friction_v"])
-        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
-                                             ["friction_lambda"])
-        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
-                                                 ["friction", "friction_q", "friction_v"])
+        self._project(qb, vb, body_args, ca.diag(db.mass), db.contributions, db.lam, db.friction, b.nc)
 
     def initial_pose(self, body):
         """(x, y, φ) of a body's `at:` at the parameters' defaults; the ground's zeros."""
@@ -495,18 +455,3 @@ class JointPlanar:
             u = [(ca.cos(phi_i) * a[0] - ca.sin(phi_i) * a[1]) / norm, (ca.sin(phi_i) * a[0] + ca.cos(phi_i) * a[1]) / norm]
             r = [r[k] + sign * q[0] * u[k] for k in range(2)]
         return [r[0], r[1], phi]
-
-    def rate(self, s):
-        return ca.jtimes(s, self.q, self.v) + ca.jacobian(s, self.t)
-
-    def params_vector(self, named):
-        if isinstance(named, (list, tuple, np.ndarray)):
-            return [float(x) for x in named]
-        defaults = {p["name"]: p["default"] for p in self.json["params"]}
-        return [named.get(n, defaults[n]) for n in self.param_names]
-
-    def structural_jacobian(self):
-        sp = self.D.sparsity()
-        return set(zip(sp.row(), sp.get_col()))
-
-    forward = JointSpatial.forward
