@@ -83,6 +83,12 @@ impl<'m> Builder<'m> {
         &self.tree_frames[k].global
     }
 
+    /// In joint coordinates, body k's J̇ v where the tree builds it by recursion (`None`: take
+    /// the twist's rate along q̇).
+    pub fn tree_bias(&self, k: usize) -> Option<&[Id]> {
+        self.tree_frames.get(k).and_then(|f| f.bias.as_deref())
+    }
+
     /// A builder in the model's bodies' own coordinates (x, y, φ per body, v = q̇; r, p and
     /// ṙ, ω′ in space), whatever the model's formulation: where joint coordinates write the
     /// elements' rows and forces before mapping them through the tree (`formulation::joint`).

@@ -273,7 +273,10 @@ fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
             let body = BodyRef::Body(k);
             let pose: Vec<Id> = b.model.space.coordinates().iter().map(|&c| b.coord(body, c)).collect();
             let twist: Vec<Id> = b.model.space.velocities().iter().map(|&c| b.velocity(body, c)).collect();
-            let bias = twist.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
+            let bias = match b.tree_bias(k) {
+                Some(bias) => bias.to_vec(),
+                None => twist.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect(),
+            };
             FrameNodes { pose, twist, bias }
         })
         .collect()

@@ -99,6 +99,9 @@ pub struct TreeFrame {
     pub pose: Vec<Id>,
     pub twist: Vec<Id>,
     pub global: Vec<Id>,
+    /// The twist's rate at constant v (J̇ v, as `twist` holds the twist) where the tree builds it
+    /// by recursion (in space); `None`: the twist's derivative along q̇ (in the plane).
+    pub bias: Option<Vec<Id>>,
 }
 
 /// Every body's frame, bodies in declaration order.

@@ -33,7 +33,8 @@ type Vec3 = [Id; 3];
 type Quaternion = [Id; 4];
 type Rotation = [[Id; 3]; 3];
 
-/// A body placed by the tree: its pose, rotation and global twist.
+/// A body placed by the tree: its pose, rotation, global twist and the twist's rate at constant
+/// v (J̇ v, global: r̈ and ω̇ with v̇ = 0).
 #[derive(Clone, Copy)]
 struct Placed {
     r: Vec3,
@@ -41,6 +42,8 @@ struct Placed {
     a: Rotation,
     v: Vec3,
     w: Vec3,
+    dv: Vec3,
+    dw: Vec3,
 }
 
 /// How a tree joint places its child: the child's orientation relative to the parent's
@@ -60,7 +63,7 @@ struct Placement {
 pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
     let (zero, one) = (b.g.num(0.0), b.g.num(1.0));
     let identity = [[one, zero, zero], [zero, one, zero], [zero, zero, one]];
-    let ground = Placed { r: [zero; 3], p: [one, zero, zero, zero], a: identity, v: [zero; 3], w: [zero; 3] };
+    let ground = Placed { r: [zero; 3], p: [one, zero, zero, zero], a: identity, v: [zero; 3], w: [zero; 3], dv: [zero; 3], dw: [zero; 3] };
     let mut placed: Vec<Option<Placed>> = vec![None; tree.links.len()];
     let mut frames: Vec<Option<TreeFrame>> = (0..tree.links.len()).map(|_| None).collect();
     for &k in &tree.order {
@@ -74,7 +77,8 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
                 let a = rotation_matrix(&mut b.g, p);
                 let angular = [v[3], v[4], v[5]];
                 let w = times(b, &a, angular);
-                (Placed { r, p, a, v: [v[0], v[1], v[2]], w }, angular)
+                // ṙ and ω′ are the velocities: no rate at constant v (d(A ω′)/dt = ω × ω = 0)
+                (Placed { r, p, a, v: [v[0], v[1], v[2]], w, dv: [zero; 3], dw: [zero; 3] }, angular)
             }
             Some(index) => {
                 let parent = match link.parent {
@@ -88,7 +92,10 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
         let twist = [body.v[0], body.v[1], body.v[2], angular[0], angular[1], angular[2]];
         let pose = [body.r[0], body.r[1], body.r[2], body.p[0], body.p[1], body.p[2], body.p[3]];
         let global = [body.v[0], body.v[1], body.v[2], body.w[0], body.w[1], body.w[2]];
-        frames[k] = Some(TreeFrame { pose: pose.to_vec(), twist: twist.to_vec(), global: global.to_vec() });
+        // J̇ v as body coordinates hold it: r̈ global, ω̇′ = Aᵀ ω̇ (d(Aᵀ)/dt ω = −ω′ × ω′ = 0)
+        let dw_body = transpose_times(b, &body.a, body.dw);
+        let bias = [body.dv[0], body.dv[1], body.dv[2], dw_body[0], dw_body[1], dw_body[2]];
+        frames[k] = Some(TreeFrame { pose: pose.to_vec(), twist: twist.to_vec(), global: global.to_vec(), bias: Some(bias.to_vec()) });
         placed[k] = Some(body);
     }
     frames.into_iter().map(|f| f.expect("every body is placed")).collect()
@@ -140,7 +147,19 @@ fn child(b: &mut Builder, parent: &Placed, placement: Placement, placed: &[Optio
         b.g.add(s, along[c])
     });
     let w = times(b, &a, angular);
-    (Placed { r, p, a, v: velocity, w }, angular)
+    // J̇ v at constant v: d(A_c y′)/dt = ω_c × A_c y′ for the link's own motion y′ = σ v, so
+    // ω̇ = ω̇_p + ω_c × (A_c σ_ang v) and r̈ = r̈_p + ω̇_p × d + ω_p × ḋ + ω_c × (A_c σ_lin v)
+    let turn: Vec3 = std::array::from_fn(|c| b.g.sub(w[c], parent.w[c]));
+    let dw_own = b.cross(w, turn);
+    let dw: Vec3 = std::array::from_fn(|c| b.g.add(parent.dw[c], dw_own[c]));
+    let arm_rate: Vec3 = std::array::from_fn(|c| b.g.sub(velocity[c], parent.v[c]));
+    let (lever, stretch, own) = (b.cross(parent.dw, arm), b.cross(parent.w, arm_rate), b.cross(w, along));
+    let dv: Vec3 = std::array::from_fn(|c| {
+        let s = b.g.add(parent.dv[c], lever[c]);
+        let s = b.g.add(s, stretch[c]);
+        b.g.add(s, own[c])
+    });
+    (Placed { r, p, a, v: velocity, w, dv, dw }, angular)
 }
 
 /// A tree joint's placement of its child (the module's equations).
