@@ -186,11 +186,7 @@ impl Coordinates {
             Some(tree) => {
                 let (mut rates, mut quaternions) = (Vec::new(), Vec::new());
                 for link in &tree.links {
-                    let at = match (link.count, link.count_v) {
-                        (7, 6) => 3,
-                        (4, 3) => 0,
-                        (n, _) => n,
-                    };
+                    let at = link.quaternion().unwrap_or(link.count);
                     rates.extend((0..at).map(|c| (link.first + c, link.first_v + c)));
                     if at < link.count {
                         quaternions.push((link.first + at, link.first_v + at));

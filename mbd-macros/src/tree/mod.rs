@@ -41,6 +41,18 @@ pub struct Link {
     pub count_v: usize,
 }
 
+impl Link {
+    /// Where a unit quaternion starts among the link's coordinates, and so its angular velocity
+    /// among its velocities: a free spatial body's (after r), a spherical joint's (all of them).
+    pub fn quaternion(&self) -> Option<usize> {
+        match (self.count, self.count_v) {
+            (7, 6) => Some(3),
+            (4, 3) => Some(0),
+            _ => None,
+        }
+    }
+}
+
 /// The spanning tree.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tree {

@@ -20,7 +20,13 @@
 //!
 //! ω′_c = A_cᵀ ω_p + Σ σ_ang,m v_m,  ṙ_c = ṙ_p + ω_p × (r_c − r_p) + A_c Σ σ_lin,m v_m,
 //!
-//! ω_p global; a free body's twist is its velocities, as in body coordinates.
+//! ω_p global; a free body's twist is its velocities, as in body coordinates. The twist's rate
+//! at constant v (J̇ v) follows the same way, d(A_c y′)/dt = ω_c × A_c y′ for the link's own
+//! motion y′ = σ v:
+//!
+//! ω̇_c = ω̇_p + ω_c × A_c Σ σ_ang,m v_m,  r̈_c = r̈_p + ω̇_p × d + ω_p × ḋ + ω_c × A_c Σ σ_lin,m v_m,
+//!
+//! d = r_c − r_p, and ω̇′_c = A_cᵀ ω̇_c as body coordinates hold it.
 
 use super::{Tree, TreeFrame};
 use crate::elements::spatial::Marker;
@@ -286,12 +292,7 @@ pub fn coordinate_rates(b: &mut Builder, tree: &Tree) -> Vec<Id> {
     for link in &tree.links {
         let q = |b: &mut Builder, i: usize| b.g.var(Var::Q((link.first + i) as u16));
         let v = |b: &mut Builder, i: usize| b.g.var(Var::Qd((link.first_v + i) as u16));
-        let quaternion_at = match (link.count, link.count_v) {
-            (7, 6) => Some(3),
-            (4, 3) => Some(0),
-            _ => None,
-        };
-        let Some(at) = quaternion_at else {
+        let Some(at) = link.quaternion() else {
             rates.extend((0..link.count).map(|i| v(b, i)));
             continue;
         };
