@@ -3,7 +3,8 @@
 //! of one `accelerations` call (body coordinates: the evaluation before the planned sparse
 //! solve, whose own operations are not counted; joint coordinates: that evaluation, the tree's
 //! M⁻¹h and one M⁻¹x per constraint row, before the dense NC×NC solve), the time of one
-//! `accelerations` call at a moving state and of one RK4 step at h = 1 ms.
+//! `accelerations` call at a moving state, of one RK4 step at h = 1 ms and of one DOPRI5 step at
+//! its default tolerances (at most 1 ms).
 //!
 //! Run: `cargo run --release -p mbd-bench --example formulations` (a few seconds; the timings are
 //! medians of 7 batches, single thread, and vary by ±20 % between runs on a busy machine).
@@ -96,12 +97,17 @@ fn row<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, co
     let step = median_micros(5_000, || {
         rk4.step(&system, &mut ws, std::hint::black_box(&p), f64::INFINITY, &mut next).expect("a step");
     });
-    println!("| {label} | {coordinates} | {NQ} | {NV} | {NC} | {ops} | {accelerations:.2} µs | {step:.2} µs |");
+    // DOPRI5 at its default tolerances, each call one step (its size adapted from the last)
+    let mut dopri = Dopri5::new(Dopri5Options::default());
+    let dopri_step = median_micros(5_000, || {
+        dopri.step(&system, &mut ws, std::hint::black_box(&p), p.t + 1e-3, &mut next).expect("a step");
+    });
+    println!("| {label} | {coordinates} | {NQ} | {NV} | {NC} | {ops} | {accelerations:.2} µs | {step:.2} µs | {dopri_step:.2} µs |");
 }
 
 fn main() {
-    println!("| mechanism | coordinates | NQ | NV | NC | ops | accelerations | RK4 step |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("| mechanism | coordinates | NQ | NV | NC | ops | accelerations | RK4 step | DOPRI5 step |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     row(&ArmBody::default(), "6-revolute arm", "body");
     row(&ArmJoint::default(), "6-revolute arm", "joint");
     row(&chain16::SpatialChain16::default(), "16-link ball chain", "body");
