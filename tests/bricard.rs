@@ -17,9 +17,15 @@
 //! the solver.
 use mbd::prelude::*;
 
-mechanism! {
-    /// A line-symmetric Bricard linkage of five moving links and the ground.
-    pub Bricard {
+#[path = "common/joint.rs"]
+#[allow(dead_code)] // this file uses the macro only
+mod joint;
+use joint::both_ways;
+
+both_ways! {
+    /// A line-symmetric Bricard linkage of five moving links and the ground (`BricardJoint`: in
+    /// joint coordinates, the tree carrying j1–j5 and the loop cut at j6).
+    Bricard, BricardJoint {
         spatial;
         params { a1: 0.4, a2: 0.5, a3: 0.3, al1: 0.9, al2: 1.4, al3: 2.1, d1: 0.05, d2: -0.08, d3: 0.06 }
         gravity [0.0, 0.0, -9.81];
@@ -233,4 +239,27 @@ fn bricard_statics_finds_its_hanging_pose() {
         // loads of ~50 N, rounding of the two computations: 1e-9 N
         assert!((lambda[i] - expected[i]).abs() < 1e-9, "row {i}: {} vs pseudo-inverse {}", lambda[i], expected[i]);
     }
+}
+
+/// In joint coordinates the same linkage is five angles and the cut joint j6's five rows, of
+/// rank 4: the report finds the one redundant closure row there too, mobility 1 against
+/// Grübler's 0 (issue 38: "a Bricard-like loop cut once: 5 closure rows of rank 4").
+#[test]
+fn bricard_in_joint_coordinates_has_one_redundant_closure_row() {
+    let m = BricardJoint::default();
+    let mut ws = BricardJoint::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the Bricard linkage assembles in joint coordinates");
+    assert_eq!(BricardJoint::CONSTRAINT_NAMES.len(), 5, "{:?}", BricardJoint::CONSTRAINT_NAMES);
+    assert!(BricardJoint::CONSTRAINT_NAMES.iter().all(|n| n.starts_with("j6")), "{:?}", BricardJoint::CONSTRAINT_NAMES);
+    let mut phi = [0.0; 5];
+    m.constraints(&q, 0.0, &mut phi);
+    assert!(phi.iter().all(|x| x.abs() <= 1e-10), "Φ = {phi:?}");
+    let report = KinematicSolver::default().redundancy(&m, &mut ws, &q, 0.0).unwrap();
+    assert_eq!((report.grubler, report.mobility, report.rank), (0, 1, 4), "{report}");
+    assert!(report.largest_redundant < 1e-10 && report.smallest_kept > 1e-3, "{report:?}");
+    // the closure forces the line symmetry θ_i = θ_(i+3) on the angles the tree carries
+    // (tolerance: the assembly's, as for body coordinates above)
+    let apart = |a: f64, b: f64| ((a - b + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI).abs();
+    assert!(apart(q[0], q[3]) < 1e-9 && apart(q[1], q[4]) < 1e-9, "θ = {q:?}");
 }
