@@ -27,7 +27,7 @@ import casadi as ca
 import numpy as np
 
 from .dynamics import solve_friction_fixed_point
-from .spatial import Spatial, dot, l_matrix, rotation
+from .spatial import Spatial, define_functions, dot, l_matrix, rotation
 
 TURNING = ("revolute", "cylindrical")
 SLIDING = ("translational", "cylindrical")
@@ -54,31 +54,6 @@ class _Tree:
     """What both formulations share once their symbols and expressions are built: the
     Functions compare.py reads, 𝒟, and the KKT forward dynamics. Needs q, v, qdot, t, p, lam,
     B, phi, D, nu, gamma, mass, h, h_q, h_v, potential, friction (+ _q, _v)."""
-
-    def _functions(self, mags, fmags):
-        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
-        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
-        self.f_phi = F("phi", [self.phi], ["phi"])
-        self.f_jac = F("jacobian", [self.D], ["jacobian"])
-        self.f_nu = F("nu", [self.nu], ["nu"])
-        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
-        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
-                                     ["gamma_q", "gamma_v"])
-        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
-        self.f_B = F("B", [self.B], ["B"])
-        self.f_mass = F("mass", [self.mass], ["mass"])
-        self.f_h = F("h", [self.h], ["h"])
-        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
-        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
-        self.f_potential = F("potential", [self.potential], ["potential"])
-        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
-        fargs, fnames = args + [self.lam], names + ["lambda"]
-        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
-                                      ["friction", "friction_q", "friction_v"])
-        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
-                                             ["friction_lambda"])
-        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
-                                                 ["friction", "friction_q", "friction_v"])
 
     def _kinematics(self, phi_all, keep):
         """Φ: the cut rows `keep` of the body model's rows at the tree's poses; D = Φ_q B, ν, γ."""
@@ -122,7 +97,7 @@ class _Tree:
         self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
         self.friction_v = ca.jacobian(self.friction, self.v)
         fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
-        self._functions(mags, fmags)
+        define_functions(self, mags, fmags)
 
     def cut_multipliers(self, nc_body):
         """λ_b of the body model: the cut rows' λ in their places, zero for the tree's rows."""

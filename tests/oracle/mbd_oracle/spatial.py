@@ -71,6 +71,39 @@ def dot(a, b):
     return ca.dot(a, b)
 
 
+def define_functions(m, mags, fmags):
+    """The CasADi Functions of a rebuilt spatial model m (body or joint coordinates) that compare.py
+    reads, of (q, v, t, p) and, for friction, λ: from m's q, v, t, p, lam, B, phi, D, nu, gamma,
+    mass, h, h_q, h_v, potential and friction terms, and the magnitudes of the floors."""
+    args, names = [m.q, m.v, m.t, m.p], ["q", "v", "t", "p"]
+    F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
+    m.f_phi = F("phi", [m.phi], ["phi"])
+    m.f_jac = F("jacobian", [m.D], ["jacobian"])
+    m.f_nu = F("nu", [m.nu], ["nu"])
+    m.f_gamma = F("gamma", [m.gamma], ["gamma"])
+    # γ's derivatives (∂γ/∂q) B and ∂γ/∂v, for the generated Linearize::gamma_derivatives.
+    m.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(m.gamma, m.q) @ m.B, ca.jacobian(m.gamma, m.v)],
+                              ["gamma_q", "gamma_v"])
+    m.f_kinematics = F("kinematics", [m.phi, m.D, m.nu, m.gamma], ["phi", "jacobian", "nu", "gamma"])
+    m.f_B = F("B", [m.B], ["B"])
+    m.f_mass = F("mass", [m.mass], ["mass"])
+    m.f_h = F("h", [m.h], ["h"])
+    m.f_h_q = F("h_q", [m.h_q], ["h_q"])
+    m.f_h_v = F("h_v", [m.h_v], ["h_v"])
+    m.f_potential = F("potential", [m.potential], ["potential"])
+    m.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
+    contributions = m.contributions
+    m.f_contributions = F("contributions", [c[1] for c in contributions] + [c[2] for c in contributions],
+                          [f"Q{k}" for k in range(len(contributions))] + [f"V{k}" for k in range(len(contributions))])
+    fargs, fnames = args + [m.lam], names + ["lambda"]
+    m.f_friction = ca.Function("friction", fargs, [m.friction, m.friction_q, m.friction_v], fnames,
+                               ["friction", "friction_q", "friction_v"])
+    m.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(m.friction, m.lam)], fnames,
+                                      ["friction_lambda"])
+    m.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
+                                          ["friction", "friction_q", "friction_v"])
+
+
 class Spatial:
     """The symbolic equations of one spatial mechanism (kinematics and dynamics).
 
@@ -171,32 +204,7 @@ class Spatial:
                  sum((ca.fabs(ca.jacobian(q, self.q) @ self.B) for _, q in friction), ca.SX(nv, nv)),
                  sum((ca.fabs(ca.jacobian(q, self.v)) for _, q in friction), ca.SX(nv, nv))]
 
-        args, names = [self.q, self.v, self.t, self.p], ["q", "v", "t", "p"]
-        F = lambda n, outs, outnames: ca.Function(n, args, outs, names, outnames)  # noqa: E731
-        self.f_phi = F("phi", [self.phi], ["phi"])
-        self.f_jac = F("jacobian", [self.D], ["jacobian"])
-        self.f_nu = F("nu", [self.nu], ["nu"])
-        self.f_gamma = F("gamma", [self.gamma], ["gamma"])
-        # γ's derivatives (∂γ/∂q) B and ∂γ/∂v, for the generated Linearize::gamma_derivatives.
-        self.f_gamma_derivatives = F("gamma_derivatives", [ca.jacobian(self.gamma, self.q) @ self.B, ca.jacobian(self.gamma, self.v)],
-                                     ["gamma_q", "gamma_v"])
-        self.f_kinematics = F("kinematics", [self.phi, self.D, self.nu, self.gamma], ["phi", "jacobian", "nu", "gamma"])
-        self.f_B = F("B", [self.B], ["B"])
-        self.f_mass = F("mass", [self.mass], ["mass"])
-        self.f_h = F("h", [self.h], ["h"])
-        self.f_h_q = F("h_q", [self.h_q], ["h_q"])
-        self.f_h_v = F("h_v", [self.h_v], ["h_v"])
-        self.f_potential = F("potential", [self.potential], ["potential"])
-        self.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
-        self.f_contributions = F("contributions", [c[1] for c in contributions] + [c[2] for c in contributions],
-                                 [f"Q{k}" for k in range(len(contributions))] + [f"V{k}" for k in range(len(contributions))])
-        fargs, fnames = args + [self.lam], names + ["lambda"]
-        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_v], fnames,
-                                      ["friction", "friction_q", "friction_v"])
-        self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
-                                             ["friction_lambda"])
-        self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
-                                                 ["friction", "friction_q", "friction_v"])
+        define_functions(self, mags, fmags)
 
     # --- expressions -----------------------------------------------------------------------
     def expr(self, e):
