@@ -349,4 +349,19 @@ mod tests {
         assert_eq!(links, [(G, None, 0, 3), (G, None, 3, 3), (b(1), Some(0), 6, 1)]);
         assert_eq!(tree.order, [0, 1, 2]);
     }
+
+    /// In space a ball joint (4 coordinates, 3 velocities, 3 rows) is cut before a revolute
+    /// joint (1 and 1, 5 rows) that closes the same loop; a free body gets r, p and ṙ, ω′; q and
+    /// v are numbered body by body, and each link says where its quaternion starts.
+    #[test]
+    fn spatial_links_count_coordinates_and_velocities_apart() {
+        const BALL: Counts = Counts { q: 4, v: 3 };
+        let tree = plan(3, &[(0, [G, b(0)], ONE), (1, [b(0), b(1)], BALL), (2, [G, b(1)], ONE)], Space::Spatial);
+        assert_eq!(tree.joints, BTreeSet::from([0, 2]), "the ball joint closes the loop and is cut");
+        let tree = plan(3, &[(0, [G, b(0)], BALL), (1, [b(0), b(1)], ONE)], Space::Spatial);
+        let links: Vec<(usize, usize, usize, usize, Option<usize>)> =
+            tree.links.iter().map(|l| (l.first, l.count, l.first_v, l.count_v, l.quaternion())).collect();
+        assert_eq!(links, [(0, 4, 0, 3, Some(0)), (4, 1, 3, 1, None), (5, 7, 4, 6, Some(3))]);
+        assert_eq!((tree.nq, tree.nv, tree.links[2].joint), (12, 10, None));
+    }
 }
