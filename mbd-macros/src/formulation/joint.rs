@@ -94,23 +94,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
 
     // h = Σ J_bᵀ (f_b − M_b J̇_b v − ω′ × J′ω′); M x = Σ J_bᵀ M_b J_b x.
     let inertia = super::inertias(&mut b, model);
-    let bias: Vec<Vec<Id>> = frames
-        .iter()
-        .zip(&inertia)
-        .map(|(frame, m)| {
-            let mut bias = m.times(&mut b, &frame.bias);
-            if let [_, _, _, wx, wy, wz] = frame.twist[..] {
-                // the gyroscopic moment ω′ × J′ω′, in the body's frame as the bias is
-                let w = [wx, wy, wz];
-                let jw = m.times(&mut b, &frame.twist)[3..].to_vec();
-                let gyroscopic = b.cross(w, [jw[0], jw[1], jw[2]]);
-                for (c, g) in gyroscopic.into_iter().enumerate() {
-                    bias[3 + c] = b.g.add(bias[3 + c], g);
-                }
-            }
-            bias
-        })
-        .collect();
+    let bias = inertia_bias(&mut b, &frames, &inertia);
     let wrenches_of = |b: &mut Builder, import: &mut dyn FnMut(&mut Builder, Id) -> Id, generalized: &[Id]| -> Vec<Vec<Id>> {
         (0..bias.len())
             .map(|k| {
@@ -140,16 +124,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     };
     let potential = import(&mut b, potential);
     let switches: Vec<(String, Id)> = switches.into_iter().map(|(name, s)| (name, import(&mut b, s))).collect();
-    let momenta: Vec<Vec<Id>> = frames
-        .iter()
-        .zip(&inertia)
-        .enumerate()
-        .map(|(k, (frame, m))| {
-            let momentum = m.times(&mut b, &frame.twist);
-            kinematics.global_wrench(&mut b, k, momentum)
-        })
-        .collect();
-    let mass_x = kinematics.backward(&mut b, momenta);
+    let mass_x = kinematics.mass_times(&mut b, &frames, &inertia);
 
     // Each element alone (its op counts; the velocities its force reaches, for naming it
     // behind a NaN): the inertia terms and its wrenches through the same pass.
@@ -223,6 +198,26 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         tree: Some(terms),
         graph: b.g,
     }
+}
+
+/// Each body's inertia terms at constant v, M_b J̇_b v plus (in space) the gyroscopic moment
+/// ω′ × J′ω′, as body coordinates hold a wrench (moment in the body's frame).
+fn inertia_bias(b: &mut Builder, frames: &[FrameNodes], inertia: &[super::BodyInertia]) -> Vec<Vec<Id>> {
+    frames
+        .iter()
+        .zip(inertia)
+        .map(|(frame, m)| {
+            let mut bias = m.times(b, &frame.bias);
+            if let [_, _, _, wx, wy, wz] = frame.twist[..] {
+                let jw = m.times(b, &frame.twist);
+                let gyroscopic = b.cross([wx, wy, wz], [jw[3], jw[4], jw[5]]);
+                for (c, g) in gyroscopic.into_iter().enumerate() {
+                    bias[3 + c] = b.g.add(bias[3 + c], g);
+                }
+            }
+            bias
+        })
+        .collect()
 }
 
 /// M x, and the dense functions as products with a direction ([`TreeTerms`]).
@@ -636,6 +631,21 @@ impl<'t> Kinematics<'t> {
             acceleration[k] = a;
         }
         (x, pivots)
+    }
+
+    /// M x = Σ_b J_bᵀ M_b J_b x: the bodies' momenta M_b (J_b v), v standing for x, through the
+    /// backward pass.
+    fn mass_times(&self, b: &mut Builder, frames: &[FrameNodes], inertia: &[super::BodyInertia]) -> Vec<Id> {
+        let momenta = frames
+            .iter()
+            .zip(inertia)
+            .enumerate()
+            .map(|(k, (frame, m))| {
+                let momentum = m.times(b, &frame.twist);
+                self.global_wrench(b, k, momentum)
+            })
+            .collect();
+        self.backward(b, momenta)
     }
 
     /// r_k − r_p.

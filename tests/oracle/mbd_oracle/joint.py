@@ -26,7 +26,6 @@ The class has the attributes and Functions of `spatial.Spatial` that compare.py 
 import casadi as ca
 import numpy as np
 
-from .dynamics import solve_friction_fixed_point
 from .spatial import Spatial, define_functions, dot, l_matrix, rotation
 
 TURNING = ("revolute", "cylindrical")
@@ -120,24 +119,8 @@ class _Tree:
         sp = self.D.sparsity()
         return set(zip(sp.row(), sp.get_col()))
 
-    def forward(self, q, v, t, p, alpha, beta):
-        """[M, −Dᵀ; D, 0] [v̇; λ] = [h; γ − 2α (D v − ν) − β² Φ] by LU, as spatial.Spatial."""
-        nv, nc = self.nv, self.nc
-        args = (q, v, t, p)
-        mass = np.array(self.f_mass(*args))
-        h = np.array(self.f_h(*args)).reshape(-1)
-        phi, jac, nu, gamma = (np.array(x) for x in self.f_kinematics(*args))
-        phi, nu, gamma = phi.reshape(-1), nu.reshape(-1), gamma.reshape(-1)
-        kkt = np.zeros((nv + nc, nv + nc))
-        kkt[:nv, :nv] = mass
-        kkt[:nv, nv:] = -jac.T
-        kkt[nv:, :nv] = jac
-        rhs = np.concatenate([h, gamma - 2.0 * alpha * (jac @ np.asarray(v, dtype=float) - nu) - beta**2 * phi])
-        if self.has_friction:
-            x = solve_friction_fixed_point(self.name, kkt, rhs, h, args, nv, self.f_friction, self.f_friction_lambda)
-        else:
-            x = np.linalg.solve(kkt, rhs)
-        return x[:nv], x[nv:], float(np.linalg.cond(kkt))
+    # the dense KKT solve reads only the Functions above, as for body coordinates
+    forward = Spatial.forward
 
 
 class JointSpatial(_Tree):
