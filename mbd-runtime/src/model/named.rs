@@ -274,7 +274,7 @@ pub struct TreePoint<'m, M, T, const NQ: usize, const NV: usize> {
 impl<M: BodyFrames<T, NQ, NV>, T: Real, const NQ: usize, const NV: usize> TreePoint<'_, M, T, NQ, NV> {
     /// r^P = r + A s′ (m).
     pub fn position(&self, q: &[T; NQ]) -> Point3<T> {
-        self.body.position(self.mechanism, q) + self.arm(q)
+        Point3::from(self.body.pose(self.mechanism, q).point(self.local))
     }
     /// ṙ^P = ṙ + ω × (A s′) (m/s).
     pub fn velocity(&self, q: &[T; NQ], v: &[T; NV]) -> Vector3<T> {
@@ -290,7 +290,7 @@ impl<M: BodyFrames<T, NQ, NV>, T: Real, const NQ: usize, const NV: usize> TreePo
     }
     /// A s′, global (m).
     fn arm(&self, q: &[T; NQ]) -> Vector3<T> {
-        self.body.rotation(self.mechanism, q) * Vector3::from(self.local)
+        Vector3::from(self.body.pose(self.mechanism, q).to_global(self.local))
     }
 }
 
