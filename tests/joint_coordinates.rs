@@ -13,7 +13,7 @@ use mbd::prelude::*;
 
 #[path = "common/joint.rs"]
 mod joint;
-use joint::{both_ways, close, on_constraints};
+use joint::{both_ways, close, on_constraints, reactions_agree};
 
 both_ways! {
     /// A double pendulum with a spring to ground and a torque: a tree of two revolute joints.
@@ -85,11 +85,11 @@ fn to_bodies<J: BodyFrames<f64, NQJ, NQJ>, const NQJ: usize, const NQB: usize>(
 }
 
 /// At a joint state on the constraints: the body-coordinate constraints vanish there, and the
-/// energies and each body's acceleration agree.
+/// energies, each body's acceleration and every joint's reaction agree.
 fn agree<B, J, const NQB: usize, const NCB: usize, const NQJ: usize, const NCJ: usize>(b: &B, j: &J, q: &[f64; NQJ], v: &[f64; NQJ], t: f64)
 where
-    B: ForwardDynamics<f64, NQB, NQB, NCB>,
-    J: ForwardDynamics<f64, NQJ, NQJ, NCJ> + BodyFrames<f64, NQJ, NQJ>,
+    B: ForwardDynamics<f64, NQB, NQB, NCB> + JointLoads<f64, NQB, NQB, NCB> + BodyCoordinates,
+    J: ForwardDynamics<f64, NQJ, NQJ, NCJ> + JointLoads<f64, NQJ, NQJ, NCJ>,
 {
     let (qb, vb) = to_bodies::<J, NQJ, NQB>(j, q, v);
     let name = B::NAME;
@@ -119,6 +119,7 @@ where
             );
         }
     }
+    reactions_agree(b, (&qb, &vb, &ab, &lb), j, (q, v, &aj, &lj), t);
 }
 
 /// States spread over the joint space (deterministic).
@@ -576,5 +577,6 @@ fn inverse_dynamics_gives_the_same_joint_torques() {
             );
             assert!(torques[k].abs() > 0.1, "{name}: a real load");
         }
+        reactions_agree(&b, (&qb, &vb, &vdb, &lambda), &j, (&q, &v, &vd, &torques), t);
     }
 }

@@ -13,7 +13,7 @@ use mbd::prelude::*;
 
 #[path = "common/joint.rs"]
 mod joint;
-use joint::{both_ways, close, on_constraints};
+use joint::{both_ways, close, on_constraints, reactions_agree};
 
 both_ways! {
     /// An arm: a base turning about z, an upper arm on a pin about the base's y axis, a forearm
@@ -131,7 +131,7 @@ fn euler_parameters(a: &[[f64; 3]; 3]) -> [f64; 4] {
 }
 
 /// At a joint state on the constraints: the body-coordinate constraints vanish there, and the
-/// energies and each body's acceleration agree.
+/// energies, each body's acceleration and every joint's reaction agree.
 fn agree<B, J, const NQB: usize, const NVB: usize, const NCB: usize, const NQJ: usize, const NVJ: usize, const NCJ: usize>(
     b: &B,
     j: &J,
@@ -139,8 +139,8 @@ fn agree<B, J, const NQB: usize, const NVB: usize, const NCB: usize, const NQJ: 
     v: &[f64; NVJ],
     t: f64,
 ) where
-    B: ForwardDynamics<f64, NQB, NVB, NCB>,
-    J: ForwardDynamics<f64, NQJ, NVJ, NCJ> + BodyFrames<f64, NQJ, NVJ>,
+    B: ForwardDynamics<f64, NQB, NVB, NCB> + JointLoads<f64, NQB, NVB, NCB> + BodyCoordinates,
+    J: ForwardDynamics<f64, NQJ, NVJ, NCJ> + JointLoads<f64, NQJ, NVJ, NCJ>,
 {
     let (qb, vb) = to_bodies::<J, NQJ, NVJ, NQB, NVB>(j, q, v);
     let name = B::NAME;
@@ -172,6 +172,7 @@ fn agree<B, J, const NQB: usize, const NVB: usize, const NCB: usize, const NQJ: 
             );
         }
     }
+    reactions_agree(b, (&qb, &vb, &ab, &lb), j, (q, v, &aj, &lj), t);
 }
 
 /// States spread over the joint space (deterministic), each quaternion normalized.

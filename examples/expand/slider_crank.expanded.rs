@@ -3401,6 +3401,64 @@ impl ::mbd::BodyFrames<f64, 9, 9> for SliderCrank {
         true
     }
 }
+#[allow(unused_variables, unused_mut, unused_parens, clippy::approx_constant)]
+impl ::mbd::JointLoads<f64, 9, 9, 9> for SliderCrank {
+    fn constraint_wrench(
+        &self,
+        body: usize,
+        q: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+    ) -> ::core::option::Option<::mbd::BodyWrench<f64>> {
+        if body >= 3 {
+            return ::core::option::Option::None;
+        }
+        let mut out = [[[0f64; 3]; 2]; 3];
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            s_slider,
+            c_slider,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::sparse::Elements as _;
+        let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
+        __lambda_6, __lambda_7, __lambda_8] = lambda.window::<0, 9>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        out[0][0][0] = ((*__lambda_2) - (*__lambda_0));
+        out[0][0][1] = ((*__lambda_3) - (*__lambda_1));
+        out[0][1][2] = (((((v10 * (*__lambda_1)) - (v12 * (*__lambda_0)))
+            - (v12 * (*__lambda_2))) + (v10 * (*__lambda_3))) + (*__lambda_8));
+        out[1][0][0] = ((*__lambda_4) - (*__lambda_2));
+        out[1][0][1] = ((*__lambda_5) - (*__lambda_3));
+        out[1][1][2] = ((((v29 * (*__lambda_3)) - (v31 * (*__lambda_2)))
+            - (v31 * (*__lambda_4))) + (v29 * (*__lambda_5)));
+        out[2][0][0] = ((s_slider * (*__lambda_6)) - (*__lambda_4));
+        out[2][0][1] = (-((*__lambda_5) + (c_slider * (*__lambda_6))));
+        out[2][1][2] = ((((s_slider * (*__q_7)) + (c_slider * (*__q_6))) * (*__lambda_6))
+            - (c_slider * (*__lambda_7)));
+        ::core::option::Option::Some(::mbd::BodyWrench {
+            force: out[body][0],
+            moment: out[body][1],
+        })
+    }
+}
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]
 impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
     #[inline]

@@ -40,7 +40,7 @@ pub use integrate::{
     System,
 };
 pub use linalg::sparse::SparsePattern;
-pub use model::body::{BodyFrames, BodyPose, BodyTwist};
+pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};
 pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };
@@ -66,7 +66,9 @@ pub use real::Real;
 pub use solvers::error::{KinematicError, NonFiniteQuantity};
 pub use solvers::finite_differences::FiniteDifferences;
 pub use solvers::flow::Flow;
-pub use solvers::inverse::{joint_reaction, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench};
+pub use solvers::inverse::{
+    joint_reaction, joint_reaction_at, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench,
+};
 pub use solvers::kinematics::{
     Convergence, KinematicOptions, KinematicSolver, KinematicState, DEFAULT_MAX_ITERATIONS, DEFAULT_MAX_STEP, DEFAULT_PIVOT_TOLERANCE,
     DEFAULT_PREDICTOR, DEFAULT_RANK_TOLERANCE, DEFAULT_REUSE_SAFETY, DEFAULT_TOLERANCE, RESOLUTION_ULPS,

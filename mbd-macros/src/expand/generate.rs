@@ -15,6 +15,7 @@ use crate::model::Model;
 
 mod impls;
 mod joint;
+mod reactions;
 
 /// Generates the mechanism's type and trait implementations.
 pub fn generate(m: &Model) -> syn::Result<TokenStream> {
@@ -47,6 +48,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let dynamics = dynamics_impl;
     let kinematics = g.kinematics_impl(&constraints, &position_step);
     let body_frames = crate::coordinates::Coordinates::of(m).body_frames(m, &f, &e);
+    let joint_loads = g.joint_loads_impl();
     let newton_impl = newton.impl_block;
     let (name, warnings) = (&m.name, warnings(m));
     // What only body coordinates support asks for this (`mbd::BodyCoordinates`).
@@ -80,6 +82,7 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
         #impl_block
         #newton_impl
         #body_frames
+        #joint_loads
         #parts
         #kinematics
     })

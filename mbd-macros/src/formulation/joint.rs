@@ -62,6 +62,10 @@ pub struct TreeTerms {
     /// without constraint forces, its sines and cosines computed once
     /// (`Dynamics::free_accelerations`).
     pub free_accelerations: Vec<Id>,
+    /// For each body, the wrench its tree joint applies to it (about its centre of mass) and to
+    /// its parent (about the parent's), global, 2 nt entries, v̇ standing in `dir` and with λ:
+    /// `JointLoads::tree_joint_wrenches` ([`Kinematics::joint_wrenches`]).
+    pub joint_wrenches: Vec<Vec<Id>>,
 }
 
 /// The symbolic equations of a model in joint coordinates.
@@ -72,6 +76,8 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let zero_body = body.g.num(0.0);
     let (np, nt) = (model.space.coordinates().len(), model.space.velocities().len());
     let body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
+    let body_jacobian = super::tangent(&mut body, &phi_body);
+    let body_constraint = super::constraint_wrenches(&mut body, &body_jacobian);
     let first_rows = std::mem::take(&mut body.first_rows);
 
     // The joint level: the frames along the tree.
@@ -110,18 +116,25 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     };
     let Forces { h: h_body, friction: friction_body, potential, switches, force_velocities, alone_forces, .. } = body_forces;
     let wrenches = wrenches_of(&mut b, &mut import, &h_body);
-    let h = kinematics.backward(&mut b, wrenches);
-    let friction = if friction_body.iter().all(|&f| body.g.is_zero(f)) {
-        vec![b.g.num(0.0); nv]
-    } else {
-        let wrenches: Vec<Vec<Id>> = (0..model.bodies.len())
+    let h = kinematics.backward(&mut b, wrenches.clone());
+    // Each body's wrench of body-level components (F global, n′ in its frame), global.
+    let mut global = |b: &mut Builder, body_level: &[Id]| -> Vec<Vec<Id>> {
+        (0..model.bodies.len())
             .map(|k| {
-                let wrench = (0..nt).map(|c| import(&mut b, friction_body[nt * k + c])).collect();
-                kinematics.global_wrench(&mut b, k, wrench)
+                let wrench = (0..nt).map(|c| import(b, body_level[nt * k + c])).collect();
+                kinematics.global_wrench(b, k, wrench)
             })
-            .collect();
-        kinematics.backward(&mut b, wrenches)
+            .collect()
     };
+    let friction_wrenches = (!friction_body.iter().all(|&f| body.g.is_zero(f))).then(|| global(&mut b, &friction_body));
+    let friction = match &friction_wrenches {
+        Some(wrenches) => kinematics.backward(&mut b, wrenches.clone()),
+        None => vec![b.g.num(0.0); nv],
+    };
+    let constraint_wrenches = global(&mut b, &body_constraint);
+    let mut loads = vec![&wrenches[..], &constraint_wrenches[..]];
+    loads.extend(friction_wrenches.as_deref());
+    let joint_wrenches = kinematics.joint_wrenches(&mut b, &frames, &inertia, &loads);
     let potential = import(&mut b, potential);
     let switches: Vec<(String, Id)> = switches.into_iter().map(|(name, s)| (name, import(&mut b, s))).collect();
     let mass_x = kinematics.mass_times(&mut b, &frames, &inertia);
@@ -151,7 +164,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
 
-    let terms = tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction);
+    let terms = TreeTerms { joint_wrenches, ..tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction) };
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -194,6 +207,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         points,
         joint_coordinates,
         bodies: inertia,
+        constraint_wrenches,
         frames,
         tree: Some(terms),
         graph: b.g,
@@ -266,6 +280,7 @@ fn tree_terms(
         mass_solve,
         pivots,
         free_accelerations,
+        joint_wrenches: Vec::new(),
     }
 }
 
@@ -481,27 +496,31 @@ impl<'t> Kinematics<'t> {
 
     /// A body wrench as body coordinates have it (F global, n′ in the body's frame in space)
     /// in global components (F, A n′).
-    fn global_wrench(&self, b: &mut Builder, k: usize, mut w: Vec<Id>) -> Vec<Id> {
-        if let Some(a) = &self.rotations[k] {
-            let n = [w[3], w[4], w[5]];
-            for r in 0..3 {
-                w[3 + r] = b.dot(&a[r], &n);
-            }
-        }
-        w
+    fn global_wrench(&self, b: &mut Builder, k: usize, w: Vec<Id>) -> Vec<Id> {
+        super::global_wrench(b, self.rotations[k].as_ref(), w)
     }
 
     /// g = Σ_b J_bᵀ w_b for the bodies' wrenches w_b = (F, N) at their centres of mass, global:
     /// the wrench of each subtree about its root, summed from the tips, projected on each
     /// link's screws.
-    fn backward(&self, b: &mut Builder, mut total: Vec<Vec<Id>>) -> Vec<Id> {
+    fn backward(&self, b: &mut Builder, total: Vec<Vec<Id>>) -> Vec<Id> {
         let zero = b.g.num(0.0);
         let mut g = vec![zero; self.tree.nv];
+        self.subtrees(b, total, |b, k, wrench| {
+            for (i, s) in self.screws[k].iter().enumerate() {
+                g[self.tree.links[k].first_v + i] = b.dot(s, wrench);
+            }
+        });
+        g
+    }
+
+    /// Each subtree's wrench about its root's centre of mass, from the bodies' wrenches (F, N)
+    /// at their centres, summed from the tips (N_p += N_k + (r_k − r_p) × F_k); `complete`
+    /// sees each subtree's as soon as it is summed.
+    fn subtrees(&self, b: &mut Builder, mut total: Vec<Vec<Id>>, mut complete: impl FnMut(&mut Builder, usize, &[Id])) -> Vec<Vec<Id>> {
         for &k in self.tree.order.iter().rev() {
             let link = &self.tree.links[k];
-            for (i, s) in self.screws[k].iter().enumerate() {
-                g[link.first_v + i] = b.dot(s, &total[k]);
-            }
+            complete(b, k, &total[k]);
             if let BodyRef::Body(p) = link.parent {
                 // N_p += N_k + (r_k − r_p) × F_k
                 let d = self.offset(b, k, p);
@@ -509,7 +528,58 @@ impl<'t> Kinematics<'t> {
                 total[p] = total[p].iter().zip(&moved).map(|(&x, &y)| b.g.add(x, y)).collect();
             }
         }
-        g
+        total
+    }
+
+    /// What each tree joint transmits (`mbd::JointLoads::tree_joint_wrenches`), by Newton–Euler
+    /// over the subtree of the body k it carries: the wrench on k about its centre of mass,
+    ///
+    /// W_k = Σ_{b ∈ subtree(k)} (M_b J_b v̇ + M_b J̇_b v + ω_b × J_b ω_b − f_b) moved to r_k,
+    ///
+    /// v̇ standing in `dir`, f_b every other load on b (`external`: applied and friction forces
+    /// and the rows' D_bᵀλ, global); then −W_k moved to its parent's centre of mass (zeros for
+    /// ground). 2 nt entries per body.
+    fn joint_wrenches(&self, b: &mut Builder, frames: &[FrameNodes], inertia: &[super::BodyInertia], loads: &[&[Vec<Id>]]) -> Vec<Vec<Id>> {
+        let external: Vec<Vec<Id>> = (0..frames.len())
+            .map(|k| {
+                let mut sum = loads[0][k].clone();
+                for load in &loads[1..] {
+                    sum = sum.iter().zip(&load[k]).map(|(&x, &y)| b.g.add(x, y)).collect();
+                }
+                sum
+            })
+            .collect();
+        let directions: Vec<Id> = (0..self.tree.nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
+        let seed = |v: Var| match v {
+            Var::Qd(i) => Some(directions[i as usize]),
+            _ => None,
+        };
+        let mut memo = HashMap::new();
+        let residual: Vec<Vec<Id>> = frames
+            .iter()
+            .zip(inertia)
+            .enumerate()
+            .map(|(k, (frame, m))| {
+                let acceleration: Vec<Id> = frame.twist.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
+                let inertial = m.times(b, &acceleration);
+                let inertial = self.global_wrench(b, k, inertial);
+                inertial.iter().zip(&external[k]).map(|(&i, &f)| b.g.sub(i, f)).collect()
+            })
+            .collect();
+        let total = self.subtrees(b, residual, |_, _, _| {});
+        let zero = b.g.num(0.0);
+        (0..total.len())
+            .map(|k| {
+                let on_parent = match self.tree.links[k].parent {
+                    BodyRef::Body(p) => {
+                        let d = self.offset(b, k, p);
+                        force_moved(b, &total[k], &d).into_iter().map(|x| b.g.neg(x)).collect()
+                    }
+                    BodyRef::Ground => vec![zero; total[k].len()],
+                };
+                total[k].iter().copied().chain(on_parent).collect()
+            })
+            .collect()
     }
 
     /// A body's inertia at its centre of mass in global components: diag(m, m, J), or

@@ -116,6 +116,9 @@ pub struct Formulation {
     pub joint_coordinates: Vec<(String, Id, Id)>,
     /// Each body's mass and inertia about its centre of mass (`mass_of`, `inertia_of`).
     pub bodies: Vec<BodyInertia>,
+    /// Each body's wrench from the constraint rows, D_bᵀλ with λ as variables, global (F_x, F_y,
+    /// n; or F, n): `JointLoads::constraint_wrench`.
+    pub constraint_wrenches: Vec<Vec<Id>>,
     /// In joint coordinates, each body's frame as functions of q and v (`mbd::BodyFrames`);
     /// empty in body coordinates, whose frames are q's own entries.
     pub frames: Vec<FrameNodes>,
@@ -168,9 +171,20 @@ pub fn formulate(model: &Model) -> Formulation {
     let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
     let (points, joint_coordinates) = accessors(&mut b);
     let bodies = inertias(&mut b, model);
+    let constraint_wrenches = {
+        let nt = model.space.velocities().len();
+        let flat = constraint_wrenches(&mut b, &jacobian);
+        (0..model.bodies.len())
+            .map(|k| {
+                let rotation = (model.space == crate::model::Space::Spatial).then(|| b.rotation(crate::model::BodyRef::Body(k)));
+                global_wrench(&mut b, rotation.as_ref(), flat[nt * k..nt * (k + 1)].to_vec())
+            })
+            .collect()
+    };
     b.g.forget_partials();
     Formulation {
         bodies,
+        constraint_wrenches,
         nc: phi.len(),
         row_names,
         row_units,
@@ -657,6 +671,33 @@ fn tangent(b: &mut Builder, rows: &[Id]) -> Vec<(usize, usize, Id)> {
             rows.iter().enumerate().flat_map(|(r, &row)| b.gradient(row).into_iter().map(move |(c, d)| (r, c, d))).collect::<Vec<_>>()
         }
     }
+}
+
+/// Each body's constraint wrench D_bᵀλ, the multipliers λ as variables, from D's entries over
+/// the bodies' own velocities: nt entries per body (F_x, F_y, n; or F global and n′ in the
+/// body's frame), body k's at nt k.
+fn constraint_wrenches(b: &mut Builder, jacobian: &Entries) -> Vec<Id> {
+    let nt = b.model.space.velocities().len();
+    let zero = b.g.num(0.0);
+    let mut out = vec![zero; nt * b.model.bodies.len()];
+    for &(r, c, d) in jacobian {
+        let l = b.g.var(Var::Lambda(r as u16));
+        let term = b.g.mul(l, d);
+        out[c] = b.g.add(out[c], term);
+    }
+    out
+}
+
+/// A body's wrench as body coordinates hold it (F global; n′ in the body's frame in space,
+/// rotated by A to global components; the plane's (F_x, F_y, n) as they are).
+fn global_wrench(b: &mut Builder, rotation: Option<&[[Id; 3]; 3]>, mut w: Vec<Id>) -> Vec<Id> {
+    if let Some(a) = rotation {
+        let n = [w[3], w[4], w[5]];
+        for r in 0..3 {
+            w[3 + r] = b.dot(&a[r], &n);
+        }
+    }
+    w
 }
 
 /// The structural non-zeros of the inverse of a symmetric 3×3 matrix, adj(J)/det(J).

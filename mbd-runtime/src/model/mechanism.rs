@@ -314,7 +314,7 @@ pub enum PositionStep {
     message = "joint reactions and animations read the bodies from q and λ: expected a mechanism in body coordinates, found `{Self}` in joint coordinates",
     label = "a mechanism declared with `joint_coordinates;`",
     note = "in joint coordinates a tree joint has no multiplier and a body's pose is not an entry of q: \
-            joint reactions are not read there yet, and `Animation::from_bodies` draws such a mechanism"
+            `joint_reaction_at` gives joint reactions there, and `Animation::from_bodies` draws such a mechanism"
 )]
 pub trait BodyCoordinates: Mechanism {}
 

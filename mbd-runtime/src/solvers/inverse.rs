@@ -9,7 +9,7 @@
 //! reaction is the force or torque the actuator must supply.
 
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
-use crate::model::body::{transpose_times, BodyFrames};
+use crate::model::body::{transpose_times, BodyFrames, BodyWrench, JointLoads};
 use crate::model::mechanism::Dynamics;
 use crate::model::workspace::Workspace;
 use crate::real::Real;
@@ -433,6 +433,61 @@ where
         Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force: twist.velocity, moment: twist.angular_velocity, rotation })
     };
     Some(JointReaction { joint: info.name, on_i: wrench(info.body_i), on_j: wrench(info.body_j) })
+}
+
+/// The reaction of a joint (or driver, or user constraint) — by its label's generated constant
+/// `Name::LABEL`, its index into [`crate::Mechanism::JOINTS`] — at a state of motion (q, v, v̇,
+/// t) with the multipliers λ, in body and in joint coordinates alike. `None` if there is no
+/// such joint.
+///
+/// The state is what the analysis that gave λ solved at: [`InverseDynamics::solve`]'s inputs,
+/// a forward-dynamics step's (q, v, v̇), or a static equilibrium's q with v = v̇ = 0. A joint
+/// with rows acts on each of its bodies through them, D_bᵀλ ([`JointLoads::constraint_wrench`]);
+/// a joint of the tree (joint coordinates) transmits what its subtree's motion and loads need
+/// ([`JointLoads::tree_joint_wrenches`], by Newton–Euler), so it needs v and v̇ as well. Either
+/// way the wrench is a force through each body's centre of mass and the moment about it, global
+/// (N, N·m), as [`joint_reaction`] gives it in body coordinates.
+#[allow(clippy::too_many_arguments)]
+pub fn joint_reaction_at<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    q: &[T; NQ],
+    v: &[T; NV],
+    vd: &[T; NV],
+    t: T,
+    lambda: &[T; NC],
+    joint: usize,
+) -> Option<JointReaction<T>>
+where
+    T: Real,
+    M: JointLoads<T, NQ, NV, NC>,
+{
+    let info = M::JOINTS.get(joint)?;
+    let wrench = |body: usize, w: BodyWrench<T>| -> Option<Wrench<T>> {
+        let rotation = mechanism.body_pose(body, q)?.rotation;
+        Some(Wrench { body: name(M::BODY_NAMES, body), body_index: body, force: w.force, moment: w.moment, rotation })
+    };
+    let (on_i, on_j) = match M::TREE_JOINTS.iter().position(|&j| j == Some(joint as u16)) {
+        Some(child) => {
+            let [on_child, on_parent] = mechanism.tree_joint_wrenches(child, q, v, vd, t, lambda)?;
+            let side = |body: Option<u16>| {
+                let b = body? as usize;
+                wrench(b, if b == child { on_child } else { on_parent })
+            };
+            (side(info.body_i), side(info.body_j))
+        }
+        None => {
+            let mut own = [T::ZERO; NC];
+            for r in info.row_range() {
+                own[r] = *lambda.get(r)?;
+            }
+            let side = |body: Option<u16>| {
+                let b = body? as usize;
+                wrench(b, mechanism.constraint_wrench(b, q, t, &own)?)
+            };
+            (side(info.body_i), side(info.body_j))
+        }
+    };
+    Some(JointReaction { joint: info.name, on_i, on_j })
 }
 
 #[cfg(test)]
