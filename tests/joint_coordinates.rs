@@ -451,8 +451,8 @@ both_ways! {
 }
 
 /// Statics with the defaults finds the same equilibrium both ways from the straight pose
-/// (tolerance: both converge to 1e-10 in force; the poses' condition is about 1e2), and the
-/// joint coordinates' trust region measures a step by the bodies it moves
+/// (tolerance: both converge to 1e-10 in force; the poses' condition is about 1e2), each pin
+/// then carries the weight below it, and the joint coordinates' trust region measures a step by the bodies it moves
 /// (`Dynamics::motion_size`: the largest component of any body's twist).
 #[test]
 fn statics_of_a_chain_agree_with_body_coordinates() {
@@ -467,6 +467,17 @@ fn statics_of_a_chain_agree_with_body_coordinates() {
         // angles compared modulo 2π (statics wraps them into (−π, π])
         let d = if i % 3 == 2 { ((x - y + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)) - std::f64::consts::PI } else { x - y };
         assert!(d.abs() < 1e-8, "q_body[{i}]: {x} from joint coordinates, {y} in body coordinates");
+    }
+    // At rest every pin carries the weight of the links below it, (0, (16 − k) m g) on l[k]
+    // (tolerance: statics converges to 1e-10 N in force; the weights are 0.98–15.7 N).
+    for k in 0..16 {
+        let pin = joint_reaction_at(&j, &qj, &[0.0; 16], &[0.0; 16], 0.0, &[], k).and_then(|r| r.on_j).expect("the pin above l[k]");
+        let weight = (16 - k) as f64 * 0.1 * 9.81;
+        assert!(
+            pin.force[0].abs() < 1e-9 && (pin.force[1] - weight).abs() < 1e-9,
+            "pin above l[{k}]: {:?} N, weight below {weight} N",
+            pin.force
+        );
     }
     println!(
         "statics: {} + {} iterations in joint coordinates, {} + {} in body coordinates",

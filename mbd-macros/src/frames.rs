@@ -83,6 +83,12 @@ impl<'m> Builder<'m> {
         &self.tree_frames[k].global
     }
 
+    /// In joint coordinates, where the articulated-body solve takes body k's link (in space;
+    /// `None`: at its centre of mass).
+    pub fn tree_articulation(&self, k: usize) -> Option<&crate::tree::Articulation> {
+        self.tree_frames.get(k).and_then(|f| f.articulation.as_ref())
+    }
+
     /// In joint coordinates, body k's J̇ v where the tree builds it by recursion (`None`: take
     /// the twist's rate along q̇).
     pub fn tree_bias(&self, k: usize) -> Option<&[Id]> {

@@ -35,7 +35,7 @@ use super::{
 use crate::frames::Builder;
 use crate::model::{BodyRef, Model};
 use crate::sym::{Graph, Id, Var};
-use crate::tree::Tree;
+use crate::tree::{Articulation, Tree};
 
 /// The functions of a tree emitted as derivatives along a direction `dir` (`Var::Dir`), or as
 /// products with it, for the dense matrices filled a column at a time.
@@ -344,6 +344,17 @@ impl Matrix {
     }
 
     /// self −= w wᵀ / d.
+    /// Row and column j set to zero.
+    fn clear(&mut self, b: &mut Builder, j: usize) {
+        let zero = b.g.num(0.0);
+        for (r, row) in self.0.iter_mut().enumerate() {
+            row[j] = zero;
+            if r == j {
+                row.iter_mut().for_each(|x| *x = zero);
+            }
+        }
+    }
+
     fn subtract_outer(&mut self, b: &mut Builder, w: &[Id], d: Id) {
         let one = b.g.num(1.0);
         let inverse = b.g.div(one, d);
@@ -369,6 +380,12 @@ impl Matrix {
         let moved: Vec<Vec<Id>> = columns.iter().map(|x| self.times(b, x)).collect();
         Matrix::symmetric(b, n, |b, r, c| b.dot(&columns[r], &moved[c]))
     }
+}
+
+/// j where the screw s is the unit vector e_j (its entries the constants 0 and one 1).
+fn unit(b: &Builder, s: &[Id]) -> Option<usize> {
+    let ones: Vec<usize> = (0..s.len()).filter(|&j| b.g.as_const(s[j]) == Some(1.0)).collect();
+    (ones.len() == 1 && s.iter().enumerate().all(|(j, &x)| j == ones[0] || b.g.is_zero(x))).then(|| ones[0])
 }
 
 /// What the articulated-body recursion's forward pass reads of a link: U = I^A S by columns,
@@ -462,6 +479,9 @@ struct Kinematics<'t> {
     rotations: Vec<Option<[[Id; 3]; 3]>>,
     /// ∂(ṙ_k, ω_k)/∂v_i (global; (ẋ, ẏ, φ̇) in the plane) for each velocity i of body k's link.
     screws: Vec<Vec<Vec<Id>>>,
+    /// Where the articulated-body solve takes each link ([`Articulation`]): in space at its joint
+    /// point, in the plane at the centre of mass with the screws above.
+    articulation: Vec<Articulation>,
 }
 
 impl<'t> Kinematics<'t> {
@@ -471,7 +491,7 @@ impl<'t> Kinematics<'t> {
         let origins = frames.iter().map(|f| f.pose[..lin].to_vec()).collect();
         let rotations = (0..frames.len()).map(|k| spatial.then(|| b.rotation(BodyRef::Body(k)))).collect();
         // A link's screw: its body's global twist per unit rate of each of its velocities.
-        let screws = tree
+        let screws: Vec<Vec<Vec<Id>>> = tree
             .links
             .iter()
             .enumerate()
@@ -482,7 +502,13 @@ impl<'t> Kinematics<'t> {
                     .collect()
             })
             .collect();
-        Kinematics { tree, origins, rotations, screws }
+        let articulation = (0..frames.len())
+            .map(|k| match b.tree_articulation(k) {
+                Some(a) => a.clone(),
+                None => Articulation { origin: frames[k].pose[..lin].to_vec(), screws: screws[k].clone(), rotated: None },
+            })
+            .collect();
+        Kinematics { tree, origins, rotations, screws, articulation }
     }
 
     /// Entries of a twist: 3 in the plane, 6 in space.
@@ -605,25 +631,38 @@ impl<'t> Kinematics<'t> {
         })
     }
 
-    /// x = M⁻¹ τ by the articulated-body algorithm (Featherstone; each body's twist and wrench
-    /// at its centre of mass in global components), O(N) operations, and its pivots (the
-    /// diagonal of each link's D = Sᵀ I^A S in LDLᵀ form: all positive where M is).
+    /// x = M⁻¹ τ by the articulated-body algorithm (Featherstone; each link's twists and
+    /// wrenches in global components at its point o_k, [`Articulation`]: the joint point in
+    /// space, the centre of mass in the plane), O(N) operations, and its pivots (the diagonal of
+    /// each link's D = Sᵀ I^A S in LDLᵀ form: all positive where M is).
     ///
     /// Tips first: I^A_k = M_k + Σ_c X_cᵀ I^a_c X_c and p_k = Σ_c X_cᵀ p^a_c over k's children
-    /// c, X_c the twist transform from r_k to r_c; then for k's link with screws S,
+    /// c, X_c the twist transform from o_k to o_c (M_k moved from r_k to o_k likewise); then for
+    /// k's link with screws S (τ and x of a rotated link turned to global axes and back),
     /// U = I^A S, D = Sᵀ U, u = τ_k − Sᵀ p_k, I^a = I^A − U D⁻¹ Uᵀ, p^a = p_k + U D⁻¹ u.
     /// Root first: a′ = X a_parent (a = 0 at ground), x_k = D⁻¹(u − Uᵀ a′), a_k = a′ + S x_k.
     fn mass_solve(&self, b: &mut Builder, inertia: &[super::BodyInertia], tau: &[Id]) -> (Vec<Id>, Vec<(usize, Id)>) {
         let tree = self.tree;
         let zero = b.g.num(0.0);
         let n = self.twist_size();
-        let mut articulated: Vec<Matrix> = inertia.iter().enumerate().map(|(k, m)| self.global_inertia(b, k, m)).collect();
+        // each body's inertia at its link's point o_k, from its centre of mass r_k
+        let mut articulated: Vec<Matrix> = inertia
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let at_centre = self.global_inertia(b, k, m);
+                let d = self.between(b, &self.origins[k], &self.articulation[k].origin);
+                at_centre.transformed(b, &d)
+            })
+            .collect();
+        // the generalized forces in the links' own bases (a ball joint's torques about global axes)
+        let tau = self.rotated(b, tau, false);
         let mut bias: Vec<Vec<Id>> = vec![vec![zero; n]; inertia.len()];
         let mut links: Vec<Option<Articulated>> = (0..inertia.len()).map(|_| None).collect();
         let mut pivots = Vec::new();
         for &k in tree.order.iter().rev() {
             let link = &tree.links[k];
-            let screws = &self.screws[k];
+            let screws = &self.articulation[k].screws;
             let (mut child_inertia, mut child_bias) = (articulated[k].clone(), bias[k].clone());
             if !screws.is_empty() {
                 let u_columns: Vec<Vec<Id>> = screws.iter().map(|s| articulated[k].times(b, s)).collect();
@@ -655,10 +694,18 @@ impl<'t> Kinematics<'t> {
                         })
                         .collect();
                 }
+                // I^a S = 0 and Sᵀ p^a = τ exactly: a unit screw e_j's row and column of I^a are
+                // zero and p^a_j = τ_j, which the nodes above only reach to rounding
+                for (i, s) in screws.iter().enumerate() {
+                    if let Some(j) = unit(b, s) {
+                        child_inertia.clear(b, j);
+                        child_bias[j] = tau[link.first_v + i];
+                    }
+                }
                 links[k] = Some(Articulated { u_columns, ldl, u });
             }
             if let BodyRef::Body(p) = link.parent {
-                let d = self.offset(b, k, p);
+                let d = self.between(b, &self.articulation[k].origin, &self.articulation[p].origin);
                 let moved = child_inertia.transformed(b, &d);
                 articulated[p].add(b, &moved);
                 let f = force_moved(b, &child_bias, &d);
@@ -672,7 +719,7 @@ impl<'t> Kinematics<'t> {
             let mut a = match link.parent {
                 BodyRef::Ground => vec![zero; n],
                 BodyRef::Body(p) => {
-                    let d = self.offset(b, k, p);
+                    let d = self.between(b, &self.articulation[k].origin, &self.articulation[p].origin);
                     twist_moved(b, &acceleration[p], &d)
                 }
             };
@@ -686,7 +733,7 @@ impl<'t> Kinematics<'t> {
                     })
                     .collect();
                 let xs = ldl.solve(b, &rhs);
-                for (i, (&xi, s)) in xs.iter().zip(&self.screws[k]).enumerate() {
+                for (i, (&xi, s)) in xs.iter().zip(&self.articulation[k].screws).enumerate() {
                     x[link.first_v + i] = xi;
                     a = a
                         .iter()
@@ -700,7 +747,28 @@ impl<'t> Kinematics<'t> {
             }
             acceleration[k] = a;
         }
-        (x, pivots)
+        (self.rotated(b, &x, true), pivots)
+    }
+
+    /// x with each link's rotated velocities (`Articulation::rotated`) turned to global axes,
+    /// A x (or back, Aᵀ x).
+    fn rotated(&self, b: &mut Builder, x: &[Id], back: bool) -> Vec<Id> {
+        let mut out = x.to_vec();
+        for (link, articulation) in self.tree.links.iter().zip(&self.articulation) {
+            if let Some((m, a)) = &articulation.rotated {
+                let at = link.first_v + m;
+                for r in 0..3 {
+                    let row: Vec<Id> = (0..3).map(|c| if back { a[c][r] } else { a[r][c] }).collect();
+                    out[at + r] = b.dot(&row, &x[at..at + 3]);
+                }
+            }
+        }
+        out
+    }
+
+    /// x − y.
+    fn between(&self, b: &mut Builder, x: &[Id], y: &[Id]) -> Vec<Id> {
+        x.iter().zip(y).map(|(&x, &y)| b.g.sub(x, y)).collect()
     }
 
     /// M x = Σ_b J_bᵀ M_b J_b x: the bodies' momenta M_b (J_b v), v standing for x, through the
@@ -720,7 +788,7 @@ impl<'t> Kinematics<'t> {
 
     /// r_k − r_p.
     fn offset(&self, b: &mut Builder, k: usize, p: usize) -> Vec<Id> {
-        self.origins[k].iter().zip(&self.origins[p]).map(|(&x, &y)| b.g.sub(x, y)).collect()
+        self.between(b, &self.origins[k], &self.origins[p])
     }
 
     /// The joint velocities a wrench on the given body-level velocities (nt k + c) reaches:

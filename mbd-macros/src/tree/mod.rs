@@ -114,6 +114,27 @@ pub struct TreeFrame {
     /// The twist's rate at constant v (J̇ v, as `twist` holds the twist) where the tree builds it
     /// by recursion (in space); `None`: the twist's derivative along q̇ (in the plane).
     pub bias: Option<Vec<Id>>,
+    /// Where the articulated-body solve takes the link (in space); `None`: at the body's centre
+    /// of mass with the screws of `global` (in the plane).
+    pub articulation: Option<Articulation>,
+}
+
+/// A link as the articulated-body solve takes it (`formulation::joint`, `Kinematics::mass_solve`):
+/// at a point where its screws have structural zeros — the joint point on the child, where a
+/// turn has no linear part; a free body's centre of mass — and with angular velocities given in
+/// the body's frame turned to global axes, where a ball joint's or a free body's screws are unit
+/// vectors. Then U = I^A S and D = Sᵀ I^A S are entries of I^A, and I^a = I^A − U D⁻¹ Uᵀ has
+/// the unit screws' rows and columns exactly zero (I^a S = 0).
+#[derive(Clone, Debug)]
+pub struct Articulation {
+    /// The point, global.
+    pub origin: Vec<Id>,
+    /// Each velocity's screw (ṙ, ω) at `origin`, global, in the basis below.
+    pub screws: Vec<Vec<Id>>,
+    /// (m, A): the link's velocities m..m + 3 are angular velocity components in the body's
+    /// frame, turned to global ones by the rotation A (v_global = A v; orthogonal, so the
+    /// generalized forces turn alike and back by Aᵀ).
+    pub rotated: Option<(usize, [[Id; 3]; 3])>,
 }
 
 /// Every body's frame, bodies in declaration order.

@@ -22,7 +22,7 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
         .into_iter()
         .map(|pose| {
             let twist: Vec<Id> = pose.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
-            TreeFrame { pose: pose.to_vec(), global: twist.clone(), twist, bias: None }
+            TreeFrame { pose: pose.to_vec(), global: twist.clone(), twist, bias: None, articulation: None }
         })
         .collect()
 }

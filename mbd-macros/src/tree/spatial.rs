@@ -28,7 +28,7 @@
 //!
 //! d = r_c − r_p, and ω̇′_c = A_cᵀ ω̇_c as body coordinates hold it.
 
-use super::{Tree, TreeFrame};
+use super::{Articulation, Tree, TreeFrame};
 use crate::elements::spatial::Marker;
 use crate::elements::{Relative, SpatialKind};
 use crate::frames::{rotation_matrix, Builder};
@@ -63,6 +63,8 @@ struct Placement {
     /// s z_i (global) where the joint slides, given the child's rotation.
     stroke: Option<(Id, Vec3, BodyRef)>,
     screws: Vec<([Id; 3], [Id; 3])>,
+    /// A spherical joint: its velocities are ω′ of the child relative to the parent.
+    ball: bool,
 }
 
 /// Each body's frame along the tree (the module's equations).
@@ -76,15 +78,18 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
         let link = &tree.links[k];
         let q: Vec<Id> = (link.first..link.first + link.count).map(|i| b.g.var(Var::Q(i as u16))).collect();
         let v: Vec<Id> = (link.first_v..link.first_v + link.count_v).map(|i| b.g.var(Var::Qd(i as u16))).collect();
-        let (body, angular) = match link.joint {
+        let (body, angular, articulation) = match link.joint {
             None => {
                 // a free body: its own pose and velocities
                 let (r, p) = ([q[0], q[1], q[2]], [q[3], q[4], q[5], q[6]]);
                 let a = rotation_matrix(&mut b.g, p);
                 let angular = [v[3], v[4], v[5]];
                 let w = times(b, &a, angular);
+                // at its centre of mass, ω′ turned global: the six unit twists
+                let screws = (0..6).map(|m| (0..6).map(|c| if c == m { one } else { zero }).collect()).collect();
+                let articulation = Articulation { origin: r.to_vec(), screws, rotated: Some((3, a)) };
                 // ṙ and ω′ are the velocities: no rate at constant v (d(A ω′)/dt = ω × ω = 0)
-                (Placed { r, p, a, v: [v[0], v[1], v[2]], w, dv: [zero; 3], dw: [zero; 3] }, angular)
+                (Placed { r, p, a, v: [v[0], v[1], v[2]], w, dv: [zero; 3], dw: [zero; 3] }, angular, articulation)
             }
             Some(index) => {
                 let parent = match link.parent {
@@ -92,7 +97,9 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
                     BodyRef::Body(p) => placed[p].expect("a parent is placed before its children"),
                 };
                 let placement = placement(b, tree, k, index, &q);
-                child(b, &parent, placement, &placed, &v)
+                let (point, screws, ball) = (placement.child_point, placement.screws.clone(), placement.ball);
+                let (body, angular) = child(b, &parent, placement, &placed, &v);
+                (body, angular, articulation(b, &body, point, &screws, ball))
             }
         };
         let twist = [body.v[0], body.v[1], body.v[2], angular[0], angular[1], angular[2]];
@@ -101,7 +108,13 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
         // J̇ v as body coordinates hold it: r̈ global, ω̇′ = Aᵀ ω̇ (d(Aᵀ)/dt ω = −ω′ × ω′ = 0)
         let dw_body = transpose_times(b, &body.a, body.dw);
         let bias = [body.dv[0], body.dv[1], body.dv[2], dw_body[0], dw_body[1], dw_body[2]];
-        frames[k] = Some(TreeFrame { pose: pose.to_vec(), twist: twist.to_vec(), global: global.to_vec(), bias: Some(bias.to_vec()) });
+        frames[k] = Some(TreeFrame {
+            pose: pose.to_vec(),
+            twist: twist.to_vec(),
+            global: global.to_vec(),
+            bias: Some(bias.to_vec()),
+            articulation: Some(articulation),
+        });
         placed[k] = Some(body);
     }
     frames.into_iter().map(|f| f.expect("every body is placed")).collect()
@@ -168,6 +181,30 @@ fn child(b: &mut Builder, parent: &Placed, placement: Placement, placed: &[Optio
     (Placed { r, p, a, v: velocity, w, dv, dw }, angular)
 }
 
+/// A joint's link as the articulated-body solve takes it (`Articulation`): at the joint point
+/// on the child, o = r + A s′_c, where a screw (σ_lin, σ_ang) of the child's frame is
+/// (A (σ_lin − s′_c × σ_ang), A σ_ang) — a turn's linear part folds to zero there, as σ_lin =
+/// s′_c × σ_ang is the same node — and a ball joint's ω′ turned global, its screws (0, e_m).
+fn articulation(b: &mut Builder, body: &Placed, point: Vec3, screws: &[([Id; 3], [Id; 3])], ball: bool) -> Articulation {
+    let arm = times(b, &body.a, point);
+    let origin = (0..3).map(|c| b.g.add(body.r[c], arm[c])).collect();
+    let (zero, one) = (b.g.num(0.0), b.g.num(1.0));
+    if ball {
+        let screws = (0..3).map(|m| (0..6).map(|c| if c == m + 3 { one } else { zero }).collect()).collect();
+        return Articulation { origin, screws, rotated: Some((0, body.a)) };
+    }
+    let screws = screws
+        .iter()
+        .map(|&(lin, ang)| {
+            let swing = b.cross(point, ang);
+            let at_point: Vec3 = std::array::from_fn(|c| b.g.sub(lin[c], swing[c]));
+            let (lin, ang) = (times(b, &body.a, at_point), times(b, &body.a, ang));
+            lin.into_iter().chain(ang).collect()
+        })
+        .collect();
+    Articulation { origin, screws, rotated: None }
+}
+
 /// A tree joint's placement of its child (the module's equations).
 fn placement(b: &mut Builder, tree: &Tree, k: usize, index: usize, q: &[Id]) -> Placement {
     let link = &tree.links[k];
@@ -187,7 +224,7 @@ fn placement(b: &mut Builder, tree: &Tree, k: usize, index: usize, q: &[Id]) -> 
                 (b.cross(child_point, e), e)
             })
             .collect();
-        return Placement { relative, parent_point, child_point, stroke: None, screws };
+        return Placement { relative, parent_point, child_point, stroke: None, screws, ball: true };
     }
     let (ci, cj) = (marker_quaternion(b, i), marker_quaternion(b, j));
     let flip = half_turn(b, kind, i, j);
@@ -238,7 +275,7 @@ fn placement(b: &mut Builder, tree: &Tree, k: usize, index: usize, q: &[Id]) -> 
         let signed = if link.reversed { b.g.neg(s) } else { s };
         (signed, z, i.loc.body)
     });
-    Placement { relative, parent_point, child_point, stroke, screws }
+    Placement { relative, parent_point, child_point, stroke, screws, ball: false }
 }
 
 /// The constant half-turn F between two markers at the bodies' `at:` poses (evaluated at the
