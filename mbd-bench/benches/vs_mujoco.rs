@@ -21,6 +21,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::SystemTime;
 
+mod common;
+use common::{peers_python, repo};
+
 mod spatial_chain4 {
     include!("../mechanisms/spatial_chain4.rs");
 }
@@ -47,17 +50,10 @@ const SAME_MOTION: f64 = 1e-4;
 /// The simulated time of the tip comparison (s).
 const TIP_TIME: f64 = 0.5;
 
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("mbd-bench sits in the repository").to_path_buf()
-}
-
 /// MuJoCo's measurements: runs `peers/ensure_env.sh`, then `peers/mujoco_chain.py 4 16`.
 fn mujoco() -> Value {
     let peers = repo().join("mbd-bench/peers");
-    let env = Command::new("bash").arg(peers.join("ensure_env.sh")).output().expect("bash runs peers/ensure_env.sh");
-    assert!(env.status.success(), "peers/ensure_env.sh failed:\n{}", String::from_utf8_lossy(&env.stderr));
-    let stdout = String::from_utf8_lossy(&env.stdout);
-    let python = stdout.lines().last().expect("ensure_env.sh prints the interpreter").trim().to_string();
+    let python = peers_python();
     let out = Command::new(&python).arg(peers.join("mujoco_chain.py")).args(["4", "16"]).output().expect("the peers' Python runs");
     eprint!("{}", String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "peers/mujoco_chain.py failed");

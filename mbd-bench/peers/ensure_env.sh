@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Creates (once) the peer benchmarks' pinned Python environment (MuJoCo and NumPy,
+# Creates (once) the peer benchmarks' pinned Python environment (MuJoCo, NumPy and Pinocchio,
 # requirements.txt beside this script) and prints its interpreter's path on the last line of
 # stdout. Reinstalls only when requirements.txt changes. Fails loudly: a missing python3, venv or
 # pip, or a failed install, is an error, never a skip. Same scheme as tests/oracle/ensure_env.sh.
@@ -20,5 +20,5 @@ if [ ! -x "$venv/bin/python" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; 
         || { echo "ensure_env.sh: pip install -r $requirements failed" >&2; exit 1; }
     echo "$want" > "$stamp"
 fi
-"$venv/bin/python" -c "import mujoco, numpy" >&2 || { echo "ensure_env.sh: mujoco or numpy does not import in $venv" >&2; exit 1; }
+"$venv/bin/python" -c "import mujoco, numpy, pinocchio" >&2 || { echo "ensure_env.sh: mujoco, numpy or pinocchio does not import in $venv" >&2; exit 1; }
 echo "$venv/bin/python"

@@ -1,16 +1,16 @@
 // Times Pinocchio's CRBA, RNEA, ABA (and NLE) on the UR5 and the Panda (fingers locked), models
-// from example-robot-data's URDFs. 1000 precomputed random states (q in U(-pi, pi), v in U(-2, 2),
-// a in U(-5, 5), tau = 0 for ABA), median over REPS passes of the mean ns per call; a checksum
-// of the outputs is printed so nothing is optimized away.
+// from example-robot-data's URDFs: 1000 precomputed random states (q in U(-pi, pi), v in U(-2, 2),
+// a in U(-5, 5), tau = 0 for ABA), median over REPS passes of the mean ns per call; a checksum of
+// the outputs is printed so that nothing is optimized away. One JSON object per robot on stdout.
 //
-// Build (see run_pinocchio_bench.sh): the same source twice,
-//   pin_lib: -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION: the algorithms are the precompiled ones
-//            in pip's libpinocchio_default.so (called with Eigen::Ref<const VectorXd>, the types
-//            of its explicit instantiations);
-//   pin_hdr: without it: every algorithm instantiated from the headers in this file, compiled
-//            -O3 -march=native (with -DEIGEN_MAX_ALIGN_BYTES=16 -DEIGEN_MALLOC_ALREADY_ALIGNED=1,
-//            so that objects built by the pip parser library can be freed here).
-// Usage: pin_xxx <robots dir of example-robot-data> [finger lock, m]
+// Built twice by `mbd-bench/benches/vs_pinocchio.rs` (flags there):
+//   with -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION the algorithms are the precompiled ones of
+//     pip's libpinocchio_default.so (called with Eigen::Ref<const VectorXd>, the types of its
+//     explicit instantiations);
+//   without it every algorithm is instantiated from the headers here, compiled -O3
+//     -march=native (with -DEIGEN_MAX_ALIGN_BYTES=16 -DEIGEN_MALLOC_ALREADY_ALIGNED=1, so that
+//     objects built by the pip parser library can be freed here).
+// Usage: pinocchio_bench <robots dir of example-robot-data> [finger lock, m]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -82,8 +82,9 @@ static void bench(const std::string &name, const pinocchio::Model &model) {
     const VectorXd &ddq = pinocchio::aba(model, data, Ref(qs[i]), Ref(vs[i]), Ref(zero));
     return ddq[0] + ddq[last];
   }, c_aba);
-  std::printf("%-6s nq=%d  crba %8.1f  rnea %8.1f  nle %8.1f  aba %8.1f  ns/call   checksums %.10e %.10e %.10e %.10e\n",
-              name.c_str(), model.nq, t_crba, t_rnea, t_nle, t_aba, c_crba, c_rnea, c_nle, c_aba);
+  std::printf("{\"robot\": \"%s\", \"nq\": %d, \"crba\": %.1f, \"rnea\": %.1f, \"nle\": %.1f, \"aba\": %.1f, "
+              "\"checksum\": %.10e}\n",
+              name.c_str(), model.nq, t_crba, t_rnea, t_nle, t_aba, c_crba + c_rnea + c_nle + c_aba);
 }
 
 int main(int argc, char **argv) {
