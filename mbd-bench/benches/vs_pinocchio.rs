@@ -9,7 +9,7 @@
 //! RNEA, NLE and ABA. mbd's side, timed the same way (the mean ns per call over 1000 random
 //! states, q ∈ U(−π, π), v ∈ U(−2, 2), v̇ ∈ U(−5, 5); the median of 301 passes): M by
 //! `add_mass_matrix` on a zeroed matrix (against CRBA), h by `forces` (NLE), M v̇ − h by
-//! `mass_times` and `forces` (RNEA), and M⁻¹h by `free_accelerations` (ABA at zero torque).
+//! `inverse_forces` (RNEA), and M⁻¹h by `free_accelerations` (ABA at zero torque).
 //! mbd is built for baseline x86-64, as the workspace builds it. The table gives each time, its
 //! ratio to the faster Pinocchio, and mbd's operation counts (`Mechanism::OP_COUNTS`).
 //!
@@ -92,10 +92,9 @@ fn mbd_times<M: Dynamics<f64, N, N, 0>, const N: usize>(m: &M) -> [f64; 4] {
         h[0] + h[N - 1]
     });
     let inverse = time(&states, |(q, v, vd)| {
-        let (mut h, mut inertia) = ([0.0; N], [0.0; N]);
-        m.forces(q, v, 0.0, &mut h);
-        m.mass_times(q, vd, &mut inertia);
-        (inertia[0] - h[0]) + (inertia[N - 1] - h[N - 1])
+        let mut tau = [0.0; N];
+        m.inverse_forces(q, v, vd, 0.0, &mut tau);
+        tau[0] + tau[N - 1]
     });
     let forward = time(&states, |(q, v, _)| {
         let mut vd = [0.0; N];
@@ -268,8 +267,9 @@ fn main() {
     }
 }
 
-/// The operations of mbd's four calls: M (NV products M e_c), h, M v̇ − h, M⁻¹h.
+/// The operations of mbd's four calls: M (by the composite-rigid-body algorithm, else NV
+/// products M e_c), h, M v̇ − h (recursive Newton–Euler), M⁻¹h.
 fn counts<M: Mechanism, const N: usize>() -> [Option<u64>; 4] {
-    let (mass, forces) = (ops::<M>("mass_times"), ops::<M>("forces"));
-    [mass.map(|m| m * N as u64), forces, mass.zip(forces).map(|(m, f)| m + f + N as u64), ops::<M>("free_accelerations")]
+    let matrix = ops::<M>("add_mass_matrix").or(ops::<M>("mass_times").map(|m| m * N as u64));
+    [matrix, ops::<M>("forces"), ops::<M>("inverse_forces"), ops::<M>("free_accelerations")]
 }

@@ -79,10 +79,14 @@ where
         let mut accelerations = [0.0; N];
         assert_eq!(m.free_accelerations(&q, &v, 0.0, &mut accelerations), Some(Ok(())), "{robot}: the articulated-body solve");
         worst[2] = worst[2].max(relative(&to_pinocchio(&accelerations), &floats(&state["aba"])));
+        let mut torques = [0.0; N];
+        m.inverse_forces(&q, &v, &vd, 0.0, &mut torques);
+        worst[3] = worst[3].max(relative(&to_pinocchio(&torques), &floats(&state["rnea"])));
+        // the provided M v̇ − h agrees with the recursion
         let mut inertia = [0.0; N];
         m.mass_times(&q, &vd, &mut inertia);
-        let torques: [f64; N] = core::array::from_fn(|i| inertia[i] - h[i]);
-        worst[3] = worst[3].max(relative(&to_pinocchio(&torques), &floats(&state["rnea"])));
+        let by_parts: [f64; N] = core::array::from_fn(|i| inertia[i] - h[i]);
+        worst[3] = worst[3].max(relative(&to_pinocchio(&by_parts), &floats(&state["rnea"])));
         // each joint's load on its child, the moment moved to the joint's origin
         for (k, load) in state["joint_loads"].as_array().expect("joint loads").iter().enumerate() {
             let on_child = joint_reaction_at(m, &q, &v, &vd, 0.0, &[], joint[k]).and_then(|r| r.on_j).expect("a tree joint's load");

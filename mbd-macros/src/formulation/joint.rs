@@ -50,6 +50,9 @@ pub struct TreeTerms {
     /// The friction forces' (∂/∂q) dir and (∂/∂v) dir; empty without Coulomb friction.
     pub friction_dq: Vec<Id>,
     pub friction_dv: Vec<Id>,
+    /// M entry by entry (rows of nodes) by the composite-rigid-body algorithm, for trees of at
+    /// most [`CRBA_VELOCITIES`] velocities: `Dynamics::add_mass_matrix`.
+    pub mass_matrix: Option<Vec<Vec<Id>>>,
     /// Σ_b J_bᵀ w_b with body b's wrench w_b = dir[3b..3b + 3] (force x, y through its centre of
     /// mass, moment): `BodyFrames::add_body_wrench`.
     pub wrench: Vec<Id>,
@@ -66,6 +69,9 @@ pub struct TreeTerms {
     /// its parent (about the parent's), global, 2 nt entries, v̇ standing in `dir` and with λ:
     /// `JointLoads::tree_joint_wrenches` ([`Kinematics::joint_wrenches`]).
     pub joint_wrenches: Vec<Vec<Id>>,
+    /// M v̇ − h by one recursive Newton–Euler pass, v̇ standing in `dir`:
+    /// `Dynamics::inverse_forces`.
+    pub inverse: Vec<Id>,
 }
 
 /// The symbolic equations of a model in joint coordinates.
@@ -132,9 +138,15 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         None => vec![b.g.num(0.0); nv],
     };
     let constraint_wrenches = global(&mut b, &body_constraint);
+    let inertial = kinematics.inertial_wrenches(&mut b, &frames, &inertia);
+    // M v̇ − h in one backward pass (recursive Newton–Euler)
+    let inverse = {
+        let residual = inertial.iter().zip(&wrenches).map(|(i, w)| i.iter().zip(w).map(|(&x, &y)| b.g.sub(x, y)).collect()).collect();
+        kinematics.backward(&mut b, residual)
+    };
     let mut loads = vec![&wrenches[..], &constraint_wrenches[..]];
     loads.extend(friction_wrenches.as_deref());
-    let joint_wrenches = kinematics.joint_wrenches(&mut b, &frames, &inertia, &loads);
+    let joint_wrenches = kinematics.joint_wrenches(&mut b, &inertial, &loads);
     let potential = import(&mut b, potential);
     let switches: Vec<(String, Id)> = switches.into_iter().map(|(name, s)| (name, import(&mut b, s))).collect();
     let mass_x = kinematics.mass_times(&mut b, &frames, &inertia);
@@ -164,7 +176,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
 
-    let terms = TreeTerms { joint_wrenches, ..tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction) };
+    let terms = TreeTerms { joint_wrenches, inverse, ..tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction) };
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -270,6 +282,7 @@ fn tree_terms(
     let wrenches: Vec<Vec<Id>> =
         (0..kinematics.origins.len()).map(|k| (0..nt).map(|c| b.g.var(Var::Dir((nt * k + c) as u16))).collect()).collect();
     TreeTerms {
+        mass_matrix: (nv <= CRBA_VELOCITIES).then(|| kinematics.mass_matrix(b, inertia)),
         mass_x_dq: along(b, &mass_x, true),
         h_dq: along(b, h, true),
         h_dv: along(b, h, false),
@@ -281,7 +294,40 @@ fn tree_terms(
         pivots,
         free_accelerations,
         joint_wrenches: Vec::new(),
+        inverse: Vec::new(),
     }
+}
+
+/// The trees whose M is emitted entry by entry by the composite-rigid-body algorithm
+/// (`Kinematics::mass_matrix`, O(N²) code); larger ones fill it a column at a time from M x.
+pub const CRBA_VELOCITIES: usize = 32;
+
+/// I s for a rigid body's or a subtree's inertia about the origin, (m, h, Ī), and a twist s =
+/// (v, ω) there: (m v + ω × h, Ī ω + h × v); in the plane (v_x, v_y, ω) ↦ (m v_x − ω h_y,
+/// m v_y + ω h_x, Ī ω + h_x v_y − h_y v_x).
+fn composite_times(b: &mut Builder, mass: Id, h: &[Id], rotational: &[Vec<Id>], s: &[Id]) -> Vec<Id> {
+    if let [vx, vy, w] = s[..] {
+        let (mx, my) = (b.g.mul(mass, vx), b.g.mul(mass, vy));
+        let (wy, wx) = (b.g.mul(w, h[1]), b.g.mul(w, h[0]));
+        let (hxv, hyv) = (b.g.mul(h[0], vy), b.g.mul(h[1], vx));
+        let iw = b.g.mul(rotational[0][0], w);
+        let moment = b.g.sub(hxv, hyv);
+        return vec![b.g.sub(mx, wy), b.g.add(my, wx), b.g.add(iw, moment)];
+    }
+    let (v, w) = ([s[0], s[1], s[2]], [s[3], s[4], s[5]]);
+    let (swing, arm) = (b.cross(w, [h[0], h[1], h[2]]), b.cross([h[0], h[1], h[2]], v));
+    let force = (0..3).map(|c| {
+        let mv = b.g.mul(mass, v[c]);
+        b.g.add(mv, swing[c])
+    });
+    let force: Vec<Id> = force.collect();
+    let moment: Vec<Id> = (0..3)
+        .map(|c| {
+            let iw = b.dot(&rotational[c], &w);
+            b.g.add(iw, arm[c])
+        })
+        .collect();
+    force.into_iter().chain(moment).collect()
 }
 
 /// A twist (ṙ, ω) at r_p moved to r_k = r_p + d: (ṙ + ω × d, ω), global components; in the
@@ -557,39 +603,44 @@ impl<'t> Kinematics<'t> {
         total
     }
 
-    /// What each tree joint transmits (`mbd::JointLoads::tree_joint_wrenches`), by Newton–Euler
-    /// over the subtree of the body k it carries: the wrench on k about its centre of mass,
-    ///
-    /// W_k = Σ_{b ∈ subtree(k)} (M_b J_b v̇ + M_b J̇_b v + ω_b × J_b ω_b − f_b) moved to r_k,
-    ///
-    /// v̇ standing in `dir`, f_b every other load on b (`external`: applied and friction forces
-    /// and the rows' D_bᵀλ, global); then −W_k moved to its parent's centre of mass (zeros for
-    /// ground). 2 nt entries per body.
-    fn joint_wrenches(&self, b: &mut Builder, frames: &[FrameNodes], inertia: &[super::BodyInertia], loads: &[&[Vec<Id>]]) -> Vec<Vec<Id>> {
-        let external: Vec<Vec<Id>> = (0..frames.len())
-            .map(|k| {
-                let mut sum = loads[0][k].clone();
-                for load in &loads[1..] {
-                    sum = sum.iter().zip(&load[k]).map(|(&x, &y)| b.g.add(x, y)).collect();
-                }
-                sum
-            })
-            .collect();
+    /// Each body's M_b J_b v̇ (global, at its centre of mass), v̇ standing in `dir`: J_b v̇ is the
+    /// twist's derivative along v̇ (the twist is linear in v).
+    fn inertial_wrenches(&self, b: &mut Builder, frames: &[FrameNodes], inertia: &[super::BodyInertia]) -> Vec<Vec<Id>> {
         let directions: Vec<Id> = (0..self.tree.nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
         let seed = |v: Var| match v {
             Var::Qd(i) => Some(directions[i as usize]),
             _ => None,
         };
         let mut memo = HashMap::new();
-        let residual: Vec<Vec<Id>> = frames
+        frames
             .iter()
             .zip(inertia)
             .enumerate()
             .map(|(k, (frame, m))| {
                 let acceleration: Vec<Id> = frame.twist.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
                 let inertial = m.times(b, &acceleration);
-                let inertial = self.global_wrench(b, k, inertial);
-                inertial.iter().zip(&external[k]).map(|(&i, &f)| b.g.sub(i, f)).collect()
+                self.global_wrench(b, k, inertial)
+            })
+            .collect()
+    }
+
+    /// What each tree joint transmits (`mbd::JointLoads::tree_joint_wrenches`), by Newton–Euler
+    /// over the subtree of the body k it carries: the wrench on k about its centre of mass,
+    ///
+    /// W_k = Σ_{b ∈ subtree(k)} (M_b J_b v̇ + M_b J̇_b v + ω_b × J_b ω_b − f_b) moved to r_k,
+    ///
+    /// from `inertial` (M_b J_b v̇, [`inertial_wrenches`](Self::inertial_wrenches)) and the
+    /// `loads` on each body (applied forces less the inertia bias, friction, the rows' D_bᵀλ;
+    /// global); then −W_k moved to its parent's centre of mass (zeros for ground). 2 nt entries
+    /// per body.
+    fn joint_wrenches(&self, b: &mut Builder, inertial: &[Vec<Id>], loads: &[&[Vec<Id>]]) -> Vec<Vec<Id>> {
+        let residual: Vec<Vec<Id>> = (0..inertial.len())
+            .map(|k| {
+                let mut sum = inertial[k].clone();
+                for load in loads {
+                    sum = sum.iter().zip(&load[k]).map(|(&x, &y)| b.g.sub(x, y)).collect();
+                }
+                sum
             })
             .collect();
         let total = self.subtrees(b, residual, |_, _, _| {});
@@ -769,6 +820,95 @@ impl<'t> Kinematics<'t> {
     /// x − y.
     fn between(&self, b: &mut Builder, x: &[Id], y: &[Id]) -> Vec<Id> {
         x.iter().zip(y).map(|(&x, &y)| b.g.sub(x, y)).collect()
+    }
+
+    /// M by the composite-rigid-body algorithm, every link's screws and every body's inertia in
+    /// global axes at the world origin, where a rigid body's inertia is m, its first moment
+    /// h = m r and its rotational inertia Ī = A J′ Aᵀ + m (|r|² 1 − r rᵀ) about the origin (in
+    /// the plane Ī = J + m |r|²), and a subtree's is their sum (no transforms):
+    ///
+    /// M_ij = s_iᵀ I^C_k s_j  for velocity j of link k and velocity i of k or of a link
+    /// above it, I^C_k the composite inertia of k's subtree, I^C s = (m v + ω × h, Ī ω + h × v)
+    /// for s = (v, ω).
+    ///
+    /// O(N²) entries of a few operations each (a 6-joint arm: about 900 against 4 500 for its
+    /// six products M e_c), so emitted for trees of at most [`CRBA_VELOCITIES`] velocities.
+    fn mass_matrix(&self, b: &mut Builder, inertia: &[super::BodyInertia]) -> Vec<Vec<Id>> {
+        let tree = self.tree;
+        let zero = b.g.num(0.0);
+        let spatial = self.twist_size() == 6;
+        // each body's (m, h, Ī) about the origin; Ī's entries by row (3×3 in space, 1×1 in the plane)
+        let mut composite: Vec<(Id, Vec<Id>, Vec<Vec<Id>>)> = inertia
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let r = self.origins[k].clone();
+                let h: Vec<Id> = r.iter().map(|&x| b.g.mul(m.mass, x)).collect();
+                let rr = b.dot(&r, &r);
+                let rotational = if spatial {
+                    let centre = self.global_inertia(b, k, m);
+                    (0..3)
+                        .map(|i| {
+                            (0..3)
+                                .map(|j| {
+                                    // J_g + m (|r|² δ_ij − r_i r_j)
+                                    let rirj = b.g.mul(r[i], r[j]);
+                                    let shift = if i == j { b.g.sub(rr, rirj) } else { b.g.neg(rirj) };
+                                    let shift = b.g.mul(m.mass, shift);
+                                    b.g.add(centre.0[3 + i][3 + j], shift)
+                                })
+                                .collect()
+                        })
+                        .collect()
+                } else {
+                    let shift = b.g.mul(m.mass, rr);
+                    vec![vec![b.g.add(m.inertia[0][0], shift)]]
+                };
+                (m.mass, h, rotational)
+            })
+            .collect();
+        for &k in tree.order.iter().rev() {
+            if let BodyRef::Body(p) = tree.links[k].parent {
+                let (mass, h, rotational) = composite[k].clone();
+                let (pm, ph, pr) = &mut composite[p];
+                *pm = b.g.add(*pm, mass);
+                for (x, y) in ph.iter_mut().zip(&h) {
+                    *x = b.g.add(*x, *y);
+                }
+                for (row, other) in pr.iter_mut().zip(&rotational) {
+                    for (x, y) in row.iter_mut().zip(other) {
+                        *x = b.g.add(*x, *y);
+                    }
+                }
+            }
+        }
+        // every link's screws at the origin
+        let screws: Vec<Vec<Vec<Id>>> = (0..inertia.len())
+            .map(|k| {
+                let to_origin: Vec<Id> = self.origins[k].iter().map(|&x| b.g.neg(x)).collect();
+                self.screws[k].iter().map(|s| twist_moved(b, s, &to_origin)).collect()
+            })
+            .collect();
+        let mut m = vec![vec![zero; tree.nv]; tree.nv];
+        for k in 0..inertia.len() {
+            let (mass, h, rotational) = composite[k].clone();
+            for (j, s) in screws[k].iter().enumerate() {
+                let momentum = composite_times(b, mass, &h, &rotational, s);
+                let mut at = BodyRef::Body(k);
+                while let BodyRef::Body(a) = at {
+                    for (i, s_above) in screws[a].iter().enumerate() {
+                        let (row, column) = (tree.links[a].first_v + i, tree.links[k].first_v + j);
+                        if a == k && i > j {
+                            continue;
+                        }
+                        m[row][column] = b.dot(s_above, &momentum);
+                        m[column][row] = m[row][column];
+                    }
+                    at = tree.links[a].parent;
+                }
+            }
+        }
+        m
     }
 
     /// M x = Σ_b J_bᵀ M_b J_b x: the bodies' momenta M_b (J_b v), v standing for x, through the

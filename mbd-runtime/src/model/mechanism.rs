@@ -455,6 +455,18 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
         let _ = (q, v, t, vd);
         None
     }
+    /// τ = M(q) v̇ − h(q, v, t): the generalized forces a motion needs besides the constraint
+    /// forces — a tree's joint torques (N·m) and forces (N), its whole inverse dynamics. As this
+    /// provided method computes it, `mass_times` minus `forces`; a tree in joint coordinates
+    /// generates one recursive Newton–Euler pass (O(N), the bodies' twists computed once).
+    fn inverse_forces(&self, q: &[T; NQ], v: &[T; NV], vd: &[T; NV], t: T, tau: &mut [T; NV]) {
+        let mut h = [T::ZERO; NV];
+        self.forces(q, v, t, &mut h);
+        self.mass_times(q, vd, tau);
+        for (x, h) in tau.iter_mut().zip(&h) {
+            *x -= *h;
+        }
+    }
     /// h(q, v, t): the generalized applied forces — gravity, springs, dampers, actuators,
     /// applied forces and torques, and (spatial) the gyroscopic term — in N (translational rows)
     /// and N·m (rotational rows).

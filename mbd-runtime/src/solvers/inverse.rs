@@ -245,11 +245,8 @@ impl<T: Real> InverseDynamics<T> {
         }
         let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = ws;
         m.jacobian(q, t, d);
-        let mut h = [T::ZERO; NV];
-        m.forces(q, v, t, &mut h);
-        let mut inertia = [T::ZERO; NV];
-        m.mass_times(q, vd, &mut inertia);
-        let base: [T; NV] = core::array::from_fn(|k| inertia[k] - h[k]);
+        let mut base = [T::ZERO; NV];
+        m.inverse_forces(q, v, vd, t, &mut base);
         if let Some(i) = first_non_finite(&base) {
             return Err(InverseDynamicsError::NonFinite {
                 t: time,

@@ -7,7 +7,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::{DynamicsFunctions, Gen};
-use crate::emit::{usize_lit, vector_outputs, Ops};
+use crate::emit::{usize_lit, vector_outputs, Ops, Output};
 use crate::formulation::TreeTerms;
 use crate::sym::Id;
 
@@ -100,6 +100,36 @@ impl Gen<'_> {
         (code, ops)
     }
 
+    /// `Dynamics::add_mass_matrix`: a += scale M, M entry by entry by the composite-rigid-body
+    /// algorithm where the tree emits it (and its op counts), else a column at a time from M x.
+    fn mass_matrix(&self, terms: &TreeTerms) -> (TokenStream, Option<Ops>) {
+        let Gen { e, zero, nv_l, .. } = self;
+        let Some(rows) = &terms.mass_matrix else {
+            return (self.by_columns(quote!(self.mbd_mass_times(q, &dir, &mut out)), quote!(a), quote!(+= scale *)), None);
+        };
+        let outputs: Vec<Output> = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(r, row)| {
+                row.iter().enumerate().map(move |(c, &node)| {
+                    let (r, c) = (usize_lit(r), usize_lit(c));
+                    Output { target: quote!(m[#r][#c]), node }
+                })
+            })
+            .collect();
+        let (body, ops) = e.body(&outputs);
+        let code = quote! {
+            let mut m = [[#zero; #nv_l]; #nv_l];
+            #body
+            for (row, entries) in a.iter_mut().zip(&m) {
+                for (x, &y) in row.iter_mut().zip(entries) {
+                    *x += scale * y;
+                }
+            }
+        };
+        (code, Some(ops))
+    }
+
     /// `Dynamics::motion_size`: every body's twist J_b x (one pass over the tree), its largest
     /// component.
     fn motion_size(&self) -> TokenStream {
@@ -127,9 +157,10 @@ impl Gen<'_> {
         let mass_ops = self.product("mbd_mass_times", &terms.mass_x, quote!(q: &[#real; #nq_l], v: &[#real; #nv_l]));
         let mass_q_ops =
             self.product("mbd_mass_derivative_along", &terms.mass_x_dq, quote!(q: &[#real; #nq_l], v: &[#real; #nv_l], #direction));
+        let inverse_ops = self.product("mbd_inverse_forces", &terms.inverse, quote!(#state, #direction));
         let h_q_ops = self.product("mbd_forces_q_along", &terms.h_dq, quote!(#state, #direction));
         let h_v_ops = self.product("mbd_forces_v_along", &terms.h_dv, quote!(#state, #direction));
-        let mass_matrix = self.by_columns(quote!(self.mbd_mass_times(q, &dir, &mut out)), quote!(a), quote!(+= scale *));
+        let (mass_matrix, crba_ops) = self.mass_matrix(terms);
         let mass_derivative = self.by_columns(quote!(self.mbd_mass_derivative_along(q, x, &dir, &mut out)), quote!(a), quote!(+= scale *));
         let forces_q = self.by_columns(quote!(self.mbd_forces_q_along(q, v, t, &dir, &mut out)), quote!(dh), quote!(=));
         let forces_v = self.by_columns(quote!(self.mbd_forces_v_along(q, v, t, &dir, &mut out)), quote!(dh), quote!(=));
@@ -146,14 +177,16 @@ impl Gen<'_> {
         let (recursions, [solve_ops, free_ops]) = self.recursions(terms);
         let motion_size = self.motion_size();
         let common = self.common_dynamics_items(d, &friction_derivatives);
-        let ops = vec![
+        let mut ops = vec![
             ("solve_mass", solve_ops),
             ("free_accelerations", free_ops),
             ("mass_times", mass_ops),
+            ("inverse_forces", inverse_ops),
             ("add_mass_derivative (one column)", mass_q_ops),
             ("forces_q (one column)", h_q_ops),
             ("forces_v (one column)", h_v_ops),
         ];
+        ops.extend(crba_ops.map(|o| ("add_mass_matrix", o)));
         let code = quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -161,6 +194,9 @@ impl Gen<'_> {
                 #inline
                 fn mass_times(&self, q: &[#real; #nq_l], x: &[#real; #nv_l], y: &mut [#real; #nv_l]) {
                     self.mbd_mass_times(q, x, y);
+                }
+                fn inverse_forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], vd: &[#real; #nv_l], t: #real, tau: &mut [#real; #nv_l]) {
+                    self.mbd_inverse_forces(q, v, t, vd, tau);
                 }
                 fn add_mass_matrix(&self, q: &[#real; #nq_l], scale: #real, a: &mut [[#real; #nv_l]; #nv_l]) {
                     #mass_matrix
