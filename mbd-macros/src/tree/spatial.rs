@@ -81,7 +81,7 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
         let (body, angular, articulation) = match link.joint {
             None => {
                 // a free body: its own pose and velocities
-                let (r, p) = ([q[0], q[1], q[2]], [q[3], q[4], q[5], q[6]]);
+                let (r, p) = ([q[0], q[1], q[2]], unit(b, [q[3], q[4], q[5], q[6]]));
                 let a = rotation_matrix(&mut b.g, p);
                 let angular = [v[3], v[4], v[5]];
                 let w = times(b, &a, angular);
@@ -216,7 +216,7 @@ fn placement(b: &mut Builder, tree: &Tree, k: usize, index: usize, q: &[Id]) -> 
     let child_point = local(b, &child_marker.loc.point);
     let zero = b.g.num(0.0);
     if kind == SpatialKind::Spherical {
-        let relative = [q[0], q[1], q[2], q[3]];
+        let relative = unit(b, [q[0], q[1], q[2], q[3]]);
         // σ_ang = e_m, σ_lin = s′_c × e_m
         let screws = (0..3)
             .map(|m| {
@@ -448,6 +448,21 @@ fn initial_quaternion(b: &mut Builder, body: BodyRef) -> Quaternion {
 }
 
 // --- quaternions ------------------------------------------------------------------------------
+
+/// p/|p|: a link's quaternion coordinates normalized before they turn anything, so that every
+/// rotation the tree builds is orthogonal wherever q is — also off the unit sphere, where an
+/// explicit integrator's stages evaluate (q + h k/2 is off it by O(h²)). There the frames stay
+/// those of rigid bodies, M stays a rigid tree's, and the articulated-body solve, which moves
+/// twists between points rigidly and turns a ball joint's torques by Aᵀ = A⁻¹, inverts it
+/// exactly. On the sphere nothing changes: the values are the same and so is every derivative
+/// along q̇ = B(q) v, which stays tangent.
+fn unit(b: &mut Builder, p: Quaternion) -> Quaternion {
+    let norm = b.dot(&p, &p);
+    let norm = b.g.call(Func::Sqrt, norm);
+    let one = b.g.num(1.0);
+    let inverse = b.g.div(one, norm);
+    p.map(|x| b.g.mul(x, inverse))
+}
 
 fn identity(b: &mut Builder) -> Quaternion {
     let (zero, one) = (b.g.num(0.0), b.g.num(1.0));
