@@ -591,3 +591,95 @@ fn inverse_dynamics_gives_the_same_joint_torques() {
         reactions_agree(&b, (&qb, &vb, &vdb, &lambda), &j, (&q, &v, &vd, &torques), t);
     }
 }
+
+/// Nikravesh's variable-length pendulum (9.3.1, 13.4.1) in joint coordinates — `examples/
+/// variable_pendulum.rs` compiled with `joint_coordinates;` (a collar angle and the rod's stroke
+/// through it; both drivers cut) — against closed forms it does not compute: the bob's polar
+/// kinematics (the example's `exact`, Coriolis term included), and by Lagrange, with no gravity
+/// and the rod's centre of mass at the bob (mass m, J_r; collar J_c), the loads the drivers
+/// supply: the swing torque τ = (J_c + J_r + m L²) θ̈ + 2 m L L̇ θ̇ on the collar and the
+/// radial force m (L̈ − L θ̇²) on the rod; every joint's reaction must balance the bodies.
+/// Tolerance: the sweep solves positions to 1e-13 and the loads are O(1–10) N, N·m; 1e-9
+/// separates a right load from a wrong one (a missing Coriolis term is O(1)).
+#[test]
+fn nikravesh_variable_pendulum_in_joint_coordinates() {
+    use mbd_examples::joint::variable_pendulum_0::VariablePendulum;
+    use mbd_examples::variable_pendulum::exact;
+    let m = VariablePendulum::default();
+    // the closed form reads the parameters of the body-coordinate original (the same defaults)
+    let original = mbd_examples::variable_pendulum::VariablePendulum::default();
+    assert_eq!(VariablePendulum::COORDINATE_NAMES.len(), 2, "{:?}", VariablePendulum::COORDINATE_NAMES);
+    let (mass, j_rod, j_collar) = (1.0, 0.05, 1.0e-3);
+    let mut q = m.initial_positions();
+    let mut states = Vec::new();
+    let times = (0..=40).map(|k| 2.0 * k as f64 / 40.0);
+    KinematicSolver::default()
+        .sweep(&m, &mut VariablePendulum::workspace(), &mut q, times, |t, q, v, vd| states.push((t, *q, *v, *vd)))
+        .unwrap();
+    assert_eq!(states.len(), 41);
+    let mut worst = [0.0f64; 5];
+    for (t, q, v, vd) in states {
+        let (p, velocity, acceleration, _) = exact(&original, t);
+        let bob = m.rod_bob();
+        let (bp, bv, ba) = (bob.position(&q), bob.velocity(&q, &v), bob.acceleration(&q, &v, &vd));
+        worst[0] = worst[0].max((bp.x - p[0]).abs().max((bp.y - p[1]).abs()));
+        worst[1] = worst[1].max((bv.x - velocity[0]).abs().max((bv.y - velocity[1]).abs()));
+        worst[2] = worst[2].max((ba.x - acceleration[0]).abs().max((ba.y - acceleration[1]).abs()));
+        let mut lambda = [0.0; 2];
+        InverseDynamics::default().solve(&m, &mut VariablePendulum::workspace(), &q, &v, &vd, t, &mut lambda).expect("driven");
+        let w = m.omega;
+        let (theta_d, theta_dd) = (m.theta0 * w * (w * t).cos(), -m.theta0 * w * w * (w * t).sin());
+        let l = m.l0 + m.dl * (2.0 * w * t).sin();
+        let (l_d, l_dd) = (2.0 * w * m.dl * (2.0 * w * t).cos(), -4.0 * w * w * m.dl * (2.0 * w * t).sin());
+        let torque = (j_collar + j_rod + mass * l * l) * theta_dd + 2.0 * mass * l * l_d * theta_d;
+        let radial = mass * (l_dd - l * theta_d * theta_d);
+        let reaction = |joint: usize| joint_reaction_at(&m, &q, &v, &vd, t, &lambda, joint).expect("a joint");
+        // JOINTS: the pin, the slide, the swing driver (on the collar), the length driver
+        let swing = reaction(2).on_i.expect("the swing driver acts on the collar");
+        worst[3] = worst[3].max((swing.moment[2] - torque).abs());
+        let pull = reaction(3).on_j.expect("the length driver acts on the rod");
+        let e_r = [p[0] / l, p[1] / l];
+        worst[4] = worst[4].max((pull.force[0] * e_r[0] + pull.force[1] * e_r[1] - radial).abs());
+        // the rod: the slide's and the length driver's forces are its whole load (no gravity)
+        let slide = reaction(1).on_j.expect("the slide acts on the rod");
+        for c in 0..2 {
+            let total = slide.force[c] + pull.force[c];
+            assert!(
+                (total - mass * acceleration[c]).abs() < 1e-9,
+                "t = {t}: the rod's forces {total} N against m a = {} N",
+                mass * acceleration[c]
+            );
+        }
+    }
+    let names = ["position (m)", "velocity (m/s)", "acceleration (m/s²)", "swing torque (N·m)", "radial force (N)"];
+    for (name, error) in names.iter().zip(worst) {
+        assert!(error < 1e-9, "variable pendulum in joint coordinates: {name} off the closed form by {error:e}");
+    }
+}
+
+/// Nikravesh's slider-crank (9.5.1) in joint coordinates (`examples/slider_crank.rs` with
+/// `joint_coordinates;`: the crank and rod angles and the slider's stroke; the slider pin cut)
+/// against the closed form x = r cos θ + √(l² − r² sin² θ) and its derivatives (the example's
+/// `exact`) over a turn. Tolerance as above: x is 0.2–0.4 m, ẍ up to 6 m/s².
+#[test]
+fn nikravesh_slider_crank_in_joint_coordinates() {
+    use mbd_examples::joint::slider_crank_0::SliderCrank;
+    use mbd_examples::slider_crank::exact;
+    let m = SliderCrank::default();
+    let mut q = m.initial_positions();
+    let mut worst = [0.0f64; 3];
+    let mut count = 0;
+    let times = (0..=36).map(|k| k as f64 / 36.0);
+    KinematicSolver::default()
+        .sweep(&m, &mut SliderCrank::workspace(), &mut q, times, |t, q, v, vd| {
+            let (x, xd, xdd) = exact(m.r, m.l, m.omega, t);
+            let pin = m.slider_pin();
+            worst[0] = worst[0].max((pin.position(q).x - x).abs());
+            worst[1] = worst[1].max((pin.velocity(q, v).x - xd).abs());
+            worst[2] = worst[2].max((pin.acceleration(q, v, vd).x - xdd).abs());
+            count += 1;
+        })
+        .unwrap();
+    assert_eq!(count, 37);
+    assert!(worst.iter().all(|&e| e < 1e-9), "slider-crank in joint coordinates off the closed form by {worst:?} (x, ẋ, ẍ)");
+}
