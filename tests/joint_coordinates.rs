@@ -642,13 +642,9 @@ fn nikravesh_variable_pendulum_in_joint_coordinates() {
         worst[4] = worst[4].max((pull.force[0] * e_r[0] + pull.force[1] * e_r[1] - radial).abs());
         // the rod: the slide's and the length driver's forces are its whole load (no gravity)
         let slide = reaction(1).on_j.expect("the slide acts on the rod");
-        for c in 0..2 {
+        for (c, a) in acceleration.iter().enumerate() {
             let total = slide.force[c] + pull.force[c];
-            assert!(
-                (total - mass * acceleration[c]).abs() < 1e-9,
-                "t = {t}: the rod's forces {total} N against m a = {} N",
-                mass * acceleration[c]
-            );
+            assert!((total - mass * a).abs() < 1e-9, "t = {t}: the rod's forces {total} N against m a = {} N", mass * a);
         }
     }
     let names = ["position (m)", "velocity (m/s)", "acceleration (m/s²)", "swing torque (N·m)", "radial force (N)"];
