@@ -91,8 +91,7 @@ where
         for (k, load) in state["joint_loads"].as_array().expect("joint loads").iter().enumerate() {
             let on_child = joint_reaction_at(m, &q, &v, &vd, 0.0, &[], joint[k]).and_then(|r| r.on_j).expect("a tree joint's load");
             let origin = floats(&load["origin"]);
-            let centre = m.body_pose(on_child.body_index, &q).expect("the child").position;
-            let moment = on_child.moment_about(core::array::from_fn(|c| origin[c] - centre[c]));
+            let moment = on_child.moment_at([origin[0], origin[1], origin[2]]);
             let ours: Vec<f64> = on_child.force.iter().chain(&moment).copied().collect();
             let theirs: Vec<f64> = floats(&load["force"]).into_iter().chain(floats(&load["moment"])).collect();
             worst[4] = worst[4].max(relative(&ours, &theirs));

@@ -35,6 +35,9 @@ pub struct Wrench<T> {
     /// `rotation[i][j]` = A_ij): planar a turn by φ about z, spatial A(p) of its Euler
     /// parameters.
     pub rotation: [[T; 3]; 3],
+    /// The body's centre of mass r at the state of the reaction, global (m): the point the
+    /// moment is about.
+    pub centre: [T; 3],
 }
 
 impl<T: Real> Wrench<T> {
@@ -55,9 +58,20 @@ impl<T: Real> Wrench<T> {
         let cross = crate::model::body::cross(arm, self.force);
         core::array::from_fn(|k| self.moment[k] - cross[k])
     }
+
+    /// The moment about the point P (global position, m): n_P = n − (P − r) × f (N·m, global)
+    /// — at a joint's pin, what the joint's bearing must hold besides the force.
+    pub fn moment_at(&self, point: [T; 3]) -> [T; 3] {
+        self.moment_about(core::array::from_fn(|k| point[k] - self.centre[k]))
+    }
 }
 
 /// The reaction of one joint (or driver, or user constraint) on each moving body it connects.
+/// A joint's sides are as declared (`revolute ground ~ arm`: `on_j` is on the arm); a driver of
+/// a joint's angle or stroke (`drive motor: hinge.angle`) has the joint's sides; a driver of one
+/// body's coordinate (`drive arm.phi`) and a distance driver from ground act on that body as
+/// `on_i` and `on_j` respectively ([`crate::JointInfo`] says which for each). Pick a side by
+/// body with [`on`](Self::on).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointReaction<T> {
     /// The joint's name (`"revolute crank~rod"`).
@@ -66,6 +80,14 @@ pub struct JointReaction<T> {
     pub on_i: Option<Wrench<T>>,
     /// On its second body (`None` for ground).
     pub on_j: Option<Wrench<T>>,
+}
+
+impl<T: Copy> JointReaction<T> {
+    /// The wrench on the body named `body` (`"crank"`, as in [`crate::Mechanism::BODY_NAMES`]),
+    /// on whichever side it is; `None` if the joint does not act on it.
+    pub fn on(&self, body: &str) -> Option<Wrench<T>> {
+        [self.on_i, self.on_j].into_iter().flatten().find(|w| w.body == body)
+    }
 }
 
 crate::options::options! {
@@ -426,8 +448,15 @@ where
     let wrench = |body: Option<u16>| -> Option<Wrench<T>> {
         let b = body? as usize;
         let twist = mechanism.body_twist(b, q, &g)?;
-        let rotation = mechanism.body_pose(b, q)?.rotation;
-        Some(Wrench { body: name(M::BODY_NAMES, b), body_index: b, force: twist.velocity, moment: twist.angular_velocity, rotation })
+        let pose = mechanism.body_pose(b, q)?;
+        Some(Wrench {
+            body: name(M::BODY_NAMES, b),
+            body_index: b,
+            force: twist.velocity,
+            moment: twist.angular_velocity,
+            rotation: pose.rotation,
+            centre: pose.position,
+        })
     };
     Some(JointReaction { joint: info.name, on_i: wrench(info.body_i), on_j: wrench(info.body_j) })
 }
@@ -460,8 +489,15 @@ where
 {
     let info = M::JOINTS.get(joint)?;
     let wrench = |body: usize, w: BodyWrench<T>| -> Option<Wrench<T>> {
-        let rotation = mechanism.body_pose(body, q)?.rotation;
-        Some(Wrench { body: name(M::BODY_NAMES, body), body_index: body, force: w.force, moment: w.moment, rotation })
+        let pose = mechanism.body_pose(body, q)?;
+        Some(Wrench {
+            body: name(M::BODY_NAMES, body),
+            body_index: body,
+            force: w.force,
+            moment: w.moment,
+            rotation: pose.rotation,
+            centre: pose.position,
+        })
     };
     let (on_i, on_j) = match M::TREE_JOINTS.iter().position(|&j| j == Some(joint as u16)) {
         Some(child) => {
@@ -619,6 +655,11 @@ mod tests {
         assert!(max_diff(w.force, lambda) < 1e-14, "{w:?}");
         assert!(max_diff(w.moment, cross(s_global, lambda)) < 1e-13, "{w:?}");
         assert!(max_diff(w.moment_about(s_global), [0.0; 3]) < 1e-13, "a pin has no moment about itself: {w:?}");
+        let pin: [f64; 3] = core::array::from_fn(|i| w.centre[i] + s_global[i]);
+        assert_eq!(w.centre, [q[0], q[1], q[2]], "the moment is about the centre of mass");
+        assert!(max_diff(w.moment_at(pin), [0.0; 3]) < 1e-13, "nor at its global position: {w:?}");
+        let reaction = joint_reaction(&SphericalTop, &q, &d, &lambda, 0).expect("the pin");
+        assert_eq!((reaction.on("top"), reaction.on("ground")), (Some(w), None), "sides picked by body name");
         assert!(max_diff(w.force_in_body_frame(), force_local) < 1e-13, "{w:?}");
         assert!(max_diff(w.moment_in_body_frame(), cross(s_local, force_local)) < 1e-13, "{w:?}");
         assert!(joint_reaction(&SphericalTop, &q, &d, &lambda, 0).and_then(|j| j.on_i).is_none(), "ground has no wrench");
@@ -631,10 +672,19 @@ mod tests {
     fn planar_body_frame() {
         let phi = 0.4f64;
         let (s, c) = phi.sin_cos();
-        let w = Wrench { body: "b", body_index: 0, force: [2.0, 1.0, 0.0], moment: [0.0, 0.0, 3.0], rotation: planar_rotation(phi) };
+        let w = Wrench {
+            body: "b",
+            body_index: 0,
+            force: [2.0, 1.0, 0.0],
+            moment: [0.0, 0.0, 3.0],
+            rotation: planar_rotation(phi),
+            centre: [0.5, -0.25, 0.0],
+        };
         let local = w.force_in_body_frame();
         assert!(max_diff(local, [c * 2.0 + s * 1.0, -s * 2.0 + c * 1.0, 0.0]) < 1e-15, "{local:?}");
         assert_eq!(w.moment_in_body_frame()[2], 3.0);
+        // about P = r + (1, 0): n − (P − r) × f = 3 − (1 · 1 − 0 · 2)
+        assert_eq!(w.moment_at([1.5, -0.25, 0.0]), [0.0, 0.0, 2.0]);
         // n − arm × f with arm (1, 0, 0): 3 − (1·1 − 0·2) = 2.
         assert_eq!(w.moment_about([1.0, 0.0, 0.0]), [0.0, 0.0, 2.0]);
     }
