@@ -389,7 +389,6 @@ impl Matrix {
         *self = Matrix::symmetric(b, this.len(), |b, r, c| b.g.add(this[r][c], other.0[r][c]));
     }
 
-    /// self −= w wᵀ / d.
     /// Row and column j set to zero.
     fn clear(&mut self, b: &mut Builder, j: usize) {
         let zero = b.g.num(0.0);
@@ -401,6 +400,7 @@ impl Matrix {
         }
     }
 
+    /// self −= w wᵀ / d.
     fn subtract_outer(&mut self, b: &mut Builder, w: &[Id], d: Id) {
         let one = b.g.num(1.0);
         let inverse = b.g.div(one, d);
