@@ -12,7 +12,8 @@
 //! Mechanisms: a 6-revolute arm (link masses 0.8–3 kg, axes alternating z, y as a PUMA-like
 //! arm's), the 16-link ball-joint chain of the MuJoCo benchmark, and the examples' planar
 //! slider-crank (driven: a closed loop), free four-bar (a loop) and double A-arm suspension (a
-//! loop with a coil-over and a tyre), each compiled both ways from the same text.
+//! loop with a coil-over and a tyre), and a hanging ladder of 40 four-bar loops, each compiled
+//! both ways from the same text.
 use mbd::prelude::*;
 use std::time::Instant;
 
@@ -42,6 +43,34 @@ macro_rules! arm {
 }
 arm!(ArmBody);
 arm!(ArmJoint joint_coordinates);
+
+macro_rules! ladder {
+    ($name:ident $($joint:ident)?) => {
+        mbd::mechanism! {
+            /// A hanging ladder of 40 four-bar loops (as `tests/large.rs`' of 100): 41 rungs
+            /// 0.4 m wide, a left rail of 40 links pinned between them, 0.3 m massless links on
+            /// the right (one row each), started sheared 0.2 rad.
+            pub $name {
+                $($joint;)?
+                gravity [0.0, -9.81];
+                body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 0.0] }
+                for k in 1..=40 {
+                    body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
+                }
+                for k in 0..40 {
+                    body a[k] { mass: 0.5, inertia: 0.00375, at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0] }
+                    revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
+                    revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
+                    revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
+                }
+                revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
+                revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
+            }
+        }
+    };
+}
+ladder!(LadderBody);
+ladder!(LadderJoint joint_coordinates);
 
 mod chain16 {
     include!("../mechanisms/spatial_chain16.rs");
@@ -118,4 +147,6 @@ fn main() {
     row(&mbd_examples::joint::free_four_bar_0::FreeFourBar::default(), "free four-bar", "joint");
     row(&mbd_examples::suspension_dynamics::DoubleAArmRide::default(), "double A-arm ride", "body");
     row(&mbd_examples::joint::suspension_dynamics_0::DoubleAArmRide::default(), "double A-arm ride", "joint");
+    row(&LadderBody::default(), "40-loop ladder", "body");
+    row(&LadderJoint::default(), "40-loop ladder", "joint");
 }
