@@ -42,10 +42,8 @@ example-robot-data provides the URDFs; the fixtures are ur5.json and panda.json 
 """
 
 import json
-import math
 import os
 import sys
-import sysconfig
 import xml.etree.ElementTree as ET
 
 import mujoco
@@ -55,13 +53,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 sys.dont_write_bytecode = True
 from mujoco_timing import SPEC, timed_rollout  # noqa: E402
 
-FINGER_LOCK = 0.02  # m, each Panda finger (range 0 .. 0.04), as urdf_to_mbd.py
-ROBOTS = {
-    # name: (URDF under example-robot-data/robots, locked joints {name: value})
-    "ur5": ("ur_description/urdf/ur5_robot.urdf", {}),
-    "panda": ("panda_description/urdf/panda.urdf",
-              {"panda_finger_joint1": FINGER_LOCK, "panda_finger_joint2": FINGER_LOCK}),
-}
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The robots, their URDFs, the finger lock and URDF's rotations as the converter has them.
+from urdf_to_mbd import ROBOTS, rpy_matrix, urdf_path  # noqa: E402
+
 GRAVITY = (0.0, 0.0, -9.81)
 STEP = 1.0e-3
 NSTEP = 10000
@@ -70,24 +65,6 @@ FINAL_TIME = 0.5
 FINAL_STEPS = (1.0e-3, 0.25e-3)
 V_SCALE = 0.5  # initial v = V_SCALE * fixture state 0's v
 FIXTURES = os.path.dirname(os.path.abspath(__file__))
-
-
-def robots_dir():
-    """example-robot-data's robots folder in this interpreter's site-packages."""
-    path = os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots")
-    if not os.path.isdir(path):
-        raise SystemExit("mujoco_robot.py: example-robot-data is not installed here; run it with mbd-bench/peers/ensure_env.sh's Python")
-    return path
-
-
-def rpy_matrix(rpy):
-    """URDF: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return rz @ ry @ rx
 
 
 def floats(text, default):
@@ -134,7 +111,7 @@ def urdf_for_mujoco(path, locked, fuse):
 
 def build(robot, fuse):
     """Compiled MjModel (options set on its MjSpec), the settings overridden, the edited URDF tree."""
-    text, overrides, root = urdf_for_mujoco(os.path.join(robots_dir(), ROBOTS[robot][0]), ROBOTS[robot][1], fuse)
+    text, overrides, root = urdf_for_mujoco(urdf_path(robot), ROBOTS[robot][2], fuse)
     spec = mujoco.MjSpec.from_string(text)
     spec.option.gravity = GRAVITY
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_RK4
