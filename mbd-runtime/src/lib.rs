@@ -66,6 +66,7 @@ pub use real::Real;
 pub use solvers::error::{KinematicError, NonFiniteQuantity};
 pub use solvers::finite_differences::FiniteDifferences;
 pub use solvers::flow::Flow;
+pub use solvers::friction::settle_loads;
 pub use solvers::inverse::{
     joint_reaction, joint_reaction_at, InverseDynamics, InverseDynamicsError, InverseDynamicsOptions, JointReaction, Wrench,
 };

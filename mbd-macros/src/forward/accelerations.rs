@@ -127,11 +127,11 @@ impl Plan<'_> {
             };
         }
         let (friction_body, _) = e.body(&friction);
+        // Coulomb friction's loads by the runtime's fixed point (`mbd::settle_loads`): each
+        // step the friction forces of the λ it is given, then the solve with them
         quote! {
             let applied = h;
-            let mut iteration = 0u32;
-            loop {
-                let previous = *lambda;
+            ::mbd::settle_loads(options.friction_tolerance, options.friction_iterations, lambda, |lambda: &mut [#real; #nc_l]| {
                 let mut hf = [#zero; #nv_l];
                 {
                     let lambda: &[#real; #nc_l] = lambda;
@@ -139,23 +139,12 @@ impl Plan<'_> {
                 }
                 #( h[#cols] = applied[#cols] + hf[#cols]; )*
                 #one_solve
-                let mut change = #zero;
-                let mut size = <#real as ::mbd::Real>::ONE;
-                for (new, old) in lambda.iter().zip(previous.iter()) {
-                    change = <#real as ::mbd::Real>::max(change, <#real as ::mbd::Real>::abs(*new - *old));
-                    size = <#real as ::mbd::Real>::max(size, <#real as ::mbd::Real>::abs(*new));
-                }
-                if change <= options.friction_tolerance * size {
-                    return ::core::result::Result::Ok(());
-                }
-                iteration += 1;
-                if iteration >= options.friction_iterations || !(change == change) {
-                    return ::core::result::Result::Err(::mbd::DynamicsError::FrictionNotConverged {
-                        t: <#real as ::mbd::Real>::to_f64(t),
-                        change: <#real as ::mbd::Real>::to_f64(change),
-                    });
-                }
-            }
+            })
+            .map(|_| ())
+            .map_err(|(_, change)| ::mbd::DynamicsError::FrictionNotConverged {
+                t: <#real as ::mbd::Real>::to_f64(t),
+                change: <#real as ::mbd::Real>::to_f64(change),
+            })
         }
     }
 

@@ -258,9 +258,7 @@ where
     m.forces(q, v, t, &mut applied);
     let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
     let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-    let mut iteration = 0u32;
-    loop {
-        let previous = *lambda;
+    let mut solve = |lambda: &mut [T; NC]| {
         let mut h = applied;
         if friction {
             m.friction_forces(q, v, t, lambda, &mut h);
@@ -279,23 +277,14 @@ where
         factors.schur_solve(lambda);
         let minus: [T; NC] = lambda.map(|l| T::ZERO - l);
         factors.subtract_correction(&minus, vd);
-        if !friction {
-            return Ok(());
-        }
-        let mut change = T::ZERO;
-        let mut size = T::ONE;
-        for (new, old) in lambda.iter().zip(previous.iter()) {
-            change = change.max((*new - *old).abs());
-            size = size.max(new.abs());
-        }
-        if change <= options.friction_tolerance * size {
-            return Ok(());
-        }
-        iteration += 1;
-        if iteration >= options.friction_iterations || !change.is_finite() {
-            return Err(DynamicsError::FrictionNotConverged { t: t.to_f64(), change: change.to_f64() });
-        }
+    };
+    if !friction {
+        solve(lambda);
+        return Ok(());
     }
+    crate::solvers::friction::settle_loads(options.friction_tolerance, options.friction_iterations, lambda, solve)
+        .map(|_| ())
+        .map_err(|(_, change)| DynamicsError::FrictionNotConverged { t: t.to_f64(), change: change.to_f64() })
 }
 
 /// One Newton step of the mass-weighted projection of q onto Φ(q, t) = 0

@@ -378,32 +378,27 @@ impl<T: Real> InverseDynamics<T> {
     where
         M: Dynamics<T, NQ, NV, NC>,
     {
-        let mut change = T::ZERO;
-        for _ in 0..self.options.max_friction_iterations {
+        let mut friction = [T::ZERO; NV];
+        m.friction_forces(q, v, t, lambda, &mut friction);
+        if friction.iter().all(|f| *f == T::ZERO) {
+            // no Coulomb friction (or none loaded): the first solve stands
+            return Ok(());
+        }
+        let step = |lambda: &mut [T; NC]| {
             let mut friction = [T::ZERO; NV];
             m.friction_forces(q, v, t, lambda, &mut friction);
-            if friction.iter().all(|f| *f == T::ZERO) {
-                return Ok(());
-            }
             let rhs: [T; NV] = core::array::from_fn(|k| base[k] - friction[k]);
             let mut next = [T::ZERO; NC];
             solve(&rhs, &mut next);
-            change = T::ZERO;
-            let mut size = T::ONE;
-            for (l, x) in lambda.iter_mut().zip(next.iter()) {
-                change = change.max((*l - *x).abs());
-                size = size.max(x.abs());
-                *l = *x;
-            }
-            if change <= self.options.friction_tolerance * size {
-                return Ok(());
-            }
-        }
-        Err(InverseDynamicsError::FrictionNotConverged {
-            t: t.to_f64(),
-            iterations: self.options.max_friction_iterations,
-            change: change.to_f64(),
-        })
+            *lambda = next;
+        };
+        crate::solvers::friction::settle_loads(self.options.friction_tolerance, self.options.max_friction_iterations, lambda, step)
+            .map(|_| ())
+            .map_err(|(iterations, change)| InverseDynamicsError::FrictionNotConverged {
+                t: t.to_f64(),
+                iterations,
+                change: change.to_f64(),
+            })
     }
 }
 

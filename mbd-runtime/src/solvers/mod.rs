@@ -7,6 +7,7 @@ pub mod dense_forward;
 pub(crate) mod error;
 pub(crate) mod finite_differences;
 pub(crate) mod flow;
+pub(crate) mod friction;
 pub(crate) mod inverse;
 pub(crate) mod kinematics;
 #[cfg(feature = "alloc")]
