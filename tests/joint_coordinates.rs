@@ -613,7 +613,7 @@ fn nikravesh_variable_pendulum_in_joint_coordinates() {
     let mut q = m.initial_positions();
     let mut states = Vec::new();
     let times = (0..=40).map(|k| 2.0 * k as f64 / 40.0);
-    KinematicSolver::default()
+    KinematicSolver::new(KinematicOptions::default().with_tolerance(1e-13))
         .sweep(&m, &mut VariablePendulum::workspace(), &mut q, times, |t, q, v, vd| states.push((t, *q, *v, *vd)))
         .unwrap();
     assert_eq!(states.len(), 41);
@@ -666,7 +666,7 @@ fn nikravesh_slider_crank_in_joint_coordinates() {
     let mut worst = [0.0f64; 3];
     let mut count = 0;
     let times = (0..=36).map(|k| k as f64 / 36.0);
-    KinematicSolver::default()
+    KinematicSolver::new(KinematicOptions::default().with_tolerance(1e-13))
         .sweep(&m, &mut SliderCrank::workspace(), &mut q, times, |t, q, v, vd| {
             let (x, xd, xdd) = exact(m.r, m.l, m.omega, t);
             let pin = m.slider_pin();
@@ -797,4 +797,72 @@ fn nikravesh_three_body_system_in_joint_coordinates() {
     assert!((p1 - p0).abs() < 1e-9, "horizontal momentum {p0} → {p1} kg·m/s");
     assert!((e1 - e0).abs() < 1e-9 * e0.abs().max(1.0), "energy {e0} → {e1} J");
     assert!(end.1[1].abs() > 1.0, "the pendulum swings: {:?}", end.1);
+}
+
+/// Nikravesh's double A-arm (9.6.1, 10.4.1; `examples/double_a_arm.rs` with
+/// `joint_coordinates;`: the two arms' angles and the knuckle on the cut ball joints) against
+/// its geometry solved here by hand: with the wheel centre's height y given, the arms' angles
+/// φ_l, φ_u and the knuckle's x and φ_k close the two loops,
+///
+/// P_l + R(φ_l) (0.35, −0.02) = r_k + R(φ_k) (−0.07, −0.17),
+/// P_u + R(φ_u) (0.22, 0.02) = r_k + R(φ_k) (−0.10, 0.17),
+///
+/// solved by Newton's method with a difference Jacobian from the design position. The knuckle's
+/// x and camber angle over the travel must agree to 1e-9 (the sweep solves to 1e-13, the hand
+/// Newton to 1e-14; a wrong placement is millimetres).
+#[test]
+fn nikravesh_double_a_arm_in_joint_coordinates() {
+    use mbd_examples::joint::double_a_arm_0::DoubleAArm;
+    let m = DoubleAArm::default();
+    let rotate = |phi: f64, p: [f64; 2]| [phi.cos() * p[0] - phi.sin() * p[1], phi.sin() * p[0] + phi.cos() * p[1]];
+    let residual = |x: [f64; 4], y: f64| -> [f64; 4] {
+        let [phi_l, phi_u, x_k, phi_k] = x;
+        let (lower, upper) = (rotate(phi_l, [0.35, -0.02]), rotate(phi_u, [0.22, 0.02]));
+        let (ball_l, ball_u) = (rotate(phi_k, [-0.07, -0.17]), rotate(phi_k, [-0.10, 0.17]));
+        [
+            0.20 + lower[0] - x_k - ball_l[0],
+            0.15 + lower[1] - y - ball_l[1],
+            0.30 + upper[0] - x_k - ball_u[0],
+            0.45 + upper[1] - y - ball_u[1],
+        ]
+    };
+    let solve = |y: f64, mut x: [f64; 4]| -> [f64; 4] {
+        for _ in 0..50 {
+            let r = residual(x, y);
+            if r.iter().all(|e| e.abs() < 1e-14) {
+                break;
+            }
+            let mut jacobian = mbd::nalgebra::Matrix4::zeros();
+            for c in 0..4 {
+                let mut xp = x;
+                xp[c] += 1e-7;
+                let rp = residual(xp, y);
+                for row in 0..4 {
+                    jacobian[(row, c)] = (rp[row] - r[row]) / 1e-7;
+                }
+            }
+            let step = jacobian.lu().solve(&mbd::nalgebra::Vector4::from(r)).expect("a regular Jacobian");
+            for c in 0..4 {
+                x[c] -= step[c];
+            }
+        }
+        x
+    };
+    let knuckle = DoubleAArm::BODY_NAMES.iter().position(|b| *b == "knuckle").expect("the knuckle");
+    let mut q = m.initial_positions();
+    let mut guess = [0.0, 0.0, 0.62, 0.0];
+    let mut worst = 0.0f64;
+    let mut count = 0;
+    KinematicSolver::new(KinematicOptions::default().with_tolerance(1e-13))
+        .sweep(&m, &mut DoubleAArm::workspace(), &mut q, (0..=20).map(|k| k as f64 / 20.0), |t, q, _, _| {
+            let y = m.wheel_y + m.travel * (m.omega * t).sin();
+            guess = solve(y, guess);
+            let pose = m.body_pose(knuckle, q).expect("the knuckle");
+            assert!((pose.position[1] - y).abs() < 1e-13, "the driven height: {} m, driven to {y} m at t = {t}", pose.position[1]);
+            worst = worst.max((pose.position[0] - guess[2]).abs()).max((pose.angle() - guess[3]).abs());
+            count += 1;
+        })
+        .unwrap();
+    assert_eq!(count, 21);
+    assert!(worst < 1e-9, "the knuckle off the hand-solved geometry by {worst:e}");
 }
