@@ -177,28 +177,31 @@ fn initial_coordinates_come_from_the_bodies_poses() {
     assert_eq!((m.initial_positions(), m.initial_velocities()), ([0.5, 0.5, 0.3, 0.0], [0.1, -0.2, 0.5, 0.0]));
 }
 
+/// (q, v) after 1 s of DOPRI5 at rtol 1e-12 (atol 1e-14) from (q0, v0) at t = 0:
+/// `one_second!(mechanism, Type, q0, v0)`.
+macro_rules! one_second {
+    ($m:expr, $ty:ident, $q0:expr, $v0:expr) => {{
+        let mut end = ($q0, $v0);
+        let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
+        Simulation::new(&$m, &mut dopri)
+            .start(0.0, &$q0, &$v0)
+            .times(&[1.0])
+            .run(&mut $ty::workspace(), |s| end = (s.point.q, s.point.v))
+            .expect("the motion");
+        end
+    }};
+}
+
 /// The same motion both ways: DOPRI5 at rtol 1e-12 over 1 s, the bodies' poses compared
 /// (tolerance: each run's error is about 1e-10 at this tolerance over 1 s of a non-chaotic
 /// motion; 1e-8 leaves room for the two error paths).
 #[test]
 fn a_motion_agrees_with_body_coordinates() {
-    macro_rules! run {
-        ($m:expr, $ty:ident, $q0:expr, $v0:expr) => {{
-            let mut last = $q0;
-            let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
-            Simulation::new(&$m, &mut dopri)
-                .start(0.0, &$q0, &$v0)
-                .times(&[1.0])
-                .run(&mut $ty::workspace(), |s| last = s.point.q)
-                .expect("the motion");
-            last
-        }};
-    }
     let (b, j) = (DoubleBody::default(), DoubleJoint::default());
     let (qj, vj) = ([0.3, -0.5], [1.0, 0.5]);
     let (qb, vb) = to_bodies::<DoubleJoint, 2, 6>(&j, &qj, &vj);
-    let end_b = run!(b, DoubleBody, qb, vb);
-    let end_j = run!(j, DoubleJoint, qj, vj);
+    let (end_b, _) = one_second!(b, DoubleBody, qb, vb);
+    let (end_j, _) = one_second!(j, DoubleJoint, qj, vj);
     let (end_jb, _) = to_bodies::<DoubleJoint, 2, 6>(&j, &end_j, &[0.0; 2]);
     for i in 0..6 {
         assert!((end_b[i] - end_jb[i]).abs() < 1e-8, "q[{i}] at 1 s: {} in body coordinates, {} in joint coordinates", end_b[i], end_jb[i]);
@@ -727,13 +730,7 @@ fn nikravesh_floating_system_in_joint_coordinates() {
     };
     let (q0, v0) = (m.initial_positions(), m.initial_velocities());
     let (r0, rd0, momentum0) = centre(&q0, &v0);
-    let mut end = (q0, v0);
-    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
-    Simulation::new(&m, &mut dopri)
-        .start(0.0, &q0, &v0)
-        .times(&[1.0])
-        .run(&mut ThrownPair::workspace(), |s| end = (s.point.q, s.point.v))
-        .expect("the throw");
+    let end = one_second!(m, ThrownPair, q0, v0);
     let (r1, rd1, momentum1) = centre(&end.0, &end.1);
     let expected = [r0[0] + rd0[0], r0[1] + rd0[1] - 0.5 * 9.81];
     let expected_rate = [rd0[0], rd0[1] - 9.81];
@@ -786,13 +783,7 @@ fn nikravesh_three_body_system_in_joint_coordinates() {
     };
     let (q0, v0) = (m.initial_positions(), [0.4, 0.0, 0.0]);
     let (p0, e0) = laws(&q0, &v0);
-    let mut end = (q0, v0);
-    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
-    Simulation::new(&m, &mut dopri)
-        .start(0.0, &q0, &v0)
-        .times(&[1.0])
-        .run(&mut CartDoublePendulum::workspace(), |s| end = (s.point.q, s.point.v))
-        .expect("the swing");
+    let end = one_second!(m, CartDoublePendulum, q0, v0);
     let (p1, e1) = laws(&end.0, &end.1);
     assert!((p1 - p0).abs() < 1e-9, "horizontal momentum {p0} → {p1} kg·m/s");
     assert!((e1 - e0).abs() < 1e-9 * e0.abs().max(1.0), "energy {e0} → {e1} J");
