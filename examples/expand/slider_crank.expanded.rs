@@ -1344,10 +1344,10 @@ impl SliderCrank {
         (*__x_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
         (*__x_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
         (*__x_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
-        let mut dx = [0f64; 9];
-        for _ in 0..4 {
-            {
-                let x: &[f64; 9] = x;
+        ::mbd::sparse::refined(
+            x,
+            |x, dx| {
+                let mut b = [0f64; 9];
                 use ::mbd::sparse::Elements as _;
                 let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                     .window_mut::<0, 9>();
@@ -1378,32 +1378,30 @@ impl SliderCrank {
                         + (*__jv_20) * (*__x_8));
                 (*__b_7) = (*__rhs_7) - ((*__jv_21) * (*__x_8));
                 (*__b_8) = (*__rhs_8) - ((*__jv_22) * (*__x_2));
-            }
-            Self::schur_solve(l, dinv, &mut b);
-            use ::mbd::sparse::Elements as _;
-            let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
-                .window::<0, 9>();
-            let [__dx_0, __dx_1, __dx_2, __dx_3, __dx_4, __dx_5, __dx_6, __dx_7, __dx_8,
-            ] = dx.window_mut::<0, 9>();
-            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
-            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
-            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
-            (*__dx_0) = ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
-            (*__dx_1) = ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
-            (*__dx_2) = ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1)
-                + (*__jv_5) * (*__b_2) + (*__jv_9) * (*__b_3) + (*__jv_22) * (*__b_8));
-            (*__dx_3) = ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
-            (*__dx_4) = ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
-            (*__dx_5) = ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3)
-                + (*__jv_13) * (*__b_4) + (*__jv_16) * (*__b_5));
-            (*__dx_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
-            (*__dx_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
-            (*__dx_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
-            if ::mbd::sparse::refine(x, &dx) {
-                return true;
-            }
-        }
-        false
+                Self::schur_solve(l, dinv, &mut b);
+                use ::mbd::sparse::Elements as _;
+                let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                    .window::<0, 9>();
+                let [__dx_0, __dx_1, __dx_2, __dx_3, __dx_4, __dx_5, __dx_6, __dx_7,
+                __dx_8] = dx.window_mut::<0, 9>();
+                let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                    .window::<0, 23>();
+                (*__dx_0) = ((*__jv_0) * (*__b_0) + (*__jv_4) * (*__b_2));
+                (*__dx_1) = ((*__jv_2) * (*__b_1) + (*__jv_8) * (*__b_3));
+                (*__dx_2) = ((*__jv_1) * (*__b_0) + (*__jv_3) * (*__b_1)
+                    + (*__jv_5) * (*__b_2) + (*__jv_9) * (*__b_3)
+                    + (*__jv_22) * (*__b_8));
+                (*__dx_3) = ((*__jv_6) * (*__b_2) + (*__jv_12) * (*__b_4));
+                (*__dx_4) = ((*__jv_10) * (*__b_3) + (*__jv_15) * (*__b_5));
+                (*__dx_5) = ((*__jv_7) * (*__b_2) + (*__jv_11) * (*__b_3)
+                    + (*__jv_13) * (*__b_4) + (*__jv_16) * (*__b_5));
+                (*__dx_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
+                (*__dx_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
+                (*__dx_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
+            },
+        )
     }
     /// x = D⁻ᵀ b for a square, regular D from `schur_factor`'s factors of D Dᵀ, refined
     /// on its residual; false where the refinement does not settle.
@@ -1440,10 +1438,10 @@ impl SliderCrank {
         (*__b_8) = ((*__jv_22) * (*__rhs_2));
         Self::schur_solve(l, dinv, &mut b);
         *x = b;
-        let mut w = [0f64; 9];
-        for _ in 0..4 {
-            {
-                let x: &[f64; 9] = x;
+        ::mbd::sparse::refined(
+            x,
+            |x, b| {
+                let mut w = [0f64; 9];
                 use ::mbd::sparse::Elements as _;
                 let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
                 __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
@@ -1468,35 +1466,32 @@ impl SliderCrank {
                 (*__w_6) = (*__rhs_6) - ((*__jv_14) * (*__x_4) + (*__jv_18) * (*__x_6));
                 (*__w_7) = (*__rhs_7) - ((*__jv_17) * (*__x_5) + (*__jv_19) * (*__x_6));
                 (*__w_8) = (*__rhs_8) - ((*__jv_20) * (*__x_6) + (*__jv_21) * (*__x_7));
-            }
-            use ::mbd::sparse::Elements as _;
-            let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
-                .window_mut::<0, 9>();
-            let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
-            __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
-            __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
-            let [__w_0, __w_1, __w_2, __w_3, __w_4, __w_5, __w_6, __w_7, __w_8] = w
-                .window::<0, 9>();
-            (*__b_0) = ((*__jv_0) * (*__w_0) + (*__jv_1) * (*__w_2));
-            (*__b_1) = ((*__jv_2) * (*__w_1) + (*__jv_3) * (*__w_2));
-            (*__b_2) = ((*__jv_4) * (*__w_0) + (*__jv_5) * (*__w_2)
-                + (*__jv_6) * (*__w_3) + (*__jv_7) * (*__w_5));
-            (*__b_3) = ((*__jv_8) * (*__w_1) + (*__jv_9) * (*__w_2)
-                + (*__jv_10) * (*__w_4) + (*__jv_11) * (*__w_5));
-            (*__b_4) = ((*__jv_12) * (*__w_3) + (*__jv_13) * (*__w_5)
-                + (*__jv_14) * (*__w_6));
-            (*__b_5) = ((*__jv_15) * (*__w_4) + (*__jv_16) * (*__w_5)
-                + (*__jv_17) * (*__w_7));
-            (*__b_6) = ((*__jv_18) * (*__w_6) + (*__jv_19) * (*__w_7)
-                + (*__jv_20) * (*__w_8));
-            (*__b_7) = ((*__jv_21) * (*__w_8));
-            (*__b_8) = ((*__jv_22) * (*__w_2));
-            Self::schur_solve(l, dinv, &mut b);
-            if ::mbd::sparse::refine(x, &b) {
-                return true;
-            }
-        }
-        false
+                use ::mbd::sparse::Elements as _;
+                let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
+                    .window_mut::<0, 9>();
+                let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
+                __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
+                __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
+                    .window::<0, 23>();
+                let [__w_0, __w_1, __w_2, __w_3, __w_4, __w_5, __w_6, __w_7, __w_8] = w
+                    .window::<0, 9>();
+                (*__b_0) = ((*__jv_0) * (*__w_0) + (*__jv_1) * (*__w_2));
+                (*__b_1) = ((*__jv_2) * (*__w_1) + (*__jv_3) * (*__w_2));
+                (*__b_2) = ((*__jv_4) * (*__w_0) + (*__jv_5) * (*__w_2)
+                    + (*__jv_6) * (*__w_3) + (*__jv_7) * (*__w_5));
+                (*__b_3) = ((*__jv_8) * (*__w_1) + (*__jv_9) * (*__w_2)
+                    + (*__jv_10) * (*__w_4) + (*__jv_11) * (*__w_5));
+                (*__b_4) = ((*__jv_12) * (*__w_3) + (*__jv_13) * (*__w_5)
+                    + (*__jv_14) * (*__w_6));
+                (*__b_5) = ((*__jv_15) * (*__w_4) + (*__jv_16) * (*__w_5)
+                    + (*__jv_17) * (*__w_7));
+                (*__b_6) = ((*__jv_18) * (*__w_6) + (*__jv_19) * (*__w_7)
+                    + (*__jv_20) * (*__w_8));
+                (*__b_7) = ((*__jv_21) * (*__w_8));
+                (*__b_8) = ((*__jv_22) * (*__w_2));
+                Self::schur_solve(l, dinv, b);
+            },
+        )
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -3704,13 +3699,11 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut l = [0f64; 18];
         let mut dinv = [0f64; 9];
-        let mut factored = 0u32;
-        let mut last = 0f64;
+        let mut newton = ::mbd::Newton::new(tolerance, max_iterations, reuse, max_step);
         let (v5, v24, v59): (f64, f64, f64);
         v5 = (self.r / 2f64);
         v24 = (self.l / 2f64);
         v59 = (self.omega * t);
-        let mut iterations = 0u32;
         loop {
             {
                 let q: &[f64; 9] = q;
@@ -3752,71 +3745,59 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
                 (*__phi_7) = (-s_slider);
                 (*__phi_8) = ((*__q_2) - v59);
-                let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
-                if finite && worst <= tolerance {
-                    return ::core::option::Option::Some((
-                        ::mbd::PositionStep::Converged,
-                        iterations,
-                        factored,
-                    ));
-                }
-                if !finite || iterations >= max_iterations {
-                    return ::core::option::Option::Some((
-                        ::mbd::PositionStep::Step,
-                        iterations,
-                        factored,
-                    ));
-                }
-                if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
-                    use ::mbd::sparse::Elements as _;
-                    let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
-                    __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
-                    __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
-                        .window_mut::<0, 23>();
-                    let [__q_6, __q_7] = q.window::<6, 2>();
-                    v81 = (-c_slider);
-                    (*__jv_0) = (-1f64);
-                    (*__jv_1) = v13;
-                    (*__jv_2) = (-1f64);
-                    (*__jv_3) = v10;
-                    (*__jv_4) = 1f64;
-                    (*__jv_5) = v13;
-                    (*__jv_6) = (-1f64);
-                    (*__jv_7) = v32;
-                    (*__jv_8) = 1f64;
-                    (*__jv_9) = v10;
-                    (*__jv_10) = (-1f64);
-                    (*__jv_11) = v29;
-                    (*__jv_12) = 1f64;
-                    (*__jv_13) = v32;
-                    (*__jv_14) = (-1f64);
-                    (*__jv_15) = 1f64;
-                    (*__jv_16) = v29;
-                    (*__jv_17) = (-1f64);
-                    (*__jv_18) = s_slider;
-                    (*__jv_19) = v81;
-                    (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
-                    (*__jv_21) = v81;
-                    (*__jv_22) = 1f64;
-                    if Self::schur_factor(
-                            &jv,
-                            &[1f64; 9],
-                            pivot_tolerance,
-                            false,
-                            &mut l,
-                            &mut dinv,
-                        )
-                        .is_err()
-                    {
-                        return ::core::option::Option::Some((
-                            ::mbd::PositionStep::Singular,
-                            iterations,
-                            factored,
-                        ));
+                match newton.after_residual(phi) {
+                    ::mbd::NewtonNext::Stop(end) => {
+                        return ::core::option::Option::Some(newton.end(end));
                     }
-                    factored += 1;
+                    ::mbd::NewtonNext::Factor => {
+                        use ::mbd::sparse::Elements as _;
+                        let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6,
+                        __jv_7, __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13,
+                        __jv_14, __jv_15, __jv_16, __jv_17, __jv_18, __jv_19, __jv_20,
+                        __jv_21, __jv_22] = jv.window_mut::<0, 23>();
+                        let [__q_6, __q_7] = q.window::<6, 2>();
+                        v81 = (-c_slider);
+                        (*__jv_0) = (-1f64);
+                        (*__jv_1) = v13;
+                        (*__jv_2) = (-1f64);
+                        (*__jv_3) = v10;
+                        (*__jv_4) = 1f64;
+                        (*__jv_5) = v13;
+                        (*__jv_6) = (-1f64);
+                        (*__jv_7) = v32;
+                        (*__jv_8) = 1f64;
+                        (*__jv_9) = v10;
+                        (*__jv_10) = (-1f64);
+                        (*__jv_11) = v29;
+                        (*__jv_12) = 1f64;
+                        (*__jv_13) = v32;
+                        (*__jv_14) = (-1f64);
+                        (*__jv_15) = 1f64;
+                        (*__jv_16) = v29;
+                        (*__jv_17) = (-1f64);
+                        (*__jv_18) = s_slider;
+                        (*__jv_19) = v81;
+                        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+                        (*__jv_21) = v81;
+                        (*__jv_22) = 1f64;
+                        if Self::schur_factor(
+                                &jv,
+                                &[1f64; 9],
+                                pivot_tolerance,
+                                false,
+                                &mut l,
+                                &mut dinv,
+                            )
+                            .is_err()
+                        {
+                            return ::core::option::Option::Some(
+                                newton.end(::mbd::PositionStep::Singular),
+                            );
+                        }
+                        newton.factored();
+                    }
+                    ::mbd::NewtonNext::Reuse => {}
                 }
-                last = worst;
                 let mut b = *phi;
                 Self::schur_solve(&l, &dinv, &mut b);
                 *step = [0f64; 9];
@@ -3842,16 +3823,12 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 (*__step_7) = -((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
                 (*__step_8) = -((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
             }
-            if !step.iter().all(|x| x.is_finite()) {
-                return ::core::option::Option::Some((
-                    ::mbd::PositionStep::Step,
-                    iterations,
-                    factored,
-                ));
+            if !newton.accept_step(step) {
+                return ::core::option::Option::Some(
+                    newton.end(::mbd::PositionStep::Step),
+                );
             }
-            ::mbd::sparse::limit_step(step, max_step);
             ::mbd::Kinematics::integrate_positions(self, q, step, 1f64);
-            iterations += 1;
         }
     }
     #[inline]

@@ -76,6 +76,8 @@ pub use solvers::kinematics::{
 };
 #[cfg(feature = "alloc")]
 pub use solvers::linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
+#[doc(hidden)]
+pub use solvers::newton::{Newton, NewtonNext};
 pub use solvers::redundancy::Redundancy;
 pub use solvers::statics::{
     Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS, DEFAULT_STATIC_INITIAL_STEP,

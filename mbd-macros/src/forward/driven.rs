@@ -35,10 +35,10 @@ impl Plan<'_> {
     /// The kinematic position solve: Newton's iteration with the step −Dᵀ(D Dᵀ)⁻¹Φ over the same
     /// factorization with unit weights (the step is D⁻¹(−Φ) for any weights when D is square and
     /// regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
-    /// computed once before it, and D only after Φ's convergence test. A step expected to end
-    /// the iteration keeps D and its factors (simplified Newton, the chord method: Φ alone is
-    /// evaluated): ‖Φ‖∞ times the last step's contraction, times the safety factor `reuse`, is
-    /// within the tolerance.
+    /// computed once before it, and D only after Φ's convergence test, in stages sharing their
+    /// subexpressions. The rules — convergence, the iteration limit, when D's factors are kept
+    /// (simplified Newton), the damped step — are the runtime's `mbd::Newton`, which the dense
+    /// solve follows too.
     ///
     /// Where Φ and D together take more than `PART_NODES` operations, the loop evaluates them
     /// apart, each through `Emitter::body_in_parts` (in methods of bounded size where it is
@@ -98,42 +98,32 @@ impl Plan<'_> {
                 let mut jv = [#zero; #nnz_l];
                 let mut l = [#zero; #nl_l];
                 let mut dinv = [#zero; #nc_l];
-                // The factorizations made (`l` and `dinv` hold factors after the first), and ‖Φ‖∞
-                // where the last step was taken.
-                let mut factored = 0u32;
-                let mut last = #zero;
+                let mut newton = ::mbd::Newton::new(tolerance, max_iterations, reuse, max_step);
                 #time_terms
-                let mut iterations = 0u32;
                 loop {
                     {
                         let q: &[#real; #nq_l] = q;
                         #phi_stage
-                        let (worst, finite) = ::mbd::sparse::max_abs_finite(phi);
-                        if finite && worst <= tolerance {
-                            return ::core::option::Option::Some((::mbd::PositionStep::Converged, iterations, factored));
-                        }
-                        if !finite || iterations >= max_iterations {
-                            return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
-                        }
-                        if !(factored > 0 && worst * worst * reuse <= tolerance * last) {
-                            #jv_stage
-                            if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
-                                return ::core::option::Option::Some((::mbd::PositionStep::Singular, iterations, factored));
+                        match newton.after_residual(phi) {
+                            ::mbd::NewtonNext::Stop(end) => return ::core::option::Option::Some(newton.end(end)),
+                            ::mbd::NewtonNext::Factor => {
+                                #jv_stage
+                                if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
+                                    return ::core::option::Option::Some(newton.end(::mbd::PositionStep::Singular));
+                                }
+                                newton.factored();
                             }
-                            factored += 1;
+                            ::mbd::NewtonNext::Reuse => {}
                         }
-                        last = worst;
                         let mut b = *phi;
                         Self::schur_solve(&l, &dinv, &mut b);
                         *step = [#zero; #nv_l];
                         #step_columns
                     }
-                    if !step.iter().all(|x| x.is_finite()) {
-                        return ::core::option::Option::Some((::mbd::PositionStep::Step, iterations, factored));
+                    if !newton.accept_step(step) {
+                        return ::core::option::Option::Some(newton.end(::mbd::PositionStep::Step));
                     }
-                    ::mbd::sparse::limit_step(step, max_step);
                     ::mbd::Kinematics::integrate_positions(self, q, step, #one);
-                    iterations += 1;
                 }
             }
         }
@@ -284,19 +274,12 @@ impl Plan<'_> {
                 #rows_of_rhs
                 Self::schur_solve(l, dinv, &mut b);
                 *x = b;
-                let mut w = [#zero; #nv_l];
-                for _ in 0..4 {
-                    {
-                        let x: &[#real; #nc_l] = x;
-                        #residual_columns
-                    }
+                ::mbd::sparse::refined(x, |x, b| {
+                    let mut w = [#zero; #nv_l];
+                    #residual_columns
                     #rows_of_w
-                    Self::schur_solve(l, dinv, &mut b);
-                    if ::mbd::sparse::refine(x, &b) {
-                        return true;
-                    }
-                }
-                false
+                    Self::schur_solve(l, dinv, b);
+                })
             }
         };
         let constraint_solve = quote! {
@@ -314,19 +297,12 @@ impl Plan<'_> {
                 Self::schur_solve(l, dinv, &mut b);
                 *x = [#zero; #nv_l];
                 #solution
-                let mut dx = [#zero; #nv_l];
-                for _ in 0..4 {
-                    {
-                        let x: &[#real; #nv_l] = x;
-                        #residual_rows
-                    }
+                ::mbd::sparse::refined(x, |x, dx| {
+                    let mut b = [#zero; #nc_l];
+                    #residual_rows
                     Self::schur_solve(l, dinv, &mut b);
                     #correction
-                    if ::mbd::sparse::refine(x, &dx) {
-                        return true;
-                    }
-                }
-                false
+                })
             }
         };
         (constraint_solve, transpose_solve)

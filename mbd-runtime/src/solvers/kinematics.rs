@@ -24,6 +24,7 @@ use crate::model::workspace::Workspace;
 use crate::real::Real;
 use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::flow::Flow;
+use crate::solvers::newton::{Newton, NewtonNext};
 
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
 /// coordinate in f64. Below what f32 resolves (its ulp at 1 m is 1.2e-7): every tolerance is
@@ -727,19 +728,18 @@ impl<T: Real> KinematicSolver<T> {
         let time = t.to_f64();
         let tolerance = self.position_tolerance(q);
         let pivot_tolerance = self.pivot_tolerance();
-        let max_step = self.options.max_step;
+        let (max_iterations, max_step) = (self.options.max_iterations, self.options.max_step);
         let mut residual = [T::ZERO; NC];
         let mut negative_residual = [T::ZERO; NC];
         let mut step = [T::ZERO; NV];
-        let (mut iterations, mut factorizations) = (0, 0);
         let mut previous_norm = T::from_f64(f64::INFINITY);
         let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
         // A square D: the iteration over the sparse factorization planned at compile time; the
         // dense LU where none is generated or from where that stopped (a pivot not found: the LU
         // names the coordinate without one, or finds one, D Dᵀ's pivots being D's squared; a
         // value not finite or too many steps: the loop below names the row).
+        let mut newton = Newton::new(tolerance, max_iterations, T::from_f64(f64::INFINITY), max_step);
         if rule == StepRule::Square {
-            let max_iterations = self.options.max_iterations;
             let reuse = self.options.reuse_safety;
             let sparse =
                 m.sparse_position_solve(q, t, tolerance, pivot_tolerance, max_iterations, reuse, max_step, &mut residual, &mut step);
@@ -747,23 +747,25 @@ impl<T: Real> KinematicSolver<T> {
                 if end == PositionStep::Converged {
                     return Ok(Convergence { iterations: taken, factorizations: factored, residual: max_abs(&residual).0.to_f64() });
                 }
-                (iterations, factorizations) = (taken, factored);
+                newton = newton.resumed(taken, factored);
             }
         }
+        // The same rules as the sparse loop's, D evaluated and factored at every step.
         loop {
             m.position_eval(q, t, &mut residual, jacobian);
             check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
             let (norm, worst) = max_abs(&residual);
-            if norm <= tolerance {
-                return Ok(Convergence { iterations, factorizations, residual: norm.to_f64() });
-            }
-            if iterations >= self.options.max_iterations {
-                return Err(KinematicError::NotConverged {
-                    t: time,
-                    iterations,
-                    worst_row: name(M::CONSTRAINT_NAMES, worst),
-                    residual: norm.to_f64(),
-                });
+            if let NewtonNext::Stop(end) = newton.after_residual(&residual) {
+                let (end, iterations, factorizations) = newton.end(end);
+                return match end {
+                    PositionStep::Converged => Ok(Convergence { iterations, factorizations, residual: norm.to_f64() }),
+                    _ => Err(KinematicError::NotConverged {
+                        t: time,
+                        iterations,
+                        worst_row: name(M::CONSTRAINT_NAMES, worst),
+                        residual: norm.to_f64(),
+                    }),
+                };
             }
             for (negated, &value) in negative_residual.iter_mut().zip(residual.iter()) {
                 *negated = -value;
@@ -793,11 +795,11 @@ impl<T: Real> KinematicSolver<T> {
                     Ok(())
                 }
             }?;
+            newton.factored();
             check_finite(&step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
-            crate::linalg::sparse::limit_step(&mut step, max_step);
+            let accepted = newton.accept_step(&mut step);
+            debug_assert!(accepted, "a finite step");
             m.integrate_positions(q, &step, T::ONE);
-            iterations += 1;
-            factorizations += 1;
         }
     }
 }

@@ -12,5 +12,6 @@ pub(crate) mod inverse;
 pub(crate) mod kinematics;
 #[cfg(feature = "alloc")]
 pub mod linearize;
+pub(crate) mod newton;
 pub mod redundancy;
 pub mod statics;
