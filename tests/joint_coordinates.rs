@@ -337,7 +337,9 @@ both_ways! {
 
 /// `solve_mass` (the articulated-body recursion) inverts `mass_times` on every tree and loop
 /// above: the free joint's 3×3 pivot block, a translational joint run backwards, a cut loop
-/// (tolerance: M's condition here is below 1e4, so 1e-12 relative to |x|).
+/// (tolerance: M's condition here is below 1e4, so 1e-12 relative to |x|); and
+/// `solve_mass_rows`, the loop's rows over one factorization, gives each row's `solve_mass`
+/// (the same operations in another order: 1e-13).
 #[test]
 fn the_articulated_body_solve_inverts_the_mass_matrix() {
     fn check<M: Dynamics<f64, N, N, NC>, const N: usize, const NC: usize>(m: &M) {
@@ -357,6 +359,27 @@ fn the_articulated_body_solve_inverts_the_mass_matrix() {
             let scale = h.iter().fold(1.0f64, |a, b| a.max(b.abs()));
             for i in 0..N {
                 assert!((free[i] - h[i]).abs() < 1e-12 * scale, "{}: free accelerations [{i}] {} vs M⁻¹h {}", M::NAME, free[i], h[i]);
+            }
+            // The rows' solves over one shared factorization (generated where there are rows)
+            // are each row's solve.
+            let generated = M::OP_COUNTS.iter().any(|o| o.function == "solve_mass_rows (each row)");
+            assert_eq!(generated, NC > 0, "{}", M::NAME);
+            let rows: [[f64; N]; NC] = core::array::from_fn(|r| core::array::from_fn(|i| x[(i + r) % N] * (1.0 + r as f64)));
+            let mut shared = rows;
+            assert_eq!(m.solve_mass_rows(&q, &mut shared), Some(Ok(())), "{}", M::NAME);
+            for (r, row) in rows.iter().enumerate() {
+                let mut alone = *row;
+                assert_eq!(m.solve_mass(&q, &mut alone), Some(Ok(())));
+                let scale = alone.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+                for i in 0..N {
+                    assert!(
+                        (shared[r][i] - alone[i]).abs() < 1e-13 * scale,
+                        "{}: row {r} [{i}]: {} vs {}",
+                        M::NAME,
+                        shared[r][i],
+                        alone[i]
+                    );
+                }
             }
         }
     }

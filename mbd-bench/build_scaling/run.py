@@ -102,23 +102,18 @@ def driven_chain(n):
 
 def main():
     if sys.argv[1:2] == ["--measure"]:
-        return measure(int(sys.argv[2]))
+        return measure(pathlib.Path(sys.argv[2]), sys.argv[3])
     driven = "--driven" in sys.argv[1:]
     joint = "--joint" in sys.argv[1:]
     run = "--run" in sys.argv[1:] and not driven
     sizes = [int(a) for a in sys.argv[1:] if not a.startswith("--")] or [10, 30, 60, 120, 240]
-    (CRATE / "src" / "bin").mkdir(parents=True, exist_ok=True)
-    (CRATE / "Cargo.toml").write_text(f'[package]\nname = "build-scaling"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
-                                      f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
+    bins = {}
     for n in sizes:
         text = driven_chain(n) if driven else chain(n)
         if joint:
             text = text.replace("gravity [0.0, -9.81];", "joint_coordinates;\n        gravity [0.0, -9.81];", 1)
-        (CRATE / "src" / "bin" / f"chain{n}.rs").write_text(text)
-    env = dict(os.environ, CARGO_TARGET_DIR=str(CRATE / "target"))
-    # Dependencies first (mbd, nalgebra, the macro crate), so each timing is the mechanism's crate alone.
-    (CRATE / "src" / "bin" / "dependencies.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
-    subprocess.run(["cargo", "build", "--release", "--bin", "dependencies"], cwd=CRATE, env=env, check=True)
+        bins[f"chain{n}"] = text
+    env = prepare(CRATE, bins)
     if driven:
         print("| bodies | release build (s) | peak memory (MB) | sweep (µs/point) | inverse dynamics (µs/point) |\n|---|---|---|---|---|")
     elif run:
@@ -126,11 +121,8 @@ def main():
     else:
         print("| bodies | release build (s) | peak memory (MB) |\n|---|---|---|")
     for n in sizes:
-        (CRATE / "src" / "bin" / f"chain{n}.rs").touch()
-        # In a process of its own, so that its children's peak memory is this build's alone.
-        out = subprocess.run([sys.executable, __file__, "--measure", str(n)], env=env, check=True, capture_output=True, text=True)
-        seconds, peak_kb = out.stdout.split()
-        row = f"| {n} | {float(seconds):.1f} | {int(peak_kb) / 1024:.0f} |"
+        seconds, peak_mb = build_time(CRATE, f"chain{n}", env)
+        row = f"| {n} | {seconds:.1f} | {peak_mb:.0f} |"
         if driven or run:
             out = subprocess.run([str(CRATE / "target" / "release" / f"chain{n}")], check=True, capture_output=True, text=True)
             first, second = out.stdout.split()
@@ -138,12 +130,37 @@ def main():
         print(row, flush=True)
 
 
-def measure(n):
-    """Builds chain{n}; prints the seconds and the largest child's peak resident memory (KB)."""
+def prepare(crate, bins):
+    """Writes a crate at `crate` depending on mbd with one binary per entry of `bins` (name: the
+    source's text) and builds its dependencies (mbd, nalgebra, the macro crate) in release, so
+    that each timing is the mechanism's binary alone. Returns the environment to build it with."""
+    (crate / "src" / "bin").mkdir(parents=True, exist_ok=True)
+    (crate / "Cargo.toml").write_text(f'[package]\nname = "{crate.name}"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
+                                      f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
+    for name, text in bins.items():
+        (crate / "src" / "bin" / f"{name}.rs").write_text(text)
+    env = dict(os.environ, CARGO_TARGET_DIR=str(crate / "target"))
+    (crate / "src" / "bin" / "dependencies.rs").write_text("fn main() { let _ = mbd::prelude::PI; }\n")
+    subprocess.run(["cargo", "build", "--release", "--bin", "dependencies"], cwd=crate, env=env, check=True)
+    return env
+
+
+def build_time(crate, name, env):
+    """(seconds, peak MB) of `cargo build --release` of the binary `name` of `crate` alone: in a
+    process of its own, so that its children's peak memory is this build's."""
+    (crate / "src" / "bin" / f"{name}.rs").touch()
+    out = subprocess.run([sys.executable, __file__, "--measure", str(crate), name], env=env, check=True, capture_output=True, text=True)
+    seconds, peak_kb = out.stdout.split()
+    return float(seconds), int(peak_kb) / 1024
+
+
+def measure(crate, name):
+    """Builds the binary `name`; prints the seconds and the largest child's peak resident memory (KB)."""
     start = time.monotonic()
-    subprocess.run(["cargo", "build", "--release", "--bin", f"chain{n}"], cwd=CRATE, check=True, capture_output=True)
+    subprocess.run(["cargo", "build", "--release", "--bin", name], cwd=crate, check=True, capture_output=True)
     seconds = time.monotonic() - start
     print(seconds, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+
 
 if __name__ == "__main__":
     main()

@@ -434,19 +434,30 @@ impl Emitter<'_> {
     /// temporary in the first stage that reads it. A temporary of a later stage is assigned
     /// after the earlier stages' statements, so the loop may leave before it is computed.
     pub fn staged(&self, stages: &[&[Output]]) -> (TokenStream, Vec<TokenStream>) {
+        let state = |v: &Var| matches!(v, Var::Q(_) | Var::Qd(_) | Var::Lambda(_) | Var::Dir(_));
+        let (prologue, stages, _) = self.staged_over(stages, state);
+        (prologue, stages)
+    }
+
+    /// [`staged`](Self::staged) with the state the stages depend on chosen by `state`: the
+    /// prologue holds every maximal subexpression of the other variables. Over `Var::Dir` alone,
+    /// for a loop over right-hand sides (`Dynamics::solve_mass_rows`): what depends on q only —
+    /// a tree's articulated inertias and their factors — is computed once before it. Also
+    /// returns the operations of the prologue, then of each stage.
+    pub fn staged_over(&self, stages: &[&[Output]], state: impl Fn(&Var) -> bool) -> (TokenStream, Vec<TokenStream>, Vec<Ops>) {
         let g = self.graph;
         let all: Vec<Output> = stages.iter().flat_map(|s| s.iter().cloned()).collect();
         let mut plan = self.plan(&all);
         // Which nodes depend on the state, in ascending id (children first).
         let reached = self.reached(&all);
-        let mut state: HashSet<Id> = HashSet::new();
+        let mut reads: HashSet<Id> = HashSet::new();
         for &id in &reached {
             let reads_state = match g.node(id) {
-                Node::Var(v) => matches!(v, Var::Q(_) | Var::Qd(_) | Var::Lambda(_) | Var::Dir(_)),
-                _ => g.children(id).into_iter().flatten().any(|c| state.contains(&c)),
+                Node::Var(v) => state(&v),
+                _ => g.children(id).into_iter().flatten().any(|c| reads.contains(&c)),
             };
             if reads_state {
-                state.insert(id);
+                reads.insert(id);
             }
         }
         // A negation is written into its reader (`a - b`): what it negates is what is read.
@@ -455,9 +466,9 @@ impl Emitter<'_> {
         // Maximal time-only subexpressions: read by a node of the state or by an output.
         let mut hoisted: HashSet<Id> = HashSet::new();
         for &id in &reached {
-            if state.contains(&id) {
+            if reads.contains(&id) {
                 for c in g.children(id).into_iter().flatten().map(read) {
-                    if !state.contains(&c) && costly(c) {
+                    if !reads.contains(&c) && costly(c) {
                         hoisted.insert(c);
                     }
                 }
@@ -465,7 +476,7 @@ impl Emitter<'_> {
         }
         for o in &all {
             let c = read(o.node);
-            if !state.contains(&c) && costly(c) {
+            if !reads.contains(&c) && costly(c) {
                 hoisted.insert(c);
             }
         }
@@ -474,7 +485,7 @@ impl Emitter<'_> {
         }
         // Bound time-only nodes inside a hoisted one are computed with it.
         for &id in &reached {
-            if plan.bound.contains_key(&id) && !state.contains(&id) {
+            if plan.bound.contains_key(&id) && !reads.contains(&id) {
                 hoisted.insert(id);
             }
         }
@@ -497,22 +508,23 @@ impl Emitter<'_> {
                 stage_of.insert(c, a.min(b));
             }
         }
-        let mut ops = Ops::default();
+        // ops[0]: the prologue's; ops[k + 1]: stage k's.
+        let mut ops = vec![Ops::default(); stages.len() + 1];
         let mut done_pairs = HashSet::new();
         let mut prologue = Vec::new();
         let mut statements: Vec<Vec<TokenStream>> = vec![Vec::new(); stages.len()];
         for (&id, name) in &plan.bound {
-            let into = match stage_of.get(&id) {
-                _ if hoisted.contains(&id) => &mut prologue,
-                Some(&k) => &mut statements[k],
+            let (into, count) = match stage_of.get(&id) {
+                _ if hoisted.contains(&id) => (&mut prologue, &mut ops[0]),
+                Some(&k) => (&mut statements[k], &mut ops[k + 1]),
                 None => continue,
             };
-            into.extend(self.binding(id, name, &plan, &mut ops, &mut done_pairs));
+            into.extend(self.binding(id, name, &plan, count, &mut done_pairs));
         }
         for (k, stage) in stages.iter().enumerate() {
             for o in stage.iter() {
                 let target = &o.target;
-                let value = self.expr(o.node, &plan, &mut ops);
+                let value = self.expr(o.node, &plan, &mut ops[k + 1]);
                 statements[k].push(quote!(#target = #value;));
             }
         }
@@ -525,7 +537,7 @@ impl Emitter<'_> {
         if let Some(first) = out.first_mut() {
             *first = quote!(#(#stage_names)* #first);
         }
-        (prologue, out)
+        (prologue, out, ops)
     }
 
     /// Straight-line statements computing every output, and their operation count.

@@ -438,6 +438,26 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
         let _ = (q, x);
         None
     }
+    /// Each row of `rows` ← M(q)⁻¹ row: the NC right-hand sides of the constraint rows' Schur
+    /// complement D M⁻¹ Dᵀ over one factorization. Where the mechanism has a recursion with
+    /// rows (a closed loop in joint coordinates), what depends on q only — the articulated
+    /// inertias and their factors — is computed once and each row runs only its own passes;
+    /// as this provided method does, [`solve_mass`](Self::solve_mass) row by row elsewhere.
+    /// The same `Some` and `None` as `solve_mass` (with no rows, what `solve_mass` says of a zero
+    /// vector); on an error the rows are unspecified.
+    fn solve_mass_rows(&self, q: &[T; NQ], rows: &mut [[T; NV]; NC]) -> Option<Result<(), usize>> {
+        if NC == 0 {
+            return self.solve_mass(q, &mut [T::ZERO; NV]);
+        }
+        let mut solved = None;
+        for row in rows.iter_mut() {
+            solved = self.solve_mass(q, row);
+            if !matches!(solved, Some(Ok(()))) {
+                break;
+            }
+        }
+        solved
+    }
     /// The size of a velocity-space vector x as a motion: the largest component of any body's
     /// twist J_b x (m or rad). In body coordinates that is x's largest entry (a spatial body's
     /// angular components in its own frame), as this provided method says; in joint

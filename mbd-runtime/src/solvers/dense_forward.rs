@@ -94,13 +94,10 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
     ) -> Result<Self, DynamicsError> {
         let body = |i: usize| M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
         let mut y = *d;
-        let l = if let Some(solved) = y.first_mut().map_or_else(|| m.solve_mass(q, &mut [T::ZERO; NV]), |row| m.solve_mass(q, row)) {
+        // M⁻¹Dᵀ over one factorization of M shared by the rows.
+        let l = if let Some(solved) = m.solve_mass_rows(q, &mut y) {
             if let Err(i) = solved {
                 return Err(non_positive::<T, M, NQ, NV, NC>(q, t, i, mass_bodies));
-            }
-            for row in y.iter_mut().skip(1) {
-                // The same configuration: the pivots checked above hold.
-                let _ = m.solve_mass(q, row);
             }
             MassInverse::Recursion
         } else {

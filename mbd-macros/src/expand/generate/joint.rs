@@ -49,11 +49,16 @@ impl Gen<'_> {
 
     /// `Dynamics::solve_mass` (x ← M⁻¹x, `dir` = x) and `Dynamics::free_accelerations`
     /// (v̇ = M⁻¹h) by the articulated-body recursion.
-    fn recursions(&self, terms: &TreeTerms) -> (TokenStream, [Ops; 2]) {
+    fn recursions(&self, terms: &TreeTerms) -> (TokenStream, [Ops; 2], Option<[Ops; 2]>) {
         let Gen { real, nq_l, nv_l, .. } = self;
         let (solve_body, solve_ops) = self.pivot_checked(&terms.mass_solve, terms, quote!(x));
         let (free_body, free_ops) = self.pivot_checked(&terms.free_accelerations, terms, quote!(vd));
+        let (rows, rows_ops) = match self.solve_mass_rows(terms) {
+            Some((code, ops)) => (code, Some(ops)),
+            None => (quote!(), None),
+        };
         let code = quote! {
+            #rows
             #[inline(never)]
             fn solve_mass(&self, q: &[#real; #nq_l], x: &mut [#real; #nv_l]) -> ::core::option::Option<::core::result::Result<(), usize>> {
                 let dir = *x;
@@ -70,7 +75,47 @@ impl Gen<'_> {
                 #free_body
             }
         };
-        (code, [solve_ops, free_ops])
+        (code, [solve_ops, free_ops], rows_ops)
+    }
+
+    /// `Dynamics::solve_mass_rows` (each row r ← M⁻¹ row r, the constraint rows' right-hand
+    /// sides) where there are rows: the recursion staged over `dir` alone, so that what depends
+    /// on q only — the articulated inertias, their factors and the links' transforms — is
+    /// computed once before the loop over the rows, and each row runs only the passes of its
+    /// right-hand side. Its op counts: the shared part, and each row's.
+    fn solve_mass_rows(&self, terms: &TreeTerms) -> Option<(TokenStream, [Ops; 2])> {
+        let Gen { e, real, zero, nq_l, nv_l, nc_l, .. } = self;
+        if self.f.nc == 0 {
+            return None;
+        }
+        let mut outputs = vector_outputs("out", &terms.mass_solve);
+        let pivot_nodes: Vec<Id> = terms.pivots.iter().map(|&(_, node)| node).collect();
+        outputs.extend(vector_outputs("pivots", &pivot_nodes));
+        let (shared, mut stages, ops) = e.staged_over(&[&outputs], |v| matches!(v, crate::sym::Var::Dir(_)));
+        let each = stages.pop().expect("one stage");
+        let n = usize_lit(pivot_nodes.len());
+        let velocities = terms.pivots.iter().map(|&(i, _)| usize_lit(i));
+        let code = quote! {
+            #[inline(never)]
+            fn solve_mass_rows(&self, q: &[#real; #nq_l], rows: &mut [[#real; #nv_l]; #nc_l]) -> ::core::option::Option<::core::result::Result<(), usize>> {
+                const VELOCITY: [usize; #n] = [#(#velocities),*];
+                #shared
+                for row in rows.iter_mut() {
+                    let dir = *row;
+                    let mut out = [#zero; #nv_l];
+                    let mut pivots = [#zero; #n];
+                    #each
+                    for (&pivot, &velocity) in pivots.iter().zip(&VELOCITY) {
+                        if !(pivot.is_finite() && pivot > #zero) {
+                            return ::core::option::Option::Some(::core::result::Result::Err(velocity));
+                        }
+                    }
+                    *row = out;
+                }
+                ::core::option::Option::Some(::core::result::Result::Ok(()))
+            }
+        };
+        Some((code, [ops[0], ops[1]]))
     }
 
     /// The recursion's outputs and pivots evaluated, the pivots checked (each positive and
@@ -174,7 +219,7 @@ impl Gen<'_> {
             let along_v = self.by_columns(quote!(self.mbd_friction_v_along(q, v, t, lambda, &dir, &mut out)), quote!(d_v), quote!(+=));
             quote!({ #along_q } { #along_v })
         };
-        let (recursions, [solve_ops, free_ops]) = self.recursions(terms);
+        let (recursions, [solve_ops, free_ops], rows_ops) = self.recursions(terms);
         let motion_size = self.motion_size();
         let common = self.common_dynamics_items(d, &friction_derivatives);
         let mut ops = vec![
@@ -187,6 +232,9 @@ impl Gen<'_> {
             ("forces_v (one column)", h_v_ops),
         ];
         ops.extend(crba_ops.map(|o| ("add_mass_matrix", o)));
+        if let Some([shared, each]) = rows_ops {
+            ops.extend([("solve_mass_rows (shared)", shared), ("solve_mass_rows (each row)", each)]);
+        }
         let code = quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
