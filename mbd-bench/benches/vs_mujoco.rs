@@ -1,6 +1,7 @@
 //! One RK4 step of the spatial pendulum chains of 4 and 16 links (`mechanisms/spatial_chain*.rs`,
-//! spherical joints), in body and in joint coordinates (`*_joint.rs`), in mbd against MuJoCo's
-//! RK4 on the same physical chain (ball joints), in the same run: `cargo bench -p mbd-bench --bench vs_mujoco -- --warm-up-time 1 --measurement-time 3`.
+//! spherical joints), in body and in joint coordinates (`*_joint.rs`), of 64 in joint
+//! coordinates, and of planar hinge chains of 4, 16 and 64 links in joint coordinates (below), in
+//! mbd against MuJoCo's RK4 on the same physical chain (ball or hinge joints), in the same run: `cargo bench -p mbd-bench --bench vs_mujoco -- --warm-up-time 1 --measurement-time 3`.
 //!
 //! First, MuJoCo's side: `peers/ensure_env.sh` creates the pinned Python environment
 //! (`peers/requirements.txt`, under `target/peers-venv`) on first use, and `peers/mujoco_chain.py`
@@ -14,7 +15,7 @@
 //! shrink with the step (RK4: about 256 times from 1 ms to 0.25 ms) — the check that both
 //! simulate the same motion. It fails the run if the tips differ by more than 1e-4 m at 1 ms.
 use criterion::Criterion;
-use mbd::{Integrator, KinematicSolver, Mechanism, Point, Rk4, Rk4Options, System, Workspace};
+use mbd::{BodyFrames, Integrator, KinematicSolver, Mechanism, Point, Rk4, Rk4Options, System, Workspace};
 use serde_json::Value;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -41,6 +42,65 @@ use spatial_chain16_joint::SpatialChain16Joint;
 use spatial_chain4::SpatialChain4;
 use spatial_chain4_joint::SpatialChain4Joint;
 
+/// The ball chain of 64 links in joint coordinates, and the planar hinge chains of 4, 16 and 64:
+/// the same links as `mechanisms/spatial_chain*.rs` (0.1 m, 0.1 kg, m L²/12 across), link k
+/// along (cos 0.2k, sin 0.2k) from the end of link k − 1, its centre at
+/// Σ_{j<k} L (cos 0.2j, sin 0.2j) + L/2 (cos 0.2k, sin 0.2k), the sums in closed form
+/// (Σ_{j<k} cos jθ = sin(kθ/2) / sin(θ/2) · cos((k − 1)θ/2)). The plane's gravity is along −y,
+/// so the arc falls in its plane, as MuJoCo's hinge chain (`mujoco_chain.py --hinge`).
+macro_rules! ball_chain {
+    ($name:ident, $n:literal) => {
+        mbd::mechanism! {
+            /// A free spatial chain of ball joints in joint coordinates (benchmark).
+            pub $name {
+                spatial;
+                joint_coordinates;
+                gravity [0.0, 0.0, -9.81];
+                for k in 0..$n {
+                    body l[k] {
+                        mass: 0.1,
+                        inertia: [1.0e-6, 8.333333333333336e-5, 8.333333333333336e-5],
+                        at: [0.1 * sin(0.1 * k) / sin(0.1) * cos(0.1 * (k - 1)) + 0.05 * cos(0.2 * k),
+                             0.1 * sin(0.1 * k) / sin(0.1) * sin(0.1 * (k - 1)) + 0.05 * sin(0.2 * k), 0.0],
+                        axis_angle: [0.0, 0.0, 1.0, 0.2 * k]
+                    }
+                }
+                spherical ground[0.0, 0.0, 0.0] ~ l[0][-0.05, 0.0, 0.0];
+                for k in 1..$n {
+                    spherical l[k - 1][0.05, 0.0, 0.0] ~ l[k][-0.05, 0.0, 0.0];
+                }
+            }
+        }
+    };
+}
+macro_rules! hinge_chain {
+    ($name:ident, $n:literal) => {
+        mbd::mechanism! {
+            /// A free planar chain of hinges in joint coordinates (benchmark).
+            pub $name {
+                joint_coordinates;
+                gravity [0.0, -9.81];
+                for k in 0..$n {
+                    body l[k] {
+                        mass: 0.1,
+                        inertia: 8.333333333333336e-5,
+                        at: [0.1 * sin(0.1 * k) / sin(0.1) * cos(0.1 * (k - 1)) + 0.05 * cos(0.2 * k),
+                             0.1 * sin(0.1 * k) / sin(0.1) * sin(0.1 * (k - 1)) + 0.05 * sin(0.2 * k), 0.2 * k]
+                    }
+                }
+                revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+                for k in 1..$n {
+                    revolute l[k - 1][0.05, 0.0] ~ l[k][-0.05, 0.0];
+                }
+            }
+        }
+    };
+}
+ball_chain!(SpatialChain64Joint, 64);
+hinge_chain!(PlanarChain4Joint, 4);
+hinge_chain!(PlanarChain16Joint, 16);
+hinge_chain!(PlanarChain64Joint, 64);
+
 /// Tip positions of mbd and MuJoCo at 0.5 s closer than this (m) at h = 1 ms count as the same
 /// motion: 1e-4 m is 6e-5 of the 16-link chain's length, far above what either RK4 leaves
 /// (measured: 5e-8 m for 4 links, 1.4e-6 m for 16) and far below what a different model would
@@ -50,14 +110,22 @@ const SAME_MOTION: f64 = 1e-4;
 /// The simulated time of the tip comparison (s).
 const TIP_TIME: f64 = 0.5;
 
-/// MuJoCo's measurements: runs `peers/ensure_env.sh`, then `peers/mujoco_chain.py 4 16`.
+/// MuJoCo's measurements: runs `peers/ensure_env.sh`, then `peers/mujoco_chain.py 4 16 64` and
+/// `peers/mujoco_chain.py --hinge 4 16 64`; their chains together.
 fn mujoco() -> Value {
     let peers = repo().join("mbd-bench/peers");
     let python = peers_python();
-    let out = Command::new(&python).arg(peers.join("mujoco_chain.py")).args(["4", "16"]).output().expect("the peers' Python runs");
-    eprint!("{}", String::from_utf8_lossy(&out.stderr));
-    assert!(out.status.success(), "peers/mujoco_chain.py failed");
-    serde_json::from_slice(&out.stdout).expect("mujoco_chain.py prints JSON")
+    let mut all = Vec::new();
+    let mut version = Value::Null;
+    for args in [&["4", "16", "64"][..], &["--hinge", "4", "16", "64"]] {
+        let out = Command::new(&python).arg(peers.join("mujoco_chain.py")).args(args).output().expect("the peers' Python runs");
+        eprint!("{}", String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success(), "peers/mujoco_chain.py failed");
+        let json: Value = serde_json::from_slice(&out.stdout).expect("mujoco_chain.py prints JSON");
+        version = json["mujoco"].clone();
+        all.extend(json["chains"].as_array().expect("chains").iter().cloned());
+    }
+    serde_json::json!({ "mujoco": version, "chains": all })
 }
 
 /// The tip of mbd's chain after `TIP_TIME` of RK4 at step h from the mechanism's initial
@@ -125,6 +193,7 @@ fn micros(s: f64) -> String {
 }
 
 struct Row {
+    joint: &'static str,
     links: usize,
     coordinates: &'static str,
     group: &'static str,
@@ -134,21 +203,24 @@ struct Row {
 }
 
 macro_rules! chain {
-    ($c:expr, $peers:expr, $group:literal, $ty:ty, $tip:ident, $coordinates:literal) => {{
+    ($c:expr, $peers:expr, $group:literal, $ty:ty, $joint:literal, $coordinates:literal) => {{
         const NV: usize = <$ty>::NV;
         const NC: usize = <$ty>::NC;
         let m = <$ty>::default();
         let links = <$ty>::BODY_NAMES.len();
-        let peer = $peers["chains"].as_array().expect("chains").iter().find(|c| c["links"] == links).expect("MuJoCo measured this chain");
+        let peer = $peers["chains"]
+            .as_array()
+            .expect("chains")
+            .iter()
+            .find(|c| c["links"] == links && c["joint"] == $joint)
+            .expect("MuJoCo measured this chain");
         assert!(peer["finite"].as_bool() == Some(true), "MuJoCo's timed rollout of the chain of {links} blew up");
         let mut tips = Vec::new();
         let mut worst_drift = 0.0f64;
         for run in peer["tips"].as_array().expect("tips") {
             let h = run["h"].as_f64().expect("h");
-            let (tip, drift) = mbd_tip(&m, h, |q| {
-                let p = m.$tip().position(q);
-                [p.x, p.y, p.z]
-            });
+            // the free end of the last link
+            let (tip, drift) = mbd_tip(&m, h, |q| m.body_pose(links - 1, q).expect("the last link").point([0.05, 0.0, 0.0]));
             worst_drift = worst_drift.max(drift);
             tips.push((h, distance(&tip, &run["tip"])));
         }
@@ -163,6 +235,7 @@ macro_rules! chain {
         g.bench_function("mbd_rk4_step", |b| b.iter(|| rk4.step(&system, &mut ws, black_box(&p), f64::INFINITY, &mut next)));
         g.finish();
         Row {
+            joint: $joint,
             links,
             coordinates: $coordinates,
             group: $group,
@@ -180,17 +253,21 @@ fn main() {
     let started = SystemTime::now();
     let mut c = Criterion::default().output_directory(&output).configure_from_args();
     let rows = [
-        chain!(c, peers, "vs_mujoco_chain4", SpatialChain4, l3_tip, "body"),
-        chain!(c, peers, "vs_mujoco_chain4_joint", SpatialChain4Joint, l3_tip, "joint"),
-        chain!(c, peers, "vs_mujoco_chain16", SpatialChain16, l15_tip, "body"),
-        chain!(c, peers, "vs_mujoco_chain16_joint", SpatialChain16Joint, l15_tip, "joint"),
+        chain!(c, peers, "vs_mujoco_chain4", SpatialChain4, "ball", "body"),
+        chain!(c, peers, "vs_mujoco_chain4_joint", SpatialChain4Joint, "ball", "joint"),
+        chain!(c, peers, "vs_mujoco_chain16", SpatialChain16, "ball", "body"),
+        chain!(c, peers, "vs_mujoco_chain16_joint", SpatialChain16Joint, "ball", "joint"),
+        chain!(c, peers, "vs_mujoco_chain64_joint", SpatialChain64Joint, "ball", "joint"),
+        chain!(c, peers, "vs_mujoco_hinge4_joint", PlanarChain4Joint, "hinge", "joint"),
+        chain!(c, peers, "vs_mujoco_hinge16_joint", PlanarChain16Joint, "hinge", "joint"),
+        chain!(c, peers, "vs_mujoco_hinge64_joint", PlanarChain64Joint, "hinge", "joint"),
     ];
     c.final_summary();
 
     println!();
-    println!("Spatial pendulum chains, one RK4 step at h = 1 ms (MuJoCo {}):", peers["mujoco"].as_str().unwrap_or("?"));
-    println!("| links | mbd's coordinates | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("Pendulum chains, one RK4 step at h = 1 ms (MuJoCo {}):", peers["mujoco"].as_str().unwrap_or("?"));
+    println!("| joints | links | mbd's coordinates | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for r in &rows {
         let (mbd, ratio) = match median(&output, r.group, "mbd_rk4_step", started) {
             Some(s) => (micros(s), format!("{:.2}", s / r.mujoco_step)),
@@ -198,7 +275,8 @@ fn main() {
         };
         let apart: Vec<String> = r.tips.iter().map(|(_, d)| format!("{d:.1e} m")).collect();
         println!(
-            "| {} | {} | {mbd} | {} | {ratio} | {} | {} | {:.1e} m |",
+            "| {} | {} | {} | {mbd} | {} | {ratio} | {} | {} | {:.1e} m |",
+            r.joint,
             r.links,
             r.coordinates,
             micros(r.mujoco_step),

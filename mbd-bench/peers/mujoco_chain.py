@@ -19,7 +19,11 @@ For each chain it prints (stdout, one JSON object):
   - finite: whether every state of the timed rollout stayed finite (a chain that blows up would
     time MuJoCo's reset path, not its dynamics).
 
-Usage: python mujoco_chain.py [N ...]   (default: 4 16)
+With --hinge the chains are planar, as `vs_mujoco`'s planar chains in joint coordinates: the
+same links on hinges about z (the first at the world origin), gravity 9.81 m/s² along −y, so the
+arc falls in its own plane; each entry then says "joint": "hinge" (else "ball").
+
+Usage: python mujoco_chain.py [--hinge] [N ...]   (default: 4 16)
 """
 
 import json
@@ -40,8 +44,10 @@ TIP_TIME = 0.5
 TIP_STEPS = (1.0e-3, 0.25e-3)
 
 
-def chain_xml(n):
-    """MJCF of the chain of n links."""
+def chain_xml(n, joint="ball"):
+    """MJCF of the chain of n links on `joint`s ("ball", or "hinge": about z, gravity along −y)."""
+    joint_xml = '<joint type="ball"/>' if joint == "ball" else '<joint type="hinge" axis="0 0 1"/>'
+    gravity = "0 0 -9.81" if joint == "ball" else "0 -9.81 0"
     inertial = (f'<inertial pos="{LENGTH / 2!r} 0 0" mass="{MASS!r}" '
                 f'diaginertia="{AXIAL!r} {TRANSVERSE!r} {TRANSVERSE!r}"/>')
     body = f'<site name="tip" pos="{LENGTH!r} 0 0"/>'
@@ -49,16 +55,16 @@ def chain_xml(n):
         pos = "0 0 0" if k == 0 else f"{LENGTH!r} 0 0"
         turn = 0.0 if k == 0 else TURN
         body = (f'<body name="l{k}" pos="{pos}" axisangle="0 0 1 {turn!r}">'
-                f'<joint type="ball"/>{inertial}{body}</body>')
-    return f"""<mujoco model="spatial_chain{n}">
+                f'{joint_xml}{inertial}{body}</body>')
+    return f"""<mujoco model="{joint}_chain{n}">
   <compiler angle="radian"/>
-  <option timestep="0.001" integrator="RK4" gravity="0 0 -9.81"><flag contact="disable"/></option>
+  <option timestep="0.001" integrator="RK4" gravity="{gravity}"><flag contact="disable"/></option>
   <worldbody>{body}</worldbody>
 </mujoco>"""
 
 
-def measure(n):
-    model = mujoco.MjModel.from_xml_string(chain_xml(n))
+def measure(n, joint="ball"):
+    model = mujoco.MjModel.from_xml_string(chain_xml(n, joint))
     data = mujoco.MjData(model)
     x0 = initial_state(model, data)
 
@@ -78,6 +84,7 @@ def measure(n):
     seconds, state = timed_rollout(model, data, x0, NSTEP, REPEATS)
     return {
         "links": n,
+        "joint": joint,
         "nq": int(model.nq),
         "nv": int(model.nv),
         "step_seconds": seconds / NSTEP,
@@ -89,10 +96,11 @@ def measure(n):
 
 
 def main(argv):
-    sizes = [int(a) for a in argv] or [4, 16]
-    chains = [measure(n) for n in sizes]
+    joint = "hinge" if "--hinge" in argv else "ball"
+    sizes = [int(a) for a in argv if not a.startswith("--")] or [4, 16]
+    chains = [measure(n, joint) for n in sizes]
     for c in chains:
-        print(f"MuJoCo {mujoco.__version__}, chain of {c['links']}: {c['step_seconds'] * 1e6:.2f} µs per RK4 step "
+        print(f"MuJoCo {mujoco.__version__}, {c['joint']} chain of {c['links']}: {c['step_seconds'] * 1e6:.2f} µs per RK4 step "
               f"(median of {REPEATS} rollouts of {NSTEP} steps); tip at t = {TIP_TIME} s: {c['tips'][0]['tip']}",
               file=sys.stderr)
     print(json.dumps({"mujoco": mujoco.__version__, "chains": chains}))
