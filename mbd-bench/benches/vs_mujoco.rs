@@ -266,7 +266,9 @@ fn main() {
 
     println!();
     println!("Pendulum chains, one RK4 step at h = 1 ms (MuJoCo {}):", peers["mujoco"].as_str().unwrap_or("?"));
-    println!("| joints | links | mbd's coordinates | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |");
+    println!(
+        "| joints | links | mbd's coordinates | mbd | MuJoCo | mbd / MuJoCo | tip apart at 0.5 s, h = 1 ms | h = 0.25 ms | mbd's max |Φ| |"
+    );
     println!("|---|---|---|---|---|---|---|---|---|");
     for r in &rows {
         let (mbd, ratio) = match median(&output, r.group, "mbd_rk4_step", started) {

@@ -504,8 +504,11 @@ impl Ldl {
             }
             y.push(s);
         }
+        // times 1/d, the node `subtract_outer` made: one division per pivot in the recursion
+        let one = b.g.num(1.0);
         for (yi, &d) in y.iter_mut().zip(&self.pivots) {
-            *yi = b.g.div(*yi, d);
+            let inverse = b.g.div(one, d);
+            *yi = b.g.mul(*yi, inverse);
         }
         for i in (0..n).rev() {
             for k in i + 1..n {
@@ -525,8 +528,9 @@ struct Kinematics<'t> {
     rotations: Vec<Option<[[Id; 3]; 3]>>,
     /// ∂(ṙ_k, ω_k)/∂v_i (global; (ẋ, ẏ, φ̇) in the plane) for each velocity i of body k's link.
     screws: Vec<Vec<Vec<Id>>>,
-    /// Where the articulated-body solve takes each link ([`Articulation`]): in space at its joint
-    /// point, in the plane at the centre of mass with the screws above.
+    /// Where the articulated-body solve takes each link ([`Articulation`]): at its joint point
+    /// (in the plane a revolute link at its pin, screw (0, 0, ±1)); elsewhere (a slide, a free
+    /// body in the plane) at the centre of mass with the screws above.
     articulation: Vec<Articulation>,
 }
 

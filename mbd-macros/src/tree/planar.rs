@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use super::{Tree, TreeFrame};
+use super::{Articulation, Tree, TreeFrame};
 use crate::elements::Relative;
 use crate::frames::Builder;
 use crate::model::{BodyRef, MExpr};
@@ -11,7 +11,8 @@ use crate::sym::{Func, Id, Var};
 /// Each body's frame: its pose ([`poses`]) and its twist, the pose's rate along v = q̇ (global
 /// components either way in the plane).
 pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
-    let poses = poses(b, tree);
+    let (poses, pins) = poses(b, tree);
+    let (zero, one, minus) = (b.g.num(0.0), b.g.num(1.0), b.g.num(-1.0));
     let rates: Vec<Id> = (0..tree.nq).map(|i| b.g.var(Var::Qd(i as u16))).collect();
     let seed = |v: Var| match v {
         Var::Q(i) => Some(rates[i as usize]),
@@ -20,12 +21,23 @@ pub fn frames(b: &mut Builder, tree: &Tree) -> Vec<TreeFrame> {
     let mut memo = HashMap::new();
     poses
         .into_iter()
-        .map(|pose| {
+        .zip(pins)
+        .map(|(pose, pin)| {
             let twist: Vec<Id> = pose.iter().map(|&x| b.g.directional(x, &seed, &mut memo)).collect();
-            TreeFrame { pose: pose.to_vec(), global: twist.clone(), twist, bias: None, articulation: None }
+            // A revolute link at its pin, where its screw (ẋ, ẏ, φ̇) is (0, 0, ±1).
+            let articulation = pin.map(|(point, forward)| Articulation {
+                origin: point.to_vec(),
+                screws: vec![vec![zero, zero, if forward { one } else { minus }]],
+                rotated: None,
+            });
+            TreeFrame { pose: pose.to_vec(), global: twist.clone(), twist, bias: None, articulation }
         })
         .collect()
 }
+
+/// A revolute link's pin, global, and whether φ_child turns with +θ (the joint not run
+/// backwards).
+type Pin = Option<([Id; 2], bool)>;
 
 /// A planar pose (x, y, φ).
 type Pose = [Id; 3];
@@ -41,9 +53,10 @@ type Pose = [Id; 3];
 ///
 /// and the same relations solved for body i where the parent is j. A free body's pose is its
 /// coordinates.
-fn poses(b: &mut Builder, tree: &Tree) -> Vec<[Id; 3]> {
+fn poses(b: &mut Builder, tree: &Tree) -> (Vec<[Id; 3]>, Vec<Pin>) {
     let model = b.model;
     let mut poses: Vec<Option<Pose>> = vec![None; tree.links.len()];
+    let mut pins: Vec<Pin> = vec![None; tree.links.len()];
     let zero = b.g.num(0.0);
     for &k in &tree.order {
         let link = &tree.links[k];
@@ -58,14 +71,18 @@ fn poses(b: &mut Builder, tree: &Tree) -> Vec<[Id; 3]> {
         };
         let relative = model.constraints[index].kind.relative().expect("a tree joint has a relative form");
         let coordinate = (link.count == 1).then(|| q(b, 0));
-        poses[k] = Some(child_pose(b, relative, link.reversed, parent, coordinate));
+        let (pose, pin) = child_pose(b, relative, link.reversed, parent, coordinate);
+        poses[k] = Some(pose);
+        if matches!(relative, Relative::Revolute { .. }) {
+            pins[k] = Some((pin, !link.reversed));
+        }
     }
-    poses.into_iter().map(|p| p.expect("every body is placed")).collect()
+    (poses.into_iter().map(|p| p.expect("every body is placed")).collect(), pins)
 }
 
 /// The pose of a joint's child from its parent's: body j from body i, or body i from body j
-/// where `reversed`.
-fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose, coordinate: Option<Id>) -> Pose {
+/// where `reversed`; and the joint's point on the parent, global (r_parent + A_parent s′_parent).
+fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose, coordinate: Option<Id>) -> (Pose, [Id; 2]) {
     let [fp, fc] = if reversed { [-1.0, 1.0] } else { [1.0, -1.0] };
     let (sign_p, sign_c) = (b.g.num(fp), b.g.num(fc));
     let (parent_point, child_point, turn) = match relative {
@@ -91,10 +108,8 @@ fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose,
     let phi = b.g.add(parent[2], signed_turn);
     let arm_p = rotate(b, parent[2], parent_point);
     let arm_c = rotate(b, phi, child_point);
-    let mut r = [0, 1].map(|a| {
-        let at = b.g.add(parent[a], arm_p[a]);
-        b.g.sub(at, arm_c[a])
-    });
+    let point = [0, 1].map(|a| b.g.add(parent[a], arm_p[a]));
+    let mut r = [0, 1].map(|a| b.g.sub(point[a], arm_c[a]));
     if let (Relative::Translational { axis_i, .. }, Some(s)) = (relative, coordinate) {
         // P_j = P_i + s u_i, u_i on body i: the parent, or the child where reversed.
         let phi_i = if reversed { phi } else { parent[2] };
@@ -106,7 +121,7 @@ fn child_pose(b: &mut Builder, relative: Relative, reversed: bool, parent: Pose,
             r[a] = b.g.sub(r[a], signed);
         }
     }
-    [r[0], r[1], phi]
+    ([r[0], r[1], phi], point)
 }
 
 /// α_i − α_j (+ π where the axes point apart at the bodies' `at:` poses, evaluated at the
