@@ -2,7 +2,10 @@
 """The build-time column of the formulation table: each mechanism of
 `mbd-bench/examples/formulations.rs`, in body and in joint coordinates, in a user's crate of its
 own whose binary uses what the table times (the accelerations, an RK4 and a DOPRI5 simulation
-after assembly), built with `cargo build --release` alone (dependencies built beforehand).
+after assembly), built with `cargo build --release` alone (dependencies built beforehand), the
+macro optimized as the README's "Build time" recommends. Nothing under the checkout may change
+while it runs: the crate depends on it by path, and a changed source would be rebuilt inside a
+timing.
 
     python3 mbd-bench/build_scaling/formulations.py
 
@@ -94,7 +97,7 @@ def main():
     for k, (_, texts) in enumerate(mechanisms):
         for coordinates, text in zip(["body", "joint"], texts):
             bins[f"m{k}_{coordinates}"] = "use mbd::prelude::*;\n\n" + renamed(text) + "\n" + MAIN
-    env = prepare(CRATE, bins)
+    env = prepare(CRATE, bins, optimized_macro=True)
     print("| mechanism | coordinates | release build (s) | peak memory (MB) |\n|---|---|---|---|")
     for k, (label, _) in enumerate(mechanisms):
         for coordinates in ["body", "joint"]:

@@ -130,13 +130,16 @@ def main():
         print(row, flush=True)
 
 
-def prepare(crate, bins):
+def prepare(crate, bins, optimized_macro=False):
     """Writes a crate at `crate` depending on mbd with one binary per entry of `bins` (name: the
     source's text) and builds its dependencies (mbd, nalgebra, the macro crate) in release, so
-    that each timing is the mechanism's binary alone. Returns the environment to build it with."""
+    that each timing is the mechanism's binary alone. With `optimized_macro` the crate builds
+    mbd-macros at opt-level 3, as the README's "Build time" recommends. Returns the environment
+    to build it with."""
     (crate / "src" / "bin").mkdir(parents=True, exist_ok=True)
+    profile = "\n[profile.release.package.mbd-macros]\nopt-level = 3\n" if optimized_macro else ""
     (crate / "Cargo.toml").write_text(f'[package]\nname = "{crate.name}"\nversion = "0.0.0"\nedition = "2021"\npublish = false\n\n'
-                                      f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n')
+                                      f'[dependencies]\nmbd = {{ path = "{ROOT}" }}\n\n[workspace]\n{profile}')
     for name, text in bins.items():
         (crate / "src" / "bin" / f"{name}.rs").write_text(text)
     env = dict(os.environ, CARGO_TARGET_DIR=str(crate / "target"))

@@ -474,12 +474,13 @@ impl MechanismDef {
         }
         let tree = joint_coordinates.then(|| spanning_tree(model_bodies.len(), &constraints, space));
         if let Some(tree) = &tree {
-            // Coulomb friction reads its joint's normal load from λ: a tree joint has none.
+            // Coulomb friction reads its joint's normal load from λ: a tree joint has none. The
+            // error is on the joint's statement (its label, or its keyword).
             let kw = self.items.iter().find_map(|i| if let Item::JointCoordinates(kw) = i { Some(kw.span()) } else { None });
             for element in &forces {
                 let Some(joint) = element.kind.reads_multipliers_of().filter(|j| tree.joints.contains(j)) else { continue };
                 r.errors.push(
-                    kw.unwrap_or_else(|| self.name.span()),
+                    names.get(&constraints[joint].name).copied().or(kw).unwrap_or_else(|| self.name.span()),
                     format!(
                         "Coulomb friction on a joint of the tree is not implemented yet: `{}` needs the normal \
                          load of `{}`, which joint coordinates carry in the tree, not as a multiplier; expected \

@@ -104,6 +104,17 @@ pub(super) fn constraints(
                         r.errors.push(d.keyword.span(), "`angle(..)` and `distance(..)` drivers are planar: expected a joint to drive in space, found a relative driver; `drive hinge.angle = f;` or `drive slider.stroke = f;`");
                         None
                     }
+                    DriveTarget::Coordinate { body, .. } if !r.is_body(body) && planar_joint(items, body).is_some() => {
+                        let kind = planar_joint(items, body).unwrap_or_default();
+                        r.errors.push(
+                            body.span(),
+                            format!(
+                                "`{body}` is a {kind} joint: expected a body's coordinate, found a joint's; in the plane drive a joint through its bodies, \
+                                 `drive angle(body_i, body_j) = f;` or `drive distance(..) = f;` (`drive {body}.angle` drives a joint in space)"
+                            ),
+                        );
+                        None
+                    }
                     DriveTarget::Coordinate { body, coordinate } => drive::resolve(r, d, body, coordinate, f, &mut driven),
                     DriveTarget::Angle { i, j, .. } => drive_angle::resolve(r, d, i, j, f, &mut driven),
                     DriveTarget::Distance { i, j, .. } => drive_distance::resolve(r, d, i, j, f),
@@ -207,4 +218,12 @@ pub(super) fn force_elements(
         forces.push(ForceElement { name, kind });
     }
     gravity
+}
+
+/// The kind of the planar joint labelled `name` (`revolute hinge: ...`), if one is.
+fn planar_joint(items: &[Item], name: &Ident) -> Option<String> {
+    items.iter().find_map(|item| match item {
+        Item::Joint(j) if j.label.as_ref() == Some(name) => Some(j.kind.to_string()),
+        _ => None,
+    })
 }
