@@ -151,7 +151,7 @@ pub fn refine<T: Real, const N: usize>(x: &mut [T; N], dx: &[T; N]) -> bool {
 
 /// The most corrections [`refined`] makes. Each multiplies the error by about κ(D)² ε, the
 /// relative accuracy of the solve through the normal equations, so a few suffice wherever
-/// κ(D)² ε ≪ 1, and where it is not a refinement that has not settled in four will not.
+/// κ(D)² ε ≪ 1; where it is not, more corrections would not settle either.
 pub const REFINEMENTS: u32 = 4;
 
 /// Iterative refinement of a solve x ≈ A⁻¹ b, the loop written once for the kinematic solves

@@ -351,8 +351,8 @@ pub trait Kinematics<T: Real, const NQ: usize, const NV: usize, const NC: usize>
     /// time: Newton's iteration q ← q ⊕ Δv with Δv = −Dᵀ(D Dᵀ)⁻¹Φ — for a square, regular D
     /// (NV = NC) the Newton step D⁻¹(−Φ) itself — from the LDLᵀ of D Dᵀ that `mechanism!` plans
     /// (the Schur complement of the forward dynamics with unit weights), the loop in generated
-    /// code and its rules from [`Newton`](crate::Newton), the dense solve's. A step expected to end the iteration keeps D and its factors (simplified
-    /// Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
+    /// code and its rules from [`Newton`](crate::Newton), the dense solve's. A step expected to
+    /// end the iteration keeps D and its factors (simplified Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
     /// `reuse` evaluates and factors D at every step. A step longer than `max_step` (‖Δv‖∞) is
     /// shortened to it along its direction ([`crate::linalg::sparse::limit_step`]). Returns what it
     /// ended with, the steps taken and the factorizations of D made, q at the last iterate and
