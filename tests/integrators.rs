@@ -257,8 +257,28 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn interpolate(&self, m: &M, from: &Point<f64, 9, 9, 8>, to: &Point<f64, 9, 9, 8>, t: f64, q: &mut [f64; 9], v: &mut [f64; 9]) {
         self.0.interpolate(m, from, to, t, q, v)
     }
+    fn prepare_interpolation(
+        &mut self,
+        s: &System<'_, M, f64>,
+        from: &Point<f64, 9, 9, 8>,
+        to: &Point<f64, 9, 9, 8>,
+    ) -> Result<(), SimulationError> {
+        self.0.prepare_interpolation(s, from, to)
+    }
     fn restart(&mut self) {
         self.0.restart()
+    }
+    fn after_correction(
+        &mut self,
+        s: &System<'_, M, f64>,
+        end: &Point<f64, 9, 9, 8>,
+        q: [f64; 9],
+        v: [f64; 9],
+    ) -> Result<Point<f64, 9, 9, 8>, SimulationError>
+    where
+        M: mbd::ForwardDynamics<f64, 9, 9, 8>,
+    {
+        self.0.after_correction(s, end, q, v)
     }
 }
 

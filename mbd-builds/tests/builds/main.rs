@@ -47,6 +47,14 @@ fn ui() {
     t.compile_fail("tests/ui/*/*.rs");
 }
 
+/// Misuses of the runtime's API that must not compile (rustc's own messages, so outside the
+/// catalogue above): an integrator wrapper that forwards only `step` and `interpolate`.
+#[test]
+fn api_misuse() {
+    let t = trybuild::TestCases::new();
+    t.compile_fail("tests/api/*.rs");
+}
+
 /// The catalogue's messages, as committed: each says what was expected and what was found; the
 /// catalogue covers at least 40 classes of mistake, grouped by topic; and each case's `main` uses
 /// the mechanism's type (its constants, traits and solvers), so that its committed stderr shows

@@ -474,6 +474,16 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         self.next_step = T::ZERO;
         self.dense_ready = false;
     }
+    fn after_correction(
+        &mut self,
+        system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        // An explicit method goes on from forward dynamics at the corrected state.
+        Ok(system.point(end.t, q, v, end.work)?)
+    }
 }
 
 /// The interpolant's coefficients F₀ … F₆ of one vector y over a step y0 → y1 of size h with

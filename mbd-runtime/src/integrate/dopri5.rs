@@ -317,6 +317,31 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             *out = at(core::array::from_fn(|c| self.dense_v[c][i]));
         }
     }
+    fn prepare_interpolation(
+        &mut self,
+        _system: &System<'_, M, T>,
+        _from: &Point<T, NQ, NV, NC>,
+        _to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        // The step leaves its interpolant ready.
+        Ok(())
+    }
+
+    fn restart(&mut self) {
+        self.next_step = T::ZERO;
+        self.previous_error = T::from_f64(1e-4);
+    }
+
+    fn after_correction(
+        &mut self,
+        system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        // An explicit method goes on from forward dynamics at the corrected state.
+        Ok(system.point(end.t, q, v, end.work)?)
+    }
 }
 
 /// Hairer's initial step: h such that an explicit Euler step changes the state by about the

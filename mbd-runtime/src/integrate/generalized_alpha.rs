@@ -303,6 +303,16 @@ where
         }
     }
 
+    fn prepare_interpolation(
+        &mut self,
+        _system: &System<'_, M, T>,
+        _from: &Point<T, NQ, NV, NC>,
+        _to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        // The cubic Hermite interpolant needs the step's ends only.
+        Ok(())
+    }
+
     fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
         hermite_state(mechanism, from, to, t, q, v);
     }

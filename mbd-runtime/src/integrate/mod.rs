@@ -340,6 +340,67 @@ impl<'m, M, T: Real> System<'m, M, T> {
 }
 
 /// A one-step method for the equations of motion.
+///
+/// Every method is required: those that change results between steps (`prepare_interpolation`,
+/// `restart`, `after_correction`) have no default, so a wrapper must forward each of them and
+/// cannot compile while leaving one out (a forgotten `prepare_interpolation` made DOP853's dense
+/// output wrong, a forgotten `after_correction` restarted generalized-α at every step). A
+/// wrapper that counts steps:
+///
+/// ```
+/// use mbd_runtime::{ForwardDynamics, Integrator, Point, Real, SimulationError, System, Workspace};
+///
+/// /// Any integrator, counting the steps it takes.
+/// struct Counted<I> {
+///     inner: I,
+///     steps: u64,
+/// }
+///
+/// impl<T: Real, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>
+///     Integrator<T, M, NQ, NV, NC, N, NS> for Counted<I>
+/// where
+///     I: Integrator<T, M, NQ, NV, NC, N, NS>,
+/// {
+///     fn step(
+///         &mut self,
+///         system: &System<'_, M, T>,
+///         ws: &mut Workspace<T, NV, NC, N, NS>,
+///         from: &Point<T, NQ, NV, NC>,
+///         t_max: T,
+///         to: &mut Point<T, NQ, NV, NC>,
+///     ) -> Result<(), SimulationError> {
+///         self.steps += 1;
+///         self.inner.step(system, ws, from, t_max, to)
+///     }
+///     fn prepare_interpolation(
+///         &mut self,
+///         system: &System<'_, M, T>,
+///         from: &Point<T, NQ, NV, NC>,
+///         to: &Point<T, NQ, NV, NC>,
+///     ) -> Result<(), SimulationError> {
+///         self.inner.prepare_interpolation(system, from, to)
+///     }
+///     fn interpolate(&self, m: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
+///         self.inner.interpolate(m, from, to, t, q, v)
+///     }
+///     fn restart(&mut self) {
+///         self.steps = 0;
+///         self.inner.restart()
+///     }
+///     fn after_correction(
+///         &mut self,
+///         system: &System<'_, M, T>,
+///         end: &Point<T, NQ, NV, NC>,
+///         q: [T; NQ],
+///         v: [T; NV],
+///     ) -> Result<Point<T, NQ, NV, NC>, SimulationError>
+///     where
+///         M: ForwardDynamics<T, NQ, NV, NC>,
+///     {
+///         self.inner.after_correction(system, end, q, v)
+///     }
+/// }
+/// ```
 pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
     /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
@@ -359,18 +420,16 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// Readies the dense output of the last step from `from` to `to` before the first
     /// [`interpolate`](Integrator::interpolate) inside it: a method whose interpolant needs more
     /// evaluations of v̇ (DOP853's three) makes them here, only for steps that hold an output
-    /// time. By default nothing.
+    /// time; one whose `step` leaves its interpolant ready returns `Ok(())`.
     ///
     /// # Errors
     /// Those of forward dynamics at the extra stages.
     fn prepare_interpolation(
         &mut self,
-        _system: &System<'_, M, T>,
-        _from: &Point<T, NQ, NV, NC>,
-        _to: &Point<T, NQ, NV, NC>,
-    ) -> Result<(), SimulationError> {
-        Ok(())
-    }
+        system: &System<'_, M, T>,
+        from: &Point<T, NQ, NV, NC>,
+        to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError>;
 
     /// q and v at `t` within the last step from `from` to `to` (its dense output); `mechanism`
     /// gives the rates q̇ = B(q) v the interpolation of q needs. q is not normalized.
@@ -378,14 +437,14 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
 
     /// Forgets what the method carries from step to step (called by [`Simulation`] at
     /// its start, so an integrator can be reused for another run).
-    fn restart(&mut self) {}
+    fn restart(&mut self);
 
     /// The point to go on from after [`Simulation`] corrected the drift of the step's
-    /// end `end` to (`q`, `v`). By default v̇, λ and the powers are those of forward dynamics at
-    /// the corrected state, as an explicit method needs (its next step starts from v̇ = f(q, v)).
-    /// A method whose v̇ and λ are unknowns of its own equations keeps them: they are part of
-    /// its state, and replacing them by forward dynamics' (with its Baumgarte terms) would
-    /// restart it every step.
+    /// end `end` to (`q`, `v`). An explicit method, whose next step starts from v̇ = f(q, v),
+    /// takes v̇, λ and the powers of forward dynamics at the corrected state:
+    /// `Ok(system.point(end.t, q, v, end.work)?)`. A method whose v̇ and λ are unknowns of its
+    /// own equations keeps them: they are part of its state, and replacing them by forward
+    /// dynamics' (with its Baumgarte terms) would restart it every step.
     ///
     /// # Errors
     /// Those of forward dynamics at the corrected state.
@@ -397,10 +456,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
         v: [T; NV],
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError>
     where
-        M: ForwardDynamics<T, NQ, NV, NC>,
-    {
-        Ok(system.point(end.t, q, v, end.work)?)
-    }
+        M: ForwardDynamics<T, NQ, NV, NC>;
 }
 
 /// Relative stretch of a fixed step allowed to land on the end time: a last step of up to

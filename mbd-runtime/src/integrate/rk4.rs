@@ -126,4 +126,29 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
         hermite_state(mechanism, from, to, t, q, v);
     }
+
+    fn prepare_interpolation(
+        &mut self,
+        _system: &System<'_, M, T>,
+        _from: &Point<T, NQ, NV, NC>,
+        _to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        // The cubic Hermite interpolant needs the step's ends only.
+        Ok(())
+    }
+
+    fn restart(&mut self) {
+        // A fixed step carries nothing from step to step.
+    }
+
+    fn after_correction(
+        &mut self,
+        system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        // An explicit method goes on from forward dynamics at the corrected state.
+        Ok(system.point(end.t, q, v, end.work)?)
+    }
 }
