@@ -328,8 +328,10 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     }
 
     fn restart(&mut self) {
-        self.next_step = T::ZERO;
-        self.previous_error = T::from_f64(1e-4);
+        // Its step size and error history stay: `Simulation` restarts at a switch and steps
+        // again towards it from the same start, where the step the last one chose lands on the
+        // switch (a fresh start's small first step would land short of it, step after step).
+        // Its dense output is the last step's, made by `step`.
     }
 
     fn after_correction(
