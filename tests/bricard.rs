@@ -172,6 +172,101 @@ fn bricard_moves_with_one_degree_of_freedom() {
     }
 }
 
+/// Coordinate partitioning (issue 39, item 6) on the same loop, with the default options: the
+/// redundant row is dropped from the choice, so 29 rows decide 29 dependent velocities and one
+/// stays independent (before, the run stopped at t = 0 advising `allow_redundant`, which was
+/// on). The motion is the projection's: the line symmetry, Φ and the energy hold as above, and
+/// θ₁ follows the projected run to DOPRI5's accuracy. With `allow_redundant` off the error names
+/// a row of the loop and its advice is then true.
+#[test]
+fn bricard_partitioning_drops_its_redundant_row() {
+    let m = Bricard::default();
+    let mut ws = Bricard::workspace();
+    let q0 = assembled(&m, &mut ws);
+    let e0 = m.potential_energy(&q0, 0.0);
+    let times: Vec<f64> = (1..=20).map(|k| 0.05 * k as f64).collect();
+    let run = |correction: Correction, dynamics: DynamicsOptions, ws: &mut Workspace<f64, 30, 30, 60, { Bricard::NEWTON_STORAGE }>| {
+        let mut out = Vec::new();
+        let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
+        let options = SimulationOptions::default().with_correction(correction).with_dynamics(dynamics);
+        Simulation::new(&m, &mut dopri)
+            .start(0.0, &q0, &[0.0; 30])
+            .times(&times)
+            .options(options)
+            .run(ws, |s| out.push((s.point.q, s.energy.kinetic + s.energy.potential)))
+            .map(|_| out)
+    };
+    let free = DynamicsOptions::without_stabilization();
+    let partitioned = run(Correction::partitioning(), free, &mut ws).expect("partitioning drops the redundant row");
+    let projected = run(Correction::projection(), free, &mut ws).expect("projection");
+    let (mut worst_sym, mut worst_phi, mut worst_e, mut apart, mut moved) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for ((q, e), (p, _)) in partitioned.iter().zip(&projected) {
+        let mut phi = [0.0; 30];
+        m.constraints(q, 0.0, &mut phi);
+        worst_phi = phi.iter().fold(worst_phi, |w, x| w.max(x.abs()));
+        worst_sym = worst_sym.max(asymmetry(&m, q));
+        worst_e = worst_e.max((e - e0).abs());
+        apart = apart.max((m.j1_angle(q) - m.j1_angle(p)).abs());
+        moved = moved.max((m.j1_angle(q) - m.j1_angle(&q0)).abs());
+    }
+    eprintln!("Bricard, partitioning 1 s: θ1 moved {moved:.3} rad, {apart:.1e} rad from projection, asymmetry {worst_sym:.1e}, ‖Φ‖ {worst_phi:.1e}, |ΔE| {worst_e:.1e} J");
+    assert!(moved > 0.1, "it should swing: θ1 moved {moved} rad");
+    // partitioning's tolerance 1e-10 on every row, the dropped one included
+    assert!(worst_phi < 1e-10, "‖Φ‖ = {worst_phi}");
+    // as with projection above (kept by the constraints; energy at rtol 1e-10 over 1 s)
+    assert!(worst_sym < 1e-9, "θ_i − θ_(i+3) up to {worst_sym}");
+    assert!(worst_e < 1e-8, "|ΔE| = {worst_e} J");
+    // two corrections of one motion, each integrated at rtol 1e-10: 1e-7 rad is 1000 rtol
+    assert!(apart < 1e-7, "θ1 differs from the projected run by {apart} rad");
+    let strict = free.with_allow_redundant(false);
+    let err = run(Correction::partitioning(), strict, &mut ws).unwrap_err();
+    assert!(matches!(err, SimulationError::Dynamics(DynamicsError::DependentConstraint { t: 0.0, row }) if row.contains('j')), "{err:?}");
+    assert!(err.to_string().contains("allow_redundant"), "{err}");
+}
+
+/// Advice that is true where it is given (issue 39, item 6). Of the runtime's errors, only
+/// `DependentConstraint` names an option — `DynamicsOptions::allow_redundant` drops such a row.
+/// Under the default options no path meets it on this loop with its one redundant row: the
+/// generated factorization in body coordinates, the dense one in joint coordinates, the
+/// projection, generalized-α's Newton matrix and partitioning (above) all drop the row. With
+/// the option off, each path refuses the row and its message says the option is off.
+#[test]
+fn dependent_row_advice_is_given_only_with_the_option_off() {
+    let strict = DynamicsOptions::without_stabilization().with_allow_redundant(false);
+    let refused = |err: DynamicsError, path: &str| {
+        assert!(matches!(err, DynamicsError::DependentConstraint { .. }), "{path}: {err:?}");
+        assert!(err.to_string().contains("allow_redundant, off in this solve"), "{path}: {err}");
+    };
+    let m = Bricard::default();
+    let mut ws = Bricard::workspace();
+    let q0 = assembled(&m, &mut ws);
+    let (mut vd, mut lambda) = ([0.0; 30], [0.0; 30]);
+    m.accelerations(&q0, &[0.0; 30], 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).expect("generated, default");
+    refused(m.accelerations(&q0, &[0.0; 30], 0.0, &strict, &mut vd, &mut lambda).unwrap_err(), "generated");
+    let mut q = q0;
+    m.project_positions_step(&mut q, 0.0, &DynamicsOptions::default()).expect("projection, default");
+    refused(m.project_positions_step(&mut q, 0.0, &strict).unwrap_err(), "projection");
+
+    let joint = BricardJoint::default();
+    let mut joint_ws = BricardJoint::workspace();
+    let mut p = joint.initial_positions();
+    KinematicSolver::default().assemble(&joint, &mut joint_ws, &mut p, 0.0).unwrap();
+    let (mut pd, mut mu) = ([0.0; 5], [0.0; 5]);
+    joint.accelerations(&p, &[0.0; 5], 0.0, &DynamicsOptions::default(), &mut pd, &mut mu).expect("dense, default");
+    refused(joint.accelerations(&p, &[0.0; 5], 0.0, &strict, &mut pd, &mut mu).unwrap_err(), "dense (joint coordinates)");
+
+    let mut from = Point::<f64, 35, 30, 30>::zero();
+    from.q = q0;
+    let mut to = Point::zero();
+    let mut alpha = Bricard::generalized_alpha(GeneralizedAlphaOptions::default().with_step(1e-3));
+    alpha.step(&System::new(&m), &mut ws, &from, 1e-3, &mut to).expect("generalized-α, default");
+    let system = System { dynamics: strict, ..System::new(&m) };
+    match alpha.step(&system, &mut ws, &from, 1e-3, &mut to).unwrap_err() {
+        SimulationError::Dynamics(err) => refused(err, "generalized-α"),
+        other => panic!("generalized-α: {other:?}"),
+    }
+}
+
 /// Statics with the redundant row: the hanging equilibrium, stable, symmetric, with the dropped
 /// row's multiplier 0 and the mobility's one mode, checked along the motion of a driven copy.
 #[test]

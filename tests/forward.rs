@@ -248,6 +248,30 @@ fn redundant_constraints_are_named_or_dropped() {
     assert!(tiny(lambda[1]) || tiny(lambda[3]), "λ = {lambda:?}");
 }
 
+mechanism! {
+    /// A block held on the x axis by y² = 0: a constraint with no direction where it holds.
+    pub SquaredGuide {
+        gravity [0.0, -9.81];
+        body block { mass: 1.0, inertia: 0.01, at: [0.0, 0.0, 0.0] }
+        constraint block.y^2 = 0.0;
+        fix block.phi;
+    }
+}
+
+/// A zero row of D is degenerate, not redundant: no option drops it, so its error suggests none
+/// — with `allow_redundant` on (the default) or off, it is not the dependent-row error whose
+/// advice is that option (issue 39, item 6).
+#[test]
+fn a_constraint_without_direction_is_degenerate_under_any_option() {
+    let m = SquaredGuide::default();
+    let (mut vd, mut lambda) = ([0.0; 3], [0.0; 2]);
+    for options in [DynamicsOptions::default(), DynamicsOptions::default().with_allow_redundant(false)] {
+        let err = m.accelerations(&[0.0; 3], &[1.0, 0.0, 0.0], 0.0, &options, &mut vd, &mut lambda).unwrap_err();
+        assert!(matches!(err, DynamicsError::DegenerateConstraint { t: 0.0, row } if row.starts_with("constraint")), "{err:?}");
+        assert!(!err.to_string().contains("Options"), "{err}");
+    }
+}
+
 #[test]
 fn a_non_positive_mass_is_named() {
     let m = Pendulum { l: 0.5, m: 0.0 };

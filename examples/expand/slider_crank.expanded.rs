@@ -1702,7 +1702,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, finite),
+                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
             );
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -1956,7 +1956,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, finite),
+                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
             );
         }
         Self::schur_solve(&l, &dinv, &mut b);
@@ -2105,7 +2105,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, finite),
+                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
             );
         }
         let mut b = [0f64; 9];

@@ -172,7 +172,9 @@ impl Plan<'_> {
             {
                 let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|x| x.is_finite());
                 const MASS_BODIES: [u16; #nv_l] = [#(#mass_bodies),*];
-                return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(t, row, &m, &MASS_BODIES, finite));
+                return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(
+                    t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant,
+                ));
             }
         }
     }

@@ -224,7 +224,11 @@ impl fmt::Display for SimulationError {
         match self {
             SimulationError::Dynamics(e) => write!(f, "{e}"),
             SimulationError::NonFinite { t, coordinate } => {
-                write!(f, "the step from t = {t} s made `{coordinate}` NaN or infinite (step too large for the stiffness?)")
+                write!(
+                    f,
+                    "the step from t = {t} s made `{coordinate}` NaN or infinite (a fixed step too large for the stiffness; \
+                     an adaptive method reports this only at its minimum step: a state where the model is undefined)"
+                )
             }
             SimulationError::StepSizeTooSmall { t, step } => {
                 write!(f, "at t = {t} s error control needed a step of {step} s, below the minimum")

@@ -574,6 +574,8 @@ fn correct<
     match options.correction {
         Correction::None => Ok(()),
         Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, v, &options.dynamics, tolerance, max_iterations),
-        Correction::Partitioning { tolerance, max_iterations } => partition.correct(mechanism, ws, t, q, v, tolerance, max_iterations),
+        Correction::Partitioning { tolerance, max_iterations } => {
+            partition.correct(mechanism, ws, t, q, v, &options.dynamics, tolerance, max_iterations)
+        }
     }
 }

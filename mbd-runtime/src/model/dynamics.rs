@@ -89,13 +89,23 @@ impl<T: Real> DynamicsOptions<T> {
 #[non_exhaustive]
 pub enum DynamicsError {
     /// The constraint rows are dependent at this configuration: the pivot of `row` in the
-    /// factorization of D M⁻¹ Dᵀ vanished (a singular position such as a toggle, a missing
-    /// degree of freedom, or redundant constraints) and [`DynamicsOptions::allow_redundant`] is
-    /// off; or the row of D is zero (e.g. a distance driver of zero length).
+    /// factorization of D M⁻¹ Dᵀ (or of D_d in coordinate partitioning) vanished — a singular
+    /// position such as a toggle, a missing degree of freedom, or redundant constraints — and
+    /// [`DynamicsOptions::allow_redundant`] is off (with it on, such a row is dropped).
     DependentConstraint {
         /// Time of the solve (s).
         t: f64,
         /// The row whose pivot vanished, from [`Mechanism::CONSTRAINT_NAMES`].
+        row: &'static str,
+    },
+    /// The row of D of a constraint is zero at this configuration: it restrains no velocity, so
+    /// its acceleration equation 0 = γ cannot be met or dropped (a distance constraint or driver
+    /// of zero length, an angle measured about a point that lies on it). No option changes this:
+    /// the constraint is degenerate there.
+    DegenerateConstraint {
+        /// Time of the solve (s).
+        t: f64,
+        /// The row, from [`Mechanism::CONSTRAINT_NAMES`].
         row: &'static str,
     },
     /// A body's mass or moment of inertia is not positive and finite: M is not invertible.
@@ -138,11 +148,22 @@ pub enum DynamicsError {
 
 impl DynamicsError {
     /// The error for a failed pivot of `row` — called by the generated code on its cold path:
-    /// a non-positive mass or a non-finite input is reported as such, anything else as a
-    /// dependent row. `mass` is the diagonal of M, one entry per velocity, and `bodies` the
-    /// body (an index into [`Mechanism::BODY_NAMES`]) whose mass or inertia each entry is.
+    /// a non-positive mass or a non-finite input is reported as such, a zero row of D (`jv`, in
+    /// [`Mechanism::JACOBIAN_PATTERN`]'s order) as a degenerate row, anything else as a dependent
+    /// row — which `allow_redundant` would have dropped, so with it on (the pivot then fails only
+    /// for a zero row or an overflow) as a non-finite pivot. `mass` is the diagonal of M, one
+    /// entry per velocity, and `bodies` the body (an index into [`Mechanism::BODY_NAMES`]) whose
+    /// mass or inertia each entry is.
     #[doc(hidden)]
-    pub fn from_pivot<M: Mechanism, T: Real>(t: T, row: usize, mass: &[T], bodies: &[u16], inputs_finite: bool) -> Self {
+    pub fn from_pivot<M: Mechanism, T: Real>(
+        t: T,
+        row: usize,
+        mass: &[T],
+        bodies: &[u16],
+        jv: &[T],
+        inputs_finite: bool,
+        allow_redundant: bool,
+    ) -> Self {
         for (&m, &b) in mass.iter().zip(bodies) {
             if !(m.is_finite() && m > T::ZERO) {
                 let body = M::BODY_NAMES.get(b as usize).copied().unwrap_or("?");
@@ -153,13 +174,28 @@ impl DynamicsError {
         if !inputs_finite || !t.is_finite() {
             return DynamicsError::NonFinite { t: t.to_f64(), row: row_name };
         }
-        DynamicsError::DependentConstraint { t: t.to_f64(), row: row_name }
+        let zero_row = jv.len() == M::JACOBIAN_PATTERN.len()
+            && M::JACOBIAN_PATTERN.iter().zip(jv).all(|(&(r, _), &x)| r as usize != row || x == T::ZERO);
+        Self::at_pivot(t.to_f64(), row_name, zero_row, allow_redundant)
+    }
+
+    /// A failed pivot of a row with finite inputs: degenerate (`zero_row`: its row of D is zero),
+    /// dependent (`allow_redundant` off), or else an overflow of the pivot.
+    pub(crate) fn at_pivot(t: f64, row: &'static str, zero_row: bool, allow_redundant: bool) -> Self {
+        if zero_row {
+            DynamicsError::DegenerateConstraint { t, row }
+        } else if allow_redundant {
+            DynamicsError::NonFinite { t, row }
+        } else {
+            DynamicsError::DependentConstraint { t, row }
+        }
     }
 
     /// Time of the failed solve (s), when it has one.
     pub fn time(&self) -> Option<f64> {
         match *self {
             DynamicsError::DependentConstraint { t, .. }
+            | DynamicsError::DegenerateConstraint { t, .. }
             | DynamicsError::NonFinite { t, .. }
             | DynamicsError::NonFiniteForce { t, .. }
             | DynamicsError::FrictionNotConverged { t, .. } => Some(t),
@@ -175,7 +211,14 @@ impl fmt::Display for DynamicsError {
                 f,
                 "at t = {t} s the constraint row `{row}` depends on the rows before it \
                  (singular position, missing degree of freedom or redundant constraint: \
-                 KinematicSolver::redundancy reports which; DynamicsOptions::allow_redundant drops it)"
+                 KinematicSolver::redundancy reports which; DynamicsOptions::allow_redundant, \
+                 off in this solve, drops such a row)"
+            ),
+            DynamicsError::DegenerateConstraint { t, row } => write!(
+                f,
+                "at t = {t} s the constraint row `{row}` has a zero Jacobian row: it restrains no velocity here \
+                 (a distance of zero length, an angle about a point on it), so it can be neither solved nor \
+                 dropped as redundant; state the constraint so that it has a direction at this position"
             ),
             DynamicsError::NonPositiveMass { body, value } => {
                 write!(f, "body `{body}` has a mass or moment of inertia of {value}: it must be positive")
@@ -197,7 +240,7 @@ impl fmt::Display for DynamicsError {
                         n => write!(f, "or one of the {n} other elements acting on it")?,
                     }
                 }
-                write!(f, " (a law undefined at this state, or a state blown up by a step too large for the stiffness)")
+                write!(f, " (a law undefined at this state, or with a fixed step a state blown up by a step too large for the stiffness)")
             }
         }
     }

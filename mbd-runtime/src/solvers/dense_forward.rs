@@ -135,7 +135,8 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
                 let finite = d[k].iter().all(|x| x.is_finite()) && t.is_finite();
                 let row = M::CONSTRAINT_NAMES.get(k).copied().unwrap_or("?");
                 return Err(if finite {
-                    DynamicsError::DependentConstraint { t: t.to_f64(), row }
+                    let zero_row = d[k].iter().all(|&x| x == T::ZERO);
+                    DynamicsError::at_pivot(t.to_f64(), row, zero_row, options.allow_redundant)
                 } else {
                     DynamicsError::NonFinite { t: t.to_f64(), row }
                 });

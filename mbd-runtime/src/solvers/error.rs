@@ -133,9 +133,9 @@ impl fmt::Display for KinematicError {
             ),
             KinematicError::NotDriven { dof } => write!(
                 f,
-                "kinematic analysis needs as many constraints (drivers included) as coordinates, \
-                 but the mechanism has {} more constraint row(s) than coordinates (DOF = {dof}): \
-                 remove redundant constraints",
+                "this solve needs a square constraint Jacobian, but the mechanism has {} more \
+                 constraint row(s) than coordinates (DOF = {dof}); the position, velocity and \
+                 acceleration solves take redundant rows over their independent subset",
                 dof.unsigned_abs()
             ),
             KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, .. } => {

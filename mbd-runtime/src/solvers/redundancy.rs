@@ -88,8 +88,9 @@ impl<const NC: usize> fmt::Display for Redundancy<NC> {
         write!(f, " (largest sine among them {:.1e}, smallest kept {:.1e})", self.largest_redundant, self.smallest_kept)?;
         write!(
             f,
-            ". If they stay redundant at a nearby configuration, remove the joint that repeats the \
-             others or let forward dynamics drop them (DynamicsOptions::allow_redundant); if not, \
+            ". If they stay redundant at a nearby configuration, the joint that repeats the others \
+             may stay: the solves drop such rows by default (DynamicsOptions::allow_redundant), with \
+             reactions that are one of many valid sets — remove it for unique reactions; if not, \
              this is a singular position"
         )
     }
