@@ -280,6 +280,9 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     {
         self.0.after_correction(s, end, q, v)
     }
+    fn holds_constraints(&self) -> bool {
+        self.0.holds_constraints()
+    }
 }
 
 /// With dampers and a driver, T + V − W_nc − W_c stays constant (the works integrated with the

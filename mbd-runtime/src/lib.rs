@@ -36,8 +36,8 @@ pub use solvers::{redundancy, statics};
 pub use integrate::partition::Partition;
 pub use integrate::{
     project, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit, GeneralizedAlpha,
-    GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions, Statistics,
-    System,
+    GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions, SingularPassage,
+    Statistics, System, SINGULAR_SINE,
 };
 pub use linalg::sparse::SparsePattern;
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};

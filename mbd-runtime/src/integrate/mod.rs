@@ -31,6 +31,7 @@
 //! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own
 //! (`simulate.rs`).
 
+mod branch;
 mod dop853;
 mod dopri5;
 mod generalized_alpha;
@@ -40,6 +41,7 @@ mod simulate;
 #[cfg(test)]
 mod tests;
 
+pub use branch::{SingularPassage, SINGULAR_SINE};
 pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
@@ -403,9 +405,21 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     {
 ///         self.inner.after_correction(system, end, q, v)
 ///     }
+///     fn holds_constraints(&self) -> bool {
+///         self.inner.holds_constraints()
+///     }
 /// }
 /// ```
 pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
+    /// Whether each step ends with Φ(q, t) = 0 solved by Newton from the step's prediction (an
+    /// index-3 implicit method: generalized-α), which keeps the assembly branch through a
+    /// singular position as the projection does, so that a run without a correction need not
+    /// be watched for one ([`Statistics::singular`]). Default `false`: watched (a wrapper that
+    /// does not forward it has its runs watched, which changes no result).
+    fn holds_constraints(&self) -> bool {
+        false
+    }
+
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
     /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
     /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions)).

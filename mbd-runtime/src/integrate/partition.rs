@@ -17,12 +17,15 @@
 //! Dependent rows (a redundant joint such as a Bricard linkage's sixth hinge, or a singular
 //! position) are handled as forward dynamics handles them
 //! ([`DynamicsOptions::allow_redundant`]): a row whose entries left after the elimination are
-//! at most √τ of its largest entry in D (τ the pivot tolerance; about the sine of its angle to
-//! the span of the rows taken, the angle at which forward dynamics' smooth drop takes hold) is
-//! dropped, so r < NC rows decide r dependent velocities and NV − r stay independent; with
-//! `allow_redundant` off it is a [`DynamicsError::DependentConstraint`] naming it. A dropped
-//! row is still part of the converged residual ‖Φ‖∞: where it is not implied by the others
-//! (an inconsistent singular position) the correction does not converge and says so.
+//! at most τ (the pivot tolerance, 1e-8) of its largest entry in D — about the sine of its
+//! angle to the span of the rows taken — is dropped, so r < NC rows decide r dependent
+//! velocities and NV − r stay independent; with `allow_redundant` off it is a
+//! [`DynamicsError::DependentConstraint`] naming it. A dropped row is still part of the
+//! converged residual ‖Φ‖∞: where it is not implied by the others (an inconsistent singular
+//! position) the correction does not converge and says so. Dropping from √τ instead (where
+//! forward dynamics' smooth drop takes hold) left a parallelogram chain's dropped rows
+//! unconverged at 1.07e-10 near its flat positions with DOPRI5 at rtol 1e-10; from τ it passes
+//! them at every rtol (`mbd-long/tests/singular.rs`).
 
 use crate::integrate::SimulationError;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
@@ -159,7 +162,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         loop {
             let fresh = !self.chosen;
             if fresh {
-                self.choose(d, scratch, options.pivot_tolerance.sqrt(), options.allow_redundant).map_err(dependent_row)?;
+                self.choose(d, scratch, options.pivot_tolerance, options.allow_redundant).map_err(dependent_row)?;
             }
             for (r, row) in block.iter_mut().enumerate() {
                 for (k, entry) in row.iter_mut().enumerate() {

@@ -13,6 +13,7 @@
 //! switch and the force's kink is not smeared over a step ([`Simulation::events`]).
 
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
+use crate::integrate::branch::{BranchWatch, SingularPassage};
 use crate::integrate::partition::Partition;
 use crate::model::dynamics::kinetic_energy;
 use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
@@ -130,7 +131,8 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
 }
 
 /// Statistics of a [`Simulation`] run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Statistics {
     /// Steps taken (accepted).
     pub steps: u64,
@@ -143,6 +145,13 @@ pub struct Statistics {
     /// Whether the output callback stopped the run (it returned [`ControlFlow::Break`](core::ops::ControlFlow::Break)); the
     /// sample it was given was the last.
     pub stopped_by_output: bool,
+    /// Where a run that does not hold the assembly branch — no correction (Baumgarte
+    /// stabilization alone) with an explicit integrator — passed a singular position, where
+    /// the branch may have changed: the first time, its row and how many passages
+    /// ([`SingularPassage`], [`SimulationOptions::watch_singular`]). `None` otherwise: the
+    /// projection (the default), partitioning and generalized-α hold the branch and are not
+    /// watched.
+    pub singular: Option<SingularPassage>,
 }
 
 /// Which switching function changed sign: one of the mechanism's
@@ -194,6 +203,12 @@ crate::options::options! {
         /// the steps there. Default on (it costs two evaluations of the switching functions per
         /// step, and nothing for a mechanism without unilateral elements).
         locate_switches: bool = true => with_locate_switches,
+        /// Without a correction and with an explicit integrator, watch each step end for a
+        /// singular position, where such a run may change assembly branch, and report it in
+        /// [`Statistics::singular`]. Default on: one factorization of D M⁻¹ Dᵀ per step, and
+        /// nothing for runs that hold the branch (a correction, generalized-α) or have no
+        /// constraints.
+        watch_singular: bool = true => with_watch_singular,
     }
 }
 
@@ -325,12 +340,18 @@ where
     let mut to = from;
     integrator.restart();
     let mut stats = Statistics::default();
+    let watching = NC > 0 && options.watch_singular && !integrator.holds_constraints() && matches!(options.correction, Correction::None);
+    let mut watch = BranchWatch::new(t0.to_f64());
+    if watching {
+        watch.observe(mechanism, t0, &from.q, &from.v, &options.dynamics);
+    }
     // Hands a sample to the callback; ends the run if it says so.
     macro_rules! deliver {
         ($sample:expr) => {
             stats.samples += 1;
             if output($sample).stops() {
                 stats.stopped_by_output = true;
+                stats.singular = watch.finish();
                 return Ok(stats);
             }
         };
@@ -360,6 +381,7 @@ where
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
+                stats.singular = watch.finish();
                 return Ok(stats);
             }
             continue;
@@ -385,6 +407,9 @@ where
             correct(mechanism, ws, &mut partition, options, to.t, &mut q, &mut v)?;
             to = integrator.after_correction(&system, &end, q, v)?;
         }
+        if watching {
+            watch.observe(mechanism, to.t, &to.q, &to.v, &options.dynamics);
+        }
         if next < times.len() && times[next] < end.t {
             integrator.prepare_interpolation(&system, &from, &end)?;
         }
@@ -407,11 +432,13 @@ where
             deliver!(&Sample { event: Some(which), ..sample(mechanism, &to) });
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
+                stats.singular = watch.finish();
                 return Ok(stats);
             }
         }
         from = to;
     }
+    stats.singular = watch.finish();
     Ok(stats)
 }
 
