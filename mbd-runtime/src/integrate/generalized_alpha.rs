@@ -736,5 +736,5 @@ fn state<T, M, const NQ: usize, const NV: usize, const NC: usize>(
         v[i] = from.v[i] + h * ((one - gamma) * a_n[i] + gamma * a1[i]);
     }
     *q = from.q;
-    mech.integrate_positions(q, &displacement, one);
+    crate::model::group::integrate_on_group(mech, q, &displacement);
 }

@@ -5,6 +5,7 @@
 
 pub(crate) mod body;
 pub(crate) mod dynamics;
+pub(crate) mod group;
 pub(crate) mod mechanism;
 pub(crate) mod named;
 pub(crate) mod planar;
