@@ -37,7 +37,7 @@ pub use integrate::partition::Partition;
 pub use integrate::{
     project, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit, GeneralizedAlpha,
     GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions, SingularPassage,
-    Statistics, System, SINGULAR_SINE,
+    Statistics, StiffnessDetected, System, SINGULAR_SINE,
 };
 pub use linalg::sparse::SparsePattern;
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};

@@ -17,6 +17,7 @@
 #![allow(clippy::excessive_precision)]
 
 use super::dopri5::{initial_step, MinExt};
+use super::stiffness::{StiffnessDetected, StiffnessTest};
 use super::{check_step, hermite_state, non_finite, Integrator, Point, SimulationError, System};
 use crate::model::dynamics::ForwardDynamics;
 use crate::model::workspace::Workspace;
@@ -85,6 +86,7 @@ pub struct Dop853<T, const NQ: usize, const NV: usize> {
     dense_q: [[T; NQ]; 7],
     dense_v: [[T; NV]; 7],
     dense_ready: bool,
+    stiffness: StiffnessTest,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Dop853<T, NQ, NV> {
@@ -102,6 +104,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Dop853<T, NQ, NV> {
             dense_q: [[T::ZERO; NQ]; 7],
             dense_v: [[T::ZERO; NV]; 7],
             dense_ready: false,
+            stiffness: StiffnessTest::default(),
         }
     }
 }
@@ -340,10 +343,15 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 h = span;
             }
             let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
+            // The last stage's state, at t + h like the solution: the stiffness test's.
+            let (mut q_last, mut v_last) = (q, v);
             // Stages 1–11, then the 8th-order solution and its derivative (row 12 of A is b).
             for s in 1..=S {
                 stage_state(&from.q, &self.kq, s, h, &mut q);
                 stage_state(&from.v, &self.kv, s, h, &mut v);
+                if s == S - 1 {
+                    (q_last, v_last) = (q, v);
+                }
                 mech.position_rates(&q, &v, &mut self.kq[s]);
                 let t_s = if s >= S - 1 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
@@ -395,6 +403,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 }
                 self.accepted += 1;
                 self.h = h;
+                let (k, k_last) = ([&self.kq[S][..], &self.kv[S][..]], [&self.kq[S - 1][..], &self.kv[S - 1][..]]);
+                self.stiffness.observe("DOP853", 6.1, from.t + h, h, [k[0], k[1], k_last[0], k_last[1]], [&q, &v, &q_last, &v_last]);
                 to.q = q;
                 to.v = v;
                 to.vd = self.kv[S];
@@ -468,6 +478,11 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let theta = if self.h > T::ZERO { (t - from.t) / self.h } else { T::ONE };
         evaluate(&from.q, &self.dense_q, theta, q);
         evaluate(&from.v, &self.dense_v, theta, v);
+    }
+
+    /// Hairer's test on the last two stages of each accepted step (module `stiffness`).
+    fn stiffness(&self) -> Option<StiffnessDetected> {
+        self.stiffness.found()
     }
 
     fn restart(&mut self) {

@@ -9,6 +9,7 @@
 //! (the factor clamped to [0.2, 10]). The 4th-order dense output is
 //! y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))).
 
+use super::stiffness::{StiffnessDetected, StiffnessTest};
 use super::{check_step, non_finite, Integrator, Point, SimulationError, System};
 use crate::model::dynamics::ForwardDynamics;
 use crate::model::workspace::Workspace;
@@ -82,6 +83,7 @@ pub struct Dopri5<T, const NQ: usize, const NV: usize> {
     /// Evaluations of v̇ so far (the stages of every step tried).
     pub evaluations: u64,
     previous_error: T,
+    stiffness: StiffnessTest,
     // Dense output of the last step: y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))) for q
     // and for v.
     dense_q: [[T; NQ]; 5],
@@ -98,6 +100,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
             rejected: 0,
             evaluations: 0,
             previous_error: T::from_f64(1e-4),
+            stiffness: StiffnessTest::default(),
             dense_q: [[T::ZERO; NQ]; 5],
             dense_v: [[T::ZERO; NV]; 5],
         }
@@ -199,6 +202,8 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             }
             let mut q = [T::ZERO; NQ];
             let mut v = [T::ZERO; NV];
+            // The sixth stage's state, at t + h like the solution: the stiffness test's.
+            let (mut q5, mut v5) = (q, v);
             for s in 1..7 {
                 for i in 0..NQ {
                     let mut dq = T::ZERO;
@@ -215,6 +220,9 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                     v[i] = from.v[i] + h * dv;
                 }
                 mech.position_rates(&q, &v, &mut kq[s]);
+                if s == 5 {
+                    (q5, v5) = (q, v);
+                }
                 let t_s = if s == 6 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
                 match system.derivatives(t_s, &q, &v, &mut kv[s], &mut lambda) {
@@ -266,6 +274,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                     self.next_step = h * factor;
                 }
                 self.accepted += 1;
+                self.stiffness.observe("DOPRI5", 3.25, from.t + h, h, [&kq[6], &kv[6], &kq[5], &kv[5]], [&q, &v, &q5, &v5]);
                 // The 5th-order weights are the last row of A (b₇ = 0).
                 #[allow(clippy::needless_range_loop)] // k indexes from.work, to.work and each stage's kp[s]
                 for k in 0..2 {
@@ -325,6 +334,11 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     ) -> Result<(), SimulationError> {
         // The step leaves its interpolant ready.
         Ok(())
+    }
+
+    /// Hairer's test on the last two stages of each accepted step (module `stiffness`).
+    fn stiffness(&self) -> Option<StiffnessDetected> {
+        self.stiffness.found()
     }
 
     fn restart(&mut self) {

@@ -38,6 +38,7 @@ mod generalized_alpha;
 pub(crate) mod partition;
 mod rk4;
 mod simulate;
+mod stiffness;
 #[cfg(test)]
 mod tests;
 
@@ -47,6 +48,7 @@ pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use rk4::{Rk4, Rk4Options};
 pub use simulate::{project, Correction, Event, EventHit, Simulation, SimulationOptions, Statistics};
+pub use stiffness::StiffnessDetected;
 
 use core::fmt;
 
@@ -408,6 +410,9 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn holds_constraints(&self) -> bool {
 ///         self.inner.holds_constraints()
 ///     }
+///     fn stiffness(&self) -> Option<mbd_runtime::StiffnessDetected> {
+///         self.inner.stiffness()
+///     }
 /// }
 /// ```
 pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
@@ -418,6 +423,13 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// does not forward it has its runs watched, which changes no result).
     fn holds_constraints(&self) -> bool {
         false
+    }
+
+    /// Stiffness this integrator has seen since it was made (an explicit method whose steps
+    /// were held by stability: [`StiffnessDetected`]), for the run's [`Statistics::stiffness`].
+    /// Default `None`: not watched (implicit methods, and a wrapper that does not forward it).
+    fn stiffness(&self) -> Option<StiffnessDetected> {
+        None
     }
 
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most

@@ -15,6 +15,7 @@
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
 use crate::integrate::branch::{BranchWatch, SingularPassage};
 use crate::integrate::partition::Partition;
+use crate::integrate::stiffness::StiffnessDetected;
 use crate::model::dynamics::kinetic_energy;
 use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
 use crate::model::workspace::Workspace;
@@ -152,6 +153,11 @@ pub struct Statistics {
     /// projection (the default), partitioning and generalized-α hold the branch and are not
     /// watched.
     pub singular: Option<SingularPassage>,
+    /// Whether the integrator's steps were held by stability rather than accuracy (DOPRI5 and
+    /// DOP853: Hairer's test, [`StiffnessDetected`]; its `Display` says what to do): the model
+    /// is stiff there, and an implicit method takes steps set by the tolerance. `None` where
+    /// nothing was seen or the integrator does not watch.
+    pub stiffness: Option<StiffnessDetected>,
 }
 
 /// Which switching function changed sign: one of the mechanism's
@@ -345,14 +351,21 @@ where
     if watching {
         watch.observe(mechanism, t0, &from.q, &from.v, &options.dynamics);
     }
+    // Ends the run with what it saw.
+    macro_rules! finish {
+        () => {{
+            stats.singular = watch.finish();
+            stats.stiffness = integrator.stiffness();
+            return Ok(stats);
+        }};
+    }
     // Hands a sample to the callback; ends the run if it says so.
     macro_rules! deliver {
         ($sample:expr) => {
             stats.samples += 1;
             if output($sample).stops() {
                 stats.stopped_by_output = true;
-                stats.singular = watch.finish();
-                return Ok(stats);
+                finish!();
             }
         };
     }
@@ -381,8 +394,7 @@ where
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
-                stats.singular = watch.finish();
-                return Ok(stats);
+                finish!();
             }
             continue;
         }
@@ -432,14 +444,12 @@ where
             deliver!(&Sample { event: Some(which), ..sample(mechanism, &to) });
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
-                stats.singular = watch.finish();
-                return Ok(stats);
+                finish!();
             }
         }
         from = to;
     }
-    stats.singular = watch.finish();
-    Ok(stats)
+    finish!()
 }
 
 /// The value of event `which` at (t, q, v).
