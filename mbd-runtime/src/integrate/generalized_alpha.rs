@@ -6,13 +6,11 @@
 //! solves for (v̇₊, λ₊) by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v and
 //! ∂(Dᵀλ)/∂q·B (the equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
 
-use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
-use crate::linalg::LinalgError;
-use crate::model::dynamics::DynamicsError;
-use crate::model::mechanism::{Kinematics, Mechanism, NewtonMatrix};
+use super::implicit::{solve, NewtonSettings, StateMap};
+use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
+use crate::model::mechanism::{Kinematics, NewtonMatrix};
 use crate::model::workspace::Workspace;
 use crate::real::Real;
-use crate::solvers::kinematics::name;
 
 crate::options::options! {
     /// Options of [`GeneralizedAlpha`], in the scalar type `T` of the mechanism (default `f64`).
@@ -105,6 +103,20 @@ crate::options::options! {
         /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
         /// 1e-12 s.
         min_step: T = T::from_f64(1e-12) => with_min_step,
+    }
+}
+
+impl<T: Real> GeneralizedAlphaOptions<T> {
+    /// The Newton iteration's settings.
+    fn newton(&self) -> NewtonSettings<T> {
+        NewtonSettings {
+            tolerance: self.tolerance,
+            lambda_tolerance: self.lambda_tolerance,
+            max_iterations: self.max_iterations,
+            reuse_factors: self.reuse_factors,
+            pivot_tolerance: self.pivot_tolerance,
+            project_velocities: self.project_velocities,
+        }
     }
 }
 
@@ -272,8 +284,10 @@ where
             }
             let a_n = self.pseudo_acceleration(&from.vd, h_try);
             self.iterations = 0;
+            let map = AlphaMap { from, a_n, coefficients, h: h_try };
             let result =
-                attempt::<T, M, NQ, NV, NC, N>(system, &o, resolution, coefficients, &a_n, from, h_try, t1, to, &mut self.iterations, s);
+                solve::<T, M, _, NQ, NV, NC, N>(system, &o.newton(), resolution, &map, &from.vd, from, t1, to, &mut self.iterations, s)
+                    .map(|()| map.pseudo_acceleration(&to.vd));
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
                 self.accept(result?, h_try);
@@ -400,341 +414,49 @@ fn local_error<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV:
     (sum / T::from_f64(NQ.max(1) as f64)).sqrt()
 }
 
-/// One generalized-α step of size h from `from` (pseudo-acceleration `a_n`) to t1: Newton on
-/// (v̇₊, λ₊) with the planned Newton matrix, then the velocity projection. Writes q₊, v₊, v̇₊
-/// and λ₊ to `to` and returns a₊; counts the Newton iterations in `iterations`.
-// `!(x > y)` on purpose: it is also true when either side is NaN.
-#[allow(clippy::neg_cmp_op_on_partial_ord, clippy::too_many_arguments)]
-fn attempt<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-    system: &System<'_, M, T>,
-    o: &GeneralizedAlphaOptions<T>,
-    resolution: T,
-    [alpha_m, alpha_f, beta, gamma]: [T; 4],
-    a_n: &[T; NV],
-    from: &Point<T, NQ, NV, NC>,
-    h: T,
-    t1: T,
-    to: &mut Point<T, NQ, NV, NC>,
-    iterations: &mut u32,
-    s: &mut M::NewtonStorage,
-) -> Result<[T; NV], SimulationError>
-where
-    T: Real,
-    M: NewtonMatrix<T, NQ, NV, NC>,
-{
-    let mech = system.mechanism;
-    let one = T::ONE;
-    let half = T::from_f64(0.5);
-    let beta_p = beta * (one - alpha_f) / (one - alpha_m);
-    let gamma_p = gamma * (one - alpha_f) / (one - alpha_m);
-    // Unknowns: v̇₊ (start from v̇) and λ₊ (start from λ).
-    let mut vd = from.vd;
-    let mut lambda = from.lambda;
-    let mut q = [T::ZERO; NQ];
-    let mut v = [T::ZERO; NV];
-    let mut a1 = [T::ZERO; NV];
-    let mut phi = [T::ZERO; NC];
-    // `s`: D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
-    // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix, in the
-    // work space.
-    let mut force = [T::ZERO; NV];
-    let mut inertia = [T::ZERO; NV];
-    let mut rhs = [T::ZERO; N];
-    let mut iteration = 0;
-    let mut dropped = [false; NC];
-    let mut last_change = [T::ZERO; 2];
-    // Whether the iteration matrix has been factored, the rounding floor of the force change
-    // and whether a kept multiplier's pivot is near singular, from the last factorization;
-    // and whether the next iteration must factor again (modified Newton, `reuse_factors`).
-    let mut factored = false;
-    let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
-    // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
-    // taken, the residual it started from and the size of the full correction.
-    let (mut base_vd, mut base_lambda) = (vd, lambda);
-    let mut step = [T::ZERO; N];
-    let mut theta = one;
-    let mut norm_before = T::ZERO;
-    let mut correction = T::ZERO;
-    loop {
-        state(mech, from, a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-        // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
-        // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
-        let factor = refactor || !o.reuse_factors || !factored;
-        if factor {
-            mech.newton_matrix(&q, &v, &vd, t1, &lambda, gamma_p * h, beta_p * h * h, &mut phi, s);
-        } else {
-            mech.newton_jacobian(&q, t1, &mut phi, s);
-        }
-        mech.forces(&q, &v, t1, &mut force);
-        // Coulomb friction with the iterate's loads (its exact derivatives enter the
-        // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
-        // slope ≤ μ).
-        mech.friction_forces(&q, &v, t1, &lambda, &mut force);
-        mech.mass_times(&q, &vd, &mut inertia);
-        let worst = residual::<T, M, NQ, NV, NC, N>(s, &force, &inertia, &lambda, &phi, beta_p * h * h, &mut rhs);
-        // A NaN or infinity in a force: name the force element; in Φ or the state: the row
-        // it surfaced in.
-        if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-            return Err(match crate::model::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
-                force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
-                _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
-            });
-        }
-        // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
-        // Newton steps overshoot and cycle; where the step made the residual grow, take half
-        // of it instead (at most six times, then go on from there).
-        let norm = rhs.iter().fold(T::ZERO, |s, &r| s + r * r);
-        if iteration > 0 && correction > o.tolerance && !(norm <= norm_before) && theta > T::from_f64(1.0 / 64.0) {
-            theta *= half;
-            for i in 0..NV {
-                vd[i] = base_vd[i] + theta * step[i];
-            }
-            for r in 0..NC {
-                lambda[r] = base_lambda[r] + theta * step[NV + r];
-            }
-            continue;
-        }
-        if iteration >= o.max_iterations {
-            return Err(not_converged::<T, M, NV, NC, N>(t1, iteration, worst, &step, beta_p * h * h, o.tolerance));
-        }
-        if factor {
-            (rounding_floor, near_singular) =
-                factor_newton::<T, M, NQ, NV, NC>(s, o, system.dynamics.allow_redundant, resolution / (beta_p * h * h), t1, &mut dropped)?;
-            factored = true;
-        }
-        for r in 0..NC {
-            if dropped[r] {
-                rhs[NV + r] = T::ZERO;
-            }
-        }
-        M::newton_solve(s, &mut rhs);
-        if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-            return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
-        }
-        (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
-        correction = T::ZERO;
-        let mut force_scale = T::ZERO;
-        for i in 0..NV {
-            vd[i] += rhs[i];
-            correction = correction.max((rhs[i] * beta_p * h * h).abs());
-            force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
-        }
-        for r in 0..NC {
-            lambda[r] += rhs[NV + r];
-        }
-        // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
-        // near a singular position the part of λ along D's (near-)null space is not
-        // determined — rounding moves it by ε/σ² — and exerts no force.
-        let (lambda_change, total) = constraint_force_change::<T, M, NQ, NV, NC, N>(s, &rhs, &lambda);
-        // Modified Newton: keep the factors while each correction shrinks at least 4×.
-        refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
-        force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
-        iteration += 1;
-        *iterations = iteration;
-        let changes = [correction, lambda_change];
-        if worst.0 <= o.tolerance
-            && converged(o, changes, last_change, (o.lambda_tolerance * force_scale).max(rounding_floor), near_singular, iteration > 1)
-        {
-            break;
-        }
-        last_change = changes;
-    }
-    // The state of the converged iterate (the last correction is below tolerance).
-    state(mech, from, a_n, &vd, [alpha_m, alpha_f, beta, gamma, h], &mut a1, &mut q, &mut v);
-    if o.project_velocities {
-        mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
-    }
-    to.t = t1;
-    to.q = q;
-    to.v = v;
-    to.vd = vd;
-    to.lambda = lambda;
-    check_step::<T, M, NQ, NV, NC>(from, to)?;
-    Ok(a1)
-}
-
-/// Factors the Newton matrix in `s`; returns the rounding floor of the force change and
-/// whether a kept multiplier's pivot is near singular (below 1e-3 of its column).
+/// Generalized-α's step end from v̇₊ (from `from`, with pseudo-acceleration `a_n`, a step of
+/// `h` and `coefficients` = [α_m, α_f, β, γ]): the pseudo-acceleration a₊,
+/// q₊ = q ⊕ (h v + h²(½ − β) a + h² β a₊) on the group ([`integrate_on_group`]) and
+/// v₊ = v + h (1 − γ) a + h γ a₊.
 ///
-/// The floor is the force change one rounding of the positions makes: q₊ carries v̇₊ times
-/// β'h², so a position resolved to `resolution` leaves M v̇₊ — and Dᵀλ with it — uncertain by
-/// about m · resolution/(β'h²) (`per_mass`; 1e-7 N per kg in f64 at h = 1 ms, but 1e-3 N at
-/// 1e-5 s, and 25 N per kg in f32 at 1 ms). No iteration gets below it. A multiplier without a
-/// pivot belongs to a row that depends on the others (a singular position, a redundant
-/// constraint): with `allow_redundant` its row and column are replaced by Δλ_r = 0 for the
-/// rest of the step and the others carry the load, as forward dynamics drops such a row.
-fn factor_newton<T, M, const NQ: usize, const NV: usize, const NC: usize>(
-    s: &mut M::NewtonStorage,
-    o: &GeneralizedAlphaOptions<T>,
-    allow_redundant: bool,
-    per_mass: T,
-    t1: T,
-    dropped: &mut [bool; NC],
-) -> Result<(T, bool), SimulationError>
-where
-    T: Real,
-    M: NewtonMatrix<T, NQ, NV, NC>,
+/// [`integrate_on_group`]: crate::model::group::integrate_on_group
+struct AlphaMap<'a, T, const NQ: usize, const NV: usize, const NC: usize> {
+    from: &'a Point<T, NQ, NV, NC>,
+    a_n: [T; NV],
+    coefficients: [T; 4],
+    h: T,
+}
+
+impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> AlphaMap<'_, T, NQ, NV, NC> {
+    /// a₊ from (1 − α_m) a₊ + α_m a = (1 − α_f) v̇₊ + α_f v̇.
+    fn pseudo_acceleration(&self, vd: &[T; NV]) -> [T; NV] {
+        let [alpha_m, alpha_f, ..] = self.coefficients;
+        let one = T::ONE;
+        core::array::from_fn(|i| (alpha_f * self.from.vd[i] + (one - alpha_f) * vd[i] - alpha_m * self.a_n[i]) / (one - alpha_m))
+    }
+}
+
+impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV>
+    for AlphaMap<'_, T, NQ, NV, NC>
 {
-    let pattern = M::NEWTON_PATTERN;
-    let lu = &s.as_ref()[M::JACOBIAN_PATTERN.len()..];
-    let mass_scale = (0..NV).fold(T::ZERO, |m, i| m.max(lu[pattern.diagonal[pattern.position[i] as usize] as usize].abs()));
-    let smallest_ratio =
-        M::newton_factor(s, o.pivot_tolerance, allow_redundant, dropped).map_err(|e| factorization_error::<M, T>(e, t1, NV))?;
-    Ok((mass_scale * per_mass, smallest_ratio < T::from_f64(1e-3)))
-}
-
-/// Whether the position correction and the force change (`now`, against the last iteration's
-/// `before`) are below tolerance, Φ being met. A correction or force change that stopped
-/// shrinking (not smaller than the last iteration's) counts as met too near a singular position
-/// (a multiplier's pivot below 1e-3 of its column: `near_singular`), and a force change within
-/// 100× its tolerance anywhere: it is the rounding of an ill-conditioned solve — ε/σ in λ and
-/// v̇, and Φ's rounding amplified by the 1/(β'h²) of the constraint rows at small steps — which
-/// no further iteration removes. Beyond that band the test stays strict: Coulomb friction's
-/// loads converge linearly and not always monotonically. `repeated`: a last iteration exists.
-// `!(x < y)` on purpose: it is also true when either side is NaN.
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
-fn converged<T: Real>(
-    o: &GeneralizedAlphaOptions<T>,
-    now: [T; 2],
-    before: [T; 2],
-    force_tolerance: T,
-    near_singular: bool,
-    repeated: bool,
-) -> bool {
-    let stalled = |now: T, before: T, band: bool| (near_singular || band) && repeated && !(now < before);
-    let correction_met = now[0] <= o.tolerance || stalled(now[0], before[0], false);
-    let force_met = now[1] <= force_tolerance || stalled(now[1], before[1], now[1] <= T::from_f64(100.0) * force_tolerance);
-    correction_met && force_met
-}
-
-/// The Newton residuals into `rhs`: r = h − M v̇ + Dᵀλ in the momentum rows (D's non-zeros at
-/// the front of `s`), −Φ/(β'h²) in the constraint rows; returns the largest |Φ| and its row.
-#[allow(clippy::too_many_arguments)]
-fn residual<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-    s: &M::NewtonStorage,
-    force: &[T; NV],
-    inertia: &[T; NV],
-    lambda: &[T; NC],
-    phi: &[T; NC],
-    beta_h2: T,
-    rhs: &mut [T; N],
-) -> (T, usize)
-where
-    T: Real,
-    M: NewtonMatrix<T, NQ, NV, NC>,
-{
-    let mut worst = (T::ZERO, 0usize);
-    for i in 0..NV {
-        rhs[i] = force[i] - inertia[i];
+    /// (γ'h, β'h²) with β' = β(1 − α_f)/(1 − α_m), γ' = γ(1 − α_f)/(1 − α_m).
+    fn slopes(&self) -> (T, T) {
+        let [alpha_m, alpha_f, beta, gamma] = self.coefficients;
+        let ratio = (T::ONE - alpha_f) / (T::ONE - alpha_m);
+        (gamma * ratio * self.h, beta * ratio * self.h * self.h)
     }
-    for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-        rhs[c as usize] += value * lambda[r as usize];
-    }
-    for (r, &p) in phi.iter().enumerate() {
-        rhs[NV + r] = -p / beta_h2;
-        if p.abs() > worst.0 {
-            worst = (p.abs(), r);
+
+    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]) {
+        let [_, _, beta, gamma] = self.coefficients;
+        let (one, half, h) = (T::ONE, T::from_f64(0.5), self.h);
+        let (from, a) = (self.from, &self.a_n);
+        let a1 = self.pseudo_acceleration(vd);
+        let mut displacement = [T::ZERO; NV];
+        for i in 0..NV {
+            displacement[i] = h * from.v[i] + h * h * ((half - beta) * a[i] + beta * a1[i]);
+            v[i] = from.v[i] + h * ((one - gamma) * a[i] + gamma * a1[i]);
         }
+        *q = from.q;
+        crate::model::group::integrate_on_group(mechanism, q, &displacement);
     }
-    worst
-}
-
-/// The change of the constraint forces Dᵀλ by a Newton correction (its multipliers' part of
-/// `rhs`), largest over the velocities, and the forces Dᵀλ themselves.
-fn constraint_force_change<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
-    s: &M::NewtonStorage,
-    rhs: &[T; N],
-    lambda: &[T; NC],
-) -> (T, [T; NV])
-where
-    T: Real,
-    M: NewtonMatrix<T, NQ, NV, NC>,
-{
-    let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
-    for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
-        let (r, c) = (r as usize, c as usize);
-        change[c] += value * rhs[NV + r];
-        total[c] += value * lambda[r];
-    }
-    (change.iter().fold(T::ZERO, |m, c| m.max(c.abs())), total)
-}
-
-/// Newton did not converge: name the violated constraint, or, with every constraint met, the
-/// velocity or multiplier whose correction would not settle (`step`: the last correction).
-fn not_converged<T: Real, M: Mechanism, const NV: usize, const NC: usize, const N: usize>(
-    t1: T,
-    iterations: u32,
-    worst: (T, usize),
-    step: &[T; N],
-    beta_h2: T,
-    tolerance: T,
-) -> SimulationError {
-    let k = (0..NV).fold(0, |k, i| if step[i].abs() > step[k].abs() { i } else { k });
-    let (worst_row, residual) = if worst.0 > tolerance {
-        (name(M::CONSTRAINT_NAMES, worst.1), worst.0)
-    } else if (step[k] * beta_h2).abs() > tolerance || NC == 0 {
-        (name(M::VELOCITY_NAMES, k), (step[k] * beta_h2).abs())
-    } else {
-        let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
-        (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
-    };
-    SimulationError::NotConverged { t: t1.to_f64(), iterations, worst_row, residual: residual.to_f64() }
-}
-
-/// Name of row `i` of the iteration matrix: a velocity (the momentum rows) or a constraint.
-fn row_name<M: Mechanism>(i: usize, nv: usize) -> &'static str {
-    if i < nv {
-        name(M::VELOCITY_NAMES, i)
-    } else {
-        name(M::CONSTRAINT_NAMES, i - nv)
-    }
-}
-
-/// What a failed factorization of the iteration matrix means: no pivot in a multiplier's
-/// column is a constraint row that depends on the others (a singular position or redundant
-/// constraints); no pivot in a velocity's column is a direction with neither mass nor
-/// stiffness; a NaN or infinity is named by its row.
-fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usize) -> SimulationError {
-    match error {
-        LinalgError::Singular { column, .. } if column >= nv => {
-            SimulationError::Dynamics(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, column - nv) })
-        }
-        LinalgError::Singular { column, .. } => {
-            SimulationError::SingularIterationMatrix { t: t.to_f64(), velocity: name(M::VELOCITY_NAMES, column) }
-        }
-        LinalgError::NonFinite { row, .. } => SimulationError::NonFinite { t: t.to_f64(), coordinate: row_name::<M>(row, nv) },
-        // Not returned by the sparse factorization.
-        LinalgError::NotSquare { rows, columns } | LinalgError::Overdetermined { rows, columns } => {
-            SimulationError::WorkspaceSize { expected: rows, found: columns }
-        }
-    }
-}
-
-/// The iterate's state from v̇₊: the pseudo-acceleration a₊, q₊ = q ⊕ (h v + h²(½ − β) a +
-/// h² β a₊) and v₊ = v + h (1 − γ) a + h γ a₊. `coefficients` = [α_m, α_f, β, γ, h].
-#[inline]
-#[allow(clippy::too_many_arguments)]
-fn state<T, M, const NQ: usize, const NV: usize, const NC: usize>(
-    mech: &M,
-    from: &Point<T, NQ, NV, NC>,
-    a_n: &[T; NV],
-    vd: &[T; NV],
-    coefficients: [T; 5],
-    a1: &mut [T; NV],
-    q: &mut [T; NQ],
-    v: &mut [T; NV],
-) where
-    T: Real,
-    M: Kinematics<T, NQ, NV, NC>,
-{
-    let [alpha_m, alpha_f, beta, gamma, h] = coefficients;
-    let (one, half) = (T::ONE, T::from_f64(0.5));
-    let mut displacement = [T::ZERO; NV];
-    for i in 0..NV {
-        a1[i] = (alpha_f * from.vd[i] + (one - alpha_f) * vd[i] - alpha_m * a_n[i]) / (one - alpha_m);
-        displacement[i] = h * from.v[i] + h * h * ((half - beta) * a_n[i] + beta * a1[i]);
-        v[i] = from.v[i] + h * ((one - gamma) * a_n[i] + gamma * a1[i]);
-    }
-    *q = from.q;
-    crate::model::group::integrate_on_group(mech, q, &displacement);
 }

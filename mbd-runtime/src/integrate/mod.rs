@@ -35,6 +35,7 @@ mod branch;
 mod dop853;
 mod dopri5;
 mod generalized_alpha;
+mod implicit;
 pub(crate) mod partition;
 mod rk4;
 mod simulate;
