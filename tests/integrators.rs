@@ -694,6 +694,71 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
     assert!(20 * alpha.accepted < dopri.accepted, "generalized-α {} steps, DOPRI5 {}", alpha.accepted, dopri.accepted);
 }
 
+/// BDF (issue 39, item 1) at each order limit 1 to 5 on the double pendulum: over two
+/// tolerances 100× apart its error falls as the steps' number to the power −k (the slope of
+/// log error against log steps: measured 0.96, 1.94, 2.97, 3.76, 4.94), the mark of order k;
+/// and with every order allowed it follows the reference within 60× its tolerance (measured
+/// 18× at rtol 1e-6 and 45× at 1e-9: the local estimate bounds each step, and the global error
+/// is their sum — item 4's goal, 10×, is not met yet).
+#[test]
+fn bdf_converges_at_its_order() {
+    let mut reference = Dop853::new(Dop853Options::default().with_rtol(1e-13).with_atol(1e-13));
+    let exact = double_pendulum_at_1s(&mut reference, Correction::None);
+    let run = |k: usize, rtol: f64| {
+        let mut bdf = Bdf::new(BdfOptions::default().with_rtol(rtol).with_atol(rtol).with_max_order(k));
+        let q = double_pendulum_at_1s(&mut bdf, Correction::None);
+        (max_diff(&q, &exact), bdf.accepted as f64)
+    };
+    for (k, loose) in [(1, 1e-3), (2, 1e-5), (3, 1e-6), (4, 1e-7), (5, 1e-7)] {
+        let ((e1, n1), (e2, n2)) = (run(k, loose), run(k, loose * 1e-2));
+        let slope = (e1 / e2).ln() / (n2 / n1).ln();
+        eprintln!("BDF order ≤ {k}: error {e1:.2e} in {n1} steps, {e2:.2e} in {n2}: slope {slope:.2}");
+        assert!((slope - k as f64).abs() < 0.8, "order {k}: slope {slope}");
+    }
+    for rtol in [1e-6, 1e-9] {
+        let (e, n) = run(5, rtol);
+        eprintln!("BDF at rtol {rtol:e}: error {e:.2e} in {n} steps");
+        assert!(e < 60.0 * rtol, "rtol {rtol:e}: error {e:e}");
+    }
+}
+
+/// The stiff pendulum (a critically damped stretch mode at 1e4 rad/s under a 3 rad/s swing):
+/// BDF steps by the swing's accuracy, DOPRI5 by its stability bound — at rtol 1e-6 both follow
+/// the reference (DOPRI5 at rtol 1e-12) to 1e-4, BDF in under a twentieth of the steps.
+#[test]
+fn bdf_steps_over_a_stiff_damped_mode() {
+    let m = StiffPendulum::default();
+    fn run(
+        m: &StiffPendulum,
+        integrator: &mut impl Integrator<f64, StiffPendulum, 3, 3, 0, 3, { StiffPendulum::NEWTON_STORAGE }>,
+    ) -> [f64; 3] {
+        let mut last = [0.0; 3];
+        Simulation::new(m, integrator)
+            .start(0.0, &m.initial_positions(), &[0.0; 3])
+            .times(&[2.0])
+            .run(&mut StiffPendulum::workspace(), |s| last = s.point.q)
+            .unwrap();
+        last
+    }
+    let exact = run(&m, &mut Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14)));
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-6).with_atol(1e-6));
+    let mut bdf = Bdf::new(BdfOptions::default().with_rtol(1e-6).with_atol(1e-6));
+    let (e5, eb) = (run(&m, &mut dopri), run(&m, &mut bdf));
+    let error = |q: [f64; 3]| (q[0] - exact[0]).abs().max((q[1] - exact[1]).abs());
+    eprintln!(
+        "stiff pendulum at rtol 1e-6: DOPRI5 {:.1e} in {} steps; BDF {:.1e} in {} steps ({} rejected, {} iterations, order {})",
+        error(e5),
+        dopri.accepted,
+        error(eb),
+        bdf.accepted,
+        bdf.rejected,
+        bdf.iterations,
+        bdf.order
+    );
+    // measured: DOPRI5 2.9e-10 in 20 150 steps, BDF 2.8e-6 in 280
+    assert!(error(eb) < 1e-4 && 20 * bdf.accepted < dopri.accepted, "BDF {:e} in {} steps", error(eb), bdf.accepted);
+}
+
 /// DOPRI5 and DOP853 see stiffness (issue 39, item 2; Hairer's test on their last two stages):
 /// on the stiff pendulum, whose stretch mode is critically damped at ω = 1e4 rad/s (a double
 /// eigenvalue −1e4 1/s), each run's statistics say their steps were held by stability, with the
@@ -727,7 +792,7 @@ fn explicit_methods_detect_stiffness() {
         let rate = found.h_lambda / found.step;
         assert_eq!(found.method, method);
         assert!((1e4 / 3.0..3e4).contains(&rate), "{method}: |λ| ≈ {rate} 1/s");
-        assert!(found.t < 0.2 && found.to_string().contains("GeneralizedAlpha"), "{found}");
+        assert!(found.t < 0.2 && found.to_string().contains("Bdf"), "{found}");
     }
     assert_eq!(calm(&mut Dopri5::default()).stiffness, None);
     assert_eq!(calm(&mut Dop853::default()).stiffness, None);

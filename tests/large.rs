@@ -63,7 +63,8 @@ fn statics_and_kinematics_of_120_bodies_on_a_2_mb_stack() {
     });
 }
 
-/// Every integrator with every drift correction, from the tilted chain at rest, for a few
+/// Every integrator (RK4, DOPRI5, DOP853, generalized-α, BDF) with every drift correction,
+/// from the tilted chain at rest, for a few
 /// steps (the point is the stack, not the motion: a debug build factors the 600-square
 /// generalized-α matrix in about a second). Each run must keep the constraints (‖Φ‖∞ below
 /// 1e-6 m after 5 ms: the explicit runs' drift is O(h⁵) per step, the corrected ones are held to
@@ -116,6 +117,15 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
                 .run(&mut ws, |s| last = s.point.q)
                 .expect("generalized-α");
             check("generalized-α", &last);
+            // BDF keeps its last seven points (7 × 720 scalars) in the integrator, on the stack.
+            let mut bdf = Bdf::new(BdfOptions::default());
+            Simulation::new(&m, &mut bdf)
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("BDF");
+            check("BDF", &last);
         }
     });
 }

@@ -6,7 +6,7 @@
 //! solves for (v̇₊, λ₊) by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v and
 //! ∂(Dᵀλ)/∂q·B (the equations are on [`GeneralizedAlpha`]); fit for stiff springs and dampers.
 
-use super::implicit::{solve, NewtonSettings, StateMap};
+use super::implicit::{finish, solve, NewtonSettings, StateMap};
 use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::{Kinematics, NewtonMatrix};
 use crate::model::workspace::Workspace;
@@ -364,31 +364,6 @@ impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
     }
 }
 
-/// The powers at the end point and the work integrals of a step of h.
-fn finish<T, M, const NQ: usize, const NV: usize, const NC: usize>(
-    system: &System<'_, M, T>,
-    from: &Point<T, NQ, NV, NC>,
-    to: &mut Point<T, NQ, NV, NC>,
-    h: T,
-) -> Result<(), SimulationError>
-where
-    T: Real,
-    M: NewtonMatrix<T, NQ, NV, NC>,
-{
-    to.power = if system.track_work {
-        let mut scratch_vd = [T::ZERO; NV];
-        let mut scratch_lambda = [T::ZERO; NC];
-        system.derivatives(to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
-    } else {
-        [T::ZERO; 2]
-    };
-    // Trapezoidal rule for the work: second order, like the method.
-    for k in 0..2 {
-        to.work[k] = from.work[k] + T::from_f64(0.5) * h * (from.power[k] + to.power[k]);
-    }
-    Ok(())
-}
-
 /// The RMS of the estimated local position error (1/12 + δ²/4) h² (a₊ − a), mapped to the
 /// coordinates at q₊ (q₊ ⊕ e − q₊), in the mixed tolerance atol + rtol·max(|q|, |q₊|).
 #[allow(clippy::too_many_arguments)]
@@ -436,7 +411,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> AlphaMap<'_, T,
     }
 }
 
-impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV>
+impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV, NC>
     for AlphaMap<'_, T, NQ, NV, NC>
 {
     /// (γ'h, β'h²) with β' = β(1 − α_f)/(1 − α_m), γ' = γ(1 − α_f)/(1 − α_m).

@@ -18,7 +18,7 @@ use crate::real::Real;
 use crate::solvers::kinematics::name;
 
 /// How an implicit method's step end depends on the unknown v̇₊.
-pub(super) trait StateMap<T: Real, M, const NQ: usize, const NV: usize> {
+pub(super) trait StateMap<T: Real, M, const NQ: usize, const NV: usize, const NC: usize> {
     /// (c_v, c_q): ∂v₊/∂v̇₊ and ∂q₊/∂v̇₊ (in velocity space, through B(q)).
     fn slopes(&self) -> (T, T);
     /// q₊ and v₊ for v̇₊ = `vd`.
@@ -57,7 +57,7 @@ pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, 
 where
     T: Real,
     M: NewtonMatrix<T, NQ, NV, NC>,
-    S: StateMap<T, M, NQ, NV>,
+    S: StateMap<T, M, NQ, NV, NC>,
 {
     let mech = system.mechanism;
     let one = T::ONE;
@@ -335,4 +335,30 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
             SimulationError::WorkspaceSize { expected: rows, found: columns }
         }
     }
+}
+
+/// The powers at the end point and the work integrals of a step of h.
+pub(super) fn finish<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    system: &System<'_, M, T>,
+    from: &Point<T, NQ, NV, NC>,
+    to: &mut Point<T, NQ, NV, NC>,
+    h: T,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    to.power = if system.track_work {
+        let mut scratch_vd = [T::ZERO; NV];
+        let mut scratch_lambda = [T::ZERO; NC];
+        system.derivatives(to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
+    } else {
+        [T::ZERO; 2]
+    };
+    // Trapezoidal rule for the work: second order (generalized-α's order; BDF's work is
+    // second order where its motion is of higher order).
+    for k in 0..2 {
+        to.work[k] = from.work[k] + T::from_f64(0.5) * h * (from.power[k] + to.power[k]);
+    }
+    Ok(())
 }

@@ -31,6 +31,7 @@
 //! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own
 //! (`simulate.rs`).
 
+mod bdf;
 mod branch;
 mod dop853;
 mod dopri5;
@@ -43,6 +44,7 @@ mod stiffness;
 #[cfg(test)]
 mod tests;
 
+pub use bdf::{Bdf, BdfOptions, BDF_MAX_ORDER};
 pub use branch::{SingularPassage, SINGULAR_SINE};
 pub use dop853::{Dop853, Dop853Options};
 pub use dopri5::{Dopri5, Dopri5Options};

@@ -43,7 +43,7 @@ impl fmt::Display for StiffnessDetected {
             f,
             "from t = {} s {}'s steps ({:.2e} s) were held by stability, not accuracy: a mode of about {:.1e} 1/s \
              makes the model stiff; an implicit method takes steps set by the tolerance \
-             (GeneralizedAlpha, Name::generalized_alpha)",
+             (Bdf, or GeneralizedAlpha for a fixed step)",
             self.t,
             self.method,
             self.step,

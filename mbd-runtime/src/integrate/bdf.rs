@@ -1,0 +1,506 @@
+//! Variable-order, variable-step BDF on the index-3 equations M v̇ − Dᵀλ = h, Φ = 0 — the
+//! stiff method: [`Bdf`] and its [`BdfOptions`] (issue 39, item 1; Brenan, Campbell & Petzold,
+//! *Numerical Solution of Initial-Value Problems in DAEs*, ch. 3, as DASSL and IDA; Hairer &
+//! Wanner, *Solving ODEs II*, III.5).
+//!
+//! A step of order k (1 to 5) from the accepted points y_j = (q_j, v_j) at τ₀ > τ₁ > … (τ₀ the
+//! last) to t₊ replaces y' at t₊ by the derivative of the polynomial through (t₊, y₊) and the
+//! k points before: with its Lagrange basis ℓ_j,
+//!
+//! ```text
+//! y₊ = ŷ + c y'₊,   c = 1/ℓ₊'(t₊) = 1/Σ_j 1/(t₊ − τ_j),   ŷ = −c Σ_j ℓ_j'(t₊) y_j
+//! ```
+//!
+//! (the variable-coefficient form: exact for polynomials of degree k on any spacing). For the
+//! velocities v₊ = v̂ + c v̇₊; for the positions q₊ = q̂ + c B(q₊) v₊, which q₊ = q̂ ⊕ c v₊
+//! ([`Kinematics::integrate_positions`]) solves exactly: planar q̂ + c v₊, and for a body's
+//! Euler parameters q̂ ⊗ (1, c ω′/2) up to the normalization, because ė = ½ e ⊗ (0, ω′) is
+//! linear in e. Newton on (v̇₊, λ₊) is generalized-α's ([`implicit`](super::implicit)) with
+//! slopes c_v = c and c_q = c²: the iteration matrix [[M − c ∂h/∂v − c² K, −Dᵀ], [D, 0]] over
+//! the sparse pattern `mechanism!` planned, Φ(q₊) = 0 solved at every step.
+//!
+//! Error control (DASSL's estimate): the predictor is the polynomial through the k + 1 points
+//! before, extrapolated to t₊; the local error of order k is
+//! (t₊ − τ₀)/(t₊ − τ_k) · (y₊ − y_pred), measured on q and v in the RMS of the mixed tolerance
+//! atol + rtol·max(|y₀|, |y₊|) as [`Dopri5`](crate::Dopri5) measures its error. A step is
+//! accepted at RMS ≤ 1. Each order among k − 1, k and k + 1 would allow a step of
+//! h · 0.9 err_j^(−1/(j+1)) — k − 1's error from its predictor through k points, k + 1's from
+//! the change of the error vector since the last step (both once k + 1 steps were taken at
+//! order k) — and the next step takes the longest (k + 1 only where 1.2× longer). As DASSL,
+//! the step grows only where it can double (a variable-coefficient BDF is stablest at constant
+//! steps) and shrinks at most to half; a rejected step is retried at the estimate's factor
+//! (0.25 to 0.9), a second time at a quarter, from the third at order 1. The first step is of
+//! order 1 with the predictor y₀ + h y₀' (error ½ (y₊ − y_pred)), and the order rises by one
+//! per step while the points allow it. A step whose Newton iteration fails is retried at a
+//! quarter of its size. Output between steps is the same polynomial, evaluated at t.
+
+use super::implicit::{finish, solve, NewtonSettings, StateMap};
+use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
+use crate::model::mechanism::{Kinematics, NewtonMatrix};
+use crate::model::workspace::Workspace;
+use crate::real::Real;
+
+/// The highest order (BDF is not zero-stable beyond 6; 5 keeps an angle of A(α)-stability of 51°).
+pub const BDF_MAX_ORDER: usize = 5;
+/// Accepted points kept: the k + 1 a predictor of order k + 1 reads, plus the new one.
+const KEPT: usize = BDF_MAX_ORDER + 2;
+
+crate::options::options! {
+    /// Options of [`Bdf`], in the scalar type `T` of the mechanism (default `f64`). Build from
+    /// [`Default`] and the `with_*` setters.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct BdfOptions<T> {
+        /// Relative tolerance on each coordinate and velocity. Default 1e-6.
+        rtol: T = T::from_f64(1e-6) => with_rtol,
+        /// Absolute tolerance (m, rad, m/s, rad/s). Default 1e-8.
+        atol: T = T::from_f64(1e-8) => with_atol,
+        /// The highest order the step-size control may choose, 1 to 5. Default 5.
+        max_order: usize = BDF_MAX_ORDER => with_max_order,
+        /// The first step tried (s); 0 (the default) chooses it from the initial rates, as
+        /// DOPRI5 does.
+        initial_step: T = T::ZERO => with_initial_step,
+        /// Largest step size (s). Default 0.1 s.
+        max_step: T = T::from_f64(0.1) => with_max_step,
+        /// Smallest step size before failing with [`SimulationError::StepSizeTooSmall`]. Default
+        /// 1e-12 s.
+        min_step: T = T::from_f64(1e-12) => with_min_step,
+        /// Newton tolerance on ‖Φ‖∞ (m, rad) and on the position correction c²‖Δv̇‖∞ (m, rad).
+        /// Default 1e-10, raised to what the scalar type resolves at q.
+        tolerance: T = T::from_f64(1e-10) => with_tolerance,
+        /// Newton tolerance on the multipliers, relative, by the constraint forces they exert, as
+        /// [`GeneralizedAlphaOptions::lambda_tolerance`](crate::GeneralizedAlphaOptions::lambda_tolerance).
+        /// Default 1e-6.
+        lambda_tolerance: T = T::from_f64(1e-6) => with_lambda_tolerance,
+        /// Newton iterations per step before the step is retried at a quarter of its size.
+        /// Default 8.
+        max_iterations: u32 = 8 => with_max_iterations,
+        /// Reuse the iteration matrix's factors within a step while each correction is below a
+        /// quarter of the one before. Default true.
+        reuse_factors: bool = true => with_reuse_factors,
+        /// Relative pivot tolerance of the iteration matrix's LU, as generalized-α's. Default
+        /// 1e-13.
+        pivot_tolerance: T = T::from_f64(1e-13) => with_pivot_tolerance,
+        /// Project each step's velocities onto D v = ν in the metric of M (the index-3
+        /// equations leave D v − ν = O(h^k)). Default true.
+        project_velocities: bool = true => with_project_velocities,
+    }
+}
+
+/// The BDF method of orders 1 to 5 with variable steps (module docs): implicit, for stiff
+/// models — a mode far faster than the motion of interest, a stiff spring or damper, a contact —
+/// with error control on q and v. Each step solves Φ(q₊) = 0 by Newton over the sparse
+/// iteration matrix `mechanism!` planned (the work space must be the mechanism's,
+/// `Name::workspace()`); the integrator holds O(NQ + NV): its last seven points.
+#[derive(Clone, Copy, Debug)]
+pub struct Bdf<T, const NQ: usize, const NV: usize> {
+    /// Tolerances, order limit and Newton options.
+    pub options: BdfOptions<T>,
+    /// The order of the last step.
+    pub order: usize,
+    /// The step size the next step will try (s); 0 before the first.
+    pub next_step: T,
+    /// Steps accepted so far.
+    pub accepted: u64,
+    /// Steps rejected so far (too large an error, or Newton failing).
+    pub rejected: u64,
+    /// Newton iterations so far, rejected steps' included.
+    pub iterations: u64,
+    // The accepted points, newest first: times, positions, velocities; how many; steps taken at
+    // the current order; the last step's scaled error vector (for the order-(k+1) estimate).
+    times: [T; KEPT],
+    qs: [[T; NQ]; KEPT],
+    vs: [[T; NV]; KEPT],
+    len: usize,
+    at_order: usize,
+    last_error: ([T; NQ], [T; NV]),
+    // Points of the last step's interpolating polynomial (its order + 1).
+    dense_points: usize,
+}
+
+impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
+    /// A BDF integrator with the given options.
+    pub fn new(options: BdfOptions<T>) -> Self {
+        Self {
+            options,
+            order: 1,
+            next_step: T::ZERO,
+            accepted: 0,
+            rejected: 0,
+            iterations: 0,
+            times: [T::ZERO; KEPT],
+            qs: [[T::ZERO; NQ]; KEPT],
+            vs: [[T::ZERO; NV]; KEPT],
+            len: 0,
+            at_order: 0,
+            last_error: ([T::ZERO; NQ], [T::ZERO; NV]),
+            dense_points: 0,
+        }
+    }
+
+    /// Starts again from the next step's point at order 1, keeping the step size.
+    pub fn restart(&mut self) {
+        self.len = 0;
+        self.order = 1;
+        self.at_order = 0;
+        self.dense_points = 0;
+    }
+
+    /// Makes `from` the newest point: a continuation of the last step (its end, perhaps
+    /// corrected) replaces it; anything else starts again.
+    fn take<const NC: usize>(&mut self, from: &Point<T, NQ, NV, NC>) {
+        if self.len == 0 || self.times[0] != from.t {
+            self.restart();
+            self.len = 1;
+            self.times[0] = from.t;
+        }
+        self.qs[0] = from.q;
+        self.vs[0] = from.v;
+    }
+
+    /// Adds an accepted point, dropping the oldest beyond what the orders read.
+    fn push(&mut self, t: T, q: &[T; NQ], v: &[T; NV]) {
+        for j in (1..KEPT).rev() {
+            self.times[j] = self.times[j - 1];
+            self.qs[j] = self.qs[j - 1];
+            self.vs[j] = self.vs[j - 1];
+        }
+        (self.times[0], self.qs[0], self.vs[0]) = (t, *q, *v);
+        self.len = (self.len + 1).min(KEPT);
+    }
+
+    /// Σ_j w_j y_j over the first `w.len()` points, for q and v.
+    fn combine(&self, w: &[T]) -> ([T; NQ], [T; NV]) {
+        let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
+        for (j, &wj) in w.iter().enumerate() {
+            for (x, &y) in q.iter_mut().zip(&self.qs[j]) {
+                *x += wj * y;
+            }
+            for (x, &y) in v.iter_mut().zip(&self.vs[j]) {
+                *x += wj * y;
+            }
+        }
+        (q, v)
+    }
+}
+
+impl<T: Real, const NQ: usize, const NV: usize> Default for Bdf<T, NQ, NV> {
+    fn default() -> Self {
+        Self::new(BdfOptions::default())
+    }
+}
+
+/// The weights of the polynomial through the points at `nodes` evaluated at t: Π_{m≠j} (t − τ_m)/(τ_j − τ_m).
+fn lagrange<T: Real>(nodes: &[T], t: T, w: &mut [T]) {
+    for j in 0..nodes.len() {
+        let mut x = T::ONE;
+        for (m, &tm) in nodes.iter().enumerate() {
+            if m != j {
+                x *= (t - tm) / (nodes[j] - tm);
+            }
+        }
+        w[j] = x;
+    }
+}
+
+/// BDF-k at t₊ over the k newest `nodes`: c = 1/Σ 1/(t₊ − τ_j) and the weights of ŷ = Σ w_j y_j,
+/// w_j = −c ℓ_j'(t₊) with ℓ_j'(t₊) = Π_{m≠j} (t₊ − τ_m) / ((τ_j − t₊) Π_{m≠j} (τ_j − τ_m)).
+fn bdf_coefficients<T: Real>(nodes: &[T], t1: T, w: &mut [T]) -> T {
+    let c = T::ONE / nodes.iter().fold(T::ZERO, |s, &tj| s + T::ONE / (t1 - tj));
+    for j in 0..nodes.len() {
+        let (mut num, mut den) = (T::ONE, nodes[j] - t1);
+        for (m, &tm) in nodes.iter().enumerate() {
+            if m != j {
+                num *= t1 - tm;
+                den *= nodes[j] - tm;
+            }
+        }
+        w[j] = -c * num / den;
+    }
+    c
+}
+
+/// BDF's step end from v̇₊: v₊ = v̂ + c v̇₊, q₊ = q̂ ⊕ c v₊.
+struct BdfMap<T, const NQ: usize, const NV: usize> {
+    q_hat: [T; NQ],
+    v_hat: [T; NV],
+    c: T,
+}
+
+impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV, NC>
+    for BdfMap<T, NQ, NV>
+{
+    fn slopes(&self) -> (T, T) {
+        (self.c, self.c * self.c)
+    }
+
+    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]) {
+        for i in 0..NV {
+            v[i] = self.v_hat[i] + self.c * vd[i];
+        }
+        *q = self.q_hat;
+        mechanism.integrate_positions(q, v, self.c);
+    }
+}
+
+/// The RMS of (q, v) errors `e` in the mixed tolerance against the two states.
+fn weighted_rms<T: Real, const NQ: usize, const NV: usize>(
+    o: &BdfOptions<T>,
+    e: (&[T; NQ], &[T; NV]),
+    y0: (&[T; NQ], &[T; NV]),
+    y1: (&[T; NQ], &[T; NV]),
+) -> T {
+    let floor = T::from_f64(16.0) * T::EPSILON;
+    let (rtol, atol) = (o.rtol.max(floor), o.atol.max(floor));
+    let mut sum = T::ZERO;
+    for i in 0..NQ {
+        let r = e.0[i] / (atol + rtol * y0.0[i].abs().max(y1.0[i].abs()));
+        sum += r * r;
+    }
+    for i in 0..NV {
+        let r = e.1[i] / (atol + rtol * y0.1[i].abs().max(y1.1[i].abs()));
+        sum += r * r;
+    }
+    (sum / T::from_f64((NQ + NV).max(1) as f64)).sqrt()
+}
+
+impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize> Integrator<T, M, NQ, NV, NC, N, NS>
+    for Bdf<T, NQ, NV>
+where
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    /// Its Newton solves Φ(q₊, t₊) = 0 at every step.
+    fn holds_constraints(&self) -> bool {
+        true
+    }
+
+    // `!(x > y)` on purpose: it is also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn step(
+        &mut self,
+        system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
+        from: &Point<T, NQ, NV, NC>,
+        t_max: T,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        if N != NV + NC {
+            return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
+        }
+        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+            return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
+        };
+        let o = self.options;
+        super::dopri5::check_step_control(
+            [o.rtol, o.atol, o.max_step, o.min_step],
+            [
+                "BdfOptions::rtol and atol must be non-negative, not both zero",
+                "BdfOptions::max_step must be positive, min_step non-negative",
+            ],
+        )?;
+        if !(1..=BDF_MAX_ORDER).contains(&o.max_order) {
+            return Err(SimulationError::InvalidOptions { what: "BdfOptions::max_order must be 1 to 5" });
+        }
+        if !(t_max > from.t) {
+            *to = *from;
+            return Ok(());
+        }
+        let mech = system.mechanism;
+        self.take(from);
+        let resolution = crate::solvers::kinematics::resolution(&from.q);
+        let newton = NewtonSettings {
+            tolerance: o.tolerance.max(resolution),
+            lambda_tolerance: o.lambda_tolerance,
+            max_iterations: o.max_iterations,
+            reuse_factors: o.reuse_factors,
+            pivot_tolerance: o.pivot_tolerance,
+            project_velocities: o.project_velocities,
+        };
+        if !(self.next_step > T::ZERO) {
+            self.next_step = if o.initial_step > T::ZERO {
+                o.initial_step
+            } else {
+                let mut qdot = [T::ZERO; NQ];
+                mech.position_rates(&from.q, &from.v, &mut qdot);
+                let floor = T::from_f64(16.0) * T::EPSILON;
+                let scale = |y0: T, y1: T| o.atol.max(floor) + o.rtol.max(floor) * y0.abs().max(y1.abs());
+                super::dopri5::initial_step(from, &qdot, &scale, o.max_step)
+            };
+        }
+        let mut h = self.next_step.min(o.max_step);
+        let mut failures = 0;
+        loop {
+            let (h_try, t1) = fixed_step(from.t, h, t_max);
+            // Order k from the k newest points (the first step: order 1 from `from`).
+            let k = self.order.min(self.len).min(o.max_order).max(1);
+            let mut w = [T::ZERO; KEPT];
+            let c = bdf_coefficients(&self.times[..k], t1, &mut w[..k]);
+            let (q_hat, v_hat) = self.combine(&w[..k]);
+            // The predictor of order k (through k + 1 points) where there are as many; the first
+            // step's is y₀ + h y₀'.
+            let predicted = self.len > k;
+            let (q_pred, v_pred) = if predicted {
+                lagrange(&self.times[..=k], t1, &mut w[..=k]);
+                self.combine(&w[..=k])
+            } else {
+                let mut q = from.q;
+                mech.integrate_positions(&mut q, &from.v, h_try);
+                (q, core::array::from_fn(|i| from.v[i] + h_try * from.vd[i]))
+            };
+            let vd0: [T; NV] = if predicted { core::array::from_fn(|i| (v_pred[i] - v_hat[i]) / c) } else { from.vd };
+            let map = BdfMap { q_hat, v_hat, c };
+            let mut iterations = 0;
+            let result = solve::<T, M, _, NQ, NV, NC, N>(system, &newton, resolution, &map, &vd0, from, t1, to, &mut iterations, s);
+            self.iterations += u64::from(iterations);
+            let factor = match result {
+                Ok(()) => {
+                    // The order-k error vector and its size.
+                    let scale = if predicted { (t1 - self.times[0]) / (t1 - self.times[k]) } else { T::from_f64(0.5) };
+                    let e: ([T; NQ], [T; NV]) =
+                        (core::array::from_fn(|i| scale * (to.q[i] - q_pred[i])), core::array::from_fn(|i| scale * (to.v[i] - v_pred[i])));
+                    let error = weighted_rms(&o, (&e.0, &e.1), (&from.q, &from.v), (&to.q, &to.v));
+                    if error <= T::ONE {
+                        self.accept(&o, k, h_try, t1, error, e, predicted, (&from.q, &from.v), to);
+                        finish(system, from, to, h_try)?;
+                        return Ok(());
+                    }
+                    // DASSL's rule: the estimate's factor on a first failure, a quarter after that
+                    // (and from the third on, order 1: the points before may be what fails).
+                    failures += 1;
+                    if failures >= 3 {
+                        self.order = 1;
+                    }
+                    if failures == 1 {
+                        (T::from_f64(0.9) * error.powf(-T::ONE / T::from_f64((k + 1) as f64))).max(T::from_f64(0.25)).min(T::from_f64(0.9))
+                    } else {
+                        T::from_f64(0.25)
+                    }
+                }
+                Err(SimulationError::NotConverged { .. } | SimulationError::NonFinite { .. }) => T::from_f64(0.25),
+                Err(e) => return Err(e),
+            };
+            self.rejected += 1;
+            h = h_try * factor;
+            if !(h >= o.min_step) {
+                return Err(SimulationError::StepSizeTooSmall { t: from.t.to_f64(), step: h.to_f64() });
+            }
+        }
+    }
+
+    fn prepare_interpolation(
+        &mut self,
+        _system: &System<'_, M, T>,
+        _from: &Point<T, NQ, NV, NC>,
+        _to: &Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        // The interpolating polynomial needs the kept points only.
+        Ok(())
+    }
+
+    /// The polynomial through the step's end and the k points before (order k), at t; the
+    /// cubic Hermite interpolant between `from` and `to` where the kept points are not theirs.
+    fn interpolate(&self, mechanism: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
+        let n = self.dense_points.min(self.len);
+        if n < 2 || self.times[0] != to.t || self.times[1] != from.t {
+            hermite_state(mechanism, from, to, t, q, v);
+            return;
+        }
+        let mut w = [T::ZERO; KEPT];
+        lagrange(&self.times[..n], t, &mut w[..n]);
+        (*q, *v) = self.combine(&w[..n]);
+        mechanism.normalize_positions(q);
+    }
+
+    fn restart(&mut self) {
+        Bdf::restart(self);
+    }
+
+    /// v̇ and λ are unknowns of the method: the corrected point keeps them, and becomes the
+    /// newest kept point.
+    fn after_correction(
+        &mut self,
+        _system: &System<'_, M, T>,
+        end: &Point<T, NQ, NV, NC>,
+        q: [T; NQ],
+        v: [T; NV],
+    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        if self.len > 0 && self.times[0] == end.t {
+            (self.qs[0], self.vs[0]) = (q, v);
+        }
+        Ok(Point { q, v, ..*end })
+    }
+}
+
+impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
+    /// Takes an accepted step of order k and size h to `to`, and chooses the next step's order
+    /// and size (module docs).
+    #[allow(clippy::too_many_arguments)]
+    fn accept<const NC: usize>(
+        &mut self,
+        o: &BdfOptions<T>,
+        k: usize,
+        h: T,
+        t1: T,
+        error: T,
+        e: ([T; NQ], [T; NV]),
+        predicted: bool,
+        y0: (&[T; NQ], &[T; NV]),
+        to: &Point<T, NQ, NV, NC>,
+    ) {
+        let y1 = (&to.q, &to.v);
+        let growth = |err: T, order: usize| T::from_f64(0.9) * err.max(T::from_f64(1e-10)).powf(-T::ONE / T::from_f64((order + 1) as f64));
+        let mut best = (growth(error, k), k);
+        let settled = self.at_order > k;
+        if predicted && settled {
+            // Order k − 1: its predictor through k points.
+            if k > 1 {
+                let mut w = [T::ZERO; KEPT];
+                lagrange(&self.times[..k], t1, &mut w[..k]);
+                let (q, v) = self.combine(&w[..k]);
+                let scale = (t1 - self.times[0]) / (t1 - self.times[k - 1]);
+                let lower: ([T; NQ], [T; NV]) =
+                    (core::array::from_fn(|i| scale * (to.q[i] - q[i])), core::array::from_fn(|i| scale * (to.v[i] - v[i])));
+                let g = growth(weighted_rms(o, (&lower.0, &lower.1), y0, y1), k - 1);
+                if g > best.0 {
+                    best = (g, k - 1);
+                }
+            }
+            // Order k + 1: the change of the error vector since the last step, at order k.
+            if k < o.max_order && self.len > k + 1 {
+                let ratio = T::ONE / T::from_f64((k + 2) as f64);
+                let higher: ([T; NQ], [T; NV]) = (
+                    core::array::from_fn(|i| ratio * (e.0[i] - self.last_error.0[i])),
+                    core::array::from_fn(|i| ratio * (e.1[i] - self.last_error.1[i])),
+                );
+                // Raised only where it promises clearly longer steps.
+                let g = growth(weighted_rms(o, (&higher.0, &higher.1), y0, y1), k + 1);
+                if g > T::from_f64(1.2) * best.0 {
+                    best = (g, k + 1);
+                }
+            }
+        }
+        let (factor, order) = best;
+        self.push(t1, &to.q, &to.v);
+        self.dense_points = k + 1;
+        self.last_error = e;
+        self.at_order = if order == k { self.at_order + 1 } else { 0 };
+        // The first steps raise the order as soon as there are points for it and for its
+        // predictor (the start's order-1 steps are short).
+        let starting = self.accepted < 2 * BDF_MAX_ORDER as u64 && self.len <= k + 2 && order == k;
+        let order = if starting { (k + 1).min(o.max_order).min(self.len - 1) } else { order };
+        if order != k {
+            self.at_order = 0;
+        }
+        self.order = order.max(1);
+        // DASSL's rule: a step grows only where it can double (a variable-coefficient BDF is
+        // stablest at constant steps), shrinks by the estimate's factor, at most to half.
+        let factor = if factor >= T::from_f64(2.0) {
+            T::from_f64(2.0)
+        } else if factor < T::ONE {
+            factor.max(T::from_f64(0.5)).min(T::from_f64(0.9))
+        } else {
+            T::ONE
+        };
+        self.next_step = h * factor;
+        self.accepted += 1;
+    }
+}
