@@ -695,11 +695,12 @@ fn adaptive_generalized_alpha_steps_over_a_stiff_damped_mode() {
 }
 
 /// BDF (issue 39, item 1) at each order limit 1 to 5 on the double pendulum: over two
-/// tolerances 100× apart its error falls as the steps' number to the power −k (the slope of
-/// log error against log steps: measured 0.96, 1.94, 2.97, 3.76, 4.94), the mark of order k;
-/// and with every order allowed it follows the reference within 60× its tolerance (measured
-/// 18× at rtol 1e-6 and 45× at 1e-9: the local estimate bounds each step, and the global error
-/// is their sum — item 4's goal, 10×, is not met yet).
+/// tolerances 100× apart its error falls at least as the steps' number to the power −k (the
+/// slope of log error against log steps, measured 0.96, 1.94, 2.97, 3.76, 4.94; above k where
+/// the error constant changes with the tolerance too), the mark of order k; and with every
+/// order allowed it follows the reference within 60× its tolerance (measured 18× at rtol 1e-6,
+/// 45× at 1e-9: the local estimate bounds each step, the global error is their sum — item 4's
+/// goal, 10×, is not met yet).
 #[test]
 fn bdf_converges_at_its_order() {
     let mut reference = Dop853::new(Dop853Options::default().with_rtol(1e-13).with_atol(1e-13));
@@ -713,7 +714,7 @@ fn bdf_converges_at_its_order() {
         let ((e1, n1), (e2, n2)) = (run(k, loose), run(k, loose * 1e-2));
         let slope = (e1 / e2).ln() / (n2 / n1).ln();
         eprintln!("BDF order ≤ {k}: error {e1:.2e} in {n1} steps, {e2:.2e} in {n2}: slope {slope:.2}");
-        assert!((slope - k as f64).abs() < 0.8, "order {k}: slope {slope}");
+        assert!(slope > k as f64 - 0.8 && slope < 2.0 * k as f64 + 4.0, "order {k}: slope {slope}");
     }
     for rtol in [1e-6, 1e-9] {
         let (e, n) = run(5, rtol);
@@ -757,6 +758,57 @@ fn bdf_steps_over_a_stiff_damped_mode() {
     );
     // measured: DOPRI5 2.9e-10 in 20 150 steps, BDF 2.8e-6 in 280
     assert!(error(eb) < 1e-4 && 20 * bdf.accepted < dopri.accepted, "BDF {:e} in {} steps", error(eb), bdf.accepted);
+}
+
+include!("../mbd-bench/mechanisms/stiff_flywheel.rs");
+
+/// Case (A) of the stiff issue (issue 39) is within its bounds at the start: the fastest
+/// eigenvalue of the linearization 1e4 1/s ± 2×, real (overdamped: damping ratio 1 as `Mode`
+/// reports a real eigenvalue), the flywheel at ≥ 5 rad/s; and over its first second BDF at
+/// rtol 1e-6 takes under a fifth of DOPRI5's steps at the same tolerance (measured 580 against
+/// 4 726, which its stability bound sets), to the same motion.
+#[test]
+fn case_a_is_stiff_and_spinning() {
+    let m = StiffFlywheel::default();
+    let mut ws = StiffFlywheel::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
+    let mut v = m.initial_velocities();
+    m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).unwrap();
+    let lin = mbd::Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
+    let fastest = lin.modes().into_iter().max_by(|a, b| a.eigenvalue.norm().total_cmp(&b.eigenvalue.norm())).unwrap();
+    eprintln!(
+        "case A: fastest eigenvalue {} 1/s (damping ratio {}), flywheel at {} rad/s",
+        fastest.eigenvalue, fastest.damping_ratio, v[2]
+    );
+    assert!((5e3..2e4).contains(&fastest.eigenvalue.norm()), "{fastest:?}");
+    assert!(fastest.damping_ratio >= 1.0 - 1e-9, "{fastest:?}");
+    assert!(v[2] >= 5.0, "the flywheel turns at {} rad/s", v[2]);
+    let run = |integrator: &mut dyn FnMut(&mut [f64; 12]) -> u64| {
+        let mut end = [0.0; 12];
+        let steps = integrator(&mut end);
+        (end, steps)
+    };
+    let (end5, steps5) = run(&mut |end| {
+        Simulation::new(&m, &mut Dopri5::new(Dopri5Options::default().with_rtol(1e-6).with_atol(1e-8)))
+            .start(0.0, &q, &v)
+            .times(&[1.0])
+            .run(&mut StiffFlywheel::workspace(), |s| *end = s.point.q)
+            .unwrap()
+            .steps
+    });
+    let (endb, stepsb) = run(&mut |end| {
+        Simulation::new(&m, &mut Bdf::new(BdfOptions::default()))
+            .start(0.0, &q, &v)
+            .times(&[1.0])
+            .run(&mut StiffFlywheel::workspace(), |s| *end = s.point.q)
+            .unwrap()
+            .steps
+    });
+    let apart = (0..12).map(|i| (end5[i] - endb[i]).abs()).fold(0.0, f64::max);
+    eprintln!("case A, 1 s: DOPRI5 {steps5} steps, BDF {stepsb}, {apart:.1e} apart");
+    // both at rtol 1e-6 on coordinates of order 1: 1e-4 is 100 rtol
+    assert!(5 * stepsb < steps5 && apart < 1e-4, "DOPRI5 {steps5} steps, BDF {stepsb}, {apart} apart");
 }
 
 /// DOPRI5 and DOP853 see stiffness (issue 39, item 2; Hairer's test on their last two stages):

@@ -1,6 +1,7 @@
 //! The study's mechanisms: one of each kind a user brings (a machine with a flywheel, a chaotic
 //! linkage, chains of growing size, a suspension on a stiff tyre, a four-bar through its
-//! singular position, a fast top, a spatial linkage); two come from the examples.
+//! singular position, a fast top, a spatial linkage, and a stiff spinning linkage: issue 39's
+//! case A); two come from the examples.
 
 use mbd::prelude::*;
 
@@ -30,6 +31,7 @@ chain!(Chain16, 16);
 chain!(Chain64, 64);
 chain!(Chain16F32, 16, f32);
 include!("../../mbd-bench/mechanisms/free_spatial_slider_crank.rs");
+include!("../../mbd-bench/mechanisms/stiff_flywheel.rs");
 
 /// The suspension of the examples: a double A-arm corner on its coil-over and a stiff tyre
 /// (200 kN/m under an 18 kg knuckle) driven over a 3 cm bump at 0.5 s (`DoubleAArmRide`).

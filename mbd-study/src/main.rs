@@ -1,11 +1,12 @@
 //! What accuracy costs in time: every integrator (RK4 over steps, DOPRI5 and DOP853 over
-//! tolerances, generalized-α over steps and ρ∞, and variable-step over tolerances) with every
+//! tolerances, generalized-α over steps and ρ∞, and variable-step over tolerances, BDF over
+//! tolerances) with every
 //! drift control (none, Baumgarte, projection, partitioning) on mechanisms of several kinds: each
 //! run's largest error over 50 output times against a tight reference, its constraint and energy
 //! errors, CPU time (median of repeats), evaluations and Newton iterations. On the chains,
 //! MuJoCo's RK4 in the same run against the same reference (`peers.rs`).
 //!
-//! Run: `cargo run --release -p mbd-study` (about 3–4 minutes on 2 cores). Writes
+//! Run: `cargo run --release -p mbd-study` (about 8 minutes on 2 cores). Writes
 //! `mbd-study/results/study.csv` (every run), `study.md` (the tables) and one `<case>.svg`
 //! per case (log-log error against CPU time, a panel per drift control).
 //!
@@ -97,7 +98,7 @@ impl Study {
 fn main() {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results");
     std::fs::create_dir_all(&out).expect("create mbd-study/results");
-    let cases = 9;
+    let cases = 10;
     let mujoco_cases = 3;
     let progress = ProgressBar::new(cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64);
     progress.set_style(
@@ -171,6 +172,17 @@ fn main() {
         2.0,
         false,
         true,
+        None,
+    );
+    let m = StiffFlywheel::default();
+    study.case(
+        "stiff_flywheel",
+        "flywheel slider-crank with a follower on a 1e7 N/m overdamped mount (stiff: −1.6e4 1/s)",
+        &m,
+        &mut StiffFlywheel::workspace(),
+        10.0,
+        false,
+        false,
         None,
     );
     study.progress.finish();

@@ -34,6 +34,8 @@ pub enum Method {
     AdaptiveGeneralizedAlpha {
         rho_infinity: f64,
     },
+    /// Variable-order BDF ([`Bdf`]) over relative tolerances: the stiff method.
+    Bdf,
     /// MuJoCo's RK4 in joint coordinates, on the chains only (`peers.rs`).
     MuJoCoRk4,
 }
@@ -46,13 +48,14 @@ impl Method {
             Method::Dop853 => "DOP853".into(),
             Method::GeneralizedAlpha { rho_infinity } => format!("gen-α ρ∞={rho_infinity}"),
             Method::AdaptiveGeneralizedAlpha { rho_infinity } => format!("adaptive gen-α ρ∞={rho_infinity}"),
+            Method::Bdf => "BDF".into(),
             Method::MuJoCoRk4 => "MuJoCo RK4".into(),
         }
     }
     /// What the setting is: a step (s) or a relative tolerance.
     pub fn setting_name(self) -> &'static str {
         match self {
-            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } => "rtol",
+            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf => "rtol",
             _ => "h (s)",
         }
     }
@@ -98,6 +101,8 @@ pub const STEPS_GENERALIZED_ALPHA: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-
 pub const RHO_INFINITY: [f64; 3] = [0.5, 0.8, 1.0];
 /// Variable-step generalized-α's relative tolerances (absolute: 1e-2 of it), at the default ρ∞.
 pub const TOLERANCES_GENERALIZED_ALPHA: [f64; 7] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9];
+/// BDF's relative tolerances (absolute: 1e-2 of it).
+pub const TOLERANCES_BDF: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
 /// The methods with their settings.
 pub fn methods() -> Vec<(Method, Vec<f64>)> {
@@ -107,6 +112,7 @@ pub fn methods() -> Vec<(Method, Vec<f64>)> {
         list.push((Method::GeneralizedAlpha { rho_infinity }, STEPS_GENERALIZED_ALPHA.to_vec()));
     }
     list.push((Method::AdaptiveGeneralizedAlpha { rho_infinity: 0.8 }, TOLERANCES_GENERALIZED_ALPHA.to_vec()));
+    list.push((Method::Bdf, TOLERANCES_BDF.to_vec()));
     list
 }
 
@@ -335,6 +341,10 @@ where
             let control = ErrorControl::default().with_rtol(setting).with_atol(setting * 1e-2);
             let options = GeneralizedAlphaOptions::default().with_rho_infinity(rho_infinity).with_error_control(Some(control));
             timed(case, ws, reference, drift, || GeneralizedAlpha::new(options), |i, _| (i.total_iterations, i.total_iterations))
+        }
+        Method::Bdf => {
+            let options = BdfOptions::default().with_rtol(setting).with_atol(setting * 1e-2);
+            timed(case, ws, reference, drift, || Bdf::new(options), |i, _| (i.iterations, i.iterations))
         }
         Method::MuJoCoRk4 => Err("MuJoCo runs in peers.rs".into()),
     }
