@@ -98,7 +98,7 @@ impl Study {
 fn main() {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results");
     std::fs::create_dir_all(&out).expect("create mbd-study/results");
-    let cases = 10;
+    let cases = 11;
     let mujoco_cases = 3;
     let progress = ProgressBar::new(cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64);
     progress.set_style(
@@ -181,6 +181,17 @@ fn main() {
         &m,
         &mut StiffFlywheel::workspace(),
         10.0,
+        false,
+        false,
+        None,
+    );
+    let m = HeavyTop::default();
+    study.case(
+        "heavy_top_benchmark",
+        "heavy-top benchmark, 150 rad/s (Brüls, Cardona & Arnold 2012; spatial)",
+        &m,
+        &mut HeavyTop::workspace(),
+        2.0,
         false,
         false,
         None,
