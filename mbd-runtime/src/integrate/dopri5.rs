@@ -91,6 +91,31 @@ pub struct Dopri5<T, const NQ: usize, const NV: usize> {
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
+    /// The dense output's coefficients of the step from `from` to `to` (its unnormalized end)
+    /// with stage derivatives `kq`, `kv`.
+    #[allow(clippy::needless_range_loop)] // i indexes q, v and every stage's derivative alike
+    fn store_dense<const NC: usize>(
+        &mut self,
+        from: &Point<T, NQ, NV, NC>,
+        to: &Point<T, NQ, NV, NC>,
+        kq: &[[T; NQ]; 7],
+        kv: &[[T; NV]; 7],
+        h: T,
+    ) {
+        for i in 0..NQ {
+            let r = dense_coefficients(from.q[i], to.q[i], |s| kq[s][i], h);
+            for (c, value) in r.into_iter().enumerate() {
+                self.dense_q[c][i] = value;
+            }
+        }
+        for i in 0..NV {
+            let r = dense_coefficients(from.v[i], to.v[i], |s| kv[s][i], h);
+            for (c, value) in r.into_iter().enumerate() {
+                self.dense_v[c][i] = value;
+            }
+        }
+    }
+
     /// A Dormand–Prince integrator with the given options.
     pub fn new(options: Dopri5Options<T>) -> Self {
         Self {
@@ -286,18 +311,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 }
                 to.t = if last { t_max } else { from.t + h };
                 // Dense output coefficients, from the step's unnormalized end (the stages' flow).
-                for i in 0..NQ {
-                    let r = dense_coefficients(from.q[i], to.q[i], |s| kq[s][i], h);
-                    for (c, value) in r.into_iter().enumerate() {
-                        self.dense_q[c][i] = value;
-                    }
-                }
-                for i in 0..NV {
-                    let r = dense_coefficients(from.v[i], to.v[i], |s| kv[s][i], h);
-                    for (c, value) in r.into_iter().enumerate() {
-                        self.dense_v[c][i] = value;
-                    }
-                }
+                self.store_dense(from, to, &kq, &kv, h);
                 mech.normalize_positions(&mut to.q);
                 return check_step::<T, M, NQ, NV, NC>(from, to);
             }
