@@ -916,3 +916,106 @@ fn a_progress_bar_follows_a_run() {
     // 0.25 of the interval, in the bar's thousandths
     assert_eq!(run(0.25), (0.25, 26));
 }
+
+/// The stiff-aware default (issue 39, item 2): where nothing is stiff, `Auto` is DOPRI5 step for
+/// step — the same steps, the same numbers — and never switches.
+#[test]
+fn auto_is_dopri5_where_nothing_is_stiff() {
+    let mut auto = Auto::default();
+    let mut dopri = Dopri5::default();
+    let a = double_pendulum_at_1s(&mut auto, Correction::projection());
+    let d = double_pendulum_at_1s(&mut dopri, Correction::projection());
+    assert_eq!(a, d);
+    assert_eq!((auto.switches, auto.phase, auto.explicit.accepted, auto.stiff.accepted), (0, AutoPhase::Explicit, dopri.accepted, 0));
+}
+
+/// On case A (the stiff flywheel, a 1.56e4 1/s mode), `Auto` hands the run to BDF once DOPRI5
+/// has taken 15 steps at its stability bound, and then takes a fraction of DOPRI5's steps to the
+/// same motion: over 1 s at the default tolerances (rtol 1e-8, atol 1e-10) measured 1 696
+/// steps (209 of DOPRI5, 1 487 of BDF) against DOPRI5's 5 326, 3.7e-9 apart at the end.
+#[test]
+fn auto_hands_a_stiff_run_to_bdf() {
+    let m = StiffFlywheel::default();
+    let mut ws = StiffFlywheel::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
+    let mut v = m.initial_velocities();
+    m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).unwrap();
+    let (mut end_a, mut end_d) = ([0.0; 12], [0.0; 12]);
+    let mut auto = Auto::default();
+    let stats_a = Simulation::new(&m, &mut auto).start(0.0, &q, &v).times(&[1.0]).run(&mut ws, |s| end_a = s.point.q).unwrap();
+    let stats_d = Simulation::new(&m, &mut Dopri5::default()).start(0.0, &q, &v).times(&[1.0]).run(&mut ws, |s| end_d = s.point.q).unwrap();
+    let apart = (0..12).map(|i| (end_a[i] - end_d[i]).abs()).fold(0.0, f64::max);
+    eprintln!(
+        "case A, 1 s: Auto {} steps ({} switches, first at {:?} s; DOPRI5 {}, BDF {}), DOPRI5 alone {}, {apart:.1e} apart",
+        stats_a.steps,
+        auto.switches,
+        auto.first_stiff.map(|f| f.t),
+        auto.explicit.accepted,
+        auto.stiff.accepted,
+        stats_d.steps
+    );
+    let first = auto.first_stiff.expect("DOPRI5 saw the model stiff");
+    // 15 steps at DOPRI5's stable step 3.25/1.56e4 = 2e-4 s, from a start that resolves the
+    // initial transient: within 0.1 s
+    assert!(first.t < 0.1 && auto.switches == 1 && auto.phase == AutoPhase::Stiff, "{} switches, first {first}", auto.switches);
+    // Auto's own statistics do not say "stiff": the stiffness is handled
+    assert_eq!(stats_a.stiffness, None);
+    assert!(stats_d.stiffness.is_some());
+    // 1e-7: both runs at rtol 1e-8 on coordinates of order 1 to 30 (the crank angle)
+    assert!(3 * stats_a.steps < stats_d.steps && apart < 1e-7, "Auto {} steps, DOPRI5 {}, {apart:e} apart", stats_a.steps, stats_d.steps);
+}
+
+mechanism! {
+    /// A bob on a spring that softens: stiffness 1e8 e^(−40 t) N/m and damping 2e4 e^(−20 t)
+    /// N·s/m, critically damped throughout (its mode −1e4 e^(−20 t) 1/s: as `StiffPendulum`'s at
+    /// the start, 1e3 1/s at 0.115 s, 25 1/s at 0.3 s), swinging from horizontal.
+    pub Softening {
+        gravity [0.0, -9.81];
+        body bob { mass: 1.0, inertia: 0.01, at: [1.0, 0.0, 0.0] }
+        actuator ground[0.0, 0.0] ~ bob[0.0, 0.0] {
+            force: 1.0e8 * exp(-40.0 * t) * (sqrt(bob.x^2 + bob.y^2) - 1.0)
+                + 2.0e4 * exp(-20.0 * t) * (bob.x * bob.vx + bob.y * bob.vy) / sqrt(bob.x^2 + bob.y^2)
+        };
+    }
+}
+
+/// `Auto` goes back to DOPRI5 where the stiffness ends: on the softening spring, BDF while the
+/// mode is fast and DOPRI5 once it has slowed tenfold, to the motion DOP853 computes at rtol
+/// 1e-12. At rtol 1e-4, where DOPRI5's steps on the stiff spring sit at its stability bound
+/// (at 1e-6 they are 4× shorter, set by its error estimate, and it does not see the model as
+/// stiff: `Auto` stays with DOPRI5 there).
+#[test]
+fn auto_goes_back_to_dopri5_where_the_stiffness_ends() {
+    let times: Vec<f64> = (1..=40).map(|k| 0.025 * k as f64).collect();
+    fn run(integrator: &mut impl Integrator<f64, Softening, 3, 3, 0, 3, { Softening::NEWTON_STORAGE }>, times: &[f64]) -> Vec<[f64; 3]> {
+        let m = Softening::default();
+        let mut out = Vec::new();
+        Simulation::new(&m, integrator)
+            .start(0.0, &m.initial_positions(), &[0.0; 3])
+            .times(times)
+            .run(&mut Softening::workspace(), |s| out.push(s.point.q))
+            .unwrap();
+        out
+    }
+    let reference = run(&mut Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-12)), &times);
+    let error = |run: &[[f64; 3]]| {
+        run.iter().zip(&reference).map(|(x, y)| (0..3).map(|i| (x[i] - y[i]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max)
+    };
+    let mut auto = Auto::new(AutoOptions::default().with_rtol(1e-4).with_atol(1e-6));
+    let a = run(&mut auto, &times);
+    let d = error(&run(&mut Dopri5::new(Dopri5Options::default().with_rtol(1e-4).with_atol(1e-6)), &times));
+    let b = error(&run(&mut Bdf::new(BdfOptions::default().with_rtol(1e-4).with_atol(1e-6)), &times));
+    eprintln!(
+        "softening spring, 1 s: Auto {} switches, DOPRI5 {} steps, BDF {}, now {:?}; errors Auto {:.1e}, DOPRI5 {d:.1e}, BDF {b:.1e}",
+        auto.switches,
+        auto.explicit.accepted,
+        auto.stiff.accepted,
+        auto.phase,
+        error(&a)
+    );
+    assert_eq!((auto.switches, auto.phase), (1, AutoPhase::Explicit));
+    // what DOPRI5 and BDF alone deliver at this tolerance (measured 3.2e-5 and 1.7e-4), with 3×
+    // room: the handovers cost no accuracy
+    assert!(error(&a) < 3.0 * d.max(b), "Auto {:e}, DOPRI5 {d:e}, BDF {b:e}", error(&a));
+}

@@ -35,9 +35,9 @@ pub use solvers::{redundancy, statics};
 
 pub use integrate::partition::Partition;
 pub use integrate::{
-    project, Bdf, BdfOptions, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl, Event, EventHit,
-    GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError, SimulationOptions,
-    SingularPassage, Statistics, StiffnessDetected, System, BDF_MAX_ORDER, SINGULAR_SINE,
+    project, Auto, AutoOptions, AutoPhase, Bdf, BdfOptions, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl,
+    Event, EventHit, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Rk4, Rk4Options, Sample, Simulation, SimulationError,
+    SimulationOptions, SingularPassage, Statistics, StiffnessDetected, System, BDF_MAX_ORDER, SINGULAR_SINE,
 };
 pub use linalg::sparse::SparsePattern;
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};

@@ -124,6 +124,8 @@ pub struct Bdf<T, const NQ: usize, const NV: usize> {
     last_error: ([T; NQ], [T; NV]),
     // Points of the last step's interpolating polynomial (its order + 1).
     dense_points: usize,
+    // Steps accepted since the last restart.
+    since_restart: u64,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
@@ -143,6 +145,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
             at_order: 0,
             last_error: ([T::ZERO; NQ], [T::ZERO; NV]),
             dense_points: 0,
+            since_restart: 0,
         }
     }
 
@@ -152,6 +155,12 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         self.order = 1;
         self.at_order = 0;
         self.dense_points = 0;
+        self.since_restart = 0;
+    }
+
+    /// The last accepted step's error estimate, on q and v.
+    pub(super) fn last_error(&self) -> ([T; NQ], [T; NV]) {
+        self.last_error
     }
 
     /// Makes `from` the newest point: a continuation of the last step (its end, perhaps
@@ -492,9 +501,9 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         self.dense_points = k + 1;
         self.last_error = e;
         self.at_order = if order == k { self.at_order + 1 } else { 0 };
-        // The first steps raise the order as soon as there are points for it and for its
-        // predictor (the start's order-1 steps are short).
-        let starting = self.accepted < 2 * BDF_MAX_ORDER as u64 && self.len <= k + 2 && order == k;
+        // The first steps after a (re)start raise the order as soon as there are points for it
+        // and for its predictor (the start's order-1 steps are short).
+        let starting = self.since_restart < 2 * BDF_MAX_ORDER as u64 && self.len <= k + 2 && order == k;
         let order = if starting { (k + 1).min(o.max_order).min(self.len - 1) } else { order };
         if order != k {
             self.at_order = 0;
@@ -511,5 +520,6 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         };
         self.next_step = h * factor;
         self.accepted += 1;
+        self.since_restart += 1;
     }
 }

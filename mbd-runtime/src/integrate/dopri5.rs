@@ -132,6 +132,14 @@ impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
     }
 }
 
+impl<T: Real, const NQ: usize, const NV: usize> Dopri5<T, NQ, NV> {
+    /// Counts the stiffness test's steps afresh (after another method took steps): a stiff
+    /// phase is seen again 15 steps at the bound from here.
+    pub(super) fn watch_again(&mut self) {
+        self.stiffness.watch_again();
+    }
+}
+
 impl<T: Real, const NQ: usize, const NV: usize> Default for Dopri5<T, NQ, NV> {
     fn default() -> Self {
         Self::new(Dopri5Options::default())

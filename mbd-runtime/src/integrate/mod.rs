@@ -31,6 +31,7 @@
 //! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own
 //! (`simulate.rs`).
 
+mod auto;
 mod bdf;
 mod branch;
 mod dop853;
@@ -44,6 +45,7 @@ mod stiffness;
 #[cfg(test)]
 mod tests;
 
+pub use auto::{Auto, AutoOptions, AutoPhase};
 pub use bdf::{Bdf, BdfOptions, BDF_MAX_ORDER};
 pub use branch::{SingularPassage, SINGULAR_SINE};
 pub use dop853::{Dop853, Dop853Options};

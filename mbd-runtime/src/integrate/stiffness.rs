@@ -98,6 +98,11 @@ impl StiffnessTest {
         }
     }
 
+    /// Counts afresh, keeping what was seen.
+    pub(super) fn watch_again(&mut self) {
+        (self.at_bound, self.below) = (0, 0);
+    }
+
     /// What was seen since the integrator was made.
     pub(super) fn found(&self) -> Option<StiffnessDetected> {
         self.found
