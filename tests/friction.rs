@@ -388,3 +388,41 @@ fn inverse_dynamics_with_coulomb_friction_matches_the_closed_form() {
         .unwrap();
     assert_eq!(checked, 3);
 }
+
+/// BDF (issue 39) through Coulomb friction, whose loads enter its Newton iteration as they
+/// enter generalized-α's, at its default tolerances (rtol 1e-6, atol 1e-8): the sticky block
+/// creeps at the regularized law's speed, and the slippery one slides the closed-form distance,
+/// from 0.5 m/s and from rest (where friction switches on within 1.5e-5 s: a mode of
+/// μ m g cos θ / v_s / m ≈ 2.5e4 1/s that BDF steps through).
+#[test]
+fn bdf_holds_and_slides_a_block_by_friction() {
+    let sticky = Incline { mu: 0.8, ..Incline::default() };
+    let (q, qd) = incline_state(&sticky, 0.0, 0.0);
+    let mut last = q;
+    let mut bdf = Bdf::new(BdfOptions::default());
+    Simulation::new(&sticky, &mut bdf).start(0.0, &q, &qd).times(&[1.0]).run(&mut Incline::workspace(), |s| last = s.point.q).unwrap();
+    let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
+    eprintln!("sticky: {moved:e} m in 1 s, {} steps", bdf.accepted);
+    // Creep speed v_s · r/√(1 − r²) with r = tan θ / μ = 0.72: 1.04e-4 m in 1 s.
+    assert!(moved > 0.9e-4 && moved < 1.2e-4, "moved {moved} m in 1 s");
+
+    let slippery = Incline { mu: 0.3, ..Incline::default() };
+    let (sin, cos) = slippery.theta.sin_cos();
+    let a = 9.81 * (sin - 0.3 * cos);
+    // Relative bounds: sliding from 0.5 m/s, 100 rtol (BDF's delivered error is 18–100× its
+    // rtol, README; measured 2.8e-8); from rest, the start-up where friction switches on inside
+    // the first steps, as for generalized-α (measured 6.6e-5).
+    for (v0, bound) in [(0.5, 100.0 * 1e-6), (0.0, 2e-4)] {
+        let (q, qd) = incline_state(&slippery, 0.0, -v0);
+        let mut bdf = Bdf::new(BdfOptions::default());
+        Simulation::new(&slippery, &mut bdf)
+            .start(0.0, &q, &qd)
+            .times(&[1.0])
+            .run(&mut Incline::workspace(), |s| last = s.point.q)
+            .unwrap();
+        let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
+        let expected = v0 + 0.5 * a;
+        eprintln!("slippery from {v0} m/s: {moved} m against {expected}, {} steps", bdf.accepted);
+        assert!((moved - expected).abs() < bound * expected, "from {v0} m/s: slid {moved} m, expected {expected}");
+    }
+}

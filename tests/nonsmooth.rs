@@ -1,7 +1,10 @@
 //! Non-smooth models: unilateral contact with located switches, user events, and the kinks'
 //! derivatives at exactly the kink.
 
-use mbd::{Dopri5, Dopri5Options, Dynamics, Event, EventHit, Kinematics, Mechanism, Rk4, Rk4Options, Simulation, SimulationOptions};
+use mbd::{
+    Auto, AutoOptions, Bdf, BdfOptions, Dop853, Dop853Options, Dopri5, Dopri5Options, Dynamics, Event, EventHit, Integrator, Kinematics,
+    Mechanism, Rk4, Rk4Options, Simulation, SimulationOptions,
+};
 
 mbd::mechanism! {
     /// A ball of radius 0.1 m dropped from a height of 1 m onto a stiff, undamped linear contact.
@@ -302,4 +305,50 @@ fn a_rope_on_a_floor_runs_through_its_many_switches() {
     assert!(stats.events > 50, "{stats:?}");
     assert!(lowest > -2e-2, "a bead went {lowest} m into the floor");
     assert!(energy.windows(2).all(|w| w[1] < w[0]), "dampers only take energy out: {energy:?}");
+}
+
+include!("../mbd-bench/mechanisms/bump_stop_quarter_car.rs");
+
+/// Issue 39's case B, the quarter car into a 1e6 N/m bump stop, with BDF and with `Auto` (the
+/// stiff methods through located switches): the same switches in the same order as DOP853 at
+/// rtol 1e-12, each within 1e-5 s, and the chassis and wheel heights within 1e-5 m at every
+/// output (both at rtol 1e-8, atol 1e-10: the switch instants inherit the states' errors over
+/// the switching functions' slopes).
+#[test]
+fn the_stiff_methods_land_on_the_bump_stops_switches() {
+    let m = BumpStopQuarterCar::default();
+    let times: Vec<f64> = (1..=100).map(|k| 0.02 * k as f64).collect();
+    fn run<I: Integrator<f64, BumpStopQuarterCar, 6, 6, 4, 10, { BumpStopQuarterCar::NEWTON_STORAGE }>>(
+        m: &BumpStopQuarterCar,
+        integrator: &mut I,
+        times: &[f64],
+    ) -> (Vec<[f64; 6]>, Vec<(f64, usize)>) {
+        let (mut out, mut switches) = (Vec::new(), Vec::new());
+        Simulation::new(m, integrator)
+            .start(0.0, &m.initial_positions(), &[0.0; 6])
+            .times(times)
+            .run(&mut BumpStopQuarterCar::workspace(), |s| match s.event {
+                Some(EventHit::Switch(k)) => switches.push((s.point.t, k)),
+                _ => out.push(s.point.q),
+            })
+            .unwrap();
+        (out, switches)
+    }
+    let (reference, switches) = run(&m, &mut Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-12)), &times);
+    let names: Vec<&str> = switches.iter().map(|&(_, k)| BumpStopQuarterCar::SWITCH_NAMES[k]).collect();
+    eprintln!("case B: switches {switches:?} ({names:?})");
+    assert!(names.contains(&"bump_stop") && names.contains(&"road"), "{names:?}");
+    let tight = (1e-8, 1e-10);
+    let mut auto = Auto::new(AutoOptions::default().with_rtol(tight.0).with_atol(tight.1));
+    let mut bdf = Bdf::new(BdfOptions::default().with_rtol(tight.0).with_atol(tight.1));
+    for (label, (out, found)) in [("BDF", run(&m, &mut bdf, &times)), ("Auto", run(&m, &mut auto, &times))] {
+        assert_eq!(found.len(), switches.len(), "{label}: {found:?} against {switches:?}");
+        for (&(t, k), &(t_ref, k_ref)) in found.iter().zip(&switches) {
+            assert!(k == k_ref && (t - t_ref).abs() < 1e-5, "{label}: {found:?} against {switches:?}");
+        }
+        let worst = out.iter().zip(&reference).map(|(x, y)| (x[1] - y[1]).abs().max((x[4] - y[4]).abs())).fold(0.0, f64::max);
+        eprintln!("{label}: heights within {worst:.1e} m");
+        assert!(worst < 1e-5, "{label}: heights {worst} m off");
+    }
+    eprintln!("Auto: {} switches to BDF, {} DOPRI5 steps, {} BDF steps", auto.switches, auto.explicit.accepted, auto.stiff.accepted);
 }

@@ -33,6 +33,7 @@ chain!(Chain16F32, 16, f32);
 include!("../../mbd-bench/mechanisms/free_spatial_slider_crank.rs");
 include!("../../mbd-bench/mechanisms/stiff_flywheel.rs");
 include!("../../mbd-bench/mechanisms/heavy_top_benchmark.rs");
+include!("../../mbd-bench/mechanisms/bump_stop_quarter_car.rs");
 
 /// The suspension of the examples: a double A-arm corner on its coil-over and a stiff tyre
 /// (200 kN/m under an 18 kg knuckle) driven over a 3 cm bump at 0.5 s (`DoubleAArmRide`).

@@ -98,7 +98,7 @@ impl Study {
 fn main() {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results");
     std::fs::create_dir_all(&out).expect("create mbd-study/results");
-    let cases = 11;
+    let cases = 12;
     let mujoco_cases = 3;
     let progress = ProgressBar::new(cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64);
     progress.set_style(
@@ -193,6 +193,17 @@ fn main() {
         &mut HeavyTop::workspace(),
         2.0,
         false,
+        false,
+        None,
+    );
+    let m = BumpStopQuarterCar::default();
+    study.case(
+        "bump_stop",
+        "quarter car at 20 m/s over a 10 cm bump into a 1e6 N/m bump stop (contacts located)",
+        &m,
+        &mut BumpStopQuarterCar::workspace(),
+        2.0,
+        true,
         false,
         None,
     );

@@ -71,6 +71,7 @@ fn colour(method: Method) -> RGBColor {
         Method::GeneralizedAlpha { .. } => RGBColor(148, 103, 189),
         Method::AdaptiveGeneralizedAlpha { .. } => RGBColor(23, 190, 207),
         Method::Bdf => RGBColor(227, 119, 194),
+        Method::Auto => RGBColor(23, 190, 207),
         Method::MuJoCoRk4 => RGBColor(0, 0, 0),
     }
 }
@@ -153,7 +154,9 @@ fn cheapest<'a>(rows: &'a [Row], case: &str, target: f64, drift: Option<Drift>) 
 
 fn describe(r: &Row, m: &Measured) -> String {
     let setting = match r.method {
-        Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf => format!("rtol {:.0e}", r.setting),
+        Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Auto => {
+            format!("rtol {:.0e}", r.setting)
+        }
         _ => format!("h {:.0e}", r.setting),
     };
     format!("{} ({setting}, {}): {}", r.method.label(), r.drift.label(), time(m.seconds))

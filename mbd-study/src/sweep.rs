@@ -36,6 +36,8 @@ pub enum Method {
     },
     /// Variable-order BDF ([`Bdf`]) over relative tolerances: the stiff method.
     Bdf,
+    /// DOPRI5, or BDF where the model is stiff ([`Auto`]), over relative tolerances.
+    Auto,
     /// MuJoCo's RK4 in joint coordinates, on the chains only (`peers.rs`).
     MuJoCoRk4,
 }
@@ -49,13 +51,14 @@ impl Method {
             Method::GeneralizedAlpha { rho_infinity } => format!("gen-α ρ∞={rho_infinity}"),
             Method::AdaptiveGeneralizedAlpha { rho_infinity } => format!("adaptive gen-α ρ∞={rho_infinity}"),
             Method::Bdf => "BDF".into(),
+            Method::Auto => "Auto".into(),
             Method::MuJoCoRk4 => "MuJoCo RK4".into(),
         }
     }
     /// What the setting is: a step (s) or a relative tolerance.
     pub fn setting_name(self) -> &'static str {
         match self {
-            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf => "rtol",
+            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Auto => "rtol",
             _ => "h (s)",
         }
     }
@@ -104,6 +107,9 @@ pub const TOLERANCES_GENERALIZED_ALPHA: [f64; 7] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7
 /// BDF's relative tolerances (absolute: 1e-2 of it).
 pub const TOLERANCES_BDF: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
+/// `Auto`'s relative tolerances (absolute: 1e-2 of it; at 1e-8 its defaults).
+pub const TOLERANCES_AUTO: [f64; 4] = [1e-4, 1e-6, 1e-8, 1e-10];
+
 /// The methods with their settings.
 pub fn methods() -> Vec<(Method, Vec<f64>)> {
     let mut list =
@@ -113,6 +119,7 @@ pub fn methods() -> Vec<(Method, Vec<f64>)> {
     }
     list.push((Method::AdaptiveGeneralizedAlpha { rho_infinity: 0.8 }, TOLERANCES_GENERALIZED_ALPHA.to_vec()));
     list.push((Method::Bdf, TOLERANCES_BDF.to_vec()));
+    list.push((Method::Auto, TOLERANCES_AUTO.to_vec()));
     list
 }
 
@@ -345,6 +352,17 @@ where
         Method::Bdf => {
             let options = BdfOptions::default().with_rtol(setting).with_atol(setting * 1e-2);
             timed(case, ws, reference, drift, || Bdf::new(options), |i, _| (i.iterations, i.iterations))
+        }
+        Method::Auto => {
+            let options = AutoOptions::default().with_rtol(setting).with_atol(setting * 1e-2);
+            timed(
+                case,
+                ws,
+                reference,
+                drift,
+                || Auto::new(options),
+                |i, _| (i.explicit.evaluations + i.stiff.iterations, i.stiff.iterations),
+            )
         }
         Method::MuJoCoRk4 => Err("MuJoCo runs in peers.rs".into()),
     }

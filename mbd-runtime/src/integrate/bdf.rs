@@ -41,7 +41,8 @@
 //! the velocities in the test, a flywheel slider-crank with a stiff mount (the study's
 //! `stiff_flywheel`) had 3 162 steps rejected against 19 580 accepted over 10 s at rtol = atol =
 //! 1e-8 (measured 2026-11-29); the delivered error is
-//! 18–100× rtol; events and Coulomb friction go through the shared Newton iteration untested.
+//! 18–100× rtol. Coulomb friction and located switches go through the shared Newton iteration
+//! (tested in `tests/friction.rs` and `tests/nonsmooth.rs`).
 
 use super::implicit::{finish, solve, NewtonSettings, StateMap};
 use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
