@@ -762,6 +762,17 @@ fn bdf_steps_over_a_stiff_damped_mode() {
 
 include!("../mbd-bench/mechanisms/stiff_flywheel.rs");
 
+/// Case A assembled, its velocities projected onto the constraints.
+fn case_a_start() -> (StiffFlywheel, [f64; 12], [f64; 12]) {
+    let m = StiffFlywheel::default();
+    let mut ws = StiffFlywheel::workspace();
+    let mut q = m.initial_positions();
+    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
+    let mut v = m.initial_velocities();
+    m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).unwrap();
+    (m, q, v)
+}
+
 /// Case (A) of the stiff issue (issue 39) is within its bounds at the start: the fastest
 /// eigenvalue of the linearization 1e4 1/s ± 2×, real (overdamped: damping ratio 1 as `Mode`
 /// reports a real eigenvalue), the flywheel at ≥ 5 rad/s; and over its first second BDF at
@@ -769,12 +780,7 @@ include!("../mbd-bench/mechanisms/stiff_flywheel.rs");
 /// 4 726, which its stability bound sets), to the same motion.
 #[test]
 fn case_a_is_stiff_and_spinning() {
-    let m = StiffFlywheel::default();
-    let mut ws = StiffFlywheel::workspace();
-    let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
-    let mut v = m.initial_velocities();
-    m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).unwrap();
+    let (m, q, v) = case_a_start();
     let lin = mbd::Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
     let fastest = lin.modes().into_iter().max_by(|a, b| a.eigenvalue.norm().total_cmp(&b.eigenvalue.norm())).unwrap();
     eprintln!(
@@ -935,12 +941,8 @@ fn auto_is_dopri5_where_nothing_is_stiff() {
 /// steps (209 of DOPRI5, 1 487 of BDF) against DOPRI5's 5 326, 3.7e-9 apart at the end.
 #[test]
 fn auto_hands_a_stiff_run_to_bdf() {
-    let m = StiffFlywheel::default();
+    let (m, q, v) = case_a_start();
     let mut ws = StiffFlywheel::workspace();
-    let mut q = m.initial_positions();
-    KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).unwrap();
-    let mut v = m.initial_velocities();
-    m.project_velocities(&q, &mut v, 0.0, &DynamicsOptions::default()).unwrap();
     let (mut end_a, mut end_d) = ([0.0; 12], [0.0; 12]);
     let mut auto = Auto::default();
     let stats_a = Simulation::new(&m, &mut auto).start(0.0, &q, &v).times(&[1.0]).run(&mut ws, |s| end_a = s.point.q).unwrap();

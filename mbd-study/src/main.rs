@@ -19,6 +19,7 @@
 mod cases;
 mod exactness;
 mod peers;
+mod proportionality;
 mod report;
 mod sweep;
 
@@ -33,6 +34,7 @@ use sweep::{Case, Reference, Row};
 
 struct Study {
     rows: Vec<Row>,
+    proportionality: Vec<proportionality::Row>,
     exactness: Vec<exactness::Row>,
     summaries: Vec<CaseSummary>,
     progress: ProgressBar,
@@ -93,6 +95,25 @@ impl Study {
         }
         (q0, v0, reference)
     }
+
+    /// Tolerance proportionality on a case already swept (its start and reference), over its
+    /// output times up to `horizon` (s).
+    #[allow(clippy::too_many_arguments)]
+    fn proportional<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+        &mut self,
+        name: &'static str,
+        m: &M,
+        ws: &mut Workspace<f64, NV, NC, N, NS>,
+        (q0, v0, reference): ([f64; NQ], [f64; NV], Reference<NQ>),
+        t_end: f64,
+        horizon: f64,
+    ) where
+        M: NewtonMatrix<f64, NQ, NV, NC>,
+    {
+        self.progress.set_message(format!("{name}: tolerance proportionality"));
+        let case = Case { name, mechanism: m, q0, v0, t_end, track_work: false };
+        self.proportionality.push(proportionality::measure(&case, ws, &reference, horizon));
+    }
 }
 
 fn main() {
@@ -104,10 +125,11 @@ fn main() {
     progress.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs  {msg}").expect("template").progress_chars("=> "),
     );
-    let mut study = Study { rows: Vec::new(), exactness: Vec::new(), summaries: Vec::new(), progress, out: out.clone() };
+    let mut study =
+        Study { rows: Vec::new(), proportionality: Vec::new(), exactness: Vec::new(), summaries: Vec::new(), progress, out: out.clone() };
 
     let m = FlywheelSliderCrank::default();
-    study.case(
+    let run = study.case(
         "flywheel_slider_crank",
         "slider-crank with a 2 kg·m² flywheel at 5 rev/s",
         &m,
@@ -117,6 +139,7 @@ fn main() {
         true,
         None,
     );
+    study.proportional("flywheel_slider_crank", &m, &mut FlywheelSliderCrank::workspace(), run, 2.0, 2.0);
     let m = DoublePendulum::default();
     study.case(
         "double_pendulum",
@@ -129,7 +152,9 @@ fn main() {
         None,
     );
     let m = Chain4::default();
-    study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true, Some(4));
+    let run =
+        study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true, Some(4));
+    study.proportional("chain4", &m, &mut Chain4::workspace(), run, 2.0, 1.0);
     let m = Chain16::default();
     let (q0, v0, reference) =
         study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true, Some(16));
@@ -164,7 +189,7 @@ fn main() {
     let m = gyroscope::Gyroscope { wz: 100.0 * PI, ..gyroscope::Gyroscope::default() };
     study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true, None);
     let m = FreeSpatialSliderCrank::default();
-    study.case(
+    let run = study.case(
         "spatial_slider_crank",
         "spatial slider-crank falling under gravity",
         &m,
@@ -174,8 +199,9 @@ fn main() {
         true,
         None,
     );
+    study.proportional("spatial_slider_crank", &m, &mut FreeSpatialSliderCrank::workspace(), run, 2.0, 2.0);
     let m = StiffFlywheel::default();
-    study.case(
+    let run = study.case(
         "stiff_flywheel",
         "flywheel slider-crank with a follower on a 1e7 N/m overdamped mount (stiff: −1.6e4 1/s)",
         &m,
@@ -185,8 +211,9 @@ fn main() {
         false,
         None,
     );
+    study.proportional("stiff_flywheel", &m, &mut StiffFlywheel::workspace(), run, 10.0, 10.0);
     let m = HeavyTop::default();
-    study.case(
+    let run = study.case(
         "heavy_top_benchmark",
         "heavy-top benchmark, 150 rad/s (Brüls, Cardona & Arnold 2012; spatial)",
         &m,
@@ -196,8 +223,9 @@ fn main() {
         false,
         None,
     );
+    study.proportional("heavy_top_benchmark", &m, &mut HeavyTop::workspace(), run, 2.0, 2.0);
     let m = BumpStopQuarterCar::default();
-    study.case(
+    let run = study.case(
         "bump_stop",
         "quarter car at 20 m/s over a 10 cm bump into a 1e6 N/m bump stop (contacts located)",
         &m,
@@ -207,6 +235,7 @@ fn main() {
         false,
         None,
     );
+    study.proportional("bump_stop", &m, &mut BumpStopQuarterCar::workspace(), run, 2.0, 2.0);
     study.progress.finish();
 
     report::csv(&study.rows, &out.join("study.csv")).expect("write study.csv");
@@ -217,6 +246,7 @@ fn main() {
         study.rows.len()
     );
     let mut markdown = report::markdown(&study.summaries, &study.rows, &header);
+    markdown.push_str(&proportionality::markdown(&study.proportionality));
     markdown.push_str(&exactness::markdown(&study.exactness));
     std::fs::write(out.join("study.md"), markdown).expect("write study.md");
     println!("wrote {}", out.display());

@@ -7,7 +7,7 @@
 //!   The fast mode's rate ρ = |λ| is kept, and BDF starts at order 1 from DOPRI5's last step.
 //! * **back to DOPRI5** when the fast mode has gone: every 8 BDF steps, ρ is estimated again at
 //!   the step's end by three power iterations on the ODE's Jacobian J = ∂(q̇, v̇)/∂(q, v) by
-//!   differences of forward dynamics (three evaluations, from the direction of BDF's last error
+//!   differences of forward dynamics (four evaluations, from the direction of BDF's last error
 //!   estimate), and where it is below a tenth of ρ at the switch, with DOPRI5's stable step
 //!   3.25/ρ above BDF's step, at two probes in a row, DOPRI5 goes on at BDF's step. A stiff
 //!   element that let go (a contact, a cable gone slack) gives back the explicit method's
@@ -86,8 +86,8 @@ pub struct Auto<T, const NQ: usize, const NV: usize> {
     calm: u32,
     /// The fastest mode's rate (1/s) when DOPRI5 saw the model stiff.
     switch_rate: T,
-    /// BDF steps since the switch to it.
-    since_switch: u64,
+    /// BDF has not stepped since the switch to it.
+    fresh: bool,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Auto<T, NQ, NV> {
@@ -110,7 +110,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Auto<T, NQ, NV> {
             since_probe: 0,
             calm: 0,
             switch_rate: T::ZERO,
-            since_switch: 0,
+            fresh: false,
         }
     }
 
@@ -158,11 +158,11 @@ where
                     self.switch_rate = self.rate;
                     self.stiff.next_step = to.t - from.t;
                     self.stiff.restart();
-                    (self.since_probe, self.calm, self.since_switch) = (0, 0, 0);
+                    (self.since_probe, self.calm, self.fresh) = (0, 0, true);
                 }
             }
             AutoPhase::Stiff => {
-                if self.since_switch == 0 {
+                if self.fresh {
                     // BDF's first step solves Φ = 0 and projects v: from DOPRI5's end, whose drift
                     // its error test would count, it starts on the constraints.
                     let mut start = *from;
@@ -172,7 +172,7 @@ where
                 } else {
                     Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, from, t_max, to)?;
                 }
-                self.since_switch += 1;
+                self.fresh = false;
                 self.since_probe += 1;
                 if self.options.switch_back && self.since_probe >= PROBE_EVERY {
                     self.since_probe = 0;
@@ -215,9 +215,8 @@ where
         }
     }
 
-    /// Restarts the method of the next step; the phase stays (a switch event does not change
-    /// the model's stiffness). A run that reuses the integrator starts in the phase the last
-    /// one ended in.
+    /// Restarts both methods; the phase stays (a switch event does not change the model's
+    /// stiffness). A run that reuses the integrator starts in the phase the last one ended in.
     fn restart(&mut self) {
         Integrator::<T, M, NQ, NV, NC, N, NS>::restart(&mut self.explicit);
         self.stiff.restart();
@@ -244,8 +243,9 @@ where
 }
 
 /// The rate (1/s) of the fastest mode at the point `p`: three power iterations on J =
-/// ∂(q̇, v̇)/∂(q, v) by differences of forward dynamics, from the direction `seed` (BDF's last
-/// error estimate); `None` where the seed is zero or an evaluation fails.
+/// ∂(q̇, v̇)/∂(q, v) by differences of forward dynamics (from its value at `p`, not BDF's v̇,
+/// which meets the equations only to Newton's tolerance), from the direction `seed` (BDF's
+/// last error estimate); `None` where the seed is zero or an evaluation fails.
 fn fastest_rate<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     system: &System<'_, M, T>,
     p: &Point<T, NQ, NV, NC>,
@@ -260,6 +260,7 @@ where
     let size = p.q.iter().chain(p.v.iter()).fold(T::ONE, |s, x| s.max(x.abs())) * T::from_f64(1e-6);
     let mut qdot = [T::ZERO; NQ];
     m.position_rates(&p.q, &p.v, &mut qdot);
+    let base = system.point::<NQ, NV, NC>(p.t, p.q, p.v, p.work).ok()?;
     let (mut d, mut rate) = (seed, None);
     for _ in 0..3 {
         let n = norm(&d);
@@ -272,7 +273,7 @@ where
         let moved = system.point::<NQ, NV, NC>(p.t, q, v, p.work).ok()?;
         let mut moved_qdot = [T::ZERO; NQ];
         m.position_rates(&q, &v, &mut moved_qdot);
-        d = (core::array::from_fn(|i| moved_qdot[i] - qdot[i]), core::array::from_fn(|i| moved.vd[i] - p.vd[i]));
+        d = (core::array::from_fn(|i| moved_qdot[i] - qdot[i]), core::array::from_fn(|i| moved.vd[i] - base.vd[i]));
         rate = Some(norm(&d) / size);
     }
     rate

@@ -1,0 +1,135 @@
+//! Tolerance proportionality (issue 39, item 4): each adaptive method on each case at
+//! rtol = atol ∈ {1e-4, 1e-6, 1e-8, 1e-10}, with the default drift control (projection), and
+//! the issue's error: the largest over the output times of ‖q − q_ref‖∞ / max(1, ‖q_ref‖∞)
+//! (angles in rad), over the case's output times up to a horizon (the issue's 1 s for the
+//! 4-link chain, whose motion is chaotic: over its study's 2 s any error grows by orders of
+//! magnitude whatever the method). The factor error/rtol says how well a method delivers what
+//! it is asked; where the error is below the reference's resolution the factor is not resolved.
+
+use std::fmt::Write;
+
+use mbd::prelude::*;
+
+use crate::sweep::{output_times, Case, Reference};
+
+/// The tolerances (rtol = atol).
+pub const TOLERANCES: [f64; 4] = [1e-4, 1e-6, 1e-8, 1e-10];
+
+/// The adaptive methods.
+const METHODS: [&str; 5] = ["DOPRI5", "DOP853", "adaptive gen-α ρ∞=0.8", "BDF", "Auto"];
+
+/// One case's errors: per method, per tolerance, the relative error (or why there is none).
+pub struct Row {
+    pub case: &'static str,
+    /// The last output time compared (s).
+    pub horizon: f64,
+    /// The reference's resolution, relative like the errors.
+    pub resolution: f64,
+    pub errors: Vec<(&'static str, Vec<Result<f64, String>>)>,
+}
+
+/// Runs every method at every tolerance on `case`, over its output times up to `horizon`.
+pub fn measure<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
+    reference: &Reference<NQ>,
+    horizon: f64,
+) -> Row
+where
+    M: NewtonMatrix<f64, NQ, NV, NC>,
+{
+    let times: Vec<f64> = output_times(case.t_end).into_iter().filter(|&t| t <= horizon + 1e-12).collect();
+    let scale = reference.q.iter().fold(1.0f64, |s, q| q.iter().fold(s, |s, x| s.max(x.abs())));
+    let mut errors = Vec::new();
+    for method in METHODS {
+        let runs = TOLERANCES
+            .iter()
+            .map(|&tol| match method {
+                "DOPRI5" => error(case, ws, reference, &times, &mut Dopri5::new(Dopri5Options::default().with_rtol(tol).with_atol(tol))),
+                "DOP853" => error(case, ws, reference, &times, &mut Dop853::new(Dop853Options::default().with_rtol(tol).with_atol(tol))),
+                "BDF" => error(case, ws, reference, &times, &mut Bdf::new(BdfOptions::default().with_rtol(tol).with_atol(tol))),
+                "Auto" => error(case, ws, reference, &times, &mut Auto::new(AutoOptions::default().with_rtol(tol).with_atol(tol))),
+                _ => {
+                    let control = ErrorControl::default().with_rtol(tol).with_atol(tol);
+                    let options = GeneralizedAlphaOptions::default().with_error_control(Some(control));
+                    error(case, ws, reference, &times, &mut GeneralizedAlpha::new(options))
+                }
+            })
+            .collect();
+        errors.push((method, runs));
+    }
+    Row { case: case.name, horizon, resolution: reference.uncertainty / scale, errors }
+}
+
+/// The run's error as the issue defines it, or its error message.
+fn error<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    case: &Case<'_, M, NQ, NV>,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
+    reference: &Reference<NQ>,
+    times: &[f64],
+    integrator: &mut I,
+) -> Result<f64, String>
+where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+    I: Integrator<f64, M, NQ, NV, NC, N, NS>,
+{
+    let (mut worst, mut k) = (0.0f64, 0);
+    Simulation::new(case.mechanism, integrator)
+        .start(0.0, &case.q0, &case.v0)
+        .times(times)
+        .run(ws, |s| {
+            let r = &reference.q[k];
+            let scale = r.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let d = s.point.q.iter().zip(r).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            worst = worst.max(d / scale);
+            k += 1;
+        })
+        .map_err(|e| e.to_string())?;
+    Ok(worst)
+}
+
+/// The table: per case and method, error/rtol at each tolerance, and the largest resolved.
+pub fn markdown(rows: &[Row]) -> String {
+    let mut out = String::new();
+    writeln!(
+        out,
+        "\n## Tolerance proportionality (rtol = atol, projection)\n\nError: the largest over the 50 output times of ‖q − q_ref‖∞ / max(1, ‖q_ref‖∞); each cell is error / rtol at rtol = {}; \"<\" where the error is below the reference's resolution (the factor is then at most the one shown). The last column is the largest resolved factor: what the method delivers over the range.\n",
+        TOLERANCES.iter().map(|t| format!("{t:.0e}")).collect::<Vec<_>>().join(", ")
+    )
+    .unwrap();
+    write!(out, "| case (horizon) | method |").unwrap();
+    for t in TOLERANCES {
+        write!(out, " {t:.0e} |").unwrap();
+    }
+    writeln!(out, " largest |\n|---|---|{}---|", "---|".repeat(TOLERANCES.len())).unwrap();
+    for row in rows {
+        for (method, runs) in &row.errors {
+            write!(out, "| {} ({} s) | {method} |", row.case, row.horizon).unwrap();
+            let mut largest: Option<f64> = None;
+            for (run, tol) in runs.iter().zip(TOLERANCES) {
+                let cell = match run {
+                    Ok(e) if *e < row.resolution => format!("< {}", factor(row.resolution / tol)),
+                    Ok(e) => {
+                        largest = Some(largest.map_or(e / tol, |l| l.max(e / tol)));
+                        factor(e / tol)
+                    }
+                    Err(message) => format!("failed: {}", message.chars().take(60).collect::<String>()),
+                };
+                write!(out, " {cell} |").unwrap();
+            }
+            writeln!(out, " {} |", largest.map_or("—".to_string(), |l| format!("**{}**", factor(l)))).unwrap();
+        }
+    }
+    out
+}
+
+/// A factor to two significant digits.
+fn factor(f: f64) -> String {
+    if f >= 100.0 {
+        format!("{f:.0}")
+    } else if f >= 0.1 {
+        format!("{f:.2}")
+    } else {
+        format!("{f:.1e}")
+    }
+}
