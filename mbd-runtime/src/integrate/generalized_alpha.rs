@@ -285,9 +285,20 @@ where
             let a_n = self.pseudo_acceleration(&from.vd, h_try);
             self.iterations = 0;
             let map = AlphaMap { from, a_n, coefficients, h: h_try };
-            let result =
-                solve::<T, M, _, NQ, NV, NC, N>(system, &o.newton(), resolution, &map, &from.vd, from, t1, to, &mut self.iterations, s)
-                    .map(|()| map.pseudo_acceleration(&to.vd));
+            let result = solve::<T, M, _, NQ, NV, NC, N>(
+                system,
+                &o.newton(),
+                resolution,
+                &map,
+                &from.vd,
+                from,
+                t1,
+                to,
+                &mut self.iterations,
+                &mut None,
+                s,
+            )
+            .map(|()| map.pseudo_acceleration(&to.vd));
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
                 self.accept(result?, h_try);

@@ -23,7 +23,20 @@ pub(super) trait StateMap<T: Real, M, const NQ: usize, const NV: usize, const NC
     fn slopes(&self) -> (T, T);
     /// q₊ and v₊ for v̇₊ = `vd`.
     fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]);
+    /// The size of the change of q₊ and v₊ a Newton correction `dvd` of v̇₊ makes, in the
+    /// method's own error norm (1: its tolerance), for the rate test of [`solve`]; `None` (the
+    /// default): a method without one converges by the absolute tests alone.
+    fn error_norm(&self, dvd: &[T; NV]) -> Option<T> {
+        let _ = dvd;
+        None
+    }
 }
+
+/// The rate test (DASSL's, Brenan, Campbell & Petzold 5.2.2): with the convergence rate ρ of
+/// the iteration (the ratio of successive corrections, kept from step to step), the error left
+/// after a correction of size δ in the method's error norm is about ρ/(1 − ρ) δ; where that is
+/// below a third of the tolerance the iterate is accepted, even after one iteration.
+const RATE_TEST: f64 = 0.33;
 
 /// The Newton iteration's settings, from the method's options (their documentation there).
 #[derive(Clone, Copy, Debug)]
@@ -40,6 +53,8 @@ pub(super) struct NewtonSettings<T> {
 /// [[M + c_v C + c_q K, −Dᵀ], [D, 0]] (the constraint rows scaled by 1/c_q), q₊ and v₊ given by
 /// `map`, then the velocity projection. Writes q₊, v₊, v̇₊ and λ₊ to `to`; counts the Newton
 /// iterations in `iterations`. `vd0` is the first guess of v̇₊ (λ₊ starts from `from`'s).
+/// Where `map` has an error norm, `rate` carries the convergence rate from step to step and
+/// the iterate is also accepted by the rate test ([`RATE_TEST`]).
 // `!(x > y)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord, clippy::too_many_arguments)]
 pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
@@ -52,6 +67,7 @@ pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, 
     t1: T,
     to: &mut Point<T, NQ, NV, NC>,
     iterations: &mut u32,
+    rate: &mut Option<T>,
     s: &mut M::NewtonStorage,
 ) -> Result<(), SimulationError>
 where
@@ -90,6 +106,7 @@ where
     let mut theta = one;
     let mut norm_before = T::ZERO;
     let mut correction = T::ZERO;
+    let mut last_size: Option<T> = None;
     loop {
         map.state(mech, &vd, &mut q, &mut v);
         // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
@@ -167,10 +184,23 @@ where
         iteration += 1;
         *iterations = iteration;
         let changes = [correction, lambda_change];
+        // The rate test, where the method has an error norm: the rate measured on this step's
+        // corrections when there are two, else the last step's.
+        let step_v: [T; NV] = core::array::from_fn(|i| rhs[i]);
+        let size = map.error_norm(&step_v).filter(|_| theta == one && !near_singular);
+        if let (Some(size), Some(before)) = (size, last_size.filter(|&b| b > T::ZERO)) {
+            *rate = Some(size / before);
+        }
+        last_size = size;
         if worst.0 <= o.tolerance
             && converged(o, changes, last_change, (o.lambda_tolerance * force_scale).max(rounding_floor), near_singular, iteration > 1)
         {
             break;
+        }
+        if let (Some(size), Some(r)) = (size, rate.filter(|&r| r < T::from_f64(0.9))) {
+            if r / (one - r) * size <= T::from_f64(RATE_TEST) {
+                break;
+            }
         }
         last_change = changes;
     }
