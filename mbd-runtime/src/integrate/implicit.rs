@@ -204,7 +204,8 @@ where
         }
         last_change = changes;
     }
-    // The state of the converged iterate (the last correction is below tolerance).
+    // The state of the converged iterate (its last correction below tolerance, or passing the
+    // rate test).
     map.state(mech, &vd, &mut q, &mut v);
     if o.project_velocities {
         mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
