@@ -3,7 +3,7 @@
 //!
 //! The state is (t, q, v) with q̇ = B(q) v ([`Kinematics::position_rates`]; planar v = q̇); each
 //! step ends at a [`Point`] that also holds v̇, λ and, when asked for, the work of
-//! non-conservative forces and of constraint forces. Four integrators:
+//! non-conservative forces and of constraint forces. Six integrators:
 //!
 //! * [`Rk4`]: classical Runge–Kutta, fixed step, 4 evaluations of v̇ per step.
 //! * [`Dopri5`]: Dormand–Prince 5(4) with error control (mixed absolute/relative tolerance on q
@@ -14,6 +14,10 @@
 //!   M v̇ − Dᵀλ = h, Φ = 0, solved by Newton in velocity space with the exact (∂h/∂q)B, ∂h/∂v
 //!   and ∂(Dᵀλ)/∂q·B: second-order accurate, numerical damping set by ρ∞, fit for stiff springs
 //!   and dampers; fixed steps, or variable ones from a local error estimate ([`ErrorControl`]).
+//! * [`Bdf`]: variable-order (1–5), variable-step BDF on the same index-3 equations through the
+//!   same Newton iteration, with error control on q and v: the stiff method.
+//! * [`Auto`]: DOPRI5 while the model is not stiff, BDF while it is (switching on DOPRI5's
+//!   stiffness test and back where the fast mode has slowed tenfold): the one to start with.
 //!
 //! Each accepted step ends with [`Kinematics::normalize_positions`] (spatial: unit Euler
 //! parameters; planar: nothing).
@@ -28,8 +32,10 @@
 //! This file holds what they share: the [`Point`] a step ends at, its [`Sample`] and [`Energy`],
 //! the [`System`] of equations an [`Integrator`] advances, [`SimulationError`], cubic Hermite
 //! interpolation and the end-of-step finiteness check. Each integrator has its own file
-//! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`), and the driver its own
-//! (`simulate.rs`).
+//! (`rk4.rs`, `dopri5.rs`, `dop853.rs`, `generalized_alpha.rs`, `bdf.rs`, `auto.rs`; the implicit
+//! methods' Newton iteration in `implicit.rs`, DOPRI5's and DOP853's stiffness test in
+//! `stiffness.rs`), and the driver its own (`simulate.rs`, with `branch.rs` watching for singular
+//! passages and `partition.rs` for coordinate partitioning).
 
 mod auto;
 mod bdf;
