@@ -184,23 +184,13 @@ where
         iteration += 1;
         *iterations = iteration;
         let changes = [correction, lambda_change];
-        // The rate test, where the method has an error norm: the rate measured on this step's
-        // corrections when there are two, else the last step's.
-        let step_v: [T; NV] = core::array::from_fn(|i| rhs[i]);
-        let size = map.error_norm(&step_v).filter(|_| theta == one && !near_singular);
-        if let (Some(size), Some(before)) = (size, last_size.filter(|&b| b > T::ZERO)) {
-            *rate = Some(size / before);
-        }
-        last_size = size;
+        let size = map.error_norm(&core::array::from_fn(|i| rhs[i])).filter(|_| theta == one && !near_singular);
+        let rate_met = rate_test(size, &mut last_size, rate);
         if worst.0 <= o.tolerance
             && converged(o, changes, last_change, (o.lambda_tolerance * force_scale).max(rounding_floor), near_singular, iteration > 1)
+            || rate_met
         {
             break;
-        }
-        if let (Some(size), Some(r)) = (size, rate.filter(|&r| r < T::from_f64(0.9))) {
-            if r / (one - r) * size <= T::from_f64(RATE_TEST) {
-                break;
-            }
         }
         last_change = changes;
     }
@@ -216,6 +206,20 @@ where
     to.vd = vd;
     to.lambda = lambda;
     check_step::<T, M, NQ, NV, NC>(from, to)
+}
+
+/// The rate test ([`RATE_TEST`]) on a correction of `size` in the method's error norm (`None`:
+/// no norm, or a step not to be judged so): the rate is measured on this step's corrections
+/// when there are two (`last_size` holds the one before), else the last step's is used.
+fn rate_test<T: Real>(size: Option<T>, last_size: &mut Option<T>, rate: &mut Option<T>) -> bool {
+    if let (Some(size), Some(before)) = (size, last_size.filter(|&b| b > T::ZERO)) {
+        *rate = Some(size / before);
+    }
+    *last_size = size;
+    match (size, rate.filter(|&r| r < T::from_f64(0.9))) {
+        (Some(size), Some(r)) => r / (T::ONE - r) * size <= T::from_f64(RATE_TEST),
+        _ => false,
+    }
 }
 
 /// Factors the Newton matrix in `s`; returns the rounding floor of the force change and
