@@ -260,10 +260,11 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn prepare_interpolation(
         &mut self,
         s: &System<'_, M, f64>,
+        ws: &mut Workspace<f64, 9, 8, 17, NS>,
         from: &Point<f64, 9, 9, 8>,
         to: &Point<f64, 9, 9, 8>,
     ) -> Result<(), SimulationError> {
-        self.0.prepare_interpolation(s, from, to)
+        self.0.prepare_interpolation(s, ws, from, to)
     }
     fn restart(&mut self) {
         self.0.restart()
@@ -271,6 +272,7 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn after_correction(
         &mut self,
         s: &System<'_, M, f64>,
+        ws: &mut Workspace<f64, 9, 8, 17, NS>,
         end: &Point<f64, 9, 9, 8>,
         q: [f64; 9],
         v: [f64; 9],
@@ -278,7 +280,7 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     where
         M: mbd::ForwardDynamics<f64, 9, 9, 8>,
     {
-        self.0.after_correction(s, end, q, v)
+        self.0.after_correction(s, ws, end, q, v)
     }
     fn holds_constraints(&self) -> bool {
         self.0.holds_constraints()

@@ -205,8 +205,9 @@ mechanism! {
     }
 }
 
-/// The ladder's assembly, statics and every integrator on one thread with the default 2 MB stack
-/// in a debug build (issue 37, item 4). Before statics and generalized-α kept their planned
+/// The ladder's assembly, statics and every integrator (DOPRI5 also with partitioning and
+/// without a correction) on one thread with the default 2 MB stack in a debug build (issue 37,
+/// item 4). Before statics and generalized-α kept their planned
 /// Newton matrices (NEWTON_STORAGE scalars each) in the work space, statics copying them a dozen
 /// times on the stack, this test overflowed that thread (measured on a1b8d02).
 #[test]
@@ -257,6 +258,32 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
             .run(&mut ws, |s| last = s.point.q)
             .expect("generalized-α");
         check("generalized-α", &last);
+        Simulation::new(&m, &mut Bdf::new(BdfOptions::default()))
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("BDF");
+        check("BDF", &last);
+        Simulation::new(&m, &mut Auto::default())
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("Auto");
+        check("Auto", &last);
+        // The other corrections. Partitioning copied D (NC × NV, 2.4 MB here) on the stack in a
+        // debug build, past this thread, until it copied row by row. Without a correction the
+        // explicit steps' drift after 2 ms is O(h⁵) per step, far below 1e-8 m.
+        for correction in [Correction::partitioning(), Correction::None] {
+            Simulation::new(&m, &mut Dopri5::default())
+                .start(0.0, &q, &v0)
+                .times(&times)
+                .options(options.with_correction(correction))
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("DOPRI5");
+            check(&format!("DOPRI5 with {correction:?}"), &last);
+        }
         eprintln!("integrators: {:.1} s", clock.elapsed().as_secs_f64());
         // Statics from the sheared ladder: it swings back and hangs with its rails vertical, every rung level
         // (the verdict Stable; 1e-6 rad leaves room for the conditioning of 100 stacked loops).
@@ -273,4 +300,85 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
             assert!(phi_rung.abs() < 1e-6, "{rung} at φ = {phi_rung}");
         }
     });
+}
+
+mechanism! {
+    /// The ladder of [`Ladder201`] with 50 loops (101 bodies) in joint coordinates: a spanning
+    /// tree of 101 revolutes (NV = 101) and the 51 links as closure rows (NC = 51). M depends on
+    /// q and there are rows, so its forward dynamics is the dense one (`dense_forward`: D,
+    /// M⁻¹Dᵀ, S and M's factor, 0.18 MB here).
+    pub JointLadder101 {
+        joint_coordinates;
+        gravity [0.0, -9.81];
+        body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
+        for k in 1..=50 {
+            body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
+        }
+        for k in 0..50 {
+            body a[k] {
+                mass: 0.5,
+                inertia: 0.00375,
+                at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
+            }
+            revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
+            revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
+            revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
+        }
+        revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
+        revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
+    }
+}
+
+/// The dense forward dynamics of joint coordinates keeps its arrays in the work space
+/// ([`DenseScratch`]), so the explicit integrators and `Auto` run the 101-body ladder in joint
+/// coordinates, with each correction, on a 512 KB thread in a debug build. Before, those
+/// arrays were on the stack and copied: the same runs needed 0.67 MB in a release build
+/// (measured by painting the stack, 2026-12-02) and more in debug; now about 0.22 MB in debug.
+#[test]
+fn dense_forward_dynamics_of_joint_coordinates_keeps_its_arrays_off_the_stack() {
+    std::thread::Builder::new()
+        .stack_size(512 << 10)
+        .spawn(|| {
+            let m = JointLadder101::default();
+            let mut ws = JointLadder101::workspace();
+            let mut q = m.initial_positions();
+            KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the ladder assembles");
+            let (v0, times) = ([0.0; JointLadder101::NV], [1e-3, 2e-3]);
+            let mut last = [0.0; JointLadder101::NQ];
+            let check = |name: &str, q: &[f64; JointLadder101::NQ]| {
+                let mut phi = [0.0; JointLadder101::NC];
+                m.constraints(q, 2e-3, &mut phi);
+                let worst = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                // The corrected runs hold 1e-10 m; without a correction the drift of two DOPRI5
+                // steps from an assembled start is O(h⁵), far below 1e-8 m.
+                assert!(worst < 1e-8, "{name}: ‖Φ‖∞ = {worst:e}");
+            };
+            for correction in [Correction::projection(), Correction::partitioning(), Correction::None] {
+                let options = SimulationOptions::default().with_correction(correction);
+                Simulation::new(&m, &mut Rk4::default())
+                    .start(0.0, &q, &v0)
+                    .times(&times)
+                    .options(options)
+                    .run(&mut ws, |s| last = s.point.q)
+                    .expect("RK4");
+                check(&format!("RK4 with {correction:?}"), &last);
+                Simulation::new(&m, &mut Dop853::default())
+                    .start(0.0, &q, &v0)
+                    .times(&times)
+                    .options(options)
+                    .run(&mut ws, |s| last = s.point.q)
+                    .expect("DOP853");
+                check(&format!("DOP853 with {correction:?}"), &last);
+                Simulation::new(&m, &mut Auto::default())
+                    .start(0.0, &q, &v0)
+                    .times(&times)
+                    .options(options)
+                    .run(&mut ws, |s| last = s.point.q)
+                    .expect("Auto");
+                check(&format!("Auto with {correction:?}"), &last);
+            }
+        })
+        .expect("spawn")
+        .join()
+        .expect("the runs panicked");
 }

@@ -50,7 +50,7 @@ pub use model::mechanism::{
 };
 pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint, TreeBody, TreePoint};
 pub use model::planar::{point_acceleration, point_position, point_velocity};
-pub use model::workspace::Workspace;
+pub use model::workspace::{DenseArrays, DenseScratch, Workspace};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;

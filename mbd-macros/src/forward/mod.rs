@@ -203,7 +203,21 @@ impl Plan<'_> {
                     vd: &mut [#real; #nv_l],
                     lambda: &mut [#real; #nc_l],
                 ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
-                    ::mbd::dense_forward::accelerations(self, q, v, t, options, #friction, #mass_bodies, vd, lambda)
+                    let mut arrays = ::mbd::DenseArrays::new();
+                    ::mbd::dense_forward::accelerations(self, arrays.scratch(), q, v, t, options, #friction, #mass_bodies, vd, lambda)
+                }
+                #[inline]
+                fn accelerations_in(
+                    &self,
+                    scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>,
+                    q: &[#real; #nq_l],
+                    v: &[#real; #nv_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                    vd: &mut [#real; #nv_l],
+                    lambda: &mut [#real; #nc_l],
+                ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::accelerations(self, scratch, q, v, t, options, #friction, #mass_bodies, vd, lambda)
                 }
                 #[inline]
                 fn project_positions_step(
@@ -212,7 +226,18 @@ impl Plan<'_> {
                     t: #real,
                     options: &::mbd::DynamicsOptions<#real>,
                 ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
-                    ::mbd::dense_forward::project_positions_step(self, q, t, options, #mass_bodies)
+                    let mut arrays = ::mbd::DenseArrays::new();
+                    ::mbd::dense_forward::project_positions_step(self, arrays.scratch(), q, t, options, #mass_bodies)
+                }
+                #[inline]
+                fn project_positions_step_in(
+                    &self,
+                    scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>,
+                    q: &mut [#real; #nq_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::project_positions_step(self, scratch, q, t, options, #mass_bodies)
                 }
                 #[inline]
                 fn project_velocities(
@@ -222,7 +247,19 @@ impl Plan<'_> {
                     t: #real,
                     options: &::mbd::DynamicsOptions<#real>,
                 ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
-                    ::mbd::dense_forward::project_velocities(self, q, v, t, options, #mass_bodies)
+                    let mut arrays = ::mbd::DenseArrays::new();
+                    ::mbd::dense_forward::project_velocities(self, arrays.scratch(), q, v, t, options, #mass_bodies)
+                }
+                #[inline]
+                fn project_velocities_in(
+                    &self,
+                    scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>,
+                    q: &[#real; #nq_l],
+                    v: &mut [#real; #nv_l],
+                    t: #real,
+                    options: &::mbd::DynamicsOptions<#real>,
+                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
+                    ::mbd::dense_forward::project_velocities(self, scratch, q, v, t, options, #mass_bodies)
                 }
             }
         };

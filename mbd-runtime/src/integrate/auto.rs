@@ -20,9 +20,9 @@
 //! study (`cargo run --release -p mbd-study`).
 
 use super::stiffness::StiffnessDetected;
-use super::{project, Bdf, BdfOptions, Dopri5, Dopri5Options, Integrator, Point, SimulationError, System};
+use super::{Bdf, BdfOptions, Dopri5, Dopri5Options, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::NewtonMatrix;
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{DenseScratch, Workspace};
 use crate::real::Real;
 
 /// BDF steps between two estimates of the fastest mode's rate.
@@ -166,8 +166,17 @@ where
                     // BDF's first step solves Φ = 0 and projects v: from DOPRI5's end, whose drift
                     // its error test would count, it starts on the constraints.
                     let mut start = *from;
-                    project(system.mechanism, start.t, &mut start.q, &mut start.v, &system.dynamics, self.stiff.options.tolerance, 10)?;
-                    let start = system.point(start.t, start.q, start.v, start.work)?;
+                    super::simulate::project_in(
+                        system.mechanism,
+                        ws.dense(),
+                        start.t,
+                        &mut start.q,
+                        &mut start.v,
+                        &system.dynamics,
+                        self.stiff.options.tolerance,
+                        10,
+                    )?;
+                    let start = system.point_in(ws.dense(), start.t, start.q, start.v, start.work)?;
                     Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, &start, t_max, to)?;
                 } else {
                     Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, from, t_max, to)?;
@@ -176,7 +185,7 @@ where
                 self.since_probe += 1;
                 if self.options.switch_back && self.since_probe >= PROBE_EVERY {
                     self.since_probe = 0;
-                    if let Some(rate) = fastest_rate(system, to, self.stiff.last_error()) {
+                    if let Some(rate) = fastest_rate(system, ws.dense(), to, self.stiff.last_error()) {
                         self.rate = rate;
                     }
                     let h = to.t - from.t;
@@ -199,12 +208,13 @@ where
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         match self.last {
-            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::prepare_interpolation(&mut self.explicit, system, from, to),
-            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::prepare_interpolation(&mut self.stiff, system, from, to),
+            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::prepare_interpolation(&mut self.explicit, system, ws, from, to),
+            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::prepare_interpolation(&mut self.stiff, system, ws, from, to),
         }
     }
 
@@ -225,13 +235,14 @@ where
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
         match self.last {
-            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.explicit, system, end, q, v),
-            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.stiff, system, end, q, v),
+            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.explicit, system, ws, end, q, v),
+            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.stiff, system, ws, end, q, v),
         }
     }
 
@@ -248,6 +259,7 @@ where
 /// last error estimate); `None` where the seed is zero or an evaluation fails.
 fn fastest_rate<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     system: &System<'_, M, T>,
+    mut scratch: DenseScratch<'_, T, NV, NC>,
     p: &Point<T, NQ, NV, NC>,
     seed: ([T; NQ], [T; NV]),
 ) -> Option<T>
@@ -260,7 +272,7 @@ where
     let size = p.q.iter().chain(p.v.iter()).fold(T::ONE, |s, x| s.max(x.abs())) * T::from_f64(1e-6);
     let mut qdot = [T::ZERO; NQ];
     m.position_rates(&p.q, &p.v, &mut qdot);
-    let base = system.point::<NQ, NV, NC>(p.t, p.q, p.v, p.work).ok()?;
+    let base = system.point_in::<NQ, NV, NC>(scratch.reborrow(), p.t, p.q, p.v, p.work).ok()?;
     let (mut d, mut rate) = (seed, None);
     for _ in 0..3 {
         let n = norm(&d);
@@ -270,7 +282,7 @@ where
         let scale = size / n;
         let q: [T; NQ] = core::array::from_fn(|i| p.q[i] + scale * d.0[i]);
         let v: [T; NV] = core::array::from_fn(|i| p.v[i] + scale * d.1[i]);
-        let moved = system.point::<NQ, NV, NC>(p.t, q, v, p.work).ok()?;
+        let moved = system.point_in::<NQ, NV, NC>(scratch.reborrow(), p.t, q, v, p.work).ok()?;
         let mut moved_qdot = [T::ZERO; NQ];
         m.position_rates(&q, &v, &mut moved_qdot);
         d = (core::array::from_fn(|i| moved_qdot[i] - qdot[i]), core::array::from_fn(|i| moved.vd[i] - base.vd[i]));

@@ -331,7 +331,8 @@ where
         if N != NV + NC {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
-        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+        let (newton, mut dense) = ws.newton_and_dense();
+        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
             return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
         };
         let o = self.options;
@@ -395,8 +396,20 @@ where
             let floor = T::from_f64(16.0) * T::EPSILON;
             let map = BdfMap { q_hat, v_hat, c, rtol: o.rtol.max(floor), atol: o.atol.max(floor) };
             let mut iterations = 0;
-            let result =
-                solve::<T, M, _, NQ, NV, NC, N>(system, &newton, resolution, &map, &vd0, from, t1, to, &mut iterations, &mut self.rate, s);
+            let result = solve::<T, M, _, NQ, NV, NC, N>(
+                system,
+                &newton,
+                resolution,
+                &map,
+                &vd0,
+                from,
+                t1,
+                to,
+                &mut iterations,
+                &mut self.rate,
+                s,
+                dense.reborrow(),
+            );
             self.iterations += u64::from(iterations);
             let factor = match result {
                 Ok(()) => {
@@ -407,7 +420,7 @@ where
                     let error = weighted_rms(&o, (&e.0, &e.1), (&from.q, &from.v), (&to.q, &to.v));
                     if error <= T::ONE {
                         self.accept(&o, k, h_try, t1, error, e, predicted, (&from.q, &from.v), to);
-                        finish(system, from, to, h_try)?;
+                        finish(system, dense.reborrow(), from, to, h_try)?;
                         return Ok(());
                     }
                     // DASSL's rule: the estimate's factor on a first failure, a quarter after that
@@ -436,6 +449,7 @@ where
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -466,6 +480,7 @@ where
     fn after_correction(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],

@@ -26,6 +26,7 @@
 //! linkage's), not a passage.
 
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 /// The smallest sine of a row's angle to the span of the rows before it (in the metric of
@@ -77,6 +78,7 @@ impl BranchWatch {
     pub(super) fn observe<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
         &mut self,
         mechanism: &M,
+        mut scratch: DenseScratch<'_, T, NV, NC>,
         t: T,
         q: &[T; NQ],
         v: &[T; NV],
@@ -84,9 +86,9 @@ impl BranchWatch {
     ) {
         // The first row whose ratio is below `tolerance`, if any. Any other failure is the
         // run's own solves' to report.
-        let below = |tolerance: f64| {
+        let mut below = |tolerance: f64| {
             let probe = options.with_allow_redundant(false).with_pivot_tolerance(T::from_f64(tolerance));
-            match mechanism.project_velocities(q, &mut v.clone(), t, &probe) {
+            match mechanism.project_velocities_in(scratch.reborrow(), q, &mut v.clone(), t, &probe) {
                 Err(DynamicsError::DependentConstraint { row, .. }) => Some(row),
                 _ => None,
             }

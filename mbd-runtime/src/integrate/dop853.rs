@@ -308,7 +308,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -355,7 +355,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 mech.position_rates(&q, &v, &mut self.kq[s]);
                 let t_s = if s >= S - 1 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
-                match system.derivatives(t_s, &q, &v, &mut self.kv[s], &mut lambda) {
+                match system.derivatives_in(ws.dense(), t_s, &q, &v, &mut self.kv[s], &mut lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:
                     // shrink the step, and report the failure only at the minimum step.
@@ -442,6 +442,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -461,7 +462,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             stage_state(&from.v, &self.kv, s, h, &mut v);
             mech.position_rates(&q, &v, &mut self.kq[s]);
             self.evaluations += 1;
-            system.derivatives(from.t + T::from_f64(C[s]) * h, &q, &v, &mut self.kv[s], &mut lambda)?;
+            system.derivatives_in(ws.dense(), from.t + T::from_f64(C[s]) * h, &q, &v, &mut self.kv[s], &mut lambda)?;
         }
         dense(&from.q, &q1, &self.kq, h, &mut self.dense_q);
         dense(&from.v, &v1, &self.kv, h, &mut self.dense_v);
@@ -492,12 +493,13 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
         // An explicit method goes on from forward dynamics at the corrected state.
-        Ok(system.point(end.t, q, v, end.work)?)
+        Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)
     }
 }
 

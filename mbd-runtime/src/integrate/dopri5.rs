@@ -194,7 +194,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -258,7 +258,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 }
                 let t_s = if s == 6 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
-                match system.derivatives(t_s, &q, &v, &mut kv[s], &mut lambda) {
+                match system.derivatives_in(ws.dense(), t_s, &q, &v, &mut kv[s], &mut lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:
                     // shrink the step, and report the failure only at the minimum step.
@@ -351,6 +351,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -373,12 +374,13 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
         // An explicit method goes on from forward dynamics at the corrected state.
-        Ok(system.point(end.t, q, v, end.work)?)
+        Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)
     }
 }
 

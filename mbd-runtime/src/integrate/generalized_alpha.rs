@@ -241,7 +241,8 @@ where
         if N != NV + NC {
             return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
         }
-        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+        let (newton, mut dense) = ws.newton_and_dense();
+        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
             return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
         };
         let mut o = self.options;
@@ -297,12 +298,13 @@ where
                 &mut self.iterations,
                 &mut None,
                 s,
+                dense.reborrow(),
             )
             .map(|()| map.pseudo_acceleration(&to.vd));
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
                 self.accept(result?, h_try);
-                return finish(system, from, to, h_try);
+                return finish(system, dense.reborrow(), from, to, h_try);
             };
             let factor = match result {
                 Ok(a1) => {
@@ -318,7 +320,7 @@ where
                         // A step shortened to land on the end keeps the size it would have had.
                         self.next_step = h.max(h_try) * factor.min(T::from_f64(2.0));
                         self.accept(a1, h_try);
-                        return finish(system, from, to, h_try);
+                        return finish(system, dense.reborrow(), from, to, h_try);
                     }
                     factor
                 }
@@ -337,6 +339,7 @@ where
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -357,6 +360,7 @@ where
     fn after_correction(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],

@@ -14,6 +14,7 @@ use super::{check_step, Point, SimulationError, System};
 use crate::linalg::LinalgError;
 use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::{Mechanism, NewtonMatrix};
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -69,6 +70,7 @@ pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, 
     iterations: &mut u32,
     rate: &mut Option<T>,
     s: &mut M::NewtonStorage,
+    scratch: DenseScratch<'_, T, NV, NC>,
 ) -> Result<(), SimulationError>
 where
     T: Real,
@@ -198,7 +200,7 @@ where
     // rate test).
     map.state(mech, &vd, &mut q, &mut v);
     if o.project_velocities {
-        mech.project_velocities(&q, &mut v, t1, &system.dynamics)?;
+        mech.project_velocities_in(scratch, &q, &mut v, t1, &system.dynamics)?;
     }
     to.t = t1;
     to.q = q;
@@ -375,6 +377,7 @@ fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usiz
 /// The powers at the end point and the work integrals of a step of h.
 pub(super) fn finish<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     system: &System<'_, M, T>,
+    scratch: DenseScratch<'_, T, NV, NC>,
     from: &Point<T, NQ, NV, NC>,
     to: &mut Point<T, NQ, NV, NC>,
     h: T,
@@ -386,7 +389,7 @@ where
     to.power = if system.track_work {
         let mut scratch_vd = [T::ZERO; NV];
         let mut scratch_lambda = [T::ZERO; NC];
-        system.derivatives(to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
+        system.derivatives_in(scratch, to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
     } else {
         [T::ZERO; 2]
     };

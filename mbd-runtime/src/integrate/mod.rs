@@ -65,7 +65,7 @@ use core::fmt;
 
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::{Kinematics, Mechanism};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{DenseArrays, DenseScratch, Workspace};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -295,7 +295,12 @@ impl<'m, M, T: Real> System<'m, M, T> {
         Self { mechanism, dynamics: DynamicsOptions::default(), track_work: false }
     }
 
-    /// v̇ and λ at (t, q, v), and the powers `[P_nc, P_c]` when work is tracked.
+    /// v̇ and λ at (t, q, v), and the powers `[P_nc, P_c]` when work is tracked. A mechanism
+    /// that needs dense arrays (joint coordinates with closed loops) keeps them on the stack
+    /// here; an integrator calls [`derivatives_in`](Self::derivatives_in) with its work space's.
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
     #[inline]
     pub fn derivatives<const NQ: usize, const NV: usize, const NC: usize>(
         &self,
@@ -308,7 +313,29 @@ impl<'m, M, T: Real> System<'m, M, T> {
     where
         M: ForwardDynamics<T, NQ, NV, NC>,
     {
-        self.mechanism.accelerations(q, v, t, &self.dynamics, vd, lambda)?;
+        self.derivatives_in(DenseArrays::new().scratch(), t, q, v, vd, lambda)
+    }
+
+    /// [`derivatives`](Self::derivatives) with the dense arrays of a mechanism that needs them in
+    /// `scratch` (the work space's, [`Workspace::dense`](crate::Workspace::dense); see
+    /// [`ForwardDynamics::accelerations_in`]).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    #[inline]
+    pub fn derivatives_in<const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        t: T,
+        q: &[T; NQ],
+        v: &[T; NV],
+        vd: &mut [T; NV],
+        lambda: &mut [T; NC],
+    ) -> Result<[T; 2], DynamicsError>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+    {
+        self.mechanism.accelerations_in(scratch, q, v, t, &self.dynamics, vd, lambda)?;
         // No NaN leaves a solve silently: a non-finite v̇ or λ is traced to its source (the cold
         // path names the force element). One independent comparison per velocity: v̇ =
         // M⁻¹(h + Dᵀλ) multiplies every λ_r into the velocities of its row, so a non-finite λ
@@ -341,7 +368,11 @@ impl<'m, M, T: Real> System<'m, M, T> {
         Ok([nonconservative, constraint])
     }
 
-    /// A point at (t, q, v) with its v̇, λ and powers; `work` as given.
+    /// A point at (t, q, v) with its v̇, λ and powers; `work` as given (dense arrays as in
+    /// [`derivatives`](Self::derivatives)).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
     pub fn point<const NQ: usize, const NV: usize, const NC: usize>(
         &self,
         t: T,
@@ -352,8 +383,27 @@ impl<'m, M, T: Real> System<'m, M, T> {
     where
         M: ForwardDynamics<T, NQ, NV, NC>,
     {
+        self.point_in(DenseArrays::new().scratch(), t, q, v, work)
+    }
+
+    /// [`point`](Self::point) with the dense arrays in `scratch`, as
+    /// [`derivatives_in`](Self::derivatives_in).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    pub fn point_in<const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        t: T,
+        q: [T; NQ],
+        v: [T; NV],
+        work: [T; 2],
+    ) -> Result<Point<T, NQ, NV, NC>, DynamicsError>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+    {
         let mut p = Point { t, q, v, vd: [T::ZERO; NV], lambda: [T::ZERO; NC], work, power: [T::ZERO; 2] };
-        p.power = self.derivatives(t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+        p.power = self.derivatives_in(scratch, t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
         Ok(p)
     }
 }
@@ -394,10 +444,11 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn prepare_interpolation(
 ///         &mut self,
 ///         system: &System<'_, M, T>,
+///         ws: &mut Workspace<T, NV, NC, N, NS>,
 ///         from: &Point<T, NQ, NV, NC>,
 ///         to: &Point<T, NQ, NV, NC>,
 ///     ) -> Result<(), SimulationError> {
-///         self.inner.prepare_interpolation(system, from, to)
+///         self.inner.prepare_interpolation(system, ws, from, to)
 ///     }
 ///     fn interpolate(&self, m: &M, from: &Point<T, NQ, NV, NC>, to: &Point<T, NQ, NV, NC>, t: T, q: &mut [T; NQ], v: &mut [T; NV]) {
 ///         self.inner.interpolate(m, from, to, t, q, v)
@@ -409,6 +460,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn after_correction(
 ///         &mut self,
 ///         system: &System<'_, M, T>,
+///         ws: &mut Workspace<T, NV, NC, N, NS>,
 ///         end: &Point<T, NQ, NV, NC>,
 ///         q: [T; NQ],
 ///         v: [T; NV],
@@ -416,7 +468,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     where
 ///         M: ForwardDynamics<T, NQ, NV, NC>,
 ///     {
-///         self.inner.after_correction(system, end, q, v)
+///         self.inner.after_correction(system, ws, end, q, v)
 ///     }
 ///     fn holds_constraints(&self) -> bool {
 ///         self.inner.holds_constraints()
@@ -468,6 +520,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError>;
@@ -483,7 +536,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// The point to go on from after [`Simulation`] corrected the drift of the step's
     /// end `end` to (`q`, `v`). An explicit method, whose next step starts from v̇ = f(q, v),
     /// takes v̇, λ and the powers of forward dynamics at the corrected state:
-    /// `Ok(system.point(end.t, q, v, end.work)?)`. A method whose v̇ and λ are unknowns of its
+    /// `Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)`. A method whose v̇ and λ are unknowns of its
     /// own equations keeps them: they are part of its state, and replacing them by forward
     /// dynamics' (with its Baumgarte terms) would restart it every step.
     ///
@@ -492,6 +545,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],

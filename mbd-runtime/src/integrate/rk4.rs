@@ -54,7 +54,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -84,7 +84,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let mut qd2 = [T::ZERO; NQ];
         mech.position_rates(&q, &v2, &mut qd2);
         let mut vd2 = [T::ZERO; NV];
-        let p2 = system.derivatives(t_half, &q, &v2, &mut vd2, &mut lambda)?;
+        let p2 = system.derivatives_in(ws.dense(), t_half, &q, &v2, &mut vd2, &mut lambda)?;
         let mut v3 = [T::ZERO; NV];
         for i in 0..NQ {
             q[i] = from.q[i] + half * qd2[i];
@@ -95,7 +95,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let mut qd3 = [T::ZERO; NQ];
         mech.position_rates(&q, &v3, &mut qd3);
         let mut vd3 = [T::ZERO; NV];
-        let p3 = system.derivatives(t_half, &q, &v3, &mut vd3, &mut lambda)?;
+        let p3 = system.derivatives_in(ws.dense(), t_half, &q, &v3, &mut vd3, &mut lambda)?;
         let mut v4 = [T::ZERO; NV];
         for i in 0..NQ {
             q[i] = from.q[i] + h * qd3[i];
@@ -106,7 +106,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let mut qd4 = [T::ZERO; NQ];
         mech.position_rates(&q, &v4, &mut qd4);
         let mut vd4 = [T::ZERO; NV];
-        let p4 = system.derivatives(t_end, &q, &v4, &mut vd4, &mut lambda)?;
+        let p4 = system.derivatives_in(ws.dense(), t_end, &q, &v4, &mut vd4, &mut lambda)?;
         for i in 0..NQ {
             to.q[i] = from.q[i] + sixth * (qd1[i] + two * (qd2[i] + qd3[i]) + qd4[i]);
         }
@@ -119,7 +119,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         }
         to.t = t_end;
         check_step::<T, M, NQ, NV, NC>(from, to)?;
-        to.power = system.derivatives(to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
+        to.power = system.derivatives_in(ws.dense(), to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
         Ok(())
     }
 
@@ -130,6 +130,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
+        _ws: &mut Workspace<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -144,11 +145,12 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
         end: &Point<T, NQ, NV, NC>,
         q: [T; NQ],
         v: [T; NV],
     ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
         // An explicit method goes on from forward dynamics at the corrected state.
-        Ok(system.point(end.t, q, v, end.work)?)
+        Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)
     }
 }

@@ -18,7 +18,7 @@ use crate::integrate::partition::Partition;
 use crate::integrate::stiffness::StiffnessDetected;
 use crate::model::dynamics::kinetic_energy;
 use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{DenseArrays, DenseScratch, Workspace};
 use crate::real::Real;
 use crate::solvers::flow::Flow;
 use crate::solvers::kinematics::name;
@@ -102,6 +102,21 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
     tolerance: T,
     max_iterations: u32,
 ) -> Result<(), SimulationError> {
+    project_in(mechanism, DenseArrays::new().scratch(), t, q, v, options, tolerance, max_iterations)
+}
+
+/// [`project`] with the dense arrays of forward dynamics in `scratch` (a work space's).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn project_in<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    mut scratch: DenseScratch<'_, T, NV, NC>,
+    t: T,
+    q: &mut [T; NQ],
+    v: &mut [T; NV],
+    options: &DynamicsOptions<T>,
+    tolerance: T,
+    max_iterations: u32,
+) -> Result<(), SimulationError> {
     let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
     let mut iterations = 0;
     loop {
@@ -120,14 +135,14 @@ pub fn project<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, cons
                 residual: worst.1.to_f64(),
             });
         }
-        let residual = mechanism.project_positions_step(q, t, options)?;
+        let residual = mechanism.project_positions_step_in(scratch.reborrow(), q, t, options)?;
         if residual <= tolerance {
             // The step just taken was below tolerance too: keep it (it only helps).
             break;
         }
         iterations += 1;
     }
-    mechanism.project_velocities(q, v, t, options)?;
+    mechanism.project_velocities_in(scratch, q, v, t, options)?;
     Ok(())
 }
 
@@ -342,14 +357,14 @@ where
     mechanism.normalize_positions(&mut q);
     let mut partition = Partition::<NV, NC>::new();
     correct(mechanism, ws, &mut partition, options, t0, &mut q, &mut v)?;
-    let mut from = system.point(t0, q, v, [T::ZERO; 2])?;
+    let mut from = system.point_in(ws.dense(), t0, q, v, [T::ZERO; 2])?;
     let mut to = from;
     integrator.restart();
     let mut stats = Statistics::default();
     let watching = NC > 0 && options.watch_singular && !integrator.holds_constraints() && matches!(options.correction, Correction::None);
     let mut watch = BranchWatch::new(t0.to_f64());
     if watching {
-        watch.observe(mechanism, t0, &from.q, &from.v, &options.dynamics);
+        watch.observe(mechanism, ws.dense(), t0, &from.q, &from.v, &options.dynamics);
     }
     // Ends the run with what it saw.
     macro_rules! finish {
@@ -384,7 +399,8 @@ where
         }
         integrator.step(&system, ws, &from, t_end, &mut to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
-        let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, &from, &to, switches, events, at_event)?;
+        let mut hit =
+            first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, &from, &to, switches, events, at_event)?;
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
@@ -417,13 +433,13 @@ where
         if !matches!(options.correction, Correction::None) {
             let (mut q, mut v) = (to.q, to.v);
             correct(mechanism, ws, &mut partition, options, to.t, &mut q, &mut v)?;
-            to = integrator.after_correction(&system, &end, q, v)?;
+            to = integrator.after_correction(&system, ws, &end, q, v)?;
         }
         if watching {
-            watch.observe(mechanism, to.t, &to.q, &to.v, &options.dynamics);
+            watch.observe(mechanism, ws.dense(), to.t, &to.q, &to.v, &options.dynamics);
         }
         if next < times.len() && times[next] < end.t {
-            integrator.prepare_interpolation(&system, &from, &end)?;
+            integrator.prepare_interpolation(&system, ws, &from, &end)?;
         }
         let step_end = end.t;
         while next < times.len() && times[next] <= step_end {
@@ -435,7 +451,7 @@ where
                 integrator.interpolate(mechanism, &from, &end, times[next - 1], &mut q, &mut v);
                 mechanism.normalize_positions(&mut q);
                 let work = interpolate_work(&from, &end, times[next - 1]);
-                deliver!(&sample(mechanism, &system.point(times[next - 1], q, v, work)?));
+                deliver!(&sample(mechanism, &system.point_in(ws.dense(), times[next - 1], q, v, work)?));
             }
         }
         at_event = hit.is_some();
@@ -500,6 +516,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
     mechanism: &M,
     integrator: &mut I,
     system: &System<'_, M, T>,
+    ws: &mut Workspace<T, NV, NC, N, NS>,
     from: &Point<T, NQ, NV, NC>,
     end: &Point<T, NQ, NV, NC>,
     switches: usize,
@@ -523,7 +540,7 @@ where
             continue;
         }
         if !prepared {
-            integrator.prepare_interpolation(system, from, end)?;
+            integrator.prepare_interpolation(system, ws, from, end)?;
             prepared = true;
         }
         // Illinois: regula falsi that halves the value kept twice in a row, on g(t) of the
@@ -610,7 +627,9 @@ fn correct<
 ) -> Result<(), SimulationError> {
     match options.correction {
         Correction::None => Ok(()),
-        Correction::Projection { tolerance, max_iterations } => project(mechanism, t, q, v, &options.dynamics, tolerance, max_iterations),
+        Correction::Projection { tolerance, max_iterations } => {
+            project_in(mechanism, ws.dense(), t, q, v, &options.dynamics, tolerance, max_iterations)
+        }
         Correction::Partitioning { tolerance, max_iterations } => {
             partition.correct(mechanism, ws, t, q, v, &options.dynamics, tolerance, max_iterations)
         }

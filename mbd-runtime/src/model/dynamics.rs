@@ -14,6 +14,7 @@
 use core::fmt;
 
 use crate::model::mechanism::{Dynamics, Mechanism};
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 /// Default Baumgarte α and β (1/s): the constraint violation then decays like a critically
@@ -339,6 +340,62 @@ pub trait ForwardDynamics<T: Real, const NQ: usize, const NV: usize, const NC: u
     /// # Errors
     /// As [`ForwardDynamics::accelerations`].
     fn project_velocities(&self, q: &[T; NQ], v: &mut [T; NV], t: T, options: &DynamicsOptions<T>) -> Result<T, DynamicsError>;
+
+    /// [`accelerations`](Self::accelerations) with the dense arrays a mechanism whose M depends
+    /// on q needs where it has constraint rows (joint coordinates with closed loops,
+    /// [`crate::dense_forward`]) in `scratch` — a work space's ([`Workspace::dense`](crate::Workspace::dense)),
+    /// on the heap — instead of on the stack. The solvers and integrators call this one; the
+    /// generated sparse solve of body coordinates needs no scratch (this provided method).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    #[allow(clippy::too_many_arguments)]
+    fn accelerations_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &[T; NQ],
+        v: &[T; NV],
+        t: T,
+        options: &DynamicsOptions<T>,
+        vd: &mut [T; NV],
+        lambda: &mut [T; NC],
+    ) -> Result<(), DynamicsError> {
+        let _ = scratch;
+        self.accelerations(q, v, t, options, vd, lambda)
+    }
+
+    /// [`project_positions_step`](Self::project_positions_step) with its dense arrays in
+    /// `scratch`, as [`accelerations_in`](Self::accelerations_in).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    fn project_positions_step_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &mut [T; NQ],
+        t: T,
+        options: &DynamicsOptions<T>,
+    ) -> Result<T, DynamicsError> {
+        let _ = scratch;
+        self.project_positions_step(q, t, options)
+    }
+
+    /// [`project_velocities`](Self::project_velocities) with its dense arrays in `scratch`, as
+    /// [`accelerations_in`](Self::accelerations_in).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    fn project_velocities_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &[T; NQ],
+        v: &mut [T; NV],
+        t: T,
+        options: &DynamicsOptions<T>,
+    ) -> Result<T, DynamicsError> {
+        let _ = scratch;
+        self.project_velocities(q, v, t, options)
+    }
 }
 
 /// Kinetic energy ½ vᵀ M(q) v (J).

@@ -4,7 +4,13 @@
 //!
 //! The solvers themselves keep only O(NV + NC) arrays on the stack (and the generated
 //! forward dynamics its planned Schur factor, O(non-zeros of D)), so a mechanism of any size
-//! runs on an ordinary thread's stack: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
+//! runs on an ordinary thread's stack — with one exception left: the Newton matrices of statics,
+//! generalized-α and BDF in joint coordinates are filled from dense NV × NV derivatives on the
+//! stack (`NewtonMatrix::newton_matrix`'s provided body; 1.1 MB in a debug build for a 101-body
+//! ladder with 50 closed loops). Measured by painting the stack (2026-12-02), a simulation in
+//! body coordinates takes about 0.5 KB per velocity in a release build and 1.4 KB in a debug
+//! one (a 201-body ladder, NV = 603: 0.3 and 0.85–0.96 MB). Where they are needed at all, the
+//! O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
@@ -16,6 +22,7 @@
 //! | constraint square | NC × NC | minimum-norm assembly steps (D Dᵀ), coordinate partitioning |
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
+//! | (the four above, as [`DenseScratch`]) | | forward dynamics and projections where M depends on q and there are constraint rows (joint coordinates with closed loops) |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
@@ -95,6 +102,69 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
             }
             uninit.assume_init()
         }
+    }
+}
+
+/// The dense arrays of forward dynamics where M depends on q and the mechanism has constraint
+/// rows (joint coordinates with closed loops, [`crate::dense_forward`]): D (NC × NV), M⁻¹Dᵀ
+/// (NC × NV), the Schur complement S = D M⁻¹ Dᵀ (NC × NC) and M's Cholesky factor (NV × NV),
+/// borrowed from a [`Workspace`] ([`Workspace::dense`]) so that they live on its heap, not on
+/// the stack (a 201-body ladder in joint coordinates needs 0.7 MB of them per call, which a
+/// debug build copied three times past a 2 MB thread). Body coordinates, whose forward dynamics
+/// is the generated sparse solve, do not touch it.
+pub struct DenseScratch<'a, T, const NV: usize, const NC: usize> {
+    pub(crate) d: &'a mut [[T; NV]; NC],
+    pub(crate) y: &'a mut [[T; NV]; NC],
+    pub(crate) s: &'a mut [[T; NC]; NC],
+    pub(crate) l: &'a mut [[T; NV]; NV],
+}
+
+impl<T, const NV: usize, const NC: usize> DenseScratch<'_, T, NV, NC> {
+    /// The same arrays, borrowed again for one more call.
+    pub fn reborrow(&mut self) -> DenseScratch<'_, T, NV, NC> {
+        DenseScratch { d: self.d, y: self.y, s: self.s, l: self.l }
+    }
+}
+
+/// Owned [`DenseScratch`] arrays, for a call without a work space
+/// ([`crate::ForwardDynamics::accelerations`] and the projections): on the stack of that call,
+/// as they were before the work space held them.
+pub struct DenseArrays<T, const NV: usize, const NC: usize> {
+    d: [[T; NV]; NC],
+    y: [[T; NV]; NC],
+    s: [[T; NC]; NC],
+    l: [[T; NV]; NV],
+}
+
+impl<T: Real, const NV: usize, const NC: usize> DenseArrays<T, NV, NC> {
+    /// Zeroed arrays.
+    pub fn new() -> Self {
+        Self { d: [[T::ZERO; NV]; NC], y: [[T::ZERO; NV]; NC], s: [[T::ZERO; NC]; NC], l: [[T::ZERO; NV]; NV] }
+    }
+
+    /// The arrays as a scratch.
+    pub fn scratch(&mut self) -> DenseScratch<'_, T, NV, NC> {
+        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l }
+    }
+}
+
+impl<T: Real, const NV: usize, const NC: usize> Default for DenseArrays<T, NV, NC> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> Workspace<T, NV, NC, N, NS> {
+    /// The arrays of dense forward dynamics ([`DenseScratch`]), from this work space's D,
+    /// second NC × NV, constraint square and velocity square.
+    pub fn dense(&mut self) -> DenseScratch<'_, T, NV, NC> {
+        DenseScratch { d: &mut self.jacobian_scratch, y: &mut self.jacobian, s: &mut self.constraint_square, l: &mut self.velocity_square }
+    }
+
+    /// The Newton slots and the dense arrays, borrowed apart (an implicit step needs both).
+    pub(crate) fn newton_and_dense(&mut self) -> (&mut [[T; NS]; 3], DenseScratch<'_, T, NV, NC>) {
+        let Self { jacobian, jacobian_scratch, constraint_square, velocity_square, newton, .. } = self;
+        (newton, DenseScratch { d: jacobian_scratch, y: jacobian, s: constraint_square, l: velocity_square })
     }
 }
 

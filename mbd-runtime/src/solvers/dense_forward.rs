@@ -11,7 +11,10 @@
 //!
 //! Cost per call: NV³/6 for M's factor and NC·NV² for M⁻¹Dᵀ (with the recursion instead: NC + 1
 //! solves of O(N) each), NC²·NV for S and NC³/6 for its factor, against the generated sparse
-//! solve's cost in the non-zeros; the arrays live on the stack (NV² + 2 NC·NV + NC² values).
+//! solve's cost in the non-zeros. The arrays (NV² + 2 NC·NV + NC² values) are a
+//! [`DenseScratch`]: a work space's ([`Workspace::dense`](crate::Workspace::dense)) in every
+//! solver and integrator, on the stack only in a direct call of
+//! [`ForwardDynamics::accelerations`](crate::ForwardDynamics::accelerations) or a projection.
 
 // The factorizations index rows and columns as the formulas do (L_ij, S_kj d_j): iterators over
 // rows would hide which entry is which.
@@ -20,6 +23,7 @@
 use crate::linalg::sparse::{max_abs_finite, schur_pivot};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions};
 use crate::model::mechanism::Dynamics;
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 /// M = L Lᵀ in place (lower triangle), or the velocity whose pivot is not positive and finite
@@ -65,55 +69,55 @@ fn cholesky_solve<T: Real, const NV: usize>(l: &[[T; NV]; NV], x: &mut [T; NV]) 
     }
 }
 
-/// How M⁻¹ is applied: by the mechanism's recursion (`Dynamics::solve_mass`, O(N)), or by the
-/// Cholesky factor of M.
-enum MassInverse<T, const NV: usize> {
-    Recursion,
-    Cholesky([[T; NV]; NV]),
-}
-
-/// The factors of M and of S = D M⁻¹ Dᵀ at one configuration, and M⁻¹Dᵀ.
-struct Factors<T, const NV: usize, const NC: usize> {
-    l: MassInverse<T, NV>,
+/// The factors of M and of S = D M⁻¹ Dᵀ at one configuration, and M⁻¹Dᵀ, in the arrays of a
+/// [`DenseScratch`] (D itself in its `d`).
+struct Factors<'a, T, const NV: usize, const NC: usize> {
+    /// D, as evaluated.
+    d: &'a [[T; NV]; NC],
+    /// M's Cholesky factor L, or `None` where the mechanism's recursion applies M⁻¹.
+    l: Option<&'a [[T; NV]; NV]>,
     /// Row r: M⁻¹ D_rᵀ.
-    y: [[T; NV]; NC],
+    y: &'a [[T; NV]; NC],
     /// S's LDLᵀ: L_S below the diagonal, 1/d (weighted) on it.
-    s: [[T; NC]; NC],
+    s: &'a [[T; NC]; NC],
 }
 
-impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
-    /// Factors M and S, or the error naming the body (`mass_bodies[i]`: the body velocity i
-    /// moves) or the constraint row.
+impl<'a, T: Real, const NV: usize, const NC: usize> Factors<'a, T, NV, NC> {
+    /// Factors M and S for the D in `scratch.d`, or the error naming the body
+    /// (`mass_bodies[i]`: the body velocity i moves) or the constraint row.
     fn new<M: Dynamics<T, NQ, NV, NC>, const NQ: usize>(
         m: &M,
         q: &[T; NQ],
-        d: &[[T; NV]; NC],
+        scratch: DenseScratch<'a, T, NV, NC>,
         t: T,
         options: &DynamicsOptions<T>,
         mass_bodies: &[u16],
     ) -> Result<Self, DynamicsError> {
+        let DenseScratch { d, y, s, l } = scratch;
         let body = |i: usize| M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
-        let mut y = *d;
+        y.copy_from_slice(&d[..]);
         // M⁻¹Dᵀ over one factorization of M shared by the rows.
-        let l = if let Some(solved) = m.solve_mass_rows(q, &mut y) {
+        let l = if let Some(solved) = m.solve_mass_rows(q, y) {
             if let Err(i) = solved {
                 return Err(non_positive::<T, M, NQ, NV, NC>(q, t, i, mass_bodies));
             }
-            MassInverse::Recursion
+            None
         } else {
-            let mut l = mass_matrix(m, q);
-            if let Err((i, pivot)) = cholesky(&mut l) {
+            for row in l.iter_mut() {
+                row.fill(T::ZERO);
+            }
+            m.add_mass_matrix(q, T::ONE, l);
+            if let Err((i, pivot)) = cholesky(l) {
                 if !pivot.is_finite() || !t.is_finite() {
                     return Err(DynamicsError::NonFinite { t: t.to_f64(), row: M::VELOCITY_NAMES.get(i).copied().unwrap_or("?") });
                 }
                 return Err(DynamicsError::NonPositiveMass { body: body(i), value: pivot.to_f64() });
             }
             for row in y.iter_mut() {
-                cholesky_solve(&l, row);
+                cholesky_solve(l, row);
             }
-            MassInverse::Cholesky(l)
+            Some(&*l)
         };
-        let mut s = [[T::ZERO; NC]; NC];
         for i in 0..NC {
             for j in 0..=i {
                 let mut x = T::ZERO;
@@ -151,17 +155,17 @@ impl<T: Real, const NV: usize, const NC: usize> Factors<T, NV, NC> {
                 s[i][k] = x * dinv;
             }
         }
-        Ok(Factors { l, y, s })
+        Ok(Factors { d, l, y, s })
     }
 
     /// x ← M⁻¹ x.
     fn mass_solve<M: Dynamics<T, NQ, NV, NC>, const NQ: usize>(&self, m: &M, q: &[T; NQ], x: &mut [T; NV]) {
-        match &self.l {
+        match self.l {
+            Some(l) => cholesky_solve(l, x),
             // The configuration the factors were made at: its pivots were checked then.
-            MassInverse::Recursion => {
+            None => {
                 let _ = m.solve_mass(q, x);
             }
-            MassInverse::Cholesky(l) => cholesky_solve(l, x),
         }
     }
 
@@ -208,16 +212,6 @@ fn non_positive<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: 
     DynamicsError::NonPositiveMass { body, value: 0.0 }
 }
 
-/// The mechanism's M(q).
-fn mass_matrix<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
-    m: &M,
-    q: &[T; NQ],
-) -> [[T; NV]; NV] {
-    let mut mass = [[T::ZERO; NV]; NV];
-    m.add_mass_matrix(q, T::ONE, &mut mass);
-    mass
-}
-
 /// v̇ and λ ([`ForwardDynamics::accelerations`](crate::ForwardDynamics::accelerations)) by
 /// dense factorizations (module docs). `friction`: whether the mechanism has Coulomb friction,
 /// whose loads are found by fixed-point iteration as in the generated solve; `mass_bodies[i]`:
@@ -228,6 +222,7 @@ fn mass_matrix<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: u
 #[allow(clippy::too_many_arguments)]
 pub fn accelerations<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
+    scratch: DenseScratch<'_, T, NV, NC>,
     q: &[T; NQ],
     v: &[T; NV],
     t: T,
@@ -249,9 +244,10 @@ where
             None => {}
         }
     }
-    let (mut phi, mut d, mut nu, mut gamma) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC], [T::ZERO; NC]);
-    m.full_eval(q, v, t, &mut phi, &mut d, &mut nu, &mut gamma);
-    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
+    let (mut phi, mut nu, mut gamma) = ([T::ZERO; NC], [T::ZERO; NC], [T::ZERO; NC]);
+    m.full_eval(q, v, t, &mut phi, scratch.d, &mut nu, &mut gamma);
+    let factors = Factors::<T, NV, NC>::new(m, q, scratch, t, options, mass_bodies)?;
+    let d = factors.d;
     let mut applied = [T::ZERO; NV];
     m.forces(q, v, t, &mut applied);
     let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -293,6 +289,7 @@ where
 /// As [`accelerations`].
 pub fn project_positions_step<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
+    scratch: DenseScratch<'_, T, NV, NC>,
     q: &mut [T; NQ],
     t: T,
     options: &DynamicsOptions<T>,
@@ -306,10 +303,10 @@ where
         // Nothing to project onto.
         return Ok(T::ZERO);
     }
-    let (mut phi, mut d) = ([T::ZERO; NC], [[T::ZERO; NV]; NC]);
-    m.position_eval(q, t, &mut phi, &mut d);
+    let mut phi = [T::ZERO; NC];
+    m.position_eval(q, t, &mut phi, scratch.d);
     let (worst, _) = max_abs_finite(&phi);
-    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
+    let factors = Factors::<T, NV, NC>::new(m, q, scratch, t, options, mass_bodies)?;
     factors.schur_solve(&mut phi);
     let mut dv = [T::ZERO; NV];
     factors.subtract_correction(&phi, &mut dv);
@@ -325,6 +322,7 @@ where
 /// As [`accelerations`].
 pub fn project_velocities<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
+    scratch: DenseScratch<'_, T, NV, NC>,
     q: &[T; NQ],
     v: &mut [T; NV],
     t: T,
@@ -338,19 +336,19 @@ where
     if NC == 0 {
         return Ok(T::ZERO);
     }
-    let (mut phi, mut d, mut nu) = ([T::ZERO; NC], [[T::ZERO; NV]; NC], [T::ZERO; NC]);
-    m.position_eval(q, t, &mut phi, &mut d);
+    let (mut phi, mut nu) = ([T::ZERO; NC], [T::ZERO; NC]);
+    m.position_eval(q, t, &mut phi, scratch.d);
     m.velocity_rhs(q, t, &mut nu);
     let mut b = [T::ZERO; NC];
     for r in 0..NC {
         let mut x = T::ZERO - nu[r];
         for c in 0..NV {
-            x += d[r][c] * v[c];
+            x += scratch.d[r][c] * v[c];
         }
         b[r] = x;
     }
     let (worst, _) = max_abs_finite(&b);
-    let factors = Factors::<T, NV, NC>::new(m, q, &d, t, options, mass_bodies)?;
+    let factors = Factors::<T, NV, NC>::new(m, q, scratch, t, options, mass_bodies)?;
     factors.schur_solve(&mut b);
     factors.subtract_correction(&b, v);
     Ok(worst)

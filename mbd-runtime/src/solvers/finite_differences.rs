@@ -28,6 +28,7 @@ use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::{
     ConstraintForces, CoordinateInfo, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, VelocityInfo,
 };
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 /// A mechanism with finite-difference derivatives (module docs).
@@ -291,6 +292,37 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     }
     fn project_velocities(&self, q: &[T; NQ], v: &mut [T; NV], t: T, options: &DynamicsOptions<T>) -> Result<T, DynamicsError> {
         self.mechanism.project_velocities(q, v, t, options)
+    }
+    fn accelerations_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &[T; NQ],
+        v: &[T; NV],
+        t: T,
+        options: &DynamicsOptions<T>,
+        vd: &mut [T; NV],
+        lambda: &mut [T; NC],
+    ) -> Result<(), DynamicsError> {
+        self.mechanism.accelerations_in(scratch, q, v, t, options, vd, lambda)
+    }
+    fn project_positions_step_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &mut [T; NQ],
+        t: T,
+        options: &DynamicsOptions<T>,
+    ) -> Result<T, DynamicsError> {
+        self.mechanism.project_positions_step_in(scratch, q, t, options)
+    }
+    fn project_velocities_in(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        q: &[T; NQ],
+        v: &mut [T; NV],
+        t: T,
+        options: &DynamicsOptions<T>,
+    ) -> Result<T, DynamicsError> {
+        self.mechanism.project_velocities_in(scratch, q, v, t, options)
     }
 }
 
