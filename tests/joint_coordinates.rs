@@ -272,6 +272,38 @@ fn the_mass_matrix_derivative_is_exact() {
     assert!(exact.iter().flatten().any(|d| d.abs() > 1e-3), "M depends on q: {exact:?}");
 }
 
+/// K = ∂(Dᵀλ)/∂q, generated in joint coordinates a column at a time (a directional derivative
+/// of Dᵀλ), agrees with central differences of Dᵀλ on the slider-crank's loop, whose rows reach
+/// every angle (tolerance: the differences' O(h²) truncation and the rounding of D/h, 1e-7 of
+/// Dᵀλ's scale).
+#[test]
+fn the_constraint_force_derivative_is_exact() {
+    let m = CrankJoint::default();
+    let lambda = [30.0, -7.0];
+    let constraint_force = |q: &[f64; 3]| {
+        let mut d = [[0.0; 3]; 2];
+        m.jacobian(q, 0.2, &mut d);
+        core::array::from_fn::<f64, 3, _>(|c| (0..2).map(|r| d[r][c] * lambda[r]).sum())
+    };
+    for q in [[0.4, 0.9, -0.3], [-1.0, 0.2, 0.8]] {
+        let mut exact = [[0.0; 3]; 3];
+        m.constraint_force_q(&q, 0.2, &lambda, &mut exact);
+        let scale = constraint_force(&q).iter().fold(1.0f64, |a, b| a.max(b.abs()));
+        let h = 1e-6;
+        for c in 0..3 {
+            let (mut qp, mut qm) = (q, q);
+            qp[c] += h;
+            qm[c] -= h;
+            let (fp, fm) = (constraint_force(&qp), constraint_force(&qm));
+            for r in 0..3 {
+                let difference = (fp[r] - fm[r]) / (2.0 * h);
+                assert!((difference - exact[r][c]).abs() < 1e-7 * scale, "K[{r}][{c}]: {} vs difference {difference}", exact[r][c]);
+            }
+        }
+        assert!(exact.iter().flatten().any(|k| k.abs() > 1e-2), "K is not zero here: {exact:?}");
+    }
+}
+
 /// The exact linearization of a tree and of a loop about moving states (v̇ ≠ 0, so the change of
 /// M(q) v̇ with q is in play) agrees with central differences of the forward dynamics
 /// (tolerance as in `tests/linearize.rs`: the differences' O(ε²) truncation, 1e-7 relative).

@@ -168,7 +168,7 @@ fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
         // Generalized-α's matrix, in parts too: its Φ and D equal the functions emitted whole.
         let mut s = Chain120::newton_storage();
         let mut phi = [0.0; 240];
-        m.newton_matrix(&q, &v, &[0.0; 360], 0.0, &lambda, 0.0, 1e-6, &mut phi, &mut s);
+        m.newton_matrix(&q, &v, &[0.0; 360], 0.0, &lambda, 0.0, 1e-6, &mut phi, &mut s, ws.dense());
         let mut whole = [0.0; 240];
         m.constraints(&q, 0.0, &mut whole);
         assert_eq!(phi, whole);
@@ -329,11 +329,13 @@ mechanism! {
     }
 }
 
-/// The dense forward dynamics of joint coordinates keeps its arrays in the work space
-/// ([`DenseScratch`]), so the explicit integrators and `Auto` run the 101-body ladder in joint
-/// coordinates, with each correction, on a 512 KB thread in a debug build. Before, those
-/// arrays were on the stack and copied: the same runs needed 0.67 MB in a release build
-/// (measured by painting the stack, 2026-12-02) and more in debug; now about 0.22 MB in debug.
+/// In joint coordinates the dense arrays of forward dynamics and of the Newton matrices are the
+/// work space's ([`DenseScratch`]) and K = ∂(Dᵀλ)/∂q is generated a column at a time, so the
+/// 101-body ladder in joint coordinates runs RK4, DOP853 and `Auto` with each correction,
+/// generalized-α, BDF and statics on a 512 KB thread in a debug build. Measured by painting the
+/// stack (2026-12-02): before, RK4 needed 0.67 MB in a release build, generalized-α 1.1 MB and
+/// statics 1.0 MB in debug (the dense arrays, and K's entry-by-entry code in one 0.5 MB frame);
+/// now 0.18, 0.24 and 0.17 MB in debug.
 #[test]
 fn dense_forward_dynamics_of_joint_coordinates_keeps_its_arrays_off_the_stack() {
     std::thread::Builder::new()
@@ -377,6 +379,29 @@ fn dense_forward_dynamics_of_joint_coordinates_keeps_its_arrays_off_the_stack() 
                     .expect("Auto");
                 check(&format!("Auto with {correction:?}"), &last);
             }
+            let options = SimulationOptions::default();
+            let mut alpha = JointLadder101::generalized_alpha(GeneralizedAlphaOptions::default());
+            Simulation::new(&m, &mut alpha)
+                .start(0.0, &q, &v0)
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("generalized-α");
+            check("generalized-α", &last);
+            let mut bdf = Bdf::new(BdfOptions::default());
+            Simulation::new(&m, &mut bdf)
+                .start(0.0, &q, &v0)
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("BDF");
+            check("BDF", &last);
+            // Statics from the sheared ladder: it swings back to hanging, a stable equilibrium
+            // (the angles are checked in body coordinates on the 201-body ladder above; here
+            // the point is the stack).
+            let mut lambda = [0.0; JointLadder101::NC];
+            let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("the ladder hangs");
+            assert!(matches!(report.stability, Stability::Stable { .. }), "{report:?}");
         })
         .expect("spawn")
         .join()

@@ -121,7 +121,7 @@ where
         let (c_v, c_q) = (1.2e-3, 4.0e-7);
         let mut s = M::newton_storage();
         let mut phi = [0.0; NC];
-        m.newton_matrix(&q, &v, &[0.0; NV], t, &lambda, c_v, c_q, &mut phi, &mut s);
+        m.newton_matrix(&q, &v, &[0.0; NV], t, &lambda, c_v, c_q, &mut phi, &mut s, mbd::DenseArrays::new().scratch());
         let a = dense::<M, NQ, NV, NC, N>(m, &q, &v, t, &lambda, c_v, c_q);
         // Every entry: planned ones equal (same expressions, another CSE: rounding only), the
         // rest exactly zero.

@@ -2197,6 +2197,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         t: f64,
         phi: &mut [f64; 9],
         s: &mut [f64; 135],
+        _scratch: ::mbd::DenseScratch<'_, f64, 9, 9>,
     ) {
         let (
             v5,
@@ -2280,6 +2281,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         c_q: f64,
         phi: &mut [f64; 9],
         s: &mut [f64; 135],
+        _scratch: ::mbd::DenseScratch<'_, f64, 9, 9>,
     ) {
         for x in s[23..].iter_mut() {
             *x = 0f64;

@@ -482,7 +482,14 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 [#zero; #total]
             }
             #jacobian_inline
-            fn newton_jacobian(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], s: &mut [#real; #total]) {
+            fn newton_jacobian(
+                &self,
+                q: &[#real; #nq_l],
+                t: #real,
+                phi: &mut [#real; #nc_l],
+                s: &mut [#real; #total],
+                _scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>,
+            ) {
                 #position_body
             }
             #[inline(never)]
@@ -497,6 +504,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 c_q: #real,
                 phi: &mut [#real; #nc_l],
                 s: &mut [#real; #total],
+                _scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>,
             ) {
                 for x in s[#nnz_l..].iter_mut() {
                     *x = #zero;

@@ -24,12 +24,15 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     let e: Emitter = emit::emitter(m, &f);
     let g = Gen::new(m, &f, &e);
     let constraints = g.constraint_functions();
-    let dynamics = g.dynamics_functions();
+    let mut dynamics = g.dynamics_functions();
     // A tree's M and dense derivatives by columns (`joint`): their op counts are one column's.
     let (dynamics_impl, dynamics_ops) = match &f.tree {
         Some(terms) => {
-            let (code, columns) = g.joint_dynamics_impl(&dynamics, terms);
-            let kept = dynamics.ops.iter().filter(|(name, _)| !["forces_q", "forces_v"].contains(name));
+            let (code, mut columns) = g.joint_dynamics_impl(&dynamics, terms);
+            let (constraint_force_q, k_ops) = g.joint_constraint_force_q(terms);
+            dynamics.constraint_force_q = constraint_force_q;
+            columns.push(("constraint_force_q (one column)", k_ops));
+            let kept = dynamics.ops.iter().filter(|(name, _)| !["forces_q", "forces_v", "constraint_force_q"].contains(name));
             (code, kept.chain(&columns).copied().collect())
         }
         None => (g.dynamics_impl(&dynamics), dynamics.ops.clone()),

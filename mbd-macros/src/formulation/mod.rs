@@ -571,6 +571,18 @@ fn constraint_derivatives(b: &mut Builder, phi: &[Id]) -> (Entries, Vec<Id>, Vec
     (jacobian, nu, gamma)
 }
 
+/// Dᵀλ: (Dᵀλ)_k = Σ_r λ_r D_rk, λ_r the variables `Var::Lambda(r)`.
+fn constraint_forces(b: &mut Builder, jacobian: &[(usize, usize, Id)]) -> Vec<Id> {
+    let zero = b.g.num(0.0);
+    let mut constraint_force = vec![zero; b.nv()];
+    for &(r, c, d) in jacobian {
+        let l = b.g.var(Var::Lambda(r as u16));
+        let term = b.g.mul(l, d);
+        constraint_force[c] = b.g.add(constraint_force[c], term);
+    }
+    constraint_force
+}
+
 /// ∂(Dᵀλ)/∂q B, and generalized-α's Newton matrix terms summed by entry: the stiffness
 /// ∂h/∂q·B + K + friction's, the damping ∂h/∂v + friction's.
 fn newton_terms(
@@ -579,15 +591,8 @@ fn newton_terms(
     [h_q, h_qd]: [&Entries; 2],
     [friction_q, friction_qd]: [&Entries; 2],
 ) -> (Entries, Entries, Entries) {
-    let nv = b.nv();
     // (Dᵀλ)_k = Σ_r λ_r D_rk, then its exact derivative by q along B.
-    let zero = b.g.num(0.0);
-    let mut constraint_force = vec![zero; nv];
-    for &(r, c, d) in jacobian {
-        let l = b.g.var(Var::Lambda(r as u16));
-        let term = b.g.mul(l, d);
-        constraint_force[c] = b.g.add(constraint_force[c], term);
-    }
+    let constraint_force = constraint_forces(b, jacobian);
     let constraint_force_q = tangent(b, &constraint_force);
     // Generalized-α's Newton matrix takes them summed by entry: the stiffness part
     // ∂h/∂q·B + K + friction's, the damping part ∂h/∂v + friction's.

@@ -70,7 +70,7 @@ pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, 
     iterations: &mut u32,
     rate: &mut Option<T>,
     s: &mut M::NewtonStorage,
-    scratch: DenseScratch<'_, T, NV, NC>,
+    mut scratch: DenseScratch<'_, T, NV, NC>,
 ) -> Result<(), SimulationError>
 where
     T: Real,
@@ -115,9 +115,9 @@ where
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            mech.newton_matrix(&q, &v, &vd, t1, &lambda, c_v, c_q, &mut phi, s);
+            mech.newton_matrix(&q, &v, &vd, t1, &lambda, c_v, c_q, &mut phi, s, scratch.reborrow());
         } else {
-            mech.newton_jacobian(&q, t1, &mut phi, s);
+            mech.newton_jacobian(&q, t1, &mut phi, s, scratch.reborrow());
         }
         mech.forces(&q, &v, t1, &mut force);
         // Coulomb friction with the iterate's loads (its exact derivatives enter the

@@ -17,6 +17,7 @@
 //! Constraints `Φ(q, t) = 0` stack the rows of every joint, driver and user constraint in
 //! declaration order.
 
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 /// Operation count of one generated function, after common-subexpression elimination:
@@ -547,10 +548,11 @@ pub trait ConstraintForces<T: Real, const NQ: usize, const NV: usize, const NC: 
 ///
 /// over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN), fill-in included (c_v = γ'h, c_q = β'h²;
 /// ∂h/∂q and ∂h/∂v with Coulomb friction's at fixed λ; K from [`ConstraintForces`]).
-/// `mechanism!` generates all of it, straight-line over the structural non-zeros only. The
-/// provided methods build the same storage from the dense derivatives, for mechanisms that are
-/// not generated (a wrapper such as [`crate::FiniteDifferences`], a hand-written test model):
-/// they put O(NV²) on the stack.
+/// `mechanism!` generates all of it in body coordinates, straight-line over the structural
+/// non-zeros only. The provided methods build the same storage from the dense derivatives, for
+/// joint coordinates (M(q) and its derivatives are dense) and mechanisms that are not generated
+/// (a wrapper such as [`crate::FiniteDifferences`], a hand-written test model), in a work
+/// space's arrays ([`DenseScratch`]).
 pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usize>:
     crate::model::dynamics::ForwardDynamics<T, NQ, NV, NC> + ConstraintForces<T, NQ, NV, NC>
 {
@@ -578,17 +580,21 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         let nnz = Self::JACOBIAN_PATTERN.len();
         crate::linalg::sparse::solve(&Self::NEWTON_PATTERN, &s.as_ref()[nnz..], b);
     }
-    /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`.
-    fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage) {
-        let mut d = [[T::ZERO; NV]; NC];
-        self.position_eval(q, t, phi, &mut d);
+    /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`; the provided method
+    /// evaluates D densely in `scratch.d` (a work space's, [`Workspace::dense`](crate::Workspace::dense)).
+    fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage, scratch: DenseScratch<'_, T, NV, NC>) {
+        let d = scratch.d;
+        self.position_eval(q, t, phi, d);
         for (value, &(r, c)) in s.as_mut().iter_mut().zip(Self::JACOBIAN_PATTERN) {
             *value = d[r as usize][c as usize];
         }
     }
     /// What [`newton_jacobian`](Self::newton_jacobian) writes, and the matrix's entries at
     /// (q, v, v̇, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
-    /// evaluation for both. v̇ enters where M depends on q, through c_q ∂(M v̇)/∂q.
+    /// evaluation for both. v̇ enters where M depends on q, through c_q ∂(M v̇)/∂q. The provided
+    /// method fills it from dense derivatives: A and D in `scratch` (the work space's), the
+    /// second NV × NV matrix in `s`'s entries, which it writes last (off the stack where they
+    /// are NV² or more, as a dense velocity block's are: joint coordinates).
     #[allow(clippy::too_many_arguments)]
     fn newton_matrix(
         &self,
@@ -601,32 +607,38 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         c_q: T,
         phi: &mut [T; NC],
         s: &mut Self::NewtonStorage,
+        mut scratch: DenseScratch<'_, T, NV, NC>,
     ) {
-        self.newton_jacobian(q, t, phi, s);
-        let (mut a, mut scratch) = ([[T::ZERO; NV]; NV], [[T::ZERO; NV]; NV]);
-        self.forces_q(q, v, t, &mut a);
-        self.forces_v(q, v, t, &mut scratch);
-        self.friction_derivatives(q, v, t, lambda, &mut a, &mut scratch);
-        for (row, damping) in a.iter_mut().zip(&scratch) {
-            for (x, &d) in row.iter_mut().zip(damping) {
-                *x = -c_q * *x - c_v * d;
-            }
-        }
-        self.constraint_force_q(q, t, lambda, &mut scratch);
-        for (row, stiffness) in a.iter_mut().zip(&scratch) {
-            for (x, &k) in row.iter_mut().zip(stiffness) {
-                *x -= c_q * k;
-            }
-        }
-        self.add_mass_matrix(q, T::ONE, &mut a);
-        // ∂(M v̇)/∂q through q₊'s dependence on v̇ (c_q = β'h²): nothing where M is constant.
-        self.add_mass_derivative(q, vd, c_q, &mut a);
-        // D from the front of the storage, densely.
+        self.newton_jacobian(q, t, phi, s, scratch.reborrow());
+        let DenseScratch { d, l: a, .. } = scratch;
+        // D from the front of the storage, densely (the pattern's entries only: a wrapper's
+        // differences leave noise off it).
         let nnz = Self::JACOBIAN_PATTERN.len();
-        let mut d = [[T::ZERO; NV]; NC];
+        for row in d.iter_mut() {
+            row.fill(T::ZERO);
+        }
         for (&value, &(r, c)) in s.as_ref().iter().zip(Self::JACOBIAN_PATTERN) {
             d[r as usize][c as usize] = value;
         }
+        self.forces_q(q, v, t, a);
+        with_square(&mut s.as_mut()[nnz..], |second| {
+            self.forces_v(q, v, t, second);
+            self.friction_derivatives(q, v, t, lambda, a, second);
+            for (row, damping) in a.iter_mut().zip(second.iter()) {
+                for (x, &c) in row.iter_mut().zip(damping) {
+                    *x = -c_q * *x - c_v * c;
+                }
+            }
+            self.constraint_force_q(q, t, lambda, second);
+            for (row, stiffness) in a.iter_mut().zip(second.iter()) {
+                for (x, &k) in row.iter_mut().zip(stiffness) {
+                    *x -= c_q * k;
+                }
+            }
+        });
+        self.add_mass_matrix(q, T::ONE, a);
+        // ∂(M v̇)/∂q through q₊'s dependence on v̇ (c_q = β'h²): nothing where M is constant.
+        self.add_mass_derivative(q, vd, c_q, a);
         let pattern = Self::NEWTON_PATTERN;
         let values = &mut s.as_mut()[nnz..];
         for i in 0..pattern.size() {
@@ -643,6 +655,24 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
             }
         }
     }
+}
+
+/// Calls `f` with an NV × NV matrix in the front of `values` where it is that long, else (a
+/// sparse pattern's entries, a wrapper's) with one on the stack of a function of its own, so
+/// that only that case's frame holds it.
+fn with_square<T: Real, const NV: usize>(values: &mut [T], f: impl FnOnce(&mut [[T; NV]; NV])) {
+    #[inline(never)]
+    fn on_stack<T: Real, const NV: usize>(f: impl FnOnce(&mut [[T; NV]; NV])) {
+        f(&mut [[T::ZERO; NV]; NV]);
+    }
+    if values.len() < NV * NV {
+        return on_stack(f);
+    }
+    // SAFETY: `values` holds at least NV² consecutive, initialized `T`s, exclusively borrowed
+    // for the call; `[[T; NV]; NV]` is NV² `T`s with T's alignment and no padding. `f`'s
+    // matrix borrows them for no longer than `values`.
+    let square = unsafe { &mut *values.as_mut_ptr().cast::<[[T; NV]; NV]>() };
+    f(square);
 }
 
 /// What a linearization needs beyond [`Dynamics`] and [`ConstraintForces`]: the exact

@@ -4,13 +4,10 @@
 //!
 //! The solvers themselves keep only O(NV + NC) arrays on the stack (and the generated
 //! forward dynamics its planned Schur factor, O(non-zeros of D)), so a mechanism of any size
-//! runs on an ordinary thread's stack — with one exception left: the Newton matrices of statics,
-//! generalized-α and BDF in joint coordinates are filled from dense NV × NV derivatives on the
-//! stack (`NewtonMatrix::newton_matrix`'s provided body; 1.1 MB in a debug build for a 101-body
-//! ladder with 50 closed loops). Measured by painting the stack (2026-12-02), a simulation in
-//! body coordinates takes about 0.5 KB per velocity in a release build and 1.4 KB in a debug
-//! one (a 201-body ladder, NV = 603: 0.3 and 0.85–0.96 MB). Where they are needed at all, the
-//! O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
+//! runs on an ordinary thread's stack. Measured by painting the stack (2026-12-02), a
+//! simulation in body coordinates takes about 0.5 KB per velocity in a release build and 1.4 KB
+//! in a debug one (a 201-body ladder, NV = 603: 0.3 and 0.85–0.96 MB). Where they are needed at
+//! all, the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
@@ -22,7 +19,7 @@
 //! | constraint square | NC × NC | minimum-norm assembly steps (D Dᵀ), coordinate partitioning |
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
-//! | (the four above, as [`DenseScratch`]) | | forward dynamics and projections where M depends on q and there are constraint rows (joint coordinates with closed loops) |
+//! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled) |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is

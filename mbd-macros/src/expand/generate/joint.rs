@@ -196,6 +196,15 @@ impl Gen<'_> {
         }
     }
 
+    /// `ConstraintForces::constraint_force_q`'s body for a tree, K a column at a time, and one
+    /// column's op counts.
+    pub(super) fn joint_constraint_force_q(&self, terms: &TreeTerms) -> (TokenStream, Ops) {
+        let Gen { real, nq_l, nv_l, nc_l, .. } = self;
+        let params = quote!(q: &[#real; #nq_l], t: #real, lambda: &[#real; #nc_l], dir: &[#real; #nv_l]);
+        let ops = self.product("mbd_constraint_force_q_along", &terms.constraint_force_dq, params);
+        (self.by_columns(quote!(self.mbd_constraint_force_q_along(q, t, lambda, &dir, &mut out)), quote!(k), quote!(=)), ops)
+    }
+
     /// The `Dynamics` implementation of a tree, and one column's op counts of the dense
     /// functions.
     pub(super) fn joint_dynamics_impl(&self, d: &DynamicsFunctions, terms: &TreeTerms) -> (TokenStream, Vec<(&'static str, Ops)>) {

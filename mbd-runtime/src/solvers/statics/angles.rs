@@ -4,6 +4,7 @@
 use super::iterate::{max_abs, Iterate};
 use super::StaticSolver;
 use crate::model::mechanism::{CoordinateKind, NewtonMatrix, VelocityKind};
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 
 impl<T: Real> StaticSolver<T> {
@@ -18,6 +19,7 @@ impl<T: Real> StaticSolver<T> {
         t: T,
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         s: &mut M::NewtonStorage,
+        mut dense: DenseScratch<'_, T, NV, NC>,
     ) where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
@@ -26,7 +28,7 @@ impl<T: Real> StaticSolver<T> {
         let (phi, h) = (&it.phi, &it.h);
         let (mut phi1, mut h1) = ([T::ZERO; NC], [T::ZERO; NV]);
         let mut unchanged = |candidate: &[T; NQ], d_scale: T, h_scale: T| {
-            m.newton_jacobian(candidate, t, &mut phi1, s);
+            m.newton_jacobian(candidate, t, &mut phi1, s, dense.reborrow());
             m.forces(candidate, &zero_v, t, &mut h1);
             phi.iter().zip(&phi1).all(|(a, b)| (*a - *b).abs() <= tol + d_scale)
                 && h.iter().zip(&h1).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)

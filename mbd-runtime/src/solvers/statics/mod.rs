@@ -253,7 +253,8 @@ impl<T: Real> StaticSolver<T> {
         if N != NV + NC {
             return Err(StaticError::WorkspaceSize { expected: NV + NC, found: N });
         }
-        let Some([mass, stiff, scratch]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(&mut ws.newton) else {
+        let (newton, mut dense) = ws.newton_and_dense();
+        let Some([mass, stiff, scratch]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
             return Err(StaticError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
         };
         let time = t.to_f64();
@@ -269,7 +270,7 @@ impl<T: Real> StaticSolver<T> {
         let mut trial = *q;
         let mut correction = [T::ZERO; NV];
 
-        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction, scratch).map_err(|e| match e {
+        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction, scratch, dense.reborrow()).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -281,7 +282,7 @@ impl<T: Real> StaticSolver<T> {
         // `Dynamics::motion_size`: its largest entry in body coordinates).
         let mut radius = options.initial_step;
         loop {
-            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch)?;
+            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch, dense.reborrow())?;
             *lambda = it.lambda;
             let (force_residual, force_row) = max_abs(&it.r);
             let (constraint_residual, constraint_row) = max_abs(&it.phi);
@@ -311,8 +312,9 @@ impl<T: Real> StaticSolver<T> {
             let unstable = mode.as_ref().is_some_and(|mode| mode.omega_squared < -neutral(mode));
             if converged && !(unstable && options.leave_unstable) {
                 let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
-                self.wrap_angles(m, q, t, &it, scratch);
-                m.jacobian(q, t, &mut ws.jacobian);
+                self.wrap_angles(m, q, t, &it, scratch, dense.reborrow());
+                // D into the work space's (`Workspace::jacobian`), which `dense.y` is.
+                m.jacobian(q, t, dense.y);
                 return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
             }
             if accepted + rejected >= options.max_iterations {
@@ -345,7 +347,18 @@ impl<T: Real> StaticSolver<T> {
                     return Err(not_converged(accepted + rejected));
                 };
                 let step_norm = m.motion_size(q, &delta);
-                let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, &it.h, &delta, predicted, &mut trial, &mut correction, scratch);
+                let ratio = self.trial::<M, NQ, NV, NC, N>(
+                    m,
+                    q,
+                    t,
+                    &it.h,
+                    &delta,
+                    predicted,
+                    &mut trial,
+                    &mut correction,
+                    scratch,
+                    dense.reborrow(),
+                );
                 if let Some(ratio) = ratio {
                     *q = trial;
                     accepted += 1;
@@ -363,8 +376,8 @@ impl<T: Real> StaticSolver<T> {
                     // Every step off it raised the energy: unstable as it looked, but not
                     // leavable at this resolution; report it as it is.
                     let stability = classify::<T, M, NV>(escape.as_ref(), &it.mass_diagonal, neutral);
-                    self.wrap_angles(m, q, t, &it, scratch);
-                    m.jacobian(q, t, &mut ws.jacobian);
+                    self.wrap_angles(m, q, t, &it, scratch, dense.reborrow());
+                    m.jacobian(q, t, dense.y);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });
                 }
                 if accepted + rejected >= options.max_iterations {

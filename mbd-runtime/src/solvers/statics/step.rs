@@ -6,6 +6,7 @@ use super::iterate::{dot, entries, max_abs, shift_floor, Iterate, Mode, RestoreF
 use super::report::{factor_error, non_finite_force, StaticError};
 use super::{StaticSolver, ACCEPT_RATIO, INVERSE_ITERATIONS, ON_RADIUS, SHIFT_TRIALS, WORK_ROUNDING};
 use crate::model::mechanism::NewtonMatrix;
+use crate::model::workspace::DenseScratch;
 use crate::real::Real;
 use crate::solvers::kinematics::{first_non_finite, name};
 
@@ -31,6 +32,7 @@ impl<T: Real> StaticSolver<T> {
         mass: &'a mut M::NewtonStorage,
         stiff: &'a mut M::NewtonStorage,
         factors: &mut M::NewtonStorage,
+        mut dense: DenseScratch<'_, T, NV, NC>,
     ) -> Result<Iterate<'a, M::NewtonStorage, T, NV, NC>, StaticError>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -39,7 +41,7 @@ impl<T: Real> StaticSolver<T> {
         let zero_v = [T::ZERO; NV];
         let nnz = M::JACOBIAN_PATTERN.len();
         let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
-        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass);
+        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass, dense.reborrow());
         m.forces(q, &zero_v, t, &mut h);
         if let Some(i) = first_non_finite(&phi) {
             return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
@@ -64,7 +66,7 @@ impl<T: Real> StaticSolver<T> {
         if let Some(i) = first_non_finite(&r) {
             return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
         }
-        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff);
+        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff, dense);
         let (mass, stiff) = (&*mass, &*stiff);
         // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
         let mut mass_diagonal = [T::ZERO; NV];
@@ -323,6 +325,7 @@ impl<T: Real> StaticSolver<T> {
         trial: &mut [T; NQ],
         correction: &mut [T; NV],
         s: &mut M::NewtonStorage,
+        dense: DenseScratch<'_, T, NV, NC>,
     ) -> Option<T>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -331,7 +334,7 @@ impl<T: Real> StaticSolver<T> {
         *trial = *q;
         m.integrate_positions(trial, delta, T::ONE);
         correction.fill(T::ZERO);
-        self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction, s).ok()?;
+        self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction, s, dense).ok()?;
         let displacement: [T; NV] = core::array::from_fn(|i| delta[i] + correction[i]);
         let half_way: [T; NV] = core::array::from_fn(|i| T::from_f64(0.5) * displacement[i]);
         let mut middle = *q;
@@ -368,6 +371,7 @@ impl<T: Real> StaticSolver<T> {
         t: T,
         correction: &mut [T; NV],
         s: &mut M::NewtonStorage,
+        mut dense: DenseScratch<'_, T, NV, NC>,
     ) -> Result<u32, RestoreFailure>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
@@ -379,7 +383,7 @@ impl<T: Real> StaticSolver<T> {
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s);
+            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s, dense.reborrow());
             if let Some(i) = first_non_finite(&phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
