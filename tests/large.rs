@@ -178,31 +178,43 @@ fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
     });
 }
 
-mechanism! {
-    /// A hanging ladder of 100 four-bar loops (issue 37, item 4): 101 rungs 0.4 m wide, a left
-    /// rail of 100 links 0.3 m long pinned between them, massless 0.3 m links on the right; the
-    /// top rung held by a pin and a link to ground. 201 bodies, 503 rows, 100 degrees of
-    /// freedom; started sheared, every rail link 0.2 rad from hanging (the top rung's angle
-    /// 1e-4 rad off, so that assembly takes Newton steps).
-    pub Ladder201 {
-        gravity [0.0, -9.81];
-        body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
-        for k in 1..=100 {
-            body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
-        }
-        for k in 0..100 {
-            body a[k] {
-                mass: 0.5,
-                inertia: 0.00375,
-                at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
+/// A hanging ladder of `$n` four-bar loops: `$n` + 1 rungs 0.4 m wide, a left rail of `$n`
+/// links 0.3 m long pinned between them, massless 0.3 m links on the right; the top rung held
+/// by a pin and a link to ground. Started sheared, every rail link 0.2 rad from hanging (the
+/// top rung's angle 1e-4 rad off, so that assembly takes Newton steps). `$extra`: statements
+/// before the bodies (`joint_coordinates;`).
+macro_rules! ladder {
+    ($(#[$doc:meta])* $name:ident, $n:tt $(, $extra:ident)?) => {
+        mechanism! {
+            $(#[$doc])*
+            pub $name {
+                $($extra;)?
+                gravity [0.0, -9.81];
+                body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
+                for k in 1..=$n {
+                    body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
+                }
+                for k in 0..$n {
+                    body a[k] {
+                        mass: 0.5,
+                        inertia: 0.00375,
+                        at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
+                    }
+                    revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
+                    revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
+                    revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
+                }
+                revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
+                revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
             }
-            revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
-            revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
-            revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
         }
-        revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
-        revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
-    }
+    };
+}
+
+ladder! {
+    /// A hanging ladder of 100 four-bar loops (issue 37, item 4): 201 bodies, 503 rows, 100
+    /// degrees of freedom.
+    Ladder201, 100
 }
 
 /// The ladder's assembly, statics and every integrator (DOPRI5 also with partitioning and
@@ -302,31 +314,12 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
     });
 }
 
-mechanism! {
-    /// The ladder of [`Ladder201`] with 50 loops (101 bodies) in joint coordinates: a spanning
-    /// tree of 101 revolutes (NV = 101) and the 51 links as closure rows (NC = 51). M depends on
-    /// q and there are rows, so its forward dynamics is the dense one (`dense_forward`: D,
-    /// M⁻¹Dᵀ, S and M's factor, 0.18 MB here).
-    pub JointLadder101 {
-        joint_coordinates;
-        gravity [0.0, -9.81];
-        body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
-        for k in 1..=50 {
-            body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
-        }
-        for k in 0..50 {
-            body a[k] {
-                mass: 0.5,
-                inertia: 0.00375,
-                at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
-            }
-            revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
-            revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
-            revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
-        }
-        revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
-        revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
-    }
+ladder! {
+    /// The ladder with 50 loops (101 bodies) in joint coordinates: a spanning tree of 101
+    /// revolutes (NV = 101) and the 51 links as closure rows (NC = 51). M depends on q and there
+    /// are rows, so its forward dynamics is the dense one (`dense_forward`: D, M⁻¹Dᵀ, S and M's
+    /// factor, 0.18 MB here).
+    JointLadder101, 50, joint_coordinates
 }
 
 /// In joint coordinates the dense arrays of forward dynamics and of the Newton matrices are the
