@@ -84,8 +84,7 @@ where
     // Unknowns: v̇₊ (from the first guess) and λ₊ (from λ).
     let mut vd = *vd0;
     let mut lambda = from.lambda;
-    let mut q = [T::ZERO; NQ];
-    let mut v = [T::ZERO; NV];
+    let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
     let mut phi = [T::ZERO; NC];
     // `s`: D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
     // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix, in the
