@@ -48,7 +48,9 @@ pub struct TreeTerms {
     /// (∂h/∂q) dir and (∂h/∂v) dir.
     pub h_dq: Vec<Id>,
     pub h_dv: Vec<Id>,
-    /// (∂(Dᵀλ)/∂q) B dir: a column of `ConstraintForces::constraint_force_q`.
+    /// (∂(Dᵀλ)/∂q) B dir: a column of `ConstraintForces::constraint_force_q`, filled a column
+    /// at a time as the other dense derivatives (entry by entry, K was O(N²) code where the
+    /// rows reach most of the tree, a ladder's loops: a 0.5 MB debug frame for 101 bodies).
     pub constraint_force_dq: Vec<Id>,
     /// The friction forces' (∂/∂q) dir and (∂/∂v) dir; empty without Coulomb friction.
     pub friction_dq: Vec<Id>,
@@ -173,17 +175,11 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let power = super::power(&mut b, potential, &h);
 
     let (jacobian, nu, gamma) = constraint_derivatives(&mut b, &phi);
-    // Dᵀλ, whose derivative along a direction (`TreeTerms::constraint_force_dq`) fills K a
-    // column at a time, as the other dense derivatives: entry by entry it was O(N²) code where
-    // the rows reach most of the tree (a ladder's loops), and a debug build's frame of 0.5 MB
-    // for 101 bodies.
-    let constraint_force = constraint_forces(&mut b, &jacobian);
     let zero = b.g.num(0.0);
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
 
-    let terms =
-        TreeTerms { joint_wrenches, inverse, ..tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction, &constraint_force) };
+    let terms = TreeTerms { joint_wrenches, inverse, ..tree_terms(&mut b, &kinematics, &inertia, mass_x, &h, &friction, &jacobian) };
     b.g.forget_partials();
     Formulation {
         nc: phi.len(),
@@ -261,7 +257,7 @@ fn tree_terms(
     mass_x: Vec<Id>,
     h: &[Id],
     friction: &[Id],
-    constraint_force: &[Id],
+    jacobian: &[(usize, usize, Id)],
 ) -> TreeTerms {
     let nv = kinematics.tree.nv;
     let directions: Vec<Id> = (0..nv).map(|i| b.g.var(Var::Dir(i as u16))).collect();
@@ -294,7 +290,10 @@ fn tree_terms(
         mass_x_dq: along(b, &mass_x, true),
         h_dq: along(b, h, true),
         h_dv: along(b, h, false),
-        constraint_force_dq: along(b, constraint_force, true),
+        constraint_force_dq: {
+            let constraint_force = constraint_forces(b, jacobian);
+            along(b, &constraint_force, true)
+        },
         friction_dq: if has_friction { along(b, friction, true) } else { Vec::new() },
         friction_dv: if has_friction { along(b, friction, false) } else { Vec::new() },
         wrench: kinematics.backward(b, wrenches),
