@@ -7,8 +7,10 @@
 //! MuJoCo's RK4 in the same run against the same reference (`peers.rs`).
 //!
 //! Run: `cargo run --release -p mbd-study` (about 8 minutes on 2 cores). Writes
-//! `mbd-study/results/study.csv` (every run), `study.md` (the tables) and one `<case>.svg`
-//! per case (log-log error against CPU time, a panel per drift control).
+//! `mbd-study/results/study.csv` (every run), `study.md` (the tables), `proportionality.md`
+//! (each adaptive method's error over its tolerance) and one `<case>.svg` per case (log-log
+//! error against CPU time, a panel per drift control). `cargo run --release -p mbd-study --
+//! proportionality` writes `proportionality.md` alone, from the six cases it uses.
 //!
 //! The reference of each case is DOP853 at rtol 1e-13 without drift correction, checked against
 //! DOPRI5 at rtol 1e-12: their difference is reported as the reference's uncertainty, and errors
@@ -39,6 +41,9 @@ struct Study {
     summaries: Vec<CaseSummary>,
     progress: ProgressBar,
     out: PathBuf,
+    /// `mbd-study proportionality`: only the cases of the proportionality table, each with its
+    /// start and reference and no sweep.
+    only_proportionality: bool,
 }
 
 impl Study {
@@ -67,6 +72,9 @@ impl Study {
         let case = Case { name, mechanism: m, q0, v0, t_end, track_work };
         self.progress.set_message(format!("{name}: reference"));
         let reference = sweep::reference(&case, ws);
+        if self.only_proportionality {
+            return (q0, v0, reference);
+        }
         let mut rows = sweep::sweep(&case, ws, &reference, &self.progress);
         if let Some(links) = mujoco {
             self.progress.set_message(format!("{name}: MuJoCo's RK4"));
@@ -117,16 +125,31 @@ impl Study {
 }
 
 fn main() {
+    let only_proportionality = match std::env::args().nth(1).as_deref() {
+        None => false,
+        Some("proportionality") => true,
+        Some(other) => {
+            panic!("unknown argument {other:?}: run without one for the whole study, or with `proportionality` for its table alone")
+        }
+    };
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results");
     std::fs::create_dir_all(&out).expect("create mbd-study/results");
     let cases = 12;
     let mujoco_cases = 3;
-    let progress = ProgressBar::new(cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64);
+    let runs = if only_proportionality { 0 } else { cases * sweep::runs_per_case() + mujoco_cases * sweep::STEPS_RK4.len() as u64 };
+    let progress = ProgressBar::new(runs);
     progress.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs  {msg}").expect("template").progress_chars("=> "),
     );
-    let mut study =
-        Study { rows: Vec::new(), proportionality: Vec::new(), exactness: Vec::new(), summaries: Vec::new(), progress, out: out.clone() };
+    let mut study = Study {
+        rows: Vec::new(),
+        proportionality: Vec::new(),
+        exactness: Vec::new(),
+        summaries: Vec::new(),
+        progress,
+        out: out.clone(),
+        only_proportionality,
+    };
 
     let m = FlywheelSliderCrank::default();
     let run = study.case(
@@ -140,54 +163,13 @@ fn main() {
         None,
     );
     study.proportional("flywheel_slider_crank", &m, &mut FlywheelSliderCrank::workspace(), run, 2.0, 2.0);
-    let m = DoublePendulum::default();
-    study.case(
-        "double_pendulum",
-        "double pendulum released horizontal (chaotic)",
-        &m,
-        &mut DoublePendulum::workspace(),
-        1.0,
-        false,
-        true,
-        None,
-    );
     let m = Chain4::default();
     let run =
         study.case("chain4", "pendulum chain of 4 links released horizontal", &m, &mut Chain4::workspace(), 2.0, false, true, Some(4));
     study.proportional("chain4", &m, &mut Chain4::workspace(), run, 2.0, 1.0);
-    let m = Chain16::default();
-    let (q0, v0, reference) =
-        study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true, Some(16));
-    let m32 = Chain16F32::default();
-    study.progress.set_message("chain16: f32 against f64");
-    let start = exactness::Start { case: "chain16", q0: &q0, v0: &v0, t_end: 2.0, reference: &reference };
-    study.exactness.extend(exactness::precision((&m32, &mut Chain16F32::workspace()), (&m, &mut Chain16::workspace()), &start));
-    let m = Chain64::default();
-    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false, Some(64));
-    let m = suspension::DoubleAArmRide::default();
-    study.case(
-        "suspension",
-        "double A-arm corner on a 200 kN/m tyre over a 3 cm bump (damped)",
-        &m,
-        &mut suspension::DoubleAArmRide::workspace(),
-        1.0,
-        true,
-        true,
-        None,
-    );
-    let m = ChangePointFourBar::default();
-    study.case(
-        "change_point_four_bar",
-        "four-bar turning through its flat (singular) position",
-        &m,
-        &mut ChangePointFourBar::workspace(),
-        2.0,
-        false,
-        true,
-        None,
-    );
-    let m = gyroscope::Gyroscope { wz: 100.0 * PI, ..gyroscope::Gyroscope::default() };
-    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true, None);
+    if !only_proportionality {
+        without_proportionality(&mut study);
+    }
     let m = FreeSpatialSliderCrank::default();
     let run = study.case(
         "spatial_slider_crank",
@@ -238,18 +220,71 @@ fn main() {
     study.proportional("bump_stop", &m, &mut BumpStopQuarterCar::workspace(), run, 2.0, 2.0);
     study.progress.finish();
 
+    let table = proportionality::markdown(&study.proportionality, &today(), &machine());
+    std::fs::write(out.join("proportionality.md"), table).expect("write proportionality.md");
+    if only_proportionality {
+        println!("wrote {}", out.join("proportionality.md").display());
+        return;
+    }
     report::csv(&study.rows, &out.join("study.csv")).expect("write study.csv");
     let header = format!(
-        "# What accuracy costs in time\n\n`cargo run --release -p mbd-study`, {} on {} ({} runs). Error: max |Δq| over the coordinates (m, rad; spatial Euler parameters) and the run's 50 output times, against the case's reference at the same times. CPU: median wall time of up to 5 repeats, one thread, 50 output times per run where ‖Φ‖∞ and the energy error (T + V, or the balance T + V − W with work tracked for the damped suspension) are sampled. All runs: `study.csv`.",
+        "# What accuracy costs in time\n\n`cargo run --release -p mbd-study`, {} on {} ({} runs). Error: max |Δq| over the coordinates (m, rad; spatial Euler parameters) and the run's 50 output times, against the case's reference at the same times. CPU: median wall time of up to 5 repeats, one thread, 50 output times per run where ‖Φ‖∞ and the energy error (T + V, or the balance T + V − W with work tracked for the damped suspension) are sampled. All runs: `study.csv`. Tolerance proportionality: `proportionality.md`.",
         today(),
         machine(),
         study.rows.len()
     );
     let mut markdown = report::markdown(&study.summaries, &study.rows, &header);
-    markdown.push_str(&proportionality::markdown(&study.proportionality));
     markdown.push_str(&exactness::markdown(&study.exactness));
     std::fs::write(out.join("study.md"), markdown).expect("write study.md");
     println!("wrote {}", out.display());
+}
+
+/// The cases that are not in the proportionality table.
+fn without_proportionality(study: &mut Study) {
+    let m = DoublePendulum::default();
+    study.case(
+        "double_pendulum",
+        "double pendulum released horizontal (chaotic)",
+        &m,
+        &mut DoublePendulum::workspace(),
+        1.0,
+        false,
+        true,
+        None,
+    );
+    let m = Chain16::default();
+    let (q0, v0, reference) =
+        study.case("chain16", "pendulum chain of 16 links released horizontal", &m, &mut Chain16::workspace(), 2.0, false, true, Some(16));
+    let m32 = Chain16F32::default();
+    study.progress.set_message("chain16: f32 against f64");
+    let start = exactness::Start { case: "chain16", q0: &q0, v0: &v0, t_end: 2.0, reference: &reference };
+    study.exactness.extend(exactness::precision((&m32, &mut Chain16F32::workspace()), (&m, &mut Chain16::workspace()), &start));
+    let m = Chain64::default();
+    study.case("chain64", "pendulum chain of 64 links released horizontal", &m, &mut Chain64::workspace(), 1.0, false, false, Some(64));
+    let m = suspension::DoubleAArmRide::default();
+    study.case(
+        "suspension",
+        "double A-arm corner on a 200 kN/m tyre over a 3 cm bump (damped)",
+        &m,
+        &mut suspension::DoubleAArmRide::workspace(),
+        1.0,
+        true,
+        true,
+        None,
+    );
+    let m = ChangePointFourBar::default();
+    study.case(
+        "change_point_four_bar",
+        "four-bar turning through its flat (singular) position",
+        &m,
+        &mut ChangePointFourBar::workspace(),
+        2.0,
+        false,
+        true,
+        None,
+    );
+    let m = gyroscope::Gyroscope { wz: 100.0 * PI, ..gyroscope::Gyroscope::default() };
+    study.case("heavy_top", "heavy top spinning at 50 rev/s (spatial)", &m, &mut gyroscope::Gyroscope::workspace(), 1.0, false, true, None);
 }
 
 /// The date (UTC) from the system clock.

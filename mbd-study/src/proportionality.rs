@@ -7,6 +7,7 @@
 //! it is asked; where the error is below the reference's resolution the factor is not resolved.
 
 use std::fmt::Write;
+use std::time::Instant;
 
 use mbd::prelude::*;
 
@@ -16,7 +17,10 @@ use crate::sweep::{output_times, Case, Reference};
 pub const TOLERANCES: [f64; 4] = [1e-4, 1e-6, 1e-8, 1e-10];
 
 /// The adaptive methods.
-const METHODS: [&str; 5] = ["DOPRI5", "DOP853", "adaptive gen-α ρ∞=0.8", "BDF", "Auto"];
+const METHODS: [&str; 6] = ["DOPRI5", "DOP853", "gen-α ρ∞=0.8, per step", "gen-α ρ∞=0.8, per unit time", "BDF", "Auto"];
+
+/// A run's relative error and wall time (ms), or why it failed.
+type Run = Result<(f64, f64), String>;
 
 /// One case's errors: per method, per tolerance, the relative error (or why there is none).
 pub struct Row {
@@ -25,7 +29,9 @@ pub struct Row {
     pub horizon: f64,
     /// The reference's resolution, relative like the errors.
     pub resolution: f64,
-    pub errors: Vec<(&'static str, Vec<Result<f64, String>>)>,
+    /// Per method, per tolerance: the relative error and the run's wall time (ms), or why it
+    /// failed.
+    pub errors: Vec<(&'static str, Vec<Run>)>,
 }
 
 /// Runs every method at every tolerance on `case`, over its output times up to `horizon`.
@@ -49,11 +55,13 @@ where
                 "DOP853" => error(case, ws, reference, &times, &mut Dop853::new(Dop853Options::default().with_rtol(tol).with_atol(tol))),
                 "BDF" => error(case, ws, reference, &times, &mut Bdf::new(BdfOptions::default().with_rtol(tol).with_atol(tol))),
                 "Auto" => error(case, ws, reference, &times, &mut Auto::new(AutoOptions::default().with_rtol(tol).with_atol(tol))),
-                _ => {
-                    let control = ErrorControl::default().with_rtol(tol).with_atol(tol);
+                "gen-α ρ∞=0.8, per step" | "gen-α ρ∞=0.8, per unit time" => {
+                    let per_unit_time = method.ends_with("per unit time");
+                    let control = ErrorControl::default().with_rtol(tol).with_atol(tol).with_per_unit_time(per_unit_time);
                     let options = GeneralizedAlphaOptions::default().with_error_control(Some(control));
                     error(case, ws, reference, &times, &mut GeneralizedAlpha::new(options))
                 }
+                _ => unreachable!("{method} is in METHODS"),
             })
             .collect();
         errors.push((method, runs));
@@ -68,12 +76,13 @@ fn error<M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize
     reference: &Reference<NQ>,
     times: &[f64],
     integrator: &mut I,
-) -> Result<f64, String>
+) -> Run
 where
     M: ForwardDynamics<f64, NQ, NV, NC>,
     I: Integrator<f64, M, NQ, NV, NC, N, NS>,
 {
     let (mut worst, mut k) = (0.0f64, 0);
+    let start = Instant::now();
     Simulation::new(case.mechanism, integrator)
         .start(0.0, &case.q0, &case.v0)
         .times(times)
@@ -84,16 +93,20 @@ where
             worst = worst.max(d / scale);
             k += 1;
         })
-        .map_err(|e| e.to_string())?;
-    Ok(worst)
+        .map_err(|e| match e {
+            SimulationError::ToleranceBelowResolution { t, .. } => format!("at t = {t:.2e} s: `ToleranceBelowResolution`"),
+            e => e.to_string(),
+        })?;
+    Ok((worst, start.elapsed().as_secs_f64() * 1e3))
 }
 
-/// The table: per case and method, error/rtol at each tolerance, and the largest resolved.
-pub fn markdown(rows: &[Row]) -> String {
+/// The table, a page of its own (`proportionality.md`, dated `today` on `machine`): per case
+/// and method, error/rtol and the run's time at each tolerance, and the largest resolved factor.
+pub fn markdown(rows: &[Row], today: &str, machine: &str) -> String {
     let mut out = String::new();
     writeln!(
         out,
-        "\n## Tolerance proportionality (rtol = atol, projection)\n\nError: the largest over the 50 output times of ‖q − q_ref‖∞ / max(1, ‖q_ref‖∞); each cell is error / rtol at rtol = {}; \"<\" where the error is below the reference's resolution (the factor is then at most the one shown). The last column is the largest resolved factor: what the method delivers over the range.\n",
+        "# Tolerance proportionality (rtol = atol, projection)\n\n`cargo run --release -p mbd-study -- proportionality`, {today} on {machine}. Error: the largest over the 50 output times of ‖q − q_ref‖∞ / max(1, ‖q_ref‖∞), against the case's reference (`study.md`); each cell is error / rtol at rtol = {}, then the run's wall time (one run, one thread); \"<\" where the error is below the reference's resolution (the factor is then at most the one shown). The last column is the largest resolved factor: what the method delivers over the range.\n",
         TOLERANCES.iter().map(|t| format!("{t:.0e}")).collect::<Vec<_>>().join(", ")
     )
     .unwrap();
@@ -108,10 +121,10 @@ pub fn markdown(rows: &[Row]) -> String {
             let mut largest: Option<f64> = None;
             for (run, tol) in runs.iter().zip(TOLERANCES) {
                 let cell = match run {
-                    Ok(e) if *e < row.resolution => format!("< {}", factor(row.resolution / tol)),
-                    Ok(e) => {
+                    Ok((e, ms)) if *e < row.resolution => format!("< {} · {}", factor(row.resolution / tol), milliseconds(*ms)),
+                    Ok((e, ms)) => {
                         largest = Some(largest.map_or(e / tol, |l| l.max(e / tol)));
-                        factor(e / tol)
+                        format!("{} · {}", factor(e / tol), milliseconds(*ms))
                     }
                     Err(message) => format!("failed: {}", message.chars().take(60).collect::<String>()),
                 };
@@ -131,5 +144,14 @@ fn factor(f: f64) -> String {
         format!("{f:.2}")
     } else {
         format!("{f:.1e}")
+    }
+}
+
+/// A wall time in ms to two significant digits.
+fn milliseconds(ms: f64) -> String {
+    if ms >= 10.0 {
+        format!("{ms:.0} ms")
+    } else {
+        format!("{ms:.2} ms")
     }
 }

@@ -166,6 +166,18 @@ pub enum SimulationError {
         /// The rejected step size (s).
         step: f64,
     },
+    /// Variable-step generalized-α bounding its error per unit time
+    /// ([`ErrorControl::per_unit_time`]) needed steps whose error allowance, h (atol + rtol),
+    /// is below what the positions resolve: a second-order method cannot meet this tolerance in
+    /// this scalar type (in f64 it reaches about 1e-8 where the motion is smooth).
+    ToleranceBelowResolution {
+        /// Time (s).
+        t: f64,
+        /// The rejected step size (s).
+        step: f64,
+        /// The relative tolerance asked.
+        rtol: f64,
+    },
     /// The step budget ran out before the last output time.
     TooManySteps {
         /// Time reached (s).
@@ -248,6 +260,12 @@ impl fmt::Display for SimulationError {
             SimulationError::StepSizeTooSmall { t, step } => {
                 write!(f, "at t = {t} s error control needed a step of {step} s, below the minimum")
             }
+            SimulationError::ToleranceBelowResolution { t, step, rtol } => write!(
+                f,
+                "at t = {t} s generalized-α bounding its error per unit time at rtol {rtol:e} needed steps of {step:e} s, whose error \
+                 allowance the positions' resolution cannot measure: loosen rtol and atol, bound the error per step instead \
+                 (ErrorControl::with_per_unit_time(false), which does not deliver the tolerance), or use DOP853"
+            ),
             SimulationError::TooManySteps { t, steps } => write!(f, "{steps} steps taken, stopped at t = {t} s"),
             SimulationError::NotConverged { t, iterations, worst_row, residual } => {
                 write!(f, "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}")
