@@ -8,10 +8,18 @@
 
 use proc_macro2::TokenStream;
 
-/// `e` as `compile_error!`s, each message completed with what was found.
+/// `e` as `compile_error!`s, each message completed with what was found, and each mistake once:
+/// a mistake inside a `for` loop is found in every iteration (`cc[0]`, `cc[1]`, …), at the same
+/// token; only the first is kept.
 pub fn compile_errors(e: syn::Error) -> TokenStream {
     let mut all: Option<syn::Error> = None;
+    let mut seen = Vec::new();
     for one in e {
+        let key = (one.span().start(), one.span().end(), without_digits(&one.to_string()));
+        if seen.contains(&key) {
+            continue;
+        }
+        seen.push(key);
         let message = with_found(&one.to_string(), || one.span().source_text());
         let one = syn::Error::new(one.span(), message);
         match &mut all {
@@ -20,6 +28,11 @@ pub fn compile_errors(e: syn::Error) -> TokenStream {
         }
     }
     all.map(|e| e.to_compile_error()).unwrap_or_default()
+}
+
+/// `message` without its numbers: the same mistake in two iterations of a loop names two indices.
+fn without_digits(message: &str) -> String {
+    message.chars().filter(|c| !c.is_ascii_digit()).collect()
 }
 
 /// `message` with ", found …" where it names only what was expected. `source` is the text under
