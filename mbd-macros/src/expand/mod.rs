@@ -206,9 +206,10 @@ fn placeholder(mut def: MechanismDef) -> TokenStream {
 
 /// What may stand in for a statement with a mistake, in order ([`placeholder`]), so that the
 /// names it makes (`Name::MOTOR`, `Name::CRANK`) are still there: a body of unit mass and
-/// inertia, parameters with defaults 0, a driver of a constant (of each of its body's
-/// coordinates, where its own is wrong), a joint without its options, a point on a misspelt
-/// body on the body whose name is nearest.
+/// inertia, parameters with defaults 0, a driver of a constant (on the body whose name is
+/// nearest, where its own is misspelt; of each of its body's coordinates, where its coordinate
+/// is wrong), a joint without its options (and on the bodies whose names are nearest, where
+/// its own are misspelt), a point on a misspelt body on the body whose name is nearest.
 fn stand_ins(statement: &Item, spatial: bool, bodies: &[&str]) -> Vec<Item> {
     match statement {
         // A point on a misspelt body: on the body it is nearest to.
@@ -221,6 +222,14 @@ fn stand_ins(statement: &Item, spatial: bool, bodies: &[&str]) -> Vec<Item> {
             let constant = crate::parse::DriveDef { f: Expr::number(1.0, d.f.span, d.f.end), ..d.clone() };
             let mut candidates = vec![Item::Drive(constant.clone())];
             if let crate::parse::DriveTarget::Coordinate { body, coordinate } = &d.target {
+                // On a misspelt body: on the body it is nearest to.
+                if let Some(nearest) = crate::parse::nearest(&body.to_string(), bodies, &[]) {
+                    let target = crate::parse::DriveTarget::Coordinate {
+                        body: syn::Ident::new(nearest, body.span()),
+                        coordinate: coordinate.clone(),
+                    };
+                    candidates.push(Item::Drive(crate::parse::DriveDef { target, ..constant.clone() }));
+                }
                 candidates.extend(["phi", "x", "y", "z"].iter().map(|c| {
                     let target =
                         crate::parse::DriveTarget::Coordinate { body: body.clone(), coordinate: syn::Ident::new(c, coordinate.span()) };
@@ -229,7 +238,21 @@ fn stand_ins(statement: &Item, spatial: bool, bodies: &[&str]) -> Vec<Item> {
             }
             candidates
         }
-        Item::Joint(j) if !j.options.is_empty() => vec![Item::Joint(crate::parse::JointDef { options: Vec::new(), ..j.clone() })],
+        Item::Joint(j) => {
+            let bare = crate::parse::JointDef { options: Vec::new(), ..j.clone() };
+            // On a misspelt body: on the body it is nearest to (and without its options).
+            let declared = |body: &syn::Ident| body == "ground" || bodies.iter().any(|b| body == b);
+            let near = |a: &crate::parse::Attach| match crate::parse::nearest(&a.body.to_string(), bodies, &["ground"]) {
+                Some(body) if !declared(&a.body) => crate::parse::Attach { body: syn::Ident::new(body, a.body.span()), ..a.clone() },
+                _ => a.clone(),
+            };
+            let moved = crate::parse::JointDef { i: near(&j.i), j: near(&j.j), ..bare.clone() };
+            [(!j.options.is_empty()).then_some(bare), (!declared(&j.i.body) || !declared(&j.j.body)).then_some(moved)]
+                .into_iter()
+                .flatten()
+                .map(Item::Joint)
+                .collect()
+        }
         Item::Body(b) => vec![Item::Body(BodyDef::unit(b.name.clone(), spatial, b.particle))],
         Item::Params(ps) => {
             vec![Item::Params(ps.iter().map(|(name, value)| (name.clone(), Expr::number(0.0, value.span, value.end))).collect())]
