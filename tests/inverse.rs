@@ -112,3 +112,91 @@ fn inverse_dynamics_sweep_to_csv() {
     let read: Vec<f64> = text.lines().skip(1).map(|l| l.split(',').nth(12).expect("column").parse().expect("number")).collect();
     assert_eq!(read, torques);
 }
+
+mechanism! {
+    /// A pendulum whose bob's mass and inertia are parameters: a user may set them to anything.
+    pub WeighedPendulum {
+        params { m_bob: 1.0, j_bob: 0.01 }
+        gravity [0.0, -9.81];
+        body bob { mass: m_bob, inertia: j_bob, at: [0.5, 0.0, 0.0] }
+        revolute ground[0.0, 0.0] ~ bob[-0.5, 0.0];
+        drive swing: bob.phi = 0.3 * sin(t);
+        scene FreeWeighedPendulum without swing;
+    }
+}
+
+mechanism! {
+    /// A top on a ball joint whose inertia tensor's product Jxy is a parameter.
+    pub TensorTop {
+        spatial;
+        params { jxy: 0.0 }
+        gravity [0.0, 0.0, -9.81];
+        body top { mass: 1.0, inertia: [0.01, 0.01, 0.02, jxy, 0.0, 0.0], at: [0.0, 0.0, 0.5] }
+        spherical ground[0.0, 0.0, 0.0] ~ top[0.0, 0.0, -0.5];
+    }
+}
+
+/// A mass or inertia given as a parameter is checked by every analysis that uses M — inverse
+/// dynamics, statics, linearization and simulation — which each refuse a non-positive one
+/// naming the body, before anything else (a user found inverse dynamics accepting a negative
+/// mass silently). Spatially, J′ must be positive definite: diag(0.01, 0.01, 0.02) with
+/// Jxy = 0.02 has the principal moments −0.01, 0.02 and 0.03 (each diagonal entry positive),
+/// and −0.01 is reported.
+#[test]
+fn every_analysis_refuses_a_non_positive_mass_or_inertia_naming_the_body() {
+    for (m_bob, j_bob, value) in [(-1.0, 0.01, -1.0), (0.0, 0.01, 0.0), (1.0, -0.5, -0.5), (f64::NAN, 0.01, f64::NAN)] {
+        let expected = |body: &str, v: f64| body == "bob" && (v == value || (v.is_nan() && value.is_nan()));
+        let driven = WeighedPendulum { m_bob, j_bob };
+        let mut lambda = [0.0; WeighedPendulum::NC];
+        let error = InverseDynamics::default()
+            .solve(&driven, &mut WeighedPendulum::workspace(), &driven.initial_positions(), &[0.0; 3], &[0.0; 3], 0.0, &mut lambda)
+            .unwrap_err();
+        assert!(matches!(error, InverseDynamicsError::NonPositiveMass { body, value: v } if expected(body, v)), "{error:?}");
+        assert!(error.to_string().contains("body `bob`"), "{error}");
+
+        let free = FreeWeighedPendulum { m_bob, j_bob };
+        let mut q = free.initial_positions();
+        let mut lambda = [0.0; FreeWeighedPendulum::NC];
+        let error = StaticSolver::default().solve(&free, &mut FreeWeighedPendulum::workspace(), &mut q, 0.0, &mut lambda).unwrap_err();
+        assert!(matches!(error, StaticError::NonPositiveMass { body, value: v } if expected(body, v)), "{error:?}");
+
+        let error = Linearizer::default().linearize(&free, &free.initial_positions(), &[0.0; 3], 0.0).unwrap_err();
+        assert!(
+            matches!(error, LinearizeError::Dynamics(DynamicsError::NonPositiveMass { body, value: v }) if expected(body, v)),
+            "{error:?}"
+        );
+
+        let error = Simulation::new(&free, &mut Auto::default())
+            .start(0.0, &free.initial_positions(), &[0.0; 3])
+            .times(&[0.1])
+            .run(&mut FreeWeighedPendulum::workspace(), |_| {})
+            .unwrap_err();
+        assert!(
+            matches!(error, SimulationError::Dynamics(DynamicsError::NonPositiveMass { body, value: v }) if expected(body, v)),
+            "{error:?}"
+        );
+    }
+
+    let top = TensorTop { jxy: 0.02 };
+    let error = Simulation::new(&top, &mut Auto::default())
+        .start(0.0, &top.initial_positions(), &[0.0; 6])
+        .times(&[0.1])
+        .run(&mut TensorTop::workspace(), |_| {})
+        .unwrap_err();
+    let SimulationError::Dynamics(DynamicsError::NonPositiveMass { body: "top", value }) = error else { panic!("{error:?}") };
+    assert!((value + 0.01).abs() < 1e-15, "the smallest principal moment: {value}");
+    let mut q = top.initial_positions();
+    let mut lambda = [0.0; TensorTop::NC];
+    let error = StaticSolver::default().solve(&top, &mut TensorTop::workspace(), &mut q, 0.0, &mut lambda).unwrap_err();
+    assert!(matches!(error, StaticError::NonPositiveMass { body: "top", .. }), "{error:?}");
+
+    // Valid values pass: the same analyses run.
+    let top = TensorTop { jxy: 0.001 };
+    let mut q = top.initial_positions();
+    StaticSolver::default().solve(&top, &mut TensorTop::workspace(), &mut q, 0.0, &mut lambda).expect("a positive definite J′");
+    let driven = WeighedPendulum::default();
+    let mut lambda = [0.0; WeighedPendulum::NC];
+    InverseDynamics::default()
+        .solve(&driven, &mut WeighedPendulum::workspace(), &driven.initial_positions(), &[0.0; 3], &[0.0; 3], 0.0, &mut lambda)
+        .expect("positive masses");
+}

@@ -41,6 +41,8 @@ pub use integrate::{
 };
 pub use linalg::sparse::SparsePattern;
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};
+#[doc(hidden)]
+pub use model::dynamics::check_inertia;
 pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };

@@ -198,6 +198,8 @@ struct DynamicsFunctions {
     power: TokenStream,
     friction: TokenStream,
     friction_derivatives: TokenStream,
+    /// `Dynamics::check_inertia`: each body's mass and inertia from the parameters, checked.
+    inertia_check: TokenStream,
     ops: Vec<(&'static str, Ops)>,
     force_ops: ([Ops; 3], Vec<[Ops; 3]>),
 }
@@ -343,8 +345,30 @@ impl<'a> Gen<'a> {
             power,
             friction: self.friction(),
             friction_derivatives: self.friction_derivatives(),
+            inertia_check: self.inertia_check(),
             ops,
             force_ops: force_ops(f, e),
+        }
+    }
+
+    /// `Dynamics::check_inertia`: per body its mass and inertia (J, or the rows of J′) into `p`,
+    /// checked by `mbd::check_inertia` (which names the body). Nothing where every one is a
+    /// constant, which validation has checked already (the provided method then checks nothing).
+    fn inertia_check(&self) -> TokenStream {
+        let Gen { f, e, real, zero, .. } = self;
+        let per_body = f.bodies.first().map_or(2, |b| 1 + b.inertia.iter().map(Vec::len).sum::<usize>());
+        let values: Vec<u32> = f.bodies.iter().flat_map(|b| std::iter::once(b.mass).chain(b.inertia.iter().flatten().copied())).collect();
+        if values.iter().all(|&id| f.graph.as_const(id).is_some()) {
+            return TokenStream::new();
+        }
+        let (body, _) = e.body(&vector_outputs("p", &values));
+        let (n, k) = (usize_lit(values.len()), usize_lit(per_body));
+        quote! {
+            fn check_inertia(&self) -> ::core::result::Result<(), ::mbd::DynamicsError> {
+                let mut p = [#zero; #n];
+                #body
+                ::mbd::check_inertia::<Self, #real>(&p, #k)
+            }
         }
     }
 

@@ -212,6 +212,24 @@ pub(super) fn inertia_tensor(r: &mut Resolver, b: &parse::BodyDef, v: &parse::Ve
     }
     let off = |k: usize| items.get(k).cloned().unwrap_or(MExpr::Num(0.0));
     let (xy, xz, yz) = (off(3), off(4), off(5));
+    // A constant tensor with products must be positive definite (with parameters in it, the
+    // solvers check it at run time, `Dynamics::check_inertia`).
+    let values: Option<Vec<f64>> = [&items[0], &items[1], &items[2], &xy, &xz, &yz].iter().map(|e| e.constant_value()).collect();
+    if let Some(&[jxx, jyy, jzz, jxy, jxz, jyz]) = values.as_deref() {
+        let det = jxx * (jyy * jzz - jyz * jyz) - jxy * (jxy * jzz - jyz * jxz) + jxz * (jxy * jyz - jyy * jxz);
+        let minors = [jxx, jxx * jyy - jxy * jxy, det];
+        if jxx > 0.0 && jyy > 0.0 && jzz > 0.0 && !minors.iter().all(|&m| m > 0.0) {
+            r.errors.push(
+                v.span,
+                format!(
+                    "the inertia tensor of body `{}` must be positive definite: expected products of inertia small enough \
+                     that every principal moment is positive, found [Jxx, Jyy, Jzz, Jxy, Jxz, Jyz] = \
+                     [{jxx}, {jyy}, {jzz}, {jxy}, {jxz}, {jyz}]",
+                    b.name
+                ),
+            );
+        }
+    }
     Some([[items[0].clone(), xy.clone(), xz.clone()], [xy, items[1].clone(), yz.clone()], [xz, yz, items[2].clone()]])
 }
 

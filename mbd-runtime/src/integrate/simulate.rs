@@ -320,6 +320,7 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
         if self.times.is_empty() {
             return Err(SimulationError::Incomplete { missing: "output times: .times(&times)" });
         }
+        self.mechanism.check_inertia().map_err(SimulationError::Dynamics)?;
         integrate(self.mechanism, ws, self.integrator, t0, &q0, &v0, self.times, &self.options, self.events, output)
     }
 }

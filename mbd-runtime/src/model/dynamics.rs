@@ -147,6 +147,55 @@ pub enum DynamicsError {
     },
 }
 
+/// [`Dynamics::check_inertia`]'s check, called by the generated code: `values` holds, per body
+/// in [`Mechanism::BODY_NAMES`]' order, `per_body` values — the mass and J (planar, 2), or the
+/// mass and the rows of J′ (spatial, 10). Masses and planar J must be positive and finite; J′
+/// positive definite (its leading principal minors positive), else its smallest principal
+/// moment is reported.
+#[doc(hidden)]
+pub fn check_inertia<M: Mechanism, T: Real>(values: &[T], per_body: usize) -> Result<(), DynamicsError> {
+    let positive = |x: T| x.is_finite() && x > T::ZERO;
+    for (b, c) in values.chunks_exact(per_body.max(1)).enumerate() {
+        let body = M::BODY_NAMES.get(b).copied().unwrap_or("?");
+        let refuse = |value: T| Err(DynamicsError::NonPositiveMass { body, value: value.to_f64() });
+        if !positive(c[0]) {
+            return refuse(c[0]);
+        }
+        match c[1..] {
+            [j] if !positive(j) => return refuse(j),
+            [a, b, cc, d, e, f, g, h, k] => {
+                let minors = [a, a * e - b * d, a * (e * k - f * h) - b * (d * k - f * g) + cc * (d * h - e * g)];
+                if !minors.into_iter().all(positive) {
+                    return refuse(smallest_eigenvalue([[a, b, cc], [d, e, f], [g, h, k]]));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The smallest eigenvalue of the symmetric part of a 3 × 3 matrix (Smith 1961, by the
+/// trigonometric solution of its characteristic cubic).
+// `!(p > 0)` on purpose: a NaN entry returns the (NaN) mean.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn smallest_eigenvalue<T: Real>(a: [[T; 3]; 3]) -> T {
+    let half = T::from_f64(0.5);
+    let s = |i: usize, j: usize| half * (a[i][j] + a[j][i]);
+    let off = s(0, 1) * s(0, 1) + s(0, 2) * s(0, 2) + s(1, 2) * s(1, 2);
+    let mean = (s(0, 0) + s(1, 1) + s(2, 2)) / T::from_f64(3.0);
+    let spread = (0..3).fold(T::from_f64(2.0) * off, |sum, i| sum + (s(i, i) - mean) * (s(i, i) - mean));
+    let p = (spread / T::from_f64(6.0)).sqrt();
+    if !(p > T::ZERO) {
+        return mean;
+    }
+    let b = |i: usize, j: usize| (s(i, j) - if i == j { mean } else { T::ZERO }) / p;
+    let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(1, 2)) - b(0, 1) * (b(0, 1) * b(2, 2) - b(1, 2) * b(0, 2))
+        + b(0, 2) * (b(0, 1) * b(1, 2) - b(1, 1) * b(0, 2));
+    let phi = (half * det).max(-T::ONE).min(T::ONE).acos() / T::from_f64(3.0);
+    mean + T::from_f64(2.0) * p * (phi + T::from_f64(2.0 * core::f64::consts::PI / 3.0)).cos()
+}
+
 impl DynamicsError {
     /// The error for a failed pivot of `row` — called by the generated code on its cold path:
     /// a non-positive mass or a non-finite input is reported as such, a zero row of D (`jv`, in

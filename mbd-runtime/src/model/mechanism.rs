@@ -421,6 +421,16 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// body, blockdiag(m I₃, J′) per spatial body (kg, kg·m²), constant; in joint coordinates
     /// M(q) = Σ_b m_b J_rᵀJ_r + J_ωᵀ J_b J_ω over the bodies' twist Jacobians.
     fn mass_times(&self, q: &[T; NQ], x: &[T; NV], y: &mut [T; NV]);
+    /// Each body's mass and inertia as the parameters make them, checked: the first body whose
+    /// mass is not positive and finite, or whose inertia is not (planar J; spatial J′ positive
+    /// definite, its smallest principal moment reported), as
+    /// [`DynamicsError::NonPositiveMass`]. Every analysis that uses M — simulation, inverse
+    /// dynamics, statics, linearization — calls it first, so that a mass given as a parameter
+    /// (`Name { m: -1.0, .. }`) is refused by each of them naming the body. `mechanism!`
+    /// generates it; the provided method checks nothing (a hand-written model).
+    fn check_inertia(&self) -> Result<(), crate::DynamicsError> {
+        Ok(())
+    }
     /// a += scale · M(q); only M's structural non-zeros are touched.
     fn add_mass_matrix(&self, q: &[T; NQ], scale: T, a: &mut [[T; NV]; NV]);
     /// a += scale · (∂(M(q) x)/∂q) B at fixed x: the change of the inertia forces M v̇ with the

@@ -10,6 +10,7 @@
 
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::model::body::{transpose_times, BodyFrames, BodyWrench, JointLoads};
+use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::Dynamics;
 use crate::model::workspace::Workspace;
 use crate::real::Real;
@@ -151,6 +152,15 @@ pub enum InverseDynamicsError {
         /// The coordinate, velocity or constraint row.
         row: &'static str,
     },
+    /// A body's mass or inertia, as the parameters make it, is not positive
+    /// ([`Dynamics::check_inertia`]): the loads of such a body mean nothing.
+    NonPositiveMass {
+        /// The body, from [`crate::Mechanism::BODY_NAMES`].
+        body: &'static str,
+        /// The offending mass (kg) or moment of inertia (kg·m²; spatial: J′'s smallest
+        /// principal moment).
+        value: f64,
+    },
     /// The loads of Coulomb friction did not settle: friction so large that it changes the
     /// loads it depends on more than they change it (μ too large, or a wedging geometry).
     FrictionNotConverged {
@@ -177,6 +187,9 @@ impl fmt::Display for InverseDynamicsError {
             ),
             InverseDynamicsError::NonFinite { t, quantity, row } => {
                 write!(f, "inverse dynamics at t = {t} s: non-finite value (NaN or ±∞) in {quantity} '{row}'")
+            }
+            InverseDynamicsError::NonPositiveMass { body, value } => {
+                write!(f, "inverse dynamics: body `{body}` has a mass or moment of inertia of {value}: it must be positive")
             }
             InverseDynamicsError::FrictionNotConverged { t, iterations, change } => write!(
                 f,
@@ -252,6 +265,9 @@ impl<T: Real> InverseDynamics<T> {
         M: Dynamics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>().map_err(shared)?;
+        if let Err(DynamicsError::NonPositiveMass { body, value }) = m.check_inertia() {
+            return Err(InverseDynamicsError::NonPositiveMass { body, value });
+        }
         let time = t.to_f64();
         if let Some(i) = first_non_finite(q) {
             return Err(InverseDynamicsError::NonFinite {

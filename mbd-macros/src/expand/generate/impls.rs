@@ -361,8 +361,9 @@ impl Gen<'_> {
     /// friction (its derivatives' body given: entries or columns) and the non-conservative power.
     pub(super) fn common_dynamics_items(&self, d: &DynamicsFunctions, friction_derivatives: &TokenStream) -> TokenStream {
         let Gen { real, zero, inline, nq_l, nv_l, nc_l, .. } = self;
-        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, .. } = d;
+        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, inertia_check, .. } = d;
         quote! {
+            #inertia_check
             #inline
             fn forces(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, h: &mut [#real; #nv_l]) {
                 #h_body

@@ -490,6 +490,7 @@ impl Linearizer {
     where
         M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
     {
+        m.check_inertia().map_err(LinearizeError::Dynamics)?;
         exact(m, q, v, t, &self.options)
     }
 
@@ -509,6 +510,7 @@ impl Linearizer {
     where
         M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC> + Clone,
     {
+        m.check_inertia().map_err(LinearizeError::Dynamics)?;
         finite_differences(m, q, v, t, &self.options)
     }
 }

@@ -261,6 +261,9 @@ impl<T: Real> StaticSolver<T> {
         if !t.is_finite() {
             return Err(StaticError::NonFinite { t: time, row: "t" });
         }
+        if let Err(crate::DynamicsError::NonPositiveMass { body, value }) = m.check_inertia() {
+            return Err(StaticError::NonPositiveMass { body, value });
+        }
         if let Some(i) = first_non_finite(q) {
             return Err(StaticError::NonFinite { t: time, row: name(M::COORDINATE_NAMES, i) });
         }

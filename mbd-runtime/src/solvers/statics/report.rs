@@ -136,6 +136,15 @@ pub enum StaticError {
         /// constraint.
         row: &'static str,
     },
+    /// A body's mass or inertia, as the parameters make it, is not positive
+    /// ([`crate::Dynamics::check_inertia`]): its weight and the stability verdict mean nothing.
+    NonPositiveMass {
+        /// The body, from [`crate::Mechanism::BODY_NAMES`].
+        body: &'static str,
+        /// The offending mass (kg) or moment of inertia (kg·m²; spatial: J′'s smallest
+        /// principal moment).
+        value: f64,
+    },
 }
 
 impl fmt::Display for StaticError {
@@ -167,6 +176,9 @@ impl fmt::Display for StaticError {
                 "static equilibrium at t = {t} s: NaN or infinite force on `{velocity}`, from `{element}` or one of {others} other elements acting there"
             ),
             StaticError::NonFinite { t, row } => write!(f, "static equilibrium at t = {t} s: non-finite value in '{row}'"),
+            StaticError::NonPositiveMass { body, value } => {
+                write!(f, "static equilibrium: body `{body}` has a mass or moment of inertia of {value}: it must be positive")
+            }
         }
     }
 }
