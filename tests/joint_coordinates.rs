@@ -680,6 +680,9 @@ fn nikravesh_variable_pendulum_in_joint_coordinates() {
         let (p, velocity, acceleration, _) = exact(&original, t);
         let bob = m.rod_bob();
         let (bp, bv, ba) = (bob.position(&q), bob.velocity(&q, &v), bob.acceleration(&q, &v, &vd));
+        // The same point by its body and plane coordinates, as `PlanarBody::point` takes them.
+        let again = bob.body.point(&m, [bob.local[0], bob.local[1]]);
+        assert_eq!((again.position(&q), again.acceleration(&q, &v, &vd)), (bp, ba));
         worst[0] = worst[0].max((bp.x - p[0]).abs().max((bp.y - p[1]).abs()));
         worst[1] = worst[1].max((bv.x - velocity[0]).abs().max((bv.y - velocity[1]).abs()));
         worst[2] = worst[2].max((ba.x - acceleration[0]).abs().max((ba.y - acceleration[1]).abs()));

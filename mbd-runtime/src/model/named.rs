@@ -249,6 +249,18 @@ impl TreeBody {
         let a = m.body_acceleration(self.index, q, v, vd).expect("a body of this mechanism");
         (Vector3::from(a.velocity), Vector3::from(a.angular_velocity))
     }
+    /// The point at `local` in its body frame (m): `[x, y]` in the plane, `[x, y, z]` in space
+    /// — as [`PlanarBody::point`] and [`SpatialBody::point`] give it in body coordinates, with
+    /// the mechanism that places the body. (Named points are also generated as methods,
+    /// `m.body_point()`.)
+    pub fn point<'m, T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize, const D: usize>(
+        &self,
+        m: &'m M,
+        local: [T; D],
+    ) -> TreePoint<'m, M, T, NQ, NV> {
+        const { assert!(D == 2 || D == 3, "a point on a body has 2 coordinates in the plane, 3 in space") };
+        TreePoint { mechanism: m, body: *self, local: [local[0], local[1], local.get(2).copied().unwrap_or(T::ZERO)] }
+    }
     fn pose<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize>(
         &self,
         m: &M,
