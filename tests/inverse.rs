@@ -200,3 +200,24 @@ fn every_analysis_refuses_a_non_positive_mass_or_inertia_naming_the_body() {
         .solve(&driven, &mut WeighedPendulum::workspace(), &driven.initial_positions(), &[0.0; 3], &[0.0; 3], 0.0, &mut lambda)
         .expect("positive masses");
 }
+
+/// A mechanism its drivers fix (DOF = 0) has nothing to be stable or unstable: statics finds
+/// the loads that hold it and says `Determined`, and so does linearization, instead of "stable
+/// with ω² = ∞" and "decaying at an infinite rate" (what a new user read, 2026-12-02). The
+/// pendulum held horizontal at t = 0 (φ = 0.3 sin 0): its driver holds m g · 0.5 m = 4.905 N·m.
+#[test]
+fn a_mechanism_without_freedom_is_determined_not_stable() {
+    let m = WeighedPendulum::default();
+    let mut q = m.initial_positions();
+    let mut lambda = [0.0; WeighedPendulum::NC];
+    let mut ws = WeighedPendulum::workspace();
+    let report = StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("held by its driver");
+    assert_eq!(report.stability, Stability::Determined);
+    let swing = joint_reaction(&m, &q, ws.jacobian(), &lambda, WeighedPendulum::SWING).and_then(|j| j.on_i).expect("the driver's load");
+    // Tolerance: the statics residual (1e-10 N·m) on a 4.9 N·m load.
+    assert!((swing.moment[2].abs() - 1.0 * 9.81 * 0.5).abs() < 1e-8, "{swing:?}");
+    let mut v = [0.0; 3];
+    KinematicSolver::default().sweep(&m, &mut ws, &mut q, [0.0], |_, _, qd, _| v = *qd).expect("the driven motion");
+    let lin = Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
+    assert_eq!((lin.dof(), lin.stability()), (0, LinearStability::Determined));
+}

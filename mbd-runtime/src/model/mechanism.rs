@@ -424,11 +424,11 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// Each body's mass and inertia as the parameters make them, checked: the first body whose
     /// mass is not positive and finite, or whose inertia is not (planar J; spatial J′ positive
     /// definite, its smallest principal moment reported), as
-    /// [`DynamicsError::NonPositiveMass`]. Every analysis that uses M — simulation, inverse
+    /// [`DynamicsError::NonPositiveMass`](crate::DynamicsError::NonPositiveMass). Every analysis that uses M — simulation, inverse
     /// dynamics, statics, linearization — calls it first, so that a mass given as a parameter
     /// (`Name { m: -1.0, .. }`) is refused by each of them naming the body. `mechanism!`
     /// generates it; the provided method checks nothing (a hand-written model).
-    fn check_inertia(&self) -> Result<(), crate::DynamicsError> {
+    fn check_inertia(&self) -> Result<(), crate::model::dynamics::DynamicsError> {
         Ok(())
     }
     /// a += scale · M(q); only M's structural non-zeros are touched.

@@ -200,7 +200,7 @@ impl<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, cons
     fn mass_times(&self, q: &[T; NQ], x: &[T; NV], y: &mut [T; NV]) {
         self.mechanism.mass_times(q, x, y);
     }
-    fn check_inertia(&self) -> Result<(), crate::DynamicsError> {
+    fn check_inertia(&self) -> Result<(), crate::model::dynamics::DynamicsError> {
         self.mechanism.check_inertia()
     }
     fn add_mass_matrix(&self, q: &[T; NQ], scale: T, a: &mut [[T; NV]; NV]) {

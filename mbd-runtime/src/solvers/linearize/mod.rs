@@ -370,7 +370,12 @@ pub struct Mode {
 
 /// Stability of the linear model's motion about its state.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum LinearStability {
+    /// No degree of freedom (DOF = 0): the joints and drivers fix the motion, and no
+    /// disturbance can move it (a scene without its drivers, `scene Free without motor;`, has
+    /// the motion to linearize).
+    Determined,
     /// Every eigenvalue has Re s < 0: disturbances decay.
     Asymptotic {
         /// The slowest decay rate, −max Re s (1/s).

@@ -147,7 +147,7 @@ impl Linearization {
     /// within 1e-9 of the largest |s| counts as 0.
     pub fn stability(&self) -> LinearStability {
         if self.dof() == 0 {
-            return LinearStability::Asymptotic { decay: f64::INFINITY };
+            return LinearStability::Determined;
         }
         let (eigenvalues, undamped) = match self.undamped_modes() {
             Some(modes) => (modes.iter().map(|m| m.eigenvalue).collect::<Vec<_>>(), Some(modes)),

@@ -261,7 +261,7 @@ impl<T: Real> StaticSolver<T> {
         if !t.is_finite() {
             return Err(StaticError::NonFinite { t: time, row: "t" });
         }
-        if let Err(crate::DynamicsError::NonPositiveMass { body, value }) = m.check_inertia() {
+        if let Err(crate::model::dynamics::DynamicsError::NonPositiveMass { body, value }) = m.check_inertia() {
             return Err(StaticError::NonPositiveMass { body, value });
         }
         if let Some(i) = first_non_finite(q) {

@@ -25,9 +25,12 @@ use core::fmt;
 pub enum Stability {
     /// Every motion the joints allow raises the energy: all ω² above the neutral band.
     Stable {
-        /// The lowest ω² (1/s²); infinite when no motion is free (DOF = 0).
+        /// The lowest ω² (1/s²).
         omega_squared: f64,
     },
+    /// No motion is free (DOF = 0): the joints and drivers fix the configuration, and the
+    /// multipliers are the loads the drivers hold it with. Nothing to be stable or unstable.
+    Determined,
     /// No mode lowers the energy, but at least one leaves it unchanged to second order (a rod
     /// free to turn without gravity): an equilibrium, not a unique one.
     Neutral {
@@ -215,7 +218,7 @@ pub(super) fn classify<T: Real, M: Mechanism, const NV: usize>(
     neutral: impl Fn(&Mode<T, NV>) -> T,
 ) -> Stability {
     let Some(mode) = mode else {
-        return Stability::Stable { omega_squared: f64::INFINITY };
+        return Stability::Determined;
     };
     let w = mode.omega_squared;
     let direction = {
