@@ -17,6 +17,7 @@
 //! force in N: the force it exerts on its second point is λ d/l, and the cylinder's tension is −λ.
 //!
 //! Run: `cargo run --release --example excavator`
+use mbd::point_position;
 use mbd::prelude::*;
 
 mechanism! {

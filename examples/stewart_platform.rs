@@ -32,6 +32,7 @@
 //! Run: `cargo run --release --example stewart_platform`
 use mbd::nalgebra::{Point3, UnitQuaternion, Vector3};
 use mbd::prelude::*;
+use mbd::SpatialPoint;
 
 mechanism! {
     /// 6-6 Stewart–Gough platform: six UPS legs, strokes driven for a heave + roll motion.

@@ -12,6 +12,7 @@
 //!
 //! Run: `cargo run --release --example suspension_dynamics`
 use mbd::prelude::*;
+use mbd::PlanarBody;
 
 mechanism! {
     /// Double A-arm suspension, free, with a coil-over and a tyre.

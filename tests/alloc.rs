@@ -93,6 +93,7 @@ mbd::mechanism! {
 
 fn integrators_do_not_allocate() {
     use mbd::prelude::*;
+    use mbd::Sample;
     let m = FreeFourBar::default();
     let mut q = m.initial_positions();
     let mut ws = FreeFourBar::workspace();

@@ -16,6 +16,7 @@
 //! (numpy, θ = (−2.603443, −3.460582, 2.877449) twice), rounded to 6 digits and assembled by
 //! the solver.
 use mbd::prelude::*;
+use mbd::{Point, System};
 
 #[path = "common/joint.rs"]
 #[allow(dead_code)] // this file uses the macro only

@@ -16,6 +16,7 @@ mod common {
     pub(crate) use super::{rng::Rng, slider_crank};
 }
 
+use mbd::nalgebra;
 use mbd::prelude::*;
 
 mechanism! {

@@ -3,6 +3,7 @@
 //! projection and by coordinate partitioning, stiffness (explicit fails with a clear error,
 //! generalized-α stays stable), and inverse dynamics fed back into forward dynamics.
 use mbd::prelude::*;
+use mbd::AutoPhase;
 
 mechanism! {
     /// A double pendulum of two rods (conservative, chaotic: a hard test of accuracy).

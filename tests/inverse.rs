@@ -221,3 +221,25 @@ fn a_mechanism_without_freedom_is_determined_not_stable() {
     let lin = Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
     assert_eq!((lin.dof(), lin.stability()), (0, LinearStability::Determined));
 }
+
+/// `use mbd::prelude::*;` beside `use nalgebra::*;` (here mbd's re-export of it): the prelude
+/// has no name nalgebra has, so `Point`, `Matrix` and the rest are nalgebra's without an
+/// ambiguity error, and the analyses are mbd's. (Before 2026-12-02 the prelude re-exported the
+/// whole runtime, whose `Point` made this program ambiguous: today a future-incompatibility
+/// warning, denied here.)
+#[deny(ambiguous_glob_imports)]
+mod prelude_beside_nalgebra {
+    use mbd::nalgebra::*;
+    use mbd::prelude::*;
+
+    #[test]
+    fn the_prelude_and_nalgebra_glob_imports_do_not_collide() {
+        let p: Point<f64, 2> = Point2::new(1.0, 2.0);
+        let m: Matrix2<f64> = Matrix2::identity();
+        assert_eq!(m * p.coords, Vector2::new(1.0, 2.0));
+        let rod = super::DrivenRod::default();
+        let mut q = rod.initial_positions();
+        KinematicSolver::default().assemble(&rod, &mut super::DrivenRod::workspace(), &mut q, 0.0).expect("assembles");
+        assert!((q[2] - rod.theta0).abs() < 1e-12, "the driven angle");
+    }
+}

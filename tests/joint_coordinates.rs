@@ -10,6 +10,7 @@
 //! formulation from a wrong one (a wrong term is O(0.1) or more).
 
 use mbd::prelude::*;
+use mbd::{BodyCoordinates, ConstraintForces, JointLoads};
 
 #[path = "common/joint.rs"]
 mod joint;

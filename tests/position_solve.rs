@@ -7,6 +7,7 @@
 //! refined on the residual, they must match the dense LU's, near a singular position too; so
 //! must inverse dynamics' multipliers over the same factors.
 use mbd::prelude::*;
+use mbd::{NonFiniteQuantity, DEFAULT_REUSE_SAFETY};
 
 use mbd_examples::slider_crank;
 mod chain16 {

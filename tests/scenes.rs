@@ -4,6 +4,7 @@
 //! scenes `actuating` their drivers, which follow the driven motion when pushed by the forces
 //! inverse dynamics gives.
 use mbd::prelude::*;
+use mbd::{ForceInfo, OpCount};
 
 mechanism! {
     /// A slider-crank under gravity with a return spring on the slider, pin and slide friction

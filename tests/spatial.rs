@@ -8,6 +8,7 @@
 //! the closed forms to about 1e-10 m or rad times the condition of the loop (≤ 10 here);
 //! simulations use DOPRI5 at rtol 1e-10, whose global error over the runs below stays under
 //! 1e-7 relative (each bound says where it comes from).
+use mbd::nalgebra;
 use mbd::prelude::*;
 
 mechanism! {

@@ -3,6 +3,7 @@
 //! in N and N·m (a driven crank against a closed-form torque and its bearing reaction), and
 //! statics (a hinged bar on a torsion spring against its equilibrium equation).
 use mbd::prelude::*;
+use mbd::{nalgebra, Sample};
 
 mechanism! {
     /// A spatial double pendulum: a bar on a ball joint at the ground origin, a second bar on a

@@ -3,6 +3,7 @@
 //! runs, steps that do not divide the run, its own state through drift correction, the
 //! multipliers' convergence at small steps, and failures that say what they are.
 use mbd::prelude::*;
+use mbd::{Point, System};
 
 mechanism! {
     /// A uniform 1 m rod pinned at one end, released horizontal: a physical pendulum of

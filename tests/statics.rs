@@ -19,6 +19,7 @@ mod common {
 
 use common::Rng;
 use mbd::prelude::*;
+use mbd::{ConstraintForces, PlanarBody};
 
 mechanism! {
     /// A 1 m rod pinned at its end, held by a torsion spring against gravity.

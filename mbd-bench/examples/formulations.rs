@@ -16,6 +16,7 @@
 //! loop with a coil-over and a tyre), and a hanging ladder of 40 four-bar loops, each compiled
 //! both ways from the same text.
 use mbd::prelude::*;
+use mbd::System;
 use std::time::Instant;
 
 macro_rules! arm {

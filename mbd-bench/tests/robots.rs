@@ -16,6 +16,7 @@
 //! or inertia product is O(1e-2) or more (a flipped product of inertia: 4e-2 in M).
 
 use mbd::prelude::*;
+use mbd::JointLoads;
 use serde_json::Value;
 
 mod ur5 {

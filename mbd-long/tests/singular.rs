@@ -21,6 +21,7 @@
 //! Built optimized (see `Cargo.toml`): about 45 s in all on 2 cores, most of it generalized-α on
 //! 40 loops over 20 s.
 use mbd::prelude::*;
+use mbd::SingularPassage;
 
 /// `$n` parallelogram loops in a row: `$n` + 1 equal cranks (0.3 m, 1 kg) pinned to ground
 /// 0.5 m apart, their tips joined by `$n` couplers (0.5 m, 1 kg); posed at θ = π/2 (cranks up).

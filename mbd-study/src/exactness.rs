@@ -6,6 +6,7 @@
 use std::time::Instant;
 
 use mbd::prelude::*;
+use mbd::FiniteDifferences;
 
 use crate::sweep::Reference;
 

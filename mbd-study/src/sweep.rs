@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use indicatif::ProgressBar;
 use mbd::prelude::*;
+use mbd::{project, Sample};
 
 /// A mechanism, its start and its horizon.
 pub struct Case<'a, M, const NQ: usize, const NV: usize> {

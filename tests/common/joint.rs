@@ -2,6 +2,7 @@
 //! `tests/spatial_joint_coordinates.rs`).
 
 use mbd::prelude::*;
+use mbd::{BodyCoordinates, JointLoads};
 
 /// Whether a and b agree to 1e-10 relative to max(1, |a|, |b|): both formulations evaluate exact
 /// symbolic derivatives of the same geometry and solve well-conditioned systems (masses

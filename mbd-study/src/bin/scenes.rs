@@ -13,6 +13,7 @@
 use std::time::Instant;
 
 use mbd::prelude::*;
+use mbd::{ForceInfo, OpCount, SpatialBody};
 use mbd_study::{
     QuarterCar, QuarterCarBare, QuarterCarNoCoil, QuarterCarNoFriction, QuarterCarNoGravity, QuarterCarNoShock, QuarterCarNoTyre, Vehicle,
     VehicleBare, VehicleNoFriction, VehicleNoShock,
