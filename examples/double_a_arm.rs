@@ -85,7 +85,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>12} {:>12} {:>14} {:>12}", "travel (mm)", "camber (deg)", "track Δ (mm)", "spring (mm)");
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, _| {
         let spring_bottom = spring_point.position(q);
         let spring = distance(&spring_bottom, &SPRING_TOP);
         let contact = contact_point.position(q);
@@ -103,9 +103,9 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.spring_max = r.spring_max.max(spring);
         if t == 0.0 {
             // d(spring)/dt divided by the wheel's vertical speed: both from the velocity solve.
-            let v = spring_point.velocity(q, qd);
+            let spring_rate = spring_point.velocity(q, v);
             let e = (spring_bottom - SPRING_TOP) / spring;
-            r.motion_ratio = -v.dot(&e) / knuckle.velocity(qd).y;
+            r.motion_ratio = -spring_rate.dot(&e) / knuckle.velocity(v).y;
         }
         r.samples += 1;
         if print && r.samples % 4 == 1 {

@@ -64,12 +64,12 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let claw_tip = m.claw_tip();
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, _| {
         let tip = claw_tip.position(q);
-        let v = claw_tip.velocity(q, qd);
+        let tip_velocity = claw_tip.velocity(q, v);
         let exact = tip_exact(m.r, m.omega * t);
         let err = ((tip.x - exact[0]).powi(2) + (tip.y - exact[1]).powi(2)).sqrt();
-        let speed = (v.x * v.x + v.y * v.y).sqrt();
+        let speed = (tip_velocity.x * tip_velocity.x + tip_velocity.y * tip_velocity.y).sqrt();
         r.tip_error = r.tip_error.max(err);
         r.max_speed = r.max_speed.max(speed);
         x0 = x0.min(tip.x);

@@ -77,14 +77,14 @@ fn design() -> Result<Design, Box<dyn std::error::Error>> {
     // The motor's row Φ = φ − ω t: Φ_qᵀλ on the crank's φ is its λ, the drive torque.
     let motor_row = Engine::JOINTS[Engine::MOTOR].row_range().start;
     let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
-    solver.sweep(&engine, &mut ws, &mut q, times, |t, q, qd, qdd| {
+    solver.sweep(&engine, &mut ws, &mut q, times, |t, q, v, vd| {
         let mut lambda = [0.0; Engine::NC];
-        if InverseDynamics::default().solve(&engine, &mut inverse_ws, q, qd, qdd, t, &mut lambda).is_ok() {
+        if InverseDynamics::default().solve(&engine, &mut inverse_ws, q, v, vd, t, &mut lambda).is_ok() {
             torque.push(lambda[motor_row]);
         }
         // Kinetic energy / (½ω²): the reduced inertia at this angle.
         // (same geometry and coordinates: the engine's states are the free engine's too).
-        reduced += 2.0 * kinetic_energy(&m, q, qd) / (omega0 * omega0) / n as f64;
+        reduced += 2.0 * kinetic_energy(&m, q, v) / (omega0 * omega0) / n as f64;
     })?;
     let mean_torque = torque.iter().sum::<f64>() / n as f64;
     // The drive brakes on average (τ_mean < 0); the generator takes that power: c = −τ_mean/ω₀.
@@ -108,8 +108,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut q = m.initial_positions();
     let mut ws = FreeEngine::workspace();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
-    let mut qd = m.initial_velocities();
-    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
+    let mut v = m.initial_velocities();
+    mbd::project(&m, 0.0, &mut q, &mut v, &DynamicsOptions::default(), 1e-12, 10)?;
     let t_end = 6.0;
     let times: Vec<f64> = (0..=(t_end * 2000.0) as usize).map(|k| k as f64 / 2000.0).collect();
     let options = SimulationOptions::default().with_correction(Correction::projection());
@@ -117,7 +117,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut last_rev: Vec<(f64, f64)> = Vec::new();
     let crank = FreeEngine::CRANK;
     Simulation::new(&m, &mut dopri)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&times)
         .options(options)
         .run(&mut ws, |s| last_rev.push((crank.phi(&s.point.q), crank.omega(&s.point.v))))?;
@@ -152,14 +152,14 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut q = m.initial_positions();
     let mut ws = FreeEngine::workspace();
     KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0)?;
-    let mut qd = m.initial_velocities();
-    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
+    let mut v = m.initial_velocities();
+    mbd::project(&m, 0.0, &mut q, &mut v, &DynamicsOptions::default(), 1e-12, 10)?;
     let times: Vec<f64> = (0..200).map(|k| 0.005 * k as f64).collect();
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let mut animation = mbd::Animation::new::<FreeEngine>(&m.params()).title("Free engine with flywheel and generator, first second");
     Simulation::new(&m, &mut dopri)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&times)
         .options(options)
         .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;

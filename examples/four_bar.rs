@@ -67,7 +67,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let (pin, tracer) = (m.coupler_c(), m.coupler_p());
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _qd, _qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, _v, _vd| {
         let c_exact = pin_c(m.a, m.b, m.c, m.d, m.omega * t);
         let c = pin.position(q);
         let p = tracer.position(q);

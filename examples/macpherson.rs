@@ -78,7 +78,7 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         println!("{:>12} {:>12} {:>14} {:>12}", "travel (mm)", "camber (deg)", "track Δ (mm)", "strut (mm)");
     }
     let times = (0..=64).map(|k| k as f64 / 64.0);
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, _| {
         let s = strut_point.position(q);
         let strut = distance(&s, &TOP_MOUNT);
         let contact = contact_point.position(q);
@@ -97,8 +97,8 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         r.strut_min = r.strut_min.min(strut);
         r.strut_max = r.strut_max.max(strut);
         if t == 0.0 {
-            let v = strut_point.velocity(q, qd);
-            r.motion_ratio = -v.dot(&d) / strut / knuckle.velocity(qd).y;
+            let strut_rate = strut_point.velocity(q, v);
+            r.motion_ratio = -strut_rate.dot(&d) / strut / knuckle.velocity(v).y;
         }
         r.samples += 1;
         if print && r.samples % 4 == 1 {

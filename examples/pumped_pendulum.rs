@@ -86,7 +86,7 @@ fn reduced_energy(p: &PumpedPendulum, inertia: f64, mass: f64, g: f64, t: f64, y
 struct Start {
     m: PumpedPendulum,
     q: [f64; PumpedPendulum::NQ],
-    qd: [f64; PumpedPendulum::NQ],
+    v: [f64; PumpedPendulum::NV],
     /// The collar's and rod's J (kg·m²) and the rod's mass (kg), which set the frequency.
     inertia: f64,
     rod_mass: f64,
@@ -103,13 +103,13 @@ fn start() -> Result<Start, Box<dyn std::error::Error>> {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut PumpedPendulum::workspace(), &mut q, 0.0)?;
     // At rest in the swing; the rod's radial velocity is the driver's (L̇(0) = 0 here).
-    let mut qd = [0.0; PumpedPendulum::NQ];
-    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 10)?;
-    Ok(Start { m, q, qd, inertia, rod_mass })
+    let mut v = [0.0; PumpedPendulum::NV];
+    mbd::project(&m, 0.0, &mut q, &mut v, &DynamicsOptions::default(), 1e-12, 10)?;
+    Ok(Start { m, q, v, inertia, rod_mass })
 }
 
 pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
-    let Start { m, q, qd, inertia, rod_mass } = start()?;
+    let Start { m, q, v, inertia, rod_mass } = start()?;
     let g = 9.81;
     let mut ws = PumpedPendulum::workspace();
 
@@ -142,7 +142,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let t_end = *times.last().expect("output times");
     // The length driver's row of Φ, and so of λ.
     let length_row = PumpedPendulum::JOINTS[PumpedPendulum::LENGTH].row_range().start;
-    let stats = Simulation::new(&m, &mut dopri).start(0.0, &q, &qd).times(&times).options(options).run(&mut ws, |s| {
+    let stats = Simulation::new(&m, &mut dopri).start(0.0, &q, &v).times(&times).options(options).run(&mut ws, |s| {
         let t = s.point.t;
         while t_reduced < t - 1e-12 {
             let h = (t - t_reduced) / substeps as f64;
@@ -196,7 +196,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
 /// period, 193 in all.
 #[allow(dead_code)] // used by the showcase and the tests, not by this example's `main`
 pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
-    let Start { m, q, qd, .. } = start()?;
+    let Start { m, q, v, .. } = start()?;
     let mut ws = PumpedPendulum::workspace();
     let period = 2.0 * PI / m.omega;
     let times: Vec<f64> = (0..=12 * 16).map(|k| k as f64 * period / 16.0).collect();
@@ -205,7 +205,7 @@ pub fn animation() -> Result<mbd::Animation, Box<dyn std::error::Error>> {
     let mut animation =
         mbd::Animation::new::<PumpedPendulum>(&m.params()).title("Pumped pendulum: length driven at twice the swing frequency");
     Simulation::new(&m, &mut dopri)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&times)
         .options(options)
         .run(&mut ws, |s| animation.frame(s.point.t, &s.point.q))?;

@@ -76,12 +76,12 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let pin = m.slider_pin();
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
         let (x, xd, xdd) = exact(m.r, m.l, m.omega, t);
         let mut phi = [0.0; SliderCrank::NC];
         m.constraints(q, t, &mut phi);
-        report.max_residual = phi.iter().fold(report.max_residual, |a, v| a.max(v.abs()));
-        let (slider_x, slider_xd, slider_xdd) = (pin.position(q).x, pin.velocity(q, qd).x, pin.acceleration(q, qd, qdd).x);
+        report.max_residual = phi.iter().fold(report.max_residual, |a, r| a.max(r.abs()));
+        let (slider_x, slider_xd, slider_xdd) = (pin.position(q).x, pin.velocity(q, v).x, pin.acceleration(q, v, vd).x);
         report.position_error = report.position_error.max((slider_x - x).abs());
         report.velocity_error = report.velocity_error.max((slider_xd - xd).abs());
         report.acceleration_error = report.acceleration_error.max((slider_xdd - xdd).abs());

@@ -63,9 +63,9 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
     let inverse = InverseDynamics::default();
     let mut inverse_ws = Engine::workspace(); // the sweep holds `ws`
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
         let mut lambda = [0.0; Engine::NC];
-        if let Err(e) = inverse.solve(&m, &mut inverse_ws, q, qd, qdd, t, &mut lambda) {
+        if let Err(e) = inverse.solve(&m, &mut inverse_ws, q, v, vd, t, &mut lambda) {
             failure.get_or_insert(e);
             return;
         }
@@ -81,8 +81,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         let gas = -m.f0 * (theta.sin() + theta.sin().abs()) / 2.0;
         r.torque_max = r.torque_max.max(torque);
         r.torque_min = r.torque_min.min(torque);
-        r.drive_power += torque * Engine::CRANK.omega(qd) / n as f64;
-        r.gas_power += gas * Engine::PISTON.velocity(qd).x / n as f64;
+        r.drive_power += torque * Engine::CRANK.omega(v) / n as f64;
+        r.gas_power += gas * Engine::PISTON.velocity(v).x / n as f64;
         let b = (bearing.force[0].powi(2) + bearing.force[1].powi(2)).sqrt();
         r.bearing_max = r.bearing_max.max(b);
         r.samples += 1;

@@ -156,10 +156,10 @@ struct Tyre {
 
 impl Tyre {
     /// The tyre's vertical force on the wheel body `wheel` (same law as in the mechanisms).
-    fn force(&self, q: &[f64], qd: &[f64], t: f64, wheel: PlanarBody) -> f64 {
+    fn force(&self, q: &[f64], v: &[f64], t: f64, wheel: PlanarBody) -> f64 {
         let road = self.bump * (-((t - self.t_bump) / self.width).powi(2)).exp();
         let contact = wheel.y(q) - 0.3 * wheel.phi(q).cos();
-        self.k_t * (road - contact) - self.c_t * wheel.velocity(qd).y
+        self.k_t * (road - contact) - self.c_t * wheel.velocity(v).y
     }
 }
 
@@ -167,11 +167,11 @@ pub fn run(print: bool) -> Result<[Report; 2], Box<dyn std::error::Error>> {
     let a = DoubleAArmRide::default();
     let tyre = Tyre { k_t: a.k_t, c_t: a.c_t, bump: a.bump, t_bump: a.t_bump, width: a.width };
     let wheel = DoubleAArmRide::KNUCKLE;
-    let double_a_arm = ride(&a, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), DoubleAArmRide::workspace())?;
+    let double_a_arm = ride(&a, wheel, |q, v, t| tyre.force(q, v, t, wheel), DoubleAArmRide::workspace())?;
     let b = MacPhersonRide::default();
     let tyre = Tyre { k_t: b.k_t, c_t: b.c_t, bump: b.bump, t_bump: b.t_bump, width: b.width };
     let wheel = MacPhersonRide::KNUCKLE;
-    let macpherson = ride(&b, wheel, |q, qd, t| tyre.force(q, qd, t, wheel), MacPhersonRide::workspace())?;
+    let macpherson = ride(&b, wheel, |q, v, t| tyre.force(q, v, t, wheel), MacPhersonRide::workspace())?;
     if print {
         for (name, r) in [("double A-arm", double_a_arm), ("MacPherson", macpherson)] {
             println!("{name}: static wheel centre at {:.4} m, tyre load {:.0} N", r.static_height, r.static_tyre_load);
