@@ -1,4 +1,5 @@
 use mbd::prelude::*;
+use mbd::{Point, System};
 
 // A wrapper around an integrator that forwards only `step` and `interpolate`: before, it
 // compiled, and DOP853's dense output (no `prepare_interpolation`) or generalized-α's state after
