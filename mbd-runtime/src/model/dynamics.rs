@@ -163,10 +163,10 @@ pub fn check_inertia<M: Mechanism, T: Real>(values: &[T], per_body: usize) -> Re
         }
         match c[1..] {
             [j] if !positive(j) => return refuse(j),
-            [a, b, cc, d, e, f, g, h, k] => {
-                let minors = [a, a * e - b * d, a * (e * k - f * h) - b * (d * k - f * g) + cc * (d * h - e * g)];
-                if !minors.into_iter().all(positive) {
-                    return refuse(smallest_eigenvalue([[a, b, cc], [d, e, f], [g, h, k]]));
+            [j11, j12, j13, j21, j22, j23, j31, j32, j33] => {
+                let det = j11 * (j22 * j33 - j23 * j32) - j12 * (j21 * j33 - j23 * j31) + j13 * (j21 * j32 - j22 * j31);
+                if ![j11, j11 * j22 - j12 * j21, det].into_iter().all(positive) {
+                    return refuse(smallest_eigenvalue([[j11, j12, j13], [j21, j22, j23], [j31, j32, j33]]));
                 }
             }
             _ => {}
