@@ -1,4 +1,4 @@
-//! Linear models from a mechanism, exact (README "Linearization and modes"):
+//! Linear models from a mechanism, exact (guide/linearization.md):
 //!
 //! 1. An inverted pendulum on a cart, linearized about upright with the cart force as input:
 //!    the state-space model a controller is designed on, written to CSV and JSON, its unstable

@@ -411,7 +411,7 @@ fn bdf_holds_and_slides_a_block_by_friction() {
     let (sin, cos) = slippery.theta.sin_cos();
     let a = 9.81 * (sin - 0.3 * cos);
     // Relative bounds: sliding from 0.5 m/s, 100 rtol (BDF's delivered error is 18–100× its
-    // rtol, README; measured 2.8e-8); from rest, the start-up where friction switches on inside
+    // rtol, guide/dynamics.md; measured 2.8e-8); from rest, the start-up where friction switches on inside
     // the first steps, as for generalized-α (measured 6.6e-5).
     for (v0, bound) in [(0.5, 100.0 * 1e-6), (0.0, 2e-4)] {
         let (q, qd) = incline_state(&slippery, 0.0, -v0);

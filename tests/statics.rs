@@ -162,7 +162,7 @@ fn pendulum_guess(phi: f64) -> [f64; 3] {
 /// The hanging pendulum, checked: φ = −π/2 within 1e-9 rad (the torque tolerance 1e-9 N·m over
 /// the gravity stiffness m g l/2 = 9.81 N·m/rad leaves 1e-10), the pin carrying the weight to
 /// 1e-9 N (the force tolerance), Stable with ω² = PENDULUM_OMEGA2 to 1e-9 relative (the
-/// eigenvalue at a q within 1e-10 of the equilibrium). The reaction is read as the README says,
+/// eigenvalue at a q within 1e-10 of the equilibrium). The reaction is read as the guide says (guide/dynamics.md),
 /// from the D the solve left in the workspace: D at the returned q, bit for bit (the start's D,
 /// which an earlier version left there, puts the pin's moment about the centre of mass off by
 /// the weight times the lever's change, 9.81 N·m for the start from horizontal).

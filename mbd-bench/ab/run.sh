@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A/B timing of mbd's planar generated code at two commits, interleaved in one process; three
-# builds of each commit, so that code-layout luck averages out and shows its size (README.md).
+# builds of each commit, so that code-layout luck averages out and shows its size (guide/performance.md).
 # Every setting is an environment variable:
 #   AB_REPO      the mbd git repository          (default: the repository holding this script, else /work/main)
 #   AB_BASE      the earlier commit, side "base" (default: 810f85d, the last commit before the seam)

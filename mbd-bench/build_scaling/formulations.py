@@ -3,7 +3,7 @@
 `mbd-bench/examples/formulations.rs`, in body and in joint coordinates, in a user's crate of its
 own whose binary uses what the table times (the accelerations, an RK4 and a DOPRI5 simulation
 after assembly), built with `cargo build --release` alone (dependencies built beforehand), the
-macro optimized as the README's "Build time" recommends. Nothing under the checkout may change
+macro optimized as guide/build-time.md recommends. Nothing under the checkout may change
 while it runs: the crate depends on it by path, and a changed source would be rebuilt inside a
 timing.
 

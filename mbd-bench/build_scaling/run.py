@@ -134,7 +134,7 @@ def prepare(crate, bins, optimized_macro=False):
     """Writes a crate at `crate` depending on mbd with one binary per entry of `bins` (name: the
     source's text) and builds its dependencies (mbd, nalgebra, the macro crate) in release, so
     that each timing is the mechanism's binary alone. With `optimized_macro` the crate builds
-    mbd-macros at opt-level 3, as the README's "Build time" recommends. Returns the environment
+    mbd-macros at opt-level 3, as guide/build-time.md recommends. Returns the environment
     to build it with."""
     (crate / "src" / "bin").mkdir(parents=True, exist_ok=True)
     profile = "\n[profile.release.package.mbd-macros]\nopt-level = 3\n" if optimized_macro else ""

@@ -47,7 +47,7 @@ use proc_macro::TokenStream;
 /// constraint equations, their
 /// exact Jacobian and the velocity and acceleration right-hand sides as straight-line Rust.
 ///
-/// See the README's DSL reference for the grammar and `docs/formulation.md` for the equations.
+/// See the DSL reference of the user's guide (`guide/dsl.md`) for the grammar and `docs/formulation.md` for the equations.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
     expand::expand(input.into()).into()

@@ -16,7 +16,7 @@
 //!
 //! Both methods take the same rtol and atol. Where nothing is stiff, a run is DOPRI5's, step for
 //! step (the stiffness test is free); a stiff run pays DOPRI5's first 15 steps at the stability
-//! bound, then takes BDF's steps. What each costs is in the README's integrator table and the
+//! bound, then takes BDF's steps. What each costs is in the user's guide's integrator table (`guide/dynamics.md`) and the
 //! study (`cargo run --release -p mbd-study`).
 
 use super::stiffness::StiffnessDetected;

@@ -3,7 +3,7 @@ the mass matrix, the generalized applied forces h(q, q̇, t) of gravity and of e
 element, the potential energy V(q, t), CasADi's own ∂h/∂q and ∂h/∂q̇, and a numerical forward
 dynamics solve of the equations of motion.
 
-Every generalized force is derived here by virtual work from the element's definition (README.md,
+Every generalized force is derived here by virtual work from the element's definition (guide/dsl.md,
 "Force elements"; docs/formulation.md), not transcribed from mbd's formulas: an element that
 does the virtual work δW = Fᵀ δr_P at a point, or τ δθ on an angle, or −f δl on a distance,
 contributes Q = (∂r_P/∂q)ᵀ F, τ (∂θ/∂q)ᵀ or −f (∂l/∂q)ᵀ, with the partial derivatives taken by
@@ -16,7 +16,7 @@ torque τ = μ R N ω/√(ω² + v_s²) resists θ = φ_j − φ_i; a translatio
 with a bearing length w, |λ_n/2 + λ_a/w| + |λ_n/2 − λ_a/w|, and its force f = μ N ṡ/√(ṡ² + v_s²)
 resists s. The forward-dynamics solve then finds the fixed point in λ by Newton.
 
-Sign conventions (README.md): a point-to-point element's tension f = k (l − length) + c l̇ +
+Sign conventions (guide/dsl.md): a point-to-point element's tension f = k (l − length) + c l̇ +
 force pulls its two points together (it resists l = |r_Pj − r_Pi|); a rotational element's torque
 τ = k (θ − angle) + c θ̇ + torque resists θ = φ_j − φ_i; joint viscous friction c θ̇ (revolute,
 θ = φ_j − φ_i) or c ṡ (translational, s = u_iᵀ (r_Pj − r_Pi), u_i the unit axis on body i)
