@@ -10,6 +10,77 @@
 //! and accelerations up to O(100) m/s², they are checked to 1e-7 relative to those scales.
 use super::*;
 
+/// The guide's table of examples (`guide/examples.md`). Each figure it quotes from an example is
+/// held here to what the example computes ([`quotes`], [`bounds`]), so that none goes stale.
+const TABLE: &str = include_str!("../../guide/examples.md");
+
+/// The table's row of `example`.
+fn row(example: &str) -> &'static str {
+    let start = format!("| `{example}` |");
+    TABLE.lines().find(|l| l.starts_with(&start)).unwrap_or_else(|| panic!("guide/examples.md has no row for `{example}`"))
+}
+
+/// The first number written in `text` ("lets go at 1.0194 s" → 1.0194, "87 918 N" → 87918,
+/// "6e-11 apart" → 6e-11) and its last digit's place (1e-4, 1, 1e-11).
+fn number(text: &str) -> (f64, f64) {
+    let start = text.find(|c: char| c.is_ascii_digit()).unwrap_or_else(|| panic!("no number in {text:?}"));
+    let mut digits = String::new();
+    let mut chars = text[start..].chars().peekable();
+    while let Some(&c) = chars.peek() {
+        let grouping = c == ' ' || c == '\u{202f}' || c == '\u{a0}';
+        if c.is_ascii_digit() || c == '.' {
+            digits.push(c);
+        } else if grouping && digits.chars().last().is_some_and(|d| d.is_ascii_digit()) && !digits.contains(['.', 'e']) {
+            // A thousands separator only between groups of three digits.
+            let rest: String = text[start..].chars().skip(digits.chars().count() + 1).take(4).collect();
+            if !(rest.len() >= 3 && rest.chars().take(3).all(|d| d.is_ascii_digit()) && !rest.chars().nth(3).is_some_and(|d| d.is_ascii_digit())) {
+                break;
+            }
+        } else if c == 'e' && !digits.contains('e') {
+            digits.push('e');
+            chars.next();
+            if let Some(&sign) = chars.peek().filter(|s| **s == '-' || **s == '+') {
+                digits.push(sign);
+                chars.next();
+            }
+            continue;
+        } else {
+            break;
+        }
+        chars.next();
+    }
+    let value: f64 = digits.parse().unwrap_or_else(|_| panic!("{digits:?} in {text:?} is not a number"));
+    let (mantissa, exponent) = digits.split_once('e').map_or((digits.as_str(), 0), |(m, e)| (m, e.parse::<i32>().expect("an exponent")));
+    let decimals = mantissa.split_once('.').map_or(0, |(_, f)| f.len() as i32);
+    (value, 10f64.powi(exponent - decimals))
+}
+
+/// The table quotes `text` for `example`, and the first number in it is `value` rounded to the
+/// digits it is written with.
+fn quotes(example: &str, text: &str, value: f64) {
+    assert!(row(example).contains(text), "guide/examples.md's row for `{example}` should quote {text:?}");
+    let (written, place) = number(text);
+    assert!((value - written).abs() <= 0.5 * place * (1.0 + 1e-9), "`{example}` computes {value}, which guide/examples.md quotes as {text:?}");
+}
+
+/// The table bounds an error of `example` by `≤ bound` (its text), and the error is within it.
+fn bounds(example: &str, text: &str, error: f64) {
+    assert!(row(example).contains(text) && text.contains('≤'), "guide/examples.md's row for `{example}` should bound the error: {text:?}");
+    let (bound, _) = number(text);
+    assert!(error <= bound, "`{example}`: an error of {error:e}, which guide/examples.md bounds by {text:?}");
+}
+
+#[test]
+fn numbers_are_read_as_written() {
+    assert_eq!(number("lets go at 1.0194 s"), (1.0194, 1e-4));
+    assert_eq!(number("87 918, 13 128 and 7 155 N").0, 87918.0);
+    assert_eq!(number("13 128 and 7 155 N").0, 13128.0);
+    assert_eq!(number("12 periods").0, 12.0);
+    assert_eq!(number("(≤ 1e-11 relative)"), (1e-11, 1e-11));
+    assert_eq!(number("2.4e-11 of 169 N"), (2.4e-11, 1e-12));
+    assert_eq!(number("bump stop 1.0224–1.0463 s").0, 1.0224);
+}
+
 #[test]
 fn slider_crank_matches_its_closed_form() {
     let r = slider_crank::run(false).expect("slider-crank runs");
@@ -112,6 +183,8 @@ fn flywheel_engine_runs_at_the_speed_its_inverse_dynamics_predicts() {
     let r = flywheel_engine::run(false).expect("the engine runs");
     assert!((r.omega_mean - r.omega_design).abs() < 0.01 * r.omega_design, "{r:?}");
     assert!(r.delta > 0.01 && (r.delta - r.delta_predicted).abs() < 0.05 * r.delta_predicted, "{r:?}");
+    quotes("flywheel_engine", "δ 0.0486", r.delta);
+    quotes("flywheel_engine", "vs 0.0486", r.delta_predicted);
 }
 
 /// The variable-length pendulum pumped at twice its swing frequency: the swing grows (parametric
@@ -132,6 +205,10 @@ fn pumped_pendulum_follows_its_reduced_model() {
     assert!(r.balance_drift < 1e-6, "{r:?}");
     // The driver holds the rod against gravity and the centrifugal force: at least m g.
     assert!(r.peak_pull > 9.81, "{r:?}");
+    quotes("pumped_pendulum", "pumped up 5×", r.amplitude_end / r.amplitude_start);
+    bounds("pumped_pendulum", "(≤ 1e-8 rad)", r.angle_error);
+    quotes("pumped_pendulum", "4.028918 J both", r.driver_work);
+    quotes("pumped_pendulum", "4.028918 J both", r.energy_gain_reduced);
 }
 
 /// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the
@@ -148,6 +225,7 @@ fn suspensions_settle_on_their_tyres_and_ride_a_bump() {
         assert!(r.residual_motion < 1e-4, "{r:?}");
         assert!(r.bump_energy > 1.0, "{r:?}");
         assert!(r.energy_drift < 1e-5, "{r:?}");
+        bounds("suspension_dynamics", "drift ≤ 3e-6 J", r.energy_drift);
     }
 }
 
@@ -201,6 +279,16 @@ fn gyroscope_precesses_and_nutates_as_the_lagrange_top() {
     ] {
         assert!(rel(approx, exact) > 0.01 && rel(approx, exact) < 0.1, "the fast-top value is an O(ε) approximation: {r:?}");
     }
+    bounds("gyroscope", "(≤ 1e-11 relative)", rel(r.slow_rate, r.slow_exact).max(rel(r.fast_rate, r.fast_exact)));
+    let nutation = [
+        rel(r.nutation_period, r.nutation_period_exact),
+        rel(r.nutation_amplitude, r.nutation_amplitude_exact),
+        rel(r.mean_precession, r.mean_precession_exact),
+    ];
+    bounds("gyroscope", "(≤ 1e-10 relative)", nutation.into_iter().fold(0.0, f64::max));
+    quotes("gyroscope", "off by 4 %", 100.0 * rel(r.nutation_period_fast_top, r.nutation_period_exact));
+    quotes("gyroscope", "6 % and", 100.0 * rel(r.nutation_amplitude_fast_top, r.nutation_amplitude_exact));
+    quotes("gyroscope", "2 %)", 100.0 * rel(r.mean_precession_fast_top, r.mean_precession_exact));
 }
 
 /// The RSSR four-bar against its closed form. Positions: the coupler's row is ½(|d|² − L²) ≤
@@ -224,6 +312,9 @@ fn rssr_output_and_drive_torque_match_closed_forms() {
     assert!(r.peak_torque > 0.1 && r.torque_error < 1e-8, "{r:?}");
     assert!(r.mean_drive_power.abs() < 1e-8, "{r:?}");
     assert!(r.peak_coupler_force > 1.0, "{r:?}");
+    bounds("rssr", "(≤ 1e-8 rad)", r.angle_error);
+    bounds("rssr", "(≤ 1e-10 of 0.185 N·m)", r.torque_error);
+    quotes("rssr", "of 0.185 N·m", r.peak_torque);
 }
 
 /// The offset spatial slider-crank against its closed forms (tolerances as for the planar
@@ -247,6 +338,11 @@ fn spatial_slider_crank_matches_its_closed_forms() {
     assert!(r.peak_torque > 10.0 && r.torque_error < 1e-7, "{r:?}");
     assert!(r.peak_rod_force > 500.0 && r.rod_force_error < 1e-5, "{r:?}");
     assert!(r.load_power > 10.0 && (r.drive_power + r.load_power).abs() < 1e-6, "{r:?}");
+    bounds("spatial_slider_crank", "(≤ 1e-11 m)", (r.stroke - r.stroke_exact).abs());
+    bounds("spatial_slider_crank", "(≤ 1e-8 of 28 N·m)", r.torque_error);
+    quotes("spatial_slider_crank", "of 28 N·m", r.peak_torque);
+    bounds("spatial_slider_crank", "(≤ 1e-7 of 935 N)", r.rod_force_error);
+    quotes("spatial_slider_crank", "of 935 N", r.peak_rod_force);
 }
 
 /// The 3D double wishbone. Layout A moves in the front-view plane (the example's argument), so
@@ -265,6 +361,8 @@ fn double_wishbone_3d_bump_steer_and_camber() {
     assert!(first > 0.01 && last < -0.02, "rebound camber {first} rad, bump camber {last} rad");
     let toe_b = r.inclined.toe.iter().fold(0.0f64, |a, t| a.max(t.abs()));
     assert!(toe_b > 1e-3 && toe_b < 0.02, "layout B's bump steer {toe_b} rad");
+    bounds("double_wishbone_3d", "bump steer ≤ 1e-12 rad", r.parallel_bump_steer);
+    bounds("double_wishbone_3d", "in closed form (≤ 1e-13 rad)", r.camber_error);
 }
 
 /// The Stewart platform: the pose Newton finds from the six strokes is the commanded one, and the
@@ -285,6 +383,10 @@ fn stewart_platform_pose_lengths_and_statics() {
     assert!((r.static_vertical - r.static_load).abs() < 1e-9 * r.static_load, "{r:?}");
     // The actuators hold the platform and the legs up (pushing), more in the lower poses.
     assert!(r.force_min > 50.0 && r.force_max < 200.0, "{r:?}");
+    bounds("stewart_platform", "(≤ 1e-11 rad", r.rotation_error);
+    bounds("stewart_platform", "≤ 1e-12 m)", r.position_error);
+    bounds("stewart_platform", "(≤ 1e-9 of 169 N)", r.static_error);
+    quotes("stewart_platform", "of 169 N", r.static_peak);
 }
 
 /// The excavator is one declaration with three scenes: held by its cylinders as stiff springs
@@ -311,6 +413,11 @@ fn excavator_scenes_agree_on_the_cylinder_forces() {
     // The third scene, the cylinders as actuators pushed by those forces, accelerates as the
     // driven arm: 1e-8 relative, the driven state's Φ residue acted on by Baumgarte.
     assert!(r.free_mismatch < 1e-8, "{r:?}");
+    quotes("excavator", "87 918", r.held_tensions[0].abs());
+    quotes("excavator", "13 128", r.held_tensions[1].abs());
+    quotes("excavator", "7 155 N", r.held_tensions[2].abs());
+    bounds("excavator", "≤ 1e-10 apart", r.disagreement);
+    bounds("excavator", "(≤ 1e-10 relative)", r.free_mismatch);
 }
 
 /// The quarter car sits on the road with the tyre compressed by (m + M) g / k (statics to its
@@ -327,6 +434,12 @@ fn the_quarter_car_leaves_the_road_and_hits_its_bump_stop() {
     assert_eq!(order, [("road", false), ("bump_stop", true), ("bump_stop", false), ("road", true)], "{r:?}");
     assert!(r.events[0].0 > 1.0125 && r.events[0].0 < 1.025, "the tyre lets go at {} s", r.events[0].0);
     assert!(r.airborne > 0.02 && r.airborne < 0.2, "{r:?}");
+    bounds("bump", "off by ≤ 1e-9 m", (compression - expected).abs());
+    quotes("bump", "lets go at 1.0194 s", r.events[0].0);
+    quotes("bump", "bump stop 1.0224", r.events[1].0);
+    quotes("bump", "1.0463 s", r.events[2].0);
+    quotes("bump", "lands at 1.0820 s", r.events[3].0);
+    quotes("bump", "62.6 ms in the air", r.airborne * 1e3);
 }
 
 /// The cart-pole's unstable pole and input column against their closed forms (1e-12: a 4 × 4
@@ -349,6 +462,12 @@ fn linear_models_match_their_closed_forms() {
     assert_eq!(r.dominant, ("chassis.y", "wheel.y"));
     // A soft car: about 1.4 Hz ride, 12 Hz wheel hop.
     assert!(r.ride.0 > 1.0 && r.ride.0 < 2.0 && r.wheel_hop.0 > 10.0 && r.wheel_hop.0 < 15.0, "{r:?}");
+    quotes("linear_models", "unstable pole 5.294201680005 1/s", r.cart_pole_growth.0);
+    quotes("linear_models", "ride 1.3810 Hz", r.ride.0);
+    quotes("linear_models", "ζ 0.2944", r.ride_damping.0);
+    quotes("linear_models", "wheel hop 12.4019 Hz", r.wheel_hop.0);
+    quotes("linear_models", "ζ 0.3174", r.wheel_hop_damping.0);
+    bounds("linear_models", "finite differences to ≤ 1e-10", r.exact_vs_differences);
 }
 
 /// Every example's animation (what the showcase writes to `target/showcase/`) holds a motion and
