@@ -7,7 +7,7 @@
 //! refined on the residual, they must match the dense LU's, near a singular position too; so
 //! must inverse dynamics' multipliers over the same factors.
 use mbd::prelude::*;
-use mbd::{NonFiniteQuantity, DEFAULT_REUSE_SAFETY};
+use mbd::{Convergence, NonFiniteQuantity, DEFAULT_REUSE_SAFETY};
 
 use mbd_examples::slider_crank;
 mod chain16 {
@@ -421,4 +421,89 @@ fn a_four_bar_sweep_stops_at_its_toggle_and_passes_it_between_grid_points() {
         .expect("a grid that steps over the toggles passes them");
     println!("crank angle within {worst:e} rad of ωt over a turn");
     assert!(worst < 1e-6, "{worst:e}");
+}
+
+mechanism! {
+    /// A 1 m rod pinned to ground at both ends, 2 m apart: a loop that cannot close. Beside it a
+    /// pendulum, whose pin can hold. DOF 0 as counted (6 coordinates, 6 rows), and no solution.
+    pub TooShort {
+        body rod { mass: 1.0, inertia: 0.08, at: [0.6, 0.1, 0.2] }
+        body bob { mass: 1.0, inertia: 0.01, at: [0.1, -3.1, 0.1] }
+        revolute near: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+        revolute far: ground[2.0, 0.0] ~ rod[0.5, 0.0];
+        revolute hang: ground[0.0, -3.0] ~ bob[0.0, 0.2];
+    }
+}
+
+mechanism! {
+    /// The same in joint coordinates: the tree holds `near` and `hang` exactly, `far` is cut.
+    pub TooShortJoint {
+        joint_coordinates;
+        body rod { mass: 1.0, inertia: 0.08, at: [0.6, 0.1, 0.2] }
+        body bob { mass: 1.0, inertia: 0.01, at: [0.1, -3.1, 0.1] }
+        revolute near: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+        revolute far: ground[2.0, 0.0] ~ rod[0.5, 0.0];
+        revolute hang: ground[0.0, -3.0] ~ bob[0.0, 0.2];
+    }
+}
+
+mechanism! {
+    /// A 1 m rod pinned at one end, its tip driven to 1.5 m from a point 3 m away: out of reach.
+    pub Unreachable {
+        body rod { mass: 1.0, inertia: 0.08, at: [0.35, 0.35, 0.785] }
+        point rod.tip = [0.5, 0.0];
+        revolute ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+        drive reach: distance(ground[3.0, 0.0], rod.tip) = 1.5;
+    }
+}
+
+/// The rows and residual of a `CannotAssemble`, or a panic naming what came instead.
+fn cannot_assemble(result: Result<Convergence, KinematicError>) -> (f64, Vec<&'static str>, String) {
+    match result {
+        Err(e @ KinematicError::CannotAssemble { residual, rows, .. }) => (residual, rows.names().collect(), e.to_string()),
+        other => panic!("expected CannotAssemble, got {other:?}"),
+    }
+}
+
+/// A loop that cannot close is reported as such, with the smallest residual a descent reaches
+/// and the rows of that loop only — not a row of the pendulum beside it, which closes. In body
+/// coordinates that minimum of ‖Φ‖² spreads the 1 m gap over both pins: the rod lies on the
+/// x-axis centred at x = 1, each pin 0.5 m off in x and exact in y (the closed form: by symmetry
+/// the two x residuals are equal, and they sum to the gap). In joint coordinates the tree's
+/// pin holds exactly and the cut pin carries the whole gap: the rod along x, 1 m short. The
+/// descent's tolerance on a minimum (a step lowering ‖Φ‖² by less than 1e-12 of it) puts q
+/// within about 1e-6 of it, so the residuals are checked to 1e-6 m. A driven solve (this
+/// mechanism counts DOF 0) says the same.
+#[test]
+fn a_loop_that_cannot_close_is_named_with_its_smallest_residual() {
+    let solver = KinematicSolver::default();
+    let m = TooShort::default();
+    let mut q = m.initial_positions();
+    let (residual, mut rows, message) = cannot_assemble(solver.assemble(&m, &mut TooShort::workspace(), &mut q, 0.0));
+    rows.sort();
+    assert!((residual - 0.5).abs() < 1e-6, "{residual}");
+    assert_eq!(rows, ["far: x", "near: x"], "{message}");
+    assert!(message.contains("cannot assemble at t = 0 s") && message.contains("'far: x'"), "{message}");
+    // `q` is the closest configuration: the rod on the x-axis centred at x = 1, the pendulum's
+    // pin holding (to the position tolerance) wherever the bob swung.
+    assert!((TooShort::ROD.x(&q) - 1.0).abs() < 1e-6 && TooShort::ROD.y(&q).abs() < 1e-6 && TooShort::ROD.phi(&q).abs() < 1e-6, "{q:?}");
+    let mut phi = [0.0; TooShort::NC];
+    m.constraints(&q, 0.0, &mut phi);
+    for (name, value) in TooShort::CONSTRAINT_NAMES.iter().zip(phi) {
+        assert!(!name.starts_with("hang") || value.abs() <= 1e-10, "{name}: {value}");
+    }
+
+    // A driven mechanism asked for a position it cannot reach: the rod's tip, 1 m from its pin,
+    // driven to 1.5 m from a point 3 m away. Its driven solve says so, naming the driver.
+    let d = Unreachable::default();
+    let mut q = d.initial_positions();
+    let (residual, rows, message) = cannot_assemble(solver.solve_position(&d, &mut Unreachable::workspace(), &mut q, 0.0));
+    assert!(residual > 0.1 && rows.contains(&"reach: distance"), "{message}");
+    assert!(matches!(solver.analyze(&d, &mut Unreachable::workspace(), &q, 0.0), Err(KinematicError::CannotAssemble { .. })));
+
+    let j = TooShortJoint::default();
+    let mut q = j.initial_positions();
+    let (residual, rows, message) = cannot_assemble(solver.assemble(&j, &mut TooShortJoint::workspace(), &mut q, 0.0));
+    assert!((residual - 1.0).abs() < 1e-6, "{residual}");
+    assert_eq!(rows, ["far: x"], "{message}");
 }

@@ -99,7 +99,7 @@ proptest! {
                     }
                     Err(e) => {
                         prop_assert!(sin_mu.abs() < 0.2, "a regular pose (sin μ = {sin_mu}) failed: {e}");
-                        prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+                        prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::CannotAssemble { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
                         prop_assert!(q.iter().all(|x| x.is_finite()));
                     }
                 }
@@ -132,7 +132,7 @@ proptest! {
         });
         prop_assert!(worst <= 1e-10, "‖Φ‖ = {worst:e}");
         if let Err(e) = result {
-            prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+            prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::CannotAssemble { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
             // Near a limit between the last point reached and the next one (checked finely).
             let near_limit = (0..=20).any(|j| {
                 let t = last_t + 0.01 * j as f64 / 20.0;
@@ -309,7 +309,7 @@ proptest! {
                     }
                     Err(e) => {
                         prop_assert!(measure.abs() < 0.2, "a regular pose (measure {measure}) failed: {e}");
-                        prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+                        prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::CannotAssemble { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
                         prop_assert!(q.iter().all(|x| x.is_finite()));
                     }
                 }
@@ -336,7 +336,7 @@ proptest! {
         });
         prop_assert!(worst <= 1e-10, "‖Φ‖ = {worst:e}");
         if let Err(e) = result {
-            prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
+            prop_assert!(matches!(e, KinematicError::NotConverged { .. } | KinematicError::CannotAssemble { .. } | KinematicError::SingularJacobian { .. }), "{e:?}");
             let near_limit = (0..=20).any(|j| {
                 let t = last_t + 0.01 * j as f64 / 20.0;
                 match m.pose(t, sign).or_else(|| m.pose(t, -sign)) {

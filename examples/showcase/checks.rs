@@ -33,7 +33,10 @@ fn number(text: &str) -> (f64, f64) {
         } else if grouping && digits.chars().last().is_some_and(|d| d.is_ascii_digit()) && !digits.contains(['.', 'e']) {
             // A thousands separator only between groups of three digits.
             let rest: String = text[start..].chars().skip(digits.chars().count() + 1).take(4).collect();
-            if !(rest.len() >= 3 && rest.chars().take(3).all(|d| d.is_ascii_digit()) && !rest.chars().nth(3).is_some_and(|d| d.is_ascii_digit())) {
+            if !(rest.len() >= 3
+                && rest.chars().take(3).all(|d| d.is_ascii_digit())
+                && !rest.chars().nth(3).is_some_and(|d| d.is_ascii_digit()))
+            {
                 break;
             }
         } else if c == 'e' && !digits.contains('e') {
@@ -60,7 +63,10 @@ fn number(text: &str) -> (f64, f64) {
 fn quotes(example: &str, text: &str, value: f64) {
     assert!(row(example).contains(text), "guide/examples.md's row for `{example}` should quote {text:?}");
     let (written, place) = number(text);
-    assert!((value - written).abs() <= 0.5 * place * (1.0 + 1e-9), "`{example}` computes {value}, which guide/examples.md quotes as {text:?}");
+    assert!(
+        (value - written).abs() <= 0.5 * place * (1.0 + 1e-9),
+        "`{example}` computes {value}, which guide/examples.md quotes as {text:?}"
+    );
 }
 
 /// The table bounds an error of `example` by `≤ bound` (its text), and the error is within it.

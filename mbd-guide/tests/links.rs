@@ -114,8 +114,11 @@ fn every_relative_link_and_anchor_resolves() {
 
 #[test]
 fn anchors_are_githubs() {
-    let text = "# Joint coordinates (`joint_coordinates;`)\n## What accuracy costs: the study\n## Tests\n## Tests\n```\n# not a heading\n```\n";
-    let expected: BTreeSet<String> =
-        ["joint-coordinates-joint_coordinates", "what-accuracy-costs-the-study", "tests", "tests-1"].iter().map(|s| s.to_string()).collect();
+    let text =
+        "# Joint coordinates (`joint_coordinates;`)\n## What accuracy costs: the study\n## Tests\n## Tests\n```\n# not a heading\n```\n";
+    let expected: BTreeSet<String> = ["joint-coordinates-joint_coordinates", "what-accuracy-costs-the-study", "tests", "tests-1"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
     assert_eq!(anchors(text), expected);
 }

@@ -65,7 +65,7 @@ pub use output::plot::{Plot, PlotError};
 #[cfg(feature = "progress")]
 pub use output::progress::Progress;
 pub use real::Real;
-pub use solvers::error::{KinematicError, NonFiniteQuantity};
+pub use solvers::error::{ConstraintRows, KinematicError, NonFiniteQuantity};
 pub use solvers::finite_differences::FiniteDifferences;
 pub use solvers::flow::Flow;
 pub use solvers::friction::settle_loads;

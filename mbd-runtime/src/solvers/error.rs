@@ -98,6 +98,22 @@ pub enum KinematicError {
         /// Velocities minus constraint rows: > 0 lacks drivers, < 0 has redundant rows.
         dof: i32,
     },
+    /// The constraints cannot all hold at t, as far as a descent from the guess can tell: after
+    /// Newton failed, a Levenberg–Marquardt descent on ½‖Φ‖² stopped where no step lowers it,
+    /// with ‖Φ‖∞ = `residual` above the tolerance — a loop that cannot close (a link too short
+    /// to reach, a driver beyond a limit position) or a guess in the basin of such a local
+    /// minimum. `rows` are the constraint rows left violated there: the loop that does not
+    /// close (in joint coordinates, the rows of its cut joint), not the rows of loops that do.
+    /// From [`KinematicSolver::assemble`](crate::KinematicSolver::assemble) `q` is left at that
+    /// closest configuration; from the solves of a driven mechanism it is their last iterate.
+    CannotAssemble {
+        /// Time of the failed solve (s).
+        t: f64,
+        /// The smallest ‖Φ‖∞ the descent reached (m, rad, or m² for distance rows).
+        residual: f64,
+        /// The rows with |Φ| of at least a hundredth of `residual` there, largest first.
+        rows: ConstraintRows,
+    },
     /// A NaN or an infinity in the input or in an evaluated quantity: the solver stops instead
     /// of iterating on it.
     NonFinite {
@@ -138,6 +154,13 @@ impl fmt::Display for KinematicError {
                  acceleration solves take redundant rows over their independent subset",
                 dof.unsigned_abs()
             ),
+            KinematicError::CannotAssemble { t, residual, rows } => write!(
+                f,
+                "the mechanism cannot assemble at t = {t} s: its constraints cannot all hold near \
+                 the guess; the smallest ‖Φ‖∞ reached is {residual:.3e}, on {rows}: check the \
+                 lengths and positions of the joints in that loop (or start from a guess nearer \
+                 the wanted assembly)"
+            ),
             KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Time, .. } => {
                 write!(f, "non-finite time t = {t} s given to the kinematic solver")
             }
@@ -151,3 +174,63 @@ impl fmt::Display for KinematicError {
 /// `core::error::Error` is the trait `std::error::Error` re-exports, so this implements
 /// `std::error::Error` with the `std` feature and still builds without it.
 impl core::error::Error for KinematicError {}
+
+/// Constraint rows named by a [`KinematicError::CannotAssemble`]: the first
+/// [`ConstraintRows::CAPACITY`] by name, and how many more. `Copy` and without allocation, so
+/// that errors stay `no_std` (the names are the mechanism's `CONSTRAINT_NAMES`, by index).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConstraintRows {
+    all: &'static [&'static str],
+    indices: [u16; ConstraintRows::CAPACITY],
+    count: u16,
+    total: u16,
+}
+
+impl ConstraintRows {
+    /// How many rows are kept by name.
+    pub const CAPACITY: usize = 8;
+
+    /// The rows `indices` of `names` (`Mechanism::CONSTRAINT_NAMES`), in the order given.
+    pub(crate) fn new(names: &'static [&'static str], indices: impl Iterator<Item = usize>) -> Self {
+        let mut rows = ConstraintRows { all: names, indices: [0; Self::CAPACITY], count: 0, total: 0 };
+        for index in indices.filter(|&i| i < names.len()) {
+            if usize::from(rows.count) < Self::CAPACITY {
+                rows.indices[usize::from(rows.count)] = index as u16;
+                rows.count += 1;
+            }
+            rows.total = rows.total.saturating_add(1);
+        }
+        rows
+    }
+
+    /// The rows kept by name, in order.
+    pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.indices[..usize::from(self.count)].iter().map(|&i| self.all[usize::from(i)])
+    }
+
+    /// How many rows there are, named or not.
+    pub fn len(&self) -> usize {
+        usize::from(self.total)
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.total == 0
+    }
+}
+
+impl fmt::Display for ConstraintRows {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(if self.total == 1 { "the row " } else { "the rows " })?;
+        for (k, name) in self.names().enumerate() {
+            if k > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "'{name}'")?;
+        }
+        if self.total > self.count {
+            write!(f, " and {} more", self.total - self.count)?;
+        }
+        Ok(())
+    }
+}

@@ -214,6 +214,9 @@ fn shared(e: KinematicError) -> InverseDynamicsError {
         KinematicError::NotConverged { t, worst_row, .. } => {
             InverseDynamicsError::NonFinite { t, quantity: NonFiniteQuantity::Constraint, row: worst_row }
         }
+        KinematicError::CannotAssemble { t, rows, .. } => {
+            InverseDynamicsError::NonFinite { t, quantity: NonFiniteQuantity::Constraint, row: rows.names().next().unwrap_or("?") }
+        }
     }
 }
 

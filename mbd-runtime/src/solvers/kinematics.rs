@@ -26,6 +26,9 @@ use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::flow::Flow;
 use crate::solvers::newton::{Newton, NewtonNext};
 
+mod closest;
+use closest::closest;
+
 /// Default [`KinematicOptions::tolerance`]: ‖Φ‖∞ ≤ 1e-10 (m, rad), about 10⁶ ulps of a 1 m
 /// coordinate in f64. Below what f32 resolves (its ulp at 1 m is 1.2e-7): every tolerance is
 /// raised to [`RESOLUTION_ULPS`] ulps of the coordinates' scale, 7.6e-6 m for f32 at 1 m.
@@ -344,7 +347,8 @@ impl<T: Real> KinematicSolver<T> {
         M: Kinematics<T, NQ, NV, NC>,
     {
         require_driven::<NV, NC>()?;
-        let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
+        let guess = *q;
+        let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>()).map_err(|e| self.diagnose(m, &guess, t, ws, e))?;
         if NV != NC {
             // With redundant rows the independent ones must still determine every velocity.
             self.factor::<M, NV, NC, N, NS>(ws, t)?;
@@ -376,8 +380,16 @@ impl<T: Real> KinematicSolver<T> {
     /// lie in the basin of attraction of the wanted assembly mode: Newton converges to the
     /// nearest branch, not to a chosen one.
     ///
+    ///
+    /// Where Newton does not converge, a Levenberg–Marquardt descent on ½‖Φ‖² from the guess
+    /// takes over (it accepts only steps that lower ‖Φ‖): if it reaches the tolerance, that is
+    /// the assembly (counted in [`Convergence::iterations`]); if it stops at a local minimum,
+    /// the constraints cannot all hold near the guess, and the error says so with the residual
+    /// and the rows of the loop that does not close, `q` left at that closest configuration.
+    ///
     /// # Errors
-    /// [`KinematicError::NonFinite`]; [`KinematicError::NotConverged`].
+    /// [`KinematicError::NonFinite`]; [`KinematicError::CannotAssemble`] (Newton and the
+    /// descent both stopped short).
     pub fn assemble<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
         &self,
         m: &M,
@@ -388,7 +400,47 @@ impl<T: Real> KinematicSolver<T> {
     where
         M: Kinematics<T, NQ, NV, NC>,
     {
-        self.newton(m, q, t, ws, StepRule::RankRevealing)
+        let guess = *q;
+        let newton = self.newton(m, q, t, ws, StepRule::RankRevealing);
+        let Err(KinematicError::NotConverged { iterations, .. }) = newton else { return newton };
+        *q = guess;
+        let tolerance = self.position_tolerance(q);
+        let reached = closest(m, q, t, tolerance, ws);
+        match reached.rows {
+            None => Ok(Convergence {
+                iterations: iterations + reached.steps,
+                factorizations: iterations + reached.steps,
+                residual: reached.residual,
+            }),
+            Some(rows) => Err(KinematicError::CannotAssemble { t: t.to_f64(), residual: reached.residual, rows }),
+        }
+    }
+
+    /// A driven solve's Newton failure, told apart: where a descent from `guess` finds no
+    /// configuration that meets the constraints, [`KinematicError::CannotAssemble`] naming the
+    /// loop; where it does, the guess was too far (or the tolerance too tight) and Newton's
+    /// [`KinematicError::NotConverged`] stands. `q` is left as Newton left it.
+    fn diagnose<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+        &self,
+        m: &M,
+        guess: &[T; NQ],
+        t: T,
+        ws: &mut Workspace<T, NV, NC, N, NS>,
+        error: KinematicError,
+    ) -> KinematicError
+    where
+        M: Kinematics<T, NQ, NV, NC>,
+    {
+        if !matches!(error, KinematicError::NotConverged { .. }) {
+            return error;
+        }
+        let mut q = *guess;
+        let tolerance = self.position_tolerance(&q);
+        let reached = closest(m, &mut q, t, tolerance, ws);
+        match reached.rows {
+            None => error,
+            Some(rows) => KinematicError::CannotAssemble { t: t.to_f64(), residual: reached.residual, rows },
+        }
     }
 
     /// Velocity solve for a driven mechanism (NV = NC, or NC > NV with redundant rows):
@@ -564,7 +616,8 @@ impl<T: Real> KinematicSolver<T> {
     where
         M: Kinematics<T, NQ, NV, NC>,
     {
-        let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>())?;
+        let guess = *q;
+        let convergence = self.newton(m, q, t, ws, driven_rule::<NV, NC>()).map_err(|e| self.diagnose(m, &guess, t, ws, e))?;
         if NV == NC {
             // The factorization planned at compile time; where a pivot is near dependence
             // (`NEAR_SINGULAR_RATIO`) or a value is not finite, the dense path below, which
