@@ -367,11 +367,22 @@ impl MechanismDef {
                         Ok(k) if k == "params" => items.extend(head.parse::<proc_macro2::Group>().ok().map(|g| stand_in_params(&g))),
                         _ => {}
                     }
-                    // A statement whose only mistake is its missing `;` stays, for what names it.
-                    let (skipped, cut_short) = skip_statement(&content)?;
-                    if cut_short {
-                        let completed: proc_macro2::TokenStream =
-                            skipped.into_iter().chain(Some(quote::quote!(;).into_iter().next().expect("a `;`"))).collect();
+                    // A statement whose only mistake is its missing `;` stays, for what names it;
+                    // so does one written with another program's keyword (`prismatic`), as the
+                    // DSL's joint it names (its label and rows are what the program uses).
+                    let (mut skipped, cut_short) = skip_statement(&content)?;
+                    let synonym = match skipped.first() {
+                        Some(proc_macro2::TokenTree::Ident(k)) => {
+                            SYNONYMS.iter().find(|(word, _)| k == word).map(|(_, ours)| Ident::new(ours, k.span()))
+                        }
+                        _ => None,
+                    };
+                    if let Some(ours) = &synonym {
+                        skipped[0] = proc_macro2::TokenTree::Ident(ours.clone());
+                    }
+                    if cut_short || synonym.is_some() {
+                        let end = (cut_short).then(|| quote::quote!(;).into_iter().next().expect("a `;`"));
+                        let completed: proc_macro2::TokenStream = skipped.into_iter().chain(end).collect();
                         items.extend(syn::parse2::<Item>(completed).ok());
                     }
                 }
@@ -648,6 +659,9 @@ fn unknown_statement(kw: &Ident, other: &str, labelled: Option<Ident>) -> syn::E
 /// Other programs' and textbooks' names of the joints and elements the DSL names otherwise.
 const SYNONYMS: &[(&str, &str)] = &[
     ("prismatic", "translational"),
+    ("pin_in_slot", "revolute_translational"),
+    ("pin_slot", "revolute_translational"),
+    ("slot", "revolute_translational"),
     ("slider", "translational"),
     ("pin", "revolute"),
     ("hinge", "revolute"),
