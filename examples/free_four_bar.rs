@@ -38,16 +38,18 @@ pub struct Run {
 
 const T_END: f64 = 2.0;
 
-/// One run with any integrator; the sizes are the mechanism's, inferred from `q` and the
-/// integrator (no numbers to repeat).
-fn one<I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+const NQ: usize = FreeFourBar::NQ;
+const NV: usize = FreeFourBar::NV;
+const NC: usize = FreeFourBar::NC;
+
+/// One run with any integrator; the sizes are the mechanism's (no numbers to repeat).
+fn one<I, const N: usize, const NS: usize>(
     m: &FreeFourBar,
     ws: &mut Workspace<f64, NV, NC, N, NS>,
     q: &[f64; NQ],
     integrator: &mut I,
 ) -> Result<(u64, f64, f64, f64), SimulationError>
 where
-    FreeFourBar: ForwardDynamics<f64, NQ, NV, NC>,
     I: Integrator<f64, FreeFourBar, NQ, NV, NC, N, NS>,
 {
     let options = SimulationOptions::default().with_correction(Correction::projection());

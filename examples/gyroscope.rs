@@ -75,7 +75,7 @@ pub struct Report {
 
 /// The top's tilt θ from the vertical and the azimuth of its axis (rad): its symmetry axis is
 /// the rotor's body z, the third column of A.
-fn axis_angles(q: &[f64]) -> (f64, f64) {
+fn axis_angles(q: &[f64; Gyroscope::NQ]) -> (f64, f64) {
     let axis = Gyroscope::ROTOR.rotation(q).column(2).into_owned();
     (axis.z.clamp(-1.0, 1.0).acos(), axis.y.atan2(axis.x))
 }

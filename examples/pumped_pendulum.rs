@@ -55,7 +55,7 @@ pub struct Report {
 }
 
 /// Swing angle θ (from hanging straight down) of the rod's coordinates.
-fn swing(q: &[f64]) -> f64 {
+fn swing(q: &[f64; PumpedPendulum::NQ]) -> f64 {
     PumpedPendulum::ROD.phi(q) + PI / 2.0
 }
 

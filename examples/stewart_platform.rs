@@ -178,7 +178,7 @@ const ACTUATORS: [usize; 6] = [
 /// hardpoints) and the platform joints `platform.p_i`.
 struct Legs {
     base: [Point3<f64>; 6],
-    platform: [SpatialPoint<f64>; 6],
+    platform: [SpatialPoint<f64, { StewartPlatform::NQ }, { StewartPlatform::NV }>; 6],
 }
 
 impl Legs {

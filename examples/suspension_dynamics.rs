@@ -92,7 +92,7 @@ pub struct Report {
 /// Static equilibrium, then the bump; `knuckle` is the wheel body.
 fn ride<M, const NQ: usize, const NC: usize, const N: usize, const NS: usize>(
     m: &M,
-    knuckle: PlanarBody,
+    knuckle: PlanarBody<NQ>,
     tyre_load: impl Fn(&[f64; NQ], &[f64; NQ], f64) -> f64,
     mut ws: Box<Workspace<f64, NQ, NC, N, NS>>,
 ) -> Result<Report, Box<dyn std::error::Error>>
@@ -156,7 +156,7 @@ struct Tyre {
 
 impl Tyre {
     /// The tyre's vertical force on the wheel body `wheel` (same law as in the mechanisms).
-    fn force(&self, q: &[f64], v: &[f64], t: f64, wheel: PlanarBody) -> f64 {
+    fn force<const NQ: usize>(&self, q: &[f64; NQ], v: &[f64; NQ], t: f64, wheel: PlanarBody<NQ>) -> f64 {
         let road = self.bump * (-((t - self.t_bump) / self.width).powi(2)).exp();
         let contact = wheel.y(q) - 0.3 * wheel.phi(q).cos();
         self.k_t * (road - contact) - self.c_t * wheel.velocity(v).y

@@ -357,6 +357,15 @@ fn exact_against_finite_differences_at_moving_states() {
         .finite_differences(&m, &q, &v, 0.0)
         .expect("differences");
     agree("spinning top", &exact, &fd);
+
+    // A rate written for another mechanism's state (the slider-crank's 9 coordinates) is refused
+    // by name before anything is computed, not evaluated on the top's 7.
+    let other =
+        LinearizeOptions::default().with_output(Output::rate("rod.B y", |q, v| DrivenSliderCrank::default().rod_b().velocity(q, v).y));
+    match Linearizer::new(other).linearize(&m, &q, &v, 0.0) {
+        Err(e @ LinearizeError::RateSizes { takes: (9, 9), mechanism: (7, 6), .. }) => assert!(e.to_string().contains("`rod.B y`"), "{e}"),
+        other => panic!("expected RateSizes, got {:?}", other.map(|l| l.state_names)),
+    }
 }
 
 /// A driver's acceleration as input: the rod swings at ω² = m g c / J_o (J_o = J + m c²) and the

@@ -520,7 +520,7 @@ mechanism! {
 /// The tyre of examples/suspension_dynamics.rs at t = 0: a vertical spring k_t under the contact
 /// point, 0.3 m below the knuckle's centre in its frame (the bump, 0.5 s away and 30 ms wide,
 /// is e^{−278} of its height there). Returns (load (N), energy (J)).
-fn tyre(k_t: f64, knuckle: PlanarBody, q: &[f64]) -> (f64, f64) {
+fn tyre<const NQ: usize>(k_t: f64, knuckle: PlanarBody<NQ>, q: &[f64; NQ]) -> (f64, f64) {
     let contact = knuckle.y(q) - 0.3 * knuckle.phi(q).cos();
     (-k_t * contact, 0.5 * k_t * contact * contact)
 }
@@ -530,7 +530,13 @@ fn tyre(k_t: f64, knuckle: PlanarBody, q: &[f64]) -> (f64, f64) {
 /// its neighbour's position (the linkage stays on its assembly branch), then bisection on the
 /// sign of the central difference dE/dθ (step 1e-5 rad). Returns θ at the minimum and the tyre
 /// load there.
-fn scan<M, const NQ: usize, const NC: usize>(mut m: M, set: impl Fn(&mut M, f64), knuckle: PlanarBody, k_t: f64, around: f64) -> (f64, f64)
+fn scan<M, const NQ: usize, const NC: usize>(
+    mut m: M,
+    set: impl Fn(&mut M, f64),
+    knuckle: PlanarBody<NQ>,
+    k_t: f64,
+    around: f64,
+) -> (f64, f64)
 where
     M: Dynamics<f64, NQ, NQ, NC>,
 {

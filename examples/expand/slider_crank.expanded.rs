@@ -87,14 +87,14 @@ impl SliderCrank {
     /// `Workspace`, which statics and generalized-α keep their matrices in.
     pub const NEWTON_STORAGE: usize = 135;
     /// Body `crank`: its coordinates, velocities and points.
-    pub const CRANK: ::mbd::PlanarBody = ::mbd::PlanarBody::new(0, "crank");
+    pub const CRANK: ::mbd::PlanarBody<9> = <::mbd::PlanarBody<9>>::new(0, "crank");
     /// Body `rod`: its coordinates, velocities and points.
-    pub const ROD: ::mbd::PlanarBody = ::mbd::PlanarBody::new(1, "rod");
+    pub const ROD: ::mbd::PlanarBody<9> = <::mbd::PlanarBody<9>>::new(1, "rod");
     /// Body `slider`: its coordinates, velocities and points.
-    pub const SLIDER: ::mbd::PlanarBody = ::mbd::PlanarBody::new(2, "slider");
+    pub const SLIDER: ::mbd::PlanarBody<9> = <::mbd::PlanarBody<9>>::new(2, "slider");
     /// The mass (kg) of a body (`Name::BODY`).
     #[allow(unused_parens, clippy::approx_constant)]
-    pub fn mass_of(&self, body: ::mbd::PlanarBody) -> f64 {
+    pub fn mass_of(&self, body: ::mbd::PlanarBody<9>) -> f64 {
         let mut out = [0f64; 3];
         use ::mbd::sparse::Elements as _;
         let [__out_0, __out_1, __out_2] = out.window_mut::<0, 3>();
@@ -105,7 +105,7 @@ impl SliderCrank {
     }
     /// The moment of inertia J (kg·m²) of a body (`Name::BODY`) about its centre of mass.
     #[allow(unused_parens, clippy::approx_constant)]
-    pub fn inertia_of(&self, body: ::mbd::PlanarBody) -> f64 {
+    pub fn inertia_of(&self, body: ::mbd::PlanarBody<9>) -> f64 {
         let mut out = [[[0f64; 1]; 1]; 3];
         out[0][0][0] = 0.002f64;
         out[1][0][0] = 0.015f64;

@@ -19,13 +19,13 @@ pub(super) fn named_items(m: &Model, f: &Formulation, e: &Emitter) -> TokenStrea
     let (body_type, point_type) = match (m.space, &m.tree) {
         // in joint coordinates a body's pose is no entry of q: read through `mbd::BodyFrames`
         (_, Some(_)) => (quote!(::mbd::TreeBody), quote!(::mbd::TreePoint<'_, Self, #real, #nq, #nv>)),
-        (crate::model::Space::Planar, None) => (quote!(::mbd::PlanarBody), quote!(::mbd::PlanarPoint<#real>)),
-        (crate::model::Space::Spatial, None) => (quote!(::mbd::SpatialBody), quote!(::mbd::SpatialPoint<#real>)),
+        (crate::model::Space::Planar, None) => (quote!(::mbd::PlanarBody<#nq>), quote!(::mbd::PlanarPoint<#real, #nq>)),
+        (crate::model::Space::Spatial, None) => (quote!(::mbd::SpatialBody<#nq, #nv>), quote!(::mbd::SpatialPoint<#real, #nq, #nv>)),
     };
     let bodies = m.bodies.iter().enumerate().map(|(k, b)| {
         let (name, constant) = (b.name.to_string(), format_ident!("{}", crate::model::constant_name(&b.name.to_string())));
         let (doc, k) = (format!(" Body `{name}`: its coordinates, velocities and points."), usize_lit(k));
-        quote!(#[doc = #doc] pub const #constant: #body_type = #body_type::new(#k, #name);)
+        quote!(#[doc = #doc] pub const #constant: #body_type = <#body_type>::new(#k, #name);)
     });
     let joints = m.constraints.iter().enumerate().filter(|(_, c)| syn::parse_str::<syn::Ident>(&c.name).is_ok()).map(|(k, c)| {
         let constant = format_ident!("{}", crate::model::constant_name(&c.name));
@@ -99,10 +99,11 @@ fn body_inertia(m: &Model, f: &Formulation, e: &Emitter) -> TokenStream {
     let real = real(m.scalar);
     let nb = usize_lit(m.bodies.len());
     let zero = e.literal(0.0);
+    let (nq, nv) = (usize_lit(f.nq), usize_lit(f.nv));
     let body_type = match (m.space, &m.tree) {
         (_, Some(_)) => quote!(::mbd::TreeBody),
-        (crate::model::Space::Planar, None) => quote!(::mbd::PlanarBody),
-        (crate::model::Space::Spatial, None) => quote!(::mbd::SpatialBody),
+        (crate::model::Space::Planar, None) => quote!(::mbd::PlanarBody<#nq>),
+        (crate::model::Space::Spatial, None) => quote!(::mbd::SpatialBody<#nq, #nv>),
     };
     let masses: Vec<Output> = f
         .bodies

@@ -217,15 +217,16 @@ mod tests {
         let mut q = m.initial_positions();
         let mut lambda = [0.0; Vehicle::NC];
         StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("the vehicle has a rest state");
-        let z = |b: SpatialBody| b.position(&q).z;
+        type Body = SpatialBody<{ Vehicle::NQ }, { Vehicle::NV }>;
+        let z = |b: Body| b.position(&q).z;
         let uprights = [Vehicle::FRONT_LEFT_UPRIGHT, Vehicle::FRONT_RIGHT_UPRIGHT, Vehicle::REAR_LEFT_UPRIGHT, Vehicle::REAR_RIGHT_UPRIGHT];
         let tyres: f64 = uprights.iter().map(|&u| m.k_t * (m.radius - z(u))).sum();
-        let weight: f64 = (0..Vehicle::N_BODIES).map(|k| m.mass_of(SpatialBody::new(k, "")) * 9.81).sum();
+        let weight: f64 = (0..Vehicle::N_BODIES).map(|k| m.mass_of(Body::new(k, "")) * 9.81).sum();
         // The tyre forces balance the weight to the static solver's tolerance (1e-10 relative).
         assert!((tyres - weight).abs() <= 1e-6 * weight, "tyres {tyres} N, weight {weight} N");
         // Mirror images (`mirrored y`): the same heights and opposite y left and right, to the
         // solver's tolerance.
-        let y = |b: SpatialBody| b.position(&q).y;
+        let y = |b: Body| b.position(&q).y;
         assert!((z(uprights[0]) - z(uprights[1])).abs() < 1e-9 && (z(uprights[2]) - z(uprights[3])).abs() < 1e-9);
         assert!((y(uprights[0]) + y(uprights[1])).abs() < 1e-9 && (y(uprights[2]) + y(uprights[3])).abs() < 1e-9);
         assert!(y(uprights[0]) > 0.7, "the left wheel centres at y = 0.76 m: {}", y(uprights[0]));

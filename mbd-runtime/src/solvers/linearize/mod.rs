@@ -121,22 +121,32 @@ pub enum Output {
     Multiplier(&'static str),
     /// Any quantity whose rate is linear in v — a point's coordinate, a joint's angle — given by
     /// its rate (`|q, v| Car::WHEEL_C.velocity(q, v).y`): its displacement is the rate with v
-    /// replaced by δ.
+    /// replaced by δ. Made by [`Output::rate`].
     Rate {
         /// The name of the output's row.
         name: String,
         /// The quantity's rate at (q, v), linear in v.
         rate: Rate,
+        /// The sizes (NQ, NV) of the state the rate takes: the mechanism's, checked when it is
+        /// linearized.
+        sizes: (usize, usize),
     },
 }
 
-/// The rate function of an [`Output::Rate`]: (q, v) ↦ the quantity's rate, linear in v.
+/// The rate function of an [`Output::Rate`]: (q, v) ↦ the quantity's rate, linear in v, over
+/// slices of the sizes the output holds (NaN for others, which [`Linearizer`] refuses first).
 pub type Rate = Box<dyn Fn(&[f64], &[f64]) -> f64>;
 
 impl Output {
-    /// A quantity given by its rate ([`Output::Rate`]).
-    pub fn rate(name: impl Into<String>, rate: impl Fn(&[f64], &[f64]) -> f64 + 'static) -> Self {
-        Output::Rate { name: name.into(), rate: Box::new(rate) }
+    /// A quantity given by its rate ([`Output::Rate`]), a function of the mechanism's
+    /// `&[f64; NQ]` and `&[f64; NV]` (so a generated accessor takes them as they are:
+    /// `|q, v| Car::WHEEL_C.velocity(q, v).y`).
+    pub fn rate<const NQ: usize, const NV: usize>(name: impl Into<String>, rate: impl Fn(&[f64; NQ], &[f64; NV]) -> f64 + 'static) -> Self {
+        let rate = move |q: &[f64], v: &[f64]| match (<&[f64; NQ]>::try_from(q), <&[f64; NV]>::try_from(v)) {
+            (Ok(q), Ok(v)) => rate(q, v),
+            _ => f64::NAN,
+        };
+        Output::Rate { name: name.into(), rate: Box::new(rate), sizes: (NQ, NV) }
     }
 
     fn name(&self) -> String {
@@ -266,6 +276,16 @@ pub enum LinearizeError {
         /// What is wrong, in words.
         reason: String,
     },
+    /// An [`Output::rate`] takes a state of other sizes than the mechanism's: its closure was
+    /// written for another mechanism.
+    RateSizes {
+        /// The output's name.
+        name: String,
+        /// The (NQ, NV) it takes.
+        takes: (usize, usize),
+        /// The mechanism's (NQ, NV).
+        mechanism: (usize, usize),
+    },
     /// The forward dynamics failed at the state (or at a perturbed one).
     Dynamics(DynamicsError),
     /// The saddle-point matrix [[M, −Dᵀ], [D, 0]] is singular at the state (a mass or inertia
@@ -290,6 +310,11 @@ impl fmt::Display for LinearizeError {
                 )
             }
             LinearizeError::BadIndependent { reason } => write!(f, "independent velocities: {reason}"),
+            LinearizeError::RateSizes { name, takes, mechanism } => write!(
+                f,
+                "output `{name}` is a rate of a state with {} coordinates and {} velocities, but the mechanism has {} and {}",
+                takes.0, takes.1, mechanism.0, mechanism.1
+            ),
             LinearizeError::Dynamics(e) => write!(f, "forward dynamics at the state: {e}"),
             LinearizeError::Singular => write!(f, "the saddle-point matrix [[M, -D^T], [D, 0]] is singular at the state"),
         }
@@ -454,6 +479,13 @@ where
     M: Linearize<f64, NQ, NV, NC> + ForwardDynamics<f64, NQ, NV, NC>,
 {
     let d = check_state(m, q, v, t, options.consistency_tolerance)?;
+    for output in &options.outputs {
+        if let Output::Rate { name, sizes, .. } = output {
+            if *sizes != (NQ, NV) {
+                return Err(LinearizeError::RateSizes { name: name.clone(), takes: *sizes, mechanism: (NQ, NV) });
+            }
+        }
+    }
     let inputs = input_kinds::<M, NQ, NV, NC>(options)?;
     let chart = Chart::choose::<M>(&d, options)?;
     Ok((inputs, chart))
