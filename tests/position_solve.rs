@@ -423,29 +423,26 @@ fn a_four_bar_sweep_stops_at_its_toggle_and_passes_it_between_grid_points() {
     assert!(worst < 1e-6, "{worst:e}");
 }
 
-mechanism! {
-    /// A 1 m rod pinned to ground at both ends, 2 m apart: a loop that cannot close. Beside it a
-    /// pendulum, whose pin can hold. DOF 0 as counted (6 coordinates, 6 rows), and no solution.
-    pub TooShort {
-        body rod { mass: 1.0, inertia: 0.08, at: [0.6, 0.1, 0.2] }
-        body bob { mass: 1.0, inertia: 0.01, at: [0.1, -3.1, 0.1] }
-        revolute near: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
-        revolute far: ground[2.0, 0.0] ~ rod[0.5, 0.0];
-        revolute hang: ground[0.0, -3.0] ~ bob[0.0, 0.2];
-    }
+/// A 1 m rod pinned to ground at both ends, 2 m apart: a loop that cannot close. Beside it a
+/// pendulum, whose pin can hold. DOF 0 as counted (6 coordinates, 6 rows), and no solution.
+/// Declared in body coordinates and, with `joint_coordinates;`, in joint coordinates, where the
+/// tree holds `near` and `hang` exactly and `far` is cut.
+macro_rules! too_short {
+    ($name:ident $($formulation:tt)*) => {
+        mechanism! {
+            pub $name {
+                $($formulation)*
+                body rod { mass: 1.0, inertia: 0.08, at: [0.6, 0.1, 0.2] }
+                body bob { mass: 1.0, inertia: 0.01, at: [0.1, -3.1, 0.1] }
+                revolute near: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
+                revolute far: ground[2.0, 0.0] ~ rod[0.5, 0.0];
+                revolute hang: ground[0.0, -3.0] ~ bob[0.0, 0.2];
+            }
+        }
+    };
 }
-
-mechanism! {
-    /// The same in joint coordinates: the tree holds `near` and `hang` exactly, `far` is cut.
-    pub TooShortJoint {
-        joint_coordinates;
-        body rod { mass: 1.0, inertia: 0.08, at: [0.6, 0.1, 0.2] }
-        body bob { mass: 1.0, inertia: 0.01, at: [0.1, -3.1, 0.1] }
-        revolute near: ground[0.0, 0.0] ~ rod[-0.5, 0.0];
-        revolute far: ground[2.0, 0.0] ~ rod[0.5, 0.0];
-        revolute hang: ground[0.0, -3.0] ~ bob[0.0, 0.2];
-    }
-}
+too_short!(TooShort);
+too_short!(TooShortJoint joint_coordinates;);
 
 mechanism! {
     /// A 1 m rod pinned at one end, its tip driven to 1.5 m from a point 3 m away: out of reach.
