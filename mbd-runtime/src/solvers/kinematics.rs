@@ -380,7 +380,6 @@ impl<T: Real> KinematicSolver<T> {
     /// lie in the basin of attraction of the wanted assembly mode: Newton converges to the
     /// nearest branch, not to a chosen one.
     ///
-    ///
     /// Where Newton does not converge, a Levenberg–Marquardt descent on ½‖Φ‖² from the guess
     /// takes over (it accepts only steps that lower ‖Φ‖): if it reaches the tolerance, that is
     /// the assembly (counted in [`Convergence::iterations`]); if it stops at a local minimum,

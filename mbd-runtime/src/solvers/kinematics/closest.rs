@@ -3,9 +3,12 @@
 //!
 //! Newton's step solves the linearized rows exactly and, where the rows cannot all hold, it
 //! oscillates or wanders, and its last iterate's worst row may belong to a loop that closes
-//! (a new user's impossible loop was reported by a row of another one). Levenberg–Marquardt on
-//! ½‖Φ‖² instead only accepts steps that lower ‖Φ‖, so it ends at a configuration where no step
-//! does: Φ = 0, or a local minimum whose violated rows are the loop that does not close.
+//! (a new user's impossible loop was reported by a row of another one). A descent on ½‖Φ‖²
+//! instead only accepts steps that lower ‖Φ‖, so it ends at a configuration where no step does:
+//! Φ = 0, or a local minimum whose violated rows are the loop that does not close. It takes
+//! Levenberg–Marquardt's steps first (Newton's where the rows can all hold), then Newton's
+//! method on ½‖Φ‖² itself, whose Hessian includes Φ's curvature, to reach a minimum with a
+//! residual.
 
 use crate::linalg;
 use crate::model::mechanism::Kinematics;
@@ -29,8 +32,14 @@ const STALL: f64 = 1e-12;
 /// A row is named as violated at the minimum where its |Φ| is at least this fraction of ‖Φ‖∞.
 const VIOLATED: f64 = 1e-2;
 
-/// What the descent reached: Φ = 0 (`rows` empty), or a minimum with ‖Φ‖∞ = `residual` and the
-/// rows violated there, largest first.
+/// Newton's method on ½‖Φ‖² differences its Hessian over every velocity, NV evaluations of Φ
+/// and the dense D a step, O(NV² NC) work: above this many velocities it is left out, and the
+/// residual reported is where Levenberg–Marquardt stopped (within a few per cent of the
+/// minimum's where it crawls, as above).
+const MAX_NEWTON_VELOCITIES: usize = 200;
+
+/// What the descent reached: Φ = 0 (`rows` is `None`), or a minimum with ‖Φ‖∞ = `residual` and
+/// the rows violated there, largest first.
 pub(super) struct Closest {
     pub residual: f64,
     pub steps: u32,
@@ -97,7 +106,7 @@ where
             mu *= T::from_f64(4.0);
         }
     }
-    if max_abs(&phi) > tolerance && cost.is_finite() {
+    if max_abs(&phi) > tolerance && cost.is_finite() && NV <= MAX_NEWTON_VELOCITIES {
         steps += minimize(m, q, t, tolerance, ws);
         m.constraints(q, t, &mut phi);
     }
