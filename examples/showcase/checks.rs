@@ -24,33 +24,26 @@ fn row(example: &str) -> &'static str {
 /// "6e-11 apart" → 6e-11) and its last digit's place (1e-4, 1, 1e-11).
 fn number(text: &str) -> (f64, f64) {
     let start = text.find(|c: char| c.is_ascii_digit()).unwrap_or_else(|| panic!("no number in {text:?}"));
+    let chars: Vec<char> = text[start..].chars().collect();
+    let digit = |i: usize| chars.get(i).is_some_and(|c| c.is_ascii_digit());
     let mut digits = String::new();
-    let mut chars = text[start..].chars().peekable();
-    while let Some(&c) = chars.peek() {
-        let grouping = c == ' ' || c == '\u{202f}' || c == '\u{a0}';
-        if c.is_ascii_digit() || c == '.' {
+    let mut i = 0;
+    while let Some(&c) = chars.get(i) {
+        if c.is_ascii_digit() || (c == '.' && !digits.contains(['.', 'e'])) {
             digits.push(c);
-        } else if grouping && digits.chars().last().is_some_and(|d| d.is_ascii_digit()) && !digits.contains(['.', 'e']) {
-            // A thousands separator only between groups of three digits.
-            let rest: String = text[start..].chars().skip(digits.chars().count() + 1).take(4).collect();
-            if !(rest.len() >= 3
-                && rest.chars().take(3).all(|d| d.is_ascii_digit())
-                && !rest.chars().nth(3).is_some_and(|d| d.is_ascii_digit()))
-            {
-                break;
-            }
-        } else if c == 'e' && !digits.contains('e') {
+        } else if matches!(c, ' ' | '\u{202f}' | '\u{a0}') && !digits.contains(['.', 'e']) && (1..=3).all(|k| digit(i + k)) && !digit(i + 4)
+        {
+            // A thousands separator: between groups of three digits.
+        } else if c == 'e' && !digits.contains('e') && (digit(i + 1) || (matches!(chars.get(i + 1), Some('-' | '+')) && digit(i + 2))) {
             digits.push('e');
-            chars.next();
-            if let Some(&sign) = chars.peek().filter(|s| **s == '-' || **s == '+') {
-                digits.push(sign);
-                chars.next();
+            if !digit(i + 1) {
+                digits.push(chars[i + 1]);
+                i += 1;
             }
-            continue;
         } else {
             break;
         }
-        chars.next();
+        i += 1;
     }
     let value: f64 = digits.parse().unwrap_or_else(|_| panic!("{digits:?} in {text:?} is not a number"));
     let (mantissa, exponent) = digits.split_once('e').map_or((digits.as_str(), 0), |(m, e)| (m, e.parse::<i32>().expect("an exponent")));
@@ -85,6 +78,8 @@ fn numbers_are_read_as_written() {
     assert_eq!(number("(≤ 1e-11 relative)"), (1e-11, 1e-11));
     assert_eq!(number("2.4e-11 of 169 N"), (2.4e-11, 1e-12));
     assert_eq!(number("bump stop 1.0224–1.0463 s").0, 1.0224);
+    assert_eq!(number("1 234 567 N").0, 1234567.0);
+    assert_eq!(number("3 each").0, 3.0);
 }
 
 #[test]
