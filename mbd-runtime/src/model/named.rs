@@ -31,6 +31,10 @@ pub struct PlanarBody<const NQ: usize> {
 
 impl<const NQ: usize> PlanarBody<NQ> {
     /// Body number `index`, named `name`, of a mechanism with NQ coordinates (NQ = NV).
+    ///
+    /// # Panics
+    /// Where its three coordinates do not lie within q (3 index + 3 > NQ): in a `const`, as the
+    /// generated `Name::BODY` is, that is a compile error.
     pub const fn new(index: usize, name: &'static str) -> Self {
         assert!(3 * index + 3 <= NQ, "a planar body's three coordinates lie within q");
         PlanarBody { index, name }
@@ -123,6 +127,10 @@ pub struct SpatialBody<const NQ: usize, const NV: usize> {
 
 impl<const NQ: usize, const NV: usize> SpatialBody<NQ, NV> {
     /// Body number `index`, named `name`, of a mechanism with NQ coordinates and NV velocities.
+    ///
+    /// # Panics
+    /// Where its coordinates or velocities do not lie within q and v: in a `const`, as the
+    /// generated `Name::BODY` is, that is a compile error.
     pub const fn new(index: usize, name: &'static str) -> Self {
         assert!(7 * index + 7 <= NQ && 6 * index + 6 <= NV, "a spatial body's coordinates lie within q and v");
         SpatialBody { index, name }
