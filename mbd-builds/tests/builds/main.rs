@@ -9,6 +9,8 @@
 //!   outside the workspace holding a planar and a spatial mechanism, as a user's crate would) is
 //!   documented with warnings as errors, alongside mbd, mbd-runtime and mbd-macros, and the
 //!   generated pages are read back for their tables;
+//! - `the_packaged_crates_build_the_readmes_program`: the crates as `cargo package` makes them
+//!   for crates.io build a fresh crate's program (the README's) from their packaged files alone;
 //! - `a_mechanism_builds_for_a_cortex_m4f`: the generated code runs on a microcontroller:
 //!   `embedded/`, a `#![no_std]` crate holding the free slider-crank in `scalar f32`, is built for
 //!   a Cortex-M4F (`thumbv7em-none-eabihf`, the target added by `.ci/ensure_embedded_target.sh`)
@@ -204,4 +206,63 @@ fn a_mechanism_builds_for_a_cortex_m4f() {
     // Not a size target (those live in benchmarks): a bound that only a build gone wrong (an
     // unoptimized or std-linked one) would break.
     assert!(step > 0 && step < 64 * 1024, "mbd_accelerations is {step} bytes");
+}
+
+/// The crates a user depends on, as they would be published: `cargo package` makes each
+/// `.crate` file (what crates.io would receive: the files the package holds, its manifest with
+/// versions in place of paths), each within crates.io's 10 MB limit; then a fresh crate outside
+/// the workspace, depending on `mbd = "0.1"` as a user would once it is published, builds and
+/// runs the README's first program against the unpacked `.crate` files (`[patch.crates-io]`
+/// resolves `mbd`, `mbd-macros` and `mbd-runtime` to them, crates.io everything else). That
+/// build is the packages' verification: it compiles each one from its packaged files alone, so
+/// anything a package needs from outside itself fails here. (`cargo package`'s own verification
+/// would compile the same three crates once more.)
+#[test]
+fn the_packaged_crates_build_the_readmes_program() {
+    let (root, target_dir) = (root(), nested_target());
+    let crates = ["mbd-macros", "mbd-runtime", "mbd"];
+    let mut package = Command::new(env!("CARGO"));
+    package.args(["package", "--quiet", "--no-verify", "--allow-dirty", "--target-dir"]).arg(&target_dir).current_dir(&root);
+    for name in crates {
+        package.args(["-p", name]);
+    }
+    let out = package.output().expect("cargo runs");
+    assert!(out.status.success(), "cargo package failed:\n{}", String::from_utf8_lossy(&out.stderr));
+
+    let version = env!("CARGO_PKG_VERSION");
+    let user = target_dir.join("packaged-user");
+    let _ = std::fs::remove_dir_all(&user);
+    std::fs::create_dir_all(user.join("src")).expect("a directory");
+    let mut patches = String::new();
+    for name in crates {
+        let file = target_dir.join(format!("package/{name}-{version}.crate"));
+        let size = std::fs::metadata(&file).expect("the .crate file").len();
+        assert!(size < 10 * 1024 * 1024, "{name}: {size} bytes, above crates.io's 10 MB");
+        let out = Command::new("tar").arg("-xzf").arg(&file).arg("-C").arg(&user).output().expect("tar runs");
+        assert!(out.status.success(), "{name}: the .crate file does not unpack:\n{}", String::from_utf8_lossy(&out.stderr));
+        patches.push_str(&format!("{name} = {{ path = \"{name}-{version}\" }}\n"));
+    }
+    std::fs::write(
+        user.join("Cargo.toml"),
+        format!(
+            "[package]\nname = \"packaged-user\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n\
+             [dependencies]\nmbd = \"{version}\"\n\n[patch.crates-io]\n{patches}\n\
+             [profile.dev.package.mbd-macros]\nopt-level = 3\n\n[workspace]\n"
+        ),
+    )
+    .expect("a manifest");
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("the README");
+    let program = readme.split("```rust\n").nth(1).and_then(|rest| rest.split("\n```").next()).expect("the README's first program");
+    std::fs::write(user.join("src/main.rs"), program).expect("the program");
+    let out = Command::new(env!("CARGO"))
+        .args(["run", "--quiet", "--manifest-path"])
+        .arg(user.join("Cargo.toml"))
+        .arg("--target-dir")
+        .arg(&target_dir)
+        .output()
+        .expect("cargo runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "the README's program against the packaged crates failed:\n{}", String::from_utf8_lossy(&out.stderr));
+    // Its last line: the slider of the README's slider-crank at 0.99 s.
+    assert!(stdout.lines().last().is_some_and(|l| l.starts_with("0.99 s: slider at")), "{stdout}");
 }
