@@ -362,7 +362,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         if r.samples == SAMPLES / 4 {
             static_table = (0..6).map(|i| (statics[i], expected[i])).collect();
         }
-        if print && r.samples % 6 == 0 {
+        if print && r.samples.is_multiple_of(6) {
             let list = |x: [f64; 6], scale: f64| x.iter().map(|v| format!("{:>8.1}", v * scale)).collect::<Vec<_>>().join("");
             let strokes = Legs::strokes(&m, q);
             println!("{t:>6.3} {:>9.2} {:>8.3} | {} | {}", (z - m.z0) * 1e3, phi.to_degrees(), list(strokes, 1e3), list(forces, 1.0));

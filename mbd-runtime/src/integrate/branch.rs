@@ -94,7 +94,7 @@ impl BranchWatch {
             }
         };
         let floor = options.pivot_tolerance.to_f64();
-        if self.observed % MEASURE_EVERY == 0 && below(floor).is_none() {
+        if self.observed.is_multiple_of(MEASURE_EVERY) && below(floor).is_none() {
             // The smallest ratio r is in [floor, 1]: bisect its exponent.
             let (mut lo, mut hi) = (floor.ln(), 0.0);
             for _ in 0..BISECTIONS {

@@ -239,7 +239,7 @@ impl Animation {
         let stride = all.len().saturating_sub(1).div_ceil(budget - 1).max(1);
         let mut kept: Vec<(f64, &[f64])> = all.iter().copied().step_by(stride).collect();
         if let Some(&last) = all.last() {
-            if (all.len() - 1) % stride != 0 {
+            if !(all.len() - 1).is_multiple_of(stride) {
                 kept.push(last);
             }
         }

@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 use mbd::prelude::*;
-use mbd::{ForceInfo, OpCount, SpatialBody};
+use mbd::{ForceInfo, OpCount};
 use mbd_study::{
     QuarterCar, QuarterCarBare, QuarterCarNoCoil, QuarterCarNoFriction, QuarterCarNoGravity, QuarterCarNoShock, QuarterCarNoTyre, Vehicle,
     VehicleBare, VehicleNoFriction, VehicleNoShock,
@@ -217,7 +217,7 @@ mod tests {
         let mut q = m.initial_positions();
         let mut lambda = [0.0; Vehicle::NC];
         StaticSolver::default().solve(&m, &mut ws, &mut q, 0.0, &mut lambda).expect("the vehicle has a rest state");
-        type Body = SpatialBody<{ Vehicle::NQ }, { Vehicle::NV }>;
+        type Body = mbd::SpatialBody<{ Vehicle::NQ }, { Vehicle::NV }>;
         let z = |b: Body| b.position(&q).z;
         let uprights = [Vehicle::FRONT_LEFT_UPRIGHT, Vehicle::FRONT_RIGHT_UPRIGHT, Vehicle::REAR_LEFT_UPRIGHT, Vehicle::REAR_RIGHT_UPRIGHT];
         let tyres: f64 = uprights.iter().map(|&u| m.k_t * (m.radius - z(u))).sum();
