@@ -117,10 +117,10 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut driven = ExcavatorDriven { boom_stroke: l[0], stick_stroke: l[1], bucket_stroke: l[2], ..ExcavatorDriven::default() };
     let solver = KinematicSolver::default();
     let mut ws = ExcavatorDriven::workspace();
-    let mut qd = q;
-    solver.assemble(&driven, &mut ws, &mut qd, 0.0)?;
+    let mut driven_q = q;
+    solver.assemble(&driven, &mut ws, &mut driven_q, 0.0)?;
     let mut multipliers = [0.0; 9];
-    InverseDynamics::default().solve(&driven, &mut ws, &qd, &[0.0; 9], &[0.0; 9], 0.0, &mut multipliers)?;
+    InverseDynamics::default().solve(&driven, &mut ws, &driven_q, &[0.0; 9], &[0.0; 9], 0.0, &mut multipliers)?;
     // Rows: three pins (2 each), then the three drivers.
     let driven_tensions: [f64; 3] = core::array::from_fn(|i| -multipliers[6 + i]);
     let disagreement = (0..3).map(|i| ((driven_tensions[i] - held_tensions[i]) / held_tensions[i]).abs()).fold(0.0, f64::max);
@@ -128,7 +128,7 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     // Lifting: the boom cylinder extends at 0.1 m/s; its tension over 2 s (motion included).
     driven.lift = 0.1;
     let mut lifting = [0.0; 3];
-    let mut guess = qd;
+    let mut guess = driven_q;
     let mut free_mismatch = 0.0;
     for (k, t) in [0.0, 1.0, 2.0].into_iter().enumerate() {
         let s = solver.analyze(&driven, &mut ws, &guess, t)?;

@@ -78,11 +78,11 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=80).map(|k| 2.0 * k as f64 / 80.0);
     let bob = m.rod_bob();
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, qdd| {
-        let (p, v, a, cor) = exact(&m, t);
-        let (bob_p, bob_v, bob_a) = (bob.position(q).coords, bob.velocity(q, qd), bob.acceleration(q, qd, qdd));
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
+        let (p, velocity, a, cor) = exact(&m, t);
+        let (bob_p, bob_v, bob_a) = (bob.position(q).coords, bob.velocity(q, v), bob.acceleration(q, v, vd));
         r.position_error = r.position_error.max(dist(p, bob_p));
-        r.velocity_error = r.velocity_error.max(dist(v, bob_v));
+        r.velocity_error = r.velocity_error.max(dist(velocity, bob_v));
         r.acceleration_error = r.acceleration_error.max(dist(a, bob_a));
         r.max_coriolis = r.max_coriolis.max(cor.abs());
         r.samples += 1;

@@ -71,9 +71,9 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
     }
     let times = (0..=n).map(|k| period * k as f64 / n as f64);
     let knife = m.coupler_knife();
-    solver.sweep(&m, &mut ws, &mut q, times, |t, q, qd, _| {
+    solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, _| {
         let k = knife.position(q);
-        let v = knife.velocity(q, qd);
+        let knife_velocity = knife.velocity(q, v);
         let e = knife_exact(m.phi_mid + m.amplitude * (m.omega * t).sin());
         let err = ((k.x - e[0]).powi(2) + (k.y - e[1]).powi(2)).sqrt();
         r.knife_error = r.knife_error.max(err);
@@ -82,11 +82,11 @@ pub fn run(print: bool) -> Result<Report, KinematicError> {
         y0 = y0.min(k.y);
         y1 = y1.max(k.y);
         if r.samples == 0 {
-            r.mid_speed = v.x.abs();
+            r.mid_speed = knife_velocity.x.abs();
         }
         r.samples += 1;
         if print && r.samples % 8 == 1 {
-            println!("{:>7.3} {:>12.6} {:>12.6} {:>12.5} {:>10.1e}", t, k.x, k.y, v.x, err);
+            println!("{:>7.3} {:>12.6} {:>12.6} {:>12.5} {:>10.1e}", t, k.x, k.y, knife_velocity.x, err);
         }
     })?;
     r.travel = x1 - x0;

@@ -25,10 +25,10 @@ fn main() -> Result<(), KinematicError> {
     let mut q = m.initial_positions();
     solver.assemble(&m, &mut ws, &mut q, 0.0)?;
     let pin = m.slider_pin();
-    solver.sweep(&m, &mut ws, &mut q, (0..100).map(|k| k as f64 * 0.01), |t, q, qd, qdd| {
-        let (x, v, a) = (pin.position(q).x, pin.velocity(q, qd).x, pin.acceleration(q, qd, qdd).x);
+    solver.sweep(&m, &mut ws, &mut q, (0..100).map(|k| k as f64 * 0.01), |t, q, v, vd| {
+        let (x, xd, xdd) = (pin.position(q).x, pin.velocity(q, v).x, pin.acceleration(q, v, vd).x);
         let rod = SliderCrank::ROD.phi(q).to_degrees();
-        println!("{t:.2} s: slider at {x:.4} m, {v:.4} m/s, {a:.3} m/s²; rod at {rod:.2}° of {}", SliderCrank::NQ);
+        println!("{t:.2} s: slider at {x:.4} m, {xd:.4} m/s, {xdd:.3} m/s²; rod at {rod:.2}° of {}", SliderCrank::NQ);
     })?;
     Ok(())
 }
