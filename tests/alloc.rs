@@ -62,8 +62,8 @@ fn kinematic_sweep_does_not_allocate() {
 
     let before = allocations();
     let times = (0..10_000).map(|k| k as f64 * 1e-4);
-    let result = solver.sweep(&m, &mut ws, &mut q, times, |_, q, qd, qdd| {
-        checksum += q[6] + qd[6] + qdd[6];
+    let result = solver.sweep(&m, &mut ws, &mut q, times, |_, q, v, vd| {
+        checksum += q[6] + v[6] + vd[6];
         points += 1;
     });
     let after = allocations();

@@ -60,8 +60,8 @@ fn close(a: f64, b: f64) -> bool {
 fn random_state(rng: &mut Rng) -> ([f64; 6], [f64; 6], f64) {
     let q0 = [0.3, 0.1, 0.2, 0.8, -0.2, -0.4];
     let q = core::array::from_fn(|i| q0[i] + rng.uniform(-0.2, 0.2));
-    let qd = core::array::from_fn(|_| rng.uniform(-2.0, 2.0));
-    (q, qd, rng.uniform(0.0, 3.0))
+    let v = core::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+    (q, v, rng.uniform(0.0, 3.0))
 }
 
 #[test]
@@ -69,22 +69,22 @@ fn force_jacobians_match_central_differences() {
     let m = AllForces::default();
     let mut rng = Rng::new(21);
     for _ in 0..100 {
-        let (q, qd, t) = random_state(&mut rng);
+        let (q, v, t) = random_state(&mut rng);
         let (mut dq, mut dqd) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
-        m.forces_q(&q, &qd, t, &mut dq);
-        m.forces_v(&q, &qd, t, &mut dqd);
+        m.forces_q(&q, &v, t, &mut dq);
+        m.forces_v(&q, &v, t, &mut dqd);
         for c in 0..6 {
             let (mut p, mut n) = ([0.0; 6], [0.0; 6]);
             let (mut qp, mut qn) = (q, q);
             qp[c] += H;
             qn[c] -= H;
-            m.forces(&qp, &qd, t, &mut p);
-            m.forces(&qn, &qd, t, &mut n);
+            m.forces(&qp, &v, t, &mut p);
+            m.forces(&qn, &v, t, &mut n);
             for r in 0..6 {
                 let fd = (p[r] - n[r]) / (2.0 * H);
                 assert!(close(dq[r][c], fd), "∂h[{r}]/∂q[{c}] = {} vs {fd}", dq[r][c]);
             }
-            let (mut vp, mut vn) = (qd, qd);
+            let (mut vp, mut vn) = (v, v);
             vp[c] += H;
             vn[c] -= H;
             m.forces(&q, &vp, t, &mut p);
@@ -102,9 +102,9 @@ fn conservative_forces_are_minus_the_potential_gradient() {
     let m = Conservative::default();
     let mut rng = Rng::new(22);
     for _ in 0..100 {
-        let (q, qd, t) = random_state(&mut rng);
+        let (q, v, t) = random_state(&mut rng);
         let mut h = [0.0; 6];
-        m.forces(&q, &qd, t, &mut h);
+        m.forces(&q, &v, t, &mut h);
         for c in 0..6 {
             let (mut qp, mut qn) = (q, q);
             qp[c] += H;
@@ -129,13 +129,13 @@ mechanism! {
 #[test]
 fn spring_damper_force_by_hand() {
     let m = OneSpring::default();
-    let (q, qd) = ([0.3, -0.4, 0.7], [0.5, -1.0, 2.0]);
+    let (q, v) = ([0.3, -0.4, 0.7], [0.5, -1.0, 2.0]);
     let mut h = [0.0; 3];
-    m.forces(&q, &qd, 0.0, &mut h);
+    m.forces(&q, &v, 0.0, &mut h);
     let (s, c) = q[2].sin_cos();
     let sp = [0.1, 0.2];
     let p = [q[0] + c * sp[0] - s * sp[1], q[1] + s * sp[0] + c * sp[1]];
-    let pd = [qd[0] + qd[2] * (-s * sp[0] - c * sp[1]), qd[1] + qd[2] * (c * sp[0] - s * sp[1])];
+    let pd = [v[0] + v[2] * (-s * sp[0] - c * sp[1]), v[1] + v[2] * (c * sp[0] - s * sp[1])];
     let g = [1.0, 2.0];
     let d = [g[0] - p[0], g[1] - p[1]];
     let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
