@@ -96,7 +96,7 @@ impl SliderCrank {
     #[allow(unused_parens, clippy::approx_constant)]
     pub fn mass_of(&self, body: ::mbd::PlanarBody<9>) -> f64 {
         let mut out = [0f64; 3];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__out_0, __out_1, __out_2] = out.window_mut::<0, 3>();
         (*__out_0) = 1f64;
         (*__out_1) = 2f64;
@@ -159,7 +159,7 @@ impl SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__out_0, __out_1, __out_2, __out_3, __out_4, __out_5, __out_6, __out_7,
         __out_8, __out_9, __out_10, __out_11, __out_12, __out_13, __out_14, __out_15,
         __out_16, __out_17, __out_18, __out_19, __out_20, __out_21, __out_22] = out
@@ -264,7 +264,7 @@ impl SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
         __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
         let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
@@ -797,7 +797,7 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
         let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
         v5 = (self.r / 2f64);
@@ -910,7 +910,7 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
             v203,
             v205,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
         __lambda_6, __lambda_7] = lambda.window::<0, 8>();
         let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
@@ -944,7 +944,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn mass_times(&self, q: &[f64; 9], x: &[f64; 9], y: &mut [f64; 9]) {
         let mut m = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
             .window_mut::<0, 9>();
         (*__m_0) = 1f64;
@@ -969,7 +969,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn add_mass_matrix(&self, q: &[f64; 9], scale: f64, a: &mut [[f64; 9]; 9]) {
         let mut m = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
             .window_mut::<0, 9>();
         (*__m_0) = 1f64;
@@ -1005,7 +1005,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     }
     #[inline]
     fn forces(&self, q: &[f64; 9], v: &[f64; 9], t: f64, h: &mut [f64; 9]) {
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
             .window_mut::<0, 9>();
         (*__h_0) = 0f64;
@@ -1021,7 +1021,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn potential_energy(&self, q: &[f64; 9], t: f64) -> f64 {
         let mut energy = [0f64; 1];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__energy_0] = energy.window_mut::<0, 1>();
         (*__energy_0) = 0f64;
         energy[0]
@@ -1048,7 +1048,7 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     fn nonconservative_power(&self, q: &[f64; 9], v: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__power_0] = power.window_mut::<0, 1>();
         (*__power_0) = 0f64;
         power[0]
@@ -1068,7 +1068,7 @@ impl SliderCrank {
     ) -> ::core::result::Result<(), usize> {
         let mut d = [0f64; 9];
         let exact: f64 = if allow_redundant { 1e2 } else { 1.0 };
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__d_0, __d_1, __d_2, __d_3, __d_4, __d_5, __d_6, __d_7, __d_8] = d
             .window_mut::<0, 9>();
         let [__dinv_0, __dinv_1, __dinv_2, __dinv_3, __dinv_4, __dinv_5, __dinv_6,
@@ -1083,7 +1083,7 @@ impl SliderCrank {
         __minv_7, __minv_8] = minv.window::<0, 9>();
         let skk: f64 = ((*__jv_21) * (*__jv_21) * (*__minv_8));
         let dk: f64 = skk;
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1099,7 +1099,7 @@ impl SliderCrank {
             + (*__jv_19) * (*__jv_19) * (*__minv_7)
             + (*__jv_20) * (*__jv_20) * (*__minv_8));
         let dk: f64 = skk - (*__l_0) * (*__l_0) * (*__d_0);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1116,7 +1116,7 @@ impl SliderCrank {
             + (*__jv_13) * (*__jv_13) * (*__minv_5)
             + (*__jv_14) * (*__jv_14) * (*__minv_6));
         let dk: f64 = skk - (*__l_1) * (*__l_1) * (*__d_1);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1137,7 +1137,7 @@ impl SliderCrank {
             + (*__jv_17) * (*__jv_17) * (*__minv_7));
         let dk: f64 = skk - (*__l_2) * (*__l_2) * (*__d_1)
             - (*__l_3) * (*__l_3) * (*__d_2);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1156,7 +1156,7 @@ impl SliderCrank {
         let skk: f64 = ((*__jv_0) * (*__jv_0) * (*__minv_0)
             + (*__jv_1) * (*__jv_1) * (*__minv_2));
         let dk: f64 = skk;
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1175,7 +1175,7 @@ impl SliderCrank {
         let skk: f64 = ((*__jv_2) * (*__jv_2) * (*__minv_1)
             + (*__jv_3) * (*__jv_3) * (*__minv_2));
         let dk: f64 = skk - (*__l_8) * (*__l_8) * (*__d_4);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1196,7 +1196,7 @@ impl SliderCrank {
         let skk: f64 = ((*__jv_22) * (*__jv_22) * (*__minv_2));
         let dk: f64 = skk - (*__l_9) * (*__l_9) * (*__d_4)
             - (*__l_12) * (*__l_12) * (*__d_5);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1219,7 +1219,7 @@ impl SliderCrank {
         let dk: f64 = skk - (*__l_4) * (*__l_4) * (*__d_2)
             - (*__l_6) * (*__l_6) * (*__d_3) - (*__l_10) * (*__l_10) * (*__d_4)
             - (*__l_13) * (*__l_13) * (*__d_5) - (*__l_15) * (*__l_15) * (*__d_6);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1242,7 +1242,7 @@ impl SliderCrank {
             - (*__l_7) * (*__l_7) * (*__d_3) - (*__l_11) * (*__l_11) * (*__d_4)
             - (*__l_14) * (*__l_14) * (*__d_5) - (*__l_16) * (*__l_16) * (*__d_6)
             - (*__l_17) * (*__l_17) * (*__d_7);
-        let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(
+        let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(
             skk,
             dk,
             exact,
@@ -1258,7 +1258,7 @@ impl SliderCrank {
     /// b ← S⁻¹ b with the factors of `schur_factor`.
     #[inline(always)]
     fn schur_solve(l: &[f64; 18], dinv: &[f64; 9], b: &mut [f64; 9]) {
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
             .window_mut::<0, 9>();
         let [__dinv_0, __dinv_1, __dinv_2, __dinv_3, __dinv_4, __dinv_5, __dinv_6,
@@ -1325,7 +1325,7 @@ impl SliderCrank {
         let mut b = *rhs;
         Self::schur_solve(l, dinv, &mut b);
         *x = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
             .window::<0, 9>();
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -1344,11 +1344,11 @@ impl SliderCrank {
         (*__x_6) = ((*__jv_14) * (*__b_4) + (*__jv_18) * (*__b_6));
         (*__x_7) = ((*__jv_17) * (*__b_5) + (*__jv_19) * (*__b_6));
         (*__x_8) = ((*__jv_20) * (*__b_6) + (*__jv_21) * (*__b_7));
-        ::mbd::sparse::refined(
+        ::mbd::__private::refined(
             x,
             |x, dx| {
                 let mut b = [0f64; 9];
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                     .window_mut::<0, 9>();
                 let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
@@ -1379,7 +1379,7 @@ impl SliderCrank {
                 (*__b_7) = (*__rhs_7) - ((*__jv_21) * (*__x_8));
                 (*__b_8) = (*__rhs_8) - ((*__jv_22) * (*__x_2));
                 Self::schur_solve(l, dinv, &mut b);
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                     .window::<0, 9>();
                 let [__dx_0, __dx_1, __dx_2, __dx_3, __dx_4, __dx_5, __dx_6, __dx_7,
@@ -1414,7 +1414,7 @@ impl SliderCrank {
         x: &mut [f64; 9],
     ) -> bool {
         let mut b = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
             .window_mut::<0, 9>();
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -1438,11 +1438,11 @@ impl SliderCrank {
         (*__b_8) = ((*__jv_22) * (*__rhs_2));
         Self::schur_solve(l, dinv, &mut b);
         *x = b;
-        ::mbd::sparse::refined(
+        ::mbd::__private::refined(
             x,
             |x, b| {
                 let mut w = [0f64; 9];
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
                 __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15,
                 __jv_16, __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
@@ -1466,7 +1466,7 @@ impl SliderCrank {
                 (*__w_6) = (*__rhs_6) - ((*__jv_14) * (*__x_4) + (*__jv_18) * (*__x_6));
                 (*__w_7) = (*__rhs_7) - ((*__jv_17) * (*__x_5) + (*__jv_19) * (*__x_6));
                 (*__w_8) = (*__rhs_8) - ((*__jv_20) * (*__x_6) + (*__jv_21) * (*__x_7));
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                     .window_mut::<0, 9>();
                 let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
@@ -1563,7 +1563,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
         __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
         let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
@@ -1707,7 +1707,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
         let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__h_0, __h_1, __h_2, __h_3, __h_4, __h_5, __h_6, __h_7, __h_8] = h
             .window::<0, 9>();
         let [__minv_0, __minv_1, __minv_2, __minv_3, __minv_4, __minv_5, __minv_6,
@@ -1723,7 +1723,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__vd_6) = (*__h_6) * (*__minv_6);
         (*__vd_7) = (*__h_7) * (*__minv_7);
         (*__vd_8) = (*__h_8) * (*__minv_8);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
         __gamma_7, __gamma_8] = gamma.window::<0, 9>();
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -1777,7 +1777,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__lambda_8) = (*__gamma_8) - ((*__jv_22) * (*__vd_2))
             - two_alpha * (((*__jv_22) * (*__v_2)) - (*__nu_8)) - beta2 * (*__phi_8);
         Self::schur_solve(&l, &dinv, lambda);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
         __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
         __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window::<0, 23>();
@@ -1857,7 +1857,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 f64,
                 f64,
             );
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
             __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16,
             __jv_17, __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv
@@ -1923,7 +1923,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__m_8) = 0.001f64;
         }
         let mut b = phi;
-        let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
+        let (worst, _) = ::mbd::__private::max_abs_finite(&b);
         let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
@@ -1960,7 +1960,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             );
         }
         Self::schur_solve(&l, &dinv, &mut b);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
             .window::<0, 9>();
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -2013,7 +2013,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
         __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
         __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
@@ -2111,7 +2111,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut b = [0f64; 9];
         {
             let v: &[f64; 9] = v;
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                 .window_mut::<0, 9>();
             let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -2136,9 +2136,9 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__b_7) = ((*__jv_21) * (*__v_8)) - (*__nu_7);
             (*__b_8) = ((*__jv_22) * (*__v_2)) - (*__nu_8);
         }
-        let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
+        let (worst, _) = ::mbd::__private::max_abs_finite(&b);
         Self::schur_solve(&l, &dinv, &mut b);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
             .window::<0, 9>();
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
@@ -2216,7 +2216,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
         __phi_8] = phi.window_mut::<0, 9>();
         let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
@@ -2328,7 +2328,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
         __lambda_6, __lambda_7] = lambda.window::<0, 8>();
         let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
@@ -2405,7 +2405,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[48] = v205;
         s[49] = v203;
         s[50] = ((s_slider * (*__lambda_7)) + ((*__lambda_6) * (v54 - v53)));
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
             .window::<0, 9>();
         s[23] = (*__m_0);
@@ -2479,7 +2479,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         {
             let scale = 0f64.max(s[23].abs()).max(s[24].abs()).max(s[25].abs());
             let pivot = s[23];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 0,
@@ -2502,7 +2502,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         {
             let scale = 0f64.max(s[26].abs()).max(s[27].abs()).max(s[28].abs());
             let pivot = s[26];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 1,
@@ -2525,7 +2525,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         {
             let scale = 0f64.max(s[29].abs()).max(s[30].abs()).max(s[31].abs());
             let pivot = s[29];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 3,
@@ -2548,7 +2548,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         {
             let scale = 0f64.max(s[32].abs()).max(s[33].abs()).max(s[34].abs());
             let pivot = s[32];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 4,
@@ -2575,7 +2575,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 .max(s[37].abs())
                 .max(s[38].abs());
             let pivot = s[35];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 6,
@@ -2602,7 +2602,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 .max(s[41].abs())
                 .max(s[42].abs());
             let pivot = s[39];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 7,
@@ -2630,7 +2630,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 .max(s[46].abs())
                 .max(s[47].abs());
             let pivot = s[43];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 5,
@@ -2672,7 +2672,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[54] -= l * s[42];
             }
             let pivot = s[50];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 8,
@@ -2718,7 +2718,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[61] -= l * s[54];
             }
             let pivot = s[58];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 15,
@@ -2756,7 +2756,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[66] -= l * s[61];
             }
             let pivot = s[64];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 16,
@@ -2822,7 +2822,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[74] -= l * s[66];
             }
             let pivot = s[73];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 13,
@@ -2895,7 +2895,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[86] -= l * s[76];
             }
             let pivot = s[84];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 14,
@@ -2924,7 +2924,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 .max(s[91].abs())
                 .max(s[92].abs());
             let pivot = s[87];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 2,
@@ -2962,7 +2962,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[99] -= l * s[92];
             }
             let pivot = s[95];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 9,
@@ -3009,7 +3009,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[106] -= l * s[99];
             }
             let pivot = s[103];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 10,
@@ -3056,7 +3056,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[112] -= l * s[106];
             }
             let pivot = s[110];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 17,
@@ -3144,7 +3144,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[123] -= l * s[112];
             }
             let pivot = s[122];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 11,
@@ -3237,7 +3237,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
                 s[134] -= l * s[123];
             }
             let pivot = s[134];
-            if ::mbd::sparse::pivot(
+            if ::mbd::__private::pivot(
                 pivot,
                 scale,
                 12,
@@ -3425,7 +3425,7 @@ impl ::mbd::JointLoads<f64, 9, 9, 9> for SliderCrank {
             s_slider,
             c_slider,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__lambda_0, __lambda_1, __lambda_2, __lambda_3, __lambda_4, __lambda_5,
         __lambda_6, __lambda_7, __lambda_8] = lambda.window::<0, 9>();
         let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
@@ -3457,233 +3457,7 @@ impl ::mbd::JointLoads<f64, 9, 9, 9> for SliderCrank {
     }
 }
 #[allow(unused_variables, unused_parens, clippy::approx_constant)]
-impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
-    #[inline]
-    fn initial_positions(&self) -> [f64; 9] {
-        let mut q = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
-        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
-            .window_mut::<0, 9>();
-        (*__q_0) = 0.05f64;
-        (*__q_1) = 0f64;
-        (*__q_2) = 0f64;
-        (*__q_3) = 0.25f64;
-        (*__q_4) = 0f64;
-        (*__q_5) = 0f64;
-        (*__q_6) = 0.4f64;
-        (*__q_7) = 0f64;
-        (*__q_8) = 0f64;
-        q
-    }
-    #[inline]
-    fn initial_velocities(&self) -> [f64; 9] {
-        let mut v = [0f64; 9];
-        use ::mbd::sparse::Elements as _;
-        let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
-            .window_mut::<0, 9>();
-        (*__v_0) = 0f64;
-        (*__v_1) = 0f64;
-        (*__v_2) = 0f64;
-        (*__v_3) = 0f64;
-        (*__v_4) = 0f64;
-        (*__v_5) = 0f64;
-        (*__v_6) = 0f64;
-        (*__v_7) = 0f64;
-        (*__v_8) = 0f64;
-        v
-    }
-    #[inline]
-    fn position_rates(&self, q: &[f64; 9], v: &[f64; 9], qdot: &mut [f64; 9]) {
-        *qdot = *v;
-    }
-    #[inline]
-    fn integrate_positions(&self, q: &mut [f64; 9], dv: &[f64; 9], h: f64) {
-        for i in 0..9 {
-            q[i] += h * dv[i];
-        }
-    }
-    #[inline]
-    fn normalize_positions(&self, q: &mut [f64; 9]) {}
-    #[inline]
-    fn constraints(&self, q: &[f64; 9], t: f64, phi: &mut [f64; 9]) {
-        let (
-            v5,
-            s_crank,
-            c_crank,
-            v10,
-            v12,
-            v24,
-            s_rod,
-            c_rod,
-            v29,
-            v31,
-            s_slider,
-            c_slider,
-        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
-        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
-        __phi_8] = phi.window_mut::<0, 9>();
-        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
-            .window::<0, 9>();
-        v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
-        v10 = (v5 * c_crank);
-        v12 = (v5 * s_crank);
-        v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
-        v29 = (v24 * c_rod);
-        v31 = (v24 * s_rod);
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
-        (*__phi_0) = (-((*__q_0) - v10));
-        (*__phi_1) = (-((*__q_1) - v12));
-        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
-        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
-        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
-        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
-        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
-        (*__phi_7) = (-s_slider);
-        (*__phi_8) = ((*__q_2) - (self.omega * t));
-    }
-    #[inline]
-    fn jacobian(&self, q: &[f64; 9], t: f64, d: &mut [[f64; 9]; 9]) {
-        for row in d.iter_mut() {
-            *row = [0f64; 9];
-        }
-        let (
-            v5,
-            s_crank,
-            c_crank,
-            v10,
-            v13,
-            v24,
-            s_rod,
-            c_rod,
-            v29,
-            v32,
-            s_slider,
-            c_slider,
-            v81,
-        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
-        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
-        v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
-        v10 = (v5 * c_crank);
-        v13 = (-(v5 * s_crank));
-        v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
-        v29 = (v24 * c_rod);
-        v32 = (-(v24 * s_rod));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
-        v81 = (-c_slider);
-        d[0][0] = (-1f64);
-        d[0][2] = v13;
-        d[1][1] = (-1f64);
-        d[1][2] = v10;
-        d[2][0] = 1f64;
-        d[2][2] = v13;
-        d[2][3] = (-1f64);
-        d[2][5] = v32;
-        d[3][1] = 1f64;
-        d[3][2] = v10;
-        d[3][4] = (-1f64);
-        d[3][5] = v29;
-        d[4][3] = 1f64;
-        d[4][5] = v32;
-        d[4][6] = (-1f64);
-        d[5][4] = 1f64;
-        d[5][5] = v29;
-        d[5][7] = (-1f64);
-        d[6][6] = s_slider;
-        d[6][7] = v81;
-        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
-        d[7][8] = v81;
-        d[8][2] = 1f64;
-    }
-    #[inline]
-    fn velocity_rhs(&self, q: &[f64; 9], t: f64, nu: &mut [f64; 9]) {
-        use ::mbd::sparse::Elements as _;
-        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
-            .window_mut::<0, 9>();
-        (*__nu_0) = 0f64;
-        (*__nu_1) = 0f64;
-        (*__nu_2) = 0f64;
-        (*__nu_3) = 0f64;
-        (*__nu_4) = 0f64;
-        (*__nu_5) = 0f64;
-        (*__nu_6) = 0f64;
-        (*__nu_7) = 0f64;
-        (*__nu_8) = self.omega;
-    }
-    #[inline]
-    fn gamma(&self, q: &[f64; 9], v: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
-        let (
-            v5,
-            s_crank,
-            c_crank,
-            v24,
-            s_rod,
-            c_rod,
-            s_slider,
-            c_slider,
-            v119,
-            v126,
-            v134,
-            v138,
-            v141,
-            v147,
-            v151,
-            v152,
-            v158,
-        ): (
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-            f64,
-        );
-        use ::mbd::sparse::Elements as _;
-        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
-        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
-        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
-        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
-        v5 = (self.r / 2f64);
-        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
-        v24 = (self.l / 2f64);
-        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
-        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
-        v119 = (s_slider * (*__v_8));
-        v126 = (c_slider * (*__v_8));
-        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
-        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
-        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
-        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
-        v151 = ((*__v_6) * v126);
-        v152 = ((*__v_8) * v119);
-        v158 = ((*__v_7) * v119);
-        (*__gamma_0) = v134;
-        (*__gamma_1) = v138;
-        (*__gamma_2) = (v134 + v141);
-        (*__gamma_3) = (v138 + v147);
-        (*__gamma_4) = v141;
-        (*__gamma_5) = v147;
-        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
-        (*__gamma_7) = (-v152);
-        (*__gamma_8) = 0f64;
-    }
+impl ::mbd::__private::KinematicsHooks<f64, 9, 9, 9> for SliderCrank {
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn sparse_position_solve(
@@ -3701,7 +3475,12 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut l = [0f64; 18];
         let mut dinv = [0f64; 9];
-        let mut newton = ::mbd::Newton::new(tolerance, max_iterations, reuse, max_step);
+        let mut newton = ::mbd::__private::Newton::new(
+            tolerance,
+            max_iterations,
+            reuse,
+            max_step,
+        );
         let (v5, v24, v59): (f64, f64, f64);
         v5 = (self.r / 2f64);
         v24 = (self.l / 2f64);
@@ -3724,7 +3503,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                     c_slider,
                     v81,
                 ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6,
                 __phi_7, __phi_8] = phi.window_mut::<0, 9>();
                 let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
@@ -3748,11 +3527,11 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                 (*__phi_7) = (-s_slider);
                 (*__phi_8) = ((*__q_2) - v59);
                 match newton.after_residual(phi) {
-                    ::mbd::NewtonNext::Stop(end) => {
+                    ::mbd::__private::NewtonNext::Stop(end) => {
                         return ::core::option::Option::Some(newton.end(end));
                     }
-                    ::mbd::NewtonNext::Factor => {
-                        use ::mbd::sparse::Elements as _;
+                    ::mbd::__private::NewtonNext::Factor => {
+                        use ::mbd::__private::Elements as _;
                         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6,
                         __jv_7, __jv_8, __jv_9, __jv_10, __jv_11, __jv_12, __jv_13,
                         __jv_14, __jv_15, __jv_16, __jv_17, __jv_18, __jv_19, __jv_20,
@@ -3798,12 +3577,12 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
                         }
                         newton.factored();
                     }
-                    ::mbd::NewtonNext::Reuse => {}
+                    ::mbd::__private::NewtonNext::Reuse => {}
                 }
                 let mut b = *phi;
                 Self::schur_solve(&l, &dinv, &mut b);
                 *step = [0f64; 9];
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b
                     .window::<0, 9>();
                 let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7,
@@ -3891,7 +3670,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__jv_0, __jv_1, __jv_2, __jv_3, __jv_4, __jv_5, __jv_6, __jv_7, __jv_8,
         __jv_9, __jv_10, __jv_11, __jv_12, __jv_13, __jv_14, __jv_15, __jv_16, __jv_17,
         __jv_18, __jv_19, __jv_20, __jv_21, __jv_22] = jv.window_mut::<0, 23>();
@@ -3950,7 +3729,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         }
         {
             let v: &[f64; 9] = v;
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5,
             __gamma_6, __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
             let [__q_6, __q_7] = q.window::<6, 2>();
@@ -3997,6 +3776,235 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         }
         Self::transpose_solve(&jv, &l, &dinv, b, lambda)
     }
+}
+#[allow(unused_variables, unused_parens, clippy::approx_constant)]
+impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
+    #[inline]
+    fn initial_positions(&self) -> [f64; 9] {
+        let mut q = [0f64; 9];
+        use ::mbd::__private::Elements as _;
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window_mut::<0, 9>();
+        (*__q_0) = 0.05f64;
+        (*__q_1) = 0f64;
+        (*__q_2) = 0f64;
+        (*__q_3) = 0.25f64;
+        (*__q_4) = 0f64;
+        (*__q_5) = 0f64;
+        (*__q_6) = 0.4f64;
+        (*__q_7) = 0f64;
+        (*__q_8) = 0f64;
+        q
+    }
+    #[inline]
+    fn initial_velocities(&self) -> [f64; 9] {
+        let mut v = [0f64; 9];
+        use ::mbd::__private::Elements as _;
+        let [__v_0, __v_1, __v_2, __v_3, __v_4, __v_5, __v_6, __v_7, __v_8] = v
+            .window_mut::<0, 9>();
+        (*__v_0) = 0f64;
+        (*__v_1) = 0f64;
+        (*__v_2) = 0f64;
+        (*__v_3) = 0f64;
+        (*__v_4) = 0f64;
+        (*__v_5) = 0f64;
+        (*__v_6) = 0f64;
+        (*__v_7) = 0f64;
+        (*__v_8) = 0f64;
+        v
+    }
+    #[inline]
+    fn position_rates(&self, q: &[f64; 9], v: &[f64; 9], qdot: &mut [f64; 9]) {
+        *qdot = *v;
+    }
+    #[inline]
+    fn integrate_positions(&self, q: &mut [f64; 9], dv: &[f64; 9], h: f64) {
+        for i in 0..9 {
+            q[i] += h * dv[i];
+        }
+    }
+    #[inline]
+    fn normalize_positions(&self, q: &mut [f64; 9]) {}
+    #[inline]
+    fn constraints(&self, q: &[f64; 9], t: f64, phi: &mut [f64; 9]) {
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v12,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v31,
+            s_slider,
+            c_slider,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::__private::Elements as _;
+        let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
+        __phi_8] = phi.window_mut::<0, 9>();
+        let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
+            .window::<0, 9>();
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v10 = (v5 * c_crank);
+        v12 = (v5 * s_crank);
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        v29 = (v24 * c_rod);
+        v31 = (v24 * s_rod);
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        (*__phi_0) = (-((*__q_0) - v10));
+        (*__phi_1) = (-((*__q_1) - v12));
+        (*__phi_2) = ((v10 + (*__q_0)) - ((*__q_3) - v29));
+        (*__phi_3) = ((v12 + (*__q_1)) - ((*__q_4) - v31));
+        (*__phi_4) = ((v29 + (*__q_3)) - (*__q_6));
+        (*__phi_5) = ((v31 + (*__q_4)) - (*__q_7));
+        (*__phi_6) = ((s_slider * (*__q_6)) - (c_slider * (*__q_7)));
+        (*__phi_7) = (-s_slider);
+        (*__phi_8) = ((*__q_2) - (self.omega * t));
+    }
+    #[inline]
+    fn jacobian(&self, q: &[f64; 9], t: f64, d: &mut [[f64; 9]; 9]) {
+        for row in d.iter_mut() {
+            *row = [0f64; 9];
+        }
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v10,
+            v13,
+            v24,
+            s_rod,
+            c_rod,
+            v29,
+            v32,
+            s_slider,
+            c_slider,
+            v81,
+        ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
+        use ::mbd::__private::Elements as _;
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v10 = (v5 * c_crank);
+        v13 = (-(v5 * s_crank));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        v29 = (v24 * c_rod);
+        v32 = (-(v24 * s_rod));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v81 = (-c_slider);
+        d[0][0] = (-1f64);
+        d[0][2] = v13;
+        d[1][1] = (-1f64);
+        d[1][2] = v10;
+        d[2][0] = 1f64;
+        d[2][2] = v13;
+        d[2][3] = (-1f64);
+        d[2][5] = v32;
+        d[3][1] = 1f64;
+        d[3][2] = v10;
+        d[3][4] = (-1f64);
+        d[3][5] = v29;
+        d[4][3] = 1f64;
+        d[4][5] = v32;
+        d[4][6] = (-1f64);
+        d[5][4] = 1f64;
+        d[5][5] = v29;
+        d[5][7] = (-1f64);
+        d[6][6] = s_slider;
+        d[6][7] = v81;
+        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        d[7][8] = v81;
+        d[8][2] = 1f64;
+    }
+    #[inline]
+    fn velocity_rhs(&self, q: &[f64; 9], t: f64, nu: &mut [f64; 9]) {
+        use ::mbd::__private::Elements as _;
+        let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu
+            .window_mut::<0, 9>();
+        (*__nu_0) = 0f64;
+        (*__nu_1) = 0f64;
+        (*__nu_2) = 0f64;
+        (*__nu_3) = 0f64;
+        (*__nu_4) = 0f64;
+        (*__nu_5) = 0f64;
+        (*__nu_6) = 0f64;
+        (*__nu_7) = 0f64;
+        (*__nu_8) = self.omega;
+    }
+    #[inline]
+    fn gamma(&self, q: &[f64; 9], v: &[f64; 9], t: f64, gamma: &mut [f64; 9]) {
+        let (
+            v5,
+            s_crank,
+            c_crank,
+            v24,
+            s_rod,
+            c_rod,
+            s_slider,
+            c_slider,
+            v119,
+            v126,
+            v134,
+            v138,
+            v141,
+            v147,
+            v151,
+            v152,
+            v158,
+        ): (
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+            f64,
+        );
+        use ::mbd::__private::Elements as _;
+        let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
+        __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
+        let [__q_2, _, _, __q_5, __q_6, __q_7, __q_8] = q.window::<2, 7>();
+        let [__v_2, _, _, __v_5, __v_6, __v_7, __v_8] = v.window::<2, 7>();
+        v5 = (self.r / 2f64);
+        (s_crank, c_crank) = <f64 as ::mbd::Real>::sin_cos((*__q_2));
+        v24 = (self.l / 2f64);
+        (s_rod, c_rod) = <f64 as ::mbd::Real>::sin_cos((*__q_5));
+        (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
+        v119 = (s_slider * (*__v_8));
+        v126 = (c_slider * (*__v_8));
+        v134 = (v5 * ((*__v_2) * (c_crank * (*__v_2))));
+        v138 = (v5 * ((*__v_2) * (s_crank * (*__v_2))));
+        v141 = (v24 * ((*__v_5) * (c_rod * (*__v_5))));
+        v147 = (v24 * ((*__v_5) * (s_rod * (*__v_5))));
+        v151 = ((*__v_6) * v126);
+        v152 = ((*__v_8) * v119);
+        v158 = ((*__v_7) * v119);
+        (*__gamma_0) = v134;
+        (*__gamma_1) = v138;
+        (*__gamma_2) = (v134 + v141);
+        (*__gamma_3) = (v138 + v147);
+        (*__gamma_4) = v141;
+        (*__gamma_5) = v147;
+        (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
+            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+        (*__gamma_7) = (-v152);
+        (*__gamma_8) = 0f64;
+    }
     #[inline]
     fn position_eval(
         &self,
@@ -4025,7 +4033,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             c_slider,
             v81,
         ): (f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64);
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__phi_0, __phi_1, __phi_2, __phi_3, __phi_4, __phi_5, __phi_6, __phi_7,
         __phi_8] = phi.window_mut::<0, 9>();
         let [__q_0, __q_1, __q_2, __q_3, __q_4, __q_5, __q_6, __q_7, __q_8] = q
@@ -4140,7 +4148,7 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
             f64,
             f64,
         );
-        use ::mbd::sparse::Elements as _;
+        use ::mbd::__private::Elements as _;
         let [__gamma_0, __gamma_1, __gamma_2, __gamma_3, __gamma_4, __gamma_5, __gamma_6,
         __gamma_7, __gamma_8] = gamma.window_mut::<0, 9>();
         let [__nu_0, __nu_1, __nu_2, __nu_3, __nu_4, __nu_5, __nu_6, __nu_7, __nu_8] = nu

@@ -722,7 +722,7 @@ pub fn in_functions(stmts: &[TokenStream], label: &str, scalars: &[&str], real: 
                 #body
             }
             {
-                use ::mbd::sparse::Elements as _;
+                use ::mbd::__private::Elements as _;
                 #name(#(#args),*);
             }
         }

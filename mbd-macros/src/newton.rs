@@ -133,7 +133,7 @@ impl NewtonPlan {
                     #scale
                     #({ #eliminate })*
                     let pivot = s[#dl];
-                    if ::mbd::sparse::pivot(pivot, scale, #ul, #nv, tolerance, allow_redundant, dropped, &mut smallest)? {
+                    if ::mbd::__private::pivot(pivot, scale, #ul, #nv, tolerance, allow_redundant, dropped, &mut smallest)? {
                         inverse[#il] = #one / pivot;
                         s[#dl] = inverse[#il];
                     } else {

@@ -7,7 +7,7 @@
 //! (*__l_5) = (*__x_1) * (*__l_6);
 //! ```
 //!
-//! (`mbd::sparse::Elements`: `window::<K, M>()` is the array's elements K..K + M as an array,
+//! (`mbd::__private::Elements`: `window::<K, M>()` is the array's elements K..K + M as an array,
 //! by reference, so that the pattern names only the span the code touches.)
 //!
 //! Why: rustc type-checks every `a[k]` as an overloaded index (autoderef, the `Index` impls of
@@ -76,7 +76,7 @@ pub fn scalarize(code: TokenStream) -> TokenStream {
             quote!(let [#(#elements),*] = #array.#window::<#start, #len>();)
         })
     });
-    quote!(use ::mbd::sparse::Elements as _; #(#lets)* #body)
+    quote!(use ::mbd::__private::Elements as _; #(#lets)* #body)
 }
 
 /// The arrays straight-line statements index by literal (each with whether they write it) and
@@ -272,7 +272,7 @@ mod tests {
         let (a, b) = (lit(3), lit(1));
         let code = quote!(l[#a] = jv[#b] * jv[#a] * d[#b]; d[#a] -= l[#a];);
         let expected = quote!(
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__d_1, _, __d_3] = d.window_mut::<1, 3>();
             let [__jv_1, _, __jv_3] = jv.window::<1, 3>();
             let [__l_3] = l.window_mut::<3, 1>();
@@ -290,7 +290,7 @@ mod tests {
         let k = lit(1);
         let code = quote!(b[#k] = l[#k] + x[#k] + self.x + y::z; z[#k] = 1.0; solve(&b); if l[#k] == l[0] {} c[i] = c[#k]; m[0][1] = l[0];);
         let expected = quote!(
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__l_0, __l_1] = l.window::<0, 2>();
             b[#k] = (*__l_1) + x[#k] + self.x + y::z; z[#k] = 1.0; solve(&b); if (*__l_1) == (*__l_0) {} c[i] = c[#k]; m[0][1] = (*__l_0);
         );
@@ -327,7 +327,7 @@ mod tests {
     fn scattered_accesses_take_a_window_each_or_keep_their_indexing() {
         let code = quote!(s[40] = x[0] + x[30] + x[31]; s[2] = 1.0; y[5] = x[0];);
         let expected = quote!(
-            use ::mbd::sparse::Elements as _;
+            use ::mbd::__private::Elements as _;
             let [__x_0] = x.window::<0, 1>();
             let [__x_30, __x_31] = x.window::<30, 2>();
             let [__y_5] = y.window_mut::<5, 1>();

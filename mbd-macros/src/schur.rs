@@ -147,7 +147,7 @@ impl Schur {
             stmts.push(quote! {
                 let skk: #real = #skk;
                 let dk: #real = skk #(#sub)*;
-                let ::core::option::Option::Some((dk, dik)) = ::mbd::sparse::schur_pivot(skk, dk, exact, tol, allow_redundant) else {
+                let ::core::option::Option::Some((dk, dik)) = ::mbd::__private::schur_pivot(skk, dk, exact, tol, allow_redundant) else {
                     return ::core::result::Result::Err(#row_kl);
                 };
                 d[#kl] = dk;

@@ -41,8 +41,6 @@ pub use integrate::{
 };
 pub use linalg::sparse::SparsePattern;
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};
-#[doc(hidden)]
-pub use model::dynamics::check_inertia;
 pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,
 };
@@ -78,13 +76,21 @@ pub use solvers::kinematics::{
 };
 #[cfg(feature = "alloc")]
 pub use solvers::linearize::{LinearStability, Linearization, LinearizeError, LinearizeOptions, Linearizer, Mode, Output};
-#[doc(hidden)]
-pub use solvers::newton::{Newton, NewtonNext};
 pub use solvers::redundancy::Redundancy;
 pub use solvers::statics::{
     Stability, StaticError, StaticOptions, StaticReport, StaticSolver, DEFAULT_STATIC_ASSEMBLY_ITERATIONS, DEFAULT_STATIC_INITIAL_STEP,
     DEFAULT_STATIC_MAX_ITERATIONS, DEFAULT_STATIC_NEUTRAL_TOLERANCE, DEFAULT_STATIC_PIVOT_TOLERANCE, DEFAULT_STATIC_TOLERANCE,
 };
+
+/// What the code `mechanism!` generates uses and a user does not: kept out of the
+/// documentation and the API, as serde keeps its own.
+#[doc(hidden)]
+pub mod __private {
+    pub use crate::linalg::sparse::{max_abs_finite, pivot, refined, schur_pivot, Elements};
+    pub use crate::model::dynamics::check_inertia;
+    pub use crate::model::mechanism::KinematicsHooks;
+    pub use crate::solvers::newton::{Newton, NewtonNext};
+}
 
 /// Its items when the runtime has `std`, nothing without (the generated code's `workspace()`,
 /// which boxes).

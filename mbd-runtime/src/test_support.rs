@@ -18,7 +18,7 @@
 
 use crate::linalg::{lu_factor, lu_solve_in_place};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
-use crate::model::mechanism::{ConstraintForces, Dynamics, Kinematics, Mechanism, OpCount};
+use crate::model::mechanism::{ConstraintForces, Dynamics, Kinematics, KinematicsHooks, Mechanism, OpCount};
 use crate::model::mechanism::{CoordinateInfo, CoordinateKind, VelocityInfo, VelocityKind};
 
 /// Distance from the pin to the centre of mass (m).
@@ -96,6 +96,8 @@ impl Mechanism for UnitPendulum {
     const OP_COUNTS: &'static [OpCount] = &[];
     const MODEL_JSON: &'static str = "{}";
 }
+
+impl KinematicsHooks<f64, 4, 3, 2> for UnitPendulum {}
 
 impl Kinematics<f64, 4, 3, 2> for UnitPendulum {
     /// Horizontal, at rest.
@@ -296,6 +298,8 @@ impl DrivenUnitPendulum {
         ([pin_phi[0], pin_phi[1], s * cf - c * sf], [pin_d[0], pin_d[1], [0.0, 0.0, c * cf + s * sf]])
     }
 }
+
+impl KinematicsHooks<f64, 4, 3, 3> for DrivenUnitPendulum {}
 
 impl Kinematics<f64, 4, 3, 3> for DrivenUnitPendulum {
     fn initial_positions(&self) -> [f64; 4] {

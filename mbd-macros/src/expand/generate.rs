@@ -352,7 +352,7 @@ impl<'a> Gen<'a> {
     }
 
     /// `Dynamics::check_inertia`: per body its mass and inertia (J, or the rows of J′) into `p`,
-    /// checked by `mbd::check_inertia` (which names the body). Nothing where every one is a
+    /// checked by `mbd::__private::check_inertia` (which names the body). Nothing where every one is a
     /// constant, which validation has checked already (the provided method then checks nothing).
     fn inertia_check(&self) -> TokenStream {
         let Gen { f, e, real, zero, .. } = self;
@@ -367,7 +367,7 @@ impl<'a> Gen<'a> {
             fn check_inertia(&self) -> ::core::result::Result<(), ::mbd::DynamicsError> {
                 let mut p = [#zero; #n];
                 #body
-                ::mbd::check_inertia::<Self, #real>(&p, #k)
+                ::mbd::__private::check_inertia::<Self, #real>(&p, #k)
             }
         }
     }

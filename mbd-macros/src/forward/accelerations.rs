@@ -217,7 +217,7 @@ impl Plan<'_> {
         };
         // ‖b‖∞, NaN entries ignored (the callers check the result for finiteness).
         let max_abs = quote! {
-            let (worst, _) = ::mbd::sparse::max_abs_finite(&b);
+            let (worst, _) = ::mbd::__private::max_abs_finite(&b);
         };
         let inline = crate::emit::inline_hint(self.nc);
         let impl_block = quote! {

@@ -37,7 +37,7 @@ impl Plan<'_> {
     /// regular), the loop in the generated code: what depends only on t (a driver's sin(ωt)) is
     /// computed once before it, and D only after Φ's convergence test, in stages sharing their
     /// subexpressions. The rules — convergence, the iteration limit, when D's factors are kept
-    /// (simplified Newton), the damped step — are the runtime's `mbd::Newton`, which the dense
+    /// (simplified Newton), the damped step — are the runtime's `mbd::__private::Newton`, which the dense
     /// solve follows too.
     ///
     /// Where Φ and D together take more than `PART_NODES` operations, the loop evaluates them
@@ -98,22 +98,22 @@ impl Plan<'_> {
                 let mut jv = [#zero; #nnz_l];
                 let mut l = [#zero; #nl_l];
                 let mut dinv = [#zero; #nc_l];
-                let mut newton = ::mbd::Newton::new(tolerance, max_iterations, reuse, max_step);
+                let mut newton = ::mbd::__private::Newton::new(tolerance, max_iterations, reuse, max_step);
                 #time_terms
                 loop {
                     {
                         let q: &[#real; #nq_l] = q;
                         #phi_stage
                         match newton.after_residual(phi) {
-                            ::mbd::NewtonNext::Stop(end) => return ::core::option::Option::Some(newton.end(end)),
-                            ::mbd::NewtonNext::Factor => {
+                            ::mbd::__private::NewtonNext::Stop(end) => return ::core::option::Option::Some(newton.end(end)),
+                            ::mbd::__private::NewtonNext::Factor => {
                                 #jv_stage
                                 if Self::schur_factor(&jv, &[#one; #nv_l], #unit_off pivot_tolerance, false, &mut l, &mut dinv).is_err() {
                                     return ::core::option::Option::Some(newton.end(::mbd::PositionStep::Singular));
                                 }
                                 newton.factored();
                             }
-                            ::mbd::NewtonNext::Reuse => {}
+                            ::mbd::__private::NewtonNext::Reuse => {}
                         }
                         let mut b = *phi;
                         Self::schur_solve(&l, &dinv, &mut b);
@@ -274,7 +274,7 @@ impl Plan<'_> {
                 #rows_of_rhs
                 Self::schur_solve(l, dinv, &mut b);
                 *x = b;
-                ::mbd::sparse::refined(x, |x, b| {
+                ::mbd::__private::refined(x, |x, b| {
                     let mut w = [#zero; #nv_l];
                     #residual_columns
                     #rows_of_w
@@ -297,7 +297,7 @@ impl Plan<'_> {
                 Self::schur_solve(l, dinv, &mut b);
                 *x = [#zero; #nv_l];
                 #solution
-                ::mbd::sparse::refined(x, |x, dx| {
+                ::mbd::__private::refined(x, |x, dx| {
                     let mut b = [#zero; #nc_l];
                     #residual_rows
                     Self::schur_solve(l, dinv, &mut b);

@@ -26,7 +26,8 @@
 use crate::model::body::{BodyFrames, BodyPose, BodyTwist};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::{
-    ConstraintForces, CoordinateInfo, Dynamics, ForceInfo, JointInfo, Kinematics, Mechanism, NewtonMatrix, OpCount, VelocityInfo,
+    ConstraintForces, CoordinateInfo, Dynamics, ForceInfo, JointInfo, Kinematics, KinematicsHooks, Mechanism, NewtonMatrix, OpCount,
+    VelocityInfo,
 };
 use crate::model::workspace::DenseScratch;
 use crate::real::Real;
@@ -144,6 +145,12 @@ impl<T: Real, M: BodyFrames<T, NQ, NV>, const NQ: usize, const NV: usize> BodyFr
     fn add_body_wrench(&self, body: usize, q: &[T; NQ], force: [T; 3], moment: [T; 3], g: &mut [T; NV]) -> bool {
         self.mechanism.add_body_wrench(body, q, force, moment, g)
     }
+}
+
+/// The generated solves are not forwarded: the reference takes the dense paths.
+impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> KinematicsHooks<T, NQ, NV, NC>
+    for FiniteDifferences<'_, M>
+{
 }
 
 impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> Kinematics<T, NQ, NV, NC>

@@ -760,7 +760,7 @@ impl<T: Real> KinematicSolver<T> {
     }
 
     /// Newton iteration on Φ(q, t) = 0 with the given step rule, each step Δv applied as
-    /// q ⊕ Δv. A square D takes [`Kinematics::sparse_position_solve`] first and, when that
+    /// q ⊕ Δv. A square D takes the generated `sparse_position_solve` first and, when that
     /// converges, leaves `jacobian` alone; otherwise (and from where that stopped), on success,
     /// `jacobian` holds D(q, t) at the returned q (unfactored): the convergence test comes after
     /// each evaluation, so the last evaluation is at the solution.

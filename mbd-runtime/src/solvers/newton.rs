@@ -1,6 +1,6 @@
 //! The rules of Newton's iteration on Φ(q, t) = 0, written once for every position solve: the
 //! loop `mechanism!` generates over the sparse factorization it plans
-//! ([`Kinematics::sparse_position_solve`](crate::Kinematics::sparse_position_solve)) and the
+//! (the generated `sparse_position_solve`) and the
 //! dense one of [`KinematicSolver`](crate::KinematicSolver). Each keeps its own loop — the
 //! generated one evaluates Φ and D in stages that share their subexpressions, which a loop
 //! calling them through closures could not — and asks [`Newton`] at each turn what to do:

@@ -400,8 +400,9 @@ impl Gen<'_> {
         }
     }
 
-    /// `impl Kinematics`: the initial guesses, the velocity map, Φ, D, ν, γ, the fused
-    /// evaluations and a driven mechanism's planned position solve.
+    /// `impl Kinematics`: the initial guesses, the velocity map, Φ, D, ν, γ and the fused
+    /// evaluations; and `impl __private::KinematicsHooks`: a driven mechanism's planned position
+    /// solve, velocity, acceleration and multipliers.
     pub(super) fn kinematics_impl(&self, c: &ConstraintFunctions, position_step: &TokenStream) -> TokenStream {
         let Gen { m, e, real, name, zero, inline, nq_l, nv_l, nc_l, .. } = self;
         let positions_code = crate::coordinates::Coordinates::of(m).position_updates(m, e);
@@ -417,6 +418,12 @@ impl Gen<'_> {
             ..
         } = c;
         quote! {
+            // The solves planned for a driven mechanism (none otherwise): runtime plumbing, on a
+            // hidden trait of their own.
+            #[allow(unused_variables, unused_parens, clippy::approx_constant)]
+            impl ::mbd::__private::KinematicsHooks<#real, #nq_l, #nv_l, #nc_l> for #name {
+                #position_step
+            }
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, clippy::approx_constant)]
             impl ::mbd::Kinematics<#real, #nq_l, #nv_l, #nc_l> for #name {
@@ -452,7 +459,6 @@ impl Gen<'_> {
                 fn gamma(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real, gamma: &mut [#real; #nc_l]) {
                     #gamma_body
                 }
-                #position_step
                 #inline
                 fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
                     for row in d.iter_mut() {

@@ -12,7 +12,9 @@
 //!   a unit complex number.
 
 use super::*;
-use crate::model::mechanism::{CoordinateInfo, CoordinateKind, Kinematics, Mechanism, OpCount, VelocityInfo, VelocityKind};
+use crate::model::mechanism::{
+    CoordinateInfo, CoordinateKind, Kinematics, KinematicsHooks, Mechanism, OpCount, VelocityInfo, VelocityKind,
+};
 use crate::test_support::{DrivenUnitPendulum, UnitPendulum, LENGTH};
 use core::f64::consts::PI;
 
@@ -132,6 +134,8 @@ impl<T: Real> Mechanism for SliderCrank<T> {
     const OP_COUNTS: &'static [OpCount] = &[];
     const MODEL_JSON: &'static str = "{}";
 }
+
+impl<T: Real> KinematicsHooks<T, NQ, NQ, NC> for SliderCrank<T> {}
 
 impl<T: Real> Kinematics<T, NQ, NQ, NC> for SliderCrank<T> {
     /// The assembled configuration at t = 0: everything on the x-axis.
@@ -271,6 +275,8 @@ impl Mechanism for LockedSlider {
     const MODEL_JSON: &'static str = "{}";
 }
 
+impl KinematicsHooks<f64, NQ, NQ, NC> for LockedSlider {}
+
 impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     fn initial_positions(&self) -> [f64; NQ] {
         self.0.initial_positions()
@@ -351,6 +357,8 @@ impl<M: Mechanism> Mechanism for WithoutDriver<M> {
     const OP_COUNTS: &'static [OpCount] = &[];
     const MODEL_JSON: &'static str = "{}";
 }
+
+impl<M: Kinematics<f64, NQ, NQ, NC>> KinematicsHooks<f64, NQ, NQ, FREE_NC> for WithoutDriver<M> {}
 
 impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for WithoutDriver<M> {
     fn initial_positions(&self) -> [f64; NQ] {
@@ -447,6 +455,8 @@ impl<T: Real> Mechanism for Crank<T> {
     const OP_COUNTS: &'static [OpCount] = &[];
     const MODEL_JSON: &'static str = "{}";
 }
+
+impl<T: Real> KinematicsHooks<T, 3, 3, 3> for Crank<T> {}
 
 impl<T: Real> Kinematics<T, 3, 3, 3> for Crank<T> {
     fn initial_positions(&self) -> [T; 3] {
@@ -659,6 +669,8 @@ impl<M: Mechanism> Mechanism for Counting<M> {
     const OP_COUNTS: &'static [OpCount] = M::OP_COUNTS;
     const MODEL_JSON: &'static str = M::MODEL_JSON;
 }
+
+impl<M: Kinematics<f64, NQ, NQ, NC>> KinematicsHooks<f64, NQ, NQ, NC> for Counting<M> {}
 
 impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, NC> for Counting<M> {
     fn initial_positions(&self) -> [f64; NQ] {
