@@ -3,7 +3,43 @@
 //! Write a mechanism with [`mechanism!`]; the macro derives its constraints, their Jacobian and
 //! the velocity and acceleration right-hand sides symbolically and emits them as straight-line,
 //! allocation-free Rust. [`mbd_runtime`]'s solvers (re-exported here) do the analyses.
+//!
+//! The user's guide is [`guide`]: the DSL, each analysis, integrators, numerical stability,
+//! performance and embedded use, with programs that run (they are tested by the `mbd-guide`
+//! crate of the repository).
 #![cfg_attr(not(feature = "std"), no_std)]
+
+/// The user's guide (`guide/*.md` of the repository), one module per chapter, for `cargo doc`
+/// and docs.rs. Documentation only: its programs are compiled and run as the doctests of the
+/// repository's `mbd-guide` crate, not here (so they are not built twice). Links between
+/// chapters point to the Markdown files, as on the repository's pages.
+#[cfg(all(doc, not(doctest)))]
+pub mod guide {
+    #![doc = include_str!("../guide/README.md")]
+    macro_rules! chapters {
+        ($($name:ident = $file:literal;)*) => {
+            $(
+                #[doc = include_str!(concat!("../guide/", $file))]
+                pub mod $name {}
+            )*
+        };
+    }
+    chapters! {
+        dsl = "dsl.md";
+        joint_coordinates = "joint-coordinates.md";
+        spatial = "spatial.md";
+        generated_api = "generated-api.md";
+        kinematics = "kinematics.md";
+        dynamics = "dynamics.md";
+        linearization = "linearization.md";
+        animation_and_plots = "animation-and-plots.md";
+        numerical_stability = "numerical-stability.md";
+        performance = "performance.md";
+        build_time = "build-time.md";
+        embedded = "embedded.md";
+        examples = "examples.md";
+    }
+}
 
 pub use mbd_macros::mechanism;
 pub use mbd_runtime::*;

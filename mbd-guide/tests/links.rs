@@ -122,3 +122,23 @@ fn anchors_are_githubs() {
         .collect();
     assert_eq!(anchors(text), expected);
 }
+
+/// Every chapter of `guide/` is in the guide's documentation twice: here, where its programs
+/// run (`mbd-guide/src/lib.rs`), and in `mbd`'s own docs, `mbd::guide` (`src/lib.rs`).
+#[test]
+fn every_chapter_is_tested_and_documented() {
+    let root = root();
+    let lists = [root.join("mbd-guide/src/lib.rs"), root.join("src/lib.rs")].map(|p| fs::read_to_string(&p).expect("a lib.rs"));
+    let mut chapters = 0;
+    for entry in fs::read_dir(root.join("guide")).expect("the guide") {
+        let name = entry.expect("an entry").file_name().into_string().expect("a UTF-8 name");
+        if !name.ends_with(".md") {
+            continue;
+        }
+        chapters += 1;
+        for (list, file) in lists.iter().zip(["mbd-guide/src/lib.rs", "src/lib.rs"]) {
+            assert!(list.contains(&format!("{name}\"")), "guide/{name} is not in {file}'s chapters");
+        }
+    }
+    assert!(chapters >= 13, "{chapters} chapters found");
+}
