@@ -27,27 +27,27 @@ macro_rules! bench_mechanism {
         let mut q = m.initial_positions();
         let mut ws = <$ty>::workspace();
         solver.assemble(&m, &mut ws, &mut q, t0).expect("the benchmark mechanism assembles");
-        let mut qd = [0.0; NQ];
-        solver.solve_velocity(&m, &mut ws, &q, t0, &mut qd).expect("velocity solve");
+        let mut v = [0.0; NQ];
+        solver.solve_velocity(&m, &mut ws, &q, t0, &mut v).expect("velocity solve");
         let mut g = $c.benchmark_group($label);
         let (mut phi, mut d, mut nu, mut gamma, mut values) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC], [0.0; NNZ]);
         g.bench_function("constraints", |b| b.iter(|| m.constraints(black_box(&q), black_box(t0), &mut phi)));
         g.bench_function("jacobian (dense)", |b| b.iter(|| m.jacobian(black_box(&q), black_box(t0), &mut d)));
         g.bench_function("jacobian_values (sparse)", |b| b.iter(|| m.jacobian_values(black_box(&q), black_box(t0), &mut values)));
         g.bench_function("velocity_rhs", |b| b.iter(|| m.velocity_rhs(black_box(&q), black_box(t0), &mut nu)));
-        g.bench_function("gamma", |b| b.iter(|| m.gamma(black_box(&q), black_box(&qd), black_box(t0), &mut gamma)));
+        g.bench_function("gamma", |b| b.iter(|| m.gamma(black_box(&q), black_box(&v), black_box(t0), &mut gamma)));
         g.bench_function("three calls: constraints + jacobian_values + gamma", |b| {
             b.iter(|| {
                 m.constraints(black_box(&q), black_box(t0), &mut phi);
                 m.jacobian_values(black_box(&q), black_box(t0), &mut values);
-                m.gamma(black_box(&q), black_box(&qd), black_box(t0), &mut gamma);
+                m.gamma(black_box(&q), black_box(&v), black_box(t0), &mut gamma);
             })
         });
         g.bench_function("full_eval_values (fused Φ, Φ_q, ν, γ)", |b| {
-            b.iter(|| m.full_eval_values(black_box(&q), black_box(&qd), black_box(t0), &mut phi, &mut values, &mut nu, &mut gamma))
+            b.iter(|| m.full_eval_values(black_box(&q), black_box(&v), black_box(t0), &mut phi, &mut values, &mut nu, &mut gamma))
         });
         g.bench_function("full_eval (fused, dense Φ_q)", |b| {
-            b.iter(|| m.full_eval(black_box(&q), black_box(&qd), black_box(t0), &mut phi, &mut d, &mut nu, &mut gamma))
+            b.iter(|| m.full_eval(black_box(&q), black_box(&v), black_box(t0), &mut phi, &mut d, &mut nu, &mut gamma))
         });
         // One step of a kinematic sweep: Newton from the previous position at t + 1 ms.
         let mut qn = q;

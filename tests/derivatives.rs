@@ -31,10 +31,10 @@ fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(m: &M
     let mut rng = Rng::new(seed);
     for sample in 0..50 {
         let mut q = m.initial_positions();
-        for v in q.iter_mut() {
-            *v += rng.uniform(-0.3, 0.3);
+        for x in q.iter_mut() {
+            *x += rng.uniform(-0.3, 0.3);
         }
-        let qd: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
+        let v: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
         let t = rng.uniform(0.0, 2.0);
         let mut d = [[0.0; NQ]; NC];
         m.jacobian(&q, t, &mut d);
@@ -73,13 +73,13 @@ fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(m: &M
             let mut nu = [0.0; NC];
             m.jacobian(q, t, &mut d);
             m.velocity_rhs(q, t, &mut nu);
-            core::array::from_fn::<f64, NC, _>(|r| (0..NQ).map(|c| d[r][c] * qd[c]).sum::<f64>() - nu[r])
+            core::array::from_fn::<f64, NC, _>(|r| (0..NQ).map(|c| d[r][c] * v[c]).sum::<f64>() - nu[r])
         };
-        let qp: [f64; NQ] = core::array::from_fn(|i| q[i] + H * qd[i]);
-        let qn: [f64; NQ] = core::array::from_fn(|i| q[i] - H * qd[i]);
+        let qp: [f64; NQ] = core::array::from_fn(|i| q[i] + H * v[i]);
+        let qn: [f64; NQ] = core::array::from_fn(|i| q[i] - H * v[i]);
         let (fp, fn_) = (phi_dot(&qp, t + H), phi_dot(&qn, t - H));
         let mut gamma = [0.0; NC];
-        m.gamma(&q, &qd, t, &mut gamma);
+        m.gamma(&q, &v, t, &mut gamma);
         for r in 0..NC {
             let fd = -(fp[r] - fn_[r]) / (2.0 * H);
             assert!(
@@ -94,7 +94,7 @@ fn check<M: Kinematics<f64, NQ, NQ, NC>, const NQ: usize, const NC: usize>(m: &M
         let (mut phi1, mut phi2) = ([0.0; NC], [0.0; NC]);
         let (mut d2, mut nu2, mut g2) = ([[0.0; NQ]; NC], [0.0; NC], [0.0; NC]);
         m.constraints(&q, t, &mut phi1);
-        m.full_eval(&q, &qd, t, &mut phi2, &mut d2, &mut nu2, &mut g2);
+        m.full_eval(&q, &v, t, &mut phi2, &mut d2, &mut nu2, &mut g2);
         assert_eq!((phi1, d, nu, gamma), (phi2, d2, nu2, g2), "{}: full_eval differs from the separate functions", M::NAME);
         let (mut phi3, mut d3) = ([0.0; NC], [[0.0; NQ]; NC]);
         m.position_eval(&q, t, &mut phi3, &mut d3);

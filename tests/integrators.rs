@@ -306,15 +306,15 @@ fn the_energy_balance_holds_with_dampers_and_drivers() {
     let m = DrivenCrank::default();
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut DrivenCrank::workspace(), &mut q, 0.0).unwrap();
-    let mut qd = [0.0; 9];
-    KinematicSolver::default().solve_velocity(&m, &mut DrivenCrank::workspace(), &q, 0.0, &mut qd).unwrap();
+    let mut v = [0.0; 9];
+    KinematicSolver::default().solve_velocity(&m, &mut DrivenCrank::workspace(), &q, 0.0, &mut v).unwrap();
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.02).collect();
     let options = SimulationOptions::default().with_correction(Correction::projection()).with_track_work(true);
     let mut balances = Vec::new();
     let mut totals = Vec::new();
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     Simulation::new(&m, &mut dopri)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&times)
         .options(options)
         .run(&mut DrivenCrank::workspace(), |s| {
@@ -503,7 +503,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
     };
     let mut free = TorqueCrank::default();
     let h = 1e-3;
-    let (mut q, mut qd) = (start.q, start.v);
+    let (mut q, mut v) = (start.q, start.v);
     let mut worst: f64 = 0.0;
     for k in 0..500 {
         let t0 = k as f64 * h;
@@ -513,10 +513,10 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
         free.tc = 2.0 * (a + c - 2.0 * b) / (h * h);
         free.t0 = t0;
         let system = System::new(&free);
-        let from = system.point(t0, q, qd, [0.0; 2]).unwrap();
+        let from = system.point(t0, q, v, [0.0; 2]).unwrap();
         let mut to = from;
         Rk4::new(Rk4Options::default().with_step(h)).step(&system, &mut TorqueCrank::workspace(), &from, f64::INFINITY, &mut to).unwrap();
-        (q, qd) = (to.q, to.v);
+        (q, v) = (to.q, to.v);
         let exact = 0.3 + 5.0 * to.t + 0.5 * (3.0 * to.t).sin();
         worst = worst.max((q[2] - exact).abs());
     }

@@ -217,7 +217,7 @@ fn a_mechanism_without_freedom_is_determined_not_stable() {
     // Tolerance: the statics residual (1e-10 N·m) on a 4.9 N·m load.
     assert!((swing.moment[2].abs() - 1.0 * 9.81 * 0.5).abs() < 1e-8, "{swing:?}");
     let mut v = [0.0; 3];
-    KinematicSolver::default().sweep(&m, &mut ws, &mut q, [0.0], |_, _, qd, _| v = *qd).expect("the driven motion");
+    KinematicSolver::default().sweep(&m, &mut ws, &mut q, [0.0], |_, _, velocity, _| v = *velocity).expect("the driven motion");
     let lin = Linearizer::default().linearize(&m, &q, &v, 0.0).expect("linearizes");
     assert_eq!((lin.dof(), lin.stability()), (0, LinearStability::Determined));
 }
