@@ -64,8 +64,8 @@ pub mod prelude {
     // Simulation and its integrators.
     pub use mbd_runtime::{
         Auto, AutoOptions, Bdf, BdfOptions, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, DynamicsError, DynamicsOptions,
-        ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Rk4, Rk4Options, Simulation, SimulationError,
-        SimulationOptions, Statistics,
+        ErrorControl, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Radau5, Radau5Options, Rk4, Rk4Options, Simulation,
+        SimulationError, SimulationOptions, Statistics,
     };
     // Linearization and modes.
     #[cfg(any(feature = "alloc", feature = "std"))]

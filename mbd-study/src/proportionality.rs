@@ -17,7 +17,7 @@ use crate::sweep::{output_times, Case, Reference};
 pub const TOLERANCES: [f64; 4] = [1e-4, 1e-6, 1e-8, 1e-10];
 
 /// The adaptive methods.
-const METHODS: [&str; 6] = ["DOPRI5", "DOP853", "gen-α ρ∞=0.8, per step", "gen-α ρ∞=0.8, per unit time", "BDF", "Auto"];
+const METHODS: [&str; 7] = ["DOPRI5", "DOP853", "gen-α ρ∞=0.8, per step", "gen-α ρ∞=0.8, per unit time", "BDF", "Radau5", "Auto"];
 
 /// A run's relative error and wall time (ms), or why it failed.
 type Run = Result<(f64, f64), String>;
@@ -54,6 +54,7 @@ where
                 "DOPRI5" => error(case, ws, reference, &times, &mut Dopri5::new(Dopri5Options::default().with_rtol(tol).with_atol(tol))),
                 "DOP853" => error(case, ws, reference, &times, &mut Dop853::new(Dop853Options::default().with_rtol(tol).with_atol(tol))),
                 "BDF" => error(case, ws, reference, &times, &mut Bdf::new(BdfOptions::default().with_rtol(tol).with_atol(tol))),
+                "Radau5" => error(case, ws, reference, &times, &mut Radau5::new(Radau5Options::default().with_rtol(tol).with_atol(tol))),
                 "Auto" => error(case, ws, reference, &times, &mut Auto::new(AutoOptions::default().with_rtol(tol).with_atol(tol))),
                 "gen-α ρ∞=0.8, per step" | "gen-α ρ∞=0.8, per unit time" => {
                     let per_unit_time = method.ends_with("per unit time");
@@ -97,6 +98,7 @@ where
             SimulationError::ToleranceBelowResolution { t, .. } => format!("at t = {t:.2e} s: `ToleranceBelowResolution`"),
             e => e.to_string(),
         })?;
+
     Ok((worst, start.elapsed().as_secs_f64() * 1e3))
 }
 

@@ -357,7 +357,7 @@ pub(super) fn row_name<M: Mechanism>(i: usize, nv: usize) -> &'static str {
 /// column is a constraint row that depends on the others (a singular position or redundant
 /// constraints); no pivot in a velocity's column is a direction with neither mass nor
 /// stiffness; a NaN or infinity is named by its row.
-fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usize) -> SimulationError {
+pub(super) fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: T, nv: usize) -> SimulationError {
     match error {
         LinalgError::Singular { column, .. } if column >= nv => {
             SimulationError::Dynamics(DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, column - nv) })
