@@ -42,7 +42,7 @@
 //! forces). Tolerances are transformed as RADAU5's (rtol′ = 0.1 rtol^(2/3)); the step size
 //! follows Gustafsson's predictive controller, and grows no further than keeps the simplified
 //! Newton iteration's rate below a quarter (its Jacobian is the step start's, so its rate grows
-//! about as h: on a 4-link chain without the limit, most steps after a growth were cut again).
+//! with h: on a 4-link chain without the limit, most steps after a growth were cut again).
 //!
 //! The velocities are measured in full, not times h as RADAU5 measures an index-2 variable:
 //! with the scaling, the velocities of the index-3 equations (one order lower than the
@@ -172,7 +172,7 @@ pub struct Radau5<T, const NQ: usize, const NV: usize, const NC: usize> {
     accepted_error: T,
     just_rejected: bool,
     contraction: T,
-    // The convergence rate θ of the last try's iteration (0 where it converged at once).
+    // The convergence rate θ last measured (an iteration that converges at once measures none).
     rate: T,
 }
 
@@ -294,7 +294,9 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
     /// stage polynomials extrapolated where this step continues it, else the start's v̇ and λ.
     fn first_guess(&self, from: &Point<T, NQ, NV, NC>, h: T) -> ([[T; NV]; 3], [[T; NC]; 3]) {
         match self.last {
-            Some((t0, h0)) if t0 + h0 == from.t => {
+            // Extrapolated over at most twice the last step (beyond, the polynomial's error grows
+            // as the cube of the ratio: a stiff pendulum's iteration diverged from it at 4×).
+            Some((t0, h0)) if t0 + h0 == from.t && h <= T::from_f64(2.0) * h0 => {
                 let nodes = [t0 + f::<T>(C[0]) * h0, t0 + f::<T>(C[1]) * h0, from.t];
                 let mut acc = [[T::ZERO; NV]; 3];
                 let mut lam = [[T::ZERO; NC]; 3];
@@ -409,11 +411,12 @@ where
                 if self.just_rejected {
                     next = next.min(h_try);
                 }
-                // The iteration's rate grows about as the step (the Jacobian is the start's): a
-                // step that would take it past a quarter is not tried (it would be cut again and
-                // its factorizations wasted).
+                // The iteration's rate grows with the step (the Jacobian is the start's; on the
+                // stiff pendulum faster than h): a step that would take it past a quarter, as if
+                // it grew as h², is not tried (it would be cut again and its factorizations
+                // wasted).
                 if self.rate > T::ZERO {
-                    next = next.min(h_try * T::ONE.max(T::from_f64(RATE_LIMIT) / self.rate));
+                    next = next.min(h_try * T::ONE.max((T::from_f64(RATE_LIMIT) / self.rate).sqrt()));
                 }
                 self.accept(system, from, (h_try, t1), &stages, to, dense.reborrow())?;
                 self.next_step = next.min(o.max_step);
@@ -588,7 +591,6 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         let q_modulus = qr * qr + qi * qi;
 
         self.contraction = self.contraction.max(T::EPSILON).powf(T::from_f64(0.8));
-        self.rate = T::ZERO;
         let (mut last_size, mut last_ratio) = (T::ZERO, T::ONE);
         let max_it = o.max_iterations.max(1);
         let mut newton_iterations = 0;
