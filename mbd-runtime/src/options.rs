@@ -130,6 +130,7 @@ mod api {
         add("GeneralizedAlphaOptions", format!("{:?}", GeneralizedAlphaOptions::<f64>::default()));
         add("ErrorControl", format!("{:?}", ErrorControl::<f64>::default()));
         add("BdfOptions", format!("{:?}", BdfOptions::<f64>::default()));
+        add("Radau5Options", format!("{:?}", Radau5Options::<f64>::default()));
         add("AutoOptions", format!("{:?}", AutoOptions::<f64>::default()));
         add("InverseDynamicsOptions", format!("{:?}", InverseDynamicsOptions::<f64>::default()));
         #[cfg(feature = "alloc")]
