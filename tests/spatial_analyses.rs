@@ -278,27 +278,18 @@ fn bdf_keeps_its_order_through_the_quaternions() {
 /// the steps near 2 ms).
 #[test]
 fn radau5_keeps_fifth_order_through_the_quaternions() {
-    let top = |integrator: &mut dyn FnMut(&HeavyTop, &[f64], &mut Workspace<f64, 6, 3, 9, { HeavyTop::NEWTON_STORAGE }>) -> [f64; 7]| {
+    fn top<I: Integrator<f64, HeavyTop, 7, 6, 3, 9, { HeavyTop::NEWTON_STORAGE }>>(integrator: &mut I) -> [f64; 7] {
         let m = HeavyTop::default();
-        integrator(&m, &[0.2], &mut HeavyTop::workspace())
-    };
-    fn run<I: Integrator<f64, HeavyTop, 7, 6, 3, 9, { HeavyTop::NEWTON_STORAGE }>>(
-        m: &HeavyTop,
-        times: &[f64],
-        ws: &mut Workspace<f64, 6, 3, 9, { HeavyTop::NEWTON_STORAGE }>,
-        integrator: &mut I,
-    ) -> [f64; 7] {
         let mut end = [0.0; 7];
-        Simulation::new(m, integrator)
+        Simulation::new(&m, integrator)
             .start(0.0, &m.initial_positions(), &m.initial_velocities())
-            .times(times)
+            .times(&[0.2])
             .options(SimulationOptions::default().with_correction(Correction::None))
-            .run(ws, |s| end = s.point.q)
+            .run(&mut HeavyTop::workspace(), |s| end = s.point.q)
             .expect("the top spins");
         end
     }
-    let reference =
-        top(&mut |m, times, ws| run(m, times, ws, &mut Dop853::new(Dop853Options::default().with_rtol(1e-13).with_atol(1e-13))));
+    let reference = top(&mut Dop853::new(Dop853Options::default().with_rtol(1e-13).with_atol(1e-13)));
     let steps = [2e-3, 1e-3, 5e-4];
     let errors: Vec<f64> = steps
         .iter()
@@ -306,7 +297,7 @@ fn radau5_keeps_fifth_order_through_the_quaternions() {
             let options = Radau5Options::default().with_rtol(1.0).with_atol(1.0).with_initial_step(h).with_max_step(h);
             // Newton to 1e-12 of the (loose) tolerance: at 1e-9 its error was a floor of 3e-9.
             let mut radau = Radau5::new(options.with_newton_tolerance(1e-12).with_max_iterations(30));
-            let q = top(&mut |m, times, ws| run(m, times, ws, &mut radau));
+            let q = top(&mut radau);
             (0..7).map(|i| (q[i] - reference[i]).abs()).fold(0.0, f64::max)
         })
         .collect();
