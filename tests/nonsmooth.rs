@@ -3,7 +3,7 @@
 
 use mbd::{
     Auto, AutoOptions, Bdf, BdfOptions, Dop853, Dop853Options, Dopri5, Dopri5Options, Dynamics, Event, EventHit, Integrator, Kinematics,
-    Mechanism, Rk4, Rk4Options, Simulation, SimulationOptions,
+    Mechanism, Radau5, Radau5Options, Rk4, Rk4Options, Simulation, SimulationOptions,
 };
 
 mbd::mechanism! {
@@ -309,7 +309,7 @@ fn a_rope_on_a_floor_runs_through_its_many_switches() {
 
 include!("../mbd-bench/mechanisms/bump_stop_quarter_car.rs");
 
-/// Issue 39's case B, the quarter car into a 1e6 N/m bump stop, with BDF and with `Auto` (the
+/// Issue 39's case B, the quarter car into a 1e6 N/m bump stop, with BDF, `Auto` and Radau5 (the
 /// stiff methods through located switches): the same switches in the same order as DOP853 at
 /// rtol 1e-12, each within 1e-5 s, and the chassis and wheel heights within 1e-5 m at every
 /// output (both at rtol 1e-8, atol 1e-10: the switch instants inherit the states' errors over
@@ -341,7 +341,11 @@ fn the_stiff_methods_land_on_the_bump_stops_switches() {
     let tight = (1e-8, 1e-10);
     let mut auto = Auto::new(AutoOptions::default().with_rtol(tight.0).with_atol(tight.1));
     let mut bdf = Bdf::new(BdfOptions::default().with_rtol(tight.0).with_atol(tight.1));
-    for (label, (out, found)) in [("BDF", run(&m, &mut bdf, &times)), ("Auto", run(&m, &mut auto, &times))] {
+    // Radau5's order-5 steps at this tolerance are longer than the 5 ms the wheel takes over the
+    // bump, which they then miss (guide/performance.md): bounded as the guide says.
+    let mut radau = Radau5::new(Radau5Options::default().with_rtol(tight.0).with_atol(tight.1).with_max_step(2e-3));
+    let runs = [("BDF", run(&m, &mut bdf, &times)), ("Auto", run(&m, &mut auto, &times)), ("Radau5", run(&m, &mut radau, &times))];
+    for (label, (out, found)) in runs {
         assert_eq!(found.len(), switches.len(), "{label}: {found:?} against {switches:?}");
         for (&(t, k), &(t_ref, k_ref)) in found.iter().zip(&switches) {
             assert!(k == k_ref && (t - t_ref).abs() < 1e-5, "{label}: {found:?} against {switches:?}");
