@@ -52,7 +52,7 @@
 //! tolerance-proportionality table). Coulomb friction and located switches go through the shared Newton iteration
 //! (tested in `tests/friction.rs` and `tests/nonsmooth.rs`).
 
-use super::implicit::{finish, solve, NewtonSettings, StateMap};
+use super::implicit::{finish, first_step, newton_space, solve, NewtonSettings, StateMap};
 use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::{Kinematics, NewtonMatrix};
 use crate::model::workspace::Workspace;
@@ -328,13 +328,7 @@ where
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if N != NV + NC {
-            return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
-        }
-        let (newton, mut dense) = ws.newton_and_dense();
-        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
-            return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
-        };
+        let ([s, _, _], mut dense) = newton_space::<T, M, NQ, NV, NC, N, NS>(ws)?;
         let o = self.options;
         super::dopri5::check_step_control(
             [o.rtol, o.atol, o.max_step, o.min_step],
@@ -362,15 +356,8 @@ where
             project_velocities: o.project_velocities,
         };
         if !(self.next_step > T::ZERO) {
-            self.next_step = if o.initial_step > T::ZERO {
-                o.initial_step
-            } else {
-                let mut qdot = [T::ZERO; NQ];
-                mech.position_rates(&from.q, &from.v, &mut qdot);
-                let floor = T::from_f64(16.0) * T::EPSILON;
-                let scale = |y0: T, y1: T| o.atol.max(floor) + o.rtol.max(floor) * y0.abs().max(y1.abs());
-                super::dopri5::initial_step(from, &qdot, &scale, o.max_step)
-            };
+            let floor = T::from_f64(16.0) * T::EPSILON;
+            self.next_step = first_step(mech, from, o.initial_step, (o.rtol.max(floor), o.atol.max(floor)), o.max_step);
         }
         let mut h = self.next_step.min(o.max_step);
         let mut failures = 0;

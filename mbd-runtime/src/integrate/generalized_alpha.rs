@@ -256,13 +256,7 @@ where
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if N != NV + NC {
-            return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
-        }
-        let (newton, mut dense) = ws.newton_and_dense();
-        let Some([s, _, _]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
-            return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
-        };
+        let ([s, _, _], mut dense) = super::implicit::newton_space::<T, M, NQ, NV, NC, N, NS>(ws)?;
         let mut o = self.options;
         // Φ and the position correction to what the scalar type resolves at q (f32: 64 ε ≈ 7.6e-6
         // at 1 m), so the default 1e-10 converges in single precision.

@@ -14,7 +14,7 @@ use super::{check_step, Point, SimulationError, System};
 use crate::linalg::LinalgError;
 use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::{Mechanism, NewtonMatrix};
-use crate::model::workspace::DenseScratch;
+use crate::model::workspace::{DenseScratch, Workspace};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -371,6 +371,49 @@ pub(super) fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: 
             SimulationError::WorkspaceSize { expected: rows, found: columns }
         }
     }
+}
+
+/// The work space's three Newton slots, as the mechanism's storage, and its dense arrays: what
+/// an implicit method steps with, refused where the work space is not the mechanism's
+/// (`Name::workspace()`).
+#[allow(clippy::type_complexity)]
+pub(super) fn newton_space<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    ws: &mut Workspace<T, NV, NC, N, NS>,
+) -> Result<([&mut M::NewtonStorage; 3], DenseScratch<'_, T, NV, NC>), SimulationError>
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    if N != NV + NC {
+        return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
+    }
+    let (newton, dense) = ws.newton_and_dense();
+    let Some(slots) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
+        return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
+    };
+    Ok((slots, dense))
+}
+
+/// The first step of an adaptive implicit method: `initial` where it is positive, else DOPRI5's
+/// choice from the initial rates in the mixed tolerance atol + rtol·|y|.
+pub(super) fn first_step<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mech: &M,
+    from: &Point<T, NQ, NV, NC>,
+    initial: T,
+    (rtol, atol): (T, T),
+    max_step: T,
+) -> T
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    if initial > T::ZERO {
+        return initial;
+    }
+    let mut qdot = [T::ZERO; NQ];
+    mech.position_rates(&from.q, &from.v, &mut qdot);
+    let scale = |y0: T, y1: T| atol + rtol * y0.abs().max(y1.abs());
+    super::dopri5::initial_step(from, &qdot, &scale, max_step)
 }
 
 /// The powers at the end point and the work integrals of a step of h.

@@ -15,7 +15,9 @@
 //! Q is collocated in the coordinates themselves (Euler parameters included: ė = ½ e ⊗ (0, ω′)
 //! is linear in e, so the Q_i are found by a contraction, one pass where q̇ = v). The step ends
 //! at the last stage (the method is stiffly accurate): q₁ = Q₃ normalized, v₁ = V₃, v̇₁ = A₃,
-//! λ₁ = Λ₃. On index-3 equations the positions keep order 5 (Hairer, Lubich & Roche 1989).
+//! λ₁ = Λ₃. The positions converge at order 5 on these index-3 equations (measured on fixed
+//! steps: the double pendulum in `tests/integrators.rs`, the heavy top's Euler parameters in
+//! `tests/spatial_analyses.rs`).
 //!
 //! # The Newton iteration, over the sparse pattern `mechanism!` planned
 //!
@@ -350,13 +352,7 @@ where
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
-        if N != NV + NC {
-            return Err(SimulationError::WorkspaceSize { expected: NV + NC, found: N });
-        }
-        let (newton, mut dense) = ws.newton_and_dense();
-        let Some([real, complex_re, complex_im]) = crate::model::workspace::newton_slots::<M::NewtonStorage, T, NS>(newton) else {
-            return Err(SimulationError::NewtonSlotSize { expected: M::JACOBIAN_PATTERN.len() + M::NEWTON_PATTERN.entries(), found: NS });
-        };
+        let ([real, complex_re, complex_im], mut dense) = super::implicit::newton_space::<T, M, NQ, NV, NC, N, NS>(ws)?;
         let o = self.options;
         super::dopri5::check_step_control(
             [o.rtol, o.atol, o.max_step, o.min_step],
@@ -372,14 +368,7 @@ where
         let mech = system.mechanism;
         let (rtol, atol) = working_tolerances(&o);
         if !(self.next_step > T::ZERO) {
-            self.next_step = if o.initial_step > T::ZERO {
-                o.initial_step
-            } else {
-                let mut qdot = [T::ZERO; NQ];
-                mech.position_rates(&from.q, &from.v, &mut qdot);
-                let scale = |y0: T, y1: T| atol + rtol * y0.abs().max(y1.abs());
-                super::dopri5::initial_step(from, &qdot, &scale, o.max_step)
-            };
+            self.next_step = super::implicit::first_step(mech, from, o.initial_step, (rtol, atol), o.max_step);
         }
         // RADAU5's Newton tolerance, in the error norm.
         let newton_tolerance = if o.newton_tolerance > T::ZERO {
