@@ -578,7 +578,6 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         let (cr, ci) = (h * f::<T>(ALPHA) / modulus, -h * f::<T>(BETA) / modulus);
         let (qr, qi) = (cr * cr - ci * ci, T::from_f64(2.0) * cr * ci);
         let q_modulus = qr * qr + qi * qi;
-
         self.contraction = self.contraction.max(T::EPSILON).powf(T::from_f64(0.8));
         let (mut last_size, mut last_ratio) = (T::ZERO, T::ONE);
         let max_it = o.max_iterations.max(1);
@@ -621,8 +620,8 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             if dz.iter().flatten().any(|x| !x.is_finite()) {
                 return Ok(Attempt::Diverged);
             }
-            // The change of the stages' positions (h² a² ΔA) and velocities (h a ΔA, times h as
-            // the error test weighs them), in the error norm.
+            // The change of the stages' positions (h² a² ΔA) and velocities (h a ΔA), in the error
+            // test's weights.
             let mut sum = T::ZERO;
             for i in 0..3 {
                 for k in 0..NV {
@@ -675,7 +674,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
     }
 
     /// The step's scaled error (module docs): Hairer's estimate filtered through the real
-    /// block, positions in full and velocities times h, in the RMS of atol + rtol·|y|.
+    /// block, positions and velocities, in the RMS of atol + rtol·|y|.
     fn error_estimate<M: NewtonMatrix<T, NQ, NV, NC>, const N: usize>(
         &self,
         system: &System<'_, M, T>,
