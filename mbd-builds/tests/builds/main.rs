@@ -21,9 +21,13 @@
 //!
 //! One test binary, so that its tests run side by side on the test threads. The nested builds
 //! use trybuild's target directory, so that what they have in common with it and with each
-//! other — mbd-macros (optimized: about 30 s of one core) and its dependencies — is built once
-//! (one build after another: cargo locks the directory); not the outer build's directory, whose
-//! lock the running `cargo test` holds.
+//! other — mbd-macros and its dependencies — is built once where they can share it (one build
+//! after another: cargo locks the directory); not the outer build's directory, whose lock the
+//! running `cargo test` holds. Every nested build compiles mbd-macros unoptimized
+//! ([`UNOPTIMIZED_MACRO`]; trybuild's and release host builds do by default): the workspace's
+//! opt-level 3 for it pays where many or large mechanisms are expanded, and these builds expand
+//! a few small ones. Optimized, each of its builds took 75 s of one core against 10 s
+//! (2026-12-06, Intel Xeon), and it was built three times here.
 mod elf;
 mod html;
 
@@ -32,6 +36,9 @@ use std::process::Command;
 
 use elf::symbol_sizes;
 use html::{has_row, text};
+
+/// `cargo --config` arguments that build the macro crate unoptimized (the module says why).
+const UNOPTIMIZED_MACRO: [&str; 2] = ["--config", "profile.dev.package.mbd-macros.opt-level=0"];
 
 /// The workspace's root (this package is one of its members).
 fn root() -> PathBuf {
@@ -99,6 +106,7 @@ fn runtime_builds_without_std() {
     // Without std, and without std but with a heap (`alloc`: the linearization and modes).
     for (package, features) in [("mbd-runtime", ""), ("mbd", ""), ("mbd", "alloc")] {
         let out = Command::new(env!("CARGO"))
+            .args(UNOPTIMIZED_MACRO)
             .args(["build", "--quiet", "-p", package, "--no-default-features", "--features", features, "--target-dir"])
             .arg(&target_dir)
             .current_dir(root())
@@ -116,6 +124,7 @@ fn runtime_builds_without_std() {
 fn generated_types_document_their_tables_without_warnings() {
     let (root, target_dir) = (root(), nested_target());
     let out = Command::new(env!("CARGO"))
+        .args(UNOPTIMIZED_MACRO)
         .args(["doc", "--quiet", "--no-deps", "-p", "mbd-doc-check", "-p", "mbd", "-p", "mbd-runtime", "-p", "mbd-macros"])
         .arg("--manifest-path")
         .arg(root.join("doc-check/Cargo.toml"))
@@ -222,7 +231,11 @@ fn the_packaged_crates_build_the_readmes_program() {
     let (root, target_dir) = (root(), nested_target());
     let crates = ["mbd-macros", "mbd-runtime", "mbd"];
     let mut package = Command::new(env!("CARGO"));
-    package.args(["package", "--quiet", "--no-verify", "--allow-dirty", "--target-dir"]).arg(&target_dir).current_dir(&root);
+    package
+        .args(UNOPTIMIZED_MACRO)
+        .args(["package", "--quiet", "--no-verify", "--allow-dirty", "--target-dir"])
+        .arg(&target_dir)
+        .current_dir(&root);
     for name in crates {
         package.args(["-p", name]);
     }
@@ -246,8 +259,7 @@ fn the_packaged_crates_build_the_readmes_program() {
         user.join("Cargo.toml"),
         format!(
             "[package]\nname = \"packaged-user\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n\
-             [dependencies]\nmbd = \"{version}\"\n\n[patch.crates-io]\n{patches}\n\
-             [profile.dev.package.mbd-macros]\nopt-level = 3\n\n[workspace]\n"
+             [dependencies]\nmbd = \"{version}\"\n\n[patch.crates-io]\n{patches}\n[workspace]\n"
         ),
     )
     .expect("a manifest");
@@ -255,6 +267,7 @@ fn the_packaged_crates_build_the_readmes_program() {
     let program = readme.split("```rust\n").nth(1).and_then(|rest| rest.split("\n```").next()).expect("the README's first program");
     std::fs::write(user.join("src/main.rs"), program).expect("the program");
     let out = Command::new(env!("CARGO"))
+        .args(UNOPTIMIZED_MACRO)
         .args(["run", "--quiet", "--manifest-path"])
         .arg(user.join("Cargo.toml"))
         .arg("--target-dir")
