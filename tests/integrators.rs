@@ -1090,6 +1090,49 @@ fn auto_goes_back_to_dopri5_where_the_stiffness_ends() {
     assert!(error(&a) < 3.0 * d.max(b), "Auto {:e}, DOPRI5 {d:e}, BDF {b:e}", error(&a));
 }
 
+mechanism! {
+    /// A chain of four 0.1 m links pinned to the ground, released horizontal.
+    pub Chain4 {
+        gravity [0.0, -9.81];
+        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0];
+        for i in 0..4 { body l[i] { mass: 0.1, inertia: 8.3333e-5, at: [0.05 + 0.1 * i, 0.0, 0.0] } }
+        for i in 1..4 { revolute l[i - 1][0.05, 0.0] ~ l[i][-0.05, 0.0]; }
+    }
+}
+
+/// Radau5 at a tight absolute tolerance from rest (atol = rtol/100, as the study sets it), on
+/// the 4-link chain: the constraint residuals of the index-3 stages sit at Φ's rounding, whose
+/// correction, divided by c_q ~ h², once moved the velocities by rounding / h and stalled Newton
+/// at every step size (the run failed at t = 0, the step halved to 7e-13 s). Bound: 100 rtol
+/// against DOP853 at 1e-13; Radau5's largest delivered error over rtol in the proportionality
+/// table is about that.
+#[test]
+fn radau5_starts_from_rest_at_a_tight_absolute_tolerance() {
+    let m = Chain4::default();
+    let at_1s = |rtol: f64, atol: f64, radau: bool| -> [f64; 12] {
+        let mut last = [0.0; 12];
+        let q0 = m.initial_positions();
+        let mut ws = Chain4::workspace();
+        if radau {
+            let mut i = Radau5::new(Radau5Options::default().with_rtol(rtol).with_atol(atol));
+            Simulation::new(&m, &mut i).start(0.0, &q0, &[0.0; 12]).times(&[1.0]).run(&mut ws, |s| last = s.point.q).unwrap();
+        } else {
+            let mut i = Dop853::new(Dop853Options::default().with_rtol(rtol).with_atol(atol));
+            Simulation::new(&m, &mut i).start(0.0, &q0, &[0.0; 12]).times(&[1.0]).run(&mut ws, |s| last = s.point.q).unwrap();
+        }
+        last
+    };
+    let exact = at_1s(1e-13, 1e-13, false);
+    // (At rtol 1e-9, atol 1e-11 the run still ends with StepSizeTooSmall at 0.27 s: the
+    // guide's limit for Radau5.)
+    for rtol in [1e-7, 1e-8] {
+        let q = at_1s(rtol, rtol * 1e-2, true);
+        let error = q.iter().zip(&exact).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        eprintln!("rtol {rtol:e}: error {error:.1e}");
+        assert!(error < 100.0 * rtol, "rtol {rtol:e}: error {error:e}");
+    }
+}
+
 /// Radau IIA is of order 5: on fixed steps (a tolerance so loose that every step is accepted and
 /// the step is held at `max_step`) its error at 1 s on the double pendulum falls by 2⁵ = 32 when
 /// h halves.

@@ -32,7 +32,7 @@
 //!
 //! which is the planned Newton matrix of generalized-α and BDF with slopes c_v = c, c_q = c²
 //! ([`NewtonMatrix`]): the real block factored as theirs is, the complex one over the same pattern
-//! in complex arithmetic ([`crate::linalg::sparse::factor_complex`]; its real and imaginary
+//! in complex arithmetic ([`crate::sparse::factor_complex`]; its real and imaginary
 //! parts from two real fills, the matrix being linear in c_v and c_q). No dense matrix, and the
 //! work space's three Newton slots hold the three.
 //!
@@ -320,6 +320,18 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
     }
 }
 
+/// Φ's rounding: a few ulps of the largest coordinate (m, rad; 1 for Euler parameters). The
+/// index-3 stages resolve velocities only to about it over h (a position, rounded, differenced
+/// over the step): the error test and Newton's norm add that to each velocity's weight, which
+/// changes nothing at ordinary steps (3.5e-12 m/s at 1 ms for coordinates of order 1) and keeps
+/// rounding from rejecting ever smaller steps at a tight atol (the 4-link chain at rtol 1e-9,
+/// atol 1e-11 was held near 1e-9 s from t = 0.82 s, its estimate 15 at 2.4e-9 s). That run still
+/// ends, at 0.27 s, with `StepSizeTooSmall`: below an atol of about 1e-10 the index-3 stages
+/// are not yet reliable (the guide says so).
+fn phi_rounding<T: Real, const NQ: usize>(q: &[T; NQ]) -> T {
+    T::from_f64(16.0) * T::EPSILON * q.iter().fold(T::ONE, |m, x| m.max(x.abs()))
+}
+
 /// The tolerances RADAU5 works to (its transformation: the embedded estimate is of order 3, so
 /// a local tolerance of 0.1 rtol^(2/3) gives a global error near rtol), floored at rounding.
 fn working_tolerances<T: Real>(o: &Radau5Options<T>) -> (T, T) {
@@ -572,7 +584,8 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         // largest.
         let q_scale = from.q.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let weight_q = |k: usize| atol + rtol * if NQ == NV { from.q[k].abs() } else { q_scale };
-        let weight_v = |k: usize| atol + rtol * from.v[k].abs();
+        let phi_rounding = phi_rounding(&from.q);
+        let weight_v = |k: usize| atol + rtol * from.v[k].abs() + phi_rounding / h;
         let c = h / f::<T>(GAMMA);
         let modulus = f::<T>(ALPHA * ALPHA + BETA * BETA);
         let (cr, ci) = (h * f::<T>(ALPHA) / modulus, -h * f::<T>(BETA) / modulus);
@@ -595,6 +608,15 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 stage_residual(mech, t, &stages.q[i], &stages.v[i], &stages.acc[i], &stages.lam[i], real, scratch.reborrow(), &mut r[i]);
                 if let Some(k) = r[i].iter().position(|x| !x.is_finite()) {
                     return Err(non_finite(mech, &stages.q[i], &stages.v[i], t, &stages.lam[i], from.t, k));
+                }
+                // A constraint residual at the rounding of Φ is zero: its correction, divided
+                // by c_q ~ h², would move the stage velocities by rounding / h and, at a tight
+                // atol, stall the iteration at every step size (a 4-link chain from rest at
+                // rtol 1e-8, atol 1e-10 failed at t = 0, the step halved down to 7e-13 s).
+                for x in &mut r[i][NV..] {
+                    if x.abs() <= phi_rounding {
+                        *x = T::ZERO;
+                    }
                 }
             }
             // T⁻¹ over the stages, then each block's solve: the constraint rows divided by c_q
@@ -663,6 +685,12 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 }
             }
             if self.contraction * size <= newton_tolerance {
+                if newton_iterations == 1 {
+                    // Converged at once: no rate measured, and the last one no longer holds (kept,
+                    // it would bar the step from growing on every later step: on the 4-link chain
+                    // at rtol 1e-9, atol 1e-11 the step was held at 5e-12 s).
+                    self.rate = T::ZERO;
+                }
                 break;
             }
         }
@@ -720,8 +748,9 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             let scale = atol + rtol * from.q[k].abs().max(stages.q[2][k].abs());
             sum += (e_q[k] / scale).powi(2);
         }
+        let rounding = phi_rounding(&from.q) / h;
         for k in 0..NV {
-            let scale = atol + rtol * from.v[k].abs().max(stages.v[2][k].abs());
+            let scale = atol + rtol * from.v[k].abs().max(stages.v[2][k].abs()) + rounding;
             sum += ((f::<T>(GAMMA) * a[k] / h - r_q[k]) / scale).powi(2);
         }
         (sum / T::from_f64((NQ + NV).max(1) as f64)).sqrt()
