@@ -71,6 +71,7 @@ fn colour(method: Method) -> RGBColor {
         Method::GeneralizedAlpha { .. } => RGBColor(148, 103, 189),
         Method::AdaptiveGeneralizedAlpha { .. } => RGBColor(23, 190, 207),
         Method::Bdf => RGBColor(227, 119, 194),
+        Method::Radau5 => RGBColor(188, 189, 34),
         Method::Auto => RGBColor(23, 190, 207),
         Method::MuJoCoRk4 => RGBColor(0, 0, 0),
     }
@@ -154,7 +155,7 @@ fn cheapest<'a>(rows: &'a [Row], case: &str, target: f64, drift: Option<Drift>) 
 
 fn describe(r: &Row, m: &Measured) -> String {
     let setting = match r.method {
-        Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Auto => {
+        Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Radau5 | Method::Auto => {
             format!("rtol {:.0e}", r.setting)
         }
         _ => format!("h {:.0e}", r.setting),

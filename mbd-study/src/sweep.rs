@@ -39,6 +39,8 @@ pub enum Method {
     },
     /// Variable-order BDF ([`Bdf`]) over relative tolerances: the stiff method.
     Bdf,
+    /// Radau IIA of order 5 ([`Radau5`]) over relative tolerances: the stiff method of high order.
+    Radau5,
     /// DOPRI5, or BDF where the model is stiff ([`Auto`]), over relative tolerances.
     Auto,
     /// MuJoCo's RK4 in joint coordinates, on the chains only (`peers.rs`).
@@ -54,6 +56,7 @@ impl Method {
             Method::GeneralizedAlpha { rho_infinity } => format!("gen-α ρ∞={rho_infinity}"),
             Method::AdaptiveGeneralizedAlpha { rho_infinity } => format!("adaptive gen-α ρ∞={rho_infinity}"),
             Method::Bdf => "BDF".into(),
+            Method::Radau5 => "Radau5".into(),
             Method::Auto => "Auto".into(),
             Method::MuJoCoRk4 => "MuJoCo RK4".into(),
         }
@@ -61,7 +64,9 @@ impl Method {
     /// What the setting is: a step (s) or a relative tolerance.
     pub fn setting_name(self) -> &'static str {
         match self {
-            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Auto => "rtol",
+            Method::Dopri5 | Method::Dop853 | Method::AdaptiveGeneralizedAlpha { .. } | Method::Bdf | Method::Radau5 | Method::Auto => {
+                "rtol"
+            }
             _ => "h (s)",
         }
     }
@@ -109,6 +114,8 @@ pub const RHO_INFINITY: [f64; 3] = [0.5, 0.8, 1.0];
 pub const TOLERANCES_GENERALIZED_ALPHA: [f64; 7] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9];
 /// BDF's relative tolerances (absolute: 1e-2 of it).
 pub const TOLERANCES_BDF: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+/// Radau5's relative tolerances (absolute: 1e-2 of it).
+pub const TOLERANCES_RADAU5: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
 /// `Auto`'s relative tolerances (absolute: 1e-2 of it; at 1e-8 its defaults).
 pub const TOLERANCES_AUTO: [f64; 4] = [1e-4, 1e-6, 1e-8, 1e-10];
@@ -122,6 +129,7 @@ pub fn methods() -> Vec<(Method, Vec<f64>)> {
     }
     list.push((Method::AdaptiveGeneralizedAlpha { rho_infinity: 0.8 }, TOLERANCES_GENERALIZED_ALPHA.to_vec()));
     list.push((Method::Bdf, TOLERANCES_BDF.to_vec()));
+    list.push((Method::Radau5, TOLERANCES_RADAU5.to_vec()));
     list.push((Method::Auto, TOLERANCES_AUTO.to_vec()));
     list
 }
@@ -355,6 +363,11 @@ where
         Method::Bdf => {
             let options = BdfOptions::default().with_rtol(setting).with_atol(setting * 1e-2);
             timed(case, ws, reference, drift, || Bdf::new(options), |i, _| (i.iterations, i.iterations))
+        }
+        Method::Radau5 => {
+            let options = Radau5Options::default().with_rtol(setting).with_atol(setting * 1e-2);
+            // each Newton iteration evaluates the residual at the three stages
+            timed(case, ws, reference, drift, || Radau5::new(options), |i, _| (3 * i.iterations, i.iterations))
         }
         Method::Auto => {
             let options = AutoOptions::default().with_rtol(setting).with_atol(setting * 1e-2);
