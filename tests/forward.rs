@@ -16,7 +16,7 @@ mod common {
 }
 
 use common::Rng;
-use mbd::linalg::{lu_factor, lu_solve_in_place};
+use mbd::nalgebra;
 use mbd::prelude::*;
 
 mechanism! {
@@ -97,7 +97,7 @@ mechanism! {
 fn dense<M, const NQ: usize, const NC: usize, const N: usize>(
     m: &M,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NQ],
     t: f64,
     alpha: f64,
     beta: f64,
@@ -106,9 +106,9 @@ where
     M: Dynamics<f64, NQ, NQ, NC>,
 {
     let (mut phi, mut d, mut nu, mut gamma) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC]);
-    m.full_eval(q, qd, t, &mut phi, &mut d, &mut nu, &mut gamma);
+    m.full_eval(q, v, t, &mut phi, &mut d, &mut nu, &mut gamma);
     let mut h = [0.0; NQ];
-    m.forces(q, qd, t, &mut h);
+    m.forces(q, v, t, &mut h);
     let mut mass = [[0.0; NQ]; NQ];
     m.add_mass_matrix(q, 1.0, &mut mass);
     let mut a = [[0.0; N]; N];
@@ -122,11 +122,15 @@ where
         }
     }
     for r in 0..NC {
-        let dqd: f64 = (0..NQ).map(|i| d[r][i] * qd[i]).sum();
-        b[NQ + r] = gamma[r] - 2.0 * alpha * (dqd - nu[r]) - beta * beta * phi[r];
+        let dv: f64 = (0..NQ).map(|i| d[r][i] * v[i]).sum();
+        b[NQ + r] = gamma[r] - 2.0 * alpha * (dv - nu[r]) - beta * beta * phi[r];
     }
-    let p = lu_factor(&mut a, 1e-14).expect("the saddle-point matrix is regular");
-    lu_solve_in_place(&a, &p, &mut b);
+    // nalgebra's LU with partial pivoting: a solver independent of mbd's own
+    let x = nalgebra::DMatrix::from_fn(N, N, |i, j| a[i][j])
+        .lu()
+        .solve(&nalgebra::DVector::from_column_slice(&b))
+        .expect("the saddle-point matrix is regular");
+    b.copy_from_slice(x.as_slice());
     (core::array::from_fn(|i| b[i]), core::array::from_fn(|r| b[NQ + r]))
 }
 
@@ -145,14 +149,14 @@ where
     let q_ref = m.initial_positions();
     for _ in 0..100 {
         let q: [f64; NQ] = core::array::from_fn(|i| q_ref[i] + rng.uniform(-0.05, 0.05));
-        let qd: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
+        let v: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
         let t = rng.uniform(0.0, 2.0);
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
         let options = DynamicsOptions::baumgarte(alpha, beta);
-        let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
-        m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).expect("a regular configuration");
-        let (qdd_ref, lambda_ref) = dense::<M, NQ, NC, N>(m, &q, &qd, t, alpha, beta);
-        agree("q̈", &qdd, &qdd_ref);
+        let (mut vd, mut lambda) = ([0.0; NQ], [0.0; NC]);
+        m.accelerations(&q, &v, t, &options, &mut vd, &mut lambda).expect("a regular configuration");
+        let (vd_ref, lambda_ref) = dense::<M, NQ, NC, N>(m, &q, &v, t, alpha, beta);
+        agree("q̈", &vd, &vd_ref);
         agree("λ", &lambda, &lambda_ref);
     }
 }
@@ -176,15 +180,15 @@ fn pendulum_acceleration_matches_the_closed_form() {
     for &(theta, omega) in &[(0.0, 0.0), (0.7, 1.3), (-2.0, -4.0), (3.0, 0.2)] {
         let (s, c) = f64::sin_cos(theta);
         let q = [l * c, l * s, theta];
-        let qd = [-l * s * omega, l * c * omega, omega];
-        let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 2]);
-        p.accelerations(&q, &qd, 0.0, &DynamicsOptions::default(), &mut qdd, &mut lambda).unwrap();
+        let v = [-l * s * omega, l * c * omega, omega];
+        let (mut vd, mut lambda) = ([0.0; 3], [0.0; 2]);
+        p.accelerations(&q, &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
         let alpha = -m * g * l * c / j_o;
-        assert!((qdd[2] - alpha).abs() < 1e-12, "θ̈ = {} vs {}", qdd[2], alpha);
+        assert!((vd[2] - alpha).abs() < 1e-12, "θ̈ = {} vs {}", vd[2], alpha);
         // Centre of mass acceleration, then the pin force F = m a − m g.
         let ax = -l * s * alpha - l * c * omega * omega;
         let ay = l * c * alpha - l * s * omega * omega;
-        assert!((qdd[0] - ax).abs() < 1e-12 && (qdd[1] - ay).abs() < 1e-12);
+        assert!((vd[0] - ax).abs() < 1e-12 && (vd[1] - ay).abs() < 1e-12);
         // Φ = r^P_ground − r^P_rod, so (Φ_qᵀλ) on the rod's x, y rows is −λ: the pin force on
         // the rod, F = m a − m g.
         let (fx, fy) = (m * ax, m * ay + m * g);
@@ -199,17 +203,17 @@ fn projection_restores_the_constraints() {
     let mut q = m.initial_positions();
     KinematicSolver::default().assemble(&m, &mut FreeFourBar::workspace(), &mut q, 0.0).unwrap();
     let mut rng = Rng::new(7);
-    for v in q.iter_mut() {
-        *v += rng.uniform(-1e-3, 1e-3);
+    for x in q.iter_mut() {
+        *x += rng.uniform(-1e-3, 1e-3);
     }
-    let mut qd: [f64; 9] = core::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-    mbd::project(&m, 0.0, &mut q, &mut qd, &DynamicsOptions::default(), 1e-12, 8).unwrap();
+    let mut v: [f64; 9] = core::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+    mbd::project(&m, 0.0, &mut q, &mut v, &DynamicsOptions::default(), 1e-12, 8).unwrap();
     let (mut phi, mut d) = ([0.0; 8], [[0.0; 9]; 8]);
     m.position_eval(&q, 0.0, &mut phi, &mut d);
-    assert!(phi.iter().all(|v| v.abs() <= 1e-12), "Φ = {phi:?}");
+    assert!(phi.iter().all(|x| x.abs() <= 1e-12), "Φ = {phi:?}");
     for row in &d {
-        let v: f64 = row.iter().zip(&qd).map(|(a, b)| a * b).sum();
-        assert!(v.abs() <= 1e-12, "Φ_q q̇ = {v}");
+        let rate: f64 = row.iter().zip(&v).map(|(a, b)| a * b).sum();
+        assert!(rate.abs() <= 1e-12, "Φ_q q̇ = {rate}");
     }
 }
 
@@ -229,17 +233,17 @@ mechanism! {
 fn redundant_constraints_are_named_or_dropped() {
     let m = TwicePinned::default();
     let q = [0.25, 0.0, 0.0];
-    let qd = [0.0; 3];
-    let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 4]);
+    let v = [0.0; 3];
+    let (mut vd, mut lambda) = ([0.0; 3], [0.0; 4]);
     let strict = DynamicsOptions::default().with_allow_redundant(false);
-    let err = m.accelerations(&q, &qd, 0.0, &strict, &mut qdd, &mut lambda).unwrap_err();
+    let err = m.accelerations(&q, &v, 0.0, &strict, &mut vd, &mut lambda).unwrap_err();
     match err {
         DynamicsError::DependentConstraint { row, .. } => assert!(row.starts_with("revolute rod~ground"), "{row}"),
         other => panic!("expected a dependent constraint, got {other:?}"),
     }
-    m.accelerations(&q, &qd, 0.0, &DynamicsOptions::default(), &mut qdd, &mut lambda).unwrap();
+    m.accelerations(&q, &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
     let j_o = 0.02 + 0.25 * 0.25;
-    assert!((qdd[2] - (-9.81 * 0.25 / j_o)).abs() < 1e-12, "θ̈ = {}", qdd[2]);
+    assert!((vd[2] - (-9.81 * 0.25 / j_o)).abs() < 1e-12, "θ̈ = {}", vd[2]);
     // Each direction's load is carried by one of the two joints (which one is the ordering's
     // choice); the dropped row's pivot is 0 or rounding (d ≤ 1e-16 S_kk ≪ τ S_kk = 1e-8 S_kk:
     // weight 1/(1 + ρ⁸) < 1e-64), so its multiplier is zero to rounding of the ~10 N load.
@@ -275,7 +279,7 @@ fn a_constraint_without_direction_is_degenerate_under_any_option() {
 #[test]
 fn a_non_positive_mass_is_named() {
     let m = Pendulum { l: 0.5, m: 0.0 };
-    let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 2]);
-    let err = m.accelerations(&[0.5, 0.0, 0.0], &[0.0; 3], 0.0, &DynamicsOptions::default(), &mut qdd, &mut lambda).unwrap_err();
+    let (mut vd, mut lambda) = ([0.0; 3], [0.0; 2]);
+    let err = m.accelerations(&[0.5, 0.0, 0.0], &[0.0; 3], 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap_err();
     assert_eq!(err, DynamicsError::NonPositiveMass { body: "rod", value: 0.0 });
 }

@@ -66,32 +66,32 @@ mechanism! {
     }
 }
 
-/// The spatial block at s along its guide with speed v (its orientation as assembled).
-fn spatial_incline_state(m: &SpatialIncline, s: f64, v: f64) -> ([f64; 7], [f64; 6]) {
+/// The spatial block at s along its guide with speed `speed` (its orientation as assembled).
+fn spatial_incline_state(m: &SpatialIncline, s: f64, speed: f64) -> ([f64; 7], [f64; 6]) {
     let u = [m.theta.cos() * m.psi.cos(), m.theta.cos() * m.psi.sin(), m.theta.sin()];
     let mut q = m.initial_positions();
-    let mut qd = [0.0; 6];
+    let mut v = [0.0; 6];
     for k in 0..3 {
         q[k] = s * u[k];
-        qd[k] = v * u[k];
+        v[k] = speed * u[k];
     }
-    (q, qd)
+    (q, v)
 }
 
 #[test]
 fn a_spatial_block_decelerates_by_mu_times_its_normal_load() {
     let m = SpatialIncline::default();
     let (sin, cos) = m.theta.sin_cos();
-    for v in [-1.0, 1.0] {
-        let (q, qd) = spatial_incline_state(&m, 0.3, v);
+    for speed in [-1.0, 1.0] {
+        let (q, v) = spatial_incline_state(&m, 0.3, speed);
         let (mut vd, mut lambda) = ([0.0; 6], [0.0; 5]);
-        m.accelerations(&q, &qd, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
+        m.accelerations(&q, &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
         let a = SpatialIncline::BLOCK.acceleration(&vd);
         let u = nalgebra::Vector3::new(cos * m.psi.cos(), cos * m.psi.sin(), sin);
         let along = a.dot(&u);
         // As in the plane: the friction force μ m g cos θ opposes the slide; same tolerance.
-        let expected = -9.81 * sin - v.signum() * m.mu * 9.81 * cos;
-        assert!((along - expected).abs() < 1e-6 * expected.abs(), "v = {v}: a = {along} vs {expected}");
+        let expected = -9.81 * sin - speed.signum() * m.mu * 9.81 * cos;
+        assert!((along - expected).abs() < 1e-6 * expected.abs(), "v = {speed}: a = {along} vs {expected}");
         // no acceleration across the guide, no rotation
         assert!((a - along * u).norm() < 1e-9 && SpatialIncline::BLOCK.body_angular_acceleration(&vd).norm() < 1e-9);
     }
@@ -101,10 +101,10 @@ fn a_spatial_block_decelerates_by_mu_times_its_normal_load() {
     let options = SimulationOptions::default();
     for (mu, expected) in [(0.3, 0.5 * 9.81 * (sin - 0.3 * cos)), (0.8, 0.0)] {
         let m = SpatialIncline { mu, ..SpatialIncline::default() };
-        let (q, qd) = spatial_incline_state(&m, 0.0, 0.0);
+        let (q, v) = spatial_incline_state(&m, 0.0, 0.0);
         let mut last = q;
         Simulation::new(&m, &mut Dopri5::default())
-            .start(0.0, &q, &qd)
+            .start(0.0, &q, &v)
             .times(&[1.0])
             .options(options)
             .run(&mut SpatialIncline::workspace(), |s| last = s.point.q)
@@ -136,23 +136,23 @@ fn spatial_pin_friction_torque_is_mu_r_times_the_pin_force() {
     assert!((beta_dd - expected).abs() < 1e-9, "β̈ = {beta_dd} vs {expected}");
 }
 
-fn incline_state(m: &Incline, s: f64, v: f64) -> ([f64; 3], [f64; 3]) {
+fn incline_state(m: &Incline, s: f64, speed: f64) -> ([f64; 3], [f64; 3]) {
     let (sin, cos) = m.theta.sin_cos();
-    ([s * cos, s * sin, m.theta], [v * cos, v * sin, 0.0])
+    ([s * cos, s * sin, m.theta], [speed * cos, speed * sin, 0.0])
 }
 
 #[test]
 fn a_sliding_block_decelerates_by_mu_times_its_normal_load() {
     let m = Incline::default();
     let (sin, cos) = m.theta.sin_cos();
-    for v in [-1.0, 1.0] {
-        let (q, qd) = incline_state(&m, 0.3, v);
-        let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 2]);
-        m.accelerations(&q, &qd, 0.0, &DynamicsOptions::default(), &mut qdd, &mut lambda).unwrap();
-        let along = qdd[0] * cos + qdd[1] * sin;
+    for speed in [-1.0, 1.0] {
+        let (q, v) = incline_state(&m, 0.3, speed);
+        let (mut vd, mut lambda) = ([0.0; 3], [0.0; 2]);
+        m.accelerations(&q, &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
+        let along = vd[0] * cos + vd[1] * sin;
         // Sliding down (v < 0) friction pushes up the slope, sliding up it pushes down.
-        let expected = -9.81 * sin - v.signum() * m.mu * 9.81 * cos;
-        assert!((along - expected).abs() < 1e-6 * expected.abs(), "v = {v}: a = {along} vs {expected}");
+        let expected = -9.81 * sin - speed.signum() * m.mu * 9.81 * cos;
+        assert!((along - expected).abs() < 1e-6 * expected.abs(), "v = {speed}: a = {along} vs {expected}");
         assert!((lambda[0].abs() - 2.0 * 9.81 * cos).abs() < 1e-6, "normal load {} vs m g cos θ", lambda[0].abs());
     }
     assert!(Incline::EFFECTS.contains(&"Coulomb joint friction"));
@@ -162,12 +162,12 @@ fn a_sliding_block_decelerates_by_mu_times_its_normal_load() {
 fn friction_holds_a_block_on_a_shallow_slope() {
     // μ = 0.8 > tan 30° ≈ 0.577: released at rest, the block creeps at about v_s only.
     let m = Incline { mu: 0.8, ..Incline::default() };
-    let (q, qd) = incline_state(&m, 0.0, 0.0);
+    let (q, v) = incline_state(&m, 0.0, 0.0);
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let mut last = q;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8).with_atol(1e-10));
     Simulation::new(&m, &mut dopri)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&[1.0])
         .options(options)
         .run(&mut Incline::workspace(), |s| last = s.point.q)
@@ -178,7 +178,7 @@ fn friction_holds_a_block_on_a_shallow_slope() {
     // A slope steeper than the friction angle slides: 1 s at g (sin θ − μ cos θ).
     let slippery = Incline { mu: 0.3, ..Incline::default() };
     Simulation::new(&slippery, &mut Dopri5::default())
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&[1.0])
         .options(options)
         .run(&mut Incline::workspace(), |s| last = s.point.q)
@@ -195,18 +195,18 @@ fn pin_friction_torque_is_mu_r_times_the_pin_force() {
     let (theta, omega) = (-0.4_f64, 2.0);
     let (s, c) = theta.sin_cos();
     let q = [0.5 * c, 0.5 * s, theta];
-    let qd = [-0.5 * s * omega, 0.5 * c * omega, omega];
-    let (mut qdd, mut lambda) = ([0.0; 3], [0.0; 2]);
-    m.accelerations(&q, &qd, 0.0, &DynamicsOptions::default(), &mut qdd, &mut lambda).unwrap();
+    let v = [-0.5 * s * omega, 0.5 * c * omega, omega];
+    let (mut vd, mut lambda) = ([0.0; 3], [0.0; 2]);
+    m.accelerations(&q, &v, 0.0, &DynamicsOptions::default(), &mut vd, &mut lambda).unwrap();
     let pin = (lambda[0] * lambda[0] + lambda[1] * lambda[1]).sqrt();
     // Moments about the pin: J_O θ̈ = −m g l cos θ − μ R |F| (ω > 0, v_s ≪ ω).
     let j_o = 0.125 + 1.5 * 0.25;
     let torque = 0.2 * 0.01 * pin * omega / (omega * omega + 1e-6).sqrt();
     let expected = (-1.5 * 9.81 * 0.5 * c - torque) / j_o;
-    assert!((qdd[2] - expected).abs() < 1e-9, "θ̈ = {} vs {expected}", qdd[2]);
+    assert!((vd[2] - expected).abs() < 1e-9, "θ̈ = {} vs {expected}", vd[2]);
     // The pin force itself: m a_G = F + m g.
-    let fx = 1.5 * qdd[0];
-    let fy = 1.5 * qdd[1] + 1.5 * 9.81;
+    let fx = 1.5 * vd[0];
+    let fy = 1.5 * vd[1] + 1.5 * 9.81;
     assert!(((fx * fx + fy * fy).sqrt() - pin).abs() < 1e-9);
 }
 
@@ -260,18 +260,18 @@ fn friction_derivatives_match_central_differences() {
     let mut rng = common::Rng::new(7);
     for sample in 0..50 {
         let q: [f64; 6] = core::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-        let qd: [f64; 6] = core::array::from_fn(|_| rng.uniform(-0.2, 0.2));
+        let v: [f64; 6] = core::array::from_fn(|_| rng.uniform(-0.2, 0.2));
         let lambda: [f64; FrictionPair::NC] = core::array::from_fn(|_| rng.uniform(-20.0, 20.0));
-        let (mut d_q, mut d_qd) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
-        m.friction_derivatives(&q, &qd, 0.0, &lambda, &mut d_q, &mut d_qd);
-        let friction = |q: &[f64; 6], qd: &[f64; 6]| {
+        let (mut d_q, mut d_v) = ([[0.0; 6]; 6], [[0.0; 6]; 6]);
+        m.friction_derivatives(&q, &v, 0.0, &lambda, &mut d_q, &mut d_v);
+        let friction = |q: &[f64; 6], v: &[f64; 6]| {
             let mut f = [0.0; 6];
-            m.friction_forces(q, qd, 0.0, &lambda, &mut f);
+            m.friction_forces(q, v, 0.0, &lambda, &mut f);
             f
         };
         for c in 0..6 {
-            for (wrt, exact) in [("q", &d_q), ("q̇", &d_qd)] {
-                let (mut plus, mut minus) = ((q, qd), (q, qd));
+            for (wrt, exact) in [("q", &d_q), ("q̇", &d_v)] {
+                let (mut plus, mut minus) = ((q, v), (q, v));
                 if wrt == "q" {
                     plus.0[c] += STEP;
                     minus.0[c] -= STEP;
@@ -296,9 +296,9 @@ fn friction_derivatives_match_central_differences() {
     // Without friction nothing is touched.
     use common::slider_crank::SliderCrank;
     const NQ: usize = SliderCrank::NQ;
-    let (mut d_q, mut d_qd) = ([[7.0; NQ]; NQ], [[7.0; NQ]; NQ]);
-    SliderCrank::default().friction_derivatives(&[0.3; NQ], &[1.0; NQ], 0.0, &[1.0; SliderCrank::NC], &mut d_q, &mut d_qd);
-    assert_eq!((d_q, d_qd), ([[7.0; NQ]; NQ], [[7.0; NQ]; NQ]));
+    let (mut d_q, mut d_v) = ([[7.0; NQ]; NQ], [[7.0; NQ]; NQ]);
+    SliderCrank::default().friction_derivatives(&[0.3; NQ], &[1.0; NQ], 0.0, &[1.0; SliderCrank::NC], &mut d_q, &mut d_v);
+    assert_eq!((d_q, d_v), ([[7.0; NQ]; NQ], [[7.0; NQ]; NQ]));
 }
 
 /// Sticking is stiff: the regularized law's slope μN/v_s makes the block's sliding mode decay
@@ -316,11 +316,11 @@ fn friction_derivatives_match_central_differences() {
 fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     let options = SimulationOptions::default().with_correction(Correction::projection());
     let sticky = Incline { mu: 0.8, ..Incline::default() };
-    let (q, qd) = incline_state(&sticky, 0.0, 0.0);
+    let (q, v) = incline_state(&sticky, 0.0, 0.0);
     let mut last = q;
     let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
     let stats = Simulation::new(&sticky, &mut alpha)
-        .start(0.0, &q, &qd)
+        .start(0.0, &q, &v)
         .times(&[1.0])
         .options(options)
         .run(&mut Incline::workspace(), |s| last = s.point.q)
@@ -334,10 +334,10 @@ fn generalized_alpha_holds_a_block_by_friction_with_one_millisecond_steps() {
     let (sin, cos) = slippery.theta.sin_cos();
     let a = 9.81 * (sin - 0.3 * cos);
     for (v0, tolerance) in [(0.5, 1e-7 * (0.5 + 0.5 * a)), (0.0, 1e-3 * a)] {
-        let (q, qd) = incline_state(&slippery, 0.0, -v0);
+        let (q, v) = incline_state(&slippery, 0.0, -v0);
         let mut alpha = Incline::generalized_alpha(GeneralizedAlphaOptions::default());
         Simulation::new(&slippery, &mut alpha)
-            .start(0.0, &q, &qd)
+            .start(0.0, &q, &v)
             .times(&[1.0])
             .options(options)
             .run(&mut Incline::workspace(), |s| last = s.point.q)
@@ -423,10 +423,10 @@ fn radau5_holds_and_slides_a_block_by_friction() {
 #[test]
 fn bdf_holds_and_slides_a_block_by_friction() {
     let sticky = Incline { mu: 0.8, ..Incline::default() };
-    let (q, qd) = incline_state(&sticky, 0.0, 0.0);
+    let (q, v) = incline_state(&sticky, 0.0, 0.0);
     let mut last = q;
     let mut bdf = Bdf::new(BdfOptions::default());
-    Simulation::new(&sticky, &mut bdf).start(0.0, &q, &qd).times(&[1.0]).run(&mut Incline::workspace(), |s| last = s.point.q).unwrap();
+    Simulation::new(&sticky, &mut bdf).start(0.0, &q, &v).times(&[1.0]).run(&mut Incline::workspace(), |s| last = s.point.q).unwrap();
     let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
     eprintln!("sticky: {moved:e} m in 1 s, {} steps", bdf.accepted);
     // Creep speed v_s · r/√(1 − r²) with r = tan θ / μ = 0.72: 1.04e-4 m in 1 s.
@@ -439,13 +439,9 @@ fn bdf_holds_and_slides_a_block_by_friction() {
     // rtol, guide/dynamics.md; measured 2.8e-8); from rest, the start-up where friction switches on inside
     // the first steps, as for generalized-α (measured 6.6e-5).
     for (v0, bound) in [(0.5, 100.0 * 1e-6), (0.0, 2e-4)] {
-        let (q, qd) = incline_state(&slippery, 0.0, -v0);
+        let (q, v) = incline_state(&slippery, 0.0, -v0);
         let mut bdf = Bdf::new(BdfOptions::default());
-        Simulation::new(&slippery, &mut bdf)
-            .start(0.0, &q, &qd)
-            .times(&[1.0])
-            .run(&mut Incline::workspace(), |s| last = s.point.q)
-            .unwrap();
+        Simulation::new(&slippery, &mut bdf).start(0.0, &q, &v).times(&[1.0]).run(&mut Incline::workspace(), |s| last = s.point.q).unwrap();
         let moved = (last[0] * last[0] + last[1] * last[1]).sqrt();
         let expected = v0 + 0.5 * a;
         eprintln!("slippery from {v0} m/s: {moved} m against {expected}, {} steps", bdf.accepted);

@@ -181,56 +181,56 @@ where
         for v in q.iter_mut() {
             *v += rng.uniform(-0.5, 0.5);
         }
-        let qd: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
+        let v: [f64; NQ] = core::array::from_fn(|_| rng.uniform(-3.0, 3.0));
         let t = rng.uniform(0.0, 2.0);
         let (mut phi, mut d, mut nu, mut gamma) = ([0.0; NC], [[0.0; NQ]; NC], [0.0; NC], [0.0; NC]);
         m.constraints(&q, t, &mut phi);
         m.jacobian(&q, t, &mut d);
         m.velocity_rhs(&q, t, &mut nu);
-        m.gamma(&q, &qd, t, &mut gamma);
-        let (mut h, mut h_q, mut h_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
-        m.forces(&q, &qd, t, &mut h);
-        m.forces_q(&q, &qd, t, &mut h_q);
-        m.forces_v(&q, &qd, t, &mut h_qd);
+        m.gamma(&q, &v, t, &mut gamma);
+        let (mut h, mut h_q, mut h_v) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
+        m.forces(&q, &v, t, &mut h);
+        m.forces_q(&q, &v, t, &mut h_q);
+        m.forces_v(&q, &v, t, &mut h_v);
         let potential = m.potential_energy(&q, t);
         let jacobian: Vec<f64> = M::JACOBIAN_PATTERN.iter().map(|&(r, c)| d[r as usize][c as usize]).collect();
-        let named: serde_json::Map<String, Value> = M::PARAM_NAMES.iter().zip(&params).map(|(n, v)| (n.to_string(), json!(v))).collect();
+        let named: serde_json::Map<String, Value> = M::PARAM_NAMES.iter().zip(&params).map(|(n, x)| (n.to_string(), json!(x))).collect();
         let dense = |a: &[[f64; NQ]; NQ]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
         let mut mass = [[0.0; NQ]; NQ];
         m.add_mass_matrix(&q, 1.0, &mut mass);
         let mass_diagonal: Vec<f64> = (0..NQ).map(|i| mass[i][i]).collect();
-        let mut sample = json!({"params": named, "t": t, "q": q.to_vec(), "qd": qd.to_vec(), "phi": phi.to_vec(),
+        let mut sample = json!({"params": named, "t": t, "q": q.to_vec(), "qd": v.to_vec(), "phi": phi.to_vec(),
                             "nu": nu.to_vec(), "jacobian": jacobian, "gamma": gamma.to_vec(),
-                            "mass": mass_diagonal, "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_qd),
+                            "mass": mass_diagonal, "h": h.to_vec(), "h_q": dense(&h_q), "h_qd": dense(&h_v),
                             "potential": potential});
         // Coulomb friction at random loads λ (zeros for a mechanism without it).
         // γ's derivatives (Linearize::gamma_derivatives), dense NC × NV.
         let (mut gamma_q, mut gamma_v) = ([[0.0; NQ]; NC], [[0.0; NQ]; NC]);
-        m.gamma_derivatives(&q, &qd, t, &mut gamma_q, &mut gamma_v);
+        m.gamma_derivatives(&q, &v, t, &mut gamma_q, &mut gamma_v);
         let rows = |a: &[[f64; NQ]; NC]| a.iter().map(|row| row.to_vec()).collect::<Vec<_>>();
         let fields = sample.as_object_mut().expect("a sample is an object");
         fields.insert("gamma_q".into(), json!(rows(&gamma_q)));
         fields.insert("gamma_v".into(), json!(rows(&gamma_v)));
         let friction_lambda: [f64; NC] = core::array::from_fn(|_| rng.uniform(-50.0, 50.0));
-        let (mut friction, mut friction_q, mut friction_qd) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
-        m.friction_forces(&q, &qd, t, &friction_lambda, &mut friction);
-        m.friction_derivatives(&q, &qd, t, &friction_lambda, &mut friction_q, &mut friction_qd);
+        let (mut friction, mut friction_q, mut friction_v) = ([0.0; NQ], [[0.0; NQ]; NQ], [[0.0; NQ]; NQ]);
+        m.friction_forces(&q, &v, t, &friction_lambda, &mut friction);
+        m.friction_derivatives(&q, &v, t, &friction_lambda, &mut friction_q, &mut friction_v);
         let fields = sample.as_object_mut().expect("a sample is an object");
         fields.insert("friction_lambda".into(), json!(friction_lambda.to_vec()));
         fields.insert("friction".into(), json!(friction.to_vec()));
         fields.insert("friction_q".into(), json!(dense(&friction_q)));
-        fields.insert("friction_qd".into(), json!(dense(&friction_qd)));
+        fields.insert("friction_qd".into(), json!(dense(&friction_v)));
         // Forward dynamics through the generated sparse Schur-complement solve, with random
         // Baumgarte gains; a random state can sit at a singular configuration, where the solve
         // rightly fails — those samples carry no q̈. With Coulomb friction, the fixed point on λ
         // is asked for to a change of 1e-13 (compare.py's bound accounts for it).
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
-        let (mut qdd, mut lambda) = ([0.0; NQ], [0.0; NC]);
+        let (mut vd, mut lambda) = ([0.0; NQ], [0.0; NC]);
         let options = mbd::DynamicsOptions::baumgarte(alpha, beta).with_friction_tolerance(1e-13).with_friction_iterations(500);
-        if m.accelerations(&q, &qd, t, &options, &mut qdd, &mut lambda).is_ok() {
+        if m.accelerations(&q, &v, t, &options, &mut vd, &mut lambda).is_ok() {
             forward += 1;
             let fields = sample.as_object_mut().expect("a sample is an object");
-            fields.insert("qdd".into(), json!(qdd.to_vec()));
+            fields.insert("qdd".into(), json!(vd.to_vec()));
             fields.insert("lambda".into(), json!(lambda.to_vec()));
             fields.insert("alpha".into(), json!(alpha));
             fields.insert("beta".into(), json!(beta));

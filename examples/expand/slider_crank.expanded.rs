@@ -2473,7 +2473,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         tolerance: f64,
         allow_redundant: bool,
         dropped: &mut [bool; 9],
-    ) -> ::core::result::Result<f64, ::mbd::linalg::LinalgError> {
+    ) -> ::core::result::Result<f64, ::mbd::LinalgError> {
         let mut smallest = 1f64;
         let mut inverse = [0f64; 18];
         {

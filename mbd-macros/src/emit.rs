@@ -679,7 +679,7 @@ pub const STATEMENTS_PER_FUNCTION: usize = 256;
 ///
 /// The functions are named `__mbd_{label}_{k}`: one label per sequence of a function body.
 /// Each nested function takes the arrays its statements index, by reference (mutable if it
-/// writes them; generic over their lengths, through `mbd::sparse::Elements::all`, which serves
+/// writes them; generic over their lengths, through `mbd::__private::Elements::all`, which serves
 /// local arrays and references alike), and the `scalars` they read, of the scalar type `real`.
 /// Code that reads anything else (a temporary, `self`), declares a local or may return early
 /// stays in one function: a nested function could not see it, or would change what `return`

@@ -405,7 +405,7 @@ fn straight_line_solver(f: &Formulation, e: &Emitter, plan: &NewtonPlan, real: &
             tolerance: #real,
             allow_redundant: bool,
             dropped: &mut [bool; #nc_l],
-        ) -> ::core::result::Result<#real, ::mbd::linalg::LinalgError> {
+        ) -> ::core::result::Result<#real, ::mbd::LinalgError> {
             #factor
         }
         fn newton_solve(s: &[#real; #total], b: &mut [#real]) {

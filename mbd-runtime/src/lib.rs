@@ -17,7 +17,7 @@ extern crate alloc;
 // bodies, work space); `solvers` (the analyses at a state); `integrate`; `output`. The test
 // `layering` below keeps it so.
 mod integrate;
-pub mod linalg;
+mod linalg;
 mod model;
 mod options;
 mod output;
@@ -26,7 +26,6 @@ mod solvers;
 #[cfg(test)]
 mod test_support;
 
-pub use linalg::sparse;
 pub use model::workspace;
 pub use solvers::dense_forward;
 #[cfg(feature = "alloc")]
@@ -40,6 +39,39 @@ pub use integrate::{
     Simulation, SimulationError, SimulationOptions, SingularPassage, Statistics, StiffnessDetected, System, BDF_MAX_ORDER, SINGULAR_SINE,
 };
 pub use linalg::sparse::SparsePattern;
+pub use linalg::LinalgError;
+
+/// The sparse LU factorization of the implicit integrators' Newton matrix (generalized-α, BDF,
+/// Radau5: slopes c_v and c_q of their own)
+///
+/// ```text
+/// [ A   −Dᵀ ]      A = M − c_v ∂h/∂v − c_q (∂h/∂q·B + ∂(Dᵀλ)/∂q·B)
+/// [ D    0  ]
+/// ```
+///
+/// on a pattern that `mechanism!` plans at compile time ([`SparsePattern`]): the elimination
+/// order and every fill-in entry are fixed from the structure of M, of the force and constraint
+/// derivatives and of D, so a step stores and touches only the structural non-zeros of the
+/// factors — O(bodies) for a chain — and never a dense (NV + NC)² matrix.
+///
+/// # Why no pivoting is needed
+///
+/// The order puts each multiplier λ_r after every velocity its row of D touches. Then each
+/// leading block of the reordered matrix is itself a saddle matrix [[A₁₁, −D₁ᵀ], [D₁, 0]] whose
+/// rows D₁ lie entirely within its own velocities, and it is regular whenever A₁₁ is positive
+/// definite (A is M plus O(h) terms) and D₁ has full row rank: Gaussian elimination in that order
+/// meets no zero pivot at a regular position. A multiplier's pivot is then the Schur complement
+/// D_r A⁻¹ D_rᵀ restricted to what came before, positive, and it is compared with its own scale
+/// Σ_c D_rc² / |u_cc| (u_cc the pivots of its velocities): a ratio at most the pivot tolerance means row r is, to that tolerance, a
+/// combination of the rows eliminated before it (a singular position or a redundant
+/// constraint), and the row is dropped (Δλ_r = 0) or reported — what partial pivoting found
+/// before, without moving rows.
+///
+/// [`factor`] and [`solve`] are real; [`factor_complex`] and [`solve_complex`] factor Radau5's
+/// complex block on the same pattern (`Name::NEWTON_PATTERN`).
+pub mod sparse {
+    pub use crate::linalg::sparse::{factor, factor_complex, solve, solve_complex, SparsePattern};
+}
 pub use model::body::{BodyFrames, BodyPose, BodyTwist, BodyWrench, JointLoads};
 pub use model::dynamics::{
     kinetic_energy, DynamicsError, DynamicsOptions, ForwardDynamics, DEFAULT_BAUMGARTE, DEFAULT_DYNAMICS_PIVOT_TOLERANCE,

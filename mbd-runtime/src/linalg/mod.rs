@@ -1,7 +1,7 @@
 //! Dense linear algebra on fixed-size arrays, for the kinematic solvers: LU factorization with
-//! partial (row) pivoting, forward/back substitution, and the minimum-norm solution of an
-//! underdetermined system. Nothing allocates and nothing panics on bad numbers: failures are
-//! returned as [`LinalgError`].
+//! partial (row) pivoting and forward/back substitution. Nothing allocates and nothing panics
+//! on bad numbers: failures are returned as [`LinalgError`]. Internal: a user reaches
+//! [`LinalgError`] and the planned sparse LU (`crate::sparse`) at the crate root.
 //!
 //! # When is a pivot too small?
 //!
@@ -253,61 +253,6 @@ pub fn lu_solve_in_place<T: Real, const N: usize>(lu: &[[T; N]; N], permutation:
     substitute(lu, permutation, &rhs, b);
 }
 
-/// Minimum-norm solution of an underdetermined system with full row rank,
-/// D Δq = r with D of size NC × NQ, NC ≤ NQ:
-///
-/// ```text
-/// Δq = Dᵀ (D Dᵀ)⁻¹ r
-/// ```
-///
-/// the solution of smallest Euclidean norm (the one orthogonal to the null space of D). The
-/// NC × NC Gram matrix G = D Dᵀ is formed in `gram` (work space; its contents on entry do not
-/// matter) and factored by [`lu_factor`] with `relative_tolerance` as τ.
-///
-/// Since G is the Gram matrix of the rows of D, elimination step k of G fails exactly when row
-/// k of D is (to τ) a linear combination of rows 0..k: the reported
-/// [`LinalgError::Singular::column`] is then the index of the first dependent row of D.
-/// Note that τ applies to G, whose pivots scale as the *square* of D's: a row of D is rejected
-/// when the sine of its angle to the span of the rows before it is below about √τ.
-/// For NC = NQ the result is D⁻¹ r, but with the condition number squared: prefer
-/// [`lu_factor`] on D itself.
-///
-/// # Errors
-/// [`LinalgError::Overdetermined`] if NC > NQ; [`LinalgError::NonFinite`] with indices into D if
-/// D holds a NaN or an infinity; [`LinalgError::Singular`] as above. `dq` is unchanged on error.
-pub fn minimum_norm_solve<T: Real, const NC: usize, const NQ: usize>(
-    d: &[[T; NQ]; NC],
-    r: &[T; NC],
-    relative_tolerance: T,
-    gram: &mut [[T; NC]; NC],
-    dq: &mut [T; NQ],
-) -> Result<(), LinalgError> {
-    if NC > NQ {
-        return Err(LinalgError::Overdetermined { rows: NC, columns: NQ });
-    }
-    if let Some((row, column)) = first_non_finite(d) {
-        return Err(LinalgError::NonFinite { row, column });
-    }
-    for (i, row_i) in d.iter().enumerate() {
-        for (j, row_j) in d.iter().enumerate().skip(i) {
-            let product = dot(row_i, row_j);
-            gram[i][j] = product;
-            gram[j][i] = product;
-        }
-    }
-    let permutation = lu_factor(gram, relative_tolerance)?;
-    let mut multipliers = [T::ZERO; NC];
-    substitute(gram, &permutation, r, &mut multipliers);
-    // Δq = Dᵀ λ
-    *dq = [T::ZERO; NQ];
-    for (row, &lambda) in d.iter().zip(multipliers.iter()) {
-        for (out, &entry) in dq.iter_mut().zip(row.iter()) {
-            *out += entry * lambda;
-        }
-    }
-    Ok(())
-}
-
 /// aᵀ b
 pub(crate) fn dot<T: Real, const N: usize>(a: &[T; N], b: &[T; N]) -> T {
     a.iter().zip(b.iter()).fold(T::ZERO, |sum, (&x, &y)| sum + x * y)
@@ -514,70 +459,6 @@ mod tests {
         assert_eq!(lu_factor(&mut a, PIVOT_TOLERANCE), Err(LinalgError::NonFinite { row: 1, column: 0 }));
         let mut rectangular = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         assert_eq!(lu_factor(&mut rectangular, PIVOT_TOLERANCE), Err(LinalgError::NotSquare { rows: 2, columns: 3 }));
-        let d = [[1.0], [2.0]];
-        let mut dq = [0.0];
-        assert_eq!(
-            minimum_norm_solve(&d, &[1.0, 2.0], PIVOT_TOLERANCE, &mut Default::default(), &mut dq),
-            Err(LinalgError::Overdetermined { rows: 2, columns: 1 })
-        );
-    }
-
-    /// D Δq = r holds, Δq lies in the row space of D (Δq = Dᵀ λ), and it is shorter than
-    /// another solution: the basic one using only the first NC unknowns.
-    #[test]
-    fn minimum_norm_solution() {
-        const NC: usize = 3;
-        const NQ: usize = 7;
-        let mut rng = Prng(4242);
-        for _ in 0..20 {
-            let mut d = [[0.0; NQ]; NC];
-            for row in d.iter_mut() {
-                for v in row.iter_mut() {
-                    *v = rng.uniform();
-                }
-            }
-            let mut r = [0.0; NC];
-            for v in r.iter_mut() {
-                *v = rng.uniform();
-            }
-            let mut dq = [0.0; NQ];
-            minimum_norm_solve(&d, &r, PIVOT_TOLERANCE, &mut Default::default(), &mut dq).expect("full row rank");
-            assert!(max_abs_difference(&multiply(&d, &dq), &r) < 1e-12, "D Δq = r");
-            // Basic solution: the leading NC × NC block solved, the other unknowns zero.
-            let mut block = [[0.0; NC]; NC];
-            for (b, row) in block.iter_mut().zip(d.iter()) {
-                b.copy_from_slice(&row[..NC]);
-            }
-            let p = lu_factor(&mut block, PIVOT_TOLERANCE).expect("regular block");
-            let mut basic = r;
-            lu_solve_in_place(&block, &p, &mut basic);
-            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-            assert!(norm(&dq) <= norm(&basic) + 1e-14, "|Δq| = {} > |basic| = {}", norm(&dq), norm(&basic));
-            // Orthogonal to the null space: any v with D v = 0 has vᵀ Δq = 0. Build v from
-            // the basic solution of D v = −D e_last with v_last = 1.
-            let mut v = [0.0; NQ];
-            let mut rhs = [0.0; NC];
-            for (ri, row) in rhs.iter_mut().zip(d.iter()) {
-                *ri = -row[NQ - 1];
-            }
-            lu_solve_in_place(&block, &p, &mut rhs);
-            v[..NC].copy_from_slice(&rhs);
-            v[NQ - 1] = 1.0;
-            assert!(max_abs_difference(&multiply(&d, &v), &[0.0; NC]) < 1e-12);
-            assert!(dot(&v, &dq).abs() < 1e-12, "Δq ⟂ null(D)");
-        }
-    }
-
-    /// Rows 0 and 2 equal: the Gram matrix fails at step 2, naming row 2 as the dependent one.
-    #[test]
-    fn minimum_norm_names_the_dependent_row() {
-        let d = [[1.0, 2.0, 0.0, 1.0], [0.0, 1.0, 1.0, 0.0], [1.0, 2.0, 0.0, 1.0]];
-        let mut dq = [7.0; 4];
-        match minimum_norm_solve(&d, &[1.0, 1.0, 1.0], PIVOT_TOLERANCE, &mut Default::default(), &mut dq) {
-            Err(LinalgError::Singular { column, .. }) => assert_eq!(column, 2),
-            other => panic!("expected Singular, got {other:?}"),
-        }
-        assert_eq!(dq, [7.0; 4], "unchanged on error");
     }
 
     /// The same code in f32.

@@ -1,27 +1,5 @@
-//! The sparse LU factorization of generalized-α's Newton matrix
-//!
-//! ```text
-//! [ A   −Dᵀ ]      A = M − γ'h ∂h/∂v − β'h² (∂h/∂q·B + ∂(Dᵀλ)/∂q·B)
-//! [ D    0  ]
-//! ```
-//!
-//! on a pattern that `mechanism!` plans at compile time ([`SparsePattern`]): the elimination
-//! order and every fill-in entry are fixed from the structure of M, of the force and constraint
-//! derivatives and of D, so a step stores and touches only the structural non-zeros of the
-//! factors — O(bodies) for a chain — and never a dense (NV + NC)² matrix.
-//!
-//! # Why no pivoting is needed
-//!
-//! The order puts each multiplier λ_r after every velocity its row of D touches. Then each
-//! leading block of the reordered matrix is itself a saddle matrix [[A₁₁, −D₁ᵀ], [D₁, 0]] whose
-//! rows D₁ lie entirely within its own velocities, and it is regular whenever A₁₁ is positive
-//! definite (A is M plus O(h) terms) and D₁ has full row rank: Gaussian elimination in that order
-//! meets no zero pivot at a regular position. A multiplier's pivot is then the Schur complement
-//! D_r A⁻¹ D_rᵀ restricted to what came before, positive, and it is compared with its own scale
-//! Σ_c D_rc² / |u_cc| (u_cc the pivots of its velocities): a ratio at most the pivot tolerance means row r is, to that tolerance, a
-//! combination of the rows eliminated before it (a singular position or a redundant
-//! constraint), and the row is dropped (Δλ_r = 0) or reported — what partial pivoting found
-//! before, without moving rows.
+//! The planned sparse LU (`crate::sparse` is its public face and holds the method's
+//! documentation) and the helpers the generated factorizations call (`crate::__private`).
 
 use crate::linalg::LinalgError;
 use crate::real::Real;

@@ -333,7 +333,7 @@ pub trait KinematicsHooks<T: Real, const NQ: usize, const NV: usize, const NC: u
     /// code and its rules from `Newton` (`solvers/newton.rs`), the dense solve's. A step expected to
     /// end the iteration keeps D and its factors (simplified Newton): where ‖Φ‖∞ · (‖Φ‖∞ / ‖Φ‖∞ at the last step) · `reuse` ≤ `tolerance`; infinite
     /// `reuse` evaluates and factors D at every step. A step longer than `max_step` (‖Δv‖∞) is
-    /// shortened to it along its direction ([`crate::linalg::sparse::limit_step`]). Returns what it
+    /// shortened to it along its direction (`limit_step`). Returns what it
     /// ended with, the steps taken and the factorizations of D made, q at the last iterate and
     /// Φ(q, t) in `phi`:
     /// [`PositionStep::Converged`] when ‖Φ‖∞ ≤ `tolerance`; [`PositionStep::Singular`] when a
@@ -579,7 +579,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
     const NEWTON_PATTERN: crate::linalg::sparse::SparsePattern;
     /// Storage of zeros.
     fn newton_storage() -> Self::NewtonStorage;
-    /// Factors the matrix in `s` in place ([`crate::linalg::sparse::factor`], whose arguments and errors
+    /// Factors the matrix in `s` in place ([`crate::sparse::factor`], whose arguments and errors
     /// these are; unknowns as errors name them: v̇ entries, then multipliers). `mechanism!`
     /// generates it straight-line for small mechanisms; larger ones run the planned pattern.
     fn newton_factor(

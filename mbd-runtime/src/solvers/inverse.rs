@@ -97,7 +97,8 @@ crate::options::options! {
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct InverseDynamicsOptions<T> {
         /// Relative pivot tolerance of the planned LDLᵀ of D Dᵀ and of the dense LU of Dᵀ it
-        /// falls back to where it finds no pivot (see [`crate::linalg::lu_factor`]). Default 1e-12.
+        /// falls back to where it finds no pivot (partial pivoting, each pivot relative to its
+        /// column). Default 1e-12.
         pivot_tolerance: T = T::from_f64(1e-12) => with_pivot_tolerance,
         /// With redundant rows (NC > NV): a row is dependent on the rows declared before it when
         /// the sine of its angle to their span is below this. Default

@@ -111,7 +111,8 @@ crate::options::options! {
         /// [`DEFAULT_MAX_STEP`].
         max_step: T = T::from_f64(DEFAULT_MAX_STEP) => with_max_step,
         /// Relative pivot tolerance τ of the LU factorization: a pivot is accepted when
-        /// |pivot| > τ · (largest |entry| of its column of D), see [`crate::linalg`]. Values below
+        /// |pivot| > τ · (largest |entry| of its column of D): relative to the column, so the verdict
+        /// is the same whatever a coordinate's unit (m or rad). Values below
         /// the scalar type's machine epsilon are raised to it (pivots that small are rounding
         /// noise). Default [`DEFAULT_PIVOT_TOLERANCE`].
         pivot_tolerance: T = T::from_f64(DEFAULT_PIVOT_TOLERANCE) => with_pivot_tolerance,

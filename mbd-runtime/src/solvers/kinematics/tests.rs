@@ -174,13 +174,13 @@ impl<T: Real> Kinematics<T, NQ, NQ, NC> for SliderCrank<T> {
         nu[8] = self.omega;
     }
 
-    fn gamma(&self, q: &[T; NQ], qd: &[T; NQ], _t: T, gamma: &mut [T; NC]) {
+    fn gamma(&self, q: &[T; NQ], v: &[T; NQ], _t: T, gamma: &mut [T; NC]) {
         let half = T::from_f64(0.5);
         let (a, b) = (half * self.r, half * self.l);
         let (sc, cc) = q[2].sin_cos();
         let (sr, cr) = q[5].sin_cos();
         let (ss, _) = q[8].sin_cos();
-        let (wc2, wr2, ws2) = (qd[2] * qd[2], qd[5] * qd[5], qd[8] * qd[8]);
+        let (wc2, wr2, ws2) = (v[2] * v[2], v[5] * v[5], v[8] * v[8]);
         *gamma = [
             a * cc * wc2,
             a * sc * wc2,
@@ -230,10 +230,10 @@ impl<T: Real> Kinematics<T, NQ, NQ, NC> for SliderCrank<T> {
         ];
     }
 
-    fn full_eval(&self, q: &[T; NQ], qd: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NQ]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]) {
+    fn full_eval(&self, q: &[T; NQ], v: &[T; NQ], t: T, phi: &mut [T; NC], d: &mut [[T; NQ]; NC], nu: &mut [T; NC], gamma: &mut [T; NC]) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
-        self.gamma(q, qd, t, gamma);
+        self.gamma(q, v, t, gamma);
     }
 }
 
@@ -304,8 +304,8 @@ impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     fn velocity_rhs(&self, q: &[f64; NQ], t: f64, nu: &mut [f64; NC]) {
         self.0.velocity_rhs(q, t, nu);
     }
-    fn gamma(&self, q: &[f64; NQ], qd: &[f64; NQ], t: f64, gamma: &mut [f64; NC]) {
-        self.0.gamma(q, qd, t, gamma);
+    fn gamma(&self, q: &[f64; NQ], v: &[f64; NQ], t: f64, gamma: &mut [f64; NC]) {
+        self.0.gamma(q, v, t, gamma);
         gamma[ANGLE_ROW] = 0.0;
     }
     fn position_eval(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC], d: &mut [[f64; NQ]; NC]) {
@@ -315,7 +315,7 @@ impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     fn full_eval(
         &self,
         q: &[f64; NQ],
-        qd: &[f64; NQ],
+        v: &[f64; NQ],
         t: f64,
         phi: &mut [f64; NC],
         d: &mut [[f64; NQ]; NC],
@@ -324,7 +324,7 @@ impl Kinematics<f64, NQ, NQ, NC> for LockedSlider {
     ) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
-        self.gamma(q, qd, t, gamma);
+        self.gamma(q, v, t, gamma);
     }
 }
 
@@ -389,9 +389,9 @@ impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for Withou
     fn velocity_rhs(&self, _q: &[f64; NQ], _t: f64, nu: &mut [f64; FREE_NC]) {
         *nu = [0.0; FREE_NC];
     }
-    fn gamma(&self, q: &[f64; NQ], qd: &[f64; NQ], t: f64, gamma: &mut [f64; FREE_NC]) {
+    fn gamma(&self, q: &[f64; NQ], v: &[f64; NQ], t: f64, gamma: &mut [f64; FREE_NC]) {
         let mut full = [0.0; NC];
-        self.0.gamma(q, qd, t, &mut full);
+        self.0.gamma(q, v, t, &mut full);
         leading(&full, gamma);
     }
     fn position_eval(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; FREE_NC], d: &mut [[f64; NQ]; FREE_NC]) {
@@ -401,7 +401,7 @@ impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for Withou
     fn full_eval(
         &self,
         q: &[f64; NQ],
-        qd: &[f64; NQ],
+        v: &[f64; NQ],
         t: f64,
         phi: &mut [f64; FREE_NC],
         d: &mut [[f64; NQ]; FREE_NC],
@@ -410,7 +410,7 @@ impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, FREE_NC> for Withou
     ) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
-        self.gamma(q, qd, t, gamma);
+        self.gamma(q, v, t, gamma);
     }
 }
 
@@ -483,10 +483,10 @@ impl<T: Real> Kinematics<T, 3, 3, 3> for Crank<T> {
     fn velocity_rhs(&self, _q: &[T; 3], _t: T, nu: &mut [T; 3]) {
         *nu = [T::ZERO, T::ZERO, self.nu_speed];
     }
-    fn gamma(&self, q: &[T; 3], qd: &[T; 3], _t: T, gamma: &mut [T; 3]) {
+    fn gamma(&self, q: &[T; 3], v: &[T; 3], _t: T, gamma: &mut [T; 3]) {
         let a = T::from_f64(0.5) * self.r;
         let (s, c) = q[2].sin_cos();
-        let w2 = qd[2] * qd[2];
+        let w2 = v[2] * v[2];
         *gamma = [a * c * w2, a * s * w2, T::ZERO];
     }
     fn position_eval(&self, q: &[T; 3], t: T, phi: &mut [T; 3], d: &mut [[T; 3]; 3]) {
@@ -496,10 +496,10 @@ impl<T: Real> Kinematics<T, 3, 3, 3> for Crank<T> {
         let (o, z) = (T::ONE, T::ZERO);
         *d = [[-o, z, -a * s], [z, -o, a * c], [z, z, o]];
     }
-    fn full_eval(&self, q: &[T; 3], qd: &[T; 3], t: T, phi: &mut [T; 3], d: &mut [[T; 3]; 3], nu: &mut [T; 3], gamma: &mut [T; 3]) {
+    fn full_eval(&self, q: &[T; 3], v: &[T; 3], t: T, phi: &mut [T; 3], d: &mut [[T; 3]; 3], nu: &mut [T; 3], gamma: &mut [T; 3]) {
         self.position_eval(q, t, phi, d);
         self.velocity_rhs(q, t, nu);
-        self.gamma(q, qd, t, gamma);
+        self.gamma(q, v, t, gamma);
     }
 }
 
@@ -535,13 +535,13 @@ const VELOCITY_STEP: f64 = 1e-5;
 const ACCELERATION_STEP: f64 = 1e-4;
 
 /// q̇ of the closed form by central differences.
-fn exact_qd(t: f64) -> [f64; NQ] {
+fn exact_v(t: f64) -> [f64; NQ] {
     let (plus, minus) = (exact_q(t + VELOCITY_STEP), exact_q(t - VELOCITY_STEP));
     core::array::from_fn(|i| (plus[i] - minus[i]) / (2.0 * VELOCITY_STEP))
 }
 
 /// q̈ of the closed form by second central differences.
-fn exact_qdd(t: f64) -> [f64; NQ] {
+fn exact_vd(t: f64) -> [f64; NQ] {
     let h = ACCELERATION_STEP;
     let (plus, mid, minus) = (exact_q(t + h), exact_q(t), exact_q(t - h));
     core::array::from_fn(|i| (plus[i] - 2.0 * mid[i] + minus[i]) / (h * h))
@@ -605,18 +605,18 @@ fn analysis_matches_the_closed_form() {
         let slider_error = (state.q[6] - exact[6]).abs();
         assert!(slider_error < POSITION_TOLERANCE, "x_B at t = {t}");
         assert!(state.convergence.residual <= DEFAULT_TOLERANCE);
-        let velocity_error = max_abs_difference(&state.v, &exact_qd(t));
+        let velocity_error = max_abs_difference(&state.v, &exact_v(t));
         assert!(velocity_error < VELOCITY_TOLERANCE, "t = {t}: |q̇ − q̇_exact| = {velocity_error:e}");
-        let acceleration_error = max_abs_difference(&state.vd, &exact_qdd(t));
+        let acceleration_error = max_abs_difference(&state.vd, &exact_vd(t));
         assert!(acceleration_error < ACCELERATION_TOLERANCE, "t = {t}: |q̈ − q̈_exact| = {acceleration_error:e}");
 
         // The separate solves agree with the combined one.
-        let mut qd = [0.0; NQ];
-        let mut qdd = [0.0; NQ];
-        solver.solve_velocity(&m, &mut ws(), &state.q, t, &mut qd).expect("velocity");
-        solver.solve_acceleration(&m, &mut ws(), &state.q, &qd, t, &mut qdd).expect("acceleration");
-        assert_eq!(qd, state.v);
-        assert_eq!(qdd, state.vd);
+        let mut v = [0.0; NQ];
+        let mut vd = [0.0; NQ];
+        solver.solve_velocity(&m, &mut ws(), &state.q, t, &mut v).expect("velocity");
+        solver.solve_acceleration(&m, &mut ws(), &state.q, &v, t, &mut vd).expect("acceleration");
+        assert_eq!(v, state.v);
+        assert_eq!(vd, state.vd);
     }
 }
 
@@ -632,11 +632,11 @@ fn sweep_matches_the_closed_form() {
         let mut visited = 0;
         let mut worst = [0.0f64; 3];
         solver
-            .sweep(&m, &mut ws(), &mut q, revolution_times(), |t, q, qd, qdd| {
+            .sweep(&m, &mut ws(), &mut q, revolution_times(), |t, q, v, vd| {
                 visited += 1;
                 worst[0] = worst[0].max(max_abs_difference(q, &exact_q(t)));
-                worst[1] = worst[1].max(max_abs_difference(qd, &exact_qd(t)));
-                worst[2] = worst[2].max(max_abs_difference(qdd, &exact_qdd(t)));
+                worst[1] = worst[1].max(max_abs_difference(v, &exact_v(t)));
+                worst[2] = worst[2].max(max_abs_difference(vd, &exact_vd(t)));
             })
             .expect("sweep");
         assert_eq!(visited, 41);
@@ -697,8 +697,8 @@ impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, NC> for Counting<M>
     fn velocity_rhs(&self, q: &[f64; NQ], t: f64, nu: &mut [f64; NC]) {
         self.inner.velocity_rhs(q, t, nu);
     }
-    fn gamma(&self, q: &[f64; NQ], qd: &[f64; NQ], t: f64, gamma: &mut [f64; NC]) {
-        self.inner.gamma(q, qd, t, gamma);
+    fn gamma(&self, q: &[f64; NQ], v: &[f64; NQ], t: f64, gamma: &mut [f64; NC]) {
+        self.inner.gamma(q, v, t, gamma);
     }
     fn position_eval(&self, q: &[f64; NQ], t: f64, phi: &mut [f64; NC], d: &mut [[f64; NQ]; NC]) {
         self.evaluations.set(self.evaluations.get() + 1);
@@ -707,14 +707,14 @@ impl<M: Kinematics<f64, NQ, NQ, NC>> Kinematics<f64, NQ, NQ, NC> for Counting<M>
     fn full_eval(
         &self,
         q: &[f64; NQ],
-        qd: &[f64; NQ],
+        v: &[f64; NQ],
         t: f64,
         phi: &mut [f64; NC],
         d: &mut [[f64; NQ]; NC],
         nu: &mut [f64; NC],
         gamma: &mut [f64; NC],
     ) {
-        self.inner.full_eval(q, qd, t, phi, d, nu, gamma);
+        self.inner.full_eval(q, v, t, phi, d, nu, gamma);
     }
 }
 
@@ -804,10 +804,10 @@ fn structurally_singular_jacobian_names_the_coordinate() {
     q[2] += 0.1; // not at the solution, so Newton has to factor D
     check(solver.solve_position(&m, &mut ws(), &mut q, t).unwrap_err());
     check(solver.analyze(&m, &mut ws(), &exact_q(t), t).unwrap_err());
-    let mut qd = [0.0; NQ];
-    check(solver.solve_velocity(&m, &mut ws(), &exact_q(t), t, &mut qd).unwrap_err());
-    let mut qdd = [0.0; NQ];
-    check(solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &qd, t, &mut qdd).unwrap_err());
+    let mut v = [0.0; NQ];
+    check(solver.solve_velocity(&m, &mut ws(), &exact_q(t), t, &mut v).unwrap_err());
+    let mut vd = [0.0; NQ];
+    check(solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &v, t, &mut vd).unwrap_err());
 }
 
 /// NaN or infinity in the time, the coordinates, the velocities or a parameter (hence in Φ)
@@ -833,11 +833,11 @@ fn non_finite_values_are_reported() {
         solver.solve_position(&broken, &mut ws(), &mut q, t),
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Constraint, row: "revolute crank~rod: x" })
     );
-    let mut qd = [0.0; NQ];
-    qd[8] = f64::INFINITY;
-    let mut qdd = [0.0; NQ];
+    let mut v = [0.0; NQ];
+    v[8] = f64::INFINITY;
+    let mut vd = [0.0; NQ];
     assert_eq!(
-        solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &qd, t, &mut qdd),
+        solver.solve_acceleration(&m, &mut ws(), &exact_q(t), &v, t, &mut vd),
         Err(KinematicError::NonFinite { t, quantity: NonFiniteQuantity::Velocity, row: "slider.phi" })
     );
     // An infinite crank speed: Φ is finite at t = 0 only if ω·0 is, and ∞·0 is NaN.
@@ -868,10 +868,10 @@ fn undriven_mechanism_assembles_but_is_not_driven() {
 
     let not_driven = KinematicError::NotDriven { dof: 1 };
     assert_eq!(solver.solve_position(&m, &mut ws(), &mut q, t), Err(not_driven));
-    let mut qd = [0.0; NQ];
-    assert_eq!(solver.solve_velocity(&m, &mut ws(), &q, t, &mut qd), Err(not_driven));
-    let mut qdd = [0.0; NQ];
-    assert_eq!(solver.solve_acceleration(&m, &mut ws(), &q, &qd, t, &mut qdd), Err(not_driven));
+    let mut v = [0.0; NQ];
+    assert_eq!(solver.solve_velocity(&m, &mut ws(), &q, t, &mut v), Err(not_driven));
+    let mut vd = [0.0; NQ];
+    assert_eq!(solver.solve_acceleration(&m, &mut ws(), &q, &v, t, &mut vd), Err(not_driven));
     assert_eq!(solver.analyze(&m, &mut ws(), &q, t).map(|s| s.convergence), Err(not_driven));
     assert_eq!(solver.sweep(&m, &mut ws(), &mut q, [0.0], |_, _, _, _| {}), Err(not_driven));
 }
@@ -918,10 +918,10 @@ fn predictor_failure_is_retried_from_the_previous_solution() {
     assert_eq!(q, m.initial_positions());
     // The prediction alone fails: check by predicting by hand.
     let mut predicted = q;
-    let mut qd = [0.0; 3];
-    solver.solve_velocity(&m, &mut ws(), &q, 0.0, &mut qd).expect("velocity");
-    for (x, v) in predicted.iter_mut().zip(qd.iter()) {
-        *x += v * 0.5;
+    let mut v = [0.0; 3];
+    solver.solve_velocity(&m, &mut ws(), &q, 0.0, &mut v).expect("velocity");
+    for (x, rate) in predicted.iter_mut().zip(v.iter()) {
+        *x += rate * 0.5;
     }
     assert!(matches!(solver.solve_position(&m, &mut ws(), &mut predicted, 0.5), Err(KinematicError::NotConverged { iterations: 0, .. })));
 }
@@ -938,16 +938,16 @@ fn single_crank_in_f32() {
     let times = (0..=20u8).map(|k| f32::from(k) / 20.0);
     let mut visited = 0;
     solver
-        .sweep(&m, &mut ws(), &mut q, times, |t, q, qd, qdd| {
+        .sweep(&m, &mut ws(), &mut q, times, |t, q, v, vd| {
             visited += 1;
             let theta = omega * f64::from(t);
             let (s, c) = theta.sin_cos();
             let exact_q = [half * c, half * s, theta];
-            let exact_qd = [-half * omega * s, half * omega * c, omega];
-            let exact_qdd = [-half * omega * omega * c, -half * omega * omega * s, 0.0];
+            let exact_v = [-half * omega * s, half * omega * c, omega];
+            let exact_vd = [-half * omega * omega * c, -half * omega * omega * s, 0.0];
             assert!(max_abs_difference(q, &exact_q) < 2e-6, "t = {t}: {q:?}");
-            assert!(max_abs_difference(qd, &exact_qd) < 1e-5, "t = {t}: {qd:?}");
-            assert!(max_abs_difference(qdd, &exact_qdd) < 1e-4, "t = {t}: {qdd:?}");
+            assert!(max_abs_difference(v, &exact_v) < 1e-5, "t = {t}: {v:?}");
+            assert!(max_abs_difference(vd, &exact_vd) < 1e-4, "t = {t}: {vd:?}");
         })
         .expect("f32 sweep");
     assert_eq!(visited, 21);
@@ -963,11 +963,11 @@ fn slider_crank_in_f32() {
     let mut q = m.initial_positions();
     let times = (0..=40u8).map(|k| f32::from(k) / 40.0);
     solver
-        .sweep(&m, &mut ws(), &mut q, times, |t, q, qd, qdd| {
+        .sweep(&m, &mut ws(), &mut q, times, |t, q, v, vd| {
             let t = f64::from(t);
             assert!(max_abs_difference(q, &exact_q(t)) < 1e-5, "t = {t}: {q:?}");
-            assert!(max_abs_difference(qd, &exact_qd(t)) < 1e-4, "t = {t}: {qd:?}");
-            assert!(max_abs_difference(qdd, &exact_qdd(t)) < 1e-3, "t = {t}: {qdd:?}");
+            assert!(max_abs_difference(v, &exact_v(t)) < 1e-4, "t = {t}: {v:?}");
+            assert!(max_abs_difference(vd, &exact_vd(t)) < 1e-3, "t = {t}: {vd:?}");
         })
         .expect("f32 sweep");
 

@@ -173,7 +173,7 @@ crate::options::options! {
         /// Trial steps (accepted and rejected) before giving up. Default
         /// [`DEFAULT_STATIC_MAX_ITERATIONS`].
         max_iterations: u32 = DEFAULT_STATIC_MAX_ITERATIONS => with_max_iterations,
-        /// Relative pivot tolerance of the planned factorization (see [`crate::linalg::sparse::factor`]):
+        /// Relative pivot tolerance of the planned factorization (see [`crate::sparse::factor`]):
         /// a velocity pivot at most this times its row's largest entry has no pivot, and a
         /// multiplier whose pivot ratio is at most this is dependent. Default
         /// [`DEFAULT_STATIC_PIVOT_TOLERANCE`].
