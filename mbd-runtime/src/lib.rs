@@ -67,8 +67,10 @@ pub use linalg::LinalgError;
 /// constraint), and the row is dropped (Δλ_r = 0) or reported — what partial pivoting found
 /// before, without moving rows.
 ///
-/// [`factor`] and [`solve`] are real; [`factor_complex`] and [`solve_complex`] factor Radau5's
-/// complex block on the same pattern (`Name::NEWTON_PATTERN`).
+/// [`factor`](crate::sparse::factor) and [`solve`](crate::sparse::solve) are real;
+/// [`factor_complex`](crate::sparse::factor_complex) and
+/// [`solve_complex`](crate::sparse::solve_complex) factor Radau5's complex block on the same
+/// pattern (`Name::NEWTON_PATTERN`).
 pub mod sparse {
     pub use crate::linalg::sparse::{factor, factor_complex, solve, solve_complex, SparsePattern};
 }
