@@ -322,9 +322,9 @@ fn generated_joint_coordinate_code_matches_casadi() {
         include!("../mbd-bench/mechanisms/spatial_chain16_joint.rs");
     }
     // The 16-link chain is most of the work — its rebuild differentiates poses through sixteen
-    // quaternion products, and evaluating its ∂h/∂q and the floors' magnitudes takes about 90 s
-    // of one core (2026-12-06, Intel Xeon), against about 10 s for the other eight together —
-    // so it is compared in a process of its own, beside the rest.
+    // quaternion products, and building and evaluating its ∂h/∂q and the floors' magnitudes takes
+    // about 35 s of one core (2026-12-06, Intel Xeon), against about 5 s for the other eight
+    // together — so it is compared in a process of its own, beside the rest.
     let chain = samples!(chain16::SpatialChain16Joint, 46).display().to_string();
     let chain = std::thread::spawn(move || oracle(&["mbd_oracle.compare", &chain]));
     let files = [

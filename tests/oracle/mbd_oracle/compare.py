@@ -168,13 +168,11 @@ class SpatialLayout:
         return {"h_q": self.model.h_q, "h_v": self.model.h_v}
 
     def dynamics_at(self, args):
-        m, n = self.model, self.model.nv
-        mags = m.f_magnitudes(*args)
-        want = {"mass": np.array(m.f_mass(*args)).reshape(n, n), "h": np.array(m.f_h(*args)).reshape(-1),
-                "h_q": np.array(m.f_h_q(*args)).reshape(n, n), "h_v": np.array(m.f_h_v(*args)).reshape(n, n),
-                "potential": np.array(m.f_potential(*args)).reshape(-1)}
-        magnitude = {"mass": want["mass"], "h": np.array(mags[0]), "h_q": np.array(mags[1]), "h_v": np.array(mags[2]),
-                     "potential": np.array(mags[3]).reshape(-1)}
+        n = self.model.nv
+        mass, h, h_q, h_v, potential, *mags = (np.array(x) for x in self.model.f_dynamics(*args))
+        want = {"mass": mass.reshape(n, n), "h": h.reshape(-1), "h_q": h_q.reshape(n, n), "h_v": h_v.reshape(n, n),
+                "potential": potential.reshape(-1)}
+        magnitude = {"mass": want["mass"], "h": mags[0], "h_q": mags[1], "h_v": mags[2], "potential": mags[3].reshape(-1)}
         return want, magnitude
 
     def names_failures(self, data):

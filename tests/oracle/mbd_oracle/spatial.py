@@ -91,7 +91,10 @@ def define_functions(m, mags, fmags):
     m.f_h_q = F("h_q", [m.h_q], ["h_q"])
     m.f_h_v = F("h_v", [m.h_v], ["h_v"])
     m.f_potential = F("potential", [m.potential], ["potential"])
-    m.f_magnitudes = F("magnitudes", mags, ["h", "h_q", "h_v", "potential"])
+    # What compare.py reads at each sample, in one Function so that the values and the floors'
+    # magnitudes share their subexpressions (evaluated once, not once per Function).
+    m.f_dynamics = F("dynamics", [m.mass, m.h, m.h_q, m.h_v, m.potential] + mags,
+                     ["mass", "h", "h_q", "h_v", "potential", "h_mag", "h_q_mag", "h_v_mag", "potential_mag"])
     contributions = m.contributions
     m.f_contributions = F("contributions", [c[1] for c in contributions] + [c[2] for c in contributions],
                           [f"Q{k}" for k in range(len(contributions))] + [f"V{k}" for k in range(len(contributions))])
@@ -112,8 +115,8 @@ class Spatial:
     row_names, coordinate_names, velocity_names; contributions: (name, Q, V, conservative) of
     gravity on each body, each force element and each body's gyroscopic term.
     Functions of (q, v, t, p): f_phi, f_jac (D), f_nu, f_gamma, f_kinematics, f_mass, f_h,
-    f_h_q, f_h_v, f_potential, f_magnitudes, f_B, f_contributions; of (q, v, t, p, lam):
-    f_friction, f_friction_lambda, f_friction_magnitudes.
+    f_h_q, f_h_v, f_potential, f_dynamics (these five and the floors' magnitudes), f_B,
+    f_contributions; of (q, v, t, p, lam): f_friction, f_friction_lambda, f_friction_magnitudes.
     """
 
     def __init__(self, model):
