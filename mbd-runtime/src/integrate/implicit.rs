@@ -435,10 +435,19 @@ where
     } else {
         [T::ZERO; 2]
     };
-    // Trapezoidal rule for the work: second order (generalized-α's order; BDF's work is
-    // second order where its motion is of higher order).
+    accumulate_work(from, to, h);
+    Ok(())
+}
+
+/// The work integrals of a step of h from the powers at its ends.
+pub(super) fn accumulate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
+    from: &Point<T, NQ, NV, NC>,
+    to: &mut Point<T, NQ, NV, NC>,
+    h: T,
+) {
+    // Trapezoidal rule for the work: second order (generalized-α's order; BDF's and Radau
+    // IIA's work is second order where their motion is of higher order).
     for k in 0..2 {
         to.work[k] = from.work[k] + T::from_f64(0.5) * h * (from.power[k] + to.power[k]);
     }
-    Ok(())
 }

@@ -54,6 +54,29 @@
 //! (issue 39's case A) needs 2 506 steps at rtol 1e-6 with the velocities in full, 736 with
 //! them scaled, for errors of 1e-8 and 1e-6.
 //!
+//! # The step's end
+//!
+//! The step ends at Q₃ projected onto Φ = 0 (to what the scalar resolves: at most three
+//! mass-weighted steps, quadratic from what Newton's stopping tolerance left) and V₃ onto
+//! D v = ν; v̇ and λ there are forward dynamics' at that point, not the last stage's A₃ and Λ₃.
+//! The stage equations are of index 3: a step that starts off Φ = 0 by δ removes δ within
+//! itself, by stage accelerations of order δ/h². When such a step is rejected and retried
+//! shorter, they grow, the error estimate with them, and the step shrinks on down to
+//! `min_step` — the stiff flywheel at rtol 1e-3 failed so at 0.6 s, its estimate rising from 5
+//! to 1 300 as h fell from 1e-3 to 5e-12 s. A₃ is the stage value these equations resolve
+//! worst (Q₃ does not depend on it, (a²)₃₃ = 0), and the next step's estimate reads v̇₀.
+//!
+//! # Rounding
+//!
+//! The stages resolve the velocities only to the rounding of the positions over h, amplified: a
+//! residual δ of Φ at a stage moves the stage accelerations by about δ/(|a²| h²) — a²'s
+//! smallest entries are 0.007 — and the estimate's velocities by about 10 δ/h. Newton's norm and
+//! the error test add [`VELOCITY_ROUNDING_ULPS`] ulps of the positions over h to each
+//! velocity's weight (5.7e-11 m/s at 1 ms for coordinates of order 1), and constraint residuals
+//! within [`RESIDUAL_ULPS`] are taken as zero. Without the allowance, a step whose estimate
+//! sits at this floor is accepted at an error of about 0.7 that does not fall with h, and
+//! Gustafsson's controller, which expects it to fall as h⁴, shortens every step after it.
+//!
 //! Not yet: reuse of the factors across steps of equal size (RADAU5 keeps them while the
 //! iteration converges fast). Tried with a rate limit of 0.1 it took more steps on the stiff
 //! flywheel and on the heavy top ended 1e-2 off at rtol 1e-4 (the error estimate's filter then
@@ -320,17 +343,29 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
     }
 }
 
-/// Φ's rounding: a few ulps of the largest coordinate (m, rad; 1 for Euler parameters). The
-/// index-3 stages resolve velocities only to about it over h (a position, rounded, differenced
-/// over the step): the error test and Newton's norm add that to each velocity's weight, which
-/// changes nothing at ordinary steps (3.5e-12 m/s at 1 ms for coordinates of order 1) and keeps
-/// rounding from rejecting ever smaller steps at a tight atol (the 4-link chain at rtol 1e-9,
-/// atol 1e-11 was held near 1e-9 s from t = 0.82 s, its estimate 15 at 2.4e-9 s). That run still
-/// ends, at 0.27 s, with `StepSizeTooSmall`: below an atol of about 1e-10 the index-3 stages
-/// are not yet reliable (the guide says so).
-fn phi_rounding<T: Real, const NQ: usize>(q: &[T; NQ]) -> T {
-    T::from_f64(16.0) * T::EPSILON * q.iter().fold(T::ONE, |m, x| m.max(x.abs()))
+/// `ulps` units in the last place of the largest coordinate (m, rad; 1 for Euler parameters).
+fn position_ulps<T: Real, const NQ: usize>(q: &[T; NQ], ulps: f64) -> T {
+    T::from_f64(ulps) * T::EPSILON * q.iter().fold(T::ONE, |m, x| m.max(x.abs()))
 }
+
+// The two rounding constants were chosen on a probe of the study's ten mechanisms at rtol 1e-3
+// to 1e-10 (atol rtol/100, no correction: 80 runs, 2026-12-06). With (2, 256) two runs fail,
+// both on the change-point four-bar at its flat position.
+
+/// Constraint residuals at or below this many ulps of the positions are taken as zero (module
+/// docs, "Rounding"). With none (0), 20 runs of the probe failed, 13 of them at t = 0 (the
+/// chains, the suspension, the spatial slider-crank at rtol ≤ 1e-6: the correction of a
+/// residual at rounding, divided by h², stalled Newton at every step size); with 16, seven (a
+/// residual left that large is itself a perturbation the stages amplify as 1/h²).
+const RESIDUAL_ULPS: f64 = 2.0;
+
+/// The velocities' allowance for rounding, in ulps of the positions over h (module docs,
+/// "Rounding"). With 16, six runs of the probe failed (the chains and the stiff flywheel at
+/// rtol 1e-10, the heavy top at 1e-8 to 1e-10); with 64, five.
+const VELOCITY_ROUNDING_ULPS: f64 = 256.0;
+
+/// Position projection steps at most at each step's end (module docs, "The step's end").
+const END_PROJECTION_STEPS: usize = 3;
 
 /// The tolerances RADAU5 works to (its transformation: the embedded estimate is of order 3, so
 /// a local tolerance of 0.1 rtol^(2/3) gives a global error near rtol), floored at rounding.
@@ -584,8 +619,9 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         // largest.
         let q_scale = from.q.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let weight_q = |k: usize| atol + rtol * if NQ == NV { from.q[k].abs() } else { q_scale };
-        let phi_rounding = phi_rounding(&from.q);
-        let weight_v = |k: usize| atol + rtol * from.v[k].abs() + phi_rounding / h;
+        let zero_residual = position_ulps(&from.q, RESIDUAL_ULPS);
+        let rounding = position_ulps(&from.q, VELOCITY_ROUNDING_ULPS) / h;
+        let weight_v = |k: usize| atol + rtol * from.v[k].abs() + rounding;
         let c = h / f::<T>(GAMMA);
         let modulus = f::<T>(ALPHA * ALPHA + BETA * BETA);
         let (cr, ci) = (h * f::<T>(ALPHA) / modulus, -h * f::<T>(BETA) / modulus);
@@ -611,10 +647,9 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 }
                 // A constraint residual at the rounding of Φ is zero: its correction, divided
                 // by c_q ~ h², would move the stage velocities by rounding / h and, at a tight
-                // atol, stall the iteration at every step size (a 4-link chain from rest at
-                // rtol 1e-8, atol 1e-10 failed at t = 0, the step halved down to 7e-13 s).
+                // atol, stall the iteration at every step size ([`RESIDUAL_ULPS`]).
                 for x in &mut r[i][NV..] {
-                    if x.abs() <= phi_rounding {
+                    if x.abs() <= zero_residual {
                         *x = T::ZERO;
                     }
                 }
@@ -748,7 +783,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             let scale = atol + rtol * from.q[k].abs().max(stages.q[2][k].abs());
             sum += (e_q[k] / scale).powi(2);
         }
-        let rounding = phi_rounding(&from.q) / h;
+        let rounding = position_ulps(&from.q, VELOCITY_ROUNDING_ULPS) / h;
         for k in 0..NV {
             let scale = atol + rtol * from.v[k].abs().max(stages.v[2][k].abs()) + rounding;
             sum += ((f::<T>(GAMMA) * a[k] / h - r_q[k]) / scale).powi(2);
@@ -770,12 +805,24 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         let mech = system.mechanism;
         let (mut q, mut v) = (stages.q[2], stages.v[2]);
         mech.normalize_positions(&mut q);
+        // Onto Φ = 0 to what the scalar resolves (module docs, "The step's end"): Newton left Φ
+        // within its stopping tolerance, a few mass-weighted steps (quadratic) take it to rounding.
+        let resolution = crate::solvers::kinematics::resolution(&q);
+        for _ in 0..END_PROJECTION_STEPS {
+            if mech.project_positions_step_in(scratch.reborrow(), &mut q, t1, &system.dynamics)? <= resolution {
+                break;
+            }
+        }
         if self.options.project_velocities {
             mech.project_velocities_in(scratch.reborrow(), &q, &mut v, t1, &system.dynamics)?;
         }
-        (to.t, to.q, to.v, to.vd, to.lambda) = (t1, q, v, stages.acc[2], stages.lam[2]);
+        // v̇ and λ of the end point by forward dynamics there, not the last stage's A₃ and Λ₃
+        // (module docs).
+        let (mut vd, mut lambda) = ([T::ZERO; NV], [T::ZERO; NC]);
+        let power = system.derivatives_in(scratch, t1, &q, &v, &mut vd, &mut lambda)?;
+        (to.t, to.q, to.v, to.vd, to.lambda, to.power) = (t1, q, v, vd, lambda, power);
         check_step::<T, M, NQ, NV, NC>(from, to)?;
-        super::implicit::finish(system, scratch, from, to, h)?;
+        super::implicit::accumulate_work(from, to, h);
         self.last = Some((from.t, h));
         self.accelerations = stages.acc;
         self.multipliers = stages.lam;
