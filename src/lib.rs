@@ -10,8 +10,8 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 
 /// The user's guide (`guide/*.md` of the repository), one module per chapter, for `cargo doc`
-/// and docs.rs. Documentation only: its programs are compiled and run as the doctests of the
-/// repository's `mbd-guide` crate, not here (so they are not built twice). Links between
+/// and docs.rs. Documentation only: its programs are compiled and run as the `snippets` test
+/// of the repository's `mbd-guide` crate, not here (so they are not built twice). Links between
 /// chapters point to the Markdown files, as on the repository's pages.
 #[cfg(all(doc, not(doctest)))]
 pub mod guide {

@@ -1,7 +1,7 @@
-//! The user's guide of mbd (`guide/*.md`) and its README, as this crate's documentation: every
-//! Rust snippet in them is a doctest, compiled against the built crates and run by
-//! `cargo test -p mbd-guide` (edition 2024: the snippets are merged into one test binary).
-//! The same chapters are `mbd::guide` in mbd's own documentation, not compiled there.
+//! The user's guide of mbd (`guide/*.md`) and its README, as this crate's documentation. Every
+//! Rust snippet in them is a module of the `snippets` test (written by `build.rs`), compiled
+//! against the built crates and run by `cargo test -p mbd-guide`. The same chapters are
+//! `mbd::guide` in mbd's own documentation, not compiled there.
 #![doc = include_str!("../../README.md")]
 
 macro_rules! chapters {

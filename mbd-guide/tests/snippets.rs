@@ -1,0 +1,6 @@
+//! Every Rust snippet of the README and the user's guide, each a whole program: written by
+//! `build.rs` as a module of this test, compiled against the built crates and its `fn main`
+//! run by a test named after its page and line (`guide_dsl_md_102::runs`). A snippet that no
+//! longer compiles fails the build; one that panics or returns an error fails its test.
+
+include!(concat!(env!("OUT_DIR"), "/snippets/mod.rs"));
