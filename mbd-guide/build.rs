@@ -1,8 +1,9 @@
 //! Writes every Rust snippet of the README and the user's guide (`guide/*.md`) as a module of the
 //! `snippets` test (`tests/snippets.rs`): each snippet is a whole program, its `fn main` run by a
-//! `#[test]` named after the page and line. The snippets are compiled with the other tests —
-//! in the build, beside the other crates, and once until a page changes — where rustdoc
-//! compiled them anew, alone, on every run of the tests (about 70 s of one core, 2026-12-06).
+//! `#[test]` named after the page and the snippet's place on it. The snippets are compiled with
+//! the other tests — in the build, beside the other crates, and once until a page changes — where
+//! rustdoc compiled them anew, alone, on every run of the tests (about 70 s of one core,
+//! 2026-12-06).
 //!
 //! A code block is Rust when it is tagged ```` ```rust ````; a block tagged otherwise (```` ```toml ````,
 //! ```` ```text ````, …) is left alone, and an untagged block, a Rust block with rustdoc's
@@ -32,9 +33,11 @@ fn main() {
         let path = root.join(page);
         println!("cargo:rerun-if-changed={}", path.display());
         let text = fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        for (line, code) in snippets(page, &text) {
+        for (ordinal, (line, code)) in snippets(page, &text).into_iter().enumerate() {
             let at = format!("{}:{line}", page.display());
-            let name: String = format!("{}_{line}", page.display())
+            // Named by the page and the snippet's place on it (1, 2, …), not its line, so that an
+            // edit above a snippet leaves its test's name as it was.
+            let name: String = format!("{}_{}", page.display(), ordinal + 1)
                 .chars()
                 .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
                 .collect();

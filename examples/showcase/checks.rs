@@ -62,6 +62,35 @@ fn quotes(example: &str, text: &str, value: f64) {
     );
 }
 
+/// The guide's other chapters that quote an example's figure, each held here like the table's.
+const PAGES: [(&str, &str); 3] = [
+    ("guide/linearization.md", include_str!("../../guide/linearization.md")),
+    ("guide/dsl.md", include_str!("../../guide/dsl.md")),
+    ("guide/performance.md", include_str!("../../guide/performance.md")),
+];
+
+/// The text of `page`, one of [`PAGES`].
+fn page(page: &str) -> &'static str {
+    PAGES.iter().find(|(name, _)| *name == page).unwrap_or_else(|| panic!("{page} is not in PAGES")).1
+}
+
+/// The first number in `text` is `value` rounded to the digits it is written with.
+fn written_as(text: &str, value: f64) -> bool {
+    let (written, place) = number(text);
+    (value - written).abs() <= 0.5 * place * (1.0 + 1e-9)
+}
+
+/// `name` (one of [`PAGES`]) quotes `text`, and the first number in it is `value` rounded to the
+/// digits it is written with; or, with `bound`, the first number bounds `value`.
+fn page_quotes(name: &str, text: &str, value: f64, bound: bool) {
+    assert!(page(name).contains(text), "{name} should quote {text:?}");
+    if bound {
+        assert!(value <= number(text).0, "{name} bounds by {text:?} a figure that is {value:e}");
+    } else {
+        assert!(written_as(text, value), "{name} quotes {text:?} for {value}");
+    }
+}
+
 /// The table bounds an error of `example` by `≤ bound` (its text), and the error is within it.
 fn bounds(example: &str, text: &str, error: f64) {
     assert!(row(example).contains(text) && text.contains('≤'), "guide/examples.md's row for `{example}` should bound the error: {text:?}");
@@ -251,6 +280,27 @@ fn free_four_bar_errors_fall_at_each_method_s_order() {
         assert!(pair[1].error < pair[0].error && pair[1].energy_drift < pair[0].energy_drift, "{pair:?}");
     }
     assert!(of("DOPRI5 (rtol)").last().unwrap().error < 1e-9);
+    // The work-precision table of guide/performance.md: each row's steps, error and energy drift
+    // (its times are the release build's, measured, not asserted).
+    let rows = [
+        ("| RK4 | h = 4 ms |", "RK4 (h)", 4e-3),
+        ("| RK4 | h = 1 ms |", "RK4 (h)", 1e-3),
+        ("| RK4 | h = 0.5 ms |", "RK4 (h)", 5e-4),
+        ("| DOPRI5 | rtol 1e-6 |", "DOPRI5 (rtol)", 1e-6),
+        ("| DOPRI5 | rtol 1e-8 |", "DOPRI5 (rtol)", 1e-8),
+        ("| DOPRI5 | rtol 1e-10 |", "DOPRI5 (rtol)", 1e-10),
+        ("| generalized-α (ρ∞ = 0.9) | h = 1 ms |", "generalized-α (h)", 1e-3),
+    ];
+    for (start, method, setting) in rows {
+        let line = page("guide/performance.md").lines().find(|l| l.starts_with(start)).unwrap_or_else(|| panic!("no row {start}"));
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let run = runs.iter().find(|r| r.method == method && r.setting == setting).unwrap_or_else(|| panic!("no run {method} {setting}"));
+        let (steps, error, drift) = (cells[3], cells[5], cells[6]);
+        assert!(
+            steps == run.steps.to_string() && written_as(error, run.error) && written_as(drift, run.energy_drift),
+            "guide/performance.md's row {line} quotes, for {run:?}, steps {steps}, error {error} and drift {drift}"
+        );
+    }
 }
 
 /// The heavy top against the Lagrange top's closed forms. Steady precession: DOPRI5 at rtol
@@ -419,6 +469,7 @@ fn excavator_scenes_agree_on_the_cylinder_forces() {
     quotes("excavator", "7 155 N", r.held_tensions[2].abs());
     bounds("excavator", "≤ 1e-10 apart", r.disagreement);
     bounds("excavator", "(≤ 1e-10 relative)", r.free_mismatch);
+    page_quotes("guide/dsl.md", "the driven arm to within 1e-10 relative", r.free_mismatch, true);
 }
 
 /// The quarter car sits on the road with the tyre compressed by (m + M) g / k (statics to its
@@ -469,6 +520,13 @@ fn linear_models_match_their_closed_forms() {
     quotes("linear_models", "wheel hop 12.4019 Hz", r.wheel_hop.0);
     quotes("linear_models", "ζ 0.3174", r.wheel_hop_damping.0);
     bounds("linear_models", "finite differences to ≤ 1e-10", r.exact_vs_differences);
+    let relative = |(a, b): (f64, f64)| (a - b).abs() / b.abs();
+    let cart_pole = (0..2).map(|k| relative((r.cart_pole_input.0[k], r.cart_pole_input.1[k]))).fold(relative(r.cart_pole_growth), f64::max);
+    page_quotes("guide/linearization.md", "unstable pole and input column (1e-12)", cart_pole, true);
+    let quarter_car = [r.ride, r.wheel_hop, r.ride_damping, r.wheel_hop_damping].map(relative).into_iter().fold(0.0, f64::max);
+    page_quotes("guide/linearization.md", "hand-written 2-DOF model (1e-9)", quarter_car, true);
+    page_quotes("guide/linearization.md", "ride mode at 1.381 Hz", r.ride.0, false);
+    page_quotes("guide/linearization.md", "wheel hop at 12.40 Hz", r.wheel_hop.0, false);
 }
 
 /// Every example's animation (what the showcase writes to `target/showcase/`) holds a motion and
