@@ -55,11 +55,7 @@ fn number(text: &str) -> (f64, f64) {
 /// digits it is written with.
 fn quotes(example: &str, text: &str, value: f64) {
     assert!(row(example).contains(text), "guide/examples.md's row for `{example}` should quote {text:?}");
-    let (written, place) = number(text);
-    assert!(
-        (value - written).abs() <= 0.5 * place * (1.0 + 1e-9),
-        "`{example}` computes {value}, which guide/examples.md quotes as {text:?}"
-    );
+    assert!(written_as(text, value), "`{example}` computes {value}, which guide/examples.md quotes as {text:?}");
 }
 
 /// The guide's other chapters that quote an example's figure, each held here like the table's.
