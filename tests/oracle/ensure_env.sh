@@ -15,7 +15,9 @@ if [ ! -x "$venv/bin/python" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; 
     echo "ensure_env.sh: creating the oracle's Python environment in $venv" >&2
     rm -rf "$venv"
     python3 -m venv "$venv" >&2 || { echo "ensure_env.sh: python3 -m venv failed (install python3-venv)" >&2; exit 1; }
-    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$requirements" >&2 \
+    # --no-compile: pip would byte-compile every module of both packages; Python compiles the
+    # ones the oracle imports on first import instead (14.4 s → 10.9 s here, 2026-12-06).
+    "$venv/bin/python" -m pip install --quiet --no-compile --disable-pip-version-check -r "$requirements" >&2 \
         || { echo "ensure_env.sh: pip install -r $requirements failed" >&2; exit 1; }
     echo "$want" > "$stamp"
 fi
