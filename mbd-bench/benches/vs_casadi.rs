@@ -70,6 +70,15 @@ macro_rules! compare {
         g.bench_function("Φ, Φ_q, γ: mbd fused", |b| {
             b.iter(|| m.full_eval_values(black_box(&q), black_box(&qd), black_box(t), &mut phi, &mut values, &mut nu, &mut gamma))
         });
+        // The fused call's parts, one after another: what fusing saves or costs (issue 41).
+        g.bench_function("Φ, Φ_q, ν, γ: mbd four calls", |b| {
+            b.iter(|| {
+                m.constraints(black_box(&q), black_box(t), &mut phi);
+                m.jacobian_values(black_box(&q), black_box(t), &mut values);
+                m.velocity_rhs(black_box(&q), black_box(t), &mut nu);
+                m.gamma(black_box(&q), black_box(&qd), black_box(t), &mut gamma);
+            })
+        });
         g.bench_function("Φ, Φ_q, γ: CasADi three calls", |b| {
             b.iter(|| {
                 cphi.call(&[black_box(&q), &[black_box(t)], &params], &mut phi);
@@ -227,6 +236,15 @@ macro_rules! compare_spatial {
         g.bench_function("γ CasADi", |b| b.iter(|| cgamma.call(&[black_box(&q), black_box(&v), &[black_box(t)], &params], &mut gamma)));
         g.bench_function("Φ, D, γ: mbd fused", |b| {
             b.iter(|| m.full_eval_values(black_box(&q), black_box(&v), black_box(t), &mut phi, &mut values, &mut nu, &mut gamma))
+        });
+        // The fused call's parts, one after another: what fusing saves or costs (issue 41).
+        g.bench_function("Φ, D, ν, γ: mbd four calls", |b| {
+            b.iter(|| {
+                m.constraints(black_box(&q), black_box(t), &mut phi);
+                m.jacobian_values(black_box(&q), black_box(t), &mut values);
+                m.velocity_rhs(black_box(&q), black_box(t), &mut nu);
+                m.gamma(black_box(&q), black_box(&v), black_box(t), &mut gamma);
+            })
         });
         g.bench_function("Φ, D, γ: CasADi three calls", |b| {
             b.iter(|| {
