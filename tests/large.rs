@@ -168,7 +168,7 @@ fn accelerations_emitted_in_parts_satisfy_the_equations_of_motion() {
         // Generalized-α's matrix, in parts too: its Φ and D equal the functions emitted whole.
         let mut s = Chain120::newton_storage();
         let mut phi = [0.0; 240];
-        m.newton_matrix(&q, &v, &[0.0; 360], 0.0, &lambda, 0.0, 1e-6, &mut phi, &mut s, ws.dense());
+        m.newton_matrix(&q, &v, &[0.0; 360], 0.0, &lambda, None, 0.0, 1e-6, &mut phi, &mut s, ws.dense());
         let mut whole = [0.0; 240];
         m.constraints(&q, 0.0, &mut whole);
         assert_eq!(phi, whole);

@@ -2277,6 +2277,7 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         vd: &[f64; 9],
         t: f64,
         lambda: &[f64; 9],
+        displacement: ::core::option::Option<&[f64; 9]>,
         c_v: f64,
         c_q: f64,
         phi: &mut [f64; 9],

@@ -302,9 +302,63 @@ pub struct NewtonCode {
 /// by name and length.
 type Terms = (BTreeMap<(usize, usize), Vec<(bool, TokenStream)>>, Vec<(syn::Ident, usize)>);
 
+/// The code that multiplies the derivatives by the positions by the tangent operator T(Δ) of
+/// each body's rotation (`displacement`'s three rotational entries): `tangents` = the operators
+/// (`None` without a displacement), then, each where given one, the stiffness's rows before A's
+/// slots are summed (its slots hold it alone then) and D's rows in [[·], [D, 0]] after they are
+/// copied there — each (row, first rotational velocity) of `stiffness` and `jacobian`, all
+/// three columns planned. Nothing in the plane.
+fn tangent_code(
+    rotations: &[usize],
+    stiffness: &BTreeSet<(usize, usize)>,
+    jacobian: &BTreeSet<(usize, usize)>,
+    at: &dyn Fn(usize, usize) -> Literal,
+    nv: usize,
+) -> (TokenStream, TokenStream, TokenStream) {
+    if rotations.is_empty() {
+        return (quote!(), quote!(), quote!());
+    }
+    let operators = rotations.iter().map(|&first| {
+        let (a, b, c) = (usize_lit(first), usize_lit(first + 1), usize_lit(first + 2));
+        quote!(::mbd::__private::tangent_operator([delta[#a], delta[#b], delta[#c]]))
+    });
+    let tangents = quote!(let tangents = displacement.map(|delta| [#(#operators),*]););
+    // x ← x T on the row's three slots (row u of the matrix, body `first`).
+    let turn = |u: usize, first: usize| {
+        let body = usize_lit(rotations.iter().position(|&r| r == first).expect("a planned rotation"));
+        let slots: Vec<Literal> = (first..first + 3).map(|c| at(u, c)).collect();
+        let [s0, s1, s2] = [&slots[0], &slots[1], &slots[2]];
+        let columns = (0..3).map(|j| {
+            let (j, slot) = (usize_lit(j), &slots[j]);
+            quote!(s[#slot] = x0 * t[0][#j] + x1 * t[1][#j] + x2 * t[2][#j];)
+        });
+        quote! {{
+            let t = &tangents[#body];
+            let (x0, x1, x2) = (s[#s0], s[#s1], s[#s2]);
+            #(#columns)*
+        }}
+    };
+    let guarded = |rows: Vec<TokenStream>| {
+        if rows.is_empty() {
+            quote!()
+        } else {
+            quote!(if let ::core::option::Option::Some(tangents) = &tangents { #(#rows)* })
+        }
+    };
+    let turn_stiffness = guarded(stiffness.iter().map(|&(r, first)| turn(r, first)).collect());
+    let turn_jacobian = guarded(jacobian.iter().map(|&(r, first)| turn(nv + r, first)).collect());
+    (tangents, turn_stiffness, turn_jacobian)
+}
+
 /// The outputs of A's terms, pushed after Φ and D's: the masses and the damping into small
-/// locals, the stiffness straight into its slot of `s` (`at`).
-fn a_terms(f: &Formulation, at: &dyn Fn(usize, usize) -> Literal, outputs: &mut Vec<Output>) -> Terms {
+/// locals, the stiffness straight into its slot of `s` (`at`). `stiffness`: the slots of c_q's
+/// terms — the stiffness's entries and those the tangent operator fills beside them.
+fn a_terms(
+    f: &Formulation,
+    stiffness: &BTreeSet<(usize, usize)>,
+    at: &dyn Fn(usize, usize) -> Literal,
+    outputs: &mut Vec<Output>,
+) -> Terms {
     let nv = f.nv;
     let mut terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>> = BTreeMap::new();
     let mut locals: Vec<(syn::Ident, usize)> = Vec::new();
@@ -338,6 +392,9 @@ fn a_terms(f: &Formulation, at: &dyn Fn(usize, usize) -> Literal, outputs: &mut 
     for &(r, c, node) in &f.stiffness {
         let slot = at(r, c);
         outputs.push(Output { target: quote!(s[#slot]), node });
+    }
+    for &(r, c) in stiffness {
+        let slot = at(r, c);
         terms.entry((r, c)).or_default().push((true, quote!(c_q * s[#slot])));
     }
     (terms, locals)
@@ -348,11 +405,11 @@ fn a_terms(f: &Formulation, at: &dyn Fn(usize, usize) -> Literal, outputs: &mut 
 fn slot_sums(
     f: &Formulation,
     terms: BTreeMap<(usize, usize), Vec<(bool, TokenStream)>>,
+    stiffness: &BTreeSet<(usize, usize)>,
     at: &dyn Fn(usize, usize) -> Literal,
     real: &TokenStream,
 ) -> (TokenStream, TokenStream) {
     let nv = f.nv;
-    let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).collect();
     let sums: Vec<TokenStream> = terms
         .into_iter()
         .map(|((r, c), terms)| {
@@ -418,20 +475,36 @@ fn straight_line_solver(f: &Formulation, e: &Emitter, plan: &NewtonPlan, real: &
     }
 }
 
-pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonCode {
+/// `rotations`: the first velocity of each body's three rotational ones (ω′x, ω′y, ω′z), whose
+/// columns the tangent operator mixes (`mbd_runtime`'s `model::group`); empty in the plane.
+pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident, rotations: &[usize]) -> NewtonCode {
     let real = real(e.scalar);
     let zero = e.literal(0.0);
     let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
+    // The rows of the stiffness and of D with an entry in a body's rotational columns, as
+    // (row, first rotational velocity): T(Δ) fills all three of them.
+    let rotation_of = |c: usize| rotations.iter().copied().find(|&first| (first..first + 3).contains(&c));
+    let rows_turned = |entries: &[(usize, usize, crate::sym::Id)]| -> BTreeSet<(usize, usize)> {
+        entries.iter().filter_map(|&(r, c, _)| Some((r, rotation_of(c)?))).collect()
+    };
+    let (stiffness_turned, jacobian_turned) = (rows_turned(&f.stiffness), rows_turned(&f.jacobian));
+    let triples = |rows: &BTreeSet<(usize, usize)>| -> Vec<(usize, usize)> {
+        rows.iter().flat_map(|&(r, first)| (first..first + 3).map(move |c| (r, c))).collect()
+    };
     // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
     let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
     for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
         velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
     }
+    velocity.extend(triples(&stiffness_turned));
     if f.tree.is_some() {
         // Joint coordinates: M(q) and the derivatives are dense.
         velocity.extend((0..nv).flat_map(|r| (0..nv).map(move |c| (r, c))));
     }
-    let jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+    let mut jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+    jacobian.extend(triples(&jacobian_turned));
+    jacobian.sort_unstable();
+    jacobian.dedup();
     let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
     if f.tree.is_some() {
         return dense_newton(f, e, name, &plan);
@@ -450,7 +523,8 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
         args: quote!(q, t, phi, s),
     };
     let (position_body, _) = e.body_in_parts(&outputs, &position_signature);
-    let (terms, locals) = a_terms(f, &at, &mut outputs);
+    let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).chain(triples(&stiffness_turned)).collect();
+    let (terms, locals) = a_terms(f, &stiffness, &at, &mut outputs);
     let local_names: Vec<&syn::Ident> = locals.iter().map(|(ident, _)| ident).collect();
     let local_lengths: Vec<proc_macro2::Literal> = locals.iter().map(|&(_, n)| usize_lit(n)).collect();
     let signature = PartSignature {
@@ -463,7 +537,8 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
     };
     let locals: Vec<TokenStream> = local_names.iter().zip(&local_lengths).map(|(ident, n)| quote!(let mut #ident = [#zero; #n];)).collect();
     let (body, matrix_ops) = e.body_in_parts(&outputs, &signature);
-    let (sums, d_entries) = slot_sums(f, terms, &at, &real);
+    let (sums, d_entries) = slot_sums(f, terms, &stiffness, &at, &real);
+    let (tangents, turn_stiffness, turn_jacobian) = tangent_code(rotations, &stiffness_turned, &jacobian_turned, &|u, w| at(u, w), nv);
     let pattern = plan.pattern();
     // Inlined into the step of small mechanisms; kept apart in large ones (build time, as for
     // the Schur complement's helpers).
@@ -500,6 +575,7 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 vd: &[#real; #nv_l],
                 t: #real,
                 lambda: &[#real; #nc_l],
+                displacement: ::core::option::Option<&[#real; #nv_l]>,
                 c_v: #real,
                 c_q: #real,
                 phi: &mut [#real; #nc_l],
@@ -511,8 +587,11 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident) -> NewtonC
                 }
                 #(#locals)*
                 #body
+                #tangents
+                #turn_stiffness
                 #sums
                 #d_entries
+                #turn_jacobian
             }
             #solver
         }

@@ -122,6 +122,7 @@ pub use solvers::statics::{
 pub mod __private {
     pub use crate::linalg::sparse::{max_abs_finite, pivot, refined, schur_pivot, Elements};
     pub use crate::model::dynamics::check_inertia;
+    pub use crate::model::group::tangent_operator;
     pub use crate::model::mechanism::KinematicsHooks;
     pub use crate::solvers::newton::{Newton, NewtonNext};
 }

@@ -39,7 +39,13 @@ pub fn generate(m: &Model) -> syn::Result<TokenStream> {
     };
     // Their parts go into the type's inherent `impl` (`Emitter::body_in_parts`): in this order.
     let forward = forward_dynamics(m, &f, &e);
-    let newton = crate::newton::newton_matrix(&f, &e, &m.name);
+    // Each spatial body's rotational velocities (ω′x, ω′y, ω′z, the last three of its six), for
+    // the tangent operator of generalized-α's update on the group.
+    let rotations: Vec<usize> = match crate::coordinates::Coordinates::of(m) {
+        crate::coordinates::Coordinates::SpatialBody => (0..f.nv / 6).map(|k| 6 * k + 3).collect(),
+        _ => Vec::new(),
+    };
+    let newton = crate::newton::newton_matrix(&f, &e, &m.name, &rotations);
     let mut op_counts: Vec<TokenStream> = constraints.ops.iter().chain(&dynamics_ops).map(|&(name, ops)| op_count(name, ops)).collect();
     op_counts.push(op_count("accelerations (evaluation, before the solve)", forward.eval_ops));
     op_counts.push(op_count("newton_matrix (Φ, D and generalized-α's matrix, before the factorization)", newton.matrix_ops));

@@ -455,6 +455,13 @@ struct AlphaMap<'a, T, const NQ: usize, const NV: usize, const NC: usize> {
 }
 
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> AlphaMap<'_, T, NQ, NV, NC> {
+    /// Δ = h v + h² (½ − β) a + h² β a₊ for the pseudo-acceleration a₊ = `a1`.
+    fn increment(&self, a1: &[T; NV]) -> [T; NV] {
+        let [_, _, beta, _] = self.coefficients;
+        let (half, h, a) = (T::from_f64(0.5), self.h, &self.a_n);
+        core::array::from_fn(|i| h * self.from.v[i] + h * h * ((half - beta) * a[i] + beta * a1[i]))
+    }
+
     /// a₊ from (1 − α_m) a₊ + α_m a = (1 − α_f) v̇₊ + α_f v̇.
     fn pseudo_acceleration(&self, vd: &[T; NV]) -> [T; NV] {
         let [alpha_m, alpha_f, ..] = self.coefficients;
@@ -474,16 +481,19 @@ impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, co
     }
 
     fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]) {
-        let [_, _, beta, gamma] = self.coefficients;
-        let (one, half, h) = (T::ONE, T::from_f64(0.5), self.h);
+        let [_, _, _, gamma] = self.coefficients;
+        let (one, h) = (T::ONE, self.h);
         let (from, a) = (self.from, &self.a_n);
         let a1 = self.pseudo_acceleration(vd);
-        let mut displacement = [T::ZERO; NV];
         for i in 0..NV {
-            displacement[i] = h * from.v[i] + h * h * ((half - beta) * a[i] + beta * a1[i]);
             v[i] = from.v[i] + h * ((one - gamma) * a[i] + gamma * a1[i]);
         }
         *q = from.q;
-        crate::model::group::integrate_on_group(mechanism, q, &displacement);
+        crate::model::group::integrate_on_group(mechanism, q, &self.increment(&a1));
+    }
+
+    /// Δ = h v + h² (½ − β) a + h² β a₊: q₊ = q ⊕ Δ.
+    fn displacement(&self, vd: &[T; NV]) -> Option<[T; NV]> {
+        Some(self.increment(&self.pseudo_acceleration(vd)))
     }
 }

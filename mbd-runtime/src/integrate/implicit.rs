@@ -24,6 +24,13 @@ pub(super) trait StateMap<T: Real, M, const NQ: usize, const NV: usize, const NC
     fn slopes(&self) -> (T, T);
     /// q₊ and v₊ for v̇₊ = `vd`.
     fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]);
+    /// Where q₊ = q ⊕ Δ on the rotation group ([`crate::model::group`]), Δ for v̇₊ = `vd`: its
+    /// tangent operator enters the iteration matrix ([`NewtonMatrix::newton_matrix`]). `None`
+    /// (the default): q₊ moves with v̇₊ through B(q₊) alone.
+    fn displacement(&self, vd: &[T; NV]) -> Option<[T; NV]> {
+        let _ = vd;
+        None
+    }
     /// The size of the change of q₊ and v₊ a Newton correction `dvd` of v̇₊ makes, in the
     /// method's own error norm (1: its tolerance), for the rate test of [`solve`]; `None` (the
     /// default): a method without one converges by the absolute tests alone.
@@ -114,7 +121,8 @@ where
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            mech.newton_matrix(&q, &v, &vd, t1, &lambda, c_v, c_q, &mut phi, s, scratch.reborrow());
+            let displacement = map.displacement(&vd);
+            mech.newton_matrix(&q, &v, &vd, t1, &lambda, displacement.as_ref(), c_v, c_q, &mut phi, s, scratch.reborrow());
         } else {
             mech.newton_jacobian(&q, t1, &mut phi, s, scratch.reborrow());
         }

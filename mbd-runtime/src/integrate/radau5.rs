@@ -570,7 +570,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         let mech = system.mechanism;
         let mut phi = [T::ZERO; NC];
         let fill = |c_v: T, c_q: T, s: &mut M::NewtonStorage, scratch: DenseScratch<'_, T, NV, NC>, phi: &mut [T; NC]| {
-            mech.newton_matrix(&from.q, &from.v, &from.vd, from.t, &from.lambda, c_v, c_q, phi, s, scratch);
+            mech.newton_matrix(&from.q, &from.v, &from.vd, from.t, &from.lambda, None, c_v, c_q, phi, s, scratch);
         };
         let c = h / f::<T>(GAMMA);
         fill(c, c * c, real, scratch.reborrow(), &mut phi);

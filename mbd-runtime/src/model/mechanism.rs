@@ -563,7 +563,11 @@ pub trait ConstraintForces<T: Real, const NQ: usize, const NV: usize, const NC: 
 /// ```
 ///
 /// over [`NEWTON_PATTERN`](Self::NEWTON_PATTERN), fill-in included (c_v = γ'h, c_q = β'h²;
-/// ∂h/∂q and ∂h/∂v with Coulomb friction's at fixed λ; K from [`ConstraintForces`]).
+/// ∂h/∂q and ∂h/∂v with Coulomb friction's at fixed λ; K from [`ConstraintForces`]). Where the
+/// step's end is q₊ = q ⊕ Δ on the rotation group (generalized-α), every derivative by the
+/// positions — c_q's terms and the rows of D — is taken times the tangent operator T(Δ) on each
+/// body's three rotational columns (`crate::model::group`'s docs), so the pattern holds all
+/// three of a body's rotational columns in a row that touches one.
 /// `mechanism!` generates all of it in body coordinates, straight-line over the structural
 /// non-zeros only. The provided methods build the same storage from the dense derivatives, for
 /// joint coordinates (M(q) and its derivatives are dense) and mechanisms that are not generated
@@ -607,10 +611,13 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
     }
     /// What [`newton_jacobian`](Self::newton_jacobian) writes, and the matrix's entries at
     /// (q, v, v̇, t, λ) after D's in `s`, fill-in zeroed, ready for the factorization: one
-    /// evaluation for both. v̇ enters where M depends on q, through c_q ∂(M v̇)/∂q. The provided
-    /// method fills it from dense derivatives: A and D in `scratch` (the work space's), the
-    /// second NV × NV matrix in `s`'s entries, which it writes last (off the stack where they
-    /// are NV² or more, as a dense velocity block's are: joint coordinates).
+    /// evaluation for both. v̇ enters where M depends on q, through c_q ∂(M v̇)/∂q.
+    /// `displacement`: the Δ of q = q₀ ⊕ Δ on the group, whose tangent operator multiplies the
+    /// derivatives by the positions (the trait's docs); `None` for none (T = I: statics, and
+    /// methods that move q by q + B(q)Δ). The provided method fills it from dense derivatives: A,
+    /// D and D T in `scratch` (the work space's), the second NV × NV matrix in `s`'s entries,
+    /// which it writes last (off the stack where they are NV² or more, as a dense velocity
+    /// block's are: joint coordinates).
     #[allow(clippy::too_many_arguments)]
     fn newton_matrix(
         &self,
@@ -619,6 +626,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         vd: &[T; NV],
         t: T,
         lambda: &[T; NC],
+        displacement: Option<&[T; NV]>,
         c_v: T,
         c_q: T,
         phi: &mut [T; NC],
@@ -626,7 +634,21 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         mut scratch: DenseScratch<'_, T, NV, NC>,
     ) {
         self.newton_jacobian(q, t, phi, s, scratch.reborrow());
-        let DenseScratch { d, l: a, .. } = scratch;
+        let DenseScratch { d, y: d_tangent, l: a, .. } = scratch;
+        // Rows times T(Δ) on each body's rotational columns, in place.
+        let tangent = |rows: &mut [[T; NV]]| {
+            if let Some(delta) = displacement {
+                crate::model::group::for_each_rotation::<T, Self, NQ, NV, NC>(delta, |first, w| {
+                    let t = crate::model::group::tangent_operator(w);
+                    for row in rows.iter_mut() {
+                        let x = [row[first], row[first + 1], row[first + 2]];
+                        for j in 0..3 {
+                            row[first + j] = x[0] * t[0][j] + x[1] * t[1][j] + x[2] * t[2][j];
+                        }
+                    }
+                });
+            }
+        };
         // D from the front of the storage, densely (the pattern's entries only: a wrapper's
         // differences leave noise off it).
         let nnz = Self::JACOBIAN_PATTERN.len();
@@ -636,16 +658,23 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         for (&value, &(r, c)) in s.as_ref().iter().zip(Self::JACOBIAN_PATTERN) {
             d[r as usize][c as usize] = value;
         }
+        d_tangent.copy_from_slice(&d[..]);
+        tangent(d_tangent);
+        // The derivatives by the positions, ∂(h − M v̇)/∂q·B (∂(M v̇)/∂q through q₊'s dependence
+        // on v̇: nothing where M is constant) and K, each times T before they are summed.
         self.forces_q(q, v, t, a);
         with_square(&mut s.as_mut()[nnz..], |second| {
             self.forces_v(q, v, t, second);
             self.friction_derivatives(q, v, t, lambda, a, second);
+            self.add_mass_derivative(q, vd, -T::ONE, a);
+            tangent(a);
             for (row, damping) in a.iter_mut().zip(second.iter()) {
                 for (x, &c) in row.iter_mut().zip(damping) {
                     *x = -c_q * *x - c_v * c;
                 }
             }
             self.constraint_force_q(q, t, lambda, second);
+            tangent(second);
             for (row, stiffness) in a.iter_mut().zip(second.iter()) {
                 for (x, &k) in row.iter_mut().zip(stiffness) {
                     *x -= c_q * k;
@@ -653,8 +682,6 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
             }
         });
         self.add_mass_matrix(q, T::ONE, a);
-        // ∂(M v̇)/∂q through q₊'s dependence on v̇ (c_q = β'h²): nothing where M is constant.
-        self.add_mass_derivative(q, vd, c_q, a);
         let pattern = Self::NEWTON_PATTERN;
         let values = &mut s.as_mut()[nnz..];
         for i in 0..pattern.size() {
@@ -665,7 +692,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
                 *value = match (u < NV, w < NV) {
                     (true, true) => a[u][w],
                     (true, false) => -d[w - NV][u],
-                    (false, true) => d[u - NV][w],
+                    (false, true) => d_tangent[u - NV][w],
                     (false, false) => T::ZERO,
                 };
             }

@@ -41,7 +41,7 @@ impl<T: Real> StaticSolver<T> {
         let zero_v = [T::ZERO; NV];
         let nnz = M::JACOBIAN_PATTERN.len();
         let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
-        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, mass, dense.reborrow());
+        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], None, T::ZERO, T::ZERO, &mut phi, mass, dense.reborrow());
         m.forces(q, &zero_v, t, &mut h);
         if let Some(i) = first_non_finite(&phi) {
             return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
@@ -66,7 +66,7 @@ impl<T: Real> StaticSolver<T> {
         if let Some(i) = first_non_finite(&r) {
             return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
         }
-        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, T::ZERO, T::ONE, &mut phi, stiff, dense);
+        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, None, T::ZERO, T::ONE, &mut phi, stiff, dense);
         let (mass, stiff) = (&*mass, &*stiff);
         // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
         let mut mass_diagonal = [T::ZERO; NV];
@@ -383,7 +383,7 @@ impl<T: Real> StaticSolver<T> {
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], T::ZERO, T::ZERO, &mut phi, s, dense.reborrow());
+            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], None, T::ZERO, T::ZERO, &mut phi, s, dense.reborrow());
             if let Some(i) = first_non_finite(&phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
