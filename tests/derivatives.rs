@@ -192,3 +192,56 @@ fn finite_differences_agree_with_the_exact_derivatives() {
     compare(&common::suspension_dynamics::DoubleAArmRide::default(), 31);
     compare(&common::gyroscope::Gyroscope::default(), 32);
 }
+
+mbd::mechanism! {
+    /// A spatial chain of three bars on ball joints, as the benchmark's chain of 16.
+    pub BallChain {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        body a { mass: 0.1, inertia: [1.0e-6, 8.3e-5, 8.3e-5], at: [0.05, 0.0, 0.0] }
+        body b { mass: 0.1, inertia: [1.0e-6, 8.3e-5, 8.3e-5], at: [0.149, 0.0099, 0.0], axis_angle: [0.0, 0.0, 1.0, 0.2] }
+        body c { mass: 0.1, inertia: [1.0e-6, 8.3e-5, 8.3e-5], at: [0.244, 0.0393, 0.0], axis_angle: [0.0, 0.0, 1.0, 0.4] }
+        spherical ground[0.0, 0.0, 0.0] ~ a[-0.05, 0.0, 0.0];
+        spherical a[0.05, 0.0, 0.0] ~ b[-0.05, 0.0, 0.0];
+        spherical b[0.05, 0.0, 0.0] ~ c[-0.05, 0.0, 0.0];
+    }
+}
+
+/// The fused evaluations (`full_eval`, `position_eval`) of a spatial mechanism return exactly
+/// what the separate functions return; whether the fused body shares subexpressions (its
+/// operation count below the parts' sum) or, sharing none, is emitted as its parts in sequence.
+/// Returns whether it was the latter.
+fn spatial_fused<M: Kinematics<f64, NQ, NV, NC> + Mechanism, const NQ: usize, const NV: usize, const NC: usize>(m: &M, seed: u64) -> bool {
+    let count = |name: &str| M::OP_COUNTS.iter().find(|o| o.function == name).map(|o| o.add + o.mul + o.div + o.call).unwrap();
+    let parts = count("constraints") + count("jacobian") + count("velocity_rhs") + count("gamma");
+    let mut rng = Rng::new(seed);
+    for _ in 0..10 {
+        let mut q = m.initial_positions();
+        for x in q.iter_mut() {
+            *x += rng.uniform(-0.2, 0.2);
+        }
+        m.normalize_positions(&mut q);
+        let v: [f64; NV] = core::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+        let t = rng.uniform(0.0, 1.0);
+        let (mut phi, mut d, mut nu, mut gamma) = ([0.0; NC], [[0.0; NV]; NC], [0.0; NC], [0.0; NC]);
+        m.constraints(&q, t, &mut phi);
+        m.jacobian(&q, t, &mut d);
+        m.velocity_rhs(&q, t, &mut nu);
+        m.gamma(&q, &v, t, &mut gamma);
+        let (mut phi2, mut d2, mut nu2, mut gamma2) = ([0.0; NC], [[0.0; NV]; NC], [0.0; NC], [0.0; NC]);
+        m.full_eval(&q, &v, t, &mut phi2, &mut d2, &mut nu2, &mut gamma2);
+        assert_eq!((phi, d, nu, gamma), (phi2, d2, nu2, gamma2), "{}: full_eval differs from the separate functions", M::NAME);
+        let (mut phi3, mut d3) = ([0.0; NC], [[0.0; NV]; NC]);
+        m.position_eval(&q, t, &mut phi3, &mut d3);
+        assert_eq!((phi, d), (phi3, d3), "{}: position_eval differs", M::NAME);
+    }
+    count("full_eval") == parts
+}
+
+#[test]
+fn spatial_fused_evaluations_are_the_separate_ones() {
+    // The gyroscope's parts share two operations (its fused body is one); the ball chain's share
+    // none (its fused body is the parts in sequence): both ways are checked.
+    assert!(!spatial_fused(&common::gyroscope::Gyroscope::default(), 33), "the gyroscope's fused evaluation shares");
+    assert!(spatial_fused(&BallChain::default(), 34), "the ball chain's parts share nothing");
+}

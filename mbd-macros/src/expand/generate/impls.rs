@@ -461,9 +461,6 @@ impl Gen<'_> {
                 }
                 #inline
                 fn position_eval(&self, q: &[#real; #nq_l], t: #real, phi: &mut [#real; #nc_l], d: &mut [[#real; #nv_l]; #nc_l]) {
-                    for row in d.iter_mut() {
-                        *row = [#zero; #nv_l];
-                    }
                     #pos_body
                 }
                 #inline
@@ -477,9 +474,6 @@ impl Gen<'_> {
                     nu: &mut [#real; #nc_l],
                     gamma: &mut [#real; #nc_l],
                 ) {
-                    for row in d.iter_mut() {
-                        *row = [#zero; #nv_l];
-                    }
                     #full_body
                 }
             }
