@@ -19,7 +19,8 @@ each returning [q̈; λ] (NQ + NC values):
       pivoting, all unrolled into straight-line code), λ = S⁻¹ (γ̂ − Φ_q M⁻¹ h), q̈ = M⁻¹ (h + Φ_qᵀ λ);
   PREFIX_fd_qr(q, qd, t, p, ab): the sparse KKT matrix [M, −Φ_qᵀ; Φ_q, 0] assembled by SX
       functions and solved at run time by CasADi's sparse numeric QR linear solver ("qr").
-Every function has CasADi's standard C interface.
+Every function is built with CasADi's common-subexpression elimination ({"cse": True}) and has
+CasADi's standard C interface.
 
 Spatial models ("dimension": 3, rebuilt by mbd_oracle.spatial) get the same functions in velocity
 space, with q (7 per body), v (6 per body: ṙ global, ω′ body frame), t, p:
@@ -38,6 +39,10 @@ import sys
 
 import casadi as ca
 
+# CasADi's common-subexpression elimination on every function (CasADi ≥ 3.6), as a user of
+# CasADi would generate code for speed, and as mbd's generated code eliminates its own (issue 41).
+CSE = {"cse": True}
+
 from .dynamics import Dynamics
 from .model import Model
 from .spatial import Spatial, is_spatial
@@ -46,9 +51,9 @@ from .spatial import Spatial, is_spatial
 def kinematics(m, prefix):
     q, qd, t, p = m.q, m.qd, m.t, m.p
     return [
-        ca.Function(f"{prefix}_phi", [q, t, p], [m.phi]),
-        ca.Function(f"{prefix}_jac", [q, t, p], [m.jac]),
-        ca.Function(f"{prefix}_gamma", [q, qd, t, p], [m.gamma]),
+        ca.Function(f"{prefix}_phi", [q, t, p], [m.phi], CSE),
+        ca.Function(f"{prefix}_jac", [q, t, p], [m.jac], CSE),
+        ca.Function(f"{prefix}_gamma", [q, qd, t, p], [m.gamma], CSE),
     ]
 
 
@@ -65,15 +70,15 @@ def forward_dynamics(m, prefix):
     lam = ca.solve(schur, rhs - ca.mtimes(jm, d.h))
     qdd = minv * (d.h + ca.mtimes(jac.T, lam))
     inputs = [q, qd, t, p, ab]
-    fd_schur = ca.Function(f"{prefix}_fd_schur", inputs, [ca.vertcat(qdd, lam)])
+    fd_schur = ca.Function(f"{prefix}_fd_schur", inputs, [ca.vertcat(qdd, lam)], CSE)
 
     nq, nc = m.nq, m.nc
     kkt = ca.blockcat([[ca.diag(d.mass), -jac.T], [jac, ca.SX(nc, nc)]])
-    pieces = ca.Function("kkt_pieces", inputs, [kkt, ca.vertcat(d.h, rhs)])
+    pieces = ca.Function("kkt_pieces", inputs, [kkt, ca.vertcat(d.h, rhs)], CSE)
     mx = [ca.MX.sym(name, s.sparsity()) for name, s in zip(["q", "qd", "t", "p", "ab"], inputs)]
     a, b = pieces(*mx)
     x = ca.solve(a, b, "qr")
-    fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x])
+    fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x], CSE)
     print(f"{m.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nq + nc}×{nq + nc}); "
           f"Schur form {fd_schur.n_instructions()} instructions")
     return [fd_schur, fd_qr]
@@ -93,9 +98,9 @@ def pattern_of(s, model_json):
 def spatial_kinematics(s, prefix, pattern):
     q, v, t, p = s.q, s.v, s.t, s.p
     return [
-        ca.Function(f"{prefix}_phi", [q, t, p], [s.phi]),
-        ca.Function(f"{prefix}_jac", [q, t, p], [ca.project(s.D, pattern)]),
-        ca.Function(f"{prefix}_gamma", [q, v, t, p], [s.gamma]),
+        ca.Function(f"{prefix}_phi", [q, t, p], [s.phi], CSE),
+        ca.Function(f"{prefix}_jac", [q, t, p], [ca.project(s.D, pattern)], CSE),
+        ca.Function(f"{prefix}_gamma", [q, v, t, p], [s.gamma], CSE),
     ]
 
 
@@ -120,15 +125,15 @@ def spatial_forward_dynamics(s, prefix):
     lam = ca.solve(schur, rhs - ca.mtimes(dm, s.h))
     vd = ca.mtimes(minv, s.h + ca.mtimes(d.T, lam))
     inputs = [q, v, t, p, ab]
-    fd_schur = ca.Function(f"{prefix}_fd_schur", inputs, [ca.vertcat(vd, lam)])
+    fd_schur = ca.Function(f"{prefix}_fd_schur", inputs, [ca.vertcat(vd, lam)], CSE)
 
     nv, nc = s.nv, s.nc
     kkt = ca.blockcat([[s.mass, -d.T], [d, ca.SX(nc, nc)]])
-    pieces = ca.Function("kkt_pieces", inputs, [kkt, ca.vertcat(s.h, rhs)])
+    pieces = ca.Function("kkt_pieces", inputs, [kkt, ca.vertcat(s.h, rhs)], CSE)
     mx = [ca.MX.sym(name, x.sparsity()) for name, x in zip(["q", "v", "t", "p", "ab"], inputs)]
     a, b = pieces(*mx)
     x = ca.solve(a, b, "qr")
-    fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x])
+    fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x], CSE)
     print(f"{s.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nv + nc}×{nv + nc}); "
           f"Schur form {fd_schur.n_instructions()} instructions")
     return [fd_schur, fd_qr]
