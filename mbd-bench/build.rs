@@ -47,7 +47,7 @@ fn main() {
     if release {
         build.opt_level(3);
         if !isa.is_empty() {
-            build.flag(&format!("-march={isa}"));
+            build.flag(format!("-march={isa}"));
         }
     } else {
         build.opt_level(0);
