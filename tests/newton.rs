@@ -7,6 +7,11 @@
 //! along the group's own update, body and joint coordinates).
 #[path = "common/rng.rs"]
 mod rng;
+/// `both_ways!` (the same mechanism in body and joint coordinates); the module's other helpers
+/// are for other tests.
+#[allow(dead_code)]
+#[path = "common/joint.rs"]
+mod joint;
 /// The shared generator (`tests/common/`).
 mod common {
     pub(crate) use super::rng::Rng;
@@ -53,26 +58,13 @@ mechanism! {
     }
 }
 
-mechanism! {
+joint::both_ways! {
     /// Two spatial bodies, a ball joint and a hinge, a spring across them and products of
-    /// inertia: rows of D and of the stiffness in some of a body's rotational columns only.
-    pub BallAndHinge {
+    /// inertia: rows of D and of the stiffness in some of a body's rotational columns only. In
+    /// joint coordinates (`BallAndHingeJoints`) the ball joint's quaternion is in q, and M(q) and
+    /// the matrix are dense (the trait's provided `newton_matrix`).
+    BallAndHinge, BallAndHingeJoints {
         spatial;
-        gravity [0.0, 0.0, -9.81];
-        body upper { mass: 1.0, inertia: [0.0835, 0.08, 0.002, 0.001, 0.0, 0.0], at: [0.0, 0.5, 0.0], axis_angle: [1.0, 0.0, 0.0, -1.5707963267948966] }
-        body lower { mass: 0.7, inertia: [0.0585, 0.0585, 0.0007], at: [0.0, 1.0, 0.35] }
-        spherical ground[0.0, 0.0, 0.0] ~ upper[0.0, 0.0, -0.5];
-        revolute upper[0.0, 0.0, 0.5] along [1.0, 0.0, 0.0] ~ lower[0.0, 0.0, -0.35] along [1.0, 0.0, 0.0];
-        spring ground[0.3, 0.0, 0.0] ~ lower[0.0, 0.0, 0.35] { k: 400.0, length: 0.8, c: 3.0 };
-    }
-}
-
-mechanism! {
-    /// The same, in joint coordinates: the ball joint's quaternion in q, M(q) and the matrix
-    /// dense (the trait's provided `newton_matrix`).
-    pub BallAndHingeJoints {
-        spatial;
-        joint_coordinates;
         gravity [0.0, 0.0, -9.81];
         body upper { mass: 1.0, inertia: [0.0835, 0.08, 0.002, 0.001, 0.0, 0.0], at: [0.0, 0.5, 0.0], axis_angle: [1.0, 0.0, 0.0, -1.5707963267948966] }
         body lower { mass: 0.7, inertia: [0.0585, 0.0585, 0.0007], at: [0.0, 1.0, 0.35] }
