@@ -5,13 +5,13 @@
 //! constraint's multiplier in both; and, where the step's end is q ⊕ Δ on the rotation group,
 //! the matrix is the exact derivative of the residual it is the matrix of (finite differences
 //! along the group's own update, body and joint coordinates).
-#[path = "common/rng.rs"]
-mod rng;
 /// `both_ways!` (the same mechanism in body and joint coordinates); the module's other helpers
 /// are for other tests.
 #[allow(dead_code)]
 #[path = "common/joint.rs"]
 mod joint;
+#[path = "common/rng.rs"]
+mod rng;
 /// The shared generator (`tests/common/`).
 mod common {
     pub(crate) use super::rng::Rng;

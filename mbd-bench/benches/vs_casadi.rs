@@ -89,7 +89,57 @@ macro_rules! compare {
             })
         });
         g.finish();
+        let (mut phi2, mut nu2, mut gamma2, mut values2) = (phi, nu, gamma, values);
+        fused_against_parts(
+            $label,
+            || {
+                m.full_eval_values(
+                    black_box(&q),
+                    black_box(&qd),
+                    black_box(t),
+                    black_box(&mut phi),
+                    black_box(&mut values),
+                    black_box(&mut nu),
+                    black_box(&mut gamma),
+                )
+            },
+            || {
+                m.constraints(black_box(&q), black_box(t), black_box(&mut phi2));
+                m.jacobian_values(black_box(&q), black_box(t), black_box(&mut values2));
+                m.velocity_rhs(black_box(&q), black_box(t), black_box(&mut nu2));
+                m.gamma(black_box(&q), black_box(&qd), black_box(t), black_box(&mut gamma2));
+            },
+        );
     }};
+}
+
+/// Whether the fused evaluation is slower than its parts called in turn (issue 41: it should
+/// never be), printed: the two timed interleaved, 200 rounds of 1000 calls each, and the fastest
+/// round of each kept, so that the machine's drift during a run (which moves criterion's
+/// separate medians by 10–20 % here) falls on both alike. Where the fused function is its parts'
+/// calls (the spatial chain of 16) the ratio is this measurement's own spread. Every output
+/// goes through `black_box`, or the parts, whose results nothing reads, are optimized away.
+fn fused_against_parts(label: &str, mut fused: impl FnMut(), mut parts: impl FnMut()) {
+    use std::time::Instant;
+    let round = |f: &mut dyn FnMut()| {
+        let start = Instant::now();
+        for _ in 0..1000 {
+            f();
+        }
+        start.elapsed().as_secs_f64() / 1000.0
+    };
+    let (mut best_fused, mut best_parts) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..200 {
+        best_fused = best_fused.min(round(&mut fused));
+        best_parts = best_parts.min(round(&mut parts));
+    }
+    let ratio = best_fused / best_parts;
+    println!(
+        "{label}: fused {:.1} ns, its parts called in turn {:.1} ns (fastest of 200 interleaved rounds): fused / parts {ratio:.3}{}",
+        best_fused * 1e9,
+        best_parts * 1e9,
+        if ratio > 1.0 { " — fused slower" } else { "" }
+    );
 }
 
 /// One RK4 step of h from (t, q, q̇) with q̈ known at the start, over a CasADi forward-dynamics
@@ -256,6 +306,27 @@ macro_rules! compare_spatial {
             })
         });
         g.finish();
+        let (mut phi2, mut nu2, mut gamma2, mut values2) = (phi, nu, gamma, values);
+        fused_against_parts(
+            $label,
+            || {
+                m.full_eval_values(
+                    black_box(&q),
+                    black_box(&v),
+                    black_box(t),
+                    black_box(&mut phi),
+                    black_box(&mut values),
+                    black_box(&mut nu),
+                    black_box(&mut gamma),
+                )
+            },
+            || {
+                m.constraints(black_box(&q), black_box(t), black_box(&mut phi2));
+                m.jacobian_values(black_box(&q), black_box(t), black_box(&mut values2));
+                m.velocity_rhs(black_box(&q), black_box(t), black_box(&mut nu2));
+                m.gamma(black_box(&q), black_box(&v), black_box(t), black_box(&mut gamma2));
+            },
+        );
     }};
 }
 
