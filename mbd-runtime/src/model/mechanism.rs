@@ -658,8 +658,13 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         for (&value, &(r, c)) in s.as_ref().iter().zip(Self::JACOBIAN_PATTERN) {
             d[r as usize][c as usize] = value;
         }
-        d_tangent.copy_from_slice(&d[..]);
-        tangent(d_tangent);
+        // D T for the rows of D in the matrix (D itself for −Dᵀ), where there is a T.
+        let turned = displacement.is_some() && Self::VELOCITIES.iter().any(|v| matches!(v.kind, VelocityKind::Angular { .. }));
+        if turned {
+            d_tangent.copy_from_slice(&d[..]);
+            tangent(d_tangent);
+        }
+        let d_rows: &[[T; NV]; NC] = if turned { &*d_tangent } else { &*d };
         // The derivatives by the positions, ∂(h − M v̇)/∂q·B (∂(M v̇)/∂q through q₊'s dependence
         // on v̇: nothing where M is constant) and K, each times T before they are summed.
         self.forces_q(q, v, t, a);
@@ -692,7 +697,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
                 *value = match (u < NV, w < NV) {
                     (true, true) => a[u][w],
                     (true, false) => -d[w - NV][u],
-                    (false, true) => d_tangent[u - NV][w],
+                    (false, true) => d_rows[u - NV][w],
                     (false, false) => T::ZERO,
                 };
             }
