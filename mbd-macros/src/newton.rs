@@ -475,40 +475,63 @@ fn straight_line_solver(f: &Formulation, e: &Emitter, plan: &NewtonPlan, real: &
     }
 }
 
+/// The matrix's structure before the factorization is planned: A's entries (pairs of
+/// velocities) and D's (row, velocity), with the entries the tangent operator fills beside the
+/// stiffness's and D's in a body's rotational columns (`rotations`: the first of each body's
+/// three). The rows it turns are kept as (row, first rotational velocity).
+struct Structure {
+    velocity: BTreeSet<(usize, usize)>,
+    jacobian: Vec<(usize, usize)>,
+    /// The slots of c_q's terms: the stiffness's entries and those T fills beside them.
+    stiffness: BTreeSet<(usize, usize)>,
+    stiffness_turned: BTreeSet<(usize, usize)>,
+    jacobian_turned: BTreeSet<(usize, usize)>,
+}
+
+impl Structure {
+    fn of(f: &Formulation, rotations: &[usize]) -> Structure {
+        let nv = f.nv;
+        // The rows of the stiffness and of D with an entry in a body's rotational columns:
+        // T(Δ) fills all three of them.
+        let rotation_of = |c: usize| rotations.iter().copied().find(|&first| (first..first + 3).contains(&c));
+        let rows_turned = |entries: &[(usize, usize, crate::sym::Id)]| -> BTreeSet<(usize, usize)> {
+            entries.iter().filter_map(|&(r, c, _)| Some((r, rotation_of(c)?))).collect()
+        };
+        let (stiffness_turned, jacobian_turned) = (rows_turned(&f.stiffness), rows_turned(&f.jacobian));
+        let triples = |rows: &BTreeSet<(usize, usize)>| -> Vec<(usize, usize)> {
+            rows.iter().flat_map(|&(r, first)| (first..first + 3).map(move |c| (r, c))).collect()
+        };
+        let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).chain(triples(&stiffness_turned)).collect();
+        // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
+        let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
+        for entries in [&f.mass_coupling, &f.damping] {
+            velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
+        }
+        velocity.extend(stiffness.iter().copied());
+        if f.tree.is_some() {
+            // Joint coordinates: M(q) and the derivatives are dense.
+            velocity.extend((0..nv).flat_map(|r| (0..nv).map(move |c| (r, c))));
+        }
+        let mut jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
+        jacobian.extend(triples(&jacobian_turned));
+        jacobian.sort_unstable();
+        jacobian.dedup();
+        Structure { velocity, jacobian, stiffness, stiffness_turned, jacobian_turned }
+    }
+}
+
 /// `rotations`: the first velocity of each body's three rotational ones (ω′x, ω′y, ω′z), whose
 /// columns the tangent operator mixes (`mbd_runtime`'s `model::group`); empty in the plane.
 pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident, rotations: &[usize]) -> NewtonCode {
     let real = real(e.scalar);
     let zero = e.literal(0.0);
     let (nq, nv, nc, nnz) = (f.nq, f.nv, f.nc, f.jacobian.len());
-    // The rows of the stiffness and of D with an entry in a body's rotational columns, as
-    // (row, first rotational velocity): T(Δ) fills all three of them.
-    let rotation_of = |c: usize| rotations.iter().copied().find(|&first| (first..first + 3).contains(&c));
-    let rows_turned = |entries: &[(usize, usize, crate::sym::Id)]| -> BTreeSet<(usize, usize)> {
-        entries.iter().filter_map(|&(r, c, _)| Some((r, rotation_of(c)?))).collect()
-    };
-    let (stiffness_turned, jacobian_turned) = (rows_turned(&f.stiffness), rows_turned(&f.jacobian));
-    let triples = |rows: &BTreeSet<(usize, usize)>| -> Vec<(usize, usize)> {
-        rows.iter().flat_map(|&(r, first)| (first..first + 3).map(move |c| (r, c))).collect()
-    };
-    // A's structure: M (its diagonal and products of inertia), the stiffness and the damping.
-    let mut velocity: BTreeSet<(usize, usize)> = (0..nv).map(|i| (i, i)).collect();
-    for entries in [&f.mass_coupling, &f.stiffness, &f.damping] {
-        velocity.extend(entries.iter().map(|&(r, c, _)| (r, c)));
-    }
-    velocity.extend(triples(&stiffness_turned));
-    if f.tree.is_some() {
-        // Joint coordinates: M(q) and the derivatives are dense.
-        velocity.extend((0..nv).flat_map(|r| (0..nv).map(move |c| (r, c))));
-    }
-    let mut jacobian: Vec<(usize, usize)> = f.jacobian.iter().map(|&(r, c, _)| (r, c)).collect();
-    jacobian.extend(triples(&jacobian_turned));
-    jacobian.sort_unstable();
-    jacobian.dedup();
-    let plan = NewtonPlan::plan(nv, nc, &velocity, &jacobian);
+    let structure = Structure::of(f, rotations);
+    let plan = NewtonPlan::plan(nv, nc, &structure.velocity, &structure.jacobian);
     if f.tree.is_some() {
         return dense_newton(f, e, name, &plan);
     }
+    let Structure { stiffness_turned, jacobian_turned, stiffness, .. } = structure;
     let at = |u: usize, w: usize| usize_lit(nnz + plan.slot(u, w));
 
     // One body for Φ, D and every term, so common subexpressions (sin and cos of every angle)
@@ -523,7 +546,6 @@ pub fn newton_matrix(f: &Formulation, e: &Emitter, name: &syn::Ident, rotations:
         args: quote!(q, t, phi, s),
     };
     let (position_body, _) = e.body_in_parts(&outputs, &position_signature);
-    let stiffness: BTreeSet<(usize, usize)> = f.stiffness.iter().map(|&(r, c, _)| (r, c)).chain(triples(&stiffness_turned)).collect();
     let (terms, locals) = a_terms(f, &stiffness, &at, &mut outputs);
     let local_names: Vec<&syn::Ident> = locals.iter().map(|(ident, _)| ident).collect();
     let local_lengths: Vec<proc_macro2::Literal> = locals.iter().map(|&(_, n)| usize_lit(n)).collect();

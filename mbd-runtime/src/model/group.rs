@@ -66,6 +66,25 @@ pub(crate) fn for_each_rotation<T: Real, M, const NQ: usize, const NV: usize, co
     }
 }
 
+/// `rows` ← `rows` T(Δ) on each body's three rotational columns (its [`VelocityKind::Angular`]
+/// velocities), Δ the `displacement` of q ⊕ Δ; nothing for `None`.
+pub(crate) fn turn_columns<T, M, const NQ: usize, const NV: usize, const NC: usize>(displacement: Option<&[T; NV]>, rows: &mut [[T; NV]])
+where
+    T: Real,
+    M: Kinematics<T, NQ, NV, NC> + ?Sized,
+{
+    let Some(delta) = displacement else { return };
+    for_each_rotation::<T, M, NQ, NV, NC>(delta, |first, w| {
+        let t = tangent_operator(w);
+        for row in rows.iter_mut() {
+            let x = [row[first], row[first + 1], row[first + 2]];
+            for j in 0..3 {
+                row[first + j] = x[0] * t[0][j] + x[1] * t[1][j] + x[2] * t[2][j];
+            }
+        }
+    });
+}
+
 /// The tangent operator T(w) of the exponential map at the rotation vector w (module docs):
 /// exp(w + δ) = exp(w) exp(T(w) δ) + O(δ²). Below θ = |w| = 0.1 its coefficients come from their
 /// series (to θ⁶: the first term left out is below 3e-15 there), where the closed forms lose

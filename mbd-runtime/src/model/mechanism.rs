@@ -636,19 +636,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         self.newton_jacobian(q, t, phi, s, scratch.reborrow());
         let DenseScratch { d, y: d_tangent, l: a, .. } = scratch;
         // Rows times T(Δ) on each body's rotational columns, in place.
-        let tangent = |rows: &mut [[T; NV]]| {
-            if let Some(delta) = displacement {
-                crate::model::group::for_each_rotation::<T, Self, NQ, NV, NC>(delta, |first, w| {
-                    let t = crate::model::group::tangent_operator(w);
-                    for row in rows.iter_mut() {
-                        let x = [row[first], row[first + 1], row[first + 2]];
-                        for j in 0..3 {
-                            row[first + j] = x[0] * t[0][j] + x[1] * t[1][j] + x[2] * t[2][j];
-                        }
-                    }
-                });
-            }
-        };
+        let tangent = |rows: &mut [[T; NV]]| crate::model::group::turn_columns::<T, Self, NQ, NV, NC>(displacement, rows);
         // D from the front of the storage, densely (the pattern's entries only: a wrapper's
         // differences leave noise off it).
         let nnz = Self::JACOBIAN_PATTERN.len();
