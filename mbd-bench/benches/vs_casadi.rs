@@ -89,25 +89,33 @@ macro_rules! compare {
             })
         });
         g.finish();
-        let (mut phi2, mut nu2, mut gamma2, mut values2) = (phi, nu, gamma, values);
+        fused_against_parts!($label, m, q, qd, t, phi, values, nu, gamma);
+    }};
+}
+
+/// [`fused_against_parts`] for a generated mechanism `m` at (q, v, t), with its own copies of
+/// the output arrays for the parts.
+macro_rules! fused_against_parts {
+    ($label:expr, $m:ident, $q:ident, $v:ident, $t:ident, $phi:ident, $values:ident, $nu:ident, $gamma:ident) => {{
+        let (mut phi2, mut nu2, mut gamma2, mut values2) = ($phi, $nu, $gamma, $values);
         fused_against_parts(
             $label,
             || {
-                m.full_eval_values(
-                    black_box(&q),
-                    black_box(&qd),
-                    black_box(t),
-                    black_box(&mut phi),
-                    black_box(&mut values),
-                    black_box(&mut nu),
-                    black_box(&mut gamma),
+                $m.full_eval_values(
+                    black_box(&$q),
+                    black_box(&$v),
+                    black_box($t),
+                    black_box(&mut $phi),
+                    black_box(&mut $values),
+                    black_box(&mut $nu),
+                    black_box(&mut $gamma),
                 )
             },
             || {
-                m.constraints(black_box(&q), black_box(t), black_box(&mut phi2));
-                m.jacobian_values(black_box(&q), black_box(t), black_box(&mut values2));
-                m.velocity_rhs(black_box(&q), black_box(t), black_box(&mut nu2));
-                m.gamma(black_box(&q), black_box(&qd), black_box(t), black_box(&mut gamma2));
+                $m.constraints(black_box(&$q), black_box($t), black_box(&mut phi2));
+                $m.jacobian_values(black_box(&$q), black_box($t), black_box(&mut values2));
+                $m.velocity_rhs(black_box(&$q), black_box($t), black_box(&mut nu2));
+                $m.gamma(black_box(&$q), black_box(&$v), black_box($t), black_box(&mut gamma2));
             },
         );
     }};
@@ -306,27 +314,7 @@ macro_rules! compare_spatial {
             })
         });
         g.finish();
-        let (mut phi2, mut nu2, mut gamma2, mut values2) = (phi, nu, gamma, values);
-        fused_against_parts(
-            $label,
-            || {
-                m.full_eval_values(
-                    black_box(&q),
-                    black_box(&v),
-                    black_box(t),
-                    black_box(&mut phi),
-                    black_box(&mut values),
-                    black_box(&mut nu),
-                    black_box(&mut gamma),
-                )
-            },
-            || {
-                m.constraints(black_box(&q), black_box(t), black_box(&mut phi2));
-                m.jacobian_values(black_box(&q), black_box(t), black_box(&mut values2));
-                m.velocity_rhs(black_box(&q), black_box(t), black_box(&mut nu2));
-                m.gamma(black_box(&q), black_box(&v), black_box(t), black_box(&mut gamma2));
-            },
-        );
+        fused_against_parts!($label, m, q, v, t, phi, values, nu, gamma);
     }};
 }
 

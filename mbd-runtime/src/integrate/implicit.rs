@@ -173,16 +173,8 @@ where
             return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
         }
         (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
-        correction = T::ZERO;
-        let mut force_scale = T::ZERO;
-        for i in 0..NV {
-            vd[i] += rhs[i];
-            correction = correction.max((rhs[i] * c_q).abs());
-            force_scale = force_scale.max(force[i].abs()).max(inertia[i].abs());
-        }
-        for r in 0..NC {
-            lambda[r] += rhs[NV + r];
-        }
+        let mut force_scale;
+        (correction, force_scale) = apply_correction(&mut vd, &mut lambda, &rhs, [&force, &inertia], c_q);
         // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
         // near a singular position the part of λ along D's (near-)null space is not
         // determined — rounding moves it by ε/σ² — and exerts no force.
@@ -215,6 +207,28 @@ where
     to.vd = vd;
     to.lambda = lambda;
     check_step::<T, M, NQ, NV, NC>(from, to)
+}
+
+/// Adds the Newton correction `rhs` (Δv̇, then Δλ) to the iterate; returns the size of the
+/// position change it makes, ‖c_q Δv̇‖∞ (m, rad), and the force scale of the iterate's applied
+/// and inertia forces, max ‖·‖∞ (N, N·m).
+fn apply_correction<T: Real, const NV: usize, const NC: usize, const N: usize>(
+    vd: &mut [T; NV],
+    lambda: &mut [T; NC],
+    rhs: &[T; N],
+    forces: [&[T; NV]; 2],
+    c_q: T,
+) -> (T, T) {
+    let (mut correction, mut force_scale) = (T::ZERO, T::ZERO);
+    for i in 0..NV {
+        vd[i] += rhs[i];
+        correction = correction.max((rhs[i] * c_q).abs());
+        force_scale = force_scale.max(forces[0][i].abs()).max(forces[1][i].abs());
+    }
+    for r in 0..NC {
+        lambda[r] += rhs[NV + r];
+    }
+    (correction, force_scale)
 }
 
 /// The rate test ([`RATE_TEST`]) on a correction of `size` in the method's error norm (`None`:
