@@ -16,9 +16,15 @@
 //! CasADi (`rk4_step_spatial`) takes mbd's stages and updates positions with mbd's own
 //! `integrate_positions` (the quaternion update with renormalization), so only the right-hand
 //! sides differ. mbd's operation counts (`OP_COUNTS`) of the spatial mechanisms are printed first.
+//!
+//! Forces and the Newton-matrix fill (issue 41) of the four forward-dynamics mechanisms at the
+//! same moving states: M·x, h, ∂h/∂q, ∂h/∂v and generalized-α's fill (`compare_forces`). The
+//! planar benchmarks have gravity alone (h constant, its derivatives zero); the spatial ones add
+//! the gyroscopic term.
 use criterion::{criterion_group, criterion_main, Criterion};
 use mbd::{
-    DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, Point, Rk4, Rk4Options, System, Workspace,
+    DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, NewtonMatrix, Point, Rk4, Rk4Options, System,
+    Workspace,
 };
 use std::hint::black_box;
 
@@ -253,7 +259,72 @@ macro_rules! compare_dynamics {
         let differ = next.q.iter().zip(&q1).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         assert!(differ < 1e-12, "{}: mbd's RK4 and the CasADi loop differ by {differ:e}", $label);
         g.finish();
+        compare_forces($c, $label, &m, &params, &p, mbd_bench::force_functions!($casadi));
     }};
+}
+
+/// M·x, h, ∂h/∂q, ∂h/∂v and the Newton-matrix fill of generalized-α (c_v = γ′h, c_q = β′h²
+/// at h = 1 ms) at the moving state `p`, mbd against CasADi's counterparts (issue 41). mbd's
+/// ∂h/∂q and ∂h/∂v write the NV × NV matrix whole (their interface), CasADi's its non-zeros;
+/// mbd's fill writes Φ, D and its planned storage (−Dᵀ, D again, the factors' fill zeroed),
+/// CasADi's Φ, D and A's non-zeros.
+fn compare_forces<M: NewtonMatrix<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    c: &mut Criterion,
+    label: &str,
+    m: &M,
+    params: &[f64],
+    p: &Point<f64, NQ, NV, NC>,
+    mut f: mbd_bench::ForceFunctions,
+) {
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    let (t, q, v, lambda) = (p.t, &p.q, &p.v, &p.lambda);
+    let x: [f64; NV] = core::array::from_fn(|i| (1.3 * i as f64 + 0.2).sin());
+    let (c_v, c_q) = (0.3e-3, 0.25e-6);
+    let (mut y, mut dh) = ([0.0; NV], [[0.0; NV]; NV]);
+    let mut values = vec![0.0; NV * NV];
+    let mut s = M::newton_storage();
+    let mut phi = [0.0; NC];
+    let (nd, na) = (f.newton.output_pattern(1).0.len(), f.newton.output_pattern(2).0.len());
+    let (mut d2, mut a2) = (vec![0.0; nd], vec![0.0; na]);
+    let mut g = c.benchmark_group(format!("{label} forces and Newton fill"));
+    g.bench_function("M·x mbd", |b| b.iter(|| m.mass_times(black_box(q), black_box(&x), &mut y)));
+    g.bench_function("M·x CasADi", |b| b.iter(|| f.mx.call(&[black_box(q), black_box(&x), params], &mut y)));
+    g.bench_function("h mbd", |b| b.iter(|| m.forces(black_box(q), black_box(v), black_box(t), &mut y)));
+    g.bench_function("h CasADi", |b| b.iter(|| f.h.call(&[black_box(q), black_box(v), &[black_box(t)], params], &mut y)));
+    g.bench_function("∂h/∂q mbd (NV × NV)", |b| b.iter(|| m.forces_q(black_box(q), black_box(v), black_box(t), &mut dh)));
+    g.bench_function("∂h/∂q CasADi (non-zeros)", |b| {
+        b.iter(|| f.h_q.call(&[black_box(q), black_box(v), &[black_box(t)], params], &mut values))
+    });
+    g.bench_function("∂h/∂v mbd (NV × NV)", |b| b.iter(|| m.forces_v(black_box(q), black_box(v), black_box(t), &mut dh)));
+    g.bench_function("∂h/∂v CasADi (non-zeros)", |b| {
+        b.iter(|| f.h_v.call(&[black_box(q), black_box(v), &[black_box(t)], params], &mut values))
+    });
+    g.bench_function("Newton fill mbd", |b| {
+        b.iter(|| {
+            m.newton_matrix(
+                black_box(q),
+                black_box(v),
+                &p.vd,
+                black_box(t),
+                black_box(lambda),
+                None,
+                c_v,
+                c_q,
+                &mut phi,
+                &mut s,
+                ws.dense(),
+            )
+        })
+    });
+    g.bench_function("Newton fill CasADi", |b| {
+        b.iter(|| {
+            f.newton.call_outputs(
+                &[black_box(q), black_box(v), &[black_box(t)], params, black_box(lambda), &[c_v, c_q]],
+                &mut [&mut phi, &mut d2, &mut a2],
+            )
+        })
+    });
+    g.finish();
 }
 
 /// A moving state of a spatial mechanism: assembled at rest at t = 0, then 50 RK4 steps of 1 ms
@@ -433,6 +504,7 @@ macro_rules! compare_spatial_dynamics {
             assert!(differ < 1e-10, "{}: mbd's RK4 and the CasADi loop differ by {differ:e}", $label);
         }
         g.finish();
+        compare_forces($c, $label, &m, &params, &p, mbd_bench::force_functions!($casadi));
     }};
 }
 

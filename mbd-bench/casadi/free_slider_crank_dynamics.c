@@ -35,6 +35,11 @@ extern "C" {
 #define casadi_f0 CASADI_PREFIX(f0)
 #define casadi_f1 CASADI_PREFIX(f1)
 #define casadi_f2 CASADI_PREFIX(f2)
+#define casadi_f3 CASADI_PREFIX(f3)
+#define casadi_f4 CASADI_PREFIX(f4)
+#define casadi_f5 CASADI_PREFIX(f5)
+#define casadi_f6 CASADI_PREFIX(f6)
+#define casadi_f7 CASADI_PREFIX(f7)
 #define casadi_house CASADI_PREFIX(house)
 #define casadi_if_else CASADI_PREFIX(if_else)
 #define casadi_qr CASADI_PREFIX(qr)
@@ -45,6 +50,9 @@ extern "C" {
 #define casadi_qr_trs CASADI_PREFIX(qr_trs)
 #define casadi_s0 CASADI_PREFIX(s0)
 #define casadi_s1 CASADI_PREFIX(s1)
+#define casadi_s10 CASADI_PREFIX(s10)
+#define casadi_s11 CASADI_PREFIX(s11)
+#define casadi_s12 CASADI_PREFIX(s12)
 #define casadi_s2 CASADI_PREFIX(s2)
 #define casadi_s3 CASADI_PREFIX(s3)
 #define casadi_s4 CASADI_PREFIX(s4)
@@ -52,6 +60,7 @@ extern "C" {
 #define casadi_s6 CASADI_PREFIX(s6)
 #define casadi_s7 CASADI_PREFIX(s7)
 #define casadi_s8 CASADI_PREFIX(s8)
+#define casadi_s9 CASADI_PREFIX(s9)
 #define casadi_scal CASADI_PREFIX(scal)
 #define casadi_sq CASADI_PREFIX(sq)
 #define casadi_zeros CASADI_PREFIX(zeros)
@@ -325,6 +334,21 @@ static const casadi_int casadi_s8[104] =
   14, 0, 1, 2, 8, 9, 10, 11,
   12, 13, 14, 15, 2, 6, 7, 8,
   9, 10, 11, 12, 13, 14, 15, 16};
+static const casadi_int casadi_s9[12] = 
+  {9, 9, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0};
+static const casadi_int casadi_s10[3] = {8, 1, 1};
+static const casadi_int casadi_s11[34] = 
+  {8, 9, 0, 2, 4, 8, 10, 12,
+  16, 18, 20, 22, 0, 2, 1, 3,
+  0, 1, 2, 3, 2, 4, 3, 5,
+  2, 3, 4, 5, 4, 6, 5, 6,
+  6, 7};
+static const casadi_int casadi_s12[25] = 
+  {9, 9, 0, 1, 2, 3, 4, 5,
+  6, 8, 10, 13, 0, 1, 2, 3,
+  4, 5, 6, 8, 7, 8, 6, 7,
+  8};
 
 static const casadi_real casadi_zeros[9] = 
   {0.};
@@ -1726,6 +1750,610 @@ CASADI_SYMBOL_EXPORT int free_slider_crank_fd_qr_work_bytes(casadi_int *sz_arg, 
   if (sz_res) *sz_res = 3*sizeof(casadi_real*);
   if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
   if (sz_w) *sz_w = 258*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_slider_crank_mx:(q[9],x[9],p[2])->(mx[9]) */
+static int casadi_f3(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1;
+  a0=arg[1]? arg[1][0] : 0;
+  if (res[0]!=0) res[0][0]=a0;
+  a0=arg[1]? arg[1][1] : 0;
+  if (res[0]!=0) res[0][1]=a0;
+  a0=2.0000000000000000e-03;
+  a1=arg[1]? arg[1][2] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][2]=a0;
+  a0=arg[1]? arg[1][3] : 0;
+  a0=(2.*a0);
+  if (res[0]!=0) res[0][3]=a0;
+  a0=arg[1]? arg[1][4] : 0;
+  a0=(2.*a0);
+  if (res[0]!=0) res[0][4]=a0;
+  a0=1.4999999999999999e-02;
+  a1=arg[1]? arg[1][5] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][5]=a0;
+  a0=5.0000000000000000e-01;
+  a1=arg[1]? arg[1][6] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][6]=a1;
+  a1=arg[1]? arg[1][7] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][7]=a0;
+  a0=1.0000000000000000e-03;
+  a1=arg[1]? arg[1][8] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][8]=a0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_mx(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f3(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_mx_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_mx_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_mx_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_mx_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_mx_n_in(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_mx_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_slider_crank_mx_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_mx_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "x";
+    case 2: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_mx_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "mx";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_mx_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_mx_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_mx_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_mx_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_slider_crank_h:(q[9],qd[9],t,p[2])->(h[9]) */
+static int casadi_f4(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1;
+  a0=0.;
+  if (res[0]!=0) res[0][0]=a0;
+  a1=-9.8100000000000005e+00;
+  if (res[0]!=0) res[0][1]=a1;
+  if (res[0]!=0) res[0][2]=a0;
+  if (res[0]!=0) res[0][3]=a0;
+  a1=-1.9620000000000001e+01;
+  if (res[0]!=0) res[0][4]=a1;
+  if (res[0]!=0) res[0][5]=a0;
+  if (res[0]!=0) res[0][6]=a0;
+  a1=-4.9050000000000002e+00;
+  if (res[0]!=0) res[0][7]=a1;
+  if (res[0]!=0) res[0][8]=a0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f4(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_slider_crank_h_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_slider_crank_h_q:(q[9],qd[9],t,p[2])->(h_q[9x9,0nz]) */
+static int casadi_f5(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_q(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f5(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_q_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_q_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_q_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_q_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_q_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_q_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_slider_crank_h_q_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_q_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_q_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_q";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_q_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_q_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s9;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_q_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_q_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_slider_crank_h_qd:(q[9],qd[9],t,p[2])->(h_v[9x9,0nz]) */
+static int casadi_f6(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_qd(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f6(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_qd_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_qd_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_qd_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_h_qd_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_qd_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_h_qd_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_slider_crank_h_qd_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_qd_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_h_qd_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_v";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_qd_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_h_qd_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s9;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_qd_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_h_qd_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_slider_crank_newton:(q[9],qd[9],t,p[2],lambda[8],c[2])->(phi[8],jac[8x9,22nz],a[9x9,13nz]) */
+static int casadi_f7(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a00, a01, a02, a03, a04, a05, a06, a07, a08, a09, a10, a11;
+  casadi_real a12, a13;
+  a00=arg[0]? arg[0][0] : 0;
+  a01=arg[0]? arg[0][2] : 0;
+  a02=cos(a01);
+  a03=arg[3]? arg[3][0] : 0;
+  a04=2.;
+  a03=(a03/a04);
+  a05=(a02*a03);
+  a06=(a00-a05);
+  a06=(-a06);
+  if (res[0]!=0) res[0][0]=a06;
+  a06=arg[0]? arg[0][1] : 0;
+  a01=sin(a01);
+  a07=(a01*a03);
+  a08=(a06-a07);
+  a08=(-a08);
+  if (res[0]!=0) res[0][1]=a08;
+  a00=(a00+a05);
+  a05=arg[0]? arg[0][3] : 0;
+  a08=arg[0]? arg[0][5] : 0;
+  a09=cos(a08);
+  a10=arg[3]? arg[3][1] : 0;
+  a10=(a10/a04);
+  a11=(a09*a10);
+  a12=(a05-a11);
+  a00=(a00-a12);
+  if (res[0]!=0) res[0][2]=a00;
+  a06=(a06+a07);
+  a07=arg[0]? arg[0][4] : 0;
+  a08=sin(a08);
+  a00=(a08*a10);
+  a12=(a07-a00);
+  a06=(a06-a12);
+  if (res[0]!=0) res[0][3]=a06;
+  a05=(a05+a11);
+  a11=arg[0]? arg[0][6] : 0;
+  a05=(a05-a11);
+  if (res[0]!=0) res[0][4]=a05;
+  a07=(a07+a00);
+  a00=arg[0]? arg[0][7] : 0;
+  a07=(a07-a00);
+  if (res[0]!=0) res[0][5]=a07;
+  a07=arg[0]? arg[0][8] : 0;
+  a05=sin(a07);
+  a06=(a05*a11);
+  a07=cos(a07);
+  a12=(a07*a00);
+  a06=(a06-a12);
+  if (res[0]!=0) res[0][6]=a06;
+  a06=(-a05);
+  if (res[0]!=0) res[0][7]=a06;
+  a06=-1.;
+  if (res[1]!=0) res[1][0]=a06;
+  a12=1.;
+  if (res[1]!=0) res[1][1]=a12;
+  if (res[1]!=0) res[1][2]=a06;
+  if (res[1]!=0) res[1][3]=a12;
+  a01=(a03*a01);
+  a13=(-a01);
+  if (res[1]!=0) res[1][4]=a13;
+  a03=(a03*a02);
+  if (res[1]!=0) res[1][5]=a03;
+  if (res[1]!=0) res[1][6]=a13;
+  if (res[1]!=0) res[1][7]=a03;
+  if (res[1]!=0) res[1][8]=a06;
+  if (res[1]!=0) res[1][9]=a12;
+  if (res[1]!=0) res[1][10]=a06;
+  if (res[1]!=0) res[1][11]=a12;
+  a08=(a10*a08);
+  a13=(-a08);
+  if (res[1]!=0) res[1][12]=a13;
+  a10=(a10*a09);
+  if (res[1]!=0) res[1][13]=a10;
+  if (res[1]!=0) res[1][14]=a13;
+  if (res[1]!=0) res[1][15]=a10;
+  if (res[1]!=0) res[1][16]=a06;
+  if (res[1]!=0) res[1][17]=a05;
+  if (res[1]!=0) res[1][18]=a06;
+  a06=(-a07);
+  if (res[1]!=0) res[1][19]=a06;
+  a13=(a11*a07);
+  a09=(a00*a05);
+  a13=(a13+a09);
+  if (res[1]!=0) res[1][20]=a13;
+  if (res[1]!=0) res[1][21]=a06;
+  if (res[2]!=0) res[2][0]=a12;
+  if (res[2]!=0) res[2][1]=a12;
+  a12=2.0000000000000000e-03;
+  a06=arg[5]? arg[5][1] : 0;
+  a13=arg[4]? arg[4][1] : 0;
+  a13=(a13*a01);
+  a09=arg[4]? arg[4][0] : 0;
+  a09=(a09*a03);
+  a13=(a13+a09);
+  a09=arg[4]? arg[4][2] : 0;
+  a03=(a09*a03);
+  a13=(a13+a03);
+  a03=arg[4]? arg[4][3] : 0;
+  a01=(a03*a01);
+  a13=(a13+a01);
+  a13=(a06*a13);
+  a12=(a12+a13);
+  if (res[2]!=0) res[2][2]=a12;
+  if (res[2]!=0) res[2][3]=a04;
+  if (res[2]!=0) res[2][4]=a04;
+  a04=1.4999999999999999e-02;
+  a03=(a03*a08);
+  a09=(a09*a10);
+  a03=(a03+a09);
+  a09=arg[4]? arg[4][4] : 0;
+  a09=(a09*a10);
+  a03=(a03+a09);
+  a09=arg[4]? arg[4][5] : 0;
+  a09=(a09*a08);
+  a03=(a03+a09);
+  a03=(a06*a03);
+  a04=(a04+a03);
+  if (res[2]!=0) res[2][5]=a04;
+  a04=5.0000000000000000e-01;
+  if (res[2]!=0) res[2][6]=a04;
+  a03=arg[4]? arg[4][6] : 0;
+  a09=(a03*a07);
+  a09=(a06*a09);
+  a09=(-a09);
+  if (res[2]!=0) res[2][7]=a09;
+  if (res[2]!=0) res[2][8]=a04;
+  a04=(a03*a05);
+  a04=(a06*a04);
+  a04=(-a04);
+  if (res[2]!=0) res[2][9]=a04;
+  if (res[2]!=0) res[2][10]=a09;
+  if (res[2]!=0) res[2][11]=a04;
+  a04=1.0000000000000000e-03;
+  a00=(a00*a07);
+  a11=(a11*a05);
+  a00=(a00-a11);
+  a03=(a03*a00);
+  a00=arg[4]? arg[4][7] : 0;
+  a00=(a00*a05);
+  a03=(a03+a00);
+  a06=(a06*a03);
+  a04=(a04-a06);
+  if (res[2]!=0) res[2][12]=a04;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_newton(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f7(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_newton_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_newton_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_newton_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_slider_crank_newton_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_newton_n_in(void) { return 6;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_slider_crank_newton_n_out(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_slider_crank_newton_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_newton_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    case 4: return "lambda";
+    case 5: return "c";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_slider_crank_newton_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "phi";
+    case 1: return "jac";
+    case 2: return "a";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_newton_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    case 4: return casadi_s10;
+    case 5: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_slider_crank_newton_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s10;
+    case 1: return casadi_s11;
+    case 2: return casadi_s12;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_newton_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6;
+  if (sz_res) *sz_res = 3;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_slider_crank_newton_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 3*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
   return 0;
 }
 

@@ -35,6 +35,11 @@ extern "C" {
 #define casadi_f0 CASADI_PREFIX(f0)
 #define casadi_f1 CASADI_PREFIX(f1)
 #define casadi_f2 CASADI_PREFIX(f2)
+#define casadi_f3 CASADI_PREFIX(f3)
+#define casadi_f4 CASADI_PREFIX(f4)
+#define casadi_f5 CASADI_PREFIX(f5)
+#define casadi_f6 CASADI_PREFIX(f6)
+#define casadi_f7 CASADI_PREFIX(f7)
 #define casadi_house CASADI_PREFIX(house)
 #define casadi_if_else CASADI_PREFIX(if_else)
 #define casadi_qr CASADI_PREFIX(qr)
@@ -46,6 +51,11 @@ extern "C" {
 #define casadi_s0 CASADI_PREFIX(s0)
 #define casadi_s1 CASADI_PREFIX(s1)
 #define casadi_s10 CASADI_PREFIX(s10)
+#define casadi_s11 CASADI_PREFIX(s11)
+#define casadi_s12 CASADI_PREFIX(s12)
+#define casadi_s13 CASADI_PREFIX(s13)
+#define casadi_s14 CASADI_PREFIX(s14)
+#define casadi_s15 CASADI_PREFIX(s15)
 #define casadi_s2 CASADI_PREFIX(s2)
 #define casadi_s3 CASADI_PREFIX(s3)
 #define casadi_s4 CASADI_PREFIX(s4)
@@ -380,6 +390,40 @@ static const casadi_int casadi_s10[264] =
   2, 3, 5, 7, 8, 10, 12, 13,
   19, 20, 21, 22, 23, 24, 25, 26,
   27, 28, 29, 30, 31, 32, 33, 34};
+static const casadi_int casadi_s11[21] = 
+  {18, 18, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0};
+static const casadi_int casadi_s12[39] = 
+  {18, 18, 0, 0, 0, 0, 2, 4,
+  6, 6, 6, 6, 8, 10, 12, 12,
+  12, 12, 14, 16, 18, 4, 5, 3,
+  5, 3, 4, 10, 11, 9, 11, 9,
+  10, 16, 17, 15, 17, 15, 16};
+static const casadi_int casadi_s13[3] = {17, 1, 1};
+static const casadi_int casadi_s14[85] = 
+  {17, 18, 0, 2, 4, 6, 11, 16,
+  20, 22, 24, 26, 33, 40, 47, 48,
+  50, 52, 56, 60, 64, 0, 5, 1,
+  6, 2, 7, 3, 4, 5, 6, 7,
+  3, 4, 5, 6, 7, 4, 5, 6,
+  7, 5, 8, 6, 9, 7, 10, 5,
+  6, 7, 8, 9, 10, 11, 5, 6,
+  7, 8, 9, 10, 11, 5, 6, 7,
+  8, 9, 10, 11, 8, 9, 14, 10,
+  15, 11, 12, 13, 16, 11, 12, 13,
+  16, 11, 12, 13, 16};
+static const casadi_int casadi_s15[75] = 
+  {18, 18, 0, 1, 2, 3, 6, 9,
+  12, 13, 14, 15, 21, 27, 33, 34,
+  35, 36, 42, 48, 54, 0, 1, 2,
+  3, 4, 5, 3, 4, 5, 3, 4,
+  5, 6, 7, 8, 9, 10, 11, 15,
+  16, 17, 9, 10, 11, 15, 16, 17,
+  9, 10, 11, 15, 16, 17, 12, 13,
+  14, 9, 10, 11, 15, 16, 17, 9,
+  10, 11, 15, 16, 17, 9, 10, 11,
+  15, 16, 17};
 
 static const casadi_real casadi_zeros[21] = 
   {0.};
@@ -8687,6 +8731,2411 @@ CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_fd_qr_work_bytes(casadi_int *
   if (sz_res) *sz_res = 3*sizeof(casadi_real*);
   if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
   if (sz_w) *sz_w = 657*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_spatial_slider_crank_mx:(q[21],x[18],p[4])->(mx[18]) */
+static int casadi_f3(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1, a2;
+  a0=arg[1]? arg[1][0] : 0;
+  if (res[0]!=0) res[0][0]=a0;
+  a0=arg[1]? arg[1][1] : 0;
+  if (res[0]!=0) res[0][1]=a0;
+  a0=arg[1]? arg[1][2] : 0;
+  if (res[0]!=0) res[0][2]=a0;
+  a0=1.0000000000000000e-03;
+  a1=arg[1]? arg[1][3] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][3]=a1;
+  a1=arg[1]? arg[1][4] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][4]=a0;
+  a0=2.0000000000000000e-03;
+  a1=arg[1]? arg[1][5] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][5]=a0;
+  a0=arg[1]? arg[1][6] : 0;
+  a0=(2.*a0);
+  if (res[0]!=0) res[0][6]=a0;
+  a0=arg[1]? arg[1][7] : 0;
+  a0=(2.*a0);
+  if (res[0]!=0) res[0][7]=a0;
+  a0=arg[1]? arg[1][8] : 0;
+  a0=(2.*a0);
+  if (res[0]!=0) res[0][8]=a0;
+  a0=1.0000000000000000e-04;
+  a1=arg[1]? arg[1][9] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][9]=a1;
+  a1=2.0500000000000001e-02;
+  a2=arg[1]? arg[1][10] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][10]=a2;
+  a2=arg[1]? arg[1][11] : 0;
+  a1=(a1*a2);
+  if (res[0]!=0) res[0][11]=a1;
+  a1=5.0000000000000000e-01;
+  a2=arg[1]? arg[1][12] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][12]=a2;
+  a2=arg[1]? arg[1][13] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][13]=a2;
+  a2=arg[1]? arg[1][14] : 0;
+  a1=(a1*a2);
+  if (res[0]!=0) res[0][14]=a1;
+  a1=arg[1]? arg[1][15] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][15]=a1;
+  a1=arg[1]? arg[1][16] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][16]=a1;
+  a1=arg[1]? arg[1][17] : 0;
+  a0=(a0*a1);
+  if (res[0]!=0) res[0][17]=a0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_mx(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f3(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_mx_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_mx_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_mx_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_mx_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_mx_n_in(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_mx_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_spatial_slider_crank_mx_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_mx_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "x";
+    case 2: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_mx_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "mx";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_mx_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s1;
+    case 2: return casadi_s3;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_mx_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s1;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_mx_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_mx_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_spatial_slider_crank_h:(q[21],v[18],t,p[4])->(h[18]) */
+static int casadi_f4(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1, a2, a3, a4, a5, a6, a7;
+  a0=0.;
+  if (res[0]!=0) res[0][0]=a0;
+  a1=-9.8100000000000005e+00;
+  if (res[0]!=0) res[0][1]=a1;
+  if (res[0]!=0) res[0][2]=a0;
+  a1=arg[1]? arg[1][4] : 0;
+  a2=2.0000000000000000e-03;
+  a3=arg[1]? arg[1][5] : 0;
+  a2=(a2*a3);
+  a4=(a1*a2);
+  a5=1.0000000000000000e-03;
+  a6=(a5*a1);
+  a7=(a3*a6);
+  a4=(a4-a7);
+  a4=(-a4);
+  if (res[0]!=0) res[0][3]=a4;
+  a4=arg[1]? arg[1][3] : 0;
+  a5=(a5*a4);
+  a3=(a3*a5);
+  a2=(a4*a2);
+  a3=(a3-a2);
+  a3=(-a3);
+  if (res[0]!=0) res[0][4]=a3;
+  a4=(a4*a6);
+  a1=(a1*a5);
+  a4=(a4-a1);
+  a4=(-a4);
+  if (res[0]!=0) res[0][5]=a4;
+  if (res[0]!=0) res[0][6]=a0;
+  a4=-1.9620000000000001e+01;
+  if (res[0]!=0) res[0][7]=a4;
+  if (res[0]!=0) res[0][8]=a0;
+  a4=arg[1]? arg[1][10] : 0;
+  a1=2.0500000000000001e-02;
+  a5=arg[1]? arg[1][11] : 0;
+  a6=(a1*a5);
+  a3=(a4*a6);
+  a1=(a1*a4);
+  a2=(a5*a1);
+  a3=(a3-a2);
+  a3=(-a3);
+  if (res[0]!=0) res[0][9]=a3;
+  a3=1.0000000000000000e-04;
+  a2=arg[1]? arg[1][9] : 0;
+  a7=(a3*a2);
+  a5=(a5*a7);
+  a6=(a2*a6);
+  a5=(a5-a6);
+  a5=(-a5);
+  if (res[0]!=0) res[0][10]=a5;
+  a2=(a2*a1);
+  a4=(a4*a7);
+  a2=(a2-a4);
+  a2=(-a2);
+  if (res[0]!=0) res[0][11]=a2;
+  if (res[0]!=0) res[0][12]=a0;
+  a2=-4.9050000000000002e+00;
+  if (res[0]!=0) res[0][13]=a2;
+  if (res[0]!=0) res[0][14]=a0;
+  a0=arg[1]? arg[1][16] : 0;
+  a2=arg[1]? arg[1][17] : 0;
+  a4=(a3*a2);
+  a7=(a0*a4);
+  a1=(a3*a0);
+  a5=(a2*a1);
+  a7=(a7-a5);
+  a7=(-a7);
+  if (res[0]!=0) res[0][15]=a7;
+  a7=arg[1]? arg[1][15] : 0;
+  a3=(a3*a7);
+  a2=(a2*a3);
+  a4=(a7*a4);
+  a2=(a2-a4);
+  a2=(-a2);
+  if (res[0]!=0) res[0][16]=a2;
+  a7=(a7*a1);
+  a0=(a0*a3);
+  a7=(a7-a0);
+  a7=(-a7);
+  if (res[0]!=0) res[0][17]=a7;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f4(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_spatial_slider_crank_h_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "v";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s1;
+    case 2: return casadi_s2;
+    case 3: return casadi_s3;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s1;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_spatial_slider_crank_h_q:(q[21],v[18],t,p[4])->(h_q[18x18,0nz]) */
+static int casadi_f5(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_q(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f5(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_q_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_q_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_q_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_q_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_q_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_q_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_spatial_slider_crank_h_q_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_q_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "v";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_q_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_q";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_q_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s1;
+    case 2: return casadi_s2;
+    case 3: return casadi_s3;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_q_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s11;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_q_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_q_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_spatial_slider_crank_h_v:(q[21],v[18],t,p[4])->(h_v[18x18,18nz]) */
+static int casadi_f6(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1, a2, a3, a4;
+  a0=1.0000000000000000e-03;
+  a1=arg[1]? arg[1][5] : 0;
+  a2=(a0*a1);
+  a3=2.0000000000000000e-03;
+  a1=(a3*a1);
+  a4=(a2-a1);
+  a4=(-a4);
+  if (res[0]!=0) res[0][0]=a4;
+  a4=0.;
+  if (res[0]!=0) res[0][1]=a4;
+  a1=(a1-a2);
+  a1=(-a1);
+  if (res[0]!=0) res[0][2]=a1;
+  if (res[0]!=0) res[0][3]=a4;
+  a1=arg[1]? arg[1][4] : 0;
+  a2=(a3*a1);
+  a1=(a0*a1);
+  a2=(a2-a1);
+  a2=(-a2);
+  if (res[0]!=0) res[0][4]=a2;
+  a2=arg[1]? arg[1][3] : 0;
+  a0=(a0*a2);
+  a3=(a3*a2);
+  a0=(a0-a3);
+  a0=(-a0);
+  if (res[0]!=0) res[0][5]=a0;
+  a0=1.0000000000000000e-04;
+  a3=arg[1]? arg[1][11] : 0;
+  a2=(a0*a3);
+  a1=2.0500000000000001e-02;
+  a3=(a1*a3);
+  a2=(a2-a3);
+  a2=(-a2);
+  if (res[0]!=0) res[0][6]=a2;
+  a2=arg[1]? arg[1][10] : 0;
+  a3=(a1*a2);
+  a2=(a0*a2);
+  a3=(a3-a2);
+  a3=(-a3);
+  if (res[0]!=0) res[0][7]=a3;
+  if (res[0]!=0) res[0][8]=a4;
+  a3=arg[1]? arg[1][9] : 0;
+  a1=(a1*a3);
+  a0=(a0*a3);
+  a3=(a1-a0);
+  a3=(-a3);
+  if (res[0]!=0) res[0][9]=a3;
+  if (res[0]!=0) res[0][10]=a4;
+  a0=(a0-a1);
+  a0=(-a0);
+  if (res[0]!=0) res[0][11]=a0;
+  if (res[0]!=0) res[0][12]=a4;
+  if (res[0]!=0) res[0][13]=a4;
+  if (res[0]!=0) res[0][14]=a4;
+  if (res[0]!=0) res[0][15]=a4;
+  if (res[0]!=0) res[0][16]=a4;
+  if (res[0]!=0) res[0][17]=a4;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_v(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f6(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_v_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_v_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_v_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_h_v_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_v_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_h_v_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_spatial_slider_crank_h_v_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_v_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "v";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_h_v_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_v";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_v_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s1;
+    case 2: return casadi_s2;
+    case 3: return casadi_s3;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_h_v_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s12;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_v_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_h_v_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* free_spatial_slider_crank_newton:(q[21],v[18],t,p[4],lambda[17],c[2])->(phi[17],jac[17x18,64nz],a[18x18,54nz]) */
+static int casadi_f7(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a00, a01, a02, a03, a04, a05, a06, a07, a08, a09, a10, a11;
+  casadi_real a12, a13, a14, a15, a16, a17, a18, a19, a20, a21, a22, a23;
+  casadi_real a24, a25, a26, a27, a28, a29, a30, a31, a32, a33, a34, a35;
+  casadi_real a36, a37, a38, a39, a40, a41, a42, a43, a44, a45, a46, a47;
+  casadi_real a48, a49, a50, a51, a52, a53, a54, a55, a56, a57, a58, a59;
+  casadi_real a60, a61, a62, a63, a64, a65, a66, a67, a68, a69, a70, a71;
+  casadi_real a72, a73, a74, a75, a76, a77, a78, a79, a80, a81, a82, a83;
+  casadi_real a84, a85, a86, a87, a88, a89, a90, a91, a92, a93;
+  a00=arg[0]? arg[0][0] : 0;
+  a01=(-a00);
+  if (res[0]!=0) res[0][0]=a01;
+  a01=arg[0]? arg[0][1] : 0;
+  a02=(-a01);
+  if (res[0]!=0) res[0][1]=a02;
+  a02=arg[0]? arg[0][2] : 0;
+  a03=(-a02);
+  if (res[0]!=0) res[0][2]=a03;
+  a03=arg[0]? arg[0][4] : 0;
+  a04=arg[0]? arg[0][6] : 0;
+  a05=(a03*a04);
+  a06=arg[0]? arg[0][3] : 0;
+  a07=arg[0]? arg[0][5] : 0;
+  a08=(a06*a07);
+  a05=(a05+a08);
+  a05=(2.*a05);
+  if (res[0]!=0) res[0][3]=a05;
+  a05=(a07*a04);
+  a09=(a06*a03);
+  a05=(a05-a09);
+  a05=(2.*a05);
+  if (res[0]!=0) res[0][4]=a05;
+  a05=casadi_sq(a06);
+  a05=(2.*a05);
+  a09=1.;
+  a05=(a05-a09);
+  a10=casadi_sq(a03);
+  a10=(2.*a10);
+  a05=(a05+a10);
+  a10=arg[3]? arg[3][0] : 0;
+  a05=(a05*a10);
+  a00=(a00+a05);
+  a05=arg[0]? arg[0][7] : 0;
+  a11=arg[0]? arg[0][10] : 0;
+  a12=casadi_sq(a11);
+  a12=(2.*a12);
+  a12=(a12-a09);
+  a13=arg[0]? arg[0][11] : 0;
+  a14=casadi_sq(a13);
+  a14=(2.*a14);
+  a14=(a12+a14);
+  a15=arg[3]? arg[3][1] : 0;
+  a16=2.;
+  a17=(a15/a16);
+  a14=(a14*a17);
+  a18=(a05-a14);
+  a00=(a00-a18);
+  if (res[0]!=0) res[0][5]=a00;
+  a00=(a07*a03);
+  a18=(a06*a04);
+  a00=(a00+a18);
+  a00=(2.*a00);
+  a00=(a00*a10);
+  a01=(a01+a00);
+  a00=arg[0]? arg[0][8] : 0;
+  a18=arg[0]? arg[0][12] : 0;
+  a19=(a18*a13);
+  a20=arg[0]? arg[0][13] : 0;
+  a21=(a11*a20);
+  a19=(a19+a21);
+  a19=(2.*a19);
+  a19=(a19*a17);
+  a21=(a00-a19);
+  a01=(a01-a21);
+  if (res[0]!=0) res[0][6]=a01;
+  a01=(a04*a03);
+  a01=(a01-a08);
+  a01=(2.*a01);
+  a01=(a01*a10);
+  a02=(a02+a01);
+  a01=arg[0]? arg[0][9] : 0;
+  a08=(a20*a13);
+  a21=(a11*a18);
+  a08=(a08-a21);
+  a08=(2.*a08);
+  a08=(a08*a17);
+  a22=(a01-a08);
+  a02=(a02-a22);
+  if (res[0]!=0) res[0][7]=a02;
+  a05=(a05+a14);
+  a14=arg[0]? arg[0][14] : 0;
+  a05=(a05-a14);
+  if (res[0]!=0) res[0][8]=a05;
+  a00=(a00+a19);
+  a19=arg[0]? arg[0][15] : 0;
+  a00=(a00-a19);
+  if (res[0]!=0) res[0][9]=a00;
+  a01=(a01+a08);
+  a08=arg[0]? arg[0][16] : 0;
+  a01=(a01-a08);
+  if (res[0]!=0) res[0][10]=a01;
+  a01=(a13*a20);
+  a01=(a01+a21);
+  a21=(2.*a01);
+  a00=arg[0]? arg[0][18] : 0;
+  a05=arg[0]? arg[0][19] : 0;
+  a14=(a00*a05);
+  a02=arg[0]? arg[0][17] : 0;
+  a22=arg[0]? arg[0][20] : 0;
+  a23=(a02*a22);
+  a14=(a14-a23);
+  a24=(2.*a14);
+  a25=(a21*a24);
+  a26=(a18*a20);
+  a27=(a11*a13);
+  a26=(a26-a27);
+  a27=(2.*a26);
+  a28=casadi_sq(a02);
+  a28=(2.*a28);
+  a28=(a28-a09);
+  a29=casadi_sq(a05);
+  a29=(2.*a29);
+  a28=(a28+a29);
+  a29=(a27*a28);
+  a25=(a25+a29);
+  a29=casadi_sq(a20);
+  a29=(2.*a29);
+  a12=(a12+a29);
+  a29=(a22*a05);
+  a30=(a02*a00);
+  a29=(a29+a30);
+  a31=(2.*a29);
+  a32=(a12*a31);
+  a25=(a25+a32);
+  if (res[0]!=0) res[0][11]=a25;
+  a25=(a05*a00);
+  a25=(a25+a23);
+  a25=(2.*a25);
+  if (res[0]!=0) res[0][12]=a25;
+  a25=(a22*a00);
+  a23=(a02*a05);
+  a25=(a25-a23);
+  a25=(2.*a25);
+  if (res[0]!=0) res[0][13]=a25;
+  a25=arg[3]? arg[3][2] : 0;
+  a19=(a19-a25);
+  if (res[0]!=0) res[0][14]=a19;
+  a19=arg[3]? arg[3][3] : 0;
+  a08=(a08-a19);
+  if (res[0]!=0) res[0][15]=a08;
+  a08=(a05*a22);
+  a08=(a08-a30);
+  a08=(2.*a08);
+  if (res[0]!=0) res[0][16]=a08;
+  a08=-1.;
+  if (res[1]!=0) res[1][0]=a08;
+  if (res[1]!=0) res[1][1]=a09;
+  if (res[1]!=0) res[1][2]=a08;
+  if (res[1]!=0) res[1][3]=a09;
+  if (res[1]!=0) res[1][4]=a08;
+  if (res[1]!=0) res[1][5]=a09;
+  a30=(2.*a04);
+  a19=5.0000000000000000e-01;
+  a25=(a19*a06);
+  a23=(a30*a25);
+  a32=(2.*a07);
+  a33=(a19*a03);
+  a34=(a32*a33);
+  a35=(a23-a34);
+  a36=(2.*a06);
+  a04=(a19*a04);
+  a37=(a36*a04);
+  a35=(a35+a37);
+  a37=(2.*a03);
+  a38=(a19*a07);
+  a39=(a37*a38);
+  a35=(a35-a39);
+  if (res[1]!=0) res[1][6]=a35;
+  a35=(-a06);
+  a35=(2.*a35);
+  a39=(a35*a25);
+  a40=(-a03);
+  a40=(2.*a40);
+  a41=(a40*a33);
+  a39=(a39-a41);
+  a41=(a30*a04);
+  a39=(a39+a41);
+  a42=(a32*a38);
+  a39=(a39-a42);
+  if (res[1]!=0) res[1][7]=a39;
+  a39=4.;
+  a03=(a39*a03);
+  a03=(a10*a03);
+  a43=(a03*a25);
+  a06=(a39*a06);
+  a06=(a10*a06);
+  a44=(a06*a33);
+  a43=(a43-a44);
+  if (res[1]!=0) res[1][8]=a43;
+  a43=(a10*a32);
+  a44=(a43*a25);
+  a45=(a10*a30);
+  a46=(a45*a33);
+  a44=(a44-a46);
+  a46=(a10*a37);
+  a47=(a46*a04);
+  a44=(a44+a47);
+  a47=(a10*a36);
+  a48=(a47*a38);
+  a44=(a44-a48);
+  if (res[1]!=0) res[1][9]=a44;
+  a44=(a45*a25);
+  a07=(-a07);
+  a07=(2.*a07);
+  a07=(a10*a07);
+  a48=(a07*a33);
+  a44=(a44-a48);
+  a48=(a10*a35);
+  a49=(a48*a04);
+  a44=(a44+a49);
+  a49=(a46*a38);
+  a44=(a44-a49);
+  if (res[1]!=0) res[1][10]=a44;
+  a44=(a36*a25);
+  a42=(a42+a41);
+  a44=(a44-a42);
+  a42=(a37*a33);
+  a44=(a44+a42);
+  if (res[1]!=0) res[1][11]=a44;
+  a44=(a40*a38);
+  a42=(a35*a04);
+  a44=(a44+a42);
+  a23=(a23-a44);
+  a23=(a23+a34);
+  if (res[1]!=0) res[1][12]=a23;
+  a23=(a06*a38);
+  a34=(a03*a04);
+  a23=(a23+a34);
+  a23=(-a23);
+  if (res[1]!=0) res[1][13]=a23;
+  a23=(a46*a25);
+  a34=(a45*a38);
+  a44=(a43*a04);
+  a44=(a34+a44);
+  a44=(a23-a44);
+  a42=(a47*a33);
+  a44=(a44+a42);
+  if (res[1]!=0) res[1][14]=a44;
+  a44=(a48*a25);
+  a42=(a07*a38);
+  a41=(a45*a04);
+  a42=(a42+a41);
+  a44=(a44-a42);
+  a42=(a46*a33);
+  a44=(a44+a42);
+  if (res[1]!=0) res[1][15]=a44;
+  a35=(a35*a38);
+  a40=(a40*a04);
+  a35=(a35-a40);
+  a40=(a30*a33);
+  a35=(a35-a40);
+  a40=(a32*a25);
+  a35=(a35+a40);
+  if (res[1]!=0) res[1][16]=a35;
+  a35=(a03*a38);
+  a40=(a06*a04);
+  a35=(a35-a40);
+  if (res[1]!=0) res[1][17]=a35;
+  a35=(a43*a38);
+  a35=(a35-a41);
+  a35=(a35-a42);
+  a42=(a47*a25);
+  a35=(a35+a42);
+  if (res[1]!=0) res[1][18]=a35;
+  a35=(a07*a04);
+  a34=(a34-a35);
+  a35=(a48*a33);
+  a34=(a34-a35);
+  a34=(a34+a23);
+  if (res[1]!=0) res[1][19]=a34;
+  if (res[1]!=0) res[1][20]=a08;
+  if (res[1]!=0) res[1][21]=a09;
+  if (res[1]!=0) res[1][22]=a08;
+  if (res[1]!=0) res[1][23]=a09;
+  if (res[1]!=0) res[1][24]=a08;
+  if (res[1]!=0) res[1][25]=a09;
+  a34=(a39*a13);
+  a34=(a17*a34);
+  a23=(a19*a11);
+  a35=(a34*a23);
+  a42=(a39*a11);
+  a41=(a17*a42);
+  a40=(a19*a13);
+  a44=(a41*a40);
+  a35=(a35-a44);
+  if (res[1]!=0) res[1][26]=a35;
+  a44=(2.*a18);
+  a49=(a17*a44);
+  a50=(a49*a23);
+  a51=(2.*a20);
+  a52=(a17*a51);
+  a53=(a52*a40);
+  a50=(a50-a53);
+  a53=(2.*a13);
+  a54=(a17*a53);
+  a55=(a19*a20);
+  a56=(a54*a55);
+  a50=(a50+a56);
+  a56=(2.*a11);
+  a57=(a17*a56);
+  a58=(a19*a18);
+  a59=(a57*a58);
+  a50=(a50-a59);
+  if (res[1]!=0) res[1][27]=a50;
+  a59=(a52*a23);
+  a18=(-a18);
+  a18=(2.*a18);
+  a18=(a17*a18);
+  a60=(a18*a40);
+  a59=(a59-a60);
+  a11=(-a11);
+  a11=(2.*a11);
+  a60=(a17*a11);
+  a61=(a60*a55);
+  a59=(a59+a61);
+  a61=(a54*a58);
+  a59=(a59-a61);
+  if (res[1]!=0) res[1][28]=a59;
+  if (res[1]!=0) res[1][29]=a35;
+  if (res[1]!=0) res[1][30]=a50;
+  if (res[1]!=0) res[1][31]=a59;
+  a59=(a24*a51);
+  a50=(a28*a11);
+  a59=(a59+a50);
+  a50=(a59*a23);
+  a35=(a24*a44);
+  a13=(-a13);
+  a13=(2.*a13);
+  a61=(a28*a13);
+  a35=(a35+a61);
+  a61=(a31*a42);
+  a35=(a35+a61);
+  a61=(a35*a40);
+  a50=(a50-a61);
+  a61=(a24*a56);
+  a62=(a28*a51);
+  a61=(a61+a62);
+  a62=(a61*a55);
+  a50=(a50+a62);
+  a24=(a24*a53);
+  a62=(a28*a44);
+  a24=(a24+a62);
+  a20=(a39*a20);
+  a31=(a31*a20);
+  a24=(a24+a31);
+  a31=(a24*a58);
+  a50=(a50-a31);
+  if (res[1]!=0) res[1][32]=a50;
+  a50=(a41*a58);
+  a31=(a34*a55);
+  a50=(a50+a31);
+  a50=(-a50);
+  if (res[1]!=0) res[1][33]=a50;
+  a31=(a54*a23);
+  a62=(a52*a58);
+  a63=(a49*a55);
+  a63=(a62+a63);
+  a63=(a31-a63);
+  a64=(a57*a40);
+  a63=(a63+a64);
+  if (res[1]!=0) res[1][34]=a63;
+  a64=(a60*a23);
+  a65=(a18*a58);
+  a66=(a52*a55);
+  a65=(a65+a66);
+  a64=(a64-a65);
+  a65=(a54*a40);
+  a64=(a64+a65);
+  if (res[1]!=0) res[1][35]=a64;
+  if (res[1]!=0) res[1][36]=a50;
+  if (res[1]!=0) res[1][37]=a63;
+  if (res[1]!=0) res[1][38]=a64;
+  a64=(a61*a23);
+  a63=(a35*a58);
+  a50=(a59*a55);
+  a63=(a63+a50);
+  a64=(a64-a63);
+  a63=(a24*a40);
+  a64=(a64+a63);
+  if (res[1]!=0) res[1][39]=a64;
+  a64=(a34*a58);
+  a63=(a41*a55);
+  a64=(a64-a63);
+  if (res[1]!=0) res[1][40]=a64;
+  a63=(a49*a58);
+  a63=(a63-a66);
+  a63=(a63-a65);
+  a65=(a57*a23);
+  a63=(a63+a65);
+  if (res[1]!=0) res[1][41]=a63;
+  a65=(a18*a55);
+  a62=(a62-a65);
+  a65=(a60*a40);
+  a62=(a62-a65);
+  a62=(a62+a31);
+  if (res[1]!=0) res[1][42]=a62;
+  if (res[1]!=0) res[1][43]=a64;
+  if (res[1]!=0) res[1][44]=a63;
+  if (res[1]!=0) res[1][45]=a62;
+  a62=(a59*a58);
+  a63=(a35*a55);
+  a62=(a62-a63);
+  a63=(a61*a40);
+  a62=(a62-a63);
+  a63=(a24*a23);
+  a62=(a62+a63);
+  if (res[1]!=0) res[1][46]=a62;
+  if (res[1]!=0) res[1][47]=a08;
+  if (res[1]!=0) res[1][48]=a08;
+  if (res[1]!=0) res[1][49]=a09;
+  if (res[1]!=0) res[1][50]=a08;
+  if (res[1]!=0) res[1][51]=a09;
+  a08=(2.*a05);
+  a62=(a21*a08);
+  a63=(2.*a02);
+  a64=(a12*a63);
+  a62=(a62+a64);
+  a64=(a19*a02);
+  a31=(a62*a64);
+  a65=(-a22);
+  a65=(2.*a65);
+  a66=(a21*a65);
+  a50=(a39*a02);
+  a67=(a27*a50);
+  a66=(a66+a67);
+  a67=(2.*a00);
+  a68=(a12*a67);
+  a66=(a66+a68);
+  a68=(a19*a00);
+  a69=(a66*a68);
+  a31=(a31-a69);
+  a69=(a21*a67);
+  a70=(a39*a05);
+  a27=(a27*a70);
+  a69=(a69+a27);
+  a27=(2.*a22);
+  a71=(a12*a27);
+  a69=(a69+a71);
+  a22=(a19*a22);
+  a71=(a69*a22);
+  a31=(a31+a71);
+  a02=(-a02);
+  a02=(2.*a02);
+  a21=(a21*a02);
+  a71=(a12*a08);
+  a21=(a21+a71);
+  a71=(a19*a05);
+  a72=(a21*a71);
+  a31=(a31-a72);
+  if (res[1]!=0) res[1][52]=a31;
+  a31=(a08*a64);
+  a72=(a27*a68);
+  a73=(a31-a72);
+  a74=(a67*a22);
+  a73=(a73+a74);
+  a74=(a63*a71);
+  a73=(a73-a74);
+  if (res[1]!=0) res[1][53]=a73;
+  a73=(a27*a64);
+  a05=(-a05);
+  a05=(2.*a05);
+  a74=(a05*a68);
+  a74=(a73-a74);
+  a75=(a02*a22);
+  a74=(a74+a75);
+  a76=(a67*a71);
+  a74=(a74-a76);
+  if (res[1]!=0) res[1][54]=a74;
+  a74=(a02*a64);
+  a00=(-a00);
+  a00=(2.*a00);
+  a76=(a00*a68);
+  a76=(a74-a76);
+  a77=(a27*a22);
+  a76=(a76+a77);
+  a78=(a08*a71);
+  a76=(a76-a78);
+  if (res[1]!=0) res[1][55]=a76;
+  a76=(a69*a64);
+  a79=(a66*a71);
+  a80=(a62*a22);
+  a79=(a79+a80);
+  a76=(a76-a79);
+  a79=(a21*a68);
+  a76=(a76+a79);
+  if (res[1]!=0) res[1][56]=a76;
+  a76=(a67*a64);
+  a79=(a27*a71);
+  a80=(a08*a22);
+  a80=(a79+a80);
+  a80=(a76-a80);
+  a81=(a63*a68);
+  a80=(a80+a81);
+  if (res[1]!=0) res[1][57]=a80;
+  a80=(a05*a71);
+  a80=(a80+a77);
+  a74=(a74-a80);
+  a80=(a67*a68);
+  a74=(a74+a80);
+  if (res[1]!=0) res[1][58]=a74;
+  a74=(a00*a71);
+  a74=(a74+a75);
+  a73=(a73-a74);
+  a74=(a08*a68);
+  a73=(a73+a74);
+  if (res[1]!=0) res[1][59]=a73;
+  a73=(a62*a71);
+  a74=(a66*a22);
+  a73=(a73-a74);
+  a74=(a69*a68);
+  a73=(a73-a74);
+  a74=(a21*a64);
+  a73=(a73+a74);
+  if (res[1]!=0) res[1][60]=a73;
+  a78=(a78-a77);
+  a78=(a78-a80);
+  a80=(a63*a64);
+  a78=(a78+a80);
+  if (res[1]!=0) res[1][61]=a78;
+  a05=(a05*a22);
+  a79=(a79-a05);
+  a05=(a02*a68);
+  a79=(a79-a05);
+  a79=(a79+a76);
+  if (res[1]!=0) res[1][62]=a79;
+  a79=(a02*a71);
+  a00=(a00*a22);
+  a79=(a79-a00);
+  a79=(a79-a72);
+  a79=(a79+a31);
+  if (res[1]!=0) res[1][63]=a79;
+  if (res[2]!=0) res[2][0]=a09;
+  if (res[2]!=0) res[2][1]=a09;
+  if (res[2]!=0) res[2][2]=a09;
+  a09=1.0000000000000000e-03;
+  a79=arg[5]? arg[5][1] : 0;
+  a31=arg[4]? arg[4][4] : 0;
+  a72=(a31*a37);
+  a00=arg[4]? arg[4][3] : 0;
+  a76=(a00*a32);
+  a72=(a72-a76);
+  a76=arg[4]? arg[4][5] : 0;
+  a05=(a39*a10);
+  a78=(a25*a05);
+  a06=(a19*a06);
+  a78=(a78-a06);
+  a78=(a76*a78);
+  a78=(a72+a78);
+  a80=arg[4]? arg[4][6] : 0;
+  a77=(2.*a10);
+  a73=(a04*a77);
+  a45=(a19*a45);
+  a74=(a73-a45);
+  a74=(a80*a74);
+  a78=(a78+a74);
+  a74=arg[4]? arg[4][7] : 0;
+  a07=(a19*a07);
+  a75=(a38*a77);
+  a81=(a07+a75);
+  a81=(a74*a81);
+  a78=(a78-a81);
+  a81=(a78*a25);
+  a82=(a00*a30);
+  a83=(a31*a36);
+  a84=(a82-a83);
+  a03=(a19*a03);
+  a85=(a33*a05);
+  a85=(a03-a85);
+  a85=(a76*a85);
+  a84=(a84+a85);
+  a43=(a19*a43);
+  a85=(a43-a75);
+  a85=(a80*a85);
+  a84=(a84+a85);
+  a85=-2.;
+  a10=(a85*a10);
+  a86=(a04*a10);
+  a87=(a45+a86);
+  a87=(a74*a87);
+  a84=(a84+a87);
+  a87=(a84*a33);
+  a81=(a81-a87);
+  a87=(a25*a77);
+  a47=(a19*a47);
+  a88=(a87-a47);
+  a88=(a80*a88);
+  a37=(a00*a37);
+  a32=(a31*a32);
+  a37=(a37+a32);
+  a88=(a88-a37);
+  a32=(a33*a10);
+  a46=(a19*a46);
+  a89=(a32+a46);
+  a89=(a74*a89);
+  a88=(a88-a89);
+  a89=(a88*a04);
+  a81=(a81+a89);
+  a00=(a00*a36);
+  a31=(a31*a30);
+  a00=(a00+a31);
+  a77=(a33*a77);
+  a31=(a46-a77);
+  a31=(a80*a31);
+  a31=(a00+a31);
+  a48=(a19*a48);
+  a30=(a87+a48);
+  a30=(a74*a30);
+  a31=(a31+a30);
+  a30=(a31*a38);
+  a81=(a81-a30);
+  a81=(a79*a81);
+  a81=(a09-a81);
+  if (res[2]!=0) res[2][3]=a81;
+  a81=arg[5]? arg[5][0] : 0;
+  a30=arg[1]? arg[1][5] : 0;
+  a36=(a09*a30);
+  a89=2.0000000000000000e-03;
+  a30=(a89*a30);
+  a90=(a36-a30);
+  a90=(a81*a90);
+  a91=(a04*a05);
+  a91=(a76*a91);
+  a37=(a37-a91);
+  a47=(a87+a47);
+  a47=(a80*a47);
+  a37=(a37+a47);
+  a92=(a77+a46);
+  a93=(a74*a92);
+  a37=(a37+a93);
+  a93=(a37*a25);
+  a05=(a38*a05);
+  a05=(a76*a05);
+  a00=(a00-a05);
+  a77=(a46+a77);
+  a77=(a80*a77);
+  a00=(a00+a77);
+  a77=(a25*a10);
+  a77=(a77+a48);
+  a77=(a74*a77);
+  a00=(a00+a77);
+  a77=(a00*a33);
+  a93=(a93-a77);
+  a06=(a76*a06);
+  a72=(a72-a06);
+  a77=(a45+a73);
+  a77=(a80*a77);
+  a72=(a72-a77);
+  a10=(a38*a10);
+  a10=(a10+a07);
+  a10=(a74*a10);
+  a72=(a72-a10);
+  a10=(a72*a04);
+  a93=(a93+a10);
+  a83=(a83-a82);
+  a03=(a76*a03);
+  a83=(a83-a03);
+  a43=(a75+a43);
+  a43=(a80*a43);
+  a83=(a83-a43);
+  a73=(a73+a45);
+  a82=(a74*a73);
+  a83=(a83-a82);
+  a82=(a83*a38);
+  a93=(a93-a82);
+  a93=(a79*a93);
+  a90=(a90-a93);
+  if (res[2]!=0) res[2][4]=a90;
+  a92=(a80*a92);
+  a05=(a05-a92);
+  a87=(a87-a48);
+  a87=(a74*a87);
+  a05=(a05+a87);
+  a87=(a05*a25);
+  a47=(a47-a91);
+  a46=(a46-a32);
+  a46=(a74*a46);
+  a47=(a47+a46);
+  a46=(a47*a33);
+  a87=(a87-a46);
+  a03=(a03+a43);
+  a45=(a45-a86);
+  a45=(a74*a45);
+  a03=(a03+a45);
+  a45=(a03*a04);
+  a87=(a87+a45);
+  a75=(a75-a07);
+  a75=(a74*a75);
+  a73=(a80*a73);
+  a06=(a06+a73);
+  a75=(a75-a06);
+  a06=(a75*a38);
+  a87=(a87-a06);
+  a87=(a79*a87);
+  a87=(-a87);
+  if (res[2]!=0) res[2][5]=a87;
+  a30=(a30-a36);
+  a30=(a81*a30);
+  a36=(a88*a25);
+  a87=(a84*a38);
+  a06=(a78*a04);
+  a87=(a87+a06);
+  a36=(a36-a87);
+  a87=(a31*a33);
+  a36=(a36+a87);
+  a36=(a79*a36);
+  a30=(a30-a36);
+  if (res[2]!=0) res[2][6]=a30;
+  a30=(a72*a25);
+  a36=(a00*a38);
+  a87=(a37*a04);
+  a36=(a36+a87);
+  a30=(a30-a36);
+  a36=(a83*a33);
+  a30=(a30+a36);
+  a30=(a79*a30);
+  a30=(a09-a30);
+  if (res[2]!=0) res[2][7]=a30;
+  a30=(a03*a25);
+  a36=(a47*a38);
+  a87=(a05*a04);
+  a36=(a36+a87);
+  a30=(a30-a36);
+  a36=(a75*a33);
+  a30=(a30+a36);
+  a30=(a79*a30);
+  a30=(-a30);
+  if (res[2]!=0) res[2][8]=a30;
+  a30=arg[1]? arg[1][4] : 0;
+  a36=(a89*a30);
+  a30=(a09*a30);
+  a36=(a36-a30);
+  a36=(a81*a36);
+  a78=(a78*a38);
+  a84=(a84*a04);
+  a78=(a78-a84);
+  a88=(a88*a33);
+  a78=(a78-a88);
+  a31=(a31*a25);
+  a78=(a78+a31);
+  a78=(a79*a78);
+  a36=(a36-a78);
+  if (res[2]!=0) res[2][9]=a36;
+  a36=arg[1]? arg[1][3] : 0;
+  a09=(a09*a36);
+  a36=(a89*a36);
+  a09=(a09-a36);
+  a09=(a81*a09);
+  a37=(a37*a38);
+  a00=(a00*a04);
+  a37=(a37-a00);
+  a72=(a72*a33);
+  a37=(a37-a72);
+  a83=(a83*a25);
+  a37=(a37+a83);
+  a37=(a79*a37);
+  a09=(a09-a37);
+  if (res[2]!=0) res[2][10]=a09;
+  a05=(a05*a38);
+  a47=(a47*a04);
+  a05=(a05-a47);
+  a03=(a03*a33);
+  a05=(a05-a03);
+  a75=(a75*a25);
+  a05=(a05+a75);
+  a05=(a79*a05);
+  a89=(a89-a05);
+  if (res[2]!=0) res[2][11]=a89;
+  if (res[2]!=0) res[2][12]=a16;
+  if (res[2]!=0) res[2][13]=a16;
+  if (res[2]!=0) res[2][14]=a16;
+  a16=1.0000000000000000e-04;
+  a89=(a39*a17);
+  a05=(a23*a89);
+  a41=(a19*a41);
+  a05=(a05-a41);
+  a75=(a76*a05);
+  a25=(a55*a15);
+  a52=(a19*a52);
+  a03=(a25-a52);
+  a33=(a80*a03);
+  a75=(a75+a33);
+  a18=(a19*a18);
+  a33=(a58*a15);
+  a47=(a18+a33);
+  a04=(a74*a47);
+  a75=(a75-a04);
+  a04=arg[4]? arg[4][8] : 0;
+  a05=(a04*a05);
+  a75=(a75+a05);
+  a05=arg[4]? arg[4][9] : 0;
+  a03=(a05*a03);
+  a75=(a75+a03);
+  a03=arg[4]? arg[4][10] : 0;
+  a47=(a03*a47);
+  a75=(a75-a47);
+  a47=arg[4]? arg[4][11] : 0;
+  a38=(a85*a28);
+  a09=(a40*a38);
+  a35=(a19*a35);
+  a09=(a09+a35);
+  a14=(a39*a14);
+  a37=(a58*a14);
+  a09=(a09+a37);
+  a09=(a47*a09);
+  a75=(a75-a09);
+  a09=(a75*a23);
+  a34=(a19*a34);
+  a83=(a40*a89);
+  a83=(a34-a83);
+  a72=(a76*a83);
+  a49=(a19*a49);
+  a00=(a49-a33);
+  a36=(a80*a00);
+  a72=(a72+a36);
+  a85=(a85*a17);
+  a17=(a55*a85);
+  a36=(a52+a17);
+  a78=(a74*a36);
+  a72=(a72+a78);
+  a83=(a04*a83);
+  a72=(a72+a83);
+  a00=(a05*a00);
+  a72=(a72+a00);
+  a36=(a03*a36);
+  a72=(a72+a36);
+  a36=(a23*a38);
+  a59=(a19*a59);
+  a36=(a36+a59);
+  a00=8.;
+  a29=(a00*a29);
+  a83=(a40*a29);
+  a36=(a36-a83);
+  a78=(a55*a14);
+  a36=(a36+a78);
+  a36=(a47*a36);
+  a72=(a72+a36);
+  a36=(a72*a40);
+  a09=(a09-a36);
+  a36=(a23*a15);
+  a57=(a19*a57);
+  a31=(a36-a57);
+  a88=(a80*a31);
+  a84=(a40*a85);
+  a54=(a19*a54);
+  a30=(a84+a54);
+  a87=(a74*a30);
+  a88=(a88-a87);
+  a31=(a05*a31);
+  a88=(a88+a31);
+  a30=(a03*a30);
+  a88=(a88-a30);
+  a30=(a40*a14);
+  a28=(2.*a28);
+  a31=(a58*a28);
+  a24=(a19*a24);
+  a31=(a31+a24);
+  a31=(a30+a31);
+  a31=(a47*a31);
+  a88=(a88-a31);
+  a31=(a88*a55);
+  a09=(a09+a31);
+  a15=(a40*a15);
+  a31=(a54-a15);
+  a87=(a80*a31);
+  a60=(a19*a60);
+  a06=(a36+a60);
+  a73=(a74*a06);
+  a87=(a87+a73);
+  a31=(a05*a31);
+  a87=(a87+a31);
+  a06=(a03*a06);
+  a87=(a87+a06);
+  a14=(a23*a14);
+  a06=(a55*a28);
+  a61=(a19*a61);
+  a06=(a06+a61);
+  a06=(a14+a06);
+  a31=(a58*a29);
+  a06=(a06-a31);
+  a06=(a47*a06);
+  a87=(a87+a06);
+  a06=(a87*a58);
+  a09=(a09-a06);
+  a09=(a79*a09);
+  a09=(a16-a09);
+  if (res[2]!=0) res[2][15]=a09;
+  a09=arg[1]? arg[1][11] : 0;
+  a06=(a16*a09);
+  a73=2.0500000000000001e-02;
+  a09=(a73*a09);
+  a06=(a06-a09);
+  a06=(a81*a06);
+  a57=(a36+a57);
+  a09=(a80*a57);
+  a07=(a55*a89);
+  a45=(a76*a07);
+  a09=(a09-a45);
+  a45=(a15+a54);
+  a86=(a74*a45);
+  a86=(a09+a86);
+  a07=(a04*a07);
+  a86=(a86-a07);
+  a57=(a05*a57);
+  a86=(a86+a57);
+  a43=(a03*a45);
+  a86=(a86+a43);
+  a43=(a30+a24);
+  a46=(a58*a38);
+  a43=(a43-a46);
+  a43=(a47*a43);
+  a86=(a86+a43);
+  a43=(a86*a23);
+  a15=(a54+a15);
+  a32=(a80*a15);
+  a89=(a58*a89);
+  a91=(a76*a89);
+  a32=(a32-a91);
+  a48=(a23*a85);
+  a48=(a48+a60);
+  a92=(a74*a48);
+  a32=(a32+a92);
+  a89=(a04*a89);
+  a32=(a32-a89);
+  a15=(a05*a15);
+  a32=(a32+a15);
+  a48=(a03*a48);
+  a32=(a32+a48);
+  a48=(a14+a61);
+  a38=(a55*a38);
+  a31=(a31+a38);
+  a48=(a48-a31);
+  a48=(a47*a48);
+  a32=(a32+a48);
+  a48=(a32*a40);
+  a43=(a43-a48);
+  a48=(a40*a28);
+  a31=(a37+a35);
+  a31=(a48-a31);
+  a31=(a47*a31);
+  a15=(a52+a25);
+  a92=(a80*a15);
+  a90=(a76*a41);
+  a92=(a92+a90);
+  a85=(a58*a85);
+  a85=(a85+a18);
+  a93=(a74*a85);
+  a92=(a92+a93);
+  a41=(a04*a41);
+  a92=(a92+a41);
+  a15=(a05*a15);
+  a92=(a92+a15);
+  a85=(a03*a85);
+  a92=(a92+a85);
+  a31=(a31-a92);
+  a92=(a31*a55);
+  a43=(a43+a92);
+  a28=(a23*a28);
+  a92=(a78+a59);
+  a92=(a28-a92);
+  a92=(a92+a83);
+  a92=(a47*a92);
+  a49=(a33+a49);
+  a83=(a80*a49);
+  a76=(a76*a34);
+  a85=(a83+a76);
+  a25=(a25+a52);
+  a15=(a74*a25);
+  a85=(a85+a15);
+  a04=(a04*a34);
+  a85=(a85+a04);
+  a49=(a05*a49);
+  a85=(a85+a49);
+  a34=(a03*a25);
+  a85=(a85+a34);
+  a92=(a92-a85);
+  a85=(a92*a58);
+  a43=(a43-a85);
+  a43=(a79*a43);
+  a06=(a06-a43);
+  if (res[2]!=0) res[2][16]=a06;
+  a06=arg[1]? arg[1][10] : 0;
+  a43=(a73*a06);
+  a06=(a16*a06);
+  a43=(a43-a06);
+  a43=(a81*a43);
+  a06=(a80*a45);
+  a91=(a91-a06);
+  a36=(a36-a60);
+  a60=(a74*a36);
+  a91=(a91+a60);
+  a91=(a91+a89);
+  a45=(a05*a45);
+  a91=(a91-a45);
+  a36=(a03*a36);
+  a91=(a91+a36);
+  a38=(a38+a61);
+  a14=(a14-a38);
+  a14=(a47*a14);
+  a91=(a91+a14);
+  a14=(a91*a23);
+  a54=(a54-a84);
+  a84=(a74*a54);
+  a09=(a09+a84);
+  a09=(a09-a07);
+  a09=(a09+a57);
+  a54=(a03*a54);
+  a09=(a09+a54);
+  a54=(a55*a29);
+  a46=(a46-a54);
+  a46=(a46-a30);
+  a46=(a46+a24);
+  a46=(a47*a46);
+  a09=(a09+a46);
+  a46=(a09*a40);
+  a14=(a14-a46);
+  a76=(a76+a83);
+  a52=(a52-a17);
+  a17=(a74*a52);
+  a76=(a76+a17);
+  a76=(a76+a04);
+  a76=(a76+a49);
+  a52=(a03*a52);
+  a76=(a76+a52);
+  a59=(a59-a78);
+  a59=(a59+a28);
+  a59=(a47*a59);
+  a76=(a76+a59);
+  a59=(a76*a55);
+  a14=(a14+a59);
+  a33=(a33-a18);
+  a74=(a74*a33);
+  a80=(a80*a25);
+  a90=(a90+a80);
+  a74=(a74-a90);
+  a74=(a74-a41);
+  a05=(a05*a25);
+  a74=(a74-a05);
+  a03=(a03*a33);
+  a74=(a74+a03);
+  a37=(a37-a35);
+  a37=(a37-a48);
+  a29=(a23*a29);
+  a37=(a37+a29);
+  a37=(a47*a37);
+  a74=(a74+a37);
+  a37=(a74*a58);
+  a14=(a14-a37);
+  a14=(a79*a14);
+  a43=(a43-a14);
+  if (res[2]!=0) res[2][17]=a43;
+  a43=(a08*a51);
+  a14=(a64*a43);
+  a37=(a65*a51);
+  a29=(a50*a11);
+  a37=(a37+a29);
+  a29=(a68*a37);
+  a14=(a14-a29);
+  a29=(a67*a51);
+  a48=(a70*a11);
+  a29=(a29+a48);
+  a48=(a22*a29);
+  a14=(a14+a48);
+  a48=(a02*a51);
+  a35=(a71*a48);
+  a14=(a14-a35);
+  a14=(a47*a14);
+  a35=(a14*a23);
+  a03=(a08*a44);
+  a33=(a63*a42);
+  a03=(a03+a33);
+  a33=(a64*a03);
+  a05=(a65*a44);
+  a25=(a50*a13);
+  a05=(a05+a25);
+  a25=(a67*a42);
+  a05=(a05+a25);
+  a25=(a68*a05);
+  a33=(a33-a25);
+  a25=(a67*a44);
+  a41=(a70*a13);
+  a25=(a25+a41);
+  a41=(a27*a42);
+  a25=(a25+a41);
+  a41=(a22*a25);
+  a33=(a33+a41);
+  a41=(a02*a44);
+  a90=(a08*a42);
+  a41=(a41+a90);
+  a90=(a71*a41);
+  a33=(a33-a90);
+  a33=(a47*a33);
+  a90=(a33*a40);
+  a35=(a35-a90);
+  a90=(a08*a56);
+  a80=(a64*a90);
+  a18=(a65*a56);
+  a59=(a50*a51);
+  a18=(a18+a59);
+  a59=(a68*a18);
+  a80=(a80-a59);
+  a59=(a67*a56);
+  a28=(a70*a51);
+  a59=(a59+a28);
+  a28=(a22*a59);
+  a80=(a80+a28);
+  a28=(a02*a56);
+  a78=(a71*a28);
+  a80=(a80-a78);
+  a80=(a47*a80);
+  a78=(a80*a55);
+  a35=(a35+a78);
+  a78=(a08*a53);
+  a52=(a63*a20);
+  a78=(a78+a52);
+  a52=(a64*a78);
+  a49=(a65*a53);
+  a04=(a50*a44);
+  a49=(a49+a04);
+  a04=(a67*a20);
+  a49=(a49+a04);
+  a04=(a68*a49);
+  a52=(a52-a04);
+  a04=(a67*a53);
+  a17=(a70*a44);
+  a04=(a04+a17);
+  a17=(a27*a20);
+  a04=(a04+a17);
+  a17=(a22*a04);
+  a52=(a52+a17);
+  a17=(a02*a53);
+  a83=(a08*a20);
+  a17=(a17+a83);
+  a83=(a71*a17);
+  a52=(a52-a83);
+  a52=(a47*a52);
+  a83=(a52*a58);
+  a35=(a35-a83);
+  a35=(a79*a35);
+  a35=(-a35);
+  if (res[2]!=0) res[2][18]=a35;
+  a35=(a64*a29);
+  a83=(a71*a37);
+  a46=(a22*a43);
+  a83=(a83+a46);
+  a35=(a35-a83);
+  a83=(a68*a48);
+  a35=(a35+a83);
+  a35=(a47*a35);
+  a83=(a35*a23);
+  a46=(a64*a25);
+  a24=(a71*a05);
+  a30=(a22*a03);
+  a24=(a24+a30);
+  a46=(a46-a24);
+  a24=(a68*a41);
+  a46=(a46+a24);
+  a46=(a47*a46);
+  a24=(a46*a40);
+  a83=(a83-a24);
+  a24=(a64*a59);
+  a30=(a71*a18);
+  a54=(a22*a90);
+  a30=(a30+a54);
+  a24=(a24-a30);
+  a30=(a68*a28);
+  a24=(a24+a30);
+  a24=(a47*a24);
+  a30=(a24*a55);
+  a83=(a83+a30);
+  a30=(a64*a04);
+  a54=(a71*a49);
+  a57=(a22*a78);
+  a54=(a54+a57);
+  a30=(a30-a54);
+  a54=(a68*a17);
+  a30=(a30+a54);
+  a30=(a47*a30);
+  a54=(a30*a58);
+  a83=(a83-a54);
+  a83=(a79*a83);
+  a83=(-a83);
+  if (res[2]!=0) res[2][19]=a83;
+  a43=(a71*a43);
+  a37=(a22*a37);
+  a43=(a43-a37);
+  a29=(a68*a29);
+  a43=(a43-a29);
+  a48=(a64*a48);
+  a43=(a43+a48);
+  a43=(a47*a43);
+  a48=(a43*a23);
+  a03=(a71*a03);
+  a05=(a22*a05);
+  a03=(a03-a05);
+  a25=(a68*a25);
+  a03=(a03-a25);
+  a41=(a64*a41);
+  a03=(a03+a41);
+  a03=(a47*a03);
+  a41=(a03*a40);
+  a48=(a48-a41);
+  a90=(a71*a90);
+  a18=(a22*a18);
+  a90=(a90-a18);
+  a59=(a68*a59);
+  a90=(a90-a59);
+  a28=(a64*a28);
+  a90=(a90+a28);
+  a90=(a47*a90);
+  a28=(a90*a55);
+  a48=(a48+a28);
+  a78=(a71*a78);
+  a49=(a22*a49);
+  a78=(a78-a49);
+  a04=(a68*a04);
+  a78=(a78-a04);
+  a17=(a64*a17);
+  a78=(a78+a17);
+  a78=(a47*a78);
+  a17=(a78*a58);
+  a48=(a48-a17);
+  a48=(a79*a48);
+  a48=(-a48);
+  if (res[2]!=0) res[2][20]=a48;
+  a48=(a88*a23);
+  a17=(a72*a58);
+  a04=(a75*a55);
+  a17=(a17+a04);
+  a48=(a48-a17);
+  a17=(a87*a40);
+  a48=(a48+a17);
+  a48=(a79*a48);
+  a48=(-a48);
+  if (res[2]!=0) res[2][21]=a48;
+  a48=(a31*a23);
+  a17=(a32*a58);
+  a04=(a86*a55);
+  a17=(a17+a04);
+  a48=(a48-a17);
+  a17=(a92*a40);
+  a48=(a48+a17);
+  a48=(a79*a48);
+  a48=(a73-a48);
+  if (res[2]!=0) res[2][22]=a48;
+  a48=arg[1]? arg[1][9] : 0;
+  a17=(a73*a48);
+  a48=(a16*a48);
+  a04=(a17-a48);
+  a04=(a81*a04);
+  a49=(a76*a23);
+  a28=(a09*a58);
+  a59=(a91*a55);
+  a28=(a28+a59);
+  a49=(a49-a28);
+  a28=(a74*a40);
+  a49=(a49+a28);
+  a49=(a79*a49);
+  a04=(a04-a49);
+  if (res[2]!=0) res[2][23]=a04;
+  a04=(a80*a23);
+  a49=(a33*a58);
+  a28=(a14*a55);
+  a49=(a49+a28);
+  a04=(a04-a49);
+  a49=(a52*a40);
+  a04=(a04+a49);
+  a04=(a79*a04);
+  a04=(-a04);
+  if (res[2]!=0) res[2][24]=a04;
+  a04=(a24*a23);
+  a49=(a46*a58);
+  a28=(a35*a55);
+  a49=(a49+a28);
+  a04=(a04-a49);
+  a49=(a30*a40);
+  a04=(a04+a49);
+  a04=(a79*a04);
+  a04=(-a04);
+  if (res[2]!=0) res[2][25]=a04;
+  a04=(a90*a23);
+  a49=(a03*a58);
+  a28=(a43*a55);
+  a49=(a49+a28);
+  a04=(a04-a49);
+  a49=(a78*a40);
+  a04=(a04+a49);
+  a04=(a79*a04);
+  a04=(-a04);
+  if (res[2]!=0) res[2][26]=a04;
+  a75=(a75*a58);
+  a72=(a72*a55);
+  a75=(a75-a72);
+  a88=(a88*a40);
+  a75=(a75-a88);
+  a87=(a87*a23);
+  a75=(a75+a87);
+  a75=(a79*a75);
+  a75=(-a75);
+  if (res[2]!=0) res[2][27]=a75;
+  a48=(a48-a17);
+  a81=(a81*a48);
+  a86=(a86*a58);
+  a32=(a32*a55);
+  a86=(a86-a32);
+  a31=(a31*a40);
+  a86=(a86-a31);
+  a92=(a92*a23);
+  a86=(a86+a92);
+  a86=(a79*a86);
+  a81=(a81-a86);
+  if (res[2]!=0) res[2][28]=a81;
+  a91=(a91*a58);
+  a09=(a09*a55);
+  a91=(a91-a09);
+  a76=(a76*a40);
+  a91=(a91-a76);
+  a74=(a74*a23);
+  a91=(a91+a74);
+  a91=(a79*a91);
+  a73=(a73-a91);
+  if (res[2]!=0) res[2][29]=a73;
+  a14=(a14*a58);
+  a33=(a33*a55);
+  a14=(a14-a33);
+  a80=(a80*a40);
+  a14=(a14-a80);
+  a52=(a52*a23);
+  a14=(a14+a52);
+  a14=(a79*a14);
+  a14=(-a14);
+  if (res[2]!=0) res[2][30]=a14;
+  a35=(a35*a58);
+  a46=(a46*a55);
+  a35=(a35-a46);
+  a24=(a24*a40);
+  a35=(a35-a24);
+  a30=(a30*a23);
+  a35=(a35+a30);
+  a35=(a79*a35);
+  a35=(-a35);
+  if (res[2]!=0) res[2][31]=a35;
+  a43=(a43*a58);
+  a03=(a03*a55);
+  a43=(a43-a03);
+  a90=(a90*a40);
+  a43=(a43-a90);
+  a78=(a78*a23);
+  a43=(a43+a78);
+  a43=(a79*a43);
+  a43=(-a43);
+  if (res[2]!=0) res[2][32]=a43;
+  if (res[2]!=0) res[2][33]=a19;
+  if (res[2]!=0) res[2][34]=a19;
+  if (res[2]!=0) res[2][35]=a19;
+  a43=(a51*a08);
+  a78=(a23*a43);
+  a90=(a44*a08);
+  a03=(a42*a63);
+  a90=(a90+a03);
+  a03=(a40*a90);
+  a78=(a78-a03);
+  a03=(a56*a08);
+  a35=(a55*a03);
+  a78=(a78+a35);
+  a35=(a53*a08);
+  a30=(a20*a63);
+  a35=(a35+a30);
+  a30=(a58*a35);
+  a78=(a78-a30);
+  a78=(a47*a78);
+  a30=(a78*a64);
+  a24=(a51*a65);
+  a46=(a11*a50);
+  a24=(a24+a46);
+  a46=(a23*a24);
+  a14=(a44*a65);
+  a52=(a13*a50);
+  a14=(a14+a52);
+  a52=(a42*a67);
+  a14=(a14+a52);
+  a52=(a40*a14);
+  a46=(a46-a52);
+  a52=(a56*a65);
+  a80=(a51*a50);
+  a52=(a52+a80);
+  a80=(a55*a52);
+  a46=(a46+a80);
+  a65=(a53*a65);
+  a50=(a44*a50);
+  a65=(a65+a50);
+  a50=(a20*a67);
+  a65=(a65+a50);
+  a50=(a58*a65);
+  a46=(a46-a50);
+  a46=(a47*a46);
+  a50=(a46*a68);
+  a30=(a30-a50);
+  a50=(a51*a67);
+  a11=(a11*a70);
+  a50=(a50+a11);
+  a11=(a23*a50);
+  a80=(a44*a67);
+  a13=(a13*a70);
+  a80=(a80+a13);
+  a13=(a42*a27);
+  a80=(a80+a13);
+  a13=(a40*a80);
+  a11=(a11-a13);
+  a13=(a56*a67);
+  a33=(a51*a70);
+  a13=(a13+a33);
+  a33=(a55*a13);
+  a11=(a11+a33);
+  a33=(a53*a67);
+  a70=(a44*a70);
+  a33=(a33+a70);
+  a70=(a20*a27);
+  a33=(a33+a70);
+  a70=(a58*a33);
+  a11=(a11-a70);
+  a11=(a47*a11);
+  a70=(a11*a22);
+  a30=(a30+a70);
+  a51=(a51*a02);
+  a70=(a23*a51);
+  a44=(a44*a02);
+  a42=(a42*a08);
+  a44=(a44+a42);
+  a42=(a40*a44);
+  a70=(a70-a42);
+  a56=(a56*a02);
+  a42=(a55*a56);
+  a70=(a70+a42);
+  a53=(a53*a02);
+  a20=(a20*a08);
+  a53=(a53+a20);
+  a20=(a58*a53);
+  a70=(a70-a20);
+  a70=(a47*a70);
+  a20=(a70*a71);
+  a30=(a30-a20);
+  a30=(a79*a30);
+  a30=(-a30);
+  if (res[2]!=0) res[2][36]=a30;
+  a30=(a23*a03);
+  a20=(a58*a90);
+  a02=(a55*a43);
+  a20=(a20+a02);
+  a30=(a30-a20);
+  a20=(a40*a35);
+  a30=(a30+a20);
+  a30=(a47*a30);
+  a20=(a30*a64);
+  a02=(a23*a52);
+  a42=(a58*a14);
+  a73=(a55*a24);
+  a42=(a42+a73);
+  a02=(a02-a42);
+  a42=(a40*a65);
+  a02=(a02+a42);
+  a02=(a47*a02);
+  a42=(a02*a68);
+  a20=(a20-a42);
+  a42=(a23*a13);
+  a73=(a58*a80);
+  a91=(a55*a50);
+  a73=(a73+a91);
+  a42=(a42-a73);
+  a73=(a40*a33);
+  a42=(a42+a73);
+  a42=(a47*a42);
+  a73=(a42*a22);
+  a20=(a20+a73);
+  a73=(a23*a56);
+  a91=(a58*a44);
+  a74=(a55*a51);
+  a91=(a91+a74);
+  a73=(a73-a91);
+  a91=(a40*a53);
+  a73=(a73+a91);
+  a73=(a47*a73);
+  a91=(a73*a71);
+  a20=(a20-a91);
+  a20=(a79*a20);
+  a20=(-a20);
+  if (res[2]!=0) res[2][37]=a20;
+  a43=(a58*a43);
+  a90=(a55*a90);
+  a43=(a43-a90);
+  a03=(a40*a03);
+  a43=(a43-a03);
+  a35=(a23*a35);
+  a43=(a43+a35);
+  a43=(a47*a43);
+  a35=(a43*a64);
+  a24=(a58*a24);
+  a14=(a55*a14);
+  a24=(a24-a14);
+  a52=(a40*a52);
+  a24=(a24-a52);
+  a65=(a23*a65);
+  a24=(a24+a65);
+  a24=(a47*a24);
+  a65=(a24*a68);
+  a35=(a35-a65);
+  a50=(a58*a50);
+  a80=(a55*a80);
+  a50=(a50-a80);
+  a13=(a40*a13);
+  a50=(a50-a13);
+  a33=(a23*a33);
+  a50=(a50+a33);
+  a50=(a47*a50);
+  a33=(a50*a22);
+  a35=(a35+a33);
+  a58=(a58*a51);
+  a55=(a55*a44);
+  a58=(a58-a55);
+  a40=(a40*a56);
+  a58=(a58-a40);
+  a23=(a23*a53);
+  a58=(a58+a23);
+  a58=(a47*a58);
+  a23=(a58*a71);
+  a35=(a35-a23);
+  a35=(a79*a35);
+  a35=(-a35);
+  if (res[2]!=0) res[2][38]=a35;
+  a39=(a39*a01);
+  a35=(a22*a39);
+  a12=(2.*a12);
+  a23=(a68*a12);
+  a66=(a19*a66);
+  a53=(a23+a66);
+  a53=(a35-a53);
+  a53=(a47*a53);
+  a40=arg[4]? arg[4][16] : 0;
+  a56=(a40*a67);
+  a53=(a53+a56);
+  a55=(a53*a64);
+  a44=(a64*a12);
+  a62=(a19*a62);
+  a51=(a44+a62);
+  a00=(a00*a26);
+  a26=(a68*a00);
+  a51=(a51-a26);
+  a33=-4.;
+  a33=(a33*a01);
+  a01=(a71*a33);
+  a51=(a51-a01);
+  a51=(a47*a51);
+  a13=(a40*a63);
+  a51=(a51-a13);
+  a80=(a51*a68);
+  a55=(a55-a80);
+  a80=(a64*a39);
+  a65=(a22*a00);
+  a52=(a80+a65);
+  a14=(a71*a12);
+  a21=(a19*a21);
+  a03=(a14+a21);
+  a52=(a52-a03);
+  a52=(a47*a52);
+  a03=(a40*a08);
+  a52=(a52-a03);
+  a90=(a52*a22);
+  a55=(a55+a90);
+  a12=(a22*a12);
+  a19=(a19*a69);
+  a69=(a12+a19);
+  a90=(a68*a33);
+  a69=(a69-a90);
+  a69=(a47*a69);
+  a40=(a40*a27);
+  a69=(a69+a40);
+  a20=(a69*a71);
+  a55=(a55-a20);
+  a55=(a79*a55);
+  a55=(a16-a55);
+  if (res[2]!=0) res[2][39]=a55;
+  a80=(a80-a14);
+  a80=(a80+a21);
+  a80=(a47*a80);
+  a55=arg[4]? arg[4][12] : 0;
+  a20=(a55*a63);
+  a80=(a80+a20);
+  a91=arg[4]? arg[4][13] : 0;
+  a74=(a91*a67);
+  a80=(a80+a74);
+  a80=(a80+a03);
+  a03=(a80*a64);
+  a76=(a71*a00);
+  a76=(a76+a12);
+  a76=(a19-a76);
+  a76=(a76+a90);
+  a76=(a47*a76);
+  a67=(a55*a67);
+  a76=(a76+a67);
+  a63=(a91*a63);
+  a76=(a76-a63);
+  a76=(a76+a40);
+  a40=(a76*a68);
+  a03=(a03-a40);
+  a00=(a64*a00);
+  a35=(a66+a35);
+  a00=(a00-a35);
+  a00=(a00+a23);
+  a00=(a47*a00);
+  a35=(a55*a27);
+  a00=(a00-a35);
+  a40=(a91*a08);
+  a00=(a00+a40);
+  a00=(a00+a56);
+  a56=(a00*a22);
+  a03=(a03+a56);
+  a01=(a01+a62);
+  a01=(a44-a01);
+  a01=(a47*a01);
+  a55=(a55*a08);
+  a01=(a01-a55);
+  a91=(a91*a27);
+  a01=(a01-a91);
+  a01=(a01+a13);
+  a13=(a01*a71);
+  a03=(a03-a13);
+  a03=(a79*a03);
+  a03=(-a03);
+  if (res[2]!=0) res[2][40]=a03;
+  a03=(a68*a39);
+  a03=(a03+a19);
+  a12=(a12+a03);
+  a12=(a47*a12);
+  a12=(a12+a67);
+  a63=(a63-a12);
+  a12=(a63*a64);
+  a14=(a14-a65);
+  a65=(a64*a33);
+  a65=(a65+a21);
+  a14=(a14+a65);
+  a14=(a47*a14);
+  a14=(a14+a20);
+  a14=(a14+a74);
+  a74=(a14*a68);
+  a12=(a12-a74);
+  a39=(a71*a39);
+  a39=(a39+a62);
+  a39=(a39-a26);
+  a39=(a39+a44);
+  a39=(a47*a39);
+  a39=(a39+a55);
+  a39=(a39+a91);
+  a91=(a39*a22);
+  a12=(a12+a91);
+  a33=(a22*a33);
+  a33=(a33+a66);
+  a33=(a33+a23);
+  a47=(a47*a33);
+  a47=(a47+a35);
+  a40=(a40-a47);
+  a47=(a40*a71);
+  a12=(a12-a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][41]=a12;
+  a12=(a11*a64);
+  a47=(a46*a71);
+  a35=(a78*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a70*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][42]=a12;
+  a12=(a42*a64);
+  a47=(a02*a71);
+  a35=(a30*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a73*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][43]=a12;
+  a12=(a50*a64);
+  a47=(a24*a71);
+  a35=(a43*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a58*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][44]=a12;
+  a12=(a52*a64);
+  a47=(a51*a71);
+  a35=(a53*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a69*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][45]=a12;
+  a12=(a00*a64);
+  a47=(a76*a71);
+  a35=(a80*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a01*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(a16-a12);
+  if (res[2]!=0) res[2][46]=a12;
+  a12=(a39*a64);
+  a47=(a14*a71);
+  a35=(a63*a22);
+  a47=(a47+a35);
+  a12=(a12-a47);
+  a47=(a40*a68);
+  a12=(a12+a47);
+  a12=(a79*a12);
+  a12=(-a12);
+  if (res[2]!=0) res[2][47]=a12;
+  a78=(a78*a71);
+  a46=(a46*a22);
+  a78=(a78-a46);
+  a11=(a11*a68);
+  a78=(a78-a11);
+  a70=(a70*a64);
+  a78=(a78+a70);
+  a78=(a79*a78);
+  a78=(-a78);
+  if (res[2]!=0) res[2][48]=a78;
+  a30=(a30*a71);
+  a02=(a02*a22);
+  a30=(a30-a02);
+  a42=(a42*a68);
+  a30=(a30-a42);
+  a73=(a73*a64);
+  a30=(a30+a73);
+  a30=(a79*a30);
+  a30=(-a30);
+  if (res[2]!=0) res[2][49]=a30;
+  a43=(a43*a71);
+  a24=(a24*a22);
+  a43=(a43-a24);
+  a50=(a50*a68);
+  a43=(a43-a50);
+  a58=(a58*a64);
+  a43=(a43+a58);
+  a43=(a79*a43);
+  a43=(-a43);
+  if (res[2]!=0) res[2][50]=a43;
+  a53=(a53*a71);
+  a51=(a51*a22);
+  a53=(a53-a51);
+  a52=(a52*a68);
+  a53=(a53-a52);
+  a69=(a69*a64);
+  a53=(a53+a69);
+  a53=(a79*a53);
+  a53=(-a53);
+  if (res[2]!=0) res[2][51]=a53;
+  a80=(a80*a71);
+  a76=(a76*a22);
+  a80=(a80-a76);
+  a00=(a00*a68);
+  a80=(a80-a00);
+  a01=(a01*a64);
+  a80=(a80+a01);
+  a80=(a79*a80);
+  a80=(-a80);
+  if (res[2]!=0) res[2][52]=a80;
+  a63=(a63*a71);
+  a14=(a14*a22);
+  a63=(a63-a14);
+  a39=(a39*a68);
+  a63=(a63-a39);
+  a40=(a40*a64);
+  a63=(a63+a40);
+  a79=(a79*a63);
+  a16=(a16-a79);
+  if (res[2]!=0) res[2][53]=a16;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_newton(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f7(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_newton_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_newton_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_newton_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void free_spatial_slider_crank_newton_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_newton_n_in(void) { return 6;}
+
+CASADI_SYMBOL_EXPORT casadi_int free_spatial_slider_crank_newton_n_out(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_real free_spatial_slider_crank_newton_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_newton_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "v";
+    case 2: return "t";
+    case 3: return "p";
+    case 4: return "lambda";
+    case 5: return "c";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* free_spatial_slider_crank_newton_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "phi";
+    case 1: return "jac";
+    case 2: return "a";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_newton_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s1;
+    case 2: return casadi_s2;
+    case 3: return casadi_s3;
+    case 4: return casadi_s13;
+    case 5: return casadi_s4;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* free_spatial_slider_crank_newton_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s13;
+    case 1: return casadi_s14;
+    case 2: return casadi_s15;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_newton_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6;
+  if (sz_res) *sz_res = 3;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int free_spatial_slider_crank_newton_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 3*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
   return 0;
 }
 

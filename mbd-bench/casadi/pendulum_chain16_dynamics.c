@@ -35,6 +35,11 @@ extern "C" {
 #define casadi_f0 CASADI_PREFIX(f0)
 #define casadi_f1 CASADI_PREFIX(f1)
 #define casadi_f2 CASADI_PREFIX(f2)
+#define casadi_f3 CASADI_PREFIX(f3)
+#define casadi_f4 CASADI_PREFIX(f4)
+#define casadi_f5 CASADI_PREFIX(f5)
+#define casadi_f6 CASADI_PREFIX(f6)
+#define casadi_f7 CASADI_PREFIX(f7)
 #define casadi_house CASADI_PREFIX(house)
 #define casadi_if_else CASADI_PREFIX(if_else)
 #define casadi_qr CASADI_PREFIX(qr)
@@ -45,6 +50,10 @@ extern "C" {
 #define casadi_qr_trs CASADI_PREFIX(qr_trs)
 #define casadi_s0 CASADI_PREFIX(s0)
 #define casadi_s1 CASADI_PREFIX(s1)
+#define casadi_s10 CASADI_PREFIX(s10)
+#define casadi_s11 CASADI_PREFIX(s11)
+#define casadi_s12 CASADI_PREFIX(s12)
+#define casadi_s13 CASADI_PREFIX(s13)
 #define casadi_s2 CASADI_PREFIX(s2)
 #define casadi_s3 CASADI_PREFIX(s3)
 #define casadi_s4 CASADI_PREFIX(s4)
@@ -478,6 +487,52 @@ static const casadi_int casadi_s9[588] =
   71, 72, 73, 74, 75, 76, 77, 78,
   65, 66, 70, 71, 72, 73, 74, 75,
   76, 77, 78, 79};
+static const casadi_int casadi_s10[51] = 
+  {48, 48, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0, 0, 0, 0, 0, 0,
+  0, 0, 0};
+static const casadi_int casadi_s11[3] = {32, 1, 1};
+static const casadi_int casadi_s12[175] = 
+  {32, 48, 0, 2, 4, 8, 10, 12,
+  16, 18, 20, 24, 26, 28, 32, 34,
+  36, 40, 42, 44, 48, 50, 52, 56,
+  58, 60, 64, 66, 68, 72, 74, 76,
+  80, 82, 84, 88, 90, 92, 96, 98,
+  100, 104, 106, 108, 112, 114, 116, 120,
+  121, 122, 124, 0, 2, 1, 3, 0,
+  1, 2, 3, 2, 4, 3, 5, 2,
+  3, 4, 5, 4, 6, 5, 7, 4,
+  5, 6, 7, 6, 8, 7, 9, 6,
+  7, 8, 9, 8, 10, 9, 11, 8,
+  9, 10, 11, 10, 12, 11, 13, 10,
+  11, 12, 13, 12, 14, 13, 15, 12,
+  13, 14, 15, 14, 16, 15, 17, 14,
+  15, 16, 17, 16, 18, 17, 19, 16,
+  17, 18, 19, 18, 20, 19, 21, 18,
+  19, 20, 21, 20, 22, 21, 23, 20,
+  21, 22, 23, 22, 24, 23, 25, 22,
+  23, 24, 25, 24, 26, 25, 27, 24,
+  25, 26, 27, 26, 28, 27, 29, 26,
+  27, 28, 29, 28, 30, 29, 31, 28,
+  29, 30, 31, 30, 31, 30, 31};
+static const casadi_int casadi_s13[99] = 
+  {48, 48, 0, 1, 2, 3, 4, 5,
+  6, 7, 8, 9, 10, 11, 12, 13,
+  14, 15, 16, 17, 18, 19, 20, 21,
+  22, 23, 24, 25, 26, 27, 28, 29,
+  30, 31, 32, 33, 34, 35, 36, 37,
+  38, 39, 40, 41, 42, 43, 44, 45,
+  46, 47, 48, 0, 1, 2, 3, 4,
+  5, 6, 7, 8, 9, 10, 11, 12,
+  13, 14, 15, 16, 17, 18, 19, 20,
+  21, 22, 23, 24, 25, 26, 27, 28,
+  29, 30, 31, 32, 33, 34, 35, 36,
+  37, 38, 39, 40, 41, 42, 43, 44,
+  45, 46, 47};
 
 static const casadi_real casadi_zeros[48] = 
   {0.};
@@ -14691,6 +14746,1276 @@ CASADI_SYMBOL_EXPORT int pendulum_chain16_fd_qr_work_bytes(casadi_int *sz_arg, c
   if (sz_res) *sz_res = 3*sizeof(casadi_real*);
   if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
   if (sz_w) *sz_w = 1414*sizeof(casadi_real);
+  return 0;
+}
+
+/* pendulum_chain16_mx:(q[48],x[48],p[0])->(mx[48]) */
+static int casadi_f3(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1, a2;
+  a0=1.0000000000000001e-01;
+  a1=arg[1]? arg[1][0] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][0]=a1;
+  a1=arg[1]? arg[1][1] : 0;
+  a1=(a0*a1);
+  if (res[0]!=0) res[0][1]=a1;
+  a1=8.3332999999999996e-05;
+  a2=arg[1]? arg[1][2] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][2]=a2;
+  a2=arg[1]? arg[1][3] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][3]=a2;
+  a2=arg[1]? arg[1][4] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][4]=a2;
+  a2=arg[1]? arg[1][5] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][5]=a2;
+  a2=arg[1]? arg[1][6] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][6]=a2;
+  a2=arg[1]? arg[1][7] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][7]=a2;
+  a2=arg[1]? arg[1][8] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][8]=a2;
+  a2=arg[1]? arg[1][9] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][9]=a2;
+  a2=arg[1]? arg[1][10] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][10]=a2;
+  a2=arg[1]? arg[1][11] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][11]=a2;
+  a2=arg[1]? arg[1][12] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][12]=a2;
+  a2=arg[1]? arg[1][13] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][13]=a2;
+  a2=arg[1]? arg[1][14] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][14]=a2;
+  a2=arg[1]? arg[1][15] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][15]=a2;
+  a2=arg[1]? arg[1][16] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][16]=a2;
+  a2=arg[1]? arg[1][17] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][17]=a2;
+  a2=arg[1]? arg[1][18] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][18]=a2;
+  a2=arg[1]? arg[1][19] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][19]=a2;
+  a2=arg[1]? arg[1][20] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][20]=a2;
+  a2=arg[1]? arg[1][21] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][21]=a2;
+  a2=arg[1]? arg[1][22] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][22]=a2;
+  a2=arg[1]? arg[1][23] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][23]=a2;
+  a2=arg[1]? arg[1][24] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][24]=a2;
+  a2=arg[1]? arg[1][25] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][25]=a2;
+  a2=arg[1]? arg[1][26] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][26]=a2;
+  a2=arg[1]? arg[1][27] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][27]=a2;
+  a2=arg[1]? arg[1][28] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][28]=a2;
+  a2=arg[1]? arg[1][29] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][29]=a2;
+  a2=arg[1]? arg[1][30] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][30]=a2;
+  a2=arg[1]? arg[1][31] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][31]=a2;
+  a2=arg[1]? arg[1][32] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][32]=a2;
+  a2=arg[1]? arg[1][33] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][33]=a2;
+  a2=arg[1]? arg[1][34] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][34]=a2;
+  a2=arg[1]? arg[1][35] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][35]=a2;
+  a2=arg[1]? arg[1][36] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][36]=a2;
+  a2=arg[1]? arg[1][37] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][37]=a2;
+  a2=arg[1]? arg[1][38] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][38]=a2;
+  a2=arg[1]? arg[1][39] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][39]=a2;
+  a2=arg[1]? arg[1][40] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][40]=a2;
+  a2=arg[1]? arg[1][41] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][41]=a2;
+  a2=arg[1]? arg[1][42] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][42]=a2;
+  a2=arg[1]? arg[1][43] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][43]=a2;
+  a2=arg[1]? arg[1][44] : 0;
+  a2=(a1*a2);
+  if (res[0]!=0) res[0][44]=a2;
+  a2=arg[1]? arg[1][45] : 0;
+  a2=(a0*a2);
+  if (res[0]!=0) res[0][45]=a2;
+  a2=arg[1]? arg[1][46] : 0;
+  a0=(a0*a2);
+  if (res[0]!=0) res[0][46]=a0;
+  a0=arg[1]? arg[1][47] : 0;
+  a1=(a1*a0);
+  if (res[0]!=0) res[0][47]=a1;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_mx(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f3(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_mx_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_mx_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_mx_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_mx_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_mx_n_in(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_mx_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real pendulum_chain16_mx_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_mx_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "x";
+    case 2: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_mx_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "mx";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_mx_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_mx_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_mx_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_mx_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 3*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* pendulum_chain16_h:(q[48],qd[48],t,p[0])->(h[48]) */
+static int casadi_f4(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a0, a1;
+  a0=0.;
+  if (res[0]!=0) res[0][0]=a0;
+  a1=-9.8100000000000009e-01;
+  if (res[0]!=0) res[0][1]=a1;
+  if (res[0]!=0) res[0][2]=a0;
+  if (res[0]!=0) res[0][3]=a0;
+  if (res[0]!=0) res[0][4]=a1;
+  if (res[0]!=0) res[0][5]=a0;
+  if (res[0]!=0) res[0][6]=a0;
+  if (res[0]!=0) res[0][7]=a1;
+  if (res[0]!=0) res[0][8]=a0;
+  if (res[0]!=0) res[0][9]=a0;
+  if (res[0]!=0) res[0][10]=a1;
+  if (res[0]!=0) res[0][11]=a0;
+  if (res[0]!=0) res[0][12]=a0;
+  if (res[0]!=0) res[0][13]=a1;
+  if (res[0]!=0) res[0][14]=a0;
+  if (res[0]!=0) res[0][15]=a0;
+  if (res[0]!=0) res[0][16]=a1;
+  if (res[0]!=0) res[0][17]=a0;
+  if (res[0]!=0) res[0][18]=a0;
+  if (res[0]!=0) res[0][19]=a1;
+  if (res[0]!=0) res[0][20]=a0;
+  if (res[0]!=0) res[0][21]=a0;
+  if (res[0]!=0) res[0][22]=a1;
+  if (res[0]!=0) res[0][23]=a0;
+  if (res[0]!=0) res[0][24]=a0;
+  if (res[0]!=0) res[0][25]=a1;
+  if (res[0]!=0) res[0][26]=a0;
+  if (res[0]!=0) res[0][27]=a0;
+  if (res[0]!=0) res[0][28]=a1;
+  if (res[0]!=0) res[0][29]=a0;
+  if (res[0]!=0) res[0][30]=a0;
+  if (res[0]!=0) res[0][31]=a1;
+  if (res[0]!=0) res[0][32]=a0;
+  if (res[0]!=0) res[0][33]=a0;
+  if (res[0]!=0) res[0][34]=a1;
+  if (res[0]!=0) res[0][35]=a0;
+  if (res[0]!=0) res[0][36]=a0;
+  if (res[0]!=0) res[0][37]=a1;
+  if (res[0]!=0) res[0][38]=a0;
+  if (res[0]!=0) res[0][39]=a0;
+  if (res[0]!=0) res[0][40]=a1;
+  if (res[0]!=0) res[0][41]=a0;
+  if (res[0]!=0) res[0][42]=a0;
+  if (res[0]!=0) res[0][43]=a1;
+  if (res[0]!=0) res[0][44]=a0;
+  if (res[0]!=0) res[0][45]=a0;
+  if (res[0]!=0) res[0][46]=a1;
+  if (res[0]!=0) res[0][47]=a0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f4(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real pendulum_chain16_h_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* pendulum_chain16_h_q:(q[48],qd[48],t,p[0])->(h_q[48x48,0nz]) */
+static int casadi_f5(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_q(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f5(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_q_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_q_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_q_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_q_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_q_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_q_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real pendulum_chain16_h_q_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_q_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_q_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_q";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_q_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_q_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s10;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_q_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_q_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* pendulum_chain16_h_qd:(q[48],qd[48],t,p[0])->(h_v[48x48,0nz]) */
+static int casadi_f6(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_qd(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f6(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_qd_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_qd_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_qd_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_h_qd_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_qd_n_in(void) { return 4;}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_h_qd_n_out(void) { return 1;}
+
+CASADI_SYMBOL_EXPORT casadi_real pendulum_chain16_h_qd_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_qd_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_h_qd_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "h_v";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_qd_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_h_qd_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s10;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_qd_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4;
+  if (sz_res) *sz_res = 1;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_h_qd_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 4*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 1*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
+  return 0;
+}
+
+/* pendulum_chain16_newton:(q[48],qd[48],t,p[0],lambda[32],c[2])->(phi[32],jac[32x48,124nz],a[48x48,48nz]) */
+static int casadi_f7(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem) {
+  casadi_real a00, a01, a02, a03, a04, a05, a06, a07, a08, a09, a10, a11;
+  casadi_real a12, a13, a14, a15, a16, a17, a18, a19, a20, a21, a22, a23;
+  casadi_real a24, a25, a26, a27, a28, a29, a30, a31, a32, a33, a34, a35;
+  casadi_real a36, a37, a38, a39, a40, a41, a42, a43, a44, a45, a46, a47;
+  casadi_real a48, a49, a50, a51, a52, a53, a54, a55, a56, a57, a58, a59;
+  casadi_real a60, a61, a62, a63, a64, a65, a66;
+  a00=arg[0]? arg[0][0] : 0;
+  a01=-5.0000000000000003e-02;
+  a02=arg[0]? arg[0][2] : 0;
+  a03=cos(a02);
+  a04=(a01*a03);
+  a05=(a00+a04);
+  a05=(-a05);
+  if (res[0]!=0) res[0][0]=a05;
+  a05=arg[0]? arg[0][1] : 0;
+  a02=sin(a02);
+  a06=(a01*a02);
+  a07=(a05+a06);
+  a07=(-a07);
+  if (res[0]!=0) res[0][1]=a07;
+  a07=5.0000000000000003e-02;
+  a03=(a07*a03);
+  a00=(a00+a03);
+  a08=arg[0]? arg[0][3] : 0;
+  a09=arg[0]? arg[0][5] : 0;
+  a10=cos(a09);
+  a11=(a01*a10);
+  a12=(a08+a11);
+  a00=(a00-a12);
+  if (res[0]!=0) res[0][2]=a00;
+  a02=(a07*a02);
+  a05=(a05+a02);
+  a00=arg[0]? arg[0][4] : 0;
+  a09=sin(a09);
+  a12=(a01*a09);
+  a13=(a00+a12);
+  a05=(a05-a13);
+  if (res[0]!=0) res[0][3]=a05;
+  a10=(a07*a10);
+  a08=(a08+a10);
+  a05=arg[0]? arg[0][6] : 0;
+  a13=arg[0]? arg[0][8] : 0;
+  a14=cos(a13);
+  a15=(a01*a14);
+  a16=(a05+a15);
+  a08=(a08-a16);
+  if (res[0]!=0) res[0][4]=a08;
+  a09=(a07*a09);
+  a00=(a00+a09);
+  a08=arg[0]? arg[0][7] : 0;
+  a13=sin(a13);
+  a16=(a01*a13);
+  a17=(a08+a16);
+  a00=(a00-a17);
+  if (res[0]!=0) res[0][5]=a00;
+  a14=(a07*a14);
+  a05=(a05+a14);
+  a00=arg[0]? arg[0][9] : 0;
+  a17=arg[0]? arg[0][11] : 0;
+  a18=cos(a17);
+  a19=(a01*a18);
+  a20=(a00+a19);
+  a05=(a05-a20);
+  if (res[0]!=0) res[0][6]=a05;
+  a13=(a07*a13);
+  a08=(a08+a13);
+  a05=arg[0]? arg[0][10] : 0;
+  a17=sin(a17);
+  a20=(a01*a17);
+  a21=(a05+a20);
+  a08=(a08-a21);
+  if (res[0]!=0) res[0][7]=a08;
+  a18=(a07*a18);
+  a00=(a00+a18);
+  a08=arg[0]? arg[0][12] : 0;
+  a21=arg[0]? arg[0][14] : 0;
+  a22=cos(a21);
+  a23=(a01*a22);
+  a24=(a08+a23);
+  a00=(a00-a24);
+  if (res[0]!=0) res[0][8]=a00;
+  a17=(a07*a17);
+  a05=(a05+a17);
+  a00=arg[0]? arg[0][13] : 0;
+  a21=sin(a21);
+  a24=(a01*a21);
+  a25=(a00+a24);
+  a05=(a05-a25);
+  if (res[0]!=0) res[0][9]=a05;
+  a22=(a07*a22);
+  a08=(a08+a22);
+  a05=arg[0]? arg[0][15] : 0;
+  a25=arg[0]? arg[0][17] : 0;
+  a26=cos(a25);
+  a27=(a01*a26);
+  a28=(a05+a27);
+  a08=(a08-a28);
+  if (res[0]!=0) res[0][10]=a08;
+  a21=(a07*a21);
+  a00=(a00+a21);
+  a08=arg[0]? arg[0][16] : 0;
+  a25=sin(a25);
+  a28=(a01*a25);
+  a29=(a08+a28);
+  a00=(a00-a29);
+  if (res[0]!=0) res[0][11]=a00;
+  a26=(a07*a26);
+  a05=(a05+a26);
+  a00=arg[0]? arg[0][18] : 0;
+  a29=arg[0]? arg[0][20] : 0;
+  a30=cos(a29);
+  a31=(a01*a30);
+  a32=(a00+a31);
+  a05=(a05-a32);
+  if (res[0]!=0) res[0][12]=a05;
+  a25=(a07*a25);
+  a08=(a08+a25);
+  a05=arg[0]? arg[0][19] : 0;
+  a29=sin(a29);
+  a32=(a01*a29);
+  a33=(a05+a32);
+  a08=(a08-a33);
+  if (res[0]!=0) res[0][13]=a08;
+  a30=(a07*a30);
+  a00=(a00+a30);
+  a08=arg[0]? arg[0][21] : 0;
+  a33=arg[0]? arg[0][23] : 0;
+  a34=cos(a33);
+  a35=(a01*a34);
+  a36=(a08+a35);
+  a00=(a00-a36);
+  if (res[0]!=0) res[0][14]=a00;
+  a29=(a07*a29);
+  a05=(a05+a29);
+  a00=arg[0]? arg[0][22] : 0;
+  a33=sin(a33);
+  a36=(a01*a33);
+  a37=(a00+a36);
+  a05=(a05-a37);
+  if (res[0]!=0) res[0][15]=a05;
+  a34=(a07*a34);
+  a08=(a08+a34);
+  a05=arg[0]? arg[0][24] : 0;
+  a37=arg[0]? arg[0][26] : 0;
+  a38=cos(a37);
+  a39=(a01*a38);
+  a40=(a05+a39);
+  a08=(a08-a40);
+  if (res[0]!=0) res[0][16]=a08;
+  a33=(a07*a33);
+  a00=(a00+a33);
+  a08=arg[0]? arg[0][25] : 0;
+  a37=sin(a37);
+  a40=(a01*a37);
+  a41=(a08+a40);
+  a00=(a00-a41);
+  if (res[0]!=0) res[0][17]=a00;
+  a38=(a07*a38);
+  a05=(a05+a38);
+  a00=arg[0]? arg[0][27] : 0;
+  a41=arg[0]? arg[0][29] : 0;
+  a42=cos(a41);
+  a43=(a01*a42);
+  a44=(a00+a43);
+  a05=(a05-a44);
+  if (res[0]!=0) res[0][18]=a05;
+  a37=(a07*a37);
+  a08=(a08+a37);
+  a05=arg[0]? arg[0][28] : 0;
+  a41=sin(a41);
+  a44=(a01*a41);
+  a45=(a05+a44);
+  a08=(a08-a45);
+  if (res[0]!=0) res[0][19]=a08;
+  a42=(a07*a42);
+  a00=(a00+a42);
+  a08=arg[0]? arg[0][30] : 0;
+  a45=arg[0]? arg[0][32] : 0;
+  a46=cos(a45);
+  a47=(a01*a46);
+  a48=(a08+a47);
+  a00=(a00-a48);
+  if (res[0]!=0) res[0][20]=a00;
+  a41=(a07*a41);
+  a05=(a05+a41);
+  a00=arg[0]? arg[0][31] : 0;
+  a45=sin(a45);
+  a48=(a01*a45);
+  a49=(a00+a48);
+  a05=(a05-a49);
+  if (res[0]!=0) res[0][21]=a05;
+  a46=(a07*a46);
+  a08=(a08+a46);
+  a05=arg[0]? arg[0][33] : 0;
+  a49=arg[0]? arg[0][35] : 0;
+  a50=cos(a49);
+  a51=(a01*a50);
+  a52=(a05+a51);
+  a08=(a08-a52);
+  if (res[0]!=0) res[0][22]=a08;
+  a45=(a07*a45);
+  a00=(a00+a45);
+  a08=arg[0]? arg[0][34] : 0;
+  a49=sin(a49);
+  a52=(a01*a49);
+  a53=(a08+a52);
+  a00=(a00-a53);
+  if (res[0]!=0) res[0][23]=a00;
+  a50=(a07*a50);
+  a05=(a05+a50);
+  a00=arg[0]? arg[0][36] : 0;
+  a53=arg[0]? arg[0][38] : 0;
+  a54=cos(a53);
+  a55=(a01*a54);
+  a56=(a00+a55);
+  a05=(a05-a56);
+  if (res[0]!=0) res[0][24]=a05;
+  a49=(a07*a49);
+  a08=(a08+a49);
+  a05=arg[0]? arg[0][37] : 0;
+  a53=sin(a53);
+  a56=(a01*a53);
+  a57=(a05+a56);
+  a08=(a08-a57);
+  if (res[0]!=0) res[0][25]=a08;
+  a54=(a07*a54);
+  a00=(a00+a54);
+  a08=arg[0]? arg[0][39] : 0;
+  a57=arg[0]? arg[0][41] : 0;
+  a58=cos(a57);
+  a59=(a01*a58);
+  a60=(a08+a59);
+  a00=(a00-a60);
+  if (res[0]!=0) res[0][26]=a00;
+  a53=(a07*a53);
+  a05=(a05+a53);
+  a00=arg[0]? arg[0][40] : 0;
+  a57=sin(a57);
+  a60=(a01*a57);
+  a61=(a00+a60);
+  a05=(a05-a61);
+  if (res[0]!=0) res[0][27]=a05;
+  a58=(a07*a58);
+  a08=(a08+a58);
+  a05=arg[0]? arg[0][42] : 0;
+  a61=arg[0]? arg[0][44] : 0;
+  a62=cos(a61);
+  a63=(a01*a62);
+  a64=(a05+a63);
+  a08=(a08-a64);
+  if (res[0]!=0) res[0][28]=a08;
+  a57=(a07*a57);
+  a00=(a00+a57);
+  a08=arg[0]? arg[0][43] : 0;
+  a61=sin(a61);
+  a64=(a01*a61);
+  a65=(a08+a64);
+  a00=(a00-a65);
+  if (res[0]!=0) res[0][29]=a00;
+  a62=(a07*a62);
+  a05=(a05+a62);
+  a00=arg[0]? arg[0][45] : 0;
+  a65=arg[0]? arg[0][47] : 0;
+  a66=cos(a65);
+  a66=(a01*a66);
+  a00=(a00+a66);
+  a05=(a05-a00);
+  if (res[0]!=0) res[0][30]=a05;
+  a07=(a07*a61);
+  a08=(a08+a07);
+  a61=arg[0]? arg[0][46] : 0;
+  a65=sin(a65);
+  a01=(a01*a65);
+  a61=(a61+a01);
+  a08=(a08-a61);
+  if (res[0]!=0) res[0][31]=a08;
+  a08=-1.;
+  if (res[1]!=0) res[1][0]=a08;
+  a61=1.;
+  if (res[1]!=0) res[1][1]=a61;
+  if (res[1]!=0) res[1][2]=a08;
+  if (res[1]!=0) res[1][3]=a61;
+  if (res[1]!=0) res[1][4]=a06;
+  a65=(-a04);
+  if (res[1]!=0) res[1][5]=a65;
+  a65=(-a02);
+  if (res[1]!=0) res[1][6]=a65;
+  if (res[1]!=0) res[1][7]=a03;
+  if (res[1]!=0) res[1][8]=a08;
+  if (res[1]!=0) res[1][9]=a61;
+  if (res[1]!=0) res[1][10]=a08;
+  if (res[1]!=0) res[1][11]=a61;
+  if (res[1]!=0) res[1][12]=a12;
+  a65=(-a11);
+  if (res[1]!=0) res[1][13]=a65;
+  a65=(-a09);
+  if (res[1]!=0) res[1][14]=a65;
+  if (res[1]!=0) res[1][15]=a10;
+  if (res[1]!=0) res[1][16]=a08;
+  if (res[1]!=0) res[1][17]=a61;
+  if (res[1]!=0) res[1][18]=a08;
+  if (res[1]!=0) res[1][19]=a61;
+  if (res[1]!=0) res[1][20]=a16;
+  a65=(-a15);
+  if (res[1]!=0) res[1][21]=a65;
+  a65=(-a13);
+  if (res[1]!=0) res[1][22]=a65;
+  if (res[1]!=0) res[1][23]=a14;
+  if (res[1]!=0) res[1][24]=a08;
+  if (res[1]!=0) res[1][25]=a61;
+  if (res[1]!=0) res[1][26]=a08;
+  if (res[1]!=0) res[1][27]=a61;
+  if (res[1]!=0) res[1][28]=a20;
+  a65=(-a19);
+  if (res[1]!=0) res[1][29]=a65;
+  a65=(-a17);
+  if (res[1]!=0) res[1][30]=a65;
+  if (res[1]!=0) res[1][31]=a18;
+  if (res[1]!=0) res[1][32]=a08;
+  if (res[1]!=0) res[1][33]=a61;
+  if (res[1]!=0) res[1][34]=a08;
+  if (res[1]!=0) res[1][35]=a61;
+  if (res[1]!=0) res[1][36]=a24;
+  a65=(-a23);
+  if (res[1]!=0) res[1][37]=a65;
+  a65=(-a21);
+  if (res[1]!=0) res[1][38]=a65;
+  if (res[1]!=0) res[1][39]=a22;
+  if (res[1]!=0) res[1][40]=a08;
+  if (res[1]!=0) res[1][41]=a61;
+  if (res[1]!=0) res[1][42]=a08;
+  if (res[1]!=0) res[1][43]=a61;
+  if (res[1]!=0) res[1][44]=a28;
+  a65=(-a27);
+  if (res[1]!=0) res[1][45]=a65;
+  a65=(-a25);
+  if (res[1]!=0) res[1][46]=a65;
+  if (res[1]!=0) res[1][47]=a26;
+  if (res[1]!=0) res[1][48]=a08;
+  if (res[1]!=0) res[1][49]=a61;
+  if (res[1]!=0) res[1][50]=a08;
+  if (res[1]!=0) res[1][51]=a61;
+  if (res[1]!=0) res[1][52]=a32;
+  a65=(-a31);
+  if (res[1]!=0) res[1][53]=a65;
+  a65=(-a29);
+  if (res[1]!=0) res[1][54]=a65;
+  if (res[1]!=0) res[1][55]=a30;
+  if (res[1]!=0) res[1][56]=a08;
+  if (res[1]!=0) res[1][57]=a61;
+  if (res[1]!=0) res[1][58]=a08;
+  if (res[1]!=0) res[1][59]=a61;
+  if (res[1]!=0) res[1][60]=a36;
+  a65=(-a35);
+  if (res[1]!=0) res[1][61]=a65;
+  a65=(-a33);
+  if (res[1]!=0) res[1][62]=a65;
+  if (res[1]!=0) res[1][63]=a34;
+  if (res[1]!=0) res[1][64]=a08;
+  if (res[1]!=0) res[1][65]=a61;
+  if (res[1]!=0) res[1][66]=a08;
+  if (res[1]!=0) res[1][67]=a61;
+  if (res[1]!=0) res[1][68]=a40;
+  a65=(-a39);
+  if (res[1]!=0) res[1][69]=a65;
+  a65=(-a37);
+  if (res[1]!=0) res[1][70]=a65;
+  if (res[1]!=0) res[1][71]=a38;
+  if (res[1]!=0) res[1][72]=a08;
+  if (res[1]!=0) res[1][73]=a61;
+  if (res[1]!=0) res[1][74]=a08;
+  if (res[1]!=0) res[1][75]=a61;
+  if (res[1]!=0) res[1][76]=a44;
+  a65=(-a43);
+  if (res[1]!=0) res[1][77]=a65;
+  a65=(-a41);
+  if (res[1]!=0) res[1][78]=a65;
+  if (res[1]!=0) res[1][79]=a42;
+  if (res[1]!=0) res[1][80]=a08;
+  if (res[1]!=0) res[1][81]=a61;
+  if (res[1]!=0) res[1][82]=a08;
+  if (res[1]!=0) res[1][83]=a61;
+  if (res[1]!=0) res[1][84]=a48;
+  a65=(-a47);
+  if (res[1]!=0) res[1][85]=a65;
+  a65=(-a45);
+  if (res[1]!=0) res[1][86]=a65;
+  if (res[1]!=0) res[1][87]=a46;
+  if (res[1]!=0) res[1][88]=a08;
+  if (res[1]!=0) res[1][89]=a61;
+  if (res[1]!=0) res[1][90]=a08;
+  if (res[1]!=0) res[1][91]=a61;
+  if (res[1]!=0) res[1][92]=a52;
+  a65=(-a51);
+  if (res[1]!=0) res[1][93]=a65;
+  a65=(-a49);
+  if (res[1]!=0) res[1][94]=a65;
+  if (res[1]!=0) res[1][95]=a50;
+  if (res[1]!=0) res[1][96]=a08;
+  if (res[1]!=0) res[1][97]=a61;
+  if (res[1]!=0) res[1][98]=a08;
+  if (res[1]!=0) res[1][99]=a61;
+  if (res[1]!=0) res[1][100]=a56;
+  a65=(-a55);
+  if (res[1]!=0) res[1][101]=a65;
+  a65=(-a53);
+  if (res[1]!=0) res[1][102]=a65;
+  if (res[1]!=0) res[1][103]=a54;
+  if (res[1]!=0) res[1][104]=a08;
+  if (res[1]!=0) res[1][105]=a61;
+  if (res[1]!=0) res[1][106]=a08;
+  if (res[1]!=0) res[1][107]=a61;
+  if (res[1]!=0) res[1][108]=a60;
+  a65=(-a59);
+  if (res[1]!=0) res[1][109]=a65;
+  a65=(-a57);
+  if (res[1]!=0) res[1][110]=a65;
+  if (res[1]!=0) res[1][111]=a58;
+  if (res[1]!=0) res[1][112]=a08;
+  if (res[1]!=0) res[1][113]=a61;
+  if (res[1]!=0) res[1][114]=a08;
+  if (res[1]!=0) res[1][115]=a61;
+  if (res[1]!=0) res[1][116]=a64;
+  a61=(-a63);
+  if (res[1]!=0) res[1][117]=a61;
+  a61=(-a07);
+  if (res[1]!=0) res[1][118]=a61;
+  if (res[1]!=0) res[1][119]=a62;
+  if (res[1]!=0) res[1][120]=a08;
+  if (res[1]!=0) res[1][121]=a08;
+  if (res[1]!=0) res[1][122]=a01;
+  a08=(-a66);
+  if (res[1]!=0) res[1][123]=a08;
+  a08=1.0000000000000001e-01;
+  if (res[2]!=0) res[2][0]=a08;
+  if (res[2]!=0) res[2][1]=a08;
+  a61=8.3332999999999996e-05;
+  a65=arg[5]? arg[5][1] : 0;
+  a05=arg[4]? arg[4][0] : 0;
+  a05=(a05*a04);
+  a04=arg[4]? arg[4][1] : 0;
+  a04=(a04*a06);
+  a05=(a05+a04);
+  a04=arg[4]? arg[4][2] : 0;
+  a03=(a04*a03);
+  a05=(a05-a03);
+  a03=arg[4]? arg[4][3] : 0;
+  a02=(a03*a02);
+  a05=(a05-a02);
+  a05=(a65*a05);
+  a05=(a61-a05);
+  if (res[2]!=0) res[2][2]=a05;
+  if (res[2]!=0) res[2][3]=a08;
+  if (res[2]!=0) res[2][4]=a08;
+  a04=(a04*a11);
+  a03=(a03*a12);
+  a04=(a04+a03);
+  a03=arg[4]? arg[4][4] : 0;
+  a10=(a03*a10);
+  a04=(a04-a10);
+  a10=arg[4]? arg[4][5] : 0;
+  a09=(a10*a09);
+  a04=(a04-a09);
+  a04=(a65*a04);
+  a04=(a61-a04);
+  if (res[2]!=0) res[2][5]=a04;
+  if (res[2]!=0) res[2][6]=a08;
+  if (res[2]!=0) res[2][7]=a08;
+  a03=(a03*a15);
+  a10=(a10*a16);
+  a03=(a03+a10);
+  a10=arg[4]? arg[4][6] : 0;
+  a14=(a10*a14);
+  a03=(a03-a14);
+  a14=arg[4]? arg[4][7] : 0;
+  a13=(a14*a13);
+  a03=(a03-a13);
+  a03=(a65*a03);
+  a03=(a61-a03);
+  if (res[2]!=0) res[2][8]=a03;
+  if (res[2]!=0) res[2][9]=a08;
+  if (res[2]!=0) res[2][10]=a08;
+  a10=(a10*a19);
+  a14=(a14*a20);
+  a10=(a10+a14);
+  a14=arg[4]? arg[4][8] : 0;
+  a18=(a14*a18);
+  a10=(a10-a18);
+  a18=arg[4]? arg[4][9] : 0;
+  a17=(a18*a17);
+  a10=(a10-a17);
+  a10=(a65*a10);
+  a10=(a61-a10);
+  if (res[2]!=0) res[2][11]=a10;
+  if (res[2]!=0) res[2][12]=a08;
+  if (res[2]!=0) res[2][13]=a08;
+  a14=(a14*a23);
+  a18=(a18*a24);
+  a14=(a14+a18);
+  a18=arg[4]? arg[4][10] : 0;
+  a22=(a18*a22);
+  a14=(a14-a22);
+  a22=arg[4]? arg[4][11] : 0;
+  a21=(a22*a21);
+  a14=(a14-a21);
+  a14=(a65*a14);
+  a14=(a61-a14);
+  if (res[2]!=0) res[2][14]=a14;
+  if (res[2]!=0) res[2][15]=a08;
+  if (res[2]!=0) res[2][16]=a08;
+  a18=(a18*a27);
+  a22=(a22*a28);
+  a18=(a18+a22);
+  a22=arg[4]? arg[4][12] : 0;
+  a26=(a22*a26);
+  a18=(a18-a26);
+  a26=arg[4]? arg[4][13] : 0;
+  a25=(a26*a25);
+  a18=(a18-a25);
+  a18=(a65*a18);
+  a18=(a61-a18);
+  if (res[2]!=0) res[2][17]=a18;
+  if (res[2]!=0) res[2][18]=a08;
+  if (res[2]!=0) res[2][19]=a08;
+  a22=(a22*a31);
+  a26=(a26*a32);
+  a22=(a22+a26);
+  a26=arg[4]? arg[4][14] : 0;
+  a30=(a26*a30);
+  a22=(a22-a30);
+  a30=arg[4]? arg[4][15] : 0;
+  a29=(a30*a29);
+  a22=(a22-a29);
+  a22=(a65*a22);
+  a22=(a61-a22);
+  if (res[2]!=0) res[2][20]=a22;
+  if (res[2]!=0) res[2][21]=a08;
+  if (res[2]!=0) res[2][22]=a08;
+  a26=(a26*a35);
+  a30=(a30*a36);
+  a26=(a26+a30);
+  a30=arg[4]? arg[4][16] : 0;
+  a34=(a30*a34);
+  a26=(a26-a34);
+  a34=arg[4]? arg[4][17] : 0;
+  a33=(a34*a33);
+  a26=(a26-a33);
+  a26=(a65*a26);
+  a26=(a61-a26);
+  if (res[2]!=0) res[2][23]=a26;
+  if (res[2]!=0) res[2][24]=a08;
+  if (res[2]!=0) res[2][25]=a08;
+  a30=(a30*a39);
+  a34=(a34*a40);
+  a30=(a30+a34);
+  a34=arg[4]? arg[4][18] : 0;
+  a38=(a34*a38);
+  a30=(a30-a38);
+  a38=arg[4]? arg[4][19] : 0;
+  a37=(a38*a37);
+  a30=(a30-a37);
+  a30=(a65*a30);
+  a30=(a61-a30);
+  if (res[2]!=0) res[2][26]=a30;
+  if (res[2]!=0) res[2][27]=a08;
+  if (res[2]!=0) res[2][28]=a08;
+  a34=(a34*a43);
+  a38=(a38*a44);
+  a34=(a34+a38);
+  a38=arg[4]? arg[4][20] : 0;
+  a42=(a38*a42);
+  a34=(a34-a42);
+  a42=arg[4]? arg[4][21] : 0;
+  a41=(a42*a41);
+  a34=(a34-a41);
+  a34=(a65*a34);
+  a34=(a61-a34);
+  if (res[2]!=0) res[2][29]=a34;
+  if (res[2]!=0) res[2][30]=a08;
+  if (res[2]!=0) res[2][31]=a08;
+  a38=(a38*a47);
+  a42=(a42*a48);
+  a38=(a38+a42);
+  a42=arg[4]? arg[4][22] : 0;
+  a46=(a42*a46);
+  a38=(a38-a46);
+  a46=arg[4]? arg[4][23] : 0;
+  a45=(a46*a45);
+  a38=(a38-a45);
+  a38=(a65*a38);
+  a38=(a61-a38);
+  if (res[2]!=0) res[2][32]=a38;
+  if (res[2]!=0) res[2][33]=a08;
+  if (res[2]!=0) res[2][34]=a08;
+  a42=(a42*a51);
+  a46=(a46*a52);
+  a42=(a42+a46);
+  a46=arg[4]? arg[4][24] : 0;
+  a50=(a46*a50);
+  a42=(a42-a50);
+  a50=arg[4]? arg[4][25] : 0;
+  a49=(a50*a49);
+  a42=(a42-a49);
+  a42=(a65*a42);
+  a42=(a61-a42);
+  if (res[2]!=0) res[2][35]=a42;
+  if (res[2]!=0) res[2][36]=a08;
+  if (res[2]!=0) res[2][37]=a08;
+  a46=(a46*a55);
+  a50=(a50*a56);
+  a46=(a46+a50);
+  a50=arg[4]? arg[4][26] : 0;
+  a54=(a50*a54);
+  a46=(a46-a54);
+  a54=arg[4]? arg[4][27] : 0;
+  a53=(a54*a53);
+  a46=(a46-a53);
+  a46=(a65*a46);
+  a46=(a61-a46);
+  if (res[2]!=0) res[2][38]=a46;
+  if (res[2]!=0) res[2][39]=a08;
+  if (res[2]!=0) res[2][40]=a08;
+  a50=(a50*a59);
+  a54=(a54*a60);
+  a50=(a50+a54);
+  a54=arg[4]? arg[4][28] : 0;
+  a58=(a54*a58);
+  a50=(a50-a58);
+  a58=arg[4]? arg[4][29] : 0;
+  a57=(a58*a57);
+  a50=(a50-a57);
+  a50=(a65*a50);
+  a50=(a61-a50);
+  if (res[2]!=0) res[2][41]=a50;
+  if (res[2]!=0) res[2][42]=a08;
+  if (res[2]!=0) res[2][43]=a08;
+  a54=(a54*a63);
+  a58=(a58*a64);
+  a54=(a54+a58);
+  a58=arg[4]? arg[4][30] : 0;
+  a62=(a58*a62);
+  a54=(a54-a62);
+  a62=arg[4]? arg[4][31] : 0;
+  a07=(a62*a07);
+  a54=(a54-a07);
+  a54=(a65*a54);
+  a54=(a61-a54);
+  if (res[2]!=0) res[2][44]=a54;
+  if (res[2]!=0) res[2][45]=a08;
+  if (res[2]!=0) res[2][46]=a08;
+  a58=(a58*a66);
+  a62=(a62*a01);
+  a58=(a58+a62);
+  a65=(a65*a58);
+  a61=(a61-a65);
+  if (res[2]!=0) res[2][47]=a61;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_newton(const casadi_real** arg, casadi_real** res, casadi_int* iw, casadi_real* w, int mem){
+  return casadi_f7(arg, res, iw, w, mem);
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_newton_checkout(void) {
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_newton_release(int mem) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_newton_incref(void) {
+}
+
+CASADI_SYMBOL_EXPORT void pendulum_chain16_newton_decref(void) {
+}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_newton_n_in(void) { return 6;}
+
+CASADI_SYMBOL_EXPORT casadi_int pendulum_chain16_newton_n_out(void) { return 3;}
+
+CASADI_SYMBOL_EXPORT casadi_real pendulum_chain16_newton_default_in(casadi_int i) {
+  switch (i) {
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_newton_name_in(casadi_int i) {
+  switch (i) {
+    case 0: return "q";
+    case 1: return "qd";
+    case 2: return "t";
+    case 3: return "p";
+    case 4: return "lambda";
+    case 5: return "c";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const char* pendulum_chain16_newton_name_out(casadi_int i) {
+  switch (i) {
+    case 0: return "phi";
+    case 1: return "jac";
+    case 2: return "a";
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_newton_sparsity_in(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s0;
+    case 1: return casadi_s0;
+    case 2: return casadi_s1;
+    case 3: return casadi_s2;
+    case 4: return casadi_s11;
+    case 5: return casadi_s3;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT const casadi_int* pendulum_chain16_newton_sparsity_out(casadi_int i) {
+  switch (i) {
+    case 0: return casadi_s11;
+    case 1: return casadi_s12;
+    case 2: return casadi_s13;
+    default: return 0;
+  }
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_newton_work(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6;
+  if (sz_res) *sz_res = 3;
+  if (sz_iw) *sz_iw = 0;
+  if (sz_w) *sz_w = 0;
+  return 0;
+}
+
+CASADI_SYMBOL_EXPORT int pendulum_chain16_newton_work_bytes(casadi_int *sz_arg, casadi_int* sz_res, casadi_int *sz_iw, casadi_int *sz_w) {
+  if (sz_arg) *sz_arg = 6*sizeof(const casadi_real*);
+  if (sz_res) *sz_res = 3*sizeof(casadi_real*);
+  if (sz_iw) *sz_iw = 0*sizeof(casadi_int);
+  if (sz_w) *sz_w = 0*sizeof(casadi_real);
   return 0;
 }
 

@@ -1,8 +1,8 @@
 //! The benchmark compares like with like: CasADi's generated C and mbd's generated Rust return the
 //! same Φ, Jacobian non-zeros and γ at the benchmark state (to rounding: 1e-12 relative to the
 //! functions' scale — both evaluate the same sums of products in possibly different orders), and
-//! the same q̈ and λ of forward dynamics.
-use mbd::{DynamicsOptions, ForwardDynamics, KinematicSolver, Kinematics, Workspace};
+//! the same q̈ and λ of forward dynamics, M·x, h, its derivatives and the Newton-matrix fill.
+use mbd::{DynamicsOptions, ForwardDynamics, KinematicSolver, Kinematics, NewtonMatrix, Workspace};
 
 #[allow(dead_code)]
 #[path = "../../examples/slider_crank.rs"]
@@ -240,4 +240,109 @@ fn casadi_c_and_mbd_compute_the_same_spatial_forward_dynamics() {
     let worst =
         check_spatial_forward(&ch, &[], mbd_bench::spatial_chain16_dynamics::fd_schur(), mbd_bench::spatial_chain16_dynamics::fd_qr());
     println!("spatial chain of 16: v̇, λ agree to {worst:.1e} relative");
+}
+
+/// A CasADi sparse output written whole (rows × columns, row-major as mbd's arrays).
+fn dense(f: &mbd_bench::CasadiFunction, output: usize, values: &[f64]) -> Vec<Vec<f64>> {
+    let (pattern, (rows, columns)) = f.output_pattern(output);
+    assert_eq!(pattern.len(), values.len());
+    let mut whole = vec![vec![0.0; columns]; rows];
+    for (&(r, c), &x) in pattern.iter().zip(values) {
+        whole[r][c] = x;
+    }
+    whole
+}
+
+/// M·x, h, ∂h/∂q (·B), ∂h/∂v and the Newton-matrix fill — Φ, D and the velocity block
+/// A = M − c_v ∂h/∂v − c_q (∂h/∂q·B + K) of mbd's planned storage — against CasADi's C at each
+/// of `spatial_states` (planar: v = q̇), with λ, x, c_v and c_q fixed sequences. Tolerance 1e-12
+/// relative to each output's largest entry: the same sums of products in other orders. Every
+/// entry of mbd's A block outside CasADi's pattern (the factors' fill) must be zero. Returns the
+/// largest relative difference.
+fn check_forces<M: NewtonMatrix<f64, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+    m: &M,
+    params: &[f64],
+    mut f: mbd_bench::ForceFunctions,
+) -> f64 {
+    let scale = |v: &mut dyn Iterator<Item = f64>| v.fold(1.0f64, |a, x| a.max(x.abs()));
+    let mut worst = 0.0f64;
+    let mut compare = |what: &str, t: f64, a: &[Vec<f64>], b: &[Vec<f64>]| {
+        let s = scale(&mut b.iter().flatten().copied());
+        for (r, (x, y)) in a.iter().zip(b).enumerate() {
+            for (c, (x, y)) in x.iter().zip(y).enumerate() {
+                let rel = (x - y).abs() / s;
+                worst = worst.max(rel);
+                assert!(rel <= 1e-12, "{} t = {t}: {what}[{r}][{c}]: mbd {x} vs CasADi {y}", M::NAME);
+            }
+        }
+    };
+    let row = |v: &[f64]| vec![v.to_vec()];
+    let mut ws = Workspace::<f64, NV, NC, 0>::boxed();
+    let (c_v, c_q) = (0.3, 0.05);
+    for (t, q, v) in spatial_states(m) {
+        let x: [f64; NV] = core::array::from_fn(|i| (1.3 * i as f64 + 0.2).sin());
+        let lambda: [f64; NC] = core::array::from_fn(|i| 10.0 * (0.7 * i as f64 + 0.4).cos());
+        let state: [&[f64]; 4] = [&q, &v, &[t], params];
+        let (mut y, mut y2) = ([0.0; NV], [0.0; NV]);
+        m.mass_times(&q, &x, &mut y);
+        f.mx.call(&[&q, &x, params], &mut y2);
+        compare("M·x", t, &row(&y), &row(&y2));
+        m.forces(&q, &v, t, &mut y);
+        f.h.call(&state, &mut y2);
+        compare("h", t, &row(&y), &row(&y2));
+        let mut derivative = [[0.0; NV]; NV];
+        for (what, g) in [("∂h/∂q", &mut f.h_q), ("∂h/∂v", &mut f.h_v)] {
+            if what == "∂h/∂q" {
+                m.forces_q(&q, &v, t, &mut derivative);
+            } else {
+                m.forces_v(&q, &v, t, &mut derivative);
+            }
+            let mut values = vec![0.0; g.output_pattern(0).0.len()];
+            g.call(&state, &mut values);
+            compare(what, t, &derivative.map(|r| r.to_vec()), &dense(g, 0, &values));
+        }
+        // mbd's planned storage: D's non-zeros, then the matrix's entries by (row, column) position.
+        let mut s = M::newton_storage();
+        let mut phi = [0.0; NC];
+        m.newton_matrix(&q, &v, &[0.0; NV], t, &lambda, None, c_v, c_q, &mut phi, &mut s, ws.dense());
+        let s = s.as_ref();
+        let mut d = vec![vec![0.0; NV]; NC];
+        for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(s) {
+            d[r as usize][c as usize] = value;
+        }
+        let (pattern, entries) = (M::NEWTON_PATTERN, &s[M::JACOBIAN_PATTERN.len()..]);
+        let mut a = vec![vec![0.0; NV]; NV];
+        for position in 0..pattern.size() {
+            let row = pattern.row_start[position] as usize..pattern.row_start[position + 1] as usize;
+            for (&column, &value) in pattern.columns[row.clone()].iter().zip(&entries[row]) {
+                let (i, j) = (pattern.unknown[position] as usize, pattern.unknown[column as usize] as usize);
+                if i < NV && j < NV {
+                    a[i][j] = value;
+                }
+            }
+        }
+        let (nd, na) = (f.newton.output_pattern(1).0.len(), f.newton.output_pattern(2).0.len());
+        let (mut phi2, mut d2, mut a2) = ([0.0; NC], vec![0.0; nd], vec![0.0; na]);
+        f.newton.call_outputs(&[&q, &v, &[t], params, &lambda, &[c_v, c_q]], &mut [&mut phi2, &mut d2, &mut a2]);
+        compare("Newton Φ", t, &row(&phi), &row(&phi2));
+        compare("Newton D", t, &d, &dense(&f.newton, 1, &d2));
+        compare("Newton A", t, &a, &dense(&f.newton, 2, &a2));
+    }
+    worst
+}
+
+#[test]
+fn casadi_c_and_mbd_compute_the_same_forces_and_newton_matrices() {
+    let sc = free_slider_crank::FreeSliderCrank::default();
+    let worst = check_forces(&sc, &sc.params(), mbd_bench::force_functions!(free_slider_crank));
+    println!("free slider-crank: M·x, h, ∂h/∂q, ∂h/∂v, Newton fill agree to {worst:.1e} relative");
+    let ch = pendulum_chain16::PendulumChain16::default();
+    let worst = check_forces(&ch, &ch.params(), mbd_bench::force_functions!(pendulum_chain16));
+    println!("pendulum chain of 16: {worst:.1e}");
+    let ssc = free_spatial_slider_crank::FreeSpatialSliderCrank::default();
+    let worst = check_forces(&ssc, &ssc.params(), mbd_bench::force_functions!(free_spatial_slider_crank));
+    println!("free spatial slider-crank: {worst:.1e}");
+    let sch = spatial_chain16::SpatialChain16::default();
+    let worst = check_forces(&sch, &[], mbd_bench::force_functions!(spatial_chain16_dynamics));
+    println!("spatial chain of 16: {worst:.1e}");
 }

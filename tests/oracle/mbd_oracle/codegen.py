@@ -19,6 +19,15 @@ each returning [q̈; λ] (NQ + NC values):
       pivoting, all unrolled into straight-line code), λ = S⁻¹ (γ̂ − Φ_q M⁻¹ h), q̈ = M⁻¹ (h + Φ_qᵀ λ);
   PREFIX_fd_qr(q, qd, t, p, ab): the sparse KKT matrix [M, −Φ_qᵀ; Φ_q, 0] assembled by SX
       functions and solved at run time by CasADi's sparse numeric QR linear solver ("qr").
+and the force functions and the Newton-matrix fill of the same mechanism (issue 41):
+  PREFIX_mx(q, x, p): M(q) x;
+  PREFIX_h(q, qd, t, p): h;
+  PREFIX_h_q(q, qd, t, p), PREFIX_h_qd(q, qd, t, p): ∂h/∂q and ∂h/∂q̇ as sparse matrices (their
+      structural non-zeros, column-major; none where h is gravity alone);
+  PREFIX_newton(q, qd, t, p, lambda, [c_v, c_q]): three outputs, Φ, the sparse Φ_q and the
+      sparse A = M − c_v ∂h/∂q̇ − c_q (∂h/∂q + K), K = ∂(Φ_qᵀ λ)/∂q — what mbd's `newton_matrix`
+      evaluates into its planned storage (there beside −Φ_qᵀ, Φ_q again and the fill's zeros).
+  A sparse output's pattern is the C file's PREFIX_NAME_sparsity_out, which the tests read.
 Every function is built with CasADi's common-subexpression elimination ({"cse": True}) and has
 CasADi's standard C interface.
 
@@ -30,7 +39,11 @@ space, with q (7 per body), v (6 per body: ṙ global, ω′ body frame), t, p:
       PREFIX_gamma(q, v, t, p);
   PREFIX_fd_schur(q, v, t, p, ab) and PREFIX_fd_qr(q, v, t, p, ab) returning [v̇; λ] (NV + NC) of
       M v̇ − Dᵀ λ = h, D v̇ = γ − 2α (D v − ν) − β² Φ; the Schur form with
-      M⁻¹ = blockdiag(I₃/m, J′⁻¹) (J′⁻¹ as adjugate over determinant, symbolic).
+      M⁻¹ = blockdiag(I₃/m, J′⁻¹) (J′⁻¹ as adjugate over determinant, symbolic);
+  and the force functions and the Newton fill as above in velocity space: PREFIX_mx(q, x, p),
+      PREFIX_h(q, v, t, p), PREFIX_h_q (∂h/∂q·B), PREFIX_h_v, and
+      PREFIX_newton(q, v, t, p, lambda, [c_v, c_q]) = (Φ, D on mbd's pattern, A),
+      A = M − c_v ∂h/∂v − c_q (∂h/∂q·B + K), K = ∂(Dᵀλ)/∂q·B.
 """
 
 import json
@@ -81,7 +94,31 @@ def forward_dynamics(m, prefix):
     fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x], CSE)
     print(f"{m.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nq + nc}×{nq + nc}); "
           f"Schur form {fd_schur.n_instructions()} instructions")
-    return [fd_schur, fd_qr]
+    x, lam = ca.SX.sym("x", nq), ca.SX.sym("lambda", nc)
+    k = ca.jacobian(ca.mtimes(jac.T, lam), q)
+    forces = forces_and_newton(prefix, "qd", q, qd, t, p, lam, x, d.mass * x, d.h, d.h_q, d.h_qd, ca.diag(d.mass), m.phi,
+                               jac, k)
+    return [fd_schur, fd_qr] + forces
+
+
+def forces_and_newton(prefix, v_name, q, v, t, p, lam, x, mx, h, h_q, h_v, mass, phi, jac, k):
+    """M·x, h, ∂h/∂q, ∂h/∂v and the Newton-matrix fill of one mechanism (issue 41). `h_q` and `k`
+    are already along B (spatial), `jac` is Φ_q or D (on mbd's pattern), `v_name` names the
+    velocity input ("qd" or "v")."""
+    c = ca.SX.sym("c", 2)
+    a = mass - c[0] * h_v - c[1] * (h_q + k)
+    state, names = [q, v, t, p], ["q", v_name, "t", "p"]
+    newton = ca.Function(f"{prefix}_newton", state + [lam, c], [phi, jac, a], names + ["lambda", "c"],
+                         ["phi", "jac", "a"], CSE)
+    print(f"{prefix}: ∂h/∂q {h_q.nnz()} non-zeros, ∂h/∂{v_name} {h_v.nnz()}, A {a.nnz()}; "
+          f"Newton fill {newton.n_instructions()} instructions")
+    return [
+        ca.Function(f"{prefix}_mx", [q, x, p], [mx], ["q", "x", "p"], ["mx"], CSE),
+        ca.Function(f"{prefix}_h", state, [h], names, ["h"], CSE),
+        ca.Function(f"{prefix}_h_q", state, [h_q], names, ["h_q"], CSE),
+        ca.Function(f"{prefix}_h_{v_name}", state, [h_v], names, ["h_v"], CSE),
+        newton,
+    ]
 
 
 def pattern_of(s, model_json):
@@ -113,7 +150,7 @@ def inverse3(j):
     return ca.vertcat(*[ca.horzcat(*[cof[c][r] / det for c in range(3)]) for r in range(3)])
 
 
-def spatial_forward_dynamics(s, prefix):
+def spatial_forward_dynamics(s, prefix, pattern):
     q, v, t, p = s.q, s.v, s.t, s.p
     ab = ca.SX.sym("ab", 2)
     d = s.D
@@ -136,7 +173,11 @@ def spatial_forward_dynamics(s, prefix):
     fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x], CSE)
     print(f"{s.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nv + nc}×{nv + nc}); "
           f"Schur form {fd_schur.n_instructions()} instructions")
-    return [fd_schur, fd_qr]
+    x = ca.SX.sym("x", nv)
+    k = ca.jacobian(ca.mtimes(d.T, s.lam), q) @ s.B
+    forces = forces_and_newton(prefix, "v", q, v, t, p, s.lam, x, ca.mtimes(s.mass, x), s.h, s.h_q, s.h_v, s.mass, s.phi,
+                               ca.project(d, pattern), k)
+    return [fd_schur, fd_qr] + forces
 
 
 def main(argv):
@@ -153,7 +194,7 @@ def main(argv):
     if is_spatial(model_json):
         m = Spatial(model_json)
         if dynamics:
-            functions = spatial_forward_dynamics(m, prefix)
+            functions = spatial_forward_dynamics(m, prefix, pattern_of(m, model_json))
         else:
             functions = spatial_kinematics(m, prefix, pattern_of(m, model_json))
         jac_nnz = len(model_json["jacobian_pattern"])
