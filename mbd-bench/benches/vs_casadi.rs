@@ -21,11 +21,18 @@
 //! same moving states: M·x, h, ∂h/∂q, ∂h/∂v and generalized-α's fill (`compare_forces`). The
 //! planar benchmarks have gravity alone (h constant, its derivatives zero); the spatial ones add
 //! the gyroscopic term.
+//!
+//! A roofline (issue 41, item 3; `mbd_bench::roofline`): this processor's peaks for additions,
+//! multiplications, both together, divisions, `sin_cos` and fused multiply-adds are measured
+//! first and printed; each of mbd's kernels then prints its operations per ns and the fraction
+//! of the peak for its mix that it reaches (`roofline …` lines).
 use criterion::{criterion_group, criterion_main, Criterion};
+use mbd::OpCount;
 use mbd::{
     DynamicsOptions, ForwardDynamics, Integrator, KinematicSolver, Kinematics, Mechanism, NewtonMatrix, Point, Rk4, Rk4Options, System,
     Workspace,
 };
+use mbd_bench::roofline::{fastest_ns, Peaks};
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -96,6 +103,7 @@ macro_rules! compare {
         });
         g.finish();
         fused_against_parts!($label, m, q, qd, t, phi, values, nu, gamma);
+        roofline_kinematics!($label, $ty, m, q, qd, t, phi, values, nu, gamma);
     }};
 }
 
@@ -154,6 +162,54 @@ fn fused_against_parts(label: &str, mut fused: impl FnMut(), mut parts: impl FnM
         best_parts * 1e9,
         if ratio > 1.0 { " — fused slower" } else { "" }
     );
+}
+
+/// This processor's peaks, measured once ([`Peaks::measure`]).
+fn peaks() -> &'static Peaks {
+    static PEAKS: std::sync::OnceLock<Peaks> = std::sync::OnceLock::new();
+    PEAKS.get_or_init(Peaks::measure)
+}
+
+/// Prints one kernel's roofline (issue 41, item 3): its operation counts (the entry of
+/// `counts` named `function`), its time — the fastest of 200 rounds of 1000 calls, every output
+/// through `black_box` — its operations per ns, and the time its mix takes at this processor's
+/// peaks as a fraction of its own.
+fn roofline(label: &str, kernel: &str, counts: &[OpCount], function: &str, f: impl FnMut()) {
+    let o = counts.iter().find(|o| o.function.split(' ').next() == Some(function)).expect("the kernel's operation counts");
+    let t = fastest_ns(200, 1000, f);
+    let floor = peaks().floor_ns(o);
+    println!(
+        "roofline {label} {kernel}: {} operations ({} add, {} mul, {} div, {} calls) in {t:.1} ns, {:.2}/ns; at the peaks {floor:.1} ns: {:.0} % of peak",
+        o.total(),
+        o.add,
+        o.mul,
+        o.div,
+        o.call,
+        o.total() as f64 / t,
+        100.0 * floor / t
+    );
+}
+
+/// The roofline of a generated mechanism's kinematic kernels at (q, v, t): Φ, D (or Φ_q), γ
+/// and the fused evaluation.
+macro_rules! roofline_kinematics {
+    ($label:expr, $ty:ty, $m:ident, $q:ident, $v:ident, $t:ident, $phi:ident, $values:ident, $nu:ident, $gamma:ident) => {{
+        let counts = <$ty as Mechanism>::OP_COUNTS;
+        roofline($label, "Φ", counts, "constraints", || $m.constraints(black_box(&$q), black_box($t), black_box(&mut $phi)));
+        roofline($label, "D", counts, "jacobian_values", || $m.jacobian_values(black_box(&$q), black_box($t), black_box(&mut $values)));
+        roofline($label, "γ", counts, "gamma", || $m.gamma(black_box(&$q), black_box(&$v), black_box($t), black_box(&mut $gamma)));
+        roofline($label, "Φ, D, ν, γ fused", counts, "full_eval_values", || {
+            $m.full_eval_values(
+                black_box(&$q),
+                black_box(&$v),
+                black_box($t),
+                black_box(&mut $phi),
+                black_box(&mut $values),
+                black_box(&mut $nu),
+                black_box(&mut $gamma),
+            )
+        });
+    }};
 }
 
 /// One RK4 step of h from (t, q, q̇) with q̈ known at the start, over a CasADi forward-dynamics
@@ -325,6 +381,25 @@ fn compare_forces<M: NewtonMatrix<f64, NQ, NV, NC>, const NQ: usize, const NV: u
         })
     });
     g.finish();
+    roofline(label, "h", M::OP_COUNTS, "forces", || m.forces(black_box(q), black_box(v), black_box(t), black_box(&mut y)));
+    roofline(label, "∂h/∂v (NV × NV)", M::OP_COUNTS, "forces_v", || {
+        m.forces_v(black_box(q), black_box(v), black_box(t), black_box(&mut dh))
+    });
+    roofline(label, "Newton fill", M::OP_COUNTS, "newton_matrix", || {
+        m.newton_matrix(
+            black_box(q),
+            black_box(v),
+            &p.vd,
+            black_box(t),
+            black_box(lambda),
+            None,
+            c_v,
+            c_q,
+            black_box(&mut phi),
+            black_box(&mut s),
+            ws.dense(),
+        )
+    });
 }
 
 /// A moving state of a spatial mechanism: assembled at rest at t = 0, then 50 RK4 steps of 1 ms
@@ -386,6 +461,7 @@ macro_rules! compare_spatial {
         });
         g.finish();
         fused_against_parts!($label, m, q, v, t, phi, values, nu, gamma);
+        roofline_kinematics!($label, $ty, m, q, v, t, phi, values, nu, gamma);
     }};
 }
 
@@ -539,6 +615,7 @@ fn spatial_moving_state<M: ForwardDynamics<f64, NQ, NV, NC>, const NQ: usize, co
 fn benches(c: &mut Criterion) {
     let mbd_isa = if cfg!(all(target_feature = "avx2", target_feature = "fma")) { "native" } else { "baseline" };
     println!("instruction set: mbd {mbd_isa}; CasADi's C gcc -O3 -march={}", env!("MBD_BENCH_CASADI_MARCH"));
+    println!("peaks (independent operations, mbd_bench::roofline): {}", peaks());
     print_op_counts::<spatial_slider_crank::SpatialSliderCrank>();
     print_op_counts::<free_spatial_slider_crank::FreeSpatialSliderCrank>();
     print_op_counts::<spatial_chain16::SpatialChain16>();

@@ -34,6 +34,8 @@
 //! sizes reported by `f_work`. [`CasadiFunction`] queries those sizes once and owns the work
 //! space, so a call allocates nothing.
 
+pub mod roofline;
+
 use std::os::raw::c_int;
 
 type CasadiInt = i64;
