@@ -8,8 +8,9 @@
 //! `RUSTFLAGS="-C target-cpu=native"` both for this processor (gcc `-march=native`). Until
 //! 2026-12-06 the C was always built `-march=native` (AVX2 and FMA) against mbd at baseline. gcc
 //! also contracts a·b + c into one fused multiply-add where the target has one (its default
-//! `-ffp-contract=fast`); rustc never does, so at `native` CasADi's arithmetic takes fewer
-//! instructions than the same operations in mbd (the benchmark prints this build's setting).
+//! `-ffp-contract=fast`). Rustc never does on its own; since 2026-12-06 mbd's generated code
+//! asks for it (`Real::fused_mul_add`), so at `native` both sides use the instruction (the
+//! benchmark prints this build's setting).
 //!
 //! Only the release profile (`cargo bench`) is optimized: `cargo test` (tests/same_values.rs) needs
 //! the same numbers, not the speed, and gcc -O3 of the largest file (the spatial chain's forward

@@ -195,7 +195,11 @@ impl SliderCrank {
         (*__out_17) = (-1f64);
         (*__out_18) = s_slider;
         (*__out_19) = v81;
-        (*__out_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__out_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__out_21) = v81;
         (*__out_22) = 1f64;
     }
@@ -328,7 +332,11 @@ impl SliderCrank {
         (*__out_17) = (-1f64);
         (*__out_18) = s_slider;
         (*__out_19) = v81;
-        (*__out_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__out_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__out_21) = v81;
         (*__out_22) = 1f64;
         (*__nu_0) = 0f64;
@@ -347,7 +355,12 @@ impl SliderCrank {
         (*__gamma_4) = v141;
         (*__gamma_5) = v147;
         (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+            + (v158
+                + <f64 as ::mbd::Real>::fused_mul_add(
+                    (*__q_7),
+                    ((*__v_8) * v126),
+                    v158,
+                ))));
         (*__gamma_7) = (-v152);
         (*__gamma_8) = 0f64;
     }
@@ -852,7 +865,8 @@ impl ::mbd::Linearize<f64, 9, 9, 9> for SliderCrank {
         gamma_v[5][5] = v274;
         gamma_v[6][6] = (-v275);
         gamma_v[6][7] = v278;
-        gamma_v[6][8] = (-((v280 + (((*__q_7) * v275) + v280))
+        gamma_v[6][8] = (-((v280
+            + <f64 as ::mbd::Real>::fused_mul_add((*__q_7), v275, v280))
             + (v285 + (v285 - ((*__q_6) * v277)))));
         gamma_v[7][8] = v278;
     }
@@ -935,8 +949,11 @@ impl ::mbd::ConstraintForces<f64, 9, 9, 9> for SliderCrank {
         k[7][8] = v203;
         k[8][6] = v205;
         k[8][7] = v203;
-        k[8][8] = ((s_slider * (*__lambda_7))
-            + ((*__lambda_6) * ((c_slider * (*__q_7)) - (s_slider * (*__q_6)))));
+        k[8][8] = <f64 as ::mbd::Real>::fused_mul_add(
+            (*__lambda_6),
+            ((c_slider * (*__q_7)) - (s_slider * (*__q_6))),
+            (s_slider * (*__lambda_7)),
+        );
     }
 }
 #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
@@ -1621,7 +1638,11 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__jv_17) = (-1f64);
         (*__jv_18) = s_slider;
         (*__jv_19) = v81;
-        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__jv_21) = v81;
         (*__jv_22) = 1f64;
         (*__phi_0) = (-((*__q_0) - v10));
@@ -1649,7 +1670,12 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__gamma_4) = v141;
         (*__gamma_5) = v147;
         (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+            + (v158
+                + <f64 as ::mbd::Real>::fused_mul_add(
+                    (*__q_7),
+                    ((*__v_8) * v126),
+                    v158,
+                ))));
         (*__gamma_7) = (-v152);
         (*__gamma_8) = 0f64;
         (*__h_0) = 0f64;
@@ -1909,7 +1935,11 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__jv_17) = (-1f64);
             (*__jv_18) = s_slider;
             (*__jv_19) = v81;
-            (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+            (*__jv_20) = <f64 as ::mbd::Real>::fused_mul_add(
+                c_slider,
+                (*__q_6),
+                (s_slider * (*__q_7)),
+            );
             (*__jv_21) = v81;
             (*__jv_22) = 1f64;
             (*__m_0) = 1f64;
@@ -2052,7 +2082,11 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__jv_17) = (-1f64);
         (*__jv_18) = s_slider;
         (*__jv_19) = v81;
-        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__jv_21) = v81;
         (*__jv_22) = 1f64;
         (*__nu_0) = 0f64;
@@ -2265,7 +2299,11 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         (*__s_17) = (-1f64);
         (*__s_18) = s_slider;
         (*__s_19) = v81;
-        (*__s_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__s_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__s_21) = v81;
         (*__s_22) = 1f64;
     }
@@ -2383,7 +2421,11 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[17] = (-1f64);
         s[18] = s_slider;
         s[19] = v81;
-        s[20] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        s[20] = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         s[21] = v81;
         s[22] = 1f64;
         (*__m_0) = 1f64;
@@ -2405,7 +2447,11 @@ impl ::mbd::NewtonMatrix<f64, 9, 9, 9> for SliderCrank {
         s[40] = v203;
         s[48] = v205;
         s[49] = v203;
-        s[50] = ((s_slider * (*__lambda_7)) + ((*__lambda_6) * (v54 - v53)));
+        s[50] = <f64 as ::mbd::Real>::fused_mul_add(
+            (*__lambda_6),
+            (v54 - v53),
+            (s_slider * (*__lambda_7)),
+        );
         use ::mbd::__private::Elements as _;
         let [__m_0, __m_1, __m_2, __m_3, __m_4, __m_5, __m_6, __m_7, __m_8] = m
             .window::<0, 9>();
@@ -3441,16 +3487,25 @@ impl ::mbd::JointLoads<f64, 9, 9, 9> for SliderCrank {
         (s_slider, c_slider) = <f64 as ::mbd::Real>::sin_cos((*__q_8));
         out[0][0][0] = ((*__lambda_2) - (*__lambda_0));
         out[0][0][1] = ((*__lambda_3) - (*__lambda_1));
-        out[0][1][2] = (((((v10 * (*__lambda_1)) - (v12 * (*__lambda_0)))
-            - (v12 * (*__lambda_2))) + (v10 * (*__lambda_3))) + (*__lambda_8));
+        out[0][1][2] = (<f64 as ::mbd::Real>::fused_mul_add(
+            v10,
+            (*__lambda_3),
+            (((v10 * (*__lambda_1)) - (v12 * (*__lambda_0))) - (v12 * (*__lambda_2))),
+        ) + (*__lambda_8));
         out[1][0][0] = ((*__lambda_4) - (*__lambda_2));
         out[1][0][1] = ((*__lambda_5) - (*__lambda_3));
-        out[1][1][2] = ((((v29 * (*__lambda_3)) - (v31 * (*__lambda_2)))
-            - (v31 * (*__lambda_4))) + (v29 * (*__lambda_5)));
+        out[1][1][2] = <f64 as ::mbd::Real>::fused_mul_add(
+            v29,
+            (*__lambda_5),
+            (((v29 * (*__lambda_3)) - (v31 * (*__lambda_2))) - (v31 * (*__lambda_4))),
+        );
         out[2][0][0] = ((s_slider * (*__lambda_6)) - (*__lambda_4));
         out[2][0][1] = (-((*__lambda_5) + (c_slider * (*__lambda_6))));
-        out[2][1][2] = ((((s_slider * (*__q_7)) + (c_slider * (*__q_6))) * (*__lambda_6))
-            - (c_slider * (*__lambda_7)));
+        out[2][1][2] = ((<f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        ) * (*__lambda_6)) - (c_slider * (*__lambda_7)));
         ::core::option::Option::Some(::mbd::BodyWrench {
             force: out[body][0],
             moment: out[body][1],
@@ -3559,7 +3614,11 @@ impl ::mbd::__private::KinematicsHooks<f64, 9, 9, 9> for SliderCrank {
                         (*__jv_17) = (-1f64);
                         (*__jv_18) = s_slider;
                         (*__jv_19) = v81;
-                        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+                        (*__jv_20) = <f64 as ::mbd::Real>::fused_mul_add(
+                            c_slider,
+                            (*__q_6),
+                            (s_slider * (*__q_7)),
+                        );
                         (*__jv_21) = v81;
                         (*__jv_22) = 1f64;
                         if Self::schur_factor(
@@ -3706,7 +3765,11 @@ impl ::mbd::__private::KinematicsHooks<f64, 9, 9, 9> for SliderCrank {
         (*__jv_17) = (-1f64);
         (*__jv_18) = s_slider;
         (*__jv_19) = v81;
-        (*__jv_20) = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        (*__jv_20) = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         (*__jv_21) = v81;
         (*__jv_22) = 1f64;
         (*__nu_0) = 0f64;
@@ -3751,7 +3814,12 @@ impl ::mbd::__private::KinematicsHooks<f64, 9, 9, 9> for SliderCrank {
             (*__gamma_4) = v141;
             (*__gamma_5) = v147;
             (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-                + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+                + (v158
+                    + <f64 as ::mbd::Real>::fused_mul_add(
+                        (*__q_7),
+                        ((*__v_8) * v126),
+                        v158,
+                    ))));
             (*__gamma_7) = (-v152);
             (*__gamma_8) = 0f64;
         }
@@ -3918,7 +3986,11 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        d[6][8] = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         d[7][8] = v81;
         d[8][2] = 1f64;
     }
@@ -4002,7 +4074,12 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         (*__gamma_4) = v141;
         (*__gamma_5) = v147;
         (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+            + (v158
+                + <f64 as ::mbd::Real>::fused_mul_add(
+                    (*__q_7),
+                    ((*__v_8) * v126),
+                    v158,
+                ))));
         (*__gamma_7) = (-v152);
         (*__gamma_8) = 0f64;
     }
@@ -4080,7 +4157,11 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        d[6][8] = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         d[7][8] = v81;
         d[8][2] = 1f64;
     }
@@ -4209,7 +4290,11 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         d[5][7] = (-1f64);
         d[6][6] = s_slider;
         d[6][7] = v81;
-        d[6][8] = ((s_slider * (*__q_7)) + (c_slider * (*__q_6)));
+        d[6][8] = <f64 as ::mbd::Real>::fused_mul_add(
+            c_slider,
+            (*__q_6),
+            (s_slider * (*__q_7)),
+        );
         d[7][8] = v81;
         d[8][2] = 1f64;
         (*__nu_0) = 0f64;
@@ -4228,7 +4313,12 @@ impl ::mbd::Kinematics<f64, 9, 9, 9> for SliderCrank {
         (*__gamma_4) = v141;
         (*__gamma_5) = v147;
         (*__gamma_6) = (-((v151 + (v151 - ((*__q_6) * v152)))
-            + (v158 + (v158 + ((*__q_7) * ((*__v_8) * v126))))));
+            + (v158
+                + <f64 as ::mbd::Real>::fused_mul_add(
+                    (*__q_7),
+                    ((*__v_8) * v126),
+                    v158,
+                ))));
         (*__gamma_7) = (-v152);
         (*__gamma_8) = 0f64;
     }

@@ -77,6 +77,8 @@ pub struct Emitter<'a> {
     /// Methods holding the parts of functions too large to compile as one (see
     /// [`Emitter::body_in_parts`]), for the mechanism's inherent `impl`.
     pub parts: RefCell<Vec<TokenStream>>,
+    /// How many nodes of the whole graph have each node as a child ([`Emitter::fused_product`]).
+    pub parents: Vec<u32>,
 }
 
 /// The signature shared by a function's parts: the parameters each part takes (besides
@@ -154,6 +156,39 @@ impl Emitter<'_> {
         }
     }
 
+    /// The product a sum is written as a fused multiply-add with (`Real::fused_mul_add`):
+    /// (product, x, y, addend) for `x·y + addend`, the sum's first operand that is a product no
+    /// other node of the graph reads, unless either operand is a negation (that sum is written
+    /// `a - b`). Decided by the whole graph, not by the function being written, so that every
+    /// function writing the sum rounds it alike (a fused evaluation and its parts agree bitwise
+    /// with FMA too); a product read elsewhere as well is computed once, as before.
+    fn fused_product(&self, id: Id) -> Option<(Id, Id, Id, Id)> {
+        let g = self.graph;
+        let Node::Add(a, b) = g.node(id) else { return None };
+        let alone = |p: Id| self.parents.get(p as usize) == Some(&1);
+        match (g.node(a), g.node(b)) {
+            (Node::Neg(_), _) | (_, Node::Neg(_)) => None,
+            (Node::Mul(x, y), _) if alone(a) => Some((a, x, y, b)),
+            (_, Node::Mul(x, y)) if alone(b) => Some((b, x, y, a)),
+            _ => None,
+        }
+    }
+
+    /// The nodes the code of `id` reads: its children, except that `a + (−b)` reads b (it is
+    /// written `a - b`, the negation never materialized), a fused sum reads its product's
+    /// factors, and x² and x³ read their base twice (they are written as products).
+    fn reads(&self, id: Id) -> Vec<Id> {
+        let g = self.graph;
+        if let Some((_, x, y, c)) = self.fused_product(id) {
+            return vec![x, y, c];
+        }
+        match g.node(id) {
+            Node::Add(a, b) => [a, b].iter().map(|&c| if let Node::Neg(x) = g.node(c) { x } else { c }).collect(),
+            Node::PowI(a, n) if (2..=3).contains(&n.abs()) => vec![a; 2],
+            _ => g.children(id).into_iter().flatten().collect(),
+        }
+    }
+
     /// Counts how often each node is read by the code that will be emitted.
     fn plan(&self, outputs: &[Output]) -> Plan {
         let g = self.graph;
@@ -169,21 +204,16 @@ impl Emitter<'_> {
             if !visited.insert(id) {
                 continue;
             }
-            let reads: Vec<Id> = match g.node(id) {
-                // `a + (−b)` is written `a - b`: the negation is never materialized.
-                Node::Add(a, b) => [a, b].iter().map(|&c| if let Node::Neg(x) = g.node(c) { x } else { c }).collect(),
-                // x² and x³ are written as products and read their base more than once.
-                Node::PowI(a, n) if (2..=3).contains(&n.abs()) => vec![a; 2],
+            match g.node(id) {
                 Node::Call(Func::Sin, a) => {
                     sines.insert(a, id);
-                    vec![a]
                 }
                 Node::Call(Func::Cos, a) => {
                     cosines.insert(a, id);
-                    vec![a]
                 }
-                _ => g.children(id).into_iter().flatten().collect(),
-            };
+                _ => {}
+            }
+            let reads = self.reads(id);
             for c in reads {
                 *uses.entry(c).or_default() += 1;
                 stack.push(c);
@@ -237,14 +267,24 @@ impl Emitter<'_> {
         let g = self.graph;
         let mut ops = Ops::default();
         let (mut sines, mut cosines) = (HashSet::new(), HashSet::new());
-        for id in self.reached(outputs) {
+        let mut seen = HashSet::new();
+        let mut stack: Vec<Id> = outputs.iter().map(|o| o.node).collect();
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
             let node = g.node(id);
             ops += Ops::of(node);
+            // A fused sum does its product's multiplication itself.
+            if let Some((product, ..)) = self.fused_product(id) {
+                ops += Ops::of(g.node(product));
+            }
             match node {
                 Node::Call(Func::Sin, a) => sines.insert(a),
                 Node::Call(Func::Cos, a) => cosines.insert(a),
                 _ => false,
             };
+            stack.extend(self.reads(id));
         }
         ops.call -= sines.intersection(&cosines).count() as u32;
         ops
@@ -297,6 +337,16 @@ impl Emitter<'_> {
         self.definition(id, plan, ops)
     }
 
+    /// x·y + c, a sum of the product node `product` = Mul(x, y) ([`Self::fused_product`]): one
+    /// fused multiply-add where the target has it (`Real::fused_mul_add`; the same a·b + c
+    /// elsewhere), counted as the product's multiplication and the sum's addition.
+    fn fused(&self, product: Id, x: Id, y: Id, c: Id, plan: &Plan, ops: &mut Ops) -> TokenStream {
+        *ops += Ops::of(self.graph.node(product));
+        let real = self.real();
+        let (x, y, c) = (self.expr(x, plan, ops), self.expr(y, plan, ops), self.expr(c, plan, ops));
+        quote!(<#real as ::mbd::Real>::fused_mul_add(#x, #y, #c))
+    }
+
     /// The right-hand side of a node, reading its children.
     fn definition(&self, id: Id, plan: &Plan, ops: &mut Ops) -> TokenStream {
         let g = self.graph;
@@ -306,6 +356,9 @@ impl Emitter<'_> {
             quote!(<#real as ::mbd::Real>::#f)
         };
         *ops += Ops::of(g.node(id));
+        if let Some((product, x, y, c)) = self.fused_product(id) {
+            return self.fused(product, x, y, c, plan, ops);
+        }
         match g.node(id) {
             Node::Const(bits) => self.literal(f64::from_bits(bits)),
             Node::Var(v) => self.var(v),
@@ -467,7 +520,7 @@ impl Emitter<'_> {
         let mut hoisted: HashSet<Id> = HashSet::new();
         for &id in &reached {
             if reads.contains(&id) {
-                for c in g.children(id).into_iter().flatten().map(read) {
+                for c in self.reads(id).into_iter().map(read) {
                     if !reads.contains(&c) && costly(c) {
                         hoisted.insert(c);
                     }
@@ -811,7 +864,19 @@ pub fn emitter<'a>(model: &Model, f: &'a Formulation) -> Emitter<'a> {
         params: model.params.iter().map(|p| p.name.clone()).collect(),
         coordinate_names: model.coordinate_names(),
         parts: RefCell::new(Vec::new()),
+        parents: parents(&f.graph),
     }
+}
+
+/// How many nodes of `g` have each node as a child.
+fn parents(g: &Graph) -> Vec<u32> {
+    let mut parents = vec![0; g.node_count()];
+    for id in 0..g.node_count() as Id {
+        for c in g.children(id).into_iter().flatten() {
+            parents[c as usize] += 1;
+        }
+    }
+    parents
 }
 
 // --- outputs shared by the generated functions -------------------------------------------
@@ -888,6 +953,39 @@ mod tests {
         assert_eq!(ops.call, 1, "one sin_cos");
         // Outputs written through bindings of the elements (`crate::scalar`).
         assert!(code.contains("(* __phi_0) =") && code.contains("(* __phi_1) ="), "{code}");
+    }
+
+    /// A sum is written as a fused multiply-add with a product that no other node of the graph
+    /// reads, whichever function writes it and whatever else that function outputs (so that a
+    /// fused evaluation and its parts round alike); a product two nodes read is computed once.
+    #[test]
+    fn sums_fuse_the_products_only_they_read() {
+        let model = syn::parse_str::<MechanismDef>("P { body a { mass: 1.0, inertia: 0.1 } revolute ground[0.0, 0.0] ~ a[-1.0, 0.0]; }")
+            .unwrap()
+            .validate()
+            .unwrap();
+        let mut f = crate::formulation::formulate(&model);
+        let g = &mut f.graph;
+        let (x, y, z) = (g.var(Var::Q(0)), g.var(Var::Q(1)), g.var(Var::Q(2)));
+        let alone = g.mul(x, y);
+        let fused = g.add(alone, z);
+        let shared = g.mul(x, z);
+        let (sum, product) = (g.add(shared, y), g.mul(shared, y));
+        let e = emitter(&model, &f);
+        let write = |nodes: &[Id]| {
+            let outputs: Vec<Output> = nodes.iter().enumerate().map(|(k, &node)| Output { target: quote!(out[#k]), node }).collect();
+            e.body(&outputs).0.to_string()
+        };
+        for outputs in [&[fused][..], &[fused, alone], &[fused, sum, product]] {
+            let code = write(outputs);
+            assert_eq!(code.matches("fused_mul_add").count(), 1, "{code}");
+        }
+        let code = write(&[sum, product]);
+        assert!(!code.contains("fused_mul_add"), "{code}");
+        // The fused sum counts its product's multiplication, and the count agrees with writing.
+        let outputs = [Output { target: quote!(out[0]), node: fused }];
+        assert_eq!(e.count(&outputs), e.body(&outputs).1);
+        assert_eq!((e.count(&outputs).add, e.count(&outputs).mul), (1, 1));
     }
 
     /// `count` is what `body` counts writing the code, on functions with every kind of node

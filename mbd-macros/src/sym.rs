@@ -150,6 +150,11 @@ impl Graph {
         Self::default()
     }
 
+    /// How many nodes the graph holds (ids 0 to `node_count() - 1`).
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
     /// The node behind an id.
     pub fn node(&self, id: Id) -> Node {
         self.nodes[id as usize]

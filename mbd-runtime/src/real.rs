@@ -63,6 +63,14 @@ pub trait Real:
     fn atan2(self, x: Self) -> Self;
     /// √x
     fn sqrt(self) -> Self;
+    /// self · a + b, as one fused multiply-add (one rounding) where the target has the
+    /// instruction and `std` is on (`cfg(target_feature = "fma")`: `-C target-cpu=native` on a
+    /// processor with FMA), else `self * a + b` (two roundings, the same code as written out).
+    /// The generated code writes its products-plus-sums with it, as a C compiler contracts them.
+    #[inline(always)]
+    fn fused_mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
     /// eˣ
     fn exp(self) -> Self;
     /// ln x
@@ -155,6 +163,13 @@ macro_rules! impl_real {
                 return $t::atan2(self, x);
                 #[cfg(not(feature = "std"))]
                 return libm::$atan2(self, x);
+            }
+            #[inline(always)]
+            fn fused_mul_add(self, a: Self, b: Self) -> Self {
+                #[cfg(all(feature = "std", target_feature = "fma"))]
+                return $t::mul_add(self, a, b);
+                #[cfg(not(all(feature = "std", target_feature = "fma")))]
+                return self * a + b;
             }
             #[inline(always)]
             fn sqrt(self) -> Self {
