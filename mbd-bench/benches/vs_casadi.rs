@@ -142,24 +142,14 @@ macro_rules! fused_against_parts {
 /// calls (the spatial chain of 16) the ratio is this measurement's own spread. Every output
 /// goes through `black_box`, or the parts, whose results nothing reads, are optimized away.
 fn fused_against_parts(label: &str, mut fused: impl FnMut(), mut parts: impl FnMut()) {
-    use std::time::Instant;
-    let round = |f: &mut dyn FnMut()| {
-        let start = Instant::now();
-        for _ in 0..1000 {
-            f();
-        }
-        start.elapsed().as_secs_f64() / 1000.0
-    };
     let (mut best_fused, mut best_parts) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..200 {
-        best_fused = best_fused.min(round(&mut fused));
-        best_parts = best_parts.min(round(&mut parts));
+        best_fused = best_fused.min(fastest_ns(1, 1000, &mut fused));
+        best_parts = best_parts.min(fastest_ns(1, 1000, &mut parts));
     }
     let ratio = best_fused / best_parts;
     println!(
-        "{label}: fused {:.1} ns, its parts called in turn {:.1} ns (fastest of 200 interleaved rounds): fused / parts {ratio:.3}{}",
-        best_fused * 1e9,
-        best_parts * 1e9,
+        "{label}: fused {best_fused:.1} ns, its parts called in turn {best_parts:.1} ns (fastest of 200 interleaved rounds): fused / parts {ratio:.3}{}",
         if ratio > 1.0 { " — fused slower" } else { "" }
     );
 }
