@@ -290,16 +290,13 @@ fn check_forces<M: NewtonMatrix<f64, NQ, NV, NC>, const NQ: usize, const NV: usi
         m.forces(&q, &v, t, &mut y);
         f.h.call(&state, &mut y2);
         compare("h", t, &row(&y), &row(&y2));
-        let mut derivative = [[0.0; NV]; NV];
-        for (what, g) in [("∂h/∂q", &mut f.h_q), ("∂h/∂v", &mut f.h_v)] {
-            if what == "∂h/∂q" {
-                m.forces_q(&q, &v, t, &mut derivative);
-            } else {
-                m.forces_v(&q, &v, t, &mut derivative);
-            }
+        let (mut h_q, mut h_v) = ([[0.0; NV]; NV], [[0.0; NV]; NV]);
+        m.forces_q(&q, &v, t, &mut h_q);
+        m.forces_v(&q, &v, t, &mut h_v);
+        for (what, g, mine) in [("∂h/∂q", &mut f.h_q, &h_q), ("∂h/∂v", &mut f.h_v, &h_v)] {
             let mut values = vec![0.0; g.output_pattern(0).0.len()];
             g.call(&state, &mut values);
-            compare(what, t, &derivative.map(|r| r.to_vec()), &dense(g, 0, &values));
+            compare(what, t, &mine.map(|r| r.to_vec()), &dense(g, 0, &values));
         }
         // mbd's planned storage: D's non-zeros, then the matrix's entries by (row, column) position.
         let mut s = M::newton_storage();
