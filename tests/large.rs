@@ -38,7 +38,11 @@ fn statics_and_kinematics_of_120_bodies_on_a_2_mb_stack() {
     on_default_stack(|| {
         let m = Chain120::default();
         let mut ws = Chain120::workspace();
-        assert_eq!(Workspace::<f64, 360, 240, 600>::BYTES, 3_340_800, "D twice, D Dᵀ, one NV², two NC²");
+        assert_eq!(
+            Workspace::<f64, 360, 240, 600>::BYTES,
+            3_571_200,
+            "D twice, D Dᵀ, one NV², two NC², 48 rows of N for the solvers' vectors"
+        );
         let mut q = m.initial_positions();
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the chain assembles");
         // Statics from the tilted chain: it hangs straight down, every link at φ = −π/2 (the
@@ -63,7 +67,7 @@ fn statics_and_kinematics_of_120_bodies_on_a_2_mb_stack() {
     });
 }
 
-/// Every integrator (RK4, DOPRI5, DOP853, generalized-α, BDF) with every drift correction,
+/// Every integrator (RK4, DOPRI5, DOP853, generalized-α, BDF, Radau5) with every drift correction,
 /// from the tilted chain at rest, for a few
 /// steps (the point is the stack, not the motion: a debug build factors the 600-square
 /// generalized-α matrix in about a second). Each run must keep the constraints (‖Φ‖∞ below
@@ -126,6 +130,13 @@ fn every_integrator_runs_120_bodies_on_a_2_mb_stack() {
                 .run(&mut ws, |s| last = s.point.q)
                 .expect("BDF");
             check("BDF", &last);
+            Simulation::new(&m, &mut Radau5::default())
+                .start(0.0, &q, &[0.0; 360])
+                .times(&times)
+                .options(options)
+                .run(&mut ws, |s| last = s.point.q)
+                .expect("Radau5");
+            check("Radau5", &last);
         }
     });
 }
@@ -277,6 +288,13 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
             .run(&mut ws, |s| last = s.point.q)
             .expect("BDF");
         check("BDF", &last);
+        Simulation::new(&m, &mut Radau5::default())
+            .start(0.0, &q, &v0)
+            .times(&times)
+            .options(options)
+            .run(&mut ws, |s| last = s.point.q)
+            .expect("Radau5");
+        check("Radau5", &last);
         Simulation::new(&m, &mut Auto::default())
             .start(0.0, &q, &v0)
             .times(&times)

@@ -332,7 +332,13 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         if !(self.next_step > T::ZERO) {
             self.next_step = if o.initial_step > T::ZERO { o.initial_step } else { initial_step(from, &self.kq[0], &scale, o.max_step) };
         }
-        let mut lambda = from.lambda;
+        // The stage state, the last stage's (at t + h like the solution: the stiffness test's)
+        // and the multipliers.
+        let mut dense = ws.dense();
+        let [q, q_last] = dense.vectors.rows::<NQ, 2>();
+        let [v, v_last] = dense.vectors.rows::<NV, 2>();
+        let lambda = dense.vectors.take::<NC>();
+        *lambda = from.lambda;
         let mut rejected_here = false;
         'attempt: loop {
             let mut h = self.next_step.max(o.min_step).min_(o.max_step);
@@ -342,20 +348,18 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             if last {
                 h = span;
             }
-            let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-            // The last stage's state, at t + h like the solution: the stiffness test's.
-            let (mut q_last, mut v_last) = (q, v);
             // Stages 1–11, then the 8th-order solution and its derivative (row 12 of A is b).
             for s in 1..=S {
-                stage_state(&from.q, &self.kq, s, h, &mut q);
-                stage_state(&from.v, &self.kv, s, h, &mut v);
+                stage_state(&from.q, &self.kq, s, h, q);
+                stage_state(&from.v, &self.kv, s, h, v);
                 if s == S - 1 {
-                    (q_last, v_last) = (q, v);
+                    *q_last = *q;
+                    *v_last = *v;
                 }
-                mech.position_rates(&q, &v, &mut self.kq[s]);
+                mech.position_rates(q, v, &mut self.kq[s]);
                 let t_s = if s >= S - 1 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
-                match system.derivatives_in(ws.dense(), t_s, &q, &v, &mut self.kv[s], &mut lambda) {
+                match system.derivatives_in(dense.reborrow(), t_s, q, v, &mut self.kv[s], lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:
                     // shrink the step, and report the failure only at the minimum step.
@@ -404,11 +408,11 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 self.accepted += 1;
                 self.h = h;
                 let (k, k_last) = ([&self.kq[S][..], &self.kv[S][..]], [&self.kq[S - 1][..], &self.kv[S - 1][..]]);
-                self.stiffness.observe("DOP853", 6.1, from.t + h, h, [k[0], k[1], k_last[0], k_last[1]], [&q, &v, &q_last, &v_last]);
-                to.q = q;
-                to.v = v;
+                self.stiffness.observe("DOP853", 6.1, from.t + h, h, [k[0], k[1], k_last[0], k_last[1]], [q, v, q_last, v_last]);
+                to.q = *q;
+                to.v = *v;
                 to.vd = self.kv[S];
-                to.lambda = lambda;
+                to.lambda = *lambda;
                 to.power = kp[S];
                 for k in 0..2 {
                     let mut w = T::ZERO;
@@ -427,7 +431,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             let factor = (safe * e.powf(T::from_f64(-0.125))).max(T::from_f64(1.0 / 3.0));
             self.next_step = h * factor;
             if self.next_step < o.min_step {
-                if let Some(coordinate) = non_finite::<T, M, NQ, NV>(&q, &v) {
+                if let Some(coordinate) = non_finite::<T, M, NQ, NV>(q, v) {
                     return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate });
                 }
                 return Err(SimulationError::StepSizeTooSmall { t: from.t.to_f64(), step: self.next_step.to_f64() });
@@ -451,21 +455,24 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         }
         let h = self.h;
         let mech = system.mechanism;
-        let mut lambda = from.lambda;
-        let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-        // The end point as the stages reached it (before normalization): y₀ + h Σ b k.
-        let (mut q1, mut v1) = ([T::ZERO; NQ], [T::ZERO; NV]);
-        stage_state(&from.q, &self.kq, S, h, &mut q1);
-        stage_state(&from.v, &self.kv, S, h, &mut v1);
+        // The stage state, and the end point as the stages reached it (before normalization):
+        // y₀ + h Σ b k.
+        let mut scratch = ws.dense();
+        let [q, q1] = scratch.vectors.rows::<NQ, 2>();
+        let [v, v1] = scratch.vectors.rows::<NV, 2>();
+        let lambda = scratch.vectors.take::<NC>();
+        *lambda = from.lambda;
+        stage_state(&from.q, &self.kq, S, h, q1);
+        stage_state(&from.v, &self.kv, S, h, v1);
         for s in S + 1..SD {
-            stage_state(&from.q, &self.kq, s, h, &mut q);
-            stage_state(&from.v, &self.kv, s, h, &mut v);
-            mech.position_rates(&q, &v, &mut self.kq[s]);
+            stage_state(&from.q, &self.kq, s, h, q);
+            stage_state(&from.v, &self.kv, s, h, v);
+            mech.position_rates(q, v, &mut self.kq[s]);
             self.evaluations += 1;
-            system.derivatives_in(ws.dense(), from.t + T::from_f64(C[s]) * h, &q, &v, &mut self.kv[s], &mut lambda)?;
+            system.derivatives_in(scratch.reborrow(), from.t + T::from_f64(C[s]) * h, q, v, &mut self.kv[s], lambda)?;
         }
-        dense(&from.q, &q1, &self.kq, h, &mut self.dense_q);
-        dense(&from.v, &v1, &self.kv, h, &mut self.dense_v);
+        dense(&from.q, q1, &self.kq, h, &mut self.dense_q);
+        dense(&from.v, v1, &self.kv, h, &mut self.dense_v);
         self.dense_ready = true;
         Ok(())
     }

@@ -211,9 +211,13 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let floor = T::from_f64(16.0) * T::EPSILON;
         let (rtol, atol) = (o.rtol.max(floor), o.atol.max(floor));
         let scale = |y0: T, y1: T| atol + rtol * y0.abs().max(y1.abs());
-        // Stage derivatives: (q̇ = B(q) v, v̇) and powers.
-        let mut kq = [[T::ZERO; NQ]; 7];
-        let mut kv = [[T::ZERO; NV]; 7];
+        // Stage derivatives: (q̇ = B(q) v, v̇) and powers; the stage state, the sixth stage's
+        // (at t + h like the solution: the stiffness test's) and the multipliers.
+        let mut dense = ws.dense();
+        let (kq, kv) = (dense.vectors.rows::<NQ, 7>(), dense.vectors.rows::<NV, 7>());
+        let [q, q5] = dense.vectors.rows::<NQ, 2>();
+        let [v, v5] = dense.vectors.rows::<NV, 2>();
+        let lambda = dense.vectors.take::<NC>();
         let mut kp = [[T::ZERO; 2]; 7];
         mech.position_rates(&from.q, &from.v, &mut kq[0]);
         kv[0] = from.vd;
@@ -221,7 +225,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         if !(self.next_step > T::ZERO) {
             self.next_step = if o.initial_step > T::ZERO { o.initial_step } else { initial_step(from, &kq[0], &scale, o.max_step) };
         }
-        let mut lambda = from.lambda;
+        *lambda = from.lambda;
         'attempt: loop {
             let mut h = self.next_step.max(o.min_step);
             if h > o.max_step {
@@ -233,10 +237,6 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
             if last {
                 h = span;
             }
-            let mut q = [T::ZERO; NQ];
-            let mut v = [T::ZERO; NV];
-            // The sixth stage's state, at t + h like the solution: the stiffness test's.
-            let (mut q5, mut v5) = (q, v);
             for s in 1..7 {
                 for i in 0..NQ {
                     let mut dq = T::ZERO;
@@ -252,13 +252,14 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                     }
                     v[i] = from.v[i] + h * dv;
                 }
-                mech.position_rates(&q, &v, &mut kq[s]);
+                mech.position_rates(q, v, &mut kq[s]);
                 if s == 5 {
-                    (q5, v5) = (q, v);
+                    *q5 = *q;
+                    *v5 = *v;
                 }
                 let t_s = if s == 6 { from.t + h } else { from.t + T::from_f64(C[s]) * h };
                 self.evaluations += 1;
-                match system.derivatives_in(ws.dense(), t_s, &q, &v, &mut kv[s], &mut lambda) {
+                match system.derivatives_in(dense.reborrow(), t_s, q, v, &mut kv[s], lambda) {
                     Ok(p) => kp[s] = p,
                     // A trial state may be off the manifold far enough to fail the solve:
                     // shrink the step, and report the failure only at the minimum step.
@@ -272,10 +273,10 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                     }
                 }
             }
-            to.q = q;
-            to.v = v;
+            to.q = *q;
+            to.v = *v;
             to.vd = kv[6];
-            to.lambda = lambda;
+            to.lambda = *lambda;
             to.power = kp[6];
             // Error estimate, RMS over q and v scaled by the tolerances (one pass over both, so
             // that for NQ = NV the sum is accumulated in the same order as q and v pairwise).
@@ -307,7 +308,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                     self.next_step = h * factor;
                 }
                 self.accepted += 1;
-                self.stiffness.observe("DOPRI5", 3.25, from.t + h, h, [&kq[6], &kv[6], &kq[5], &kv[5]], [&q, &v, &q5, &v5]);
+                self.stiffness.observe("DOPRI5", 3.25, from.t + h, h, [&kq[6], &kv[6], &kq[5], &kv[5]], [q, v, q5, v5]);
                 // The 5th-order weights are the last row of A (b₇ = 0).
                 #[allow(clippy::needless_range_loop)] // k indexes from.work, to.work and each stage's kp[s]
                 for k in 0..2 {
@@ -319,7 +320,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
                 }
                 to.t = if last { t_max } else { from.t + h };
                 // Dense output coefficients, from the step's unnormalized end (the stages' flow).
-                self.store_dense(from, to, &kq, &kv, h);
+                self.store_dense(from, to, kq, kv, h);
                 mech.normalize_positions(&mut to.q);
                 return check_step::<T, M, NQ, NV, NC>(from, to);
             }

@@ -88,17 +88,17 @@ where
     let one = T::ONE;
     let half = T::from_f64(0.5);
     let (c_v, c_q) = map.slopes();
-    // Unknowns: v̇₊ (from the first guess) and λ₊ (from λ).
-    let mut vd = *vd0;
-    let mut lambda = from.lambda;
-    let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-    let mut phi = [T::ZERO; NC];
-    // `s`: D's non-zeros, then the Newton matrix and its LU factors over the pattern planned at
-    // compile time (`NewtonMatrix`, `crate::sparse`): O(non-zeros), no dense matrix, in the
-    // work space.
-    let mut force = [T::ZERO; NV];
-    let mut inertia = [T::ZERO; NV];
-    let mut rhs = [T::ZERO; N];
+    // Unknowns: v̇₊ (from the first guess) and λ₊ (from λ); the iterate's state, Φ, forces and
+    // residual (the work space's vectors). `s`: D's non-zeros, then the Newton matrix and its
+    // LU factors over the pattern planned at compile time (`NewtonMatrix`, `crate::sparse`):
+    // O(non-zeros), no dense matrix, in the work space.
+    let vectors = &mut scratch.vectors;
+    let [vd, v, force, inertia, base_vd] = vectors.rows::<NV, 5>();
+    let [lambda, phi, base_lambda] = vectors.rows::<NC, 3>();
+    let [rhs, step] = vectors.rows::<N, 2>();
+    let q = vectors.take::<NQ>();
+    *vd = *vd0;
+    *lambda = from.lambda;
     let mut iteration = 0;
     let mut dropped = [false; NC];
     let mut last_change = [T::ZERO; 2];
@@ -107,36 +107,37 @@ where
     // and whether the next iteration must factor again (modified Newton, `reuse_factors`).
     let mut factored = false;
     let (mut rounding_floor, mut near_singular, mut refactor) = (T::ZERO, false, true);
-    // Backtracking on ‖r‖₂: the last Newton step's start, direction, fraction θ
-    // taken, the residual it started from and the size of the full correction.
-    let (mut base_vd, mut base_lambda) = (vd, lambda);
-    let mut step = [T::ZERO; N];
+    // Backtracking on ‖r‖₂: the last Newton step's start (`base_vd`, `base_lambda`), direction
+    // (`step`), fraction θ taken, the residual it started from and the size of the full
+    // correction.
+    *base_vd = *vd;
+    *base_lambda = *lambda;
     let mut theta = one;
     let mut norm_before = T::ZERO;
     let mut correction = T::ZERO;
     let mut last_size: Option<T> = None;
     loop {
-        map.state(mech, &vd, &mut q, &mut v);
+        map.state(mech, vd, q, v);
         // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            let displacement = map.displacement(&vd);
-            mech.newton_matrix(&q, &v, &vd, t1, &lambda, displacement.as_ref(), c_v, c_q, &mut phi, s, scratch.reborrow());
+            let displacement = map.displacement(vd);
+            mech.newton_matrix(q, v, vd, t1, lambda, displacement.as_ref(), c_v, c_q, phi, s, scratch.reborrow());
         } else {
-            mech.newton_jacobian(&q, t1, &mut phi, s, scratch.reborrow());
+            mech.newton_jacobian(q, t1, phi, s, scratch.reborrow());
         }
-        mech.forces(&q, &v, t1, &mut force);
+        mech.forces(q, v, t1, force);
         // Coulomb friction with the iterate's loads (its exact derivatives enter the
         // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
         // slope ≤ μ).
-        mech.friction_forces(&q, &v, t1, &lambda, &mut force);
-        mech.mass_times(&q, &vd, &mut inertia);
-        let worst = residual::<T, M, NQ, NV, NC, N>(s, &force, &inertia, &lambda, &phi, c_q, &mut rhs);
+        mech.friction_forces(q, v, t1, lambda, force);
+        mech.mass_times(q, vd, inertia);
+        let worst = residual::<T, M, NQ, NV, NC, N>(s, force, inertia, lambda, phi, c_q, rhs);
         // A NaN or infinity in a force: name the force element; in Φ or the state: the row
         // it surfaced in.
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-            return Err(match crate::model::dynamics::non_finite(mech, &q, &v, t1, &lambda) {
+            return Err(match crate::model::dynamics::non_finite(mech, q, v, t1, lambda) {
                 force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
                 _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
             });
@@ -156,7 +157,7 @@ where
             continue;
         }
         if iteration >= o.max_iterations {
-            return Err(not_converged::<T, M, NV, NC, N>(t1, iteration, worst, &step, c_q, o.tolerance));
+            return Err(not_converged::<T, M, NV, NC, N>(t1, iteration, worst, step, c_q, o.tolerance));
         }
         if factor {
             (rounding_floor, near_singular) =
@@ -168,24 +169,28 @@ where
                 rhs[NV + r] = T::ZERO;
             }
         }
-        M::newton_solve(s, &mut rhs);
+        M::newton_solve(s, rhs);
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
             return Err(SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) });
         }
-        (base_vd, base_lambda, step, theta, norm_before) = (vd, lambda, rhs, one, norm);
+        *base_vd = *vd;
+        *base_lambda = *lambda;
+        *step = *rhs;
+        (theta, norm_before) = (one, norm);
         let mut force_scale;
-        (correction, force_scale) = apply_correction(&mut vd, &mut lambda, &rhs, [&force, &inertia], c_q);
+        (correction, force_scale) = apply_correction(vd, lambda, rhs, [force, inertia], c_q);
         // The change of the constraint forces Dᵀλ (N, N·m per velocity), not of λ itself:
         // near a singular position the part of λ along D's (near-)null space is not
-        // determined — rounding moves it by ε/σ² — and exerts no force.
-        let (lambda_change, total) = constraint_force_change::<T, M, NQ, NV, NC, N>(s, &rhs, &lambda);
+        // determined — rounding moves it by ε/σ² — and exerts no force. `force` is free
+        // until the next iteration: it takes Dᵀλ.
+        let lambda_change = constraint_force_change::<T, M, NQ, NV, NC, N>(s, rhs, lambda, inertia, force);
         // Modified Newton: keep the factors while each correction shrinks at least 4×.
         refactor = iteration > 0 && !(correction < T::from_f64(0.25) * last_change[0]);
-        force_scale = total.iter().fold(force_scale, |m, f| m.max(f.abs()));
+        force_scale = force.iter().fold(force_scale, |m, f| m.max(f.abs()));
         iteration += 1;
         *iterations = iteration;
         let changes = [correction, lambda_change];
-        let size = map.error_norm(&core::array::from_fn(|i| rhs[i])).filter(|_| theta == one && !near_singular);
+        let size = map.error_norm(rhs[..NV].try_into().expect("NV rows")).filter(|_| theta == one && !near_singular);
         let rate_met = rate_test(size, &mut last_size, rate);
         if worst.0 <= o.tolerance
             && converged(o, changes, last_change, (o.lambda_tolerance * force_scale).max(rounding_floor), near_singular, iteration > 1)
@@ -197,15 +202,15 @@ where
     }
     // The state of the converged iterate (its last correction below tolerance, or passing the
     // rate test).
-    map.state(mech, &vd, &mut q, &mut v);
+    map.state(mech, vd, q, v);
     if o.project_velocities {
-        mech.project_velocities_in(scratch, &q, &mut v, t1, &system.dynamics)?;
+        mech.project_velocities_in(scratch, q, v, t1, &system.dynamics)?;
     }
     to.t = t1;
-    to.q = q;
-    to.v = v;
-    to.vd = vd;
-    to.lambda = lambda;
+    to.q = *q;
+    to.v = *v;
+    to.vd = *vd;
+    to.lambda = *lambda;
     check_step::<T, M, NQ, NV, NC>(from, to)
 }
 
@@ -325,23 +330,27 @@ where
 }
 
 /// The change of the constraint forces Dᵀλ by a Newton correction (its multipliers' part of
-/// `rhs`), largest over the velocities, and the forces Dᵀλ themselves.
+/// `rhs`), largest over the velocities; the change into `change` and the forces Dᵀλ themselves
+/// into `total`.
 fn constraint_force_change<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
     s: &M::NewtonStorage,
     rhs: &[T; N],
     lambda: &[T; NC],
-) -> (T, [T; NV])
+    change: &mut [T; NV],
+    total: &mut [T; NV],
+) -> T
 where
     T: Real,
     M: NewtonMatrix<T, NQ, NV, NC>,
 {
-    let (mut change, mut total) = ([T::ZERO; NV], [T::ZERO; NV]);
+    change.fill(T::ZERO);
+    total.fill(T::ZERO);
     for (&value, &(r, c)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
         let (r, c) = (r as usize, c as usize);
         change[c] += value * rhs[NV + r];
         total[c] += value * lambda[r];
     }
-    (change.iter().fold(T::ZERO, |m, c| m.max(c.abs())), total)
+    change.iter().fold(T::ZERO, |m, c| m.max(c.abs()))
 }
 
 /// Newton did not converge: name the violated constraint, or, with every constraint met, the
@@ -441,7 +450,7 @@ where
 /// The powers at the end point and the work integrals of a step of h.
 pub(super) fn finish<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     system: &System<'_, M, T>,
-    scratch: DenseScratch<'_, T, NV, NC>,
+    mut scratch: DenseScratch<'_, T, NV, NC>,
     from: &Point<T, NQ, NV, NC>,
     to: &mut Point<T, NQ, NV, NC>,
     h: T,
@@ -451,9 +460,8 @@ where
     M: NewtonMatrix<T, NQ, NV, NC>,
 {
     to.power = if system.track_work {
-        let mut scratch_vd = [T::ZERO; NV];
-        let mut scratch_lambda = [T::ZERO; NC];
-        system.derivatives_in(scratch, to.t, &to.q, &to.v, &mut scratch_vd, &mut scratch_lambda)?
+        let (vd, lambda) = (scratch.vectors.take::<NV>(), scratch.vectors.take::<NC>());
+        system.derivatives_in(scratch, to.t, &to.q, &to.v, vd, lambda)?
     } else {
         [T::ZERO; 2]
     };

@@ -91,7 +91,7 @@
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::linalg::sparse::{factor_complex, solve_complex};
 use crate::model::mechanism::NewtonMatrix;
-use crate::model::workspace::{DenseScratch, Workspace};
+use crate::model::workspace::{DenseScratch, Vectors, Workspace};
 use crate::real::Real;
 
 /// Radau IIA's nodes c_i.
@@ -249,6 +249,7 @@ fn stage_states<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, const 
     acc: &[[T; NV]; 3],
     q: &mut [[T; NQ]; 3],
     v: &mut [[T; NV]; 3],
+    mut vectors: Vectors<'_, T>,
 ) -> bool {
     for i in 0..3 {
         for k in 0..NV {
@@ -256,16 +257,19 @@ fn stage_states<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, const 
         }
     }
     // Where q̇ = v (NQ = NV), q₀ + h Σ a_ij V_j exactly; otherwise its ⊕ as the contraction's start.
+    let dv = vectors.take::<NV>();
     for i in 0..3 {
-        let dv: [T; NV] = core::array::from_fn(|k| (0..3).fold(T::ZERO, |s, j| s + f::<T>(A[i][j]) * v[j][k]));
+        for (k, x) in dv.iter_mut().enumerate() {
+            *x = (0..3).fold(T::ZERO, |s, j| s + f::<T>(A[i][j]) * v[j][k]);
+        }
         q[i] = from.q;
-        mech.integrate_positions(&mut q[i], &dv, h);
+        mech.integrate_positions(&mut q[i], dv, h);
     }
     if NQ == NV {
         return true;
     }
     let floor = T::from_f64(4.0) * T::EPSILON * from.q.iter().fold(T::ONE, |m, x| m.max(x.abs()));
-    let mut rates = [[T::ZERO; NQ]; 3];
+    let rates = vectors.rows::<NQ, 3>();
     for _ in 0..40 {
         for j in 0..3 {
             mech.position_rates(&q[j], &v[j], &mut rates[j]);
@@ -295,36 +299,36 @@ fn stage_residual<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, cons
     acc: &[T; NV],
     lambda: &[T; NC],
     s: &mut M::NewtonStorage,
-    scratch: DenseScratch<'_, T, NV, NC>,
+    mut scratch: DenseScratch<'_, T, NV, NC>,
     r: &mut [T; N],
 ) {
-    let mut phi = [T::ZERO; NC];
+    let (phi, force, inertia) = (scratch.vectors.take::<NC>(), scratch.vectors.take::<NV>(), scratch.vectors.take::<NV>());
     // Φ and D's non-zeros into the front of the real block's slot (its factors lie after them).
-    mech.newton_jacobian(q, t, &mut phi, s, scratch);
-    let (mut force, mut inertia) = ([T::ZERO; NV], [T::ZERO; NV]);
-    mech.forces(q, v, t, &mut force);
-    mech.friction_forces(q, v, t, lambda, &mut force);
-    mech.mass_times(q, acc, &mut inertia);
+    mech.newton_jacobian(q, t, phi, s, scratch);
+    mech.forces(q, v, t, force);
+    mech.friction_forces(q, v, t, lambda, force);
+    mech.mass_times(q, acc, inertia);
     for k in 0..NV {
         r[k] = inertia[k] - force[k];
     }
     for (&value, &(row, column)) in s.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
         r[column as usize] -= value * lambda[row as usize];
     }
-    r[NV..].copy_from_slice(&phi);
+    r[NV..].copy_from_slice(phi);
 }
 
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, NV, NC> {
     /// The iteration's first guess of the stage accelerations and multipliers: the last step's
     /// stage polynomials extrapolated where this step continues it, else the start's v̇ and λ.
-    fn first_guess(&self, from: &Point<T, NQ, NV, NC>, h: T) -> ([[T; NV]; 3], [[T; NC]; 3]) {
+    fn first_guess(&self, from: &Point<T, NQ, NV, NC>, h: T, acc: &mut [[T; NV]; 3], lam: &mut [[T; NC]; 3]) {
         match self.last {
             // Extrapolated over at most twice the last step (beyond, the polynomial's error grows
             // as the cube of the ratio: a stiff pendulum's iteration diverged from it at 4×).
             Some((t0, h0)) if t0 + h0 == from.t && h <= T::from_f64(2.0) * h0 => {
                 let nodes = [t0 + f::<T>(C[0]) * h0, t0 + f::<T>(C[1]) * h0, from.t];
-                let mut acc = [[T::ZERO; NV]; 3];
-                let mut lam = [[T::ZERO; NC]; 3];
+                for x in acc.iter_mut().flatten().chain(lam.iter_mut().flatten()) {
+                    *x = T::ZERO;
+                }
                 for i in 0..3 {
                     let w = lagrange(nodes, from.t + f::<T>(C[i]) * h);
                     for j in 0..3 {
@@ -336,9 +340,12 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                         }
                     }
                 }
-                (acc, lam)
             }
-            _ => ([from.vd; 3], [from.lambda; 3]),
+            _ => {
+                for i in 0..3 {
+                    (acc[i], lam[i]) = (from.vd, from.lambda);
+                }
+            }
         }
     }
 }
@@ -425,7 +432,7 @@ where
         };
         let mut h = self.next_step.min(o.max_step);
         let mut first_attempt = self.accepted == 0;
-        let mut stages = Stages { acc: [[T::ZERO; NV]; 3], lam: [[T::ZERO; NC]; 3], q: [[T::ZERO; NQ]; 3], v: [[T::ZERO; NV]; 3] };
+        let mut stages = Stages::take(&mut dense.vectors);
         loop {
             let (h_try, t1) = fixed_step(from.t, h, t_max);
             let slots = [&mut *real, &mut *complex_re, &mut *complex_im];
@@ -527,11 +534,18 @@ enum Attempt<T> {
 }
 
 /// The three stages of a try: accelerations, multipliers, positions, velocities.
-struct Stages<T, const NQ: usize, const NV: usize, const NC: usize> {
-    acc: [[T; NV]; 3],
-    lam: [[T; NC]; 3],
-    q: [[T; NQ]; 3],
-    v: [[T; NV]; 3],
+struct Stages<'a, T, const NQ: usize, const NV: usize, const NC: usize> {
+    acc: &'a mut [[T; NV]; 3],
+    lam: &'a mut [[T; NC]; 3],
+    q: &'a mut [[T; NQ]; 3],
+    v: &'a mut [[T; NV]; 3],
+}
+
+impl<'a, T: Real, const NQ: usize, const NV: usize, const NC: usize> Stages<'a, T, NQ, NV, NC> {
+    /// Zeroed stages from the work space's vectors.
+    fn take(vectors: &mut Vectors<'a, T>) -> Self {
+        Self { acc: vectors.rows(), lam: vectors.rows(), q: vectors.rows(), v: vectors.rows() }
+    }
 }
 
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, NV, NC> {
@@ -568,20 +582,20 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         dropped: &mut [bool; NC],
     ) -> Result<(), SimulationError> {
         let mech = system.mechanism;
-        let mut phi = [T::ZERO; NC];
+        let phi = scratch.vectors.take::<NC>();
         let fill = |c_v: T, c_q: T, s: &mut M::NewtonStorage, scratch: DenseScratch<'_, T, NV, NC>, phi: &mut [T; NC]| {
             mech.newton_matrix(&from.q, &from.v, &from.vd, from.t, &from.lambda, None, c_v, c_q, phi, s, scratch);
         };
         let c = h / f::<T>(GAMMA);
-        fill(c, c * c, real, scratch.reborrow(), &mut phi);
+        fill(c, c * c, real, scratch.reborrow(), phi);
         // c = h/(α + iβ) = cr + i ci, c² = (cr² − ci²) + 2i cr ci: the matrix is linear in (c_v,
         // c_q), so its real part is the fill at the real parts and its imaginary part the fill
         // at the sums less that.
         let modulus = f::<T>(ALPHA * ALPHA + BETA * BETA);
         let (cr, ci) = (h * f::<T>(ALPHA) / modulus, -h * f::<T>(BETA) / modulus);
         let (qr, qi) = (cr * cr - ci * ci, T::from_f64(2.0) * cr * ci);
-        fill(cr, qr, re, scratch.reborrow(), &mut phi);
-        fill(cr + ci, qr + qi, im, scratch.reborrow(), &mut phi);
+        fill(cr, qr, re, scratch.reborrow(), phi);
+        fill(cr + ci, qr + qi, im, scratch.reborrow(), phi);
         let nnz = M::JACOBIAN_PATTERN.len();
         for (x, &y) in im.as_mut()[nnz..].iter_mut().zip(&re.as_ref()[nnz..]) {
             *x -= y;
@@ -607,14 +621,17 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         h: T,
         [real, re, im]: [&mut M::NewtonStorage; 3],
         mut scratch: DenseScratch<'_, T, NV, NC>,
-        stages: &mut Stages<T, NQ, NV, NC>,
+        stages: &mut Stages<'_, T, NQ, NV, NC>,
     ) -> Result<Attempt<T>, SimulationError> {
         let o = self.options;
         let mech = system.mechanism;
         let mut dropped = [false; NC];
         Self::factor_blocks(system, &o, from, h, [&mut *real, &mut *re, &mut *im], scratch.reborrow(), &mut dropped)?;
         let nnz = M::JACOBIAN_PATTERN.len();
-        (stages.acc, stages.lam) = self.first_guess(from, h);
+        self.first_guess(from, h, stages.acc, stages.lam);
+        // The residuals, their transform and the stages' corrections (each written whole before
+        // it is read).
+        let (r, b, dz) = (scratch.vectors.rows::<N, 3>(), scratch.vectors.rows::<N, 3>(), scratch.vectors.rows::<N, 3>());
         // The positions' scale in velocity space: each coordinate's own where q̇ = v, else the
         // largest.
         let q_scale = from.q.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
@@ -635,10 +652,9 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             if newton_iterations >= max_it {
                 return Ok(Attempt::Diverged);
             }
-            if !stage_states(mech, from, h, &stages.acc, &mut stages.q, &mut stages.v) {
+            if !stage_states(mech, from, h, stages.acc, stages.q, stages.v, scratch.vectors.reborrow()) {
                 return Ok(Attempt::Diverged);
             }
-            let mut r = [[T::ZERO; N]; 3];
             for i in 0..3 {
                 let t = from.t + f::<T>(C[i]) * h;
                 stage_residual(mech, t, &stages.q[i], &stages.v[i], &stages.acc[i], &stages.lam[i], real, scratch.reborrow(), &mut r[i]);
@@ -656,8 +672,11 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             }
             // T⁻¹ over the stages, then each block's solve: the constraint rows divided by c_q
             // (complex for the second), dropped rows held.
-            let mut b: [[T; N]; 3] =
-                core::array::from_fn(|k| core::array::from_fn(|n| -(0..3).fold(T::ZERO, |s, i| s + f::<T>(TI[k][i]) * r[i][n])));
+            for (k, row) in b.iter_mut().enumerate() {
+                for (n, x) in row.iter_mut().enumerate() {
+                    *x = -(0..3).fold(T::ZERO, |s, i| s + f::<T>(TI[k][i]) * r[i][n]);
+                }
+            }
             for row in 0..NC {
                 let n = NV + row;
                 if dropped[row] {
@@ -668,12 +687,14 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 let (x, y) = (b[1][n], b[2][n]);
                 (b[1][n], b[2][n]) = ((x * qr + y * qi) / q_modulus, (y * qr - x * qi) / q_modulus);
             }
-            let [b1, b_re, b_im] = &mut b;
+            let [b1, b_re, b_im] = &mut *b;
             M::newton_solve(real, b1);
             solve_complex(&M::NEWTON_PATTERN, &re.as_ref()[nnz..], &im.as_ref()[nnz..], b_re, b_im);
-            let dz: [[T; N]; 3] = core::array::from_fn(|i| {
-                core::array::from_fn(|n| f::<T>(T_[i][0]) * b[0][n] + f::<T>(T_[i][1]) * b[1][n] + f::<T>(T_[i][2]) * b[2][n])
-            });
+            for (i, row) in dz.iter_mut().enumerate() {
+                for (n, x) in row.iter_mut().enumerate() {
+                    *x = f::<T>(T_[i][0]) * b[0][n] + f::<T>(T_[i][1]) * b[1][n] + f::<T>(T_[i][2]) * b[2][n];
+                }
+            }
             if dz.iter().flatten().any(|x| !x.is_finite()) {
                 return Ok(Attempt::Diverged);
             }
@@ -729,15 +750,16 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 break;
             }
         }
-        if !stage_states(mech, from, h, &stages.acc, &mut stages.q, &mut stages.v) {
+        if !stage_states(mech, from, h, stages.acc, stages.q, stages.v, scratch.vectors.reborrow()) {
             return Ok(Attempt::Diverged);
         }
-        let error = self.error_estimate::<M, N>(system, (rtol, atol), from, h, real, stages);
+        let error = self.error_estimate::<M, N>(system, (rtol, atol), from, h, real, stages, scratch.vectors);
         Ok(Attempt::Converged { error, newton_iterations })
     }
 
     /// The step's scaled error (module docs): Hairer's estimate filtered through the real
     /// block, positions and velocities, in the RMS of atol + rtol·|y|.
+    #[allow(clippy::too_many_arguments)]
     fn error_estimate<M: NewtonMatrix<T, NQ, NV, NC>, const N: usize>(
         &self,
         system: &System<'_, M, T>,
@@ -745,39 +767,43 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         from: &Point<T, NQ, NV, NC>,
         h: T,
         real: &M::NewtonStorage,
-        stages: &Stages<T, NQ, NV, NC>,
+        stages: &Stages<'_, T, NQ, NV, NC>,
+        mut vectors: Vectors<'_, T>,
     ) -> T {
         let mech = system.mechanism;
         let combine = |w: [f64; 3], k: usize| (0..3).fold(T::ZERO, |s, j| s + f::<T>(w[j]) * stages.acc[j][k]);
-        let r_q: [T; NV] = core::array::from_fn(|k| h * combine(E_Q, k));
-        let r_v: [T; NV] = core::array::from_fn(|k| from.vd[k] + combine(E_V, k));
+        let [r_q, x, f0, f1, a] = vectors.rows::<NV, 5>();
+        let (rhs, e_q) = (vectors.take::<N>(), vectors.take::<NQ>());
         let c = h / f::<T>(GAMMA);
         // (M + c C + c² K) a − Dᵀμ = M (c² r_v + c r_q) + c² C r_q, with C r_q = −∂h/∂v r_q by a
         // difference of the forces along r_q.
-        let x: [T; NV] = core::array::from_fn(|k| c * c * r_v[k] + c * r_q[k]);
-        let mut rhs = [T::ZERO; N];
-        let mut mx = [T::ZERO; NV];
-        mech.mass_times(&from.q, &x, &mut mx);
-        rhs[..NV].copy_from_slice(&mx);
+        for k in 0..NV {
+            r_q[k] = h * combine(E_Q, k);
+            x[k] = c * c * (from.vd[k] + combine(E_V, k)) + c * r_q[k];
+        }
+        let (mx, rest) = rhs.split_at_mut(NV);
+        mech.mass_times(&from.q, x, mx.try_into().expect("NV rows"));
+        rest.fill(T::ZERO);
         let size = r_q.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         if size > T::ZERO {
             let v_scale = from.v.iter().fold(T::ONE, |m, x| m.max(x.abs()));
             let delta = T::EPSILON.sqrt() * v_scale / size;
-            let forces = |v: &[T; NV]| {
-                let mut force = [T::ZERO; NV];
-                mech.forces(&from.q, v, from.t, &mut force);
-                mech.friction_forces(&from.q, v, from.t, &from.lambda, &mut force);
-                force
+            let forces = |v: &[T; NV], force: &mut [T; NV]| {
+                mech.forces(&from.q, v, from.t, force);
+                mech.friction_forces(&from.q, v, from.t, &from.lambda, force);
             };
-            let (f0, f1) = (forces(&from.v), forces(&core::array::from_fn(|k| from.v[k] + delta * r_q[k])));
+            forces(&from.v, f0);
+            for k in 0..NV {
+                a[k] = from.v[k] + delta * r_q[k];
+            }
+            forces(a, f1);
             for k in 0..NV {
                 rhs[k] -= c * c * (f1[k] - f0[k]) / delta;
             }
         }
-        M::newton_solve(real, &mut rhs);
-        let a: [T; NV] = core::array::from_fn(|k| rhs[k]);
-        let mut e_q = [T::ZERO; NQ];
-        mech.position_rates(&from.q, &a, &mut e_q);
+        M::newton_solve(real, rhs);
+        a.copy_from_slice(&rhs[..NV]);
+        mech.position_rates(&from.q, a, e_q);
         let mut sum = T::ZERO;
         for k in 0..NQ {
             let scale = atol + rtol * from.q[k].abs().max(stages.q[2][k].abs());
@@ -798,34 +824,35 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         system: &System<'_, M, T>,
         from: &Point<T, NQ, NV, NC>,
         (h, t1): (T, T),
-        stages: &Stages<T, NQ, NV, NC>,
+        stages: &Stages<'_, T, NQ, NV, NC>,
         to: &mut Point<T, NQ, NV, NC>,
         mut scratch: DenseScratch<'_, T, NV, NC>,
     ) -> Result<(), SimulationError> {
         let mech = system.mechanism;
-        let (mut q, mut v) = (stages.q[2], stages.v[2]);
-        mech.normalize_positions(&mut q);
+        let (q, v) = (&mut to.q, &mut to.v);
+        *q = stages.q[2];
+        *v = stages.v[2];
+        mech.normalize_positions(q);
         // Onto Φ = 0 to what the scalar resolves (module docs, "The step's end"): Newton left Φ
         // within its stopping tolerance, a few mass-weighted steps (quadratic) take it to rounding.
-        let resolution = crate::solvers::kinematics::resolution(&q);
+        let resolution = crate::solvers::kinematics::resolution(q);
         for _ in 0..END_PROJECTION_STEPS {
-            if mech.project_positions_step_in(scratch.reborrow(), &mut q, t1, &system.dynamics)? <= resolution {
+            if mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)? <= resolution {
                 break;
             }
         }
         if self.options.project_velocities {
-            mech.project_velocities_in(scratch.reborrow(), &q, &mut v, t1, &system.dynamics)?;
+            mech.project_velocities_in(scratch.reborrow(), q, v, t1, &system.dynamics)?;
         }
         // v̇ and λ of the end point by forward dynamics there, not the last stage's A₃ and Λ₃
         // (module docs).
-        let (mut vd, mut lambda) = ([T::ZERO; NV], [T::ZERO; NC]);
-        let power = system.derivatives_in(scratch, t1, &q, &v, &mut vd, &mut lambda)?;
-        (to.t, to.q, to.v, to.vd, to.lambda, to.power) = (t1, q, v, vd, lambda, power);
+        to.power = system.derivatives_in(scratch, t1, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
+        to.t = t1;
         check_step::<T, M, NQ, NV, NC>(from, to)?;
         super::implicit::accumulate_work(from, to, h);
         self.last = Some((from.t, h));
-        self.accelerations = stages.acc;
-        self.multipliers = stages.lam;
+        self.accelerations = *stages.acc;
+        self.multipliers = *stages.lam;
         self.stage_q = [stages.q[0], stages.q[1]];
         self.stage_v = [stages.v[0], stages.v[1]];
         self.accepted += 1;

@@ -68,45 +68,39 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let sixth = h / T::from_f64(6.0);
         let two = T::from_f64(2.0);
         let t_half = from.t + half;
-        // The start's multipliers: the first guess of Coulomb friction loads, if any.
-        let mut lambda = from.lambda;
+        // The start's multipliers (the first guess of Coulomb friction loads, if any), the stage
+        // state and the stages' rates.
+        let mut dense = ws.dense();
+        let lambda = dense.vectors.take::<NC>();
+        *lambda = from.lambda;
+        let [q, qd1, qd2, qd3, qd4] = dense.vectors.rows::<NQ, 5>();
+        let [v2, v3, v4, vd2, vd3, vd4] = dense.vectors.rows::<NV, 6>();
         // k1 = (B(q0) v0, v̇0)
-        let mut qd1 = [T::ZERO; NQ];
-        mech.position_rates(&from.q, &from.v, &mut qd1);
-        let mut q = [T::ZERO; NQ];
-        let mut v2 = [T::ZERO; NV];
+        mech.position_rates(&from.q, &from.v, qd1);
         for i in 0..NQ {
             q[i] = from.q[i] + half * qd1[i];
         }
         for i in 0..NV {
             v2[i] = from.v[i] + half * from.vd[i];
         }
-        let mut qd2 = [T::ZERO; NQ];
-        mech.position_rates(&q, &v2, &mut qd2);
-        let mut vd2 = [T::ZERO; NV];
-        let p2 = system.derivatives_in(ws.dense(), t_half, &q, &v2, &mut vd2, &mut lambda)?;
-        let mut v3 = [T::ZERO; NV];
+        mech.position_rates(q, v2, qd2);
+        let p2 = system.derivatives_in(dense.reborrow(), t_half, q, v2, vd2, lambda)?;
         for i in 0..NQ {
             q[i] = from.q[i] + half * qd2[i];
         }
         for i in 0..NV {
             v3[i] = from.v[i] + half * vd2[i];
         }
-        let mut qd3 = [T::ZERO; NQ];
-        mech.position_rates(&q, &v3, &mut qd3);
-        let mut vd3 = [T::ZERO; NV];
-        let p3 = system.derivatives_in(ws.dense(), t_half, &q, &v3, &mut vd3, &mut lambda)?;
-        let mut v4 = [T::ZERO; NV];
+        mech.position_rates(q, v3, qd3);
+        let p3 = system.derivatives_in(dense.reborrow(), t_half, q, v3, vd3, lambda)?;
         for i in 0..NQ {
             q[i] = from.q[i] + h * qd3[i];
         }
         for i in 0..NV {
             v4[i] = from.v[i] + h * vd3[i];
         }
-        let mut qd4 = [T::ZERO; NQ];
-        mech.position_rates(&q, &v4, &mut qd4);
-        let mut vd4 = [T::ZERO; NV];
-        let p4 = system.derivatives_in(ws.dense(), t_end, &q, &v4, &mut vd4, &mut lambda)?;
+        mech.position_rates(q, v4, qd4);
+        let p4 = system.derivatives_in(dense.reborrow(), t_end, q, v4, vd4, lambda)?;
         for i in 0..NQ {
             to.q[i] = from.q[i] + sixth * (qd1[i] + two * (qd2[i] + qd3[i]) + qd4[i]);
         }
@@ -119,7 +113,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         }
         to.t = t_end;
         check_step::<T, M, NQ, NV, NC>(from, to)?;
-        to.power = system.derivatives_in(ws.dense(), to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
+        to.power = system.derivatives_in(dense, to.t, &to.q, &to.v, &mut to.vd, &mut to.lambda)?;
         Ok(())
     }
 

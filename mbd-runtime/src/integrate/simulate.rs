@@ -375,11 +375,21 @@ where
             return Ok(stats);
         }};
     }
-    // Hands a sample to the callback; ends the run if it says so.
+    // The one sample handed to the callback, rewritten for each output (a sample is a point:
+    // O(NQ + NV + NC) scalars, made once rather than once per place that delivers one).
+    let mut out = Sample { point: from, energy: energy(mechanism, &from), event: None };
+    // Hands the point `$p` (at `$event`, if any) to the callback as a sample; ends the run if
+    // it says so.
     macro_rules! deliver {
-        ($sample:expr) => {
+        ($p:expr, $event:expr) => {
+            out.point = *$p;
+            deliver!($event);
+        };
+        ($event:expr) => {
+            out.energy = energy(mechanism, &out.point);
+            out.event = $event;
             stats.samples += 1;
-            if output($sample).stops() {
+            if output(&out).stops() {
                 stats.stopped_by_output = true;
                 finish!();
             }
@@ -392,7 +402,7 @@ where
     let mut at_event = false;
     while next < times.len() && times[next] <= from.t {
         next += 1;
-        deliver!(&sample(mechanism, &from));
+        deliver!(&from, None);
     }
     while next < times.len() {
         if stats.steps >= options.max_steps {
@@ -406,7 +416,7 @@ where
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
             stats.events += 1;
-            deliver!(&Sample { event: Some(which), ..sample(mechanism, &from) });
+            deliver!(&from, Some(which));
             at_event = true;
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
@@ -446,19 +456,25 @@ where
         while next < times.len() && times[next] <= step_end {
             next += 1;
             if times[next - 1] == step_end {
-                deliver!(&sample(mechanism, &to));
+                deliver!(&to, None);
             } else {
-                let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-                integrator.interpolate(mechanism, &from, &end, times[next - 1], &mut q, &mut v);
-                mechanism.normalize_positions(&mut q);
-                let work = interpolate_work(&from, &end, times[next - 1]);
-                deliver!(&sample(mechanism, &system.point_in(ws.dense(), times[next - 1], q, v, work)?));
+                // The interpolated point, written in the sample's place.
+                let (t, p) = (times[next - 1], &mut out.point);
+                integrator.interpolate(mechanism, &from, &end, t, &mut p.q, &mut p.v);
+                mechanism.normalize_positions(&mut p.q);
+                (p.t, p.work) = (t, interpolate_work(&from, &end, t));
+                // λ from zero, as forward dynamics at any other point (Coulomb friction's first
+                // guess of its loads).
+                p.vd.fill(T::ZERO);
+                p.lambda.fill(T::ZERO);
+                p.power = system.derivatives_in(ws.dense(), t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+                deliver!(None);
             }
         }
         at_event = hit.is_some();
         if let Some((_, which)) = hit {
             stats.events += 1;
-            deliver!(&Sample { event: Some(which), ..sample(mechanism, &to) });
+            deliver!(&to, Some(which));
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
                 finish!();
@@ -594,18 +610,17 @@ fn interpolate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
     core::array::from_fn(|k| hermite(from.work[k], from.power[k], to.work[k], to.power[k], h, theta))
 }
 
-/// A point with its energies.
-fn sample<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+/// The energies at a point.
+fn energy<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     p: &Point<T, NQ, NV, NC>,
-) -> Sample<T, NQ, NV, NC> {
-    let energy = Energy {
+) -> Energy<T> {
+    Energy {
         kinetic: kinetic_energy(mechanism, &p.q, &p.v),
         potential: mechanism.potential_energy(&p.q, p.t),
         nonconservative_work: p.work[0],
         constraint_work: p.work[1],
-    };
-    Sample { point: *p, energy, event: None }
+    }
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.

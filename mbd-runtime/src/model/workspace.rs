@@ -4,10 +4,13 @@
 //!
 //! The solvers themselves keep only O(NV + NC) arrays on the stack (and the generated
 //! forward dynamics its planned Schur factor, O(non-zeros of D)), so a mechanism of any size
-//! runs on an ordinary thread's stack. Measured by painting the stack (2026-12-02), a
-//! simulation in body coordinates takes about 0.5 KB per velocity in a release build and 1.4 KB
-//! in a debug one (a 201-body ladder, NV = 603: 0.3 and 0.85–0.96 MB). Where they are needed at
-//! all, the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.3 MB of
+//! runs on an ordinary thread's stack. The integrators' stage, residual and correction vectors
+//! are taken from the work space's rows too (`VECTOR_ROWS` rows of N scalars). Measured by
+//! painting the stack (2026-12-06), a simulation of a 201-body ladder (NV = 603) in a release
+//! build takes 182–324 KiB (0.3–0.54 KiB per velocity; 0.46–0.71 before the vectors moved
+//! here); what is left is the simulation's points, the generated kernels' locals and statics'
+//! iterate. Where they are needed at
+//! all, the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.6 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
@@ -20,6 +23,7 @@
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
 //! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled) |
+//! | the solvers' vectors | 48 × N | the integrators' stages, residuals and Newton corrections |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
@@ -55,6 +59,7 @@ pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const 
     pub(crate) velocity_square: [[T; NV]; NV],
     pub(crate) coupling: [[T; NC]; NC],
     pub(crate) newton: [[T; NS]; 3],
+    pub(crate) vectors: [[T; N]; VECTOR_ROWS],
 }
 
 impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize> Workspace<T, NV, NC, N, NS> {
@@ -68,6 +73,7 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
             velocity_square: [[T::ZERO; NV]; NV],
             coupling: [[T::ZERO; NC]; NC],
             newton: [[T::ZERO; NS]; 3],
+            vectors: [[T::ZERO; N]; VECTOR_ROWS],
         }
     }
 
@@ -102,30 +108,97 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
     }
 }
 
+/// Rows of N = NV + NC scalars in a [`Workspace`] for the solvers' vectors ([`Vectors`]): the
+/// deepest chain of calls (a Radau5 step with its stages, residuals and error estimate) takes
+/// fewer than this many rows' worth of q-, v- and λ-sized vectors (q counts as two rows where
+/// NQ > NV), which `tests/large.rs` runs on every analysis.
+pub(crate) const VECTOR_ROWS: usize = 48;
+
+/// The solvers' O(NQ + NV + NC) vectors (stages, residuals, corrections), taken from a work
+/// space's rows in turn ([`Vectors::take`]) rather than declared on the stack, so that a
+/// solver's frame does not grow with the mechanism. A callee gets the rest
+/// ([`Vectors::reborrow`]); what it takes is free again when it returns, as a stack frame's
+/// locals are.
+pub(crate) struct Vectors<'a, T> {
+    free: &'a mut [T],
+}
+
+impl<'a, T> Vectors<'a, T> {
+    /// Vectors from `storage`.
+    pub(crate) fn new(storage: &'a mut [T]) -> Self {
+        Self { free: storage }
+    }
+
+    /// No vectors: for the calls without a work space ([`DenseArrays`]), which take none.
+    pub(crate) fn none() -> Self {
+        Self { free: &mut [] }
+    }
+}
+
+impl<'a, T: Real> Vectors<'a, T> {
+    /// A zeroed vector of L scalars, kept until this value's lifetime ends.
+    ///
+    /// # Panics
+    /// If fewer than L scalars are left: the work space's [`VECTOR_ROWS`] do not cover the call
+    /// chain, a defect of this crate (the chains are bounded, and their depth is tested).
+    pub(crate) fn take<const L: usize>(&mut self) -> &'a mut [T; L] {
+        let free = core::mem::take(&mut self.free);
+        assert!(free.len() >= L, "mbd: the work space's vectors do not cover this solver's calls (a defect: VECTOR_ROWS)");
+        let (head, rest) = free.split_at_mut(L);
+        self.free = rest;
+        head.fill(T::ZERO);
+        head.try_into().expect("split at L")
+    }
+
+    /// K zeroed vectors of L scalars, as [`take`](Self::take).
+    pub(crate) fn rows<const L: usize, const K: usize>(&mut self) -> &'a mut [[T; L]; K] {
+        let flat = core::mem::take(&mut self.free);
+        assert!(flat.len() >= L * K, "mbd: the work space's vectors do not cover this solver's calls (a defect: VECTOR_ROWS)");
+        let (head, rest) = flat.split_at_mut(L * K);
+        self.free = rest;
+        head.fill(T::ZERO);
+        if L == 0 {
+            // SAFETY: `[[T; 0]; K]` has size zero, so a dangling (non-null, aligned) pointer is a
+            // valid reference to it; `as_chunks_mut` does not take chunks of zero.
+            return unsafe { &mut *core::ptr::NonNull::<[[T; L]; K]>::dangling().as_ptr() };
+        }
+        let (rows, _) = head.as_chunks_mut::<L>();
+        rows.try_into().expect("K rows of L")
+    }
+
+    /// The vectors not taken yet, for a callee.
+    pub(crate) fn reborrow(&mut self) -> Vectors<'_, T> {
+        Vectors { free: &mut *self.free }
+    }
+}
+
 /// The dense arrays of forward dynamics where M depends on q and the mechanism has constraint
 /// rows (joint coordinates with closed loops, [`crate::dense_forward`]): D (NC × NV), M⁻¹Dᵀ
 /// (NC × NV), the Schur complement S = D M⁻¹ Dᵀ (NC × NC) and M's Cholesky factor (NV × NV),
 /// borrowed from a [`Workspace`] ([`Workspace::dense`]) so that they live on its heap, not on
 /// the stack (a 201-body ladder in joint coordinates needs 0.7 MB of them per call, which a
 /// debug build copied three times past a 2 MB thread). Body coordinates, whose forward dynamics
-/// is the generated sparse solve, do not touch it.
+/// is the generated sparse solve, do not touch them. With them, the work space's rows for the
+/// solvers' O(N) vectors.
 pub struct DenseScratch<'a, T, const NV: usize, const NC: usize> {
     pub(crate) d: &'a mut [[T; NV]; NC],
     pub(crate) y: &'a mut [[T; NV]; NC],
     pub(crate) s: &'a mut [[T; NC]; NC],
     pub(crate) l: &'a mut [[T; NV]; NV],
+    pub(crate) vectors: Vectors<'a, T>,
 }
 
 impl<T, const NV: usize, const NC: usize> DenseScratch<'_, T, NV, NC> {
     /// The same arrays, borrowed again for one more call.
     pub fn reborrow(&mut self) -> DenseScratch<'_, T, NV, NC> {
-        DenseScratch { d: self.d, y: self.y, s: self.s, l: self.l }
+        DenseScratch { d: self.d, y: self.y, s: self.s, l: self.l, vectors: Vectors { free: &mut *self.vectors.free } }
     }
 }
 
 /// Owned [`DenseScratch`] arrays, for a call without a work space
 /// ([`crate::ForwardDynamics::accelerations`] and the projections): on the stack of that call,
-/// as they were before the work space held them.
+/// as they were before the work space held them. They hold no rows for the solvers' vectors:
+/// what such a call needs beyond them is on its stack.
 pub struct DenseArrays<T, const NV: usize, const NC: usize> {
     d: [[T; NV]; NC],
     y: [[T; NV]; NC],
@@ -141,7 +214,7 @@ impl<T: Real, const NV: usize, const NC: usize> DenseArrays<T, NV, NC> {
 
     /// The arrays as a scratch.
     pub fn scratch(&mut self) -> DenseScratch<'_, T, NV, NC> {
-        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l }
+        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l, vectors: Vectors::none() }
     }
 }
 
@@ -155,13 +228,20 @@ impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> Works
     /// The arrays of dense forward dynamics ([`DenseScratch`]), from this work space's D,
     /// second NC × NV, constraint square and velocity square.
     pub fn dense(&mut self) -> DenseScratch<'_, T, NV, NC> {
-        DenseScratch { d: &mut self.jacobian_scratch, y: &mut self.jacobian, s: &mut self.constraint_square, l: &mut self.velocity_square }
+        DenseScratch {
+            d: &mut self.jacobian_scratch,
+            y: &mut self.jacobian,
+            s: &mut self.constraint_square,
+            l: &mut self.velocity_square,
+            vectors: Vectors::new(self.vectors.as_flattened_mut()),
+        }
     }
 
     /// The Newton slots and the dense arrays, borrowed apart (an implicit step needs both).
     pub(crate) fn newton_and_dense(&mut self) -> (&mut [[T; NS]; 3], DenseScratch<'_, T, NV, NC>) {
-        let Self { jacobian, jacobian_scratch, constraint_square, velocity_square, newton, .. } = self;
-        (newton, DenseScratch { d: jacobian_scratch, y: jacobian, s: constraint_square, l: velocity_square })
+        let Self { jacobian, jacobian_scratch, constraint_square, velocity_square, newton, vectors, .. } = self;
+        let vectors = Vectors::new(vectors.as_flattened_mut());
+        (newton, DenseScratch { d: jacobian_scratch, y: jacobian, s: constraint_square, l: velocity_square, vectors })
     }
 }
 
@@ -201,7 +281,7 @@ mod tests {
         let boxed = Workspace::<f64, 3, 2, 5>::boxed();
         let value = Workspace::<f64, 3, 2, 5>::new();
         assert_eq!(format!("{boxed:?}"), format!("{value:?}"));
-        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3));
+        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3 + super::VECTOR_ROWS * 5));
     }
 
     /// The Newton slots are views of exactly NS scalars, and only for storage of that size.
@@ -214,6 +294,39 @@ mod tests {
         assert_eq!(ws.newton, [[0.0, 0.0, 0.0, 1.0], [2.0, 0.0, 0.0, 0.0], [0.0, 3.0, 0.0, 0.0]]);
         assert!(super::newton_slots::<[f64; 3], f64, 4>(&mut ws.newton).is_none());
         assert!(super::newton_slots::<[f64; 5], f64, 4>(&mut ws.newton).is_none());
+    }
+
+    /// The vectors are taken in turn, zeroed, each disjoint from the others; what a callee
+    /// takes from a reborrow is free again after it; zero-length rows take nothing.
+    #[test]
+    fn vectors_are_taken_in_turn_and_given_back_by_callees() {
+        let mut storage = [7.0; 10];
+        let mut vectors = super::Vectors::new(&mut storage);
+        let a = vectors.take::<3>();
+        assert_eq!(*a, [0.0; 3], "zeroed");
+        a[0] = 1.0;
+        {
+            let mut callee = vectors.reborrow();
+            let [b, c] = callee.rows::<2, 2>();
+            (b[0], c[1]) = (2.0, 3.0);
+            assert_eq!(callee.free.len(), 3);
+        }
+        assert_eq!(vectors.free.len(), 7, "the callee's rows are free again");
+        let none: &mut [[f64; 0]; 4] = vectors.rows::<0, 4>();
+        assert_eq!(none.len(), 4);
+        let d = vectors.take::<7>();
+        assert_eq!(*d, [0.0; 7], "rewritten with zeros where the callee wrote");
+        assert_eq!(a[0], 1.0, "the first vector is untouched");
+    }
+
+    /// Taking past the rows is a defect of this crate, caught loudly.
+    #[test]
+    #[should_panic(expected = "VECTOR_ROWS")]
+    fn vectors_past_the_rows_panic() {
+        let mut storage = [0.0; 4];
+        let mut vectors = super::Vectors::new(&mut storage);
+        let _ = vectors.take::<3>();
+        let _ = vectors.take::<2>();
     }
 
     /// A work space far larger than a thread's stack is built on the heap (a copy through the

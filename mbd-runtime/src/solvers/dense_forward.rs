@@ -93,7 +93,7 @@ impl<'a, T: Real, const NV: usize, const NC: usize> Factors<'a, T, NV, NC> {
         options: &DynamicsOptions<T>,
         mass_bodies: &[u16],
     ) -> Result<Self, DynamicsError> {
-        let DenseScratch { d, y, s, l } = scratch;
+        let DenseScratch { d, y, s, l, .. } = scratch;
         let body = |i: usize| M::BODY_NAMES.get(mass_bodies.get(i).copied().unwrap_or(0) as usize).copied().unwrap_or("?");
         y.copy_from_slice(&d[..]);
         // M⁻¹Dᵀ over one factorization of M shared by the rows.
