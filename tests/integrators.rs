@@ -259,7 +259,7 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn step(
         &mut self,
         s: &System<'_, M, f64>,
-        ws: &mut Workspace<f64, 9, 8, 17, NS>,
+        ws: &mut WorkArrays<f64, 9, 8, 17, NS>,
         from: &Point<f64, 9, 9, 8>,
         t_max: f64,
         to: &mut Point<f64, 9, 9, 8>,
@@ -272,7 +272,7 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn prepare_interpolation(
         &mut self,
         s: &System<'_, M, f64>,
-        ws: &mut Workspace<f64, 9, 8, 17, NS>,
+        ws: &mut WorkArrays<f64, 9, 8, 17, NS>,
         from: &Point<f64, 9, 9, 8>,
         to: &Point<f64, 9, 9, 8>,
     ) -> Result<(), SimulationError> {
@@ -284,15 +284,13 @@ impl<M, const NS: usize> Integrator<f64, M, 9, 9, 8, 17, NS> for DynIntegrator<'
     fn after_correction(
         &mut self,
         s: &System<'_, M, f64>,
-        ws: &mut Workspace<f64, 9, 8, 17, NS>,
-        end: &Point<f64, 9, 9, 8>,
-        q: [f64; 9],
-        v: [f64; 9],
-    ) -> Result<Point<f64, 9, 9, 8>, SimulationError>
+        ws: &mut WorkArrays<f64, 9, 8, 17, NS>,
+        to: &mut Point<f64, 9, 9, 8>,
+    ) -> Result<(), SimulationError>
     where
         M: mbd::ForwardDynamics<f64, 9, 9, 8>,
     {
-        self.0.after_correction(s, ws, end, q, v)
+        self.0.after_correction(s, ws, to)
     }
     fn holds_constraints(&self) -> bool {
         self.0.holds_constraints()
@@ -526,7 +524,7 @@ fn inverse_dynamics_fed_forward_reproduces_the_motion() {
     assert!(worst < 1e-7, "crank angle error {worst:e} rad");
 }
 
-use mbd::{Integrator, Point, System};
+use mbd::{Integrator, Point, System, WorkArrays};
 
 /// The CSV writer: a header of named columns (t, q, v, v̇, λ per row, energies), one row per
 /// sample whose values read back exactly (`{:e}` prints the shortest form that round-trips), and

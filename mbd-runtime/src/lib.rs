@@ -2,8 +2,9 @@
 //!
 //! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
 //! Feature `alloc` (part of `std`) adds [`Linearizer`], which needs a heap but not `std`.
-//! No solver allocates: O(N²) work space is the caller's [`Workspace`] (made once, on the heap
-//! with [`Workspace::boxed`] or in a `static`), the rest fixed-size arrays on the stack.
+//! No solver allocates: O(N²) work space and the solvers' O(N) vectors are the caller's
+//! [`Workspace`] (made once, on the heap with [`Workspace::boxed`] or in a `static`), the rest
+//! fixed-size arrays on the stack.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 // No function over 150 lines (`clippy.toml`).
@@ -84,7 +85,7 @@ pub use model::mechanism::{
 };
 pub use model::named::{PlanarBody, PlanarPoint, SpatialBody, SpatialPoint, TreeBody, TreePoint};
 pub use model::planar::{point_acceleration, point_position, point_velocity};
-pub use model::workspace::{DenseArrays, DenseScratch, Workspace};
+pub use model::workspace::{DenseArrays, DenseScratch, WorkArrays, Workspace};
 /// nalgebra, as the runtime uses it (positions, velocities and rotations of named bodies and
 /// points come out as its types).
 pub use nalgebra;

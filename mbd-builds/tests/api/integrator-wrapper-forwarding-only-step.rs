@@ -1,5 +1,5 @@
 use mbd::prelude::*;
-use mbd::{Point, System};
+use mbd::{Point, System, WorkArrays};
 
 // A wrapper around an integrator that forwards only `step` and `interpolate`: before, it
 // compiled, and DOP853's dense output (no `prepare_interpolation`) or generalized-α's state after
@@ -18,7 +18,7 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,

@@ -22,7 +22,7 @@
 use super::stiffness::StiffnessDetected;
 use super::{Bdf, BdfOptions, Dopri5, Dopri5Options, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::NewtonMatrix;
-use crate::model::workspace::{DenseScratch, Workspace};
+use crate::model::workspace::{DenseScratch, WorkArrays};
 use crate::real::Real;
 
 /// BDF steps between two estimates of the fastest mode's rate.
@@ -62,7 +62,7 @@ pub enum AutoPhase {
 /// with when you do not know. Its work space must be the mechanism's (`Name::workspace()`), for
 /// BDF's Newton iteration.
 #[derive(Clone, Copy, Debug)]
-pub struct Auto<T, const NQ: usize, const NV: usize> {
+pub struct Auto<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// Tolerances and step limits.
     pub options: AutoOptions<T>,
     /// The explicit method, with its counts.
@@ -88,9 +88,11 @@ pub struct Auto<T, const NQ: usize, const NV: usize> {
     switch_rate: T,
     /// BDF has not stepped since the switch to it.
     fresh: bool,
+    /// BDF's first step's start after a switch: the step's start on the constraints.
+    start: Point<T, NQ, NV, NC>,
 }
 
-impl<T: Real, const NQ: usize, const NV: usize> Auto<T, NQ, NV> {
+impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Auto<T, NQ, NV, NC> {
     /// The integrator with the given options, starting with DOPRI5.
     pub fn new(options: AutoOptions<T>) -> Self {
         let o = options;
@@ -111,6 +113,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Auto<T, NQ, NV> {
             calm: 0,
             switch_rate: T::ZERO,
             fresh: false,
+            start: Point::zero(),
         }
     }
 
@@ -120,14 +123,14 @@ impl<T: Real, const NQ: usize, const NV: usize> Auto<T, NQ, NV> {
     }
 }
 
-impl<T: Real, const NQ: usize, const NV: usize> Default for Auto<T, NQ, NV> {
+impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Default for Auto<T, NQ, NV, NC> {
     fn default() -> Self {
         Self::new(AutoOptions::default())
     }
 }
 
 impl<T: Real, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize> Integrator<T, M, NQ, NV, NC, N, NS>
-    for Auto<T, NQ, NV>
+    for Auto<T, NQ, NV, NC>
 where
     M: NewtonMatrix<T, NQ, NV, NC>,
 {
@@ -139,7 +142,7 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -165,7 +168,8 @@ where
                 if self.fresh {
                     // BDF's first step solves Φ = 0 and projects v: from DOPRI5's end, whose drift
                     // its error test would count, it starts on the constraints.
-                    let mut start = *from;
+                    let start = &mut self.start;
+                    *start = *from;
                     super::simulate::project_in(
                         system.mechanism,
                         ws.dense(),
@@ -176,8 +180,8 @@ where
                         self.stiff.options.tolerance,
                         10,
                     )?;
-                    let start = system.point_in(ws.dense(), start.t, start.q, start.v, start.work)?;
-                    Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, &start, t_max, to)?;
+                    system.complete_in(ws.dense(), start)?;
+                    Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, &self.start, t_max, to)?;
                 } else {
                     Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, from, t_max, to)?;
                 }
@@ -208,7 +212,7 @@ where
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -235,14 +239,12 @@ where
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
         match self.last {
-            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.explicit, system, ws, end, q, v),
-            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.stiff, system, ws, end, q, v),
+            AutoPhase::Explicit => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.explicit, system, ws, to),
+            AutoPhase::Stiff => Integrator::<T, M, NQ, NV, NC, N, NS>::after_correction(&mut self.stiff, system, ws, to),
         }
     }
 
@@ -261,32 +263,45 @@ fn fastest_rate<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     system: &System<'_, M, T>,
     mut scratch: DenseScratch<'_, T, NV, NC>,
     p: &Point<T, NQ, NV, NC>,
-    seed: ([T; NQ], [T; NV]),
+    seed: (&[T; NQ], &[T; NV]),
 ) -> Option<T>
 where
     T: Real,
     M: NewtonMatrix<T, NQ, NV, NC>,
 {
     let m = system.mechanism;
-    let norm = |d: &([T; NQ], [T; NV])| d.0.iter().chain(d.1.iter()).fold(T::ZERO, |s, x| s + *x * *x).sqrt();
+    let norm = |d: (&[T; NQ], &[T; NV])| d.0.iter().chain(d.1.iter()).fold(T::ZERO, |s, x| s + *x * *x).sqrt();
     let size = p.q.iter().chain(p.v.iter()).fold(T::ONE, |s, x| s.max(x.abs())) * T::from_f64(1e-6);
-    let mut qdot = [T::ZERO; NQ];
-    m.position_rates(&p.q, &p.v, &mut qdot);
-    let base = system.point_in::<NQ, NV, NC>(scratch.reborrow(), p.t, p.q, p.v, p.work).ok()?;
-    let (mut d, mut rate) = (seed, None);
+    let [qdot, moved_qdot, q, d_q] = scratch.vectors.rows::<NQ, 4>();
+    let [base_vd, moved_vd, v, d_v] = scratch.vectors.rows::<NV, 4>();
+    let lambda = scratch.vectors.take::<NC>();
+    m.position_rates(&p.q, &p.v, qdot);
+    system.derivatives_in(scratch.reborrow(), p.t, &p.q, &p.v, base_vd, lambda).ok()?;
+    *d_q = *seed.0;
+    *d_v = *seed.1;
+    let mut rate = None;
     for _ in 0..3 {
-        let n = norm(&d);
+        let n = norm((d_q, d_v));
         if !(n > T::ZERO && n.is_finite()) {
             return rate;
         }
         let scale = size / n;
-        let q: [T; NQ] = core::array::from_fn(|i| p.q[i] + scale * d.0[i]);
-        let v: [T; NV] = core::array::from_fn(|i| p.v[i] + scale * d.1[i]);
-        let moved = system.point_in::<NQ, NV, NC>(scratch.reborrow(), p.t, q, v, p.work).ok()?;
-        let mut moved_qdot = [T::ZERO; NQ];
-        m.position_rates(&q, &v, &mut moved_qdot);
-        d = (core::array::from_fn(|i| moved_qdot[i] - qdot[i]), core::array::from_fn(|i| moved.vd[i] - base.vd[i]));
-        rate = Some(norm(&d) / size);
+        for i in 0..NQ {
+            q[i] = p.q[i] + scale * d_q[i];
+        }
+        for i in 0..NV {
+            v[i] = p.v[i] + scale * d_v[i];
+        }
+        lambda.fill(T::ZERO);
+        system.derivatives_in(scratch.reborrow(), p.t, q, v, moved_vd, lambda).ok()?;
+        m.position_rates(q, v, moved_qdot);
+        for i in 0..NQ {
+            d_q[i] = moved_qdot[i] - qdot[i];
+        }
+        for i in 0..NV {
+            d_v[i] = moved_vd[i] - base_vd[i];
+        }
+        rate = Some(norm((d_q, d_v)) / size);
     }
     rate
 }

@@ -55,7 +55,7 @@
 use super::implicit::{finish, first_step, newton_space, solve, NewtonSettings, StateMap};
 use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::{Kinematics, NewtonMatrix};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::WorkArrays;
 use crate::real::Real;
 
 /// The highest order (BDF is not zero-stable beyond 6; 5 keeps an angle of A(α)-stability of 51°).
@@ -172,8 +172,8 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
     }
 
     /// The last accepted step's error estimate, on q and v.
-    pub(super) fn last_error(&self) -> ([T; NQ], [T; NV]) {
-        self.last_error
+    pub(super) fn last_error(&self) -> (&[T; NQ], &[T; NV]) {
+        (&self.last_error.0, &self.last_error.1)
     }
 
     /// Makes `from` the newest point: a continuation of the last step (its end, perhaps
@@ -199,9 +199,10 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         self.len = (self.len + 1).min(KEPT);
     }
 
-    /// Σ_j w_j y_j over the first `w.len()` points, for q and v.
-    fn combine(&self, w: &[T]) -> ([T; NQ], [T; NV]) {
-        let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
+    /// Σ_j w_j y_j over the first `w.len()` points, for q and v, into `q` and `v`.
+    fn combine(&self, w: &[T], q: &mut [T; NQ], v: &mut [T; NV]) {
+        q.fill(T::ZERO);
+        v.fill(T::ZERO);
         for (j, &wj) in w.iter().enumerate() {
             for (x, &y) in q.iter_mut().zip(&self.qs[j]) {
                 *x += wj * y;
@@ -210,7 +211,6 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
                 *x += wj * y;
             }
         }
-        (q, v)
     }
 }
 
@@ -251,26 +251,26 @@ fn bdf_coefficients<T: Real>(nodes: &[T], t1: T, w: &mut [T]) -> T {
 }
 
 /// BDF's step end from v̇₊: v₊ = v̂ + c v̇₊, q₊ = q̂ ⊕ c v₊; and its error weights.
-struct BdfMap<T, const NQ: usize, const NV: usize> {
-    q_hat: [T; NQ],
-    v_hat: [T; NV],
+struct BdfMap<'a, T, const NQ: usize, const NV: usize> {
+    q_hat: &'a [T; NQ],
+    v_hat: &'a [T; NV],
     c: T,
     rtol: T,
     atol: T,
 }
 
 impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize> StateMap<T, M, NQ, NV, NC>
-    for BdfMap<T, NQ, NV>
+    for BdfMap<'_, T, NQ, NV>
 {
     fn slopes(&self) -> (T, T) {
         (self.c, self.c * self.c)
     }
 
-    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]) {
+    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV], _work: &mut [T; NV]) {
         for i in 0..NV {
             v[i] = self.v_hat[i] + self.c * vd[i];
         }
-        *q = self.q_hat;
+        *q = *self.q_hat;
         mechanism.integrate_positions(q, v, self.c);
     }
 
@@ -278,7 +278,7 @@ impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, co
     /// test's weights atol + rtol·|y| (at v̂ and, planar, q̂; a spatial position against atol).
     fn error_norm(&self, dvd: &[T; NV]) -> Option<T> {
         let mut worst = T::ZERO;
-        for (i, (&d, &v)) in dvd.iter().zip(&self.v_hat).enumerate() {
+        for (i, (&d, &v)) in dvd.iter().zip(self.v_hat).enumerate() {
             let wv = self.atol + self.rtol * v.abs();
             let wq = if NQ == NV { self.atol + self.rtol * self.q_hat[i].abs() } else { self.atol };
             worst = worst.max((self.c * d).abs() / wv).max((self.c * self.c * d).abs() / wq);
@@ -323,7 +323,7 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -361,25 +361,33 @@ where
         }
         let mut h = self.next_step.min(o.max_step);
         let mut failures = 0;
+        // The corrector's history ŷ, the predictor and the first guess of v̇₊, the error vector.
+        let [q_hat, q_pred, e_q] = dense.vectors.rows::<NQ, 3>();
+        let [v_hat, v_pred, vd0, e_v] = dense.vectors.rows::<NV, 4>();
         loop {
             let (h_try, t1) = fixed_step(from.t, h, t_max);
             // Order k from the k newest points (the first step: order 1 from `from`).
             let k = self.order.min(self.len).min(o.max_order).max(1);
             let mut w = [T::ZERO; KEPT];
             let c = bdf_coefficients(&self.times[..k], t1, &mut w[..k]);
-            let (q_hat, v_hat) = self.combine(&w[..k]);
+            self.combine(&w[..k], q_hat, v_hat);
             // The predictor of order k (through k + 1 points) where there are as many; the first
             // step's is y₀ + h y₀'.
             let predicted = self.len > k;
-            let (q_pred, v_pred) = if predicted {
+            if predicted {
                 lagrange(&self.times[..=k], t1, &mut w[..=k]);
-                self.combine(&w[..=k])
+                self.combine(&w[..=k], q_pred, v_pred);
+                for i in 0..NV {
+                    vd0[i] = (v_pred[i] - v_hat[i]) / c;
+                }
             } else {
-                let mut q = from.q;
-                mech.integrate_positions(&mut q, &from.v, h_try);
-                (q, core::array::from_fn(|i| from.v[i] + h_try * from.vd[i]))
-            };
-            let vd0: [T; NV] = if predicted { core::array::from_fn(|i| (v_pred[i] - v_hat[i]) / c) } else { from.vd };
+                *q_pred = from.q;
+                mech.integrate_positions(q_pred, &from.v, h_try);
+                for ((x, &v), &a) in v_pred.iter_mut().zip(&from.v).zip(&from.vd) {
+                    *x = v + h_try * a;
+                }
+                *vd0 = from.vd;
+            }
             let floor = T::from_f64(16.0) * T::EPSILON;
             let map = BdfMap { q_hat, v_hat, c, rtol: o.rtol.max(floor), atol: o.atol.max(floor) };
             let mut iterations = 0;
@@ -388,7 +396,7 @@ where
                 &newton,
                 resolution,
                 &map,
-                &vd0,
+                vd0,
                 from,
                 t1,
                 to,
@@ -402,11 +410,17 @@ where
                 Ok(()) => {
                     // The order-k error vector and its size.
                     let scale = if predicted { (t1 - self.times[0]) / (t1 - self.times[k]) } else { T::from_f64(0.5) };
-                    let e: ([T; NQ], [T; NV]) =
-                        (core::array::from_fn(|i| scale * (to.q[i] - q_pred[i])), core::array::from_fn(|i| scale * (to.v[i] - v_pred[i])));
-                    let error = weighted_rms(&o, (&e.0, &e.1), (&from.q, &from.v), (&to.q, &to.v));
+                    for i in 0..NQ {
+                        e_q[i] = scale * (to.q[i] - q_pred[i]);
+                    }
+                    for i in 0..NV {
+                        e_v[i] = scale * (to.v[i] - v_pred[i]);
+                    }
+                    let error = weighted_rms(&o, (e_q, e_v), (&from.q, &from.v), (&to.q, &to.v));
                     if error <= T::ONE {
-                        self.accept(&o, k, h_try, t1, error, e, predicted, (&from.q, &from.v), to);
+                        // The predictor's vectors are free now: the order's choice takes them.
+                        let spare = ((&mut *q_pred, &mut *v_pred), (&mut *q_hat, &mut *v_hat));
+                        self.accept(&o, k, (h_try, t1), error, (e_q, e_v), predicted, (&from.q, &from.v), to, spare);
                         finish(system, dense.reborrow(), from, to, h_try)?;
                         return Ok(());
                     }
@@ -436,7 +450,7 @@ where
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -454,7 +468,7 @@ where
         }
         let mut w = [T::ZERO; KEPT];
         lagrange(&self.times[..n], t, &mut w[..n]);
-        (*q, *v) = self.combine(&w[..n]);
+        self.combine(&w[..n], q, v);
         mechanism.normalize_positions(q);
     }
 
@@ -467,33 +481,33 @@ where
     fn after_correction(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
-        if self.len > 0 && self.times[0] == end.t {
-            (self.qs[0], self.vs[0]) = (q, v);
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        if self.len > 0 && self.times[0] == to.t {
+            self.qs[0] = to.q;
+            self.vs[0] = to.v;
         }
-        Ok(Point { q, v, ..*end })
+        Ok(())
     }
 }
 
 impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
     /// Takes an accepted step of order k and size h to `to`, and chooses the next step's order
     /// and size (module docs).
-    #[allow(clippy::too_many_arguments)]
+    /// `spare`: two pairs of q and v vectors to work in.
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
     fn accept<const NC: usize>(
         &mut self,
         o: &BdfOptions<T>,
         k: usize,
-        h: T,
-        t1: T,
+        (h, t1): (T, T),
         error: T,
-        e: ([T; NQ], [T; NV]),
+        e: (&[T; NQ], &[T; NV]),
         predicted: bool,
         y0: (&[T; NQ], &[T; NV]),
         to: &Point<T, NQ, NV, NC>,
+        ((q, v), (dq, dv)): ((&mut [T; NQ], &mut [T; NV]), (&mut [T; NQ], &mut [T; NV])),
     ) {
         let y1 = (&to.q, &to.v);
         let growth = |err: T, order: usize| T::from_f64(0.9) * err.max(T::from_f64(1e-10)).powf(-T::ONE / T::from_f64((order + 1) as f64));
@@ -504,11 +518,15 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
             if k > 1 {
                 let mut w = [T::ZERO; KEPT];
                 lagrange(&self.times[..k], t1, &mut w[..k]);
-                let (q, v) = self.combine(&w[..k]);
+                self.combine(&w[..k], q, v);
                 let scale = (t1 - self.times[0]) / (t1 - self.times[k - 1]);
-                let lower: ([T; NQ], [T; NV]) =
-                    (core::array::from_fn(|i| scale * (to.q[i] - q[i])), core::array::from_fn(|i| scale * (to.v[i] - v[i])));
-                let g = growth(weighted_rms(o, (&lower.0, &lower.1), y0, y1), k - 1);
+                for ((d, &y), &p) in dq.iter_mut().zip(&to.q).zip(q.iter()) {
+                    *d = scale * (y - p);
+                }
+                for ((d, &y), &p) in dv.iter_mut().zip(&to.v).zip(v.iter()) {
+                    *d = scale * (y - p);
+                }
+                let g = growth(weighted_rms(o, (dq, dv), y0, y1), k - 1);
                 if g > best.0 {
                     best = (g, k - 1);
                 }
@@ -516,12 +534,14 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
             // Order k + 1: the change of the error vector since the last step, at order k.
             if k < o.max_order && self.len > k + 1 {
                 let ratio = T::ONE / T::from_f64((k + 2) as f64);
-                let higher: ([T; NQ], [T; NV]) = (
-                    core::array::from_fn(|i| ratio * (e.0[i] - self.last_error.0[i])),
-                    core::array::from_fn(|i| ratio * (e.1[i] - self.last_error.1[i])),
-                );
+                for ((d, &now), &before) in dq.iter_mut().zip(e.0).zip(&self.last_error.0) {
+                    *d = ratio * (now - before);
+                }
+                for ((d, &now), &before) in dv.iter_mut().zip(e.1).zip(&self.last_error.1) {
+                    *d = ratio * (now - before);
+                }
                 // Raised only where it promises clearly longer steps.
-                let g = growth(weighted_rms(o, (&higher.0, &higher.1), y0, y1), k + 1);
+                let g = growth(weighted_rms(o, (dq, dv), y0, y1), k + 1);
                 if g > T::from_f64(1.2) * best.0 {
                     best = (g, k + 1);
                 }
@@ -530,7 +550,8 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         let (factor, order) = best;
         self.push(t1, &to.q, &to.v);
         self.dense_points = k + 1;
-        self.last_error = e;
+        self.last_error.0 = *e.0;
+        self.last_error.1 = *e.1;
         self.at_order = if order == k { self.at_order + 1 } else { 0 };
         // The first steps after a (re)start raise the order as soon as there are points for it
         // and for its predictor (the start's order-1 steps are short).

@@ -9,7 +9,7 @@
 use super::implicit::{finish, solve, NewtonSettings, StateMap};
 use super::{fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::model::mechanism::{Kinematics, NewtonMatrix};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::WorkArrays;
 use crate::real::Real;
 
 crate::options::options! {
@@ -223,15 +223,18 @@ impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
 
     /// The pseudo-acceleration a to step from with a step of h: v̇ at the start; after a step
     /// of h₀, a − v̇ ≈ δ h₀ q⃛ rescaled to δ h q⃛ (a no-op at a constant step).
-    fn pseudo_acceleration(&self, vd: &[T; NV], h: T) -> [T; NV] {
+    /// Into `a`.
+    fn pseudo_acceleration(&self, vd: &[T; NV], h: T, a: &mut [T; NV]) {
         if !self.started {
-            return *vd;
+            *a = *vd;
+        } else if h == self.last_step {
+            *a = self.a;
+        } else {
+            let ratio = h / self.last_step;
+            for (i, x) in a.iter_mut().enumerate() {
+                *x = vd[i] + ratio * (self.a[i] - vd[i]);
+            }
         }
-        if h == self.last_step {
-            return self.a;
-        }
-        let ratio = h / self.last_step;
-        core::array::from_fn(|i| vd[i] + ratio * (self.a[i] - vd[i]))
     }
 }
 
@@ -251,12 +254,15 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         let ([s, _, _], mut dense) = super::implicit::newton_space::<T, M, NQ, NV, NC, N, NS>(ws)?;
+        // The pseudo-accelerations at the start and the end, and the error estimate's vectors.
+        let [a_n, a1, e] = dense.vectors.rows::<NV, 3>();
+        let shifted = dense.vectors.take::<NQ>();
         let mut o = self.options;
         // Φ and the position correction to what the scalar type resolves at q (f32: 64 ε ≈ 7.6e-6
         // at 1 m), so the default 1e-10 converges in single precision.
@@ -296,7 +302,7 @@ where
                 *to = *from;
                 return Ok(());
             }
-            let a_n = self.pseudo_acceleration(&from.vd, h_try);
+            self.pseudo_acceleration(&from.vd, h_try, a_n);
             self.iterations = 0;
             let map = AlphaMap { from, a_n, coefficients, h: h_try };
             let mut newton = o.newton();
@@ -321,15 +327,16 @@ where
                 s,
                 dense.reborrow(),
             )
-            .map(|()| map.pseudo_acceleration(&to.vd));
+            .map(|()| map.pseudo_acceleration(&to.vd, a1));
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
-                self.accept(result?, h_try);
+                result?;
+                self.accept(a1, h_try);
                 return finish(system, dense.reborrow(), from, to, h_try);
             };
             let factor = match result {
-                Ok(a1) => {
-                    let mut error = local_error(mech, &control, constant, h_try, &a_n, &a1, &from.q, &to.q);
+                Ok(()) => {
+                    let mut error = local_error(mech, &control, constant, h_try, (a_n, a1), (&from.q, &to.q), (e, shifted));
                     // The estimate is O(h³); per second of motion, O(h²).
                     let order = if control.per_unit_time {
                         error /= h_try;
@@ -376,7 +383,7 @@ where
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -397,19 +404,17 @@ where
     fn after_correction(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
-        Ok(Point { q, v, ..*end })
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        _to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        Ok(())
     }
 }
 
 impl<T: Real, const NV: usize> GeneralizedAlpha<T, NV> {
     /// Takes an accepted step of h ending with pseudo-acceleration a₊.
-    fn accept(&mut self, a1: [T; NV], h: T) {
-        self.a = a1;
+    fn accept(&mut self, a1: &[T; NV], h: T) {
+        self.a = *a1;
         self.last_step = h;
         self.started = true;
         self.accepted += 1;
@@ -424,14 +429,15 @@ fn local_error<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV:
     control: &ErrorControl<T>,
     constant: T,
     h: T,
-    a_n: &[T; NV],
-    a1: &[T; NV],
-    q0: &[T; NQ],
-    q1: &[T; NQ],
+    (a_n, a1): (&[T; NV], &[T; NV]),
+    (q0, q1): (&[T; NQ], &[T; NQ]),
+    (e, shifted): (&mut [T; NV], &mut [T; NQ]),
 ) -> T {
-    let e: [T; NV] = core::array::from_fn(|i| constant * h * h * (a1[i] - a_n[i]));
-    let mut shifted = *q1;
-    mech.integrate_positions(&mut shifted, &e, T::ONE);
+    for i in 0..NV {
+        e[i] = constant * h * h * (a1[i] - a_n[i]);
+    }
+    *shifted = *q1;
+    mech.integrate_positions(shifted, e, T::ONE);
     let mut sum = T::ZERO;
     for i in 0..NQ {
         let scale = control.atol + control.rtol * q0[i].abs().max(q1[i].abs());
@@ -449,24 +455,28 @@ fn local_error<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV:
 /// [`integrate_on_group`]: crate::model::group::integrate_on_group
 struct AlphaMap<'a, T, const NQ: usize, const NV: usize, const NC: usize> {
     from: &'a Point<T, NQ, NV, NC>,
-    a_n: [T; NV],
+    a_n: &'a [T; NV],
     coefficients: [T; 4],
     h: T,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> AlphaMap<'_, T, NQ, NV, NC> {
-    /// Δ = h v + h² (½ − β) a + h² β a₊ for the pseudo-acceleration a₊ = `a1`.
-    fn increment(&self, a1: &[T; NV]) -> [T; NV] {
+    /// Δ = h v + h² (½ − β) a + h² β a₊ in place of the pseudo-acceleration a₊ in `a1`.
+    fn increment(&self, a1: &mut [T; NV]) {
         let [_, _, beta, _] = self.coefficients;
-        let (half, h, a) = (T::from_f64(0.5), self.h, &self.a_n);
-        core::array::from_fn(|i| h * self.from.v[i] + h * h * ((half - beta) * a[i] + beta * a1[i]))
+        let (half, h, a) = (T::from_f64(0.5), self.h, self.a_n);
+        for (i, x) in a1.iter_mut().enumerate() {
+            *x = h * self.from.v[i] + h * h * ((half - beta) * a[i] + beta * *x);
+        }
     }
 
-    /// a₊ from (1 − α_m) a₊ + α_m a = (1 − α_f) v̇₊ + α_f v̇.
-    fn pseudo_acceleration(&self, vd: &[T; NV]) -> [T; NV] {
+    /// a₊ from (1 − α_m) a₊ + α_m a = (1 − α_f) v̇₊ + α_f v̇, into `a1`.
+    fn pseudo_acceleration(&self, vd: &[T; NV], a1: &mut [T; NV]) {
         let [alpha_m, alpha_f, ..] = self.coefficients;
         let one = T::ONE;
-        core::array::from_fn(|i| (alpha_f * self.from.vd[i] + (one - alpha_f) * vd[i] - alpha_m * self.a_n[i]) / (one - alpha_m))
+        for (i, x) in a1.iter_mut().enumerate() {
+            *x = (alpha_f * self.from.vd[i] + (one - alpha_f) * vd[i] - alpha_m * self.a_n[i]) / (one - alpha_m);
+        }
     }
 }
 
@@ -480,20 +490,24 @@ impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, co
         (gamma * ratio * self.h, beta * ratio * self.h * self.h)
     }
 
-    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]) {
+    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV], work: &mut [T; NV]) {
         let [_, _, _, gamma] = self.coefficients;
         let (one, h) = (T::ONE, self.h);
-        let (from, a) = (self.from, &self.a_n);
-        let a1 = self.pseudo_acceleration(vd);
+        let (from, a) = (self.from, self.a_n);
+        let a1 = work;
+        self.pseudo_acceleration(vd, a1);
         for i in 0..NV {
             v[i] = from.v[i] + h * ((one - gamma) * a[i] + gamma * a1[i]);
         }
         *q = from.q;
-        crate::model::group::integrate_on_group(mechanism, q, &self.increment(&a1));
+        self.increment(a1);
+        crate::model::group::integrate_on_group(mechanism, q, a1);
     }
 
     /// Δ = h v + h² (½ − β) a + h² β a₊: q₊ = q ⊕ Δ.
-    fn displacement(&self, vd: &[T; NV]) -> Option<[T; NV]> {
-        Some(self.increment(&self.pseudo_acceleration(vd)))
+    fn displacement(&self, vd: &[T; NV], out: &mut [T; NV]) -> bool {
+        self.pseudo_acceleration(vd, out);
+        self.increment(out);
+        true
     }
 }

@@ -14,7 +14,7 @@ use super::{check_step, Point, SimulationError, System};
 use crate::linalg::LinalgError;
 use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::{Mechanism, NewtonMatrix};
-use crate::model::workspace::{DenseScratch, Workspace};
+use crate::model::workspace::{DenseScratch, WorkArrays};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -22,14 +22,15 @@ use crate::solvers::kinematics::name;
 pub(super) trait StateMap<T: Real, M, const NQ: usize, const NV: usize, const NC: usize> {
     /// (c_v, c_q): ∂v₊/∂v̇₊ and ∂q₊/∂v̇₊ (in velocity space, through B(q)).
     fn slopes(&self) -> (T, T);
-    /// q₊ and v₊ for v̇₊ = `vd`.
-    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV]);
-    /// Where q₊ = q ⊕ Δ on the rotation group ([`crate::model::group`]), Δ for v̇₊ = `vd`: its
-    /// tangent operator enters the iteration matrix ([`NewtonMatrix::newton_matrix`]). `None`
-    /// (the default): q₊ moves with v̇₊ through B(q₊) alone.
-    fn displacement(&self, vd: &[T; NV]) -> Option<[T; NV]> {
-        let _ = vd;
-        None
+    /// q₊ and v₊ for v̇₊ = `vd` (`work`: a vector to work in).
+    fn state(&self, mechanism: &M, vd: &[T; NV], q: &mut [T; NQ], v: &mut [T; NV], work: &mut [T; NV]);
+    /// Where q₊ = q ⊕ Δ on the rotation group ([`crate::model::group`]), Δ for v̇₊ = `vd` into
+    /// `out`, and `true`: its tangent operator enters the iteration matrix
+    /// ([`NewtonMatrix::newton_matrix`]). `false` (the default): q₊ moves with v̇₊ through B(q₊)
+    /// alone.
+    fn displacement(&self, vd: &[T; NV], out: &mut [T; NV]) -> bool {
+        let _ = (vd, out);
+        false
     }
     /// The size of the change of q₊ and v₊ a Newton correction `dvd` of v̇₊ makes, in the
     /// method's own error norm (1: its tolerance), for the rate test of [`solve`]; `None` (the
@@ -93,7 +94,7 @@ where
     // LU factors over the pattern planned at compile time (`NewtonMatrix`, `crate::sparse`):
     // O(non-zeros), no dense matrix, in the work space.
     let vectors = &mut scratch.vectors;
-    let [vd, v, force, inertia, base_vd] = vectors.rows::<NV, 5>();
+    let [vd, v, force, inertia, base_vd, work] = vectors.rows::<NV, 6>();
     let [lambda, phi, base_lambda] = vectors.rows::<NC, 3>();
     let [rhs, step] = vectors.rows::<N, 2>();
     let q = vectors.take::<NQ>();
@@ -117,13 +118,13 @@ where
     let mut correction = T::ZERO;
     let mut last_size: Option<T> = None;
     loop {
-        map.state(mech, vd, q, v);
+        map.state(mech, vd, q, v, work);
         // Φ and D, with the Newton matrix when this iteration factors it (modified Newton:
         // `reuse_factors` keeps the last factors while the corrections shrink fast enough).
         let factor = refactor || !o.reuse_factors || !factored;
         if factor {
-            let displacement = map.displacement(vd);
-            mech.newton_matrix(q, v, vd, t1, lambda, displacement.as_ref(), c_v, c_q, phi, s, scratch.reborrow());
+            let displacement = map.displacement(vd, work).then_some(&*work);
+            mech.newton_matrix(q, v, vd, t1, lambda, displacement, c_v, c_q, phi, s, scratch.reborrow());
         } else {
             mech.newton_jacobian(q, t1, phi, s, scratch.reborrow());
         }
@@ -202,7 +203,7 @@ where
     }
     // The state of the converged iterate (its last correction below tolerance, or passing the
     // rate test).
-    map.state(mech, vd, q, v);
+    map.state(mech, vd, q, v, work);
     if o.project_velocities {
         mech.project_velocities_in(scratch, q, v, t1, &system.dynamics)?;
     }
@@ -409,7 +410,7 @@ pub(super) fn factorization_error<M: Mechanism, T: Real>(error: LinalgError, t: 
 /// (`Name::workspace()`).
 #[allow(clippy::type_complexity)]
 pub(super) fn newton_space<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    ws: &mut Workspace<T, NV, NC, N, NS>,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
 ) -> Result<([&mut M::NewtonStorage; 3], DenseScratch<'_, T, NV, NC>), SimulationError>
 where
     T: Real,

@@ -67,12 +67,16 @@ use core::fmt;
 
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::{Kinematics, Mechanism};
-use crate::model::workspace::{DenseArrays, DenseScratch, Workspace};
+use crate::model::workspace::{DenseArrays, DenseScratch, WorkArrays};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
 /// The state of the mechanism at the end of a step: time, coordinates, velocities and their
 /// derivatives, multipliers, and the accumulated work.
+///
+/// `repr(C)` and made only of `T` and arrays of `T`: a [`Workspace`] holds a simulation's
+/// points in its rows of scalars.
+#[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Point<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// Time (s).
@@ -423,8 +427,27 @@ impl<'m, M, T: Real> System<'m, M, T> {
         M: ForwardDynamics<T, NQ, NV, NC>,
     {
         let mut p = Point { t, q, v, vd: [T::ZERO; NV], lambda: [T::ZERO; NC], work, power: [T::ZERO; 2] };
-        p.power = self.derivatives_in(scratch, t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+        self.complete_in(scratch, &mut p)?;
         Ok(p)
+    }
+
+    /// Sets the point's v̇, λ and powers from its t, q and v (as [`point_in`](Self::point_in)
+    /// makes a point, in place: λ from zero, the first guess of Coulomb friction's loads).
+    ///
+    /// # Errors
+    /// As [`ForwardDynamics::accelerations`].
+    pub fn complete_in<const NQ: usize, const NV: usize, const NC: usize>(
+        &self,
+        scratch: DenseScratch<'_, T, NV, NC>,
+        p: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), DynamicsError>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+    {
+        p.vd.fill(T::ZERO);
+        p.lambda.fill(T::ZERO);
+        p.power = self.derivatives_in(scratch, p.t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+        Ok(())
     }
 }
 
@@ -437,7 +460,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 /// wrapper that counts steps:
 ///
 /// ```
-/// use mbd_runtime::{ForwardDynamics, Integrator, Point, Real, SimulationError, System, Workspace};
+/// use mbd_runtime::{ForwardDynamics, Integrator, Point, Real, SimulationError, System, WorkArrays};
 ///
 /// /// Any integrator, counting the steps it takes.
 /// struct Counted<I> {
@@ -453,7 +476,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn step(
 ///         &mut self,
 ///         system: &System<'_, M, T>,
-///         ws: &mut Workspace<T, NV, NC, N, NS>,
+///         ws: &mut WorkArrays<T, NV, NC, N, NS>,
 ///         from: &Point<T, NQ, NV, NC>,
 ///         t_max: T,
 ///         to: &mut Point<T, NQ, NV, NC>,
@@ -464,7 +487,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn prepare_interpolation(
 ///         &mut self,
 ///         system: &System<'_, M, T>,
-///         ws: &mut Workspace<T, NV, NC, N, NS>,
+///         ws: &mut WorkArrays<T, NV, NC, N, NS>,
 ///         from: &Point<T, NQ, NV, NC>,
 ///         to: &Point<T, NQ, NV, NC>,
 ///     ) -> Result<(), SimulationError> {
@@ -480,15 +503,13 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn after_correction(
 ///         &mut self,
 ///         system: &System<'_, M, T>,
-///         ws: &mut Workspace<T, NV, NC, N, NS>,
-///         end: &Point<T, NQ, NV, NC>,
-///         q: [T; NQ],
-///         v: [T; NV],
-///     ) -> Result<Point<T, NQ, NV, NC>, SimulationError>
+///         ws: &mut WorkArrays<T, NV, NC, N, NS>,
+///         to: &mut Point<T, NQ, NV, NC>,
+///     ) -> Result<(), SimulationError>
 ///     where
 ///         M: ForwardDynamics<T, NQ, NV, NC>,
 ///     {
-///         self.inner.after_correction(system, ws, end, q, v)
+///         self.inner.after_correction(system, ws, to)
 ///     }
 ///     fn holds_constraints(&self) -> bool {
 ///         self.inner.holds_constraints()
@@ -516,15 +537,17 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     }
 
     /// One step from `from` (whose v̇, λ and powers are consistent with its state) to at most
-    /// `t_max`; writes the end point `to` with its v̇, λ and powers, its q normalized
-    /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions)).
+    /// `t_max`; writes every field of the end point `to` (its v̇, λ and powers, its q normalized
+    /// ([`Kinematics::normalize_positions`](crate::Kinematics::normalize_positions))). `ws` is
+    /// the work space's arrays ([`WorkArrays`]): a [`Simulation`] keeps `from` and `to` in the
+    /// rest of its [`Workspace`](crate::Workspace).
     ///
     /// # Errors
     /// A [`SimulationError`] naming the time, coordinate or constraint.
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -540,7 +563,7 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     fn prepare_interpolation(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError>;
@@ -553,23 +576,21 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// its start, so an integrator can be reused for another run).
     fn restart(&mut self);
 
-    /// The point to go on from after [`Simulation`] corrected the drift of the step's
-    /// end `end` to (`q`, `v`). An explicit method, whose next step starts from v̇ = f(q, v),
-    /// takes v̇, λ and the powers of forward dynamics at the corrected state:
-    /// `Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)`. A method whose v̇ and λ are unknowns of its
-    /// own equations keeps them: they are part of its state, and replacing them by forward
-    /// dynamics' (with its Baumgarte terms) would restart it every step.
+    /// Readies the point to go on from after [`Simulation`] corrected the drift of the step's
+    /// end: `to` is that end with its q and v corrected. An explicit method, whose next step
+    /// starts from v̇ = f(q, v), sets v̇, λ and the powers of forward dynamics at the corrected
+    /// state: `Ok(system.complete_in(ws.dense(), to)?)`. A method whose v̇ and λ are unknowns of
+    /// its own equations keeps them (`to` holds them): they are part of its state, and replacing
+    /// them by forward dynamics' (with its Baumgarte terms) would restart it every step.
     ///
     /// # Errors
     /// Those of forward dynamics at the corrected state.
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError>
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError>
     where
         M: ForwardDynamics<T, NQ, NV, NC>;
 }

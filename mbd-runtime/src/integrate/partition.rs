@@ -31,7 +31,7 @@ use crate::integrate::SimulationError;
 use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions};
 use crate::model::mechanism::{Kinematics, Mechanism};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{Vectors, WorkArrays};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -213,7 +213,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     pub fn correct<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const N: usize, const NS: usize>(
         &mut self,
         mechanism: &M,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         t: T,
         q: &mut [T; NQ],
         v: &mut [T; NV],
@@ -221,12 +221,15 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         tolerance: T,
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
-        let mut phi = [T::ZERO; NC];
         let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
-        let Workspace { jacobian: d, jacobian_scratch: scratch, constraint_square: block, .. } = ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: scratch, constraint_square: block, vectors, .. } = ws;
+        // Φ, then ν; the kept rows' right-hand side; a step of the positions.
+        let mut vectors = Vectors::new(vectors.as_flattened_mut());
+        let [phi, b] = vectors.rows::<NC, 2>();
+        let step = vectors.take::<NV>();
         let mut iterations = 0;
         loop {
-            mechanism.position_eval(q, t, &mut phi, d);
+            mechanism.position_eval(q, t, phi, d);
             let worst = phi.iter().enumerate().fold((0, T::ZERO), |w, (i, v)| if v.abs() > w.1 { (i, v.abs()) } else { w });
             if worst.1 <= tolerance {
                 break;
@@ -240,20 +243,20 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                 });
             }
             let permutation = self.factor::<T, M>(t, d, options, scratch, block)?;
-            let mut b = self.kept(&phi);
-            lu_solve_in_place(block, &permutation, &mut b);
+            self.kept(phi, b);
+            lu_solve_in_place(block, &permutation, b);
             // The partition may have been chosen anew: only this one's entries move.
-            let mut step = [T::ZERO; NV];
-            for (&c, &bk) in self.dependent[..self.rank].iter().zip(&b) {
+            step.fill(T::ZERO);
+            for (&c, &bk) in self.dependent[..self.rank].iter().zip(b.iter()) {
                 step[c] = -bk;
             }
-            mechanism.integrate_positions(q, &step, T::ONE);
+            mechanism.integrate_positions(q, step, T::ONE);
             iterations += 1;
         }
         // Velocities: D_d v_d = ν − D_i v_i, with D at the corrected q.
         let permutation = self.factor::<T, M>(t, d, options, scratch, block)?;
-        let mut nu = [T::ZERO; NC];
-        mechanism.velocity_rhs(q, t, &mut nu);
+        let nu = phi;
+        mechanism.velocity_rhs(q, t, nu);
         for &c in &self.dependent[..self.rank] {
             v[c] = T::ZERO;
         }
@@ -262,9 +265,9 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                 nu[r] -= *entry * vc;
             }
         }
-        let mut b = self.kept(&nu);
-        lu_solve_in_place(block, &permutation, &mut b);
-        for (&c, &bk) in self.dependent[..self.rank].iter().zip(&b) {
+        self.kept(nu, b);
+        lu_solve_in_place(block, &permutation, b);
+        for (&c, &bk) in self.dependent[..self.rank].iter().zip(b.iter()) {
             v[c] = bk;
         }
         Ok(())
@@ -272,8 +275,10 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
 
     /// The kept rows of `x` (one entry per constraint row) in the block's order, zeros past
     /// `rank` (the identity rows of the dropped ones).
-    fn kept<T: Real>(&self, x: &[T; NC]) -> [T; NC] {
-        core::array::from_fn(|i| if i < self.rank { x[self.rows[i]] } else { T::ZERO })
+    fn kept<T: Real>(&self, x: &[T; NC], into: &mut [T; NC]) {
+        for (i, y) in into.iter_mut().enumerate() {
+            *y = if i < self.rank { x[self.rows[i]] } else { T::ZERO };
+        }
     }
 }
 
@@ -314,7 +319,8 @@ mod tests {
         let p = partition.factor::<f64, UnitPendulum>(0.3, &twice, &DynamicsOptions::default(), &mut scratch, &mut block).unwrap();
         // Full pivoting takes the larger row first: the first one is dropped.
         assert_eq!((partition.dependent(), partition.dropped()), (Some(&[0][..]), Some(&[0][..])));
-        let mut b = partition.kept(&[-0.5, -1.0]);
+        let mut b = [7.0; 2];
+        partition.kept(&[-0.5, -1.0], &mut b);
         lu_solve_in_place(&block, &p, &mut b);
         assert_eq!(b[0], -0.25, "4 Δx = −1 from the kept row; the identity row stays 0");
         assert_eq!(b[1], 0.0);

@@ -91,7 +91,7 @@
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::linalg::sparse::{factor_complex, solve_complex};
 use crate::model::mechanism::NewtonMatrix;
-use crate::model::workspace::{DenseScratch, Vectors, Workspace};
+use crate::model::workspace::{DenseScratch, Vectors, WorkArrays};
 use crate::real::Real;
 
 /// Radau IIA's nodes c_i.
@@ -401,7 +401,7 @@ where
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -479,7 +479,7 @@ where
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -514,12 +514,10 @@ where
     fn after_correction(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
-        Ok(Point { q, v, ..*end })
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        _to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        Ok(())
     }
 }
 

@@ -10,7 +10,7 @@
 
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::model::dynamics::ForwardDynamics;
-use crate::model::workspace::Workspace;
+use crate::model::workspace::WorkArrays;
 use crate::real::Real;
 
 crate::options::options! {
@@ -54,7 +54,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn step(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
         from: &Point<T, NQ, NV, NC>,
         t_max: T,
         to: &mut Point<T, NQ, NV, NC>,
@@ -124,7 +124,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn prepare_interpolation(
         &mut self,
         _system: &System<'_, M, T>,
-        _ws: &mut Workspace<T, NV, NC, N, NS>,
+        _ws: &mut WorkArrays<T, NV, NC, N, NS>,
         _from: &Point<T, NQ, NV, NC>,
         _to: &Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
@@ -139,12 +139,10 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
     fn after_correction(
         &mut self,
         system: &System<'_, M, T>,
-        ws: &mut Workspace<T, NV, NC, N, NS>,
-        end: &Point<T, NQ, NV, NC>,
-        q: [T; NQ],
-        v: [T; NV],
-    ) -> Result<Point<T, NQ, NV, NC>, SimulationError> {
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
         // An explicit method goes on from forward dynamics at the corrected state.
-        Ok(system.point_in(ws.dense(), end.t, q, v, end.work)?)
+        Ok(system.complete_in(ws.dense(), to)?)
     }
 }

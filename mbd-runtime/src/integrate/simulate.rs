@@ -18,7 +18,7 @@ use crate::integrate::partition::Partition;
 use crate::integrate::stiffness::StiffnessDetected;
 use crate::model::dynamics::kinetic_energy;
 use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
-use crate::model::workspace::{DenseArrays, DenseScratch, Workspace};
+use crate::model::workspace::{DenseArrays, DenseScratch, WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::flow::Flow;
 use crate::solvers::kinematics::name;
@@ -122,8 +122,8 @@ pub(crate) fn project_in<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: u
     loop {
         if iterations == max_iterations {
             // No step left: measure where the last one ended.
-            let mut phi = [T::ZERO; NC];
-            mechanism.constraints(q, t, &mut phi);
+            let phi = scratch.vectors.take::<NC>();
+            mechanism.constraints(q, t, phi);
             let worst = phi.iter().enumerate().fold((0, T::ZERO), |w, (i, v)| if v.abs() > w.1 { (i, v.abs()) } else { w });
             if worst.1 <= tolerance {
                 break;
@@ -252,7 +252,7 @@ crate::options::options! {
 pub struct Simulation<'a, T, M, I, const NQ: usize, const NV: usize> {
     mechanism: &'a M,
     integrator: &'a mut I,
-    start: Option<(T, [T; NQ], [T; NV])>,
+    start: Option<(T, &'a [T; NQ], &'a [T; NV])>,
     times: &'a [T],
     options: SimulationOptions<T>,
     events: &'a mut [Event<'a, T, NQ, NV>],
@@ -268,8 +268,8 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
     /// The initial state: time t0 (s), coordinates q0 and velocities v0. They need not satisfy
     /// the constraints exactly: q0 is normalized and, with a [`Correction`], the state is
     /// projected onto Φ = 0, D v = ν first (initial-condition correction, Nikravesh 14.3).
-    pub fn start(mut self, t0: T, q0: &[T; NQ], v0: &[T; NV]) -> Self {
-        self.start = Some((t0, *q0, *v0));
+    pub fn start(mut self, t0: T, q0: &'a [T; NQ], v0: &'a [T; NV]) -> Self {
+        self.start = Some((t0, q0, v0));
         self
     }
 
@@ -321,8 +321,61 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
             return Err(SimulationError::Incomplete { missing: "output times: .times(&times)" });
         }
         self.mechanism.check_inertia().map_err(SimulationError::Dynamics)?;
-        integrate(self.mechanism, ws, self.integrator, t0, &q0, &v0, self.times, &self.options, self.events, output)
+        let start = (t0, q0, v0);
+        let (arrays, rows) = ws.arrays_and_points();
+        match (arrays, points::<T, NQ, NV, NC>(rows)) {
+            (arrays, Some(points)) => {
+                integrate(self.mechanism, arrays, points, self.integrator, start, self.times, &self.options, self.events, output)
+            }
+            (arrays, None) => on_stack(self.mechanism, arrays, self.integrator, start, self.times, &self.options, self.events, output),
+        }
     }
+}
+
+/// Three points in a work space's rows of scalars, where they fit (see
+/// [`POINT_ROWS`](crate::model::workspace::POINT_ROWS)).
+fn points<T: Real, const NQ: usize, const NV: usize, const NC: usize>(rows: &mut [T]) -> Option<[&mut Point<T, NQ, NV, NC>; 3]> {
+    let scalar = core::mem::size_of::<T>();
+    let size = core::mem::size_of::<Point<T, NQ, NV, NC>>() / scalar.max(1);
+    if scalar == 0 || 3 * size > rows.len() {
+        return None;
+    }
+    let (a, rest) = rows.split_at_mut(size);
+    let (b, rest) = rest.split_at_mut(size);
+    let c = &mut rest[..size];
+    let point = |s: &mut [T]| {
+        // SAFETY: `Point` is `repr(C)` with fields `T` and arrays of `T` only, so its layout is
+        // `size` consecutive `T`s with T's alignment and no padding; `s` is exactly that many
+        // initialized, aligned `T`s (a sub-slice of the work space's rows), borrowed mutably and
+        // apart from the other two for the result's lifetime.
+        unsafe { &mut *s.as_mut_ptr().cast::<Point<T, NQ, NV, NC>>() }
+    };
+    Some([point(a), point(b), point(c)])
+}
+
+/// [`integrate`] with the three points on the stack: for a mechanism too small for its work
+/// space's rows to hold them ([`POINT_ROWS`](crate::model::workspace::POINT_ROWS), at most a few
+/// dozen scalars each), in a frame of its own so that a larger one never reserves them.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn on_stack<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    mechanism: &M,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    integrator: &mut I,
+    start: (T, &[T; NQ], &[T; NV]),
+    times: &[T],
+    options: &SimulationOptions<T>,
+    events: &mut [Event<'_, T, NQ, NV>],
+    output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
+) -> Result<Statistics, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+    R: Flow,
+{
+    let [mut a, mut b, mut c] = [Point::zero(); 3];
+    integrate(mechanism, ws, [&mut a, &mut b, &mut c], integrator, start, times, options, events, output)
 }
 
 /// [`Simulation::run`]'s loop.
@@ -331,11 +384,10 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn integrate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    [from, to, end]: [&mut Point<T, NQ, NV, NC>; 3],
     integrator: &mut I,
-    t0: T,
-    q0: &[T; NQ],
-    v0: &[T; NV],
+    (t0, q0, v0): (T, &[T; NQ], &[T; NV]),
     times: &[T],
     options: &SimulationOptions<T>,
     events: &mut [Event<'_, T, NQ, NV>],
@@ -354,12 +406,12 @@ where
         }
     }
     let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
-    let (mut q, mut v) = (*q0, *v0);
-    mechanism.normalize_positions(&mut q);
+    (from.t, from.q, from.v, from.work) = (t0, *q0, *v0, [T::ZERO; 2]);
+    mechanism.normalize_positions(&mut from.q);
     let mut partition = Partition::<NV, NC>::new();
-    correct(mechanism, ws, &mut partition, options, t0, &mut q, &mut v)?;
-    let mut from = system.point_in(ws.dense(), t0, q, v, [T::ZERO; 2])?;
-    let mut to = from;
+    correct(mechanism, ws, &mut partition, options, t0, &mut from.q, &mut from.v)?;
+    system.complete_in(ws.dense(), from)?;
+    *to = *from;
     integrator.restart();
     let mut stats = Statistics::default();
     let watching = NC > 0 && options.watch_singular && !integrator.holds_constraints() && matches!(options.correction, Correction::None);
@@ -377,7 +429,7 @@ where
     }
     // The one sample handed to the callback, rewritten for each output (a sample is a point:
     // O(NQ + NV + NC) scalars, made once rather than once per place that delivers one).
-    let mut out = Sample { point: from, energy: energy(mechanism, &from), event: None };
+    let mut out = Sample { point: *from, energy: energy(mechanism, from), event: None };
     // Hands the point `$p` (at `$event`, if any) to the callback as a sample; ends the run if
     // it says so.
     macro_rules! deliver {
@@ -402,21 +454,20 @@ where
     let mut at_event = false;
     while next < times.len() && times[next] <= from.t {
         next += 1;
-        deliver!(&from, None);
+        deliver!(from, None);
     }
     while next < times.len() {
         if stats.steps >= options.max_steps {
             return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
         }
-        integrator.step(&system, ws, &from, t_end, &mut to)?;
+        integrator.step(&system, ws, from, t_end, to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
-        let mut hit =
-            first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, &from, &to, switches, events, at_event)?;
+        let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, from, to, switches, events, at_event)?;
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
             // so `from` is its instant. Deliver it there and take the step again.
             stats.events += 1;
-            deliver!(&from, Some(which));
+            deliver!(from, Some(which));
             at_event = true;
             integrator.restart();
             if matches!(which, EventHit::User(k) if events[k].stop) {
@@ -430,39 +481,38 @@ where
             // its dense output does not hold across it. Step again from the same start to land on
             // the instant (an adaptive method may land short; the next step finds it again).
             integrator.restart();
-            integrator.step(&system, ws, &from, t, &mut to)?;
+            integrator.step(&system, ws, from, t, to)?;
             // Landed short, or the interpolant (poor across the switch) put the instant early and
             // the function has not changed sign yet: not the event; the next step finds it from
             // nearer.
-            if to.t < t || hit.is_some_and(|(_, which)| !changed(mechanism, events, which, &from, &to)) {
+            if to.t < t || hit.is_some_and(|(_, which)| !changed(mechanism, events, which, from, to)) {
                 hit = None;
             }
         }
         stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
-        let end = to;
+        *end = *to;
         if !matches!(options.correction, Correction::None) {
-            let (mut q, mut v) = (to.q, to.v);
-            correct(mechanism, ws, &mut partition, options, to.t, &mut q, &mut v)?;
-            to = integrator.after_correction(&system, ws, &end, q, v)?;
+            correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
+            integrator.after_correction(&system, ws, to)?;
         }
         if watching {
             watch.observe(mechanism, ws.dense(), to.t, &to.q, &to.v, &options.dynamics);
         }
         if next < times.len() && times[next] < end.t {
-            integrator.prepare_interpolation(&system, ws, &from, &end)?;
+            integrator.prepare_interpolation(&system, ws, from, end)?;
         }
         let step_end = end.t;
         while next < times.len() && times[next] <= step_end {
             next += 1;
             if times[next - 1] == step_end {
-                deliver!(&to, None);
+                deliver!(to, None);
             } else {
                 // The interpolated point, written in the sample's place.
                 let (t, p) = (times[next - 1], &mut out.point);
-                integrator.interpolate(mechanism, &from, &end, t, &mut p.q, &mut p.v);
+                integrator.interpolate(mechanism, from, end, t, &mut p.q, &mut p.v);
                 mechanism.normalize_positions(&mut p.q);
-                (p.t, p.work) = (t, interpolate_work(&from, &end, t));
+                (p.t, p.work) = (t, interpolate_work(from, end, t));
                 // λ from zero, as forward dynamics at any other point (Coulomb friction's first
                 // guess of its loads).
                 p.vd.fill(T::ZERO);
@@ -474,13 +524,13 @@ where
         at_event = hit.is_some();
         if let Some((_, which)) = hit {
             stats.events += 1;
-            deliver!(&to, Some(which));
+            deliver!(to, Some(which));
             if matches!(which, EventHit::User(k) if events[k].stop) {
                 stats.stopped_by = Some(which);
                 finish!();
             }
         }
-        from = to;
+        *from = *to;
     }
     finish!()
 }
@@ -533,7 +583,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
     mechanism: &M,
     integrator: &mut I,
     system: &System<'_, M, T>,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
     from: &Point<T, NQ, NV, NC>,
     end: &Point<T, NQ, NV, NC>,
     switches: usize,
@@ -560,6 +610,9 @@ where
             integrator.prepare_interpolation(system, ws, from, end)?;
             prepared = true;
         }
+        // The interpolated state (the work space's).
+        let mut scratch = ws.dense();
+        let (q, v) = (scratch.vectors.take::<NQ>(), scratch.vectors.take::<NV>());
         // Illinois: regula falsi that halves the value kept twice in a row, on g(t) of the
         // interpolated state; [a, b] always brackets the change, b on the new side.
         let (mut a, mut b, mut fa, mut fb) = (from.t, end.t, ga, gb);
@@ -570,9 +623,8 @@ where
             }
             let secant = b - fb * (b - a) / (fb - fa);
             let t = if secant > a && secant < b { secant } else { (a + b) * T::from_f64(0.5) };
-            let (mut q, mut v) = ([T::ZERO; NQ], [T::ZERO; NV]);
-            integrator.interpolate(mechanism, from, end, t, &mut q, &mut v);
-            let g = event_value(mechanism, events, which, t, &q, &v);
+            integrator.interpolate(mechanism, from, end, t, q, v);
+            let g = event_value(mechanism, events, which, t, q, v);
             if (g > T::ZERO) == (gb > T::ZERO) {
                 (b, fb) = (t, g);
                 kept = if kept < 0 { kept - 1 } else { -1 };
@@ -634,7 +686,7 @@ fn correct<
     const NS: usize,
 >(
     mechanism: &M,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
     partition: &mut Partition<NV, NC>,
     options: &SimulationOptions<T>,
     t: T,

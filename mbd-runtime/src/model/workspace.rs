@@ -2,14 +2,14 @@
 //! size, and the planned sparse Newton matrices, in one value the caller owns and passes to each
 //! analysis (as Pinocchio's `Data` sits beside its `Model`).
 //!
-//! The solvers themselves keep only O(NV + NC) arrays on the stack (and the generated
-//! forward dynamics its planned Schur factor, O(non-zeros of D)), so a mechanism of any size
-//! runs on an ordinary thread's stack. The integrators' stage, residual and correction vectors
-//! are taken from the work space's rows too (`VECTOR_ROWS` rows of N scalars). Measured by
-//! painting the stack (2026-12-06), a simulation of a 201-body ladder (NV = 603) in a release
-//! build takes 182–324 KiB (0.3–0.54 KiB per velocity; 0.46–0.71 before the vectors moved
-//! here); what is left is the simulation's points, the generated kernels' locals and statics'
-//! iterate. Where they are needed at
+//! The solvers' O(NV + NC) vectors are here too (rows of N scalars: the integrators' stages and
+//! Newton corrections, statics' iterate, and the three points a simulation steps between), so
+//! that a solver's frame does not grow with the mechanism. What stays on the stack: the generated
+//! forward dynamics' and projections' planned arrays (O(non-zeros of D)), the sample handed to a
+//! simulation's callback, and a few O(NV + NC) leaves. Measured by painting the stack
+//! (2026-12-06), a simulation of a 201-body ladder (NV = 603) takes 141 KiB in a release build
+//! and 318–389 KiB in a debug one (0.23 and 0.53–0.65 KiB per velocity; 0.46–0.71 and
+//! 1.2–1.7 before), statics 16 and 38 KiB. Where they are needed at
 //! all, the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.6 MB of
 //! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
@@ -23,7 +23,8 @@
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
 //! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled) |
-//! | the solvers' vectors | 48 × N | the integrators' stages, residuals and Newton corrections |
+//! | the solvers' vectors | 48 × N | the integrators' stages, residuals and Newton corrections; statics' iterate |
+//! | a simulation's points | 12 × N | the step's start, its end, and the end the integrator left (three `Point`s) |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
@@ -48,11 +49,25 @@ pub type Boxed<T, const NV: usize, const NC: usize, const N: usize, const NS: us
 /// rows; N = NV + NC, NS the size of its planned Newton matrix (`Name::NEWTON_STORAGE`). Its contents between calls mean nothing: every solver writes before it
 /// reads. See [the module](self) for what each part holds.
 ///
+/// It is the solvers' arrays ([`WorkArrays`], which it dereferences to) and the three points a
+/// [`Simulation`](crate::Simulation) steps between (the step's start, its end and the end as
+/// the integrator left it). An [`Integrator`](crate::Integrator) gets the arrays alone, beside
+/// the points.
+///
 /// `repr(C)` and made only of arrays of `T`, so it is exactly `size_of::<Self>() /
 /// size_of::<T>()` consecutive scalars, which [`Workspace::boxed`] relies on.
 #[repr(C)]
 #[derive(Clone, Debug)]
 pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
+    pub(crate) arrays: WorkArrays<T, NV, NC, N, NS>,
+    pub(crate) points: [[T; N]; POINT_ROWS],
+}
+
+/// The solvers' arrays of a [`Workspace`] (see [the module](self)): what an
+/// [`Integrator`](crate::Integrator) step is given, apart from the points it steps between.
+#[repr(C)]
+#[derive(Clone, Debug)]
+pub struct WorkArrays<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
     pub(crate) jacobian: [[T; NV]; NC],
     pub(crate) jacobian_scratch: [[T; NV]; NC],
     pub(crate) constraint_square: [[T; NC]; NC],
@@ -62,31 +77,31 @@ pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const 
     pub(crate) vectors: [[T; N]; VECTOR_ROWS],
 }
 
+/// Rows of N scalars for a [`Simulation`](crate::Simulation)'s three points: a point is
+/// 5 + NQ + 2 NV + NC scalars, so they fit where 15 + 3 NQ ≤ 6 NV + 9 NC (every mechanism with
+/// NQ ≤ 4/3 NV and 2 NV + 9 NC ≥ 15); smaller ones keep their points on the stack.
+pub(crate) const POINT_ROWS: usize = 12;
+
 impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize> Workspace<T, NV, NC, N, NS> {
     /// A zeroed work space, by value: for a `static` (it is `const`) or a small mechanism. A
     /// large one on the stack defeats its purpose; use [`Workspace::boxed`] there.
     pub const fn new() -> Self {
         Self {
-            jacobian: [[T::ZERO; NV]; NC],
-            jacobian_scratch: [[T::ZERO; NV]; NC],
-            constraint_square: [[T::ZERO; NC]; NC],
-            velocity_square: [[T::ZERO; NV]; NV],
-            coupling: [[T::ZERO; NC]; NC],
-            newton: [[T::ZERO; NS]; 3],
-            vectors: [[T::ZERO; N]; VECTOR_ROWS],
+            arrays: WorkArrays {
+                jacobian: [[T::ZERO; NV]; NC],
+                jacobian_scratch: [[T::ZERO; NV]; NC],
+                constraint_square: [[T::ZERO; NC]; NC],
+                velocity_square: [[T::ZERO; NV]; NV],
+                coupling: [[T::ZERO; NC]; NC],
+                newton: [[T::ZERO; NS]; 3],
+                vectors: [[T::ZERO; N]; VECTOR_ROWS],
+            },
+            points: [[T::ZERO; N]; POINT_ROWS],
         }
     }
 
     /// Bytes of work space (the whole value).
     pub const BYTES: usize = core::mem::size_of::<Self>();
-
-    /// The constraint Jacobian D = Φ_q B as the last solve that evaluated it left it: after
-    /// [`crate::InverseDynamics::solve`] and after a successful [`crate::StaticSolver::solve`], D(q, t)
-    /// at the q and t they return (what [`crate::joint_reaction`] takes); after other solves it
-    /// may hold D at another q, or D's LU factors.
-    pub fn jacobian(&self) -> &[[T; NV]; NC] {
-        &self.jacobian
-    }
 
     /// A zeroed work space built directly on the heap: `Box::new(Workspace::new())` would
     /// build it on the stack first (in a debug build, or whenever the copy is not elided),
@@ -96,15 +111,47 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
         let mut uninit = std::boxed::Box::<Self>::new_uninit();
         let first = uninit.as_mut_ptr().cast::<T>();
         let scalars = if core::mem::size_of::<T>() == 0 { 0 } else { Self::BYTES / core::mem::size_of::<T>() };
-        // SAFETY: `Self` is `repr(C)` and consists only of arrays of `T`, all with T's
-        // alignment, so it is `scalars` consecutive, properly aligned `T`s with no padding;
-        // writing each one initializes every field (T is `Copy`, so nothing is dropped).
+        // SAFETY: `Self` is `repr(C)` and consists only of arrays of `T` (its arrays are a
+        // `repr(C)` struct of them), all with T's alignment, so it is `scalars` consecutive,
+        // properly aligned `T`s with no padding; writing each one initializes every field (T is
+        // `Copy`, so nothing is dropped).
         unsafe {
             for k in 0..scalars {
                 first.add(k).write(T::ZERO);
             }
             uninit.assume_init()
         }
+    }
+
+    /// The solvers' arrays, and apart from them the rows of scalars that hold a simulation's
+    /// points ([`POINT_ROWS`]).
+    pub(crate) fn arrays_and_points(&mut self) -> (&mut WorkArrays<T, NV, NC, N, NS>, &mut [T]) {
+        let Self { arrays, points } = self;
+        (arrays, points.as_flattened_mut())
+    }
+}
+
+impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> WorkArrays<T, NV, NC, N, NS> {
+    /// The constraint Jacobian D = Φ_q B as the last solve that evaluated it left it: after
+    /// [`crate::InverseDynamics::solve`] and after a successful [`crate::StaticSolver::solve`], D(q, t)
+    /// at the q and t they return (what [`crate::joint_reaction`] takes); after other solves it
+    /// may hold D at another q, or D's LU factors.
+    pub fn jacobian(&self) -> &[[T; NV]; NC] {
+        &self.jacobian
+    }
+}
+
+impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> core::ops::Deref for Workspace<T, NV, NC, N, NS> {
+    type Target = WorkArrays<T, NV, NC, N, NS>;
+
+    fn deref(&self) -> &Self::Target {
+        &self.arrays
+    }
+}
+
+impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> core::ops::DerefMut for Workspace<T, NV, NC, N, NS> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.arrays
     }
 }
 
@@ -224,7 +271,7 @@ impl<T: Real, const NV: usize, const NC: usize> Default for DenseArrays<T, NV, N
     }
 }
 
-impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> Workspace<T, NV, NC, N, NS> {
+impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> WorkArrays<T, NV, NC, N, NS> {
     /// The arrays of dense forward dynamics ([`DenseScratch`]), from this work space's D,
     /// second NC × NV, constraint square and velocity square.
     pub fn dense(&mut self) -> DenseScratch<'_, T, NV, NC> {
@@ -281,7 +328,7 @@ mod tests {
         let boxed = Workspace::<f64, 3, 2, 5>::boxed();
         let value = Workspace::<f64, 3, 2, 5>::new();
         assert_eq!(format!("{boxed:?}"), format!("{value:?}"));
-        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3 + super::VECTOR_ROWS * 5));
+        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3 + (super::VECTOR_ROWS + super::POINT_ROWS) * 5));
     }
 
     /// The Newton slots are views of exactly NS scalars, and only for storage of that size.

@@ -12,7 +12,7 @@ use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
 use crate::model::body::{transpose_times, BodyFrames, BodyWrench, JointLoads};
 use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::Dynamics;
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::kinematics::independent_rows;
@@ -285,7 +285,7 @@ impl<T: Real> InverseDynamics<T> {
                 return Err(InverseDynamicsError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
             }
         }
-        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = &mut **ws;
         m.jacobian(q, t, d);
         let mut base = [T::ZERO; NV];
         m.inverse_forces(q, v, vd, t, &mut base);

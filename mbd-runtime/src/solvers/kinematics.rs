@@ -20,7 +20,7 @@
 use crate::linalg::orthogonal::{least_determined, orthogonalize, rank_revealing_step, solve_orthogonalized};
 use crate::linalg::{self, LinalgError, Permutation};
 use crate::model::mechanism::{Kinematics, Mechanism, PositionStep};
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::flow::Flow;
@@ -754,7 +754,7 @@ impl<T: Real> KinematicSolver<T> {
                 .map(Factors::Lu)
                 .map_err(|e| jacobian_error::<M>(e, t.to_f64()));
         }
-        let Workspace { jacobian, jacobian_scratch: basis, constraint_square: r, .. } = ws;
+        let WorkArrays { jacobian, jacobian_scratch: basis, constraint_square: r, .. } = &mut **ws;
         check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
         let redundant = independent_rows::<T, M, NV, NC>(jacobian, self.options.rank_tolerance, basis, r, t)?;
         Ok(Factors::Orthogonal { redundant })
@@ -786,7 +786,7 @@ impl<T: Real> KinematicSolver<T> {
         let mut negative_residual = [T::ZERO; NC];
         let mut step = [T::ZERO; NV];
         let mut previous_norm = T::from_f64(f64::INFINITY);
-        let Workspace { jacobian, jacobian_scratch, constraint_square, .. } = ws;
+        let WorkArrays { jacobian, jacobian_scratch, constraint_square, .. } = &mut **ws;
         // A square D: the iteration over the sparse factorization planned at compile time; the
         // dense LU where none is generated or from where that stopped (a pivot not found: the LU
         // names the coordinate without one, or finds one, D Dᵀ's pivots being D's squared; a

@@ -27,7 +27,7 @@
 use crate::linalg::dot;
 use crate::linalg::orthogonal::orthogonalize;
 use crate::model::mechanism::Kinematics;
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::KinematicError;
 use crate::solvers::error::NonFiniteQuantity;
@@ -116,7 +116,7 @@ impl<T: Real> KinematicSolver<T> {
     {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
-        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: basis, constraint_square, .. } = &mut **ws;
         m.jacobian(q, t, d);
         check_rows_finite::<T, M, NV, NC>(d, t)?;
         let tolerance = self.options.rank_tolerance;
@@ -165,7 +165,7 @@ impl<T: Real> KinematicSolver<T> {
         check_time(t)?;
         check_finite(q, t, NonFiniteQuantity::Coordinate, M::COORDINATE_NAMES)?;
         check_finite(lambda, t, NonFiniteQuantity::Multiplier, M::CONSTRAINT_NAMES)?;
-        let Workspace { jacobian: d, jacobian_scratch: basis, constraint_square: r, coupling, .. } = ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: basis, constraint_square: r, coupling, .. } = &mut **ws;
         m.jacobian(q, t, d);
         check_rows_finite::<T, M, NV, NC>(d, t)?;
         let mut redundant = [false; NC];

@@ -12,7 +12,7 @@
 
 use crate::linalg;
 use crate::model::mechanism::Kinematics;
-use crate::model::workspace::Workspace;
+use crate::model::workspace::{WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::ConstraintRows;
 
@@ -62,7 +62,7 @@ where
     T: Real,
     M: Kinematics<T, NQ, NV, NC>,
 {
-    let Workspace { jacobian: d, constraint_square: a, .. } = ws;
+    let WorkArrays { jacobian: d, constraint_square: a, .. } = &mut **ws;
     let (mut phi, mut trial_phi) = ([T::ZERO; NC], [T::ZERO; NC]);
     let mut step = [T::ZERO; NV];
     m.position_eval(q, t, &mut phi, d);
@@ -138,7 +138,7 @@ where
     T: Real,
     M: Kinematics<T, NQ, NV, NC>,
 {
-    let Workspace { jacobian: d, jacobian_scratch: moved_d, velocity_square: hessian, .. } = ws;
+    let WorkArrays { jacobian: d, jacobian_scratch: moved_d, velocity_square: hessian, .. } = &mut **ws;
     let (mut phi, mut moved_phi) = ([T::ZERO; NC], [T::ZERO; NC]);
     let (mut g, mut moved_g, mut step) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
     m.position_eval(q, t, &mut phi, d);

@@ -24,14 +24,15 @@ impl<T: Real> StaticSolver<T> {
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let tol = self.options.tolerance;
-        let zero_v = [T::ZERO; NV];
-        let (phi, h) = (&it.phi, &it.h);
-        let (mut phi1, mut h1) = ([T::ZERO; NC], [T::ZERO; NV]);
+        let (phi, h) = (it.phi, it.h);
+        let [zero_v, h1] = dense.vectors.rows::<NV, 2>();
+        let phi1 = dense.vectors.take::<NC>();
+        let candidate = dense.vectors.take::<NQ>();
         let mut unchanged = |candidate: &[T; NQ], d_scale: T, h_scale: T| {
-            m.newton_jacobian(candidate, t, &mut phi1, s, dense.reborrow());
-            m.forces(candidate, &zero_v, t, &mut h1);
-            phi.iter().zip(&phi1).all(|(a, b)| (*a - *b).abs() <= tol + d_scale)
-                && h.iter().zip(&h1).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)
+            m.newton_jacobian(candidate, t, phi1, s, dense.reborrow());
+            m.forces(candidate, zero_v, t, h1);
+            phi.iter().zip(phi1.iter()).all(|(a, b)| (*a - *b).abs() <= tol + d_scale)
+                && h.iter().zip(h1.iter()).all(|(a, b)| (*a - *b).abs() <= tol + h_scale)
         };
         let rounding = T::from_f64(16.0) * T::EPSILON;
         for (i, coordinate) in M::COORDINATES.iter().enumerate().take(NQ) {
@@ -46,20 +47,20 @@ impl<T: Real> StaticSolver<T> {
                         continue;
                     }
                     let shift = rounding * (q[i].abs() + T::from_f64(2.0 * core::f64::consts::PI));
-                    let mut candidate = *q;
+                    *candidate = *q;
                     candidate[i] = wrapped;
-                    if unchanged(&candidate, shift * it.d_columns[k], shift * it.h_columns[k]) {
-                        *q = candidate;
+                    if unchanged(candidate, shift * it.d_columns[k], shift * it.h_columns[k]) {
+                        *q = *candidate;
                     }
                 }
                 CoordinateKind::Quaternion { part: 0 } if i + 3 < NQ && q[i] < T::ZERO => {
                     // p and −p are one rotation: Φ and h do not change at all.
-                    let mut candidate = *q;
+                    *candidate = *q;
                     for x in candidate[i..i + 4].iter_mut() {
                         *x = -*x;
                     }
-                    if unchanged(&candidate, rounding * max_abs(phi).0, rounding * max_abs(h).0) {
-                        *q = candidate;
+                    if unchanged(candidate, rounding * max_abs(phi).0, rounding * max_abs(h).0) {
+                        *q = *candidate;
                     }
                 }
                 _ => {}

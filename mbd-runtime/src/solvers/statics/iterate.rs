@@ -4,6 +4,7 @@
 use super::report::StaticError;
 use super::MAX_REFINEMENTS;
 use crate::model::mechanism::NewtonMatrix;
+use crate::model::workspace::Vectors;
 use crate::real::Real;
 
 /// (max |v_i|, i), the first index among equals; (0, 0) when empty.
@@ -40,12 +41,12 @@ pub(super) struct Iterate<'a, S, T, const NV: usize, const NC: usize> {
     pub(super) stiff: &'a S,
     /// The rows of D dropped as dependent on the rows eliminated before them.
     pub(super) dropped: [bool; NC],
-    pub(super) h: [T; NV],
-    pub(super) phi: [T; NC],
-    pub(super) lambda: [T; NC],
-    pub(super) r: [T; NV],
+    pub(super) h: &'a [T; NV],
+    pub(super) phi: &'a [T; NC],
+    pub(super) lambda: &'a [T; NC],
+    pub(super) r: &'a [T; NV],
     /// M's diagonal.
-    pub(super) mass_diagonal: [T; NV],
+    pub(super) mass_diagonal: &'a [T; NV],
     /// max |H_ij| / √(M_ii M_jj) (1/s²): the scale of the stiffness, of the neutral verdict and
     /// of the Levenberg–Marquardt shift.
     pub(super) scale: T,
@@ -53,8 +54,23 @@ pub(super) struct Iterate<'a, S, T, const NV: usize, const NC: usize> {
     pub(super) stiffness_norm: T,
     pub(super) reaction: T,
     /// max_r |D_ri| and max_r |H_ri| of each column i, for the angle wrap.
-    pub(super) d_columns: [T; NV],
-    pub(super) h_columns: [T; NV],
+    pub(super) d_columns: &'a [T; NV],
+    pub(super) h_columns: &'a [T; NV],
+}
+
+/// The vectors an [`Iterate`] is evaluated into and reads, taken from the work space once per
+/// solve: h, r, M's diagonal, the column sizes and two more (zero velocities, row sums), Φ
+/// and λ, and the right-hand side of the multipliers' solve.
+pub(super) struct IterateVectors<'a, T, const NV: usize, const NC: usize, const N: usize> {
+    pub(super) v: &'a mut [[T; NV]; 8],
+    pub(super) c: &'a mut [[T; NC]; 2],
+    pub(super) b: &'a mut [T; N],
+}
+
+impl<'a, T: Real, const NV: usize, const NC: usize, const N: usize> IterateVectors<'a, T, NV, NC, N> {
+    pub(super) fn take(vectors: &mut Vectors<'a, T>) -> Self {
+        Self { v: vectors.rows(), c: vectors.rows(), b: vectors.take() }
+    }
 }
 
 impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usize> Iterate<'_, S, T, NV, NC> {
@@ -71,19 +87,27 @@ impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usiz
     /// log₁₀(s/μ). For μ below it (Newton's μ = 0 from the floor's factors) each refinement
     /// also gains a factor (μ_f − μ)/(ω²_min + μ_f): the exact Newton step, where the floor is
     /// tiny against the softest mode. Returns whether the corrections fell to rounding
-    /// ([`MAX_REFINEMENTS`] at most, each at least halving the last).
-    pub(super) fn shifted_solve<M, const NQ: usize, const N: usize>(&self, factors: &S, mu: T, b: &mut [T; N]) -> bool
+    /// ([`MAX_REFINEMENTS`] at most, each at least halving the last). `work`: two vectors of N
+    /// to work in.
+    pub(super) fn shifted_solve<M, const NQ: usize, const N: usize>(
+        &self,
+        factors: &S,
+        mu: T,
+        b: &mut [T; N],
+        work: &mut [[T; N]; 2],
+    ) -> bool
     where
         M: NewtonMatrix<T, NQ, NV, NC, NewtonStorage = S>,
     {
         let nnz = M::JACOBIAN_PATTERN.len();
-        let rhs = *b;
+        let [rhs, r] = work;
+        *rhs = *b;
         M::newton_solve(factors, b);
         let mut last: Option<T> = None;
         for _ in 0..MAX_REFINEMENTS {
             // r = rhs − A x over the stored entries; a dropped multiplier's row is the
             // identity's in the factors, and its unknown stays 0.
-            let mut r = rhs;
+            *r = *rhs;
             let values = self.stiff.as_ref()[nnz..].iter().zip(&self.mass.as_ref()[nnz..]);
             for ((u, w), (&stiff, &mass)) in entries(&M::NEWTON_PATTERN).zip(values) {
                 if u >= NV && self.dropped[u - NV] {
@@ -97,12 +121,12 @@ impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usiz
                     *r = T::ZERO;
                 }
             }
-            M::newton_solve(factors, &mut r);
-            let change = max_abs(&r).0;
+            M::newton_solve(factors, r);
+            let change = max_abs(r).0;
             if !change.is_finite() || last.is_some_and(|last| change > T::from_f64(0.5) * last) {
                 return false;
             }
-            for (x, dx) in b.iter_mut().zip(r) {
+            for (x, &dx) in b.iter_mut().zip(r.iter()) {
                 *x += dx;
             }
             if change <= T::from_f64(16.0) * T::EPSILON * max_abs(b).0 {
@@ -116,9 +140,9 @@ impl<S: Copy + AsRef<[T]> + AsMut<[T]>, T: Real, const NV: usize, const NC: usiz
 
 /// The lowest mode of the reduced stiffness: ω² (1/s²) and its shape z (M-normalized,
 /// velocity space).
-pub(super) struct Mode<T, const NV: usize> {
+pub(super) struct Mode<'a, T, const NV: usize> {
     pub(super) omega_squared: T,
-    pub(super) shape: [T; NV],
+    pub(super) shape: &'a [T; NV],
     /// The shift of the inverse iteration: ω² is known to about ε times it.
     pub(super) shift: T,
 }

@@ -101,7 +101,7 @@ use crate::model::workspace::Workspace;
 use crate::real::Real;
 use crate::solvers::kinematics::{first_non_finite, name};
 
-use iterate::{dot, max_abs, Mode, RestoreFailure};
+use iterate::{dot, max_abs, IterateVectors, Mode, RestoreFailure};
 use report::classify;
 pub use report::{Stability, StaticError, StaticReport};
 
@@ -270,10 +270,13 @@ impl<T: Real> StaticSolver<T> {
         let options = &self.options;
         let tol = options.tolerance;
         let half = T::from_f64(0.5);
-        let mut trial = *q;
-        let mut correction = [T::ZERO; NV];
+        // The trial point, the restoration's correction, the step, the lowest mode's shape and
+        // the iterate's vectors: the work space's.
+        let trial = dense.vectors.take::<NQ>();
+        let [correction, delta, shape] = dense.vectors.rows::<NV, 3>();
+        let mut vectors = IterateVectors::<T, NV, NC, N>::take(&mut dense.vectors);
 
-        self.restore::<M, NQ, NV, NC, N>(m, q, t, &mut correction, scratch, dense.reborrow()).map_err(|e| match e {
+        self.restore::<M, NQ, NV, NC, N>(m, q, t, correction, scratch, dense.reborrow()).map_err(|e| match e {
             RestoreFailure::NotConverged { iterations, worst, residual } => {
                 StaticError::NotAssembled { t: time, iterations, worst_row: name(M::CONSTRAINT_NAMES, worst), residual }
             }
@@ -285,10 +288,10 @@ impl<T: Real> StaticSolver<T> {
         // `Dynamics::motion_size`: its largest entry in body coordinates).
         let mut radius = options.initial_step;
         loop {
-            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch, dense.reborrow())?;
-            *lambda = it.lambda;
-            let (force_residual, force_row) = max_abs(&it.r);
-            let (constraint_residual, constraint_row) = max_abs(&it.phi);
+            let it = self.evaluate::<M, NQ, NV, NC, N>(m, q, t, mass, stiff, scratch, &mut vectors, dense.reborrow())?;
+            *lambda = *it.lambda;
+            let (force_residual, force_row) = max_abs(it.r);
+            let (constraint_residual, constraint_row) = max_abs(it.phi);
             let (residual, worst_row) = if force_residual >= constraint_residual {
                 (force_residual, name(M::VELOCITY_NAMES, force_row))
             } else {
@@ -299,22 +302,23 @@ impl<T: Real> StaticSolver<T> {
             // The tolerance, or the force residual's rounding floor where that is larger.
             let floor = T::from_f64(RESIDUAL_ROUNDING)
                 * T::EPSILON
-                * (max_abs(&it.h).0 + it.reaction + it.stiffness_norm * max_abs(q).0.max(T::ONE));
+                * (max_abs(it.h).0 + it.reaction + it.stiffness_norm * max_abs(q).0.max(T::ONE));
             let tol = tol.max(floor);
             let converged = residual <= tol;
             let not_converged = |iterations| StaticError::NotConverged { t: time, iterations, worst_row, residual: residual.to_f64() };
             // At a converged point, its lowest mode tells stable from unstable.
             let mode = if converged && dof > 0 {
-                Some(self.lowest_mode::<M, NQ, NV, NC, N>(m, q, &it, scratch).ok_or_else(|| not_converged(accepted + rejected))?)
+                let mode = self.lowest_mode::<M, NQ, NV, NC, N>(m, q, &it, scratch, &mut *shape, dense.vectors.reborrow());
+                Some(mode.ok_or_else(|| not_converged(accepted + rejected))?)
             } else {
                 None
             };
             // The neutral band: relative to the stiffness scale, and never below what rounding
             // leaves of ω² (about ε times the inverse iteration's shift).
-            let neutral = |mode: &Mode<T, NV>| options.neutral_tolerance * it.scale.max(mode.omega_squared.abs()).max(mode.shift);
+            let neutral = |mode: &Mode<'_, T, NV>| options.neutral_tolerance * it.scale.max(mode.omega_squared.abs()).max(mode.shift);
             let unstable = mode.as_ref().is_some_and(|mode| mode.omega_squared < -neutral(mode));
             if converged && !(unstable && options.leave_unstable) {
-                let stability = classify::<T, M, NV>(mode.as_ref(), &it.mass_diagonal, neutral);
+                let stability = classify::<T, M, NV>(mode.as_ref(), it.mass_diagonal, neutral);
                 self.wrap_angles(m, q, t, &it, scratch, dense.reborrow());
                 // D into the work space's (`Workspace::jacobian`), which `dense.y` is.
                 m.jacobian(q, t, dense.y);
@@ -332,38 +336,29 @@ impl<T: Real> StaticSolver<T> {
             let mut attempts = 0u32;
             loop {
                 // The step and its predicted energy decrease.
-                let step = match &escape {
+                let predicted = match &escape {
                     Some(mode) => {
                         // Downhill along the force if it has any, else toward the mode's
                         // largest entry (either way falls off a saddle).
-                        let z = &mode.shape;
-                        let f = dot(z, &it.r);
+                        let z = mode.shape;
+                        let f = dot(z, it.r);
                         let sign = if f != T::ZERO { f } else { z[max_abs(z).1] };
                         let size = radius / m.motion_size(q, z);
                         let y = if sign < T::ZERO { -size } else { size };
-                        let delta: [T; NV] = core::array::from_fn(|i| y * z[i]);
-                        Some((delta, f * y - half * mode.omega_squared * y * y))
+                        for (d, &zi) in delta.iter_mut().zip(z.iter()) {
+                            *d = y * zi;
+                        }
+                        Some(f * y - half * mode.omega_squared * y * y)
                     }
-                    None => self.shifted_step::<M, NQ, NV, NC, N>(m, q, &it, radius, scratch),
+                    None => self.shifted_step::<M, NQ, NV, NC, N>(m, q, &it, radius, scratch, delta, dense.vectors.reborrow()),
                 };
-                let Some((delta, predicted)) = step else {
+                let Some(predicted) = predicted else {
                     return Err(not_converged(accepted + rejected));
                 };
-                let step_norm = m.motion_size(q, &delta);
-                let ratio = self.trial::<M, NQ, NV, NC, N>(
-                    m,
-                    q,
-                    t,
-                    &it.h,
-                    &delta,
-                    predicted,
-                    &mut trial,
-                    &mut correction,
-                    scratch,
-                    dense.reborrow(),
-                );
+                let step_norm = m.motion_size(q, delta);
+                let ratio = self.trial::<M, NQ, NV, NC, N>(m, q, t, it.h, delta, predicted, trial, correction, scratch, dense.reborrow());
                 if let Some(ratio) = ratio {
-                    *q = trial;
+                    *q = *trial;
                     accepted += 1;
                     if ratio < T::from_f64(SHRINK_RATIO) {
                         radius = step_norm / T::from_f64(4.0);
@@ -378,7 +373,7 @@ impl<T: Real> StaticSolver<T> {
                 if escape.is_some() && attempts >= ESCAPE_ATTEMPTS {
                     // Every step off it raised the energy: unstable as it looked, but not
                     // leavable at this resolution; report it as it is.
-                    let stability = classify::<T, M, NV>(escape.as_ref(), &it.mass_diagonal, neutral);
+                    let stability = classify::<T, M, NV>(escape.as_ref(), it.mass_diagonal, neutral);
                     self.wrap_angles(m, q, t, &it, scratch, dense.reborrow());
                     m.jacobian(q, t, dense.y);
                     return Ok(StaticReport { iterations: accepted, rejected, residual: residual.to_f64(), stability });

@@ -1,7 +1,7 @@
 //! What the static solver returns: the stability verdict, the report and the errors, each
 //! error naming the element, velocity or row where it arose.
 
-use super::iterate::{max_abs, Mode};
+use super::iterate::Mode;
 #[cfg(doc)]
 use super::{StaticOptions, StaticSolver};
 use crate::linalg::LinalgError;
@@ -213,17 +213,19 @@ pub(super) fn factor_error<M: Mechanism>(t: f64, nv: usize, e: LinalgError) -> S
 /// The stability verdict from the lowest mode (`None`: no motion is free, DOF = 0); `neutral`
 /// gives the half-width of the neutral band about its ω².
 pub(super) fn classify<T: Real, M: Mechanism, const NV: usize>(
-    mode: Option<&Mode<T, NV>>,
+    mode: Option<&Mode<'_, T, NV>>,
     mass_diagonal: &[T; NV],
-    neutral: impl Fn(&Mode<T, NV>) -> T,
+    neutral: impl Fn(&Mode<'_, T, NV>) -> T,
 ) -> Stability {
     let Some(mode) = mode else {
         return Stability::Determined;
     };
     let w = mode.omega_squared;
     let direction = {
-        let weighted: [T; NV] = core::array::from_fn(|i| mode.shape[i] * mass_diagonal[i].abs().sqrt());
-        name(M::VELOCITY_NAMES, max_abs(&weighted).1)
+        // The largest entry of the mass-weighted shape (the first among equals, as `max_abs`).
+        let weighted = |i: usize| (mode.shape[i] * mass_diagonal[i].abs().sqrt()).abs();
+        let largest = (0..NV).fold((T::ZERO, 0), |(best, at), i| if weighted(i) > best { (weighted(i), i) } else { (best, at) });
+        name(M::VELOCITY_NAMES, largest.1)
     };
     let band = neutral(mode);
     if w < -band {

@@ -2,11 +2,11 @@
 //! trust-region step over them, the lowest mode by inverse iteration, the trial step with its
 //! energy test, and the restoration onto Φ = 0 (the module documentation gives the algorithm).
 
-use super::iterate::{dot, entries, max_abs, shift_floor, Iterate, Mode, RestoreFailure};
+use super::iterate::{dot, entries, max_abs, shift_floor, Iterate, IterateVectors, Mode, RestoreFailure};
 use super::report::{factor_error, non_finite_force, StaticError};
 use super::{StaticSolver, ACCEPT_RATIO, INVERSE_ITERATIONS, ON_RADIUS, SHIFT_TRIALS, WORK_ROUNDING};
 use crate::model::mechanism::NewtonMatrix;
-use crate::model::workspace::DenseScratch;
+use crate::model::workspace::{DenseScratch, Vectors};
 use crate::real::Real;
 use crate::solvers::kinematics::{first_non_finite, name};
 
@@ -22,7 +22,7 @@ impl<T: Real> StaticSolver<T> {
 
     /// Everything the iteration needs at an assembled `q`: the two matrices (in `mass` and
     /// `stiff`), the multipliers by least squares in the M⁻¹ norm ([[M, −Dᵀ], [D, 0]] [x; λ] =
-    /// [h; 0], factored in `factors`) and the residual r = h + Dᵀλ = M x.
+    /// [h; 0], factored in `factors`) and the residual r = h + Dᵀλ = M x, into `vectors`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn evaluate<'a, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
@@ -32,50 +32,54 @@ impl<T: Real> StaticSolver<T> {
         mass: &'a mut M::NewtonStorage,
         stiff: &'a mut M::NewtonStorage,
         factors: &mut M::NewtonStorage,
+        vectors: &'a mut IterateVectors<'_, T, NV, NC, N>,
         mut dense: DenseScratch<'_, T, NV, NC>,
     ) -> Result<Iterate<'a, M::NewtonStorage, T, NV, NC>, StaticError>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let time = t.to_f64();
-        let zero_v = [T::ZERO; NV];
         let nnz = M::JACOBIAN_PATTERN.len();
-        let (mut phi, mut h) = ([T::ZERO; NC], [T::ZERO; NV]);
-        m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], None, T::ZERO, T::ZERO, &mut phi, mass, dense.reborrow());
-        m.forces(q, &zero_v, t, &mut h);
-        if let Some(i) = first_non_finite(&phi) {
+        let [h, r, mass_diagonal, row_sums, h_columns, d_columns, reaction_row, zero_v] = &mut *vectors.v;
+        let [phi, lambda] = &mut *vectors.c;
+        let b = &mut *vectors.b;
+        for x in [&mut *h, &mut *mass_diagonal, row_sums, h_columns, d_columns, reaction_row, zero_v] {
+            x.fill(T::ZERO);
+        }
+        phi.fill(T::ZERO);
+        lambda.fill(T::ZERO);
+        m.newton_matrix(q, zero_v, zero_v, t, lambda, None, T::ZERO, T::ZERO, phi, mass, dense.reborrow());
+        m.forces(q, zero_v, t, h);
+        if let Some(i) = first_non_finite(phi) {
             return Err(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) });
         }
-        if let Some(i) = first_non_finite(&h) {
+        if let Some(i) = first_non_finite(h) {
             return Err(non_finite_force::<M>(time, i));
         }
         factors.as_mut().copy_from_slice(mass.as_ref());
         let mut dropped = [false; NC];
         M::newton_factor(factors, self.drop_ratio(), true, &mut dropped).map_err(|e| factor_error::<M>(time, NV, e))?;
-        let mut b = [T::ZERO; N];
-        b[..NV].copy_from_slice(&h);
-        M::newton_solve(factors, &mut b);
-        let mut lambda = [T::ZERO; NC];
+        b.fill(T::ZERO);
+        b[..NV].copy_from_slice(h);
+        M::newton_solve(factors, b);
         lambda.copy_from_slice(&b[NV..]);
-        let mut r = h;
-        let mut reaction_row = [T::ZERO; NV];
+        *r = *h;
         for (&value, &(row, c)) in mass.as_ref().iter().zip(M::JACOBIAN_PATTERN) {
             r[c as usize] += value * lambda[row as usize];
             reaction_row[c as usize] += (value * lambda[row as usize]).abs();
         }
-        if let Some(i) = first_non_finite(&r) {
+        if let Some(i) = first_non_finite(r) {
             return Err(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) });
         }
-        m.newton_matrix(q, &zero_v, &zero_v, t, &lambda, None, T::ZERO, T::ONE, &mut phi, stiff, dense);
+        m.newton_matrix(q, zero_v, zero_v, t, lambda, None, T::ZERO, T::ONE, phi, stiff, dense);
         let (mass, stiff) = (&*mass, &*stiff);
         // M's diagonal, then H = M − (M − H) entry by entry over the velocity block.
-        let mut mass_diagonal = [T::ZERO; NV];
         for ((u, w), &value) in entries(&M::NEWTON_PATTERN).zip(&mass.as_ref()[nnz..]) {
             if u == w && u < NV {
                 mass_diagonal[u] = value;
             }
         }
-        let (mut scale, mut row_sums, mut h_columns, mut d_columns) = (T::ZERO, [T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
+        let mut scale = T::ZERO;
         for ((u, w), (&m0, &m1)) in entries(&M::NEWTON_PATTERN).zip(mass.as_ref()[nnz..].iter().zip(&stiff.as_ref()[nnz..])) {
             if u < NV && w < NV {
                 let hij = m0 - m1;
@@ -103,8 +107,8 @@ impl<T: Real> StaticSolver<T> {
             r,
             mass_diagonal,
             scale,
-            stiffness_norm: max_abs(&row_sums).0,
-            reaction: max_abs(&reaction_row).0,
+            stiffness_norm: max_abs(row_sums).0,
+            reaction: max_abs(reaction_row).0,
             d_columns,
             h_columns,
         })
@@ -173,9 +177,9 @@ impl<T: Real> StaticSolver<T> {
     /// The Levenberg–Marquardt step in the M norm along the motions the joints allow:
     /// (μM − H)δ − Dᵀy = r, Dδ = 0 (the iterate is assembled; the restoration after the step
     /// meets Φ = 0 again), with the smallest shift of the ladder that makes the reduced matrix
-    /// positive definite, raised ×4 until δ moves no body more than `radius`. Returns δ and the
-    /// decrease the quadratic model predicts, rᵀδ + ½δᵀHδ = ½(rᵀδ + μ δᵀMδ); `None` if no
-    /// shift gives a finite step.
+    /// positive definite, raised ×4 until δ moves no body more than `radius`. Writes δ to
+    /// `delta` and returns the decrease the quadratic model predicts, rᵀδ + ½δᵀHδ = ½(rᵀδ +
+    /// μ δᵀMδ); `None` if no shift gives a finite step.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn shifted_step<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
@@ -184,48 +188,52 @@ impl<T: Real> StaticSolver<T> {
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         radius: T,
         factors: &mut M::NewtonStorage,
-    ) -> Option<([T; NV], T)>
+        delta: &mut [T; NV],
+        mut vectors: Vectors<'_, T>,
+    ) -> Option<T>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        // The step at shift μ: `Err(true)` if the reduced matrix is definite but the step
-        // does not fit, `Err(false)` if it is not definite (or the step not finite).
+        // The step at shift μ into `candidate`: `Err(true)` if the reduced matrix is definite
+        // but the step does not fit, `Err(false)` if it is not definite (or the step not
+        // finite).
         let floor = shift_floor(it);
-        let mut attempt = |mu: T| -> Result<([T; NV], T), bool> {
+        let (b, work) = (vectors.take::<N>(), vectors.rows::<N, 2>());
+        let [candidate, md] = vectors.rows::<NV, 2>();
+        let mut attempt = |mu: T, candidate: &mut [T; NV]| -> Result<T, bool> {
             if !self.shifted_factor::<M, NQ, NV, NC>(it, mu, factors) {
                 return Err(false);
             }
             let factors = &*factors;
-            let mut b = [T::ZERO; N];
-            b[..NV].copy_from_slice(&it.r);
+            b.fill(T::ZERO);
+            b[..NV].copy_from_slice(it.r);
             // At the floor, Newton's own step (μ = 0) where the refinement converges to it.
             let mut mu = mu;
-            if mu == floor && !it.shifted_solve::<M, NQ, N>(factors, T::ZERO, &mut b) {
-                b = [T::ZERO; N];
-                b[..NV].copy_from_slice(&it.r);
-                it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
+            if mu == floor && !it.shifted_solve::<M, NQ, N>(factors, T::ZERO, b, work) {
+                b.fill(T::ZERO);
+                b[..NV].copy_from_slice(it.r);
+                it.shifted_solve::<M, NQ, N>(factors, mu, b, work);
             } else if mu == floor {
                 mu = T::ZERO;
             } else {
-                it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
+                it.shifted_solve::<M, NQ, N>(factors, mu, b, work);
             }
-            let delta: [T; NV] = core::array::from_fn(|i| b[i]);
-            if first_non_finite(&delta).is_some() {
+            candidate.copy_from_slice(&b[..NV]);
+            if first_non_finite(candidate).is_some() {
                 return Err(false);
             }
-            if m.motion_size(q, &delta) > radius {
+            if m.motion_size(q, candidate) > radius {
                 return Err(true);
             }
-            let mut md = [T::ZERO; NV];
-            m.mass_times(q, &delta, &mut md);
-            Ok((delta, T::from_f64(0.5) * (dot(&it.r, &delta) + mu * dot(&delta, &md))))
+            m.mass_times(q, candidate, md);
+            Ok(T::from_f64(0.5) * (dot(it.r, candidate) + mu * dot(candidate, md)))
         };
         // Up from the floor (Newton's step where it is definite and fits): ×10 while not
-        // definite, ×4 while the step is too long.
+        // definite, ×4 while the step is too long. The best step so far is in `delta`.
         let (mut low, mut mu) = (T::ZERO, floor);
-        let (mut high, mut step) = loop {
-            match attempt(mu) {
-                Ok(step) => break (mu, step),
+        let (mut high, mut predicted) = loop {
+            match attempt(mu, delta) {
+                Ok(predicted) => break (mu, predicted),
                 Err(definite) => {
                     low = mu;
                     mu *= T::from_f64(if definite { 4.0 } else { 10.0 });
@@ -239,18 +247,21 @@ impl<T: Real> StaticSolver<T> {
         // trust-region step (step length falls as μ grows past the definite threshold).
         if low > T::ZERO {
             for _ in 0..SHIFT_TRIALS {
-                if m.motion_size(q, &step.0) >= T::from_f64(ON_RADIUS) * radius || high <= T::from_f64(1.05) * low {
+                if m.motion_size(q, delta) >= T::from_f64(ON_RADIUS) * radius || high <= T::from_f64(1.05) * low {
                     break;
                 }
                 let middle = (low * high).sqrt();
-                match attempt(middle) {
-                    Ok(found) => (high, step) = (middle, found),
+                match attempt(middle, candidate) {
+                    Ok(found) => {
+                        (high, predicted) = (middle, found);
+                        *delta = *candidate;
+                    }
                     Err(_) => low = middle,
                 }
             }
         }
         let _ = high;
-        Some(step)
+        Some(predicted)
     }
 
     /// The lowest mode of the reduced stiffness, by inverse iteration on the factors of the
@@ -258,41 +269,48 @@ impl<T: Real> StaticSolver<T> {
     /// ([[μM − H, −Dᵀ], [D, 0]] [x'; ·] = [M x; 0]), which converges to the mode of smallest
     /// ω² + μ > 0, i.e. the smallest ω²; ω² from the Rayleigh quotient
     /// x'ᵀ(−H)x' / x'ᵀMx' = x'ᵀMx / x'ᵀMx' − μ, which needs no product with H.
-    pub(super) fn lowest_mode<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
+    /// Its shape is written to `shape`.
+    pub(super) fn lowest_mode<'s, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize>(
         &self,
         m: &M,
         q: &[T; NQ],
         it: &Iterate<M::NewtonStorage, T, NV, NC>,
         factors: &mut M::NewtonStorage,
-    ) -> Option<Mode<T, NV>>
+        shape: &'s mut [T; NV],
+        mut vectors: Vectors<'_, T>,
+    ) -> Option<Mode<'s, T, NV>>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
         let mu = self.definite_shift::<M, NQ, NV, NC>(it, factors)?;
         let factors = &*factors;
+        let (b, work) = (vectors.take::<N>(), vectors.rows::<N, 2>());
+        let [mx, next, m_next] = vectors.rows::<NV, 3>();
         // Start from M times a vector of unequal entries (fractional parts of multiples of the
         // golden ratio): no mode is missed by a symmetry of the start.
-        let mut mx: [T; NV] = core::array::from_fn(|i| {
+        for (i, x) in mx.iter_mut().enumerate() {
             let spread = libm::fmod(0.618_033_988_749_895 * (i + 1) as f64, 1.0);
-            it.mass_diagonal[i] * T::from_f64(0.5 + spread)
-        });
-        let mut x = [T::ZERO; NV];
+            *x = it.mass_diagonal[i] * T::from_f64(0.5 + spread);
+        }
+        let x = shape;
+        x.fill(T::ZERO);
         let mut omega_squared = T::ZERO;
         for k in 0..INVERSE_ITERATIONS {
-            let mut b = [T::ZERO; N];
-            b[..NV].copy_from_slice(&mx);
-            it.shifted_solve::<M, NQ, N>(factors, mu, &mut b);
-            let next: [T; NV] = core::array::from_fn(|i| b[i]);
-            let mut m_next = [T::ZERO; NV];
-            m.mass_times(q, &next, &mut m_next);
-            let norm2 = dot(&next, &m_next);
+            b.fill(T::ZERO);
+            b[..NV].copy_from_slice(mx);
+            it.shifted_solve::<M, NQ, N>(factors, mu, b, work);
+            next.copy_from_slice(&b[..NV]);
+            m.mass_times(q, next, m_next);
+            let norm2 = dot(next, m_next);
             if !norm2.is_finite() || norm2 <= T::ZERO {
                 return None;
             }
-            let rayleigh = dot(&next, &mx) / norm2 - mu;
+            let rayleigh = dot(next, mx) / norm2 - mu;
             let inverse = T::ONE / norm2.sqrt();
-            x = core::array::from_fn(|i| next[i] * inverse);
-            mx = core::array::from_fn(|i| m_next[i] * inverse);
+            for i in 0..NV {
+                x[i] = next[i] * inverse;
+                mx[i] = m_next[i] * inverse;
+            }
             let settled = (rayleigh - omega_squared).abs() <= T::from_f64(1e-13) * rayleigh.abs().max(it.scale);
             omega_squared = rayleigh;
             if k > 0 && settled {
@@ -325,24 +343,26 @@ impl<T: Real> StaticSolver<T> {
         trial: &mut [T; NQ],
         correction: &mut [T; NV],
         s: &mut M::NewtonStorage,
-        dense: DenseScratch<'_, T, NV, NC>,
+        mut dense: DenseScratch<'_, T, NV, NC>,
     ) -> Option<T>
     where
         M: NewtonMatrix<T, NQ, NV, NC>,
     {
-        let zero_v = [T::ZERO; NV];
+        let [zero_v, displacement, half_way, h_middle, h_end] = dense.vectors.rows::<NV, 5>();
+        let middle = dense.vectors.take::<NQ>();
         *trial = *q;
         m.integrate_positions(trial, delta, T::ONE);
         correction.fill(T::ZERO);
         self.restore::<M, NQ, NV, NC, N>(m, trial, t, correction, s, dense).ok()?;
-        let displacement: [T; NV] = core::array::from_fn(|i| delta[i] + correction[i]);
-        let half_way: [T; NV] = core::array::from_fn(|i| T::from_f64(0.5) * displacement[i]);
-        let mut middle = *q;
-        m.integrate_positions(&mut middle, &half_way, T::ONE);
-        let (mut h_middle, mut h_end) = ([T::ZERO; NV], [T::ZERO; NV]);
-        m.forces(&middle, &zero_v, t, &mut h_middle);
-        m.forces(trial, &zero_v, t, &mut h_end);
-        if first_non_finite(trial).is_some() || first_non_finite(&h_middle).is_some() || first_non_finite(&h_end).is_some() {
+        for i in 0..NV {
+            displacement[i] = delta[i] + correction[i];
+            half_way[i] = T::from_f64(0.5) * displacement[i];
+        }
+        *middle = *q;
+        m.integrate_positions(middle, half_way, T::ONE);
+        m.forces(middle, zero_v, t, h_middle);
+        m.forces(trial, zero_v, t, h_end);
+        if first_non_finite(trial).is_some() || first_non_finite(h_middle).is_some() || first_non_finite(h_end).is_some() {
             return None;
         }
         let (mut work, mut size) = (T::ZERO, T::ZERO);
@@ -378,16 +398,17 @@ impl<T: Real> StaticSolver<T> {
     {
         let time = t.to_f64();
         let tol = self.options.tolerance;
-        let zero_v = [T::ZERO; NV];
-        let mut phi = [T::ZERO; NC];
+        let [zero_v, step] = dense.vectors.rows::<NV, 2>();
+        let [phi, zero_c] = dense.vectors.rows::<NC, 2>();
+        let b = dense.vectors.take::<N>();
         let mut iterations = 0;
         let mut dropped = [false; NC];
         loop {
-            m.newton_matrix(q, &zero_v, &zero_v, t, &[T::ZERO; NC], None, T::ZERO, T::ZERO, &mut phi, s, dense.reborrow());
-            if let Some(i) = first_non_finite(&phi) {
+            m.newton_matrix(q, zero_v, zero_v, t, zero_c, None, T::ZERO, T::ZERO, phi, s, dense.reborrow());
+            if let Some(i) = first_non_finite(phi) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::CONSTRAINT_NAMES, i) }));
             }
-            let (norm, worst) = max_abs(&phi);
+            let (norm, worst) = max_abs(phi);
             if norm <= tol {
                 return Ok(iterations);
             }
@@ -402,17 +423,17 @@ impl<T: Real> StaticSolver<T> {
             dropped = [false; NC];
             M::newton_factor(s, self.drop_ratio(), true, &mut dropped)
                 .map_err(|e| RestoreFailure::Static(factor_error::<M>(time, NV, e)))?;
-            let mut b = [T::ZERO; N];
-            for (x, &p) in b[NV..].iter_mut().zip(&phi) {
+            b.fill(T::ZERO);
+            for (x, &p) in b[NV..].iter_mut().zip(phi.iter()) {
                 *x = -p;
             }
-            M::newton_solve(s, &mut b);
-            let step: [T; NV] = core::array::from_fn(|i| b[i]);
-            if let Some(i) = first_non_finite(&step) {
+            M::newton_solve(s, b);
+            step.copy_from_slice(&b[..NV]);
+            if let Some(i) = first_non_finite(step) {
                 return Err(RestoreFailure::Static(StaticError::NonFinite { t: time, row: name(M::VELOCITY_NAMES, i) }));
             }
-            m.integrate_positions(q, &step, T::ONE);
-            for (c, s) in correction.iter_mut().zip(step) {
+            m.integrate_positions(q, step, T::ONE);
+            for (c, &s) in correction.iter_mut().zip(step.iter()) {
                 *c += s;
             }
             iterations += 1;
