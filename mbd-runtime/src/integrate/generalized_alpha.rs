@@ -260,9 +260,10 @@ where
         to: &mut Point<T, NQ, NV, NC>,
     ) -> Result<(), SimulationError> {
         let ([s, _, _], mut dense) = super::implicit::newton_space::<T, M, NQ, NV, NC, N, NS>(ws)?;
-        // The pseudo-accelerations at the start and the end, and the error estimate's vectors.
-        let [a_n, a1, e] = dense.vectors.rows::<NV, 3>();
-        let shifted = dense.vectors.take::<NQ>();
+        // The pseudo-accelerations at the start and the end, and the error estimate's vectors
+        // (each written whole before it is read).
+        let [a_n, a1, e] = dense.vectors.rows_written::<NV, 3>();
+        let [shifted] = dense.vectors.rows_written::<NQ, 1>();
         let mut o = self.options;
         // Φ and the position correction to what the scalar type resolves at q (f32: 64 ε ≈ 7.6e-6
         // at 1 m), so the default 1e-10 converges in single precision.

@@ -93,11 +93,14 @@ where
     // residual (the work space's vectors). `s`: D's non-zeros, then the Newton matrix and its
     // LU factors over the pattern planned at compile time (`NewtonMatrix`, `crate::sparse`):
     // O(non-zeros), no dense matrix, in the work space.
+    // Each is written whole before it is read (the state by `map`, Φ, h and M v̇ by the
+    // mechanism, the rest copied), but the last correction, which an error may name at once.
     let vectors = &mut scratch.vectors;
-    let [vd, v, force, inertia, base_vd, work] = vectors.rows::<NV, 6>();
-    let [lambda, phi, base_lambda] = vectors.rows::<NC, 3>();
-    let [rhs, step] = vectors.rows::<N, 2>();
-    let q = vectors.take::<NQ>();
+    let [vd, v, force, inertia, base_vd, work] = vectors.rows_written::<NV, 6>();
+    let [lambda, phi, base_lambda] = vectors.rows_written::<NC, 3>();
+    let [rhs] = vectors.rows_written::<N, 1>();
+    let [q] = vectors.rows_written::<NQ, 1>();
+    let step = vectors.take::<N>();
     *vd = *vd0;
     *lambda = from.lambda;
     let mut iteration = 0;

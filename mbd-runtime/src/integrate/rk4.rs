@@ -69,12 +69,12 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         let two = T::from_f64(2.0);
         let t_half = from.t + half;
         // The start's multipliers (the first guess of Coulomb friction loads, if any), the stage
-        // state and the stages' rates.
+        // state and the stages' rates, each written whole before it is read.
         let mut dense = ws.dense();
-        let lambda = dense.vectors.take::<NC>();
+        let [lambda] = dense.vectors.rows_written::<NC, 1>();
         *lambda = from.lambda;
-        let [q, qd1, qd2, qd3, qd4] = dense.vectors.rows::<NQ, 5>();
-        let [v2, v3, v4, vd2, vd3, vd4] = dense.vectors.rows::<NV, 6>();
+        let [q, qd1, qd2, qd3, qd4] = dense.vectors.rows_written::<NQ, 5>();
+        let [v2, v3, v4, vd2, vd3, vd4] = dense.vectors.rows_written::<NV, 6>();
         // k1 = (B(q0) v0, v̇0)
         mech.position_rates(&from.q, &from.v, qd1);
         for i in 0..NQ {
