@@ -321,13 +321,10 @@ impl<'a, T: Real, M, I, const NQ: usize, const NV: usize> Simulation<'a, T, M, I
             return Err(SimulationError::Incomplete { missing: "output times: .times(&times)" });
         }
         self.mechanism.check_inertia().map_err(SimulationError::Dynamics)?;
-        let start = (t0, q0, v0);
         let (arrays, rows) = ws.arrays_and_points();
-        match (arrays, points::<T, NQ, NV, NC>(rows)) {
-            (arrays, Some(points)) => {
-                integrate(self.mechanism, arrays, points, self.integrator, start, self.times, &self.options, self.events, output)
-            }
-            (arrays, None) => on_stack(self.mechanism, arrays, self.integrator, start, self.times, &self.options, self.events, output),
+        match points::<T, NQ, NV, NC>(rows) {
+            Some(points) => integrate(self, (t0, q0, v0), arrays, points, output),
+            None => on_stack(self, (t0, q0, v0), arrays, output),
         }
     }
 }
@@ -357,15 +354,10 @@ fn points<T: Real, const NQ: usize, const NV: usize, const NC: usize>(rows: &mut
 /// space's rows to hold them ([`POINT_ROWS`](crate::model::workspace::POINT_ROWS), at most a few
 /// dozen scalars each), in a frame of its own so that a larger one never reserves them.
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
 fn on_stack<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    mechanism: &M,
-    ws: &mut WorkArrays<T, NV, NC, N, NS>,
-    integrator: &mut I,
+    run: Simulation<'_, T, M, I, NQ, NV>,
     start: (T, &[T; NQ], &[T; NV]),
-    times: &[T],
-    options: &SimulationOptions<T>,
-    events: &mut [Event<'_, T, NQ, NV>],
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
     output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
 ) -> Result<Statistics, SimulationError>
 where
@@ -375,22 +367,18 @@ where
     R: Flow,
 {
     let [mut a, mut b, mut c] = [Point::zero(); 3];
-    integrate(mechanism, ws, [&mut a, &mut b, &mut c], integrator, start, times, options, events, output)
+    integrate(run, start, ws, [&mut a, &mut b, &mut c], output)
 }
 
-/// [`Simulation::run`]'s loop.
-#[allow(clippy::too_many_arguments)]
+/// [`Simulation::run`]'s loop, from `start` (t0, q0, v0) with the work space's arrays and three
+/// points.
 // `!(t >= before)` on purpose: it is also true when either side is NaN.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn integrate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    mechanism: &M,
+    run: Simulation<'_, T, M, I, NQ, NV>,
+    (t0, q0, v0): (T, &[T; NQ], &[T; NV]),
     ws: &mut WorkArrays<T, NV, NC, N, NS>,
     [from, to, end]: [&mut Point<T, NQ, NV, NC>; 3],
-    integrator: &mut I,
-    (t0, q0, v0): (T, &[T; NQ], &[T; NV]),
-    times: &[T],
-    options: &SimulationOptions<T>,
-    events: &mut [Event<'_, T, NQ, NV>],
     mut output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
 ) -> Result<Statistics, SimulationError>
 where
@@ -399,6 +387,8 @@ where
     I: Integrator<T, M, NQ, NV, NC, N, NS>,
     R: Flow,
 {
+    let Simulation { mechanism, integrator, times, options, events, .. } = run;
+    let options = &options;
     for (i, &t) in times.iter().enumerate() {
         let before = if i == 0 { t0 } else { times[i - 1] };
         if !(t >= before) {
