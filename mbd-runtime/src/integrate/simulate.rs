@@ -396,7 +396,9 @@ where
         }
     }
     let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
-    (from.t, from.q, from.v, from.work) = (t0, *q0, *v0, [T::ZERO; 2]);
+    (from.t, from.work) = (t0, [T::ZERO; 2]);
+    from.q = *q0;
+    from.v = *v0;
     mechanism.normalize_positions(&mut from.q);
     let mut partition = Partition::<NV, NC>::new();
     correct(mechanism, ws, &mut partition, options, t0, &mut from.q, &mut from.v)?;
