@@ -169,7 +169,7 @@ impl<T: Real> ErrorControl<T> {
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
 /// The iteration matrix is built and factored in the sparse storage whose order and fill
-/// `mechanism!` planned ([`NewtonMatrix`], [`crate::sparse`]), in the [`Workspace`]'s first
+/// `mechanism!` planned ([`NewtonMatrix`], [`crate::sparse`]), in the [`Workspace`](crate::Workspace)'s first
 /// Newton slot (O(its non-zeros), no dense matrix; the work space must be the mechanism's,
 /// `Name::workspace()`); the integrator itself holds O(NV).
 ///

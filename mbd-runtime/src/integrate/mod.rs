@@ -74,7 +74,7 @@ use crate::solvers::kinematics::name;
 /// The state of the mechanism at the end of a step: time, coordinates, velocities and their
 /// derivatives, multipliers, and the accumulated work.
 ///
-/// `repr(C)` and made only of `T` and arrays of `T`: a [`Workspace`] holds a simulation's
+/// `repr(C)` and made only of `T` and arrays of `T`: a [`Workspace`](crate::Workspace) holds a simulation's
 /// points in its rows of scalars.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -341,7 +341,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
     }
 
     /// [`derivatives`](Self::derivatives) with the dense arrays of a mechanism that needs them in
-    /// `scratch` (the work space's, [`Workspace::dense`](crate::Workspace::dense); see
+    /// `scratch` (the work space's, [`Workspace::dense`](crate::WorkArrays::dense); see
     /// [`ForwardDynamics::accelerations_in`]).
     ///
     /// # Errors

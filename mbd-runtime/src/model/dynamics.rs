@@ -392,7 +392,7 @@ pub trait ForwardDynamics<T: Real, const NQ: usize, const NV: usize, const NC: u
 
     /// [`accelerations`](Self::accelerations) with the dense arrays a mechanism whose M depends
     /// on q needs where it has constraint rows (joint coordinates with closed loops,
-    /// [`crate::dense_forward`]) in `scratch` — a work space's ([`Workspace::dense`](crate::Workspace::dense)),
+    /// [`crate::dense_forward`]) in `scratch` — a work space's ([`Workspace::dense`](crate::WorkArrays::dense)),
     /// on the heap — instead of on the stack. The solvers and integrators call this one; the
     /// generated sparse solve of body coordinates needs no scratch (this provided method).
     ///

@@ -601,7 +601,7 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         crate::linalg::sparse::solve(&Self::NEWTON_PATTERN, &s.as_ref()[nnz..], b);
     }
     /// Φ(q, t) into `phi` and D's non-zeros into the front of `s`; the provided method
-    /// evaluates D densely in `scratch.d` (a work space's, [`Workspace::dense`](crate::Workspace::dense)).
+    /// evaluates D densely in `scratch.d` (a work space's, [`Workspace::dense`](crate::WorkArrays::dense)).
     fn newton_jacobian(&self, q: &[T; NQ], t: T, phi: &mut [T; NC], s: &mut Self::NewtonStorage, scratch: DenseScratch<'_, T, NV, NC>) {
         let d = scratch.d;
         self.position_eval(q, t, phi, d);

@@ -230,7 +230,7 @@ impl<'a, T: Real> Vectors<'a, T> {
 /// The dense arrays of forward dynamics where M depends on q and the mechanism has constraint
 /// rows (joint coordinates with closed loops, [`crate::dense_forward`]): D (NC × NV), M⁻¹Dᵀ
 /// (NC × NV), the Schur complement S = D M⁻¹ Dᵀ (NC × NC) and M's Cholesky factor (NV × NV),
-/// borrowed from a [`Workspace`] ([`Workspace::dense`]) so that they live on its heap, not on
+/// borrowed from a [`Workspace`] ([`WorkArrays::dense`]) so that they live on its heap, not on
 /// the stack (a 201-body ladder in joint coordinates needs 0.7 MB of them per call, which a
 /// debug build copied three times past a 2 MB thread). Body coordinates, whose forward dynamics
 /// is the generated sparse solve, do not touch them. With them, the work space's rows for the

@@ -12,7 +12,7 @@
 //! Cost per call: NV³/6 for M's factor and NC·NV² for M⁻¹Dᵀ (with the recursion instead: NC + 1
 //! solves of O(N) each), NC²·NV for S and NC³/6 for its factor, against the generated sparse
 //! solve's cost in the non-zeros. The arrays (NV² + 2 NC·NV + NC² values) are a
-//! [`DenseScratch`]: a work space's ([`Workspace::dense`](crate::Workspace::dense)) in every
+//! [`DenseScratch`]: a work space's ([`Workspace::dense`](crate::WorkArrays::dense)) in every
 //! solver and integrator, on the stack only in a direct call of
 //! [`ForwardDynamics::accelerations`](crate::ForwardDynamics::accelerations) or a projection.
 

@@ -235,7 +235,7 @@ impl<T: Real> InverseDynamics<T> {
 
     /// Solves Dᵀ λ = M v̇ − h for the Lagrange multipliers λ of a driven mechanism (NV = NC), given
     /// its motion (q, v, v̇) at time t, e.g. from a kinematic analysis. On success
-    /// [`Workspace::jacobian`] holds D(q, t), which [`joint_reaction`] takes with λ to give each
+    /// [`WorkArrays::jacobian`](crate::WorkArrays::jacobian) holds D(q, t), which [`joint_reaction`] takes with λ to give each
     /// joint's reaction in N and N·m.
     ///
     /// For NV = NC the solve runs over the LDLᵀ of D Dᵀ that `mechanism!` plans at compile time,
