@@ -224,7 +224,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
         let WorkArrays { jacobian: d, jacobian_scratch: scratch, constraint_square: block, vectors, .. } = ws;
         // Φ, then ν; the kept rows' right-hand side; a step of the positions.
-        let mut vectors = Vectors::new(vectors.as_flattened_mut());
+        let mut vectors = Vectors::new(vectors.flat());
         let [phi, b] = vectors.rows::<NC, 2>();
         let step = vectors.take::<NV>();
         let mut iterations = 0;

@@ -23,8 +23,8 @@
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
 //! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled) |
-//! | the solvers' vectors | 48 × N | the integrators' stages, residuals and Newton corrections; statics' iterate |
-//! | a simulation's points | 12 × N | the step's start, its end, and the end the integrator left (three `Point`s) |
+//! | the solvers' vectors | 48 × (NV + NC) | the integrators' stages, residuals and Newton corrections; statics' iterate |
+//! | a simulation's points | 12 × (NV + NC) | the step's start, its end, and the end the integrator left (three `Point`s) |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
@@ -60,7 +60,7 @@ pub type Boxed<T, const NV: usize, const NC: usize, const N: usize, const NS: us
 #[derive(Clone, Debug)]
 pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
     pub(crate) arrays: WorkArrays<T, NV, NC, N, NS>,
-    pub(crate) points: [[T; N]; POINT_ROWS],
+    pub(crate) points: Rows<T, NV, NC, POINT_ROWS>,
 }
 
 /// The solvers' arrays of a [`Workspace`] (see [the module](self)): what an
@@ -74,10 +74,38 @@ pub struct WorkArrays<T, const NV: usize, const NC: usize, const N: usize, const
     pub(crate) velocity_square: [[T; NV]; NV],
     pub(crate) coupling: [[T; NC]; NC],
     pub(crate) newton: [[T; NS]; 3],
-    pub(crate) vectors: [[T; N]; VECTOR_ROWS],
+    pub(crate) vectors: Rows<T, NV, NC, VECTOR_ROWS>,
 }
 
-/// Rows of N scalars for a [`Simulation`](crate::Simulation)'s three points: a point is
+/// K rows of NV scalars and K of NC: K (NV + NC) consecutive scalars, whatever the work space's
+/// N (a work space with N = 0, which the explicit integrators accept, has them too).
+///
+/// `repr(C)` and made only of arrays of `T`, as the [`Workspace`] holding it.
+#[repr(C)]
+#[derive(Clone, Debug)]
+pub(crate) struct Rows<T, const NV: usize, const NC: usize, const K: usize> {
+    v: [[T; NV]; K],
+    c: [[T; NC]; K],
+}
+
+impl<T: Real, const NV: usize, const NC: usize, const K: usize> Rows<T, NV, NC, K> {
+    const fn new() -> Self {
+        Self { v: [[T::ZERO; NV]; K], c: [[T::ZERO; NC]; K] }
+    }
+}
+
+impl<T, const NV: usize, const NC: usize, const K: usize> Rows<T, NV, NC, K> {
+    /// The rows as one slice of K (NV + NC) scalars.
+    pub(crate) fn flat(&mut self) -> &mut [T] {
+        let scalars = if core::mem::size_of::<T>() == 0 { 0 } else { core::mem::size_of::<Self>() / core::mem::size_of::<T>() };
+        // SAFETY: `Self` is `repr(C)` with two fields, each an array of arrays of `T`, all with
+        // T's alignment and sizes that are multiples of it: no padding, so it is `scalars`
+        // consecutive initialized `T`s, borrowed mutably for the result's lifetime.
+        unsafe { core::slice::from_raw_parts_mut((self as *mut Self).cast::<T>(), scalars) }
+    }
+}
+
+/// Rows of NV + NC scalars for a [`Simulation`](crate::Simulation)'s three points: a point is
 /// 5 + NQ + 2 NV + NC scalars, so they fit where 15 + 3 NQ ≤ 6 NV + 9 NC (every mechanism with
 /// NQ ≤ 4/3 NV and 2 NV + 9 NC ≥ 15); smaller ones keep their points on the stack.
 pub(crate) const POINT_ROWS: usize = 12;
@@ -94,9 +122,9 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
                 velocity_square: [[T::ZERO; NV]; NV],
                 coupling: [[T::ZERO; NC]; NC],
                 newton: [[T::ZERO; NS]; 3],
-                vectors: [[T::ZERO; N]; VECTOR_ROWS],
+                vectors: Rows::new(),
             },
-            points: [[T::ZERO; N]; POINT_ROWS],
+            points: Rows::new(),
         }
     }
 
@@ -127,7 +155,7 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
     /// points ([`POINT_ROWS`]).
     pub(crate) fn arrays_and_points(&mut self) -> (&mut WorkArrays<T, NV, NC, N, NS>, &mut [T]) {
         let Self { arrays, points } = self;
-        (arrays, points.as_flattened_mut())
+        (arrays, points.flat())
     }
 }
 
@@ -288,14 +316,14 @@ impl<T, const NV: usize, const NC: usize, const N: usize, const NS: usize> WorkA
             y: &mut self.jacobian,
             s: &mut self.constraint_square,
             l: &mut self.velocity_square,
-            vectors: Vectors::new(self.vectors.as_flattened_mut()),
+            vectors: Vectors::new(self.vectors.flat()),
         }
     }
 
     /// The Newton slots and the dense arrays, borrowed apart (an implicit step needs both).
     pub(crate) fn newton_and_dense(&mut self) -> (&mut [[T; NS]; 3], DenseScratch<'_, T, NV, NC>) {
         let Self { jacobian, jacobian_scratch, constraint_square, velocity_square, newton, vectors, .. } = self;
-        let vectors = Vectors::new(vectors.as_flattened_mut());
+        let vectors = Vectors::new(vectors.flat());
         (newton, DenseScratch { d: jacobian_scratch, y: jacobian, s: constraint_square, l: velocity_square, vectors })
     }
 }
