@@ -224,3 +224,16 @@ fn explicit_integrators_run_in_a_work_space_without_n() {
         assert_eq!(runs[0], runs[1], "{correction:?}");
     }
 }
+
+/// `project` without a work space, out of steps (none allowed) on a state off the constraints,
+/// names the worst row in a `NotConverged` error: the vector it measures Φ in is `DenseArrays`'
+/// (a panic, before it had one).
+#[test]
+fn project_out_of_steps_names_the_row_without_a_work_space() {
+    let m = UnitPendulum;
+    let mut q = m.initial_positions();
+    q[0] += 0.1;
+    let mut v = [0.0; 3];
+    let err = crate::integrate::project(&m, 0.0, &mut q, &mut v, &crate::DynamicsOptions::default(), 1e-10, 0).unwrap_err();
+    assert!(matches!(err, SimulationError::NotConverged { iterations: 0, .. }), "{err:?}");
+}

@@ -203,11 +203,6 @@ impl<'a, T> Vectors<'a, T> {
     pub(crate) fn new(storage: &'a mut [T]) -> Self {
         Self { free: storage }
     }
-
-    /// No vectors: for the calls without a work space ([`DenseArrays`]), which take none.
-    pub(crate) fn none() -> Self {
-        Self { free: &mut [] }
-    }
 }
 
 impl<'a, T: Real> Vectors<'a, T> {
@@ -280,24 +275,26 @@ impl<T, const NV: usize, const NC: usize> DenseScratch<'_, T, NV, NC> {
 
 /// Owned [`DenseScratch`] arrays, for a call without a work space
 /// ([`crate::ForwardDynamics::accelerations`] and the projections): on the stack of that call,
-/// as they were before the work space held them. They hold no rows for the solvers' vectors:
-/// what such a call needs beyond them is on its stack.
+/// as they were before the work space held them, with one row of NV and one of NC for the
+/// solvers' vectors (what [`crate::project`] takes where it runs out of steps: Φ to name the
+/// worst row).
 pub struct DenseArrays<T, const NV: usize, const NC: usize> {
     d: [[T; NV]; NC],
     y: [[T; NV]; NC],
     s: [[T; NC]; NC],
     l: [[T; NV]; NV],
+    vectors: Rows<T, NV, NC, 1>,
 }
 
 impl<T: Real, const NV: usize, const NC: usize> DenseArrays<T, NV, NC> {
     /// Zeroed arrays.
     pub fn new() -> Self {
-        Self { d: [[T::ZERO; NV]; NC], y: [[T::ZERO; NV]; NC], s: [[T::ZERO; NC]; NC], l: [[T::ZERO; NV]; NV] }
+        Self { d: [[T::ZERO; NV]; NC], y: [[T::ZERO; NV]; NC], s: [[T::ZERO; NC]; NC], l: [[T::ZERO; NV]; NV], vectors: Rows::new() }
     }
 
     /// The arrays as a scratch.
     pub fn scratch(&mut self) -> DenseScratch<'_, T, NV, NC> {
-        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l, vectors: Vectors::none() }
+        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l, vectors: Vectors::new(self.vectors.flat()) }
     }
 }
 
