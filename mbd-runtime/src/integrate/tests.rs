@@ -234,6 +234,7 @@ fn project_out_of_steps_names_the_row_without_a_work_space() {
     let mut q = m.initial_positions();
     q[0] += 0.1;
     let mut v = [0.0; 3];
-    let err = crate::integrate::project(&m, 0.0, &mut q, &mut v, &crate::DynamicsOptions::default(), 1e-10, 0).unwrap_err();
+    let err =
+        crate::integrate::project(&m, 0.0, &mut q, &mut v, &crate::model::dynamics::DynamicsOptions::default(), 1e-10, 0).unwrap_err();
     assert!(matches!(err, SimulationError::NotConverged { iterations: 0, .. }), "{err:?}");
 }
