@@ -141,10 +141,7 @@ where
         // A NaN or infinity in a force: name the force element; in Φ or the state: the row
         // it surfaced in.
         if let Some(i) = rhs.iter().position(|x| !x.is_finite()) {
-            return Err(match crate::model::dynamics::non_finite(mech, q, v, t1, lambda) {
-                force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
-                _ => SimulationError::NonFinite { t: from.t.to_f64(), coordinate: row_name::<M>(i, NV) },
-            });
+            return Err(non_finite_residual(mech, (q, v, t1, lambda), from.t, i));
         }
         // A saturating force (regularized Coulomb friction, v/√(v² + v_s²)) makes full
         // Newton steps overshoot and cycle; where the step made the residual grow, take half
@@ -251,6 +248,24 @@ fn rate_test<T: Real>(size: Option<T>, last_size: &mut Option<T>, rate: &mut Opt
     match (size, rate.filter(|&r| r < T::from_f64(0.9))) {
         (Some(size), Some(r)) => r / (T::ONE - r) * size <= T::from_f64(RATE_TEST),
         _ => false,
+    }
+}
+
+/// A NaN or infinity in row `row` of a Newton residual at the state (q, v, t, λ), in the step
+/// from `t0`: the force element that gave it, or the row (BDF, generalized-α and Radau5's stages).
+pub(super) fn non_finite_residual<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mech: &M,
+    (q, v, t, lambda): (&[T; NQ], &[T; NV], T, &[T; NC]),
+    t0: T,
+    row: usize,
+) -> SimulationError
+where
+    T: Real,
+    M: NewtonMatrix<T, NQ, NV, NC>,
+{
+    match crate::model::dynamics::non_finite(mech, q, v, t, lambda) {
+        force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
+        _ => SimulationError::NonFinite { t: t0.to_f64(), coordinate: row_name::<M>(row, NV) },
     }
 }
 

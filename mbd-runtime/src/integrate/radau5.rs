@@ -657,7 +657,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
                 let t = from.t + f::<T>(C[i]) * h;
                 stage_residual(mech, t, &stages.q[i], &stages.v[i], &stages.acc[i], &stages.lam[i], real, scratch.reborrow(), &mut r[i]);
                 if let Some(k) = r[i].iter().position(|x| !x.is_finite()) {
-                    return Err(non_finite(mech, &stages.q[i], &stages.v[i], t, &stages.lam[i], from.t, k));
+                    return Err(super::implicit::non_finite_residual(mech, (&stages.q[i], &stages.v[i], t, &stages.lam[i]), from.t, k));
                 }
                 // A constraint residual at the rounding of Φ is zero: its correction, divided
                 // by c_q ~ h², would move the stage velocities by rounding / h and, at a tight
@@ -855,24 +855,6 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         self.stage_v = [stages.v[0], stages.v[1]];
         self.accepted += 1;
         Ok(())
-    }
-}
-
-/// A NaN or infinity in stage k's residual: the force element that gave it, or the row.
-#[allow(clippy::too_many_arguments)]
-fn non_finite<T: Real, M: NewtonMatrix<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
-    mech: &M,
-    q: &[T; NQ],
-    v: &[T; NV],
-    t: T,
-    lambda: &[T; NC],
-    t0: T,
-    row: usize,
-) -> SimulationError {
-    use crate::model::dynamics::DynamicsError;
-    match crate::model::dynamics::non_finite(mech, q, v, t, lambda) {
-        force @ DynamicsError::NonFiniteForce { .. } => SimulationError::Dynamics(force),
-        _ => SimulationError::NonFinite { t: t0.to_f64(), coordinate: super::implicit::row_name::<M>(row, NV) },
     }
 }
 

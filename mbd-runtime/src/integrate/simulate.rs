@@ -372,8 +372,6 @@ where
 
 /// [`Simulation::run`]'s loop, from `start` (t0, q0, v0) with the work space's arrays and three
 /// points.
-// `!(t >= before)` on purpose: it is also true when either side is NaN.
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn integrate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     run: Simulation<'_, T, M, I, NQ, NV>,
     (t0, q0, v0): (T, &[T; NQ], &[T; NV]),
@@ -389,12 +387,7 @@ where
 {
     let Simulation { mechanism, integrator, times, options, events, .. } = run;
     let options = &options;
-    for (i, &t) in times.iter().enumerate() {
-        let before = if i == 0 { t0 } else { times[i - 1] };
-        if !(t >= before) {
-            return Err(SimulationError::TimesNotIncreasing { index: i });
-        }
-    }
+    check_times(t0, times)?;
     let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
     (from.t, from.work) = (t0, [T::ZERO; 2]);
     from.q = *q0;
@@ -525,6 +518,19 @@ where
         *from = *to;
     }
     finish!()
+}
+
+/// The output times after t0, none before the one before it (NaN fails).
+// `!(t >= before)` on purpose: it is also true when either side is NaN.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn check_times<T: Real>(t0: T, times: &[T]) -> Result<(), SimulationError> {
+    for (i, &t) in times.iter().enumerate() {
+        let before = if i == 0 { t0 } else { times[i - 1] };
+        if !(t >= before) {
+            return Err(SimulationError::TimesNotIncreasing { index: i });
+        }
+    }
+    Ok(())
 }
 
 /// The value of event `which` at (t, q, v).

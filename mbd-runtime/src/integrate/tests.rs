@@ -182,46 +182,31 @@ fn a_simulation_without_start_or_times_says_what_it_lacks() {
 /// as with the mechanism's own work space, bitwise.
 #[test]
 fn explicit_integrators_run_in_a_work_space_without_n() {
-    let m = UnitPendulum;
-    let q0 = m.initial_positions();
+    /// DOPRI5's and RK4's samples, one after the other, in the work space `ws`.
+    fn samples<const N: usize>(mut ws: Workspace<f64, 3, 2, N>, options: SimulationOptions<f64>) -> Vec<[f64; 4]> {
+        let (m, mut out) = (UnitPendulum, Vec::new());
+        let q0 = m.initial_positions();
+        let mut dopri = Dopri5::new(Dopri5Options::default());
+        Simulation::new(&m, &mut dopri)
+            .start(0.0, &q0, &[0.0; 3])
+            .times(&TIMES)
+            .options(options)
+            .run(&mut ws, |s| out.push(s.point.q))
+            .unwrap();
+        let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-2));
+        Simulation::new(&m, &mut rk4)
+            .start(0.0, &q0, &[0.0; 3])
+            .times(&TIMES)
+            .options(options)
+            .run(&mut ws, |s| out.push(s.point.q))
+            .unwrap();
+        out
+    }
     for correction in [Correction::projection(), Correction::partitioning()] {
         let options = SimulationOptions::default().with_correction(correction);
-        let mut runs = [Vec::new(), Vec::new()];
-        for (k, out) in runs.iter_mut().enumerate() {
-            let mut dopri = Dopri5::new(Dopri5Options::default());
-            let mut rk4 = Rk4::new(Rk4Options::default().with_step(1e-2));
-            if k == 0 {
-                let mut ws = Workspace::<f64, 3, 2, 0>::new();
-                Simulation::new(&m, &mut dopri)
-                    .start(0.0, &q0, &[0.0; 3])
-                    .times(&TIMES)
-                    .options(options)
-                    .run(&mut ws, |s| out.push(s.point.q))
-                    .unwrap();
-                Simulation::new(&m, &mut rk4)
-                    .start(0.0, &q0, &[0.0; 3])
-                    .times(&TIMES)
-                    .options(options)
-                    .run(&mut ws, |s| out.push(s.point.q))
-                    .unwrap();
-            } else {
-                let mut ws = Workspace::<f64, 3, 2, 5>::new();
-                Simulation::new(&m, &mut dopri)
-                    .start(0.0, &q0, &[0.0; 3])
-                    .times(&TIMES)
-                    .options(options)
-                    .run(&mut ws, |s| out.push(s.point.q))
-                    .unwrap();
-                Simulation::new(&m, &mut rk4)
-                    .start(0.0, &q0, &[0.0; 3])
-                    .times(&TIMES)
-                    .options(options)
-                    .run(&mut ws, |s| out.push(s.point.q))
-                    .unwrap();
-            }
-        }
-        assert_eq!(runs[0].len(), 2 * TIMES.len());
-        assert_eq!(runs[0], runs[1], "{correction:?}");
+        let without_n = samples(Workspace::<f64, 3, 2, 0>::new(), options);
+        assert_eq!(without_n.len(), 2 * TIMES.len());
+        assert_eq!(without_n, samples(Workspace::<f64, 3, 2, 5>::new(), options), "{correction:?}");
     }
 }
 
