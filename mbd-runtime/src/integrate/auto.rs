@@ -169,7 +169,7 @@ where
                     // BDF's first step solves Φ = 0 and projects v: from DOPRI5's end, whose drift
                     // its error test would count, it starts on the constraints.
                     let start = &mut self.start;
-                    *start = *from;
+                    start.copy_from(from);
                     super::simulate::project_in(
                         system.mechanism,
                         ws.dense(),

@@ -341,7 +341,7 @@ where
             return Err(SimulationError::InvalidOptions { what: "BdfOptions::max_order must be 1 to 5" });
         }
         if !(t_max > from.t) {
-            *to = *from;
+            to.copy_from(from);
             return Ok(());
         }
         let mech = system.mechanism;

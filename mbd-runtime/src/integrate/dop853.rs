@@ -318,7 +318,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         self.dense_ready = false;
         let span = t_max - from.t;
         if !(span > T::ZERO) {
-            *to = *from;
+            to.copy_from(from);
             return Ok(());
         }
         let mech = system.mechanism;

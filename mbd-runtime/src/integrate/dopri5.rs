@@ -203,7 +203,7 @@ impl<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usiz
         o.check()?;
         let span = t_max - from.t;
         if !(span > T::ZERO) {
-            *to = *from;
+            to.copy_from(from);
             return Ok(());
         }
         let mech = system.mechanism;

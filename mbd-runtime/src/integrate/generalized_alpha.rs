@@ -300,7 +300,7 @@ where
         loop {
             let (h_try, t1) = fixed_step(from.t, h, t_max);
             if !(h_try > T::ZERO) {
-                *to = *from;
+                to.copy_from(from);
                 return Ok(());
             }
             self.pseudo_acceleration(&from.vd, h_try, a_n);

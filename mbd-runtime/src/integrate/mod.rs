@@ -96,6 +96,21 @@ pub struct Point<T, const NQ: usize, const NV: usize, const NC: usize> {
     pub power: [T; 2],
 }
 
+impl<T: Copy, const NQ: usize, const NV: usize, const NC: usize> Point<T, NQ, NV, NC> {
+    /// Makes this point a copy of `other`, field by field: `*self = *other` builds the copy on
+    /// the stack first in a debug build, a frame of O(NQ + NV + NC) scalars for each place it
+    /// is written.
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        self.t = other.t;
+        self.q.copy_from_slice(&other.q);
+        self.v.copy_from_slice(&other.v);
+        self.vd.copy_from_slice(&other.vd);
+        self.lambda.copy_from_slice(&other.lambda);
+        self.work = other.work;
+        self.power = other.power;
+    }
+}
+
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Point<T, NQ, NV, NC> {
     /// A point at rest at t = 0 with all zeros (overwritten before use).
     pub fn zero() -> Self {
@@ -349,7 +364,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
     #[inline]
     pub fn derivatives_in<const NQ: usize, const NV: usize, const NC: usize>(
         &self,
-        scratch: DenseScratch<'_, T, NV, NC>,
+        mut scratch: DenseScratch<'_, T, NV, NC>,
         t: T,
         q: &[T; NQ],
         v: &[T; NV],
@@ -359,7 +374,7 @@ impl<'m, M, T: Real> System<'m, M, T> {
     where
         M: ForwardDynamics<T, NQ, NV, NC>,
     {
-        self.mechanism.accelerations_in(scratch, q, v, t, &self.dynamics, vd, lambda)?;
+        self.mechanism.accelerations_in(scratch.reborrow(), q, v, t, &self.dynamics, vd, lambda)?;
         // No NaN leaves a solve silently: a non-finite v̇ or λ is traced to its source (the cold
         // path names the force element). One independent comparison per velocity: v̇ =
         // M⁻¹(h + Dᵀλ) multiplies every λ_r into the velocities of its row, so a non-finite λ
@@ -371,20 +386,18 @@ impl<'m, M, T: Real> System<'m, M, T> {
             return Ok([T::ZERO; 2]);
         }
         let mut nonconservative = self.mechanism.nonconservative_power(q, v, t);
+        let [friction, h, inertia] = scratch.vectors.rows::<NV, 3>();
         // Coulomb friction (absent from the generated power, which is λ-free).
-        let mut friction = [T::ZERO; NV];
-        self.mechanism.friction_forces(q, v, t, lambda, &mut friction);
+        self.mechanism.friction_forces(q, v, t, lambda, friction);
         for i in 0..NV {
             nonconservative += v[i] * friction[i];
         }
         // λᵀ D v = vᵀ (M v̇ − h − h_friction)
-        let mut h = [T::ZERO; NV];
-        self.mechanism.forces(q, v, t, &mut h);
+        self.mechanism.forces(q, v, t, h);
         for i in 0..NV {
             h[i] += friction[i];
         }
-        let mut inertia = [T::ZERO; NV];
-        self.mechanism.mass_times(q, vd, &mut inertia);
+        self.mechanism.mass_times(q, vd, inertia);
         let mut constraint = T::ZERO;
         for i in 0..NV {
             constraint += v[i] * (inertia[i] - h[i]);

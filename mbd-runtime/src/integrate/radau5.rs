@@ -416,7 +416,7 @@ where
             ],
         )?;
         if !(t_max > from.t) {
-            *to = *from;
+            to.copy_from(from);
             return Ok(());
         }
         let mech = system.mechanism;

@@ -16,7 +16,7 @@ use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System}
 use crate::integrate::branch::{BranchWatch, SingularPassage};
 use crate::integrate::partition::Partition;
 use crate::integrate::stiffness::StiffnessDetected;
-use crate::model::dynamics::kinetic_energy;
+use crate::model::dynamics::kinetic_energy_in;
 use crate::model::dynamics::{DynamicsOptions, ForwardDynamics};
 use crate::model::workspace::{DenseArrays, DenseScratch, WorkArrays, Workspace};
 use crate::real::Real;
@@ -390,13 +390,13 @@ where
     check_times(t0, times)?;
     let system = System { mechanism, dynamics: options.dynamics, track_work: options.track_work };
     (from.t, from.work) = (t0, [T::ZERO; 2]);
-    from.q = *q0;
-    from.v = *v0;
+    from.q.copy_from_slice(q0);
+    from.v.copy_from_slice(v0);
     mechanism.normalize_positions(&mut from.q);
     let mut partition = Partition::<NV, NC>::new();
     correct(mechanism, ws, &mut partition, options, t0, &mut from.q, &mut from.v)?;
     system.complete_in(ws.dense(), from)?;
-    *to = *from;
+    to.copy_from(from);
     integrator.restart();
     let mut stats = Statistics::default();
     let watching = NC > 0 && options.watch_singular && !integrator.holds_constraints() && matches!(options.correction, Correction::None);
@@ -414,16 +414,17 @@ where
     }
     // The one sample handed to the callback, rewritten for each output (a sample is a point:
     // O(NQ + NV + NC) scalars, made once rather than once per place that delivers one).
-    let mut out = Sample { point: *from, energy: energy(mechanism, from), event: None };
+    let mut out = Sample { point: Point::zero(), energy: energy(mechanism, ws, from), event: None };
+    out.point.copy_from(from);
     // Hands the point `$p` (at `$event`, if any) to the callback as a sample; ends the run if
     // it says so.
     macro_rules! deliver {
         ($p:expr, $event:expr) => {
-            out.point = *$p;
+            out.point.copy_from($p);
             deliver!($event);
         };
         ($event:expr) => {
-            out.energy = energy(mechanism, &out.point);
+            out.energy = energy(mechanism, ws, &out.point);
             out.event = $event;
             stats.samples += 1;
             if output(&out).stops() {
@@ -476,7 +477,7 @@ where
         }
         stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
-        *end = *to;
+        end.copy_from(to);
         if !matches!(options.correction, Correction::None) {
             correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
             integrator.after_correction(&system, ws, to)?;
@@ -515,7 +516,7 @@ where
                 finish!();
             }
         }
-        *from = *to;
+        from.copy_from(to);
     }
     finish!()
 }
@@ -661,12 +662,21 @@ fn interpolate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
 }
 
 /// The energies at a point.
-fn energy<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, const NC: usize>(
+fn energy<
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    const NQ: usize,
+    const NV: usize,
+    const NC: usize,
+    const N: usize,
+    const NS: usize,
+>(
     mechanism: &M,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
     p: &Point<T, NQ, NV, NC>,
 ) -> Energy<T> {
     Energy {
-        kinetic: kinetic_energy(mechanism, &p.q, &p.v),
+        kinetic: kinetic_energy_in(mechanism, &p.q, &p.v, ws.dense().vectors.take()),
         potential: mechanism.potential_energy(&p.q, p.t),
         nonconservative_work: p.work[0],
         constraint_work: p.work[1],

@@ -453,8 +453,21 @@ where
     T: Real,
     M: Dynamics<T, NQ, NV, NC>,
 {
-    let mut momentum = [T::ZERO; NV];
-    mechanism.mass_times(q, v, &mut momentum);
+    kinetic_energy_in(mechanism, q, v, &mut [T::ZERO; NV])
+}
+
+/// [`kinetic_energy`] with the momentum M v written into `momentum`.
+pub(crate) fn kinetic_energy_in<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    q: &[T; NQ],
+    v: &[T; NV],
+    momentum: &mut [T; NV],
+) -> T
+where
+    T: Real,
+    M: Dynamics<T, NQ, NV, NC>,
+{
+    mechanism.mass_times(q, v, momentum);
     let twice = momentum.iter().zip(v.iter()).fold(T::ZERO, |sum, (&p, &vi)| sum + p * vi);
     twice * T::from_f64(0.5)
 }
