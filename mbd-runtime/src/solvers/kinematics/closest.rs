@@ -12,7 +12,7 @@
 
 use crate::linalg;
 use crate::model::mechanism::Kinematics;
-use crate::model::workspace::{WorkArrays, Workspace};
+use crate::model::workspace::{Vectors, WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::ConstraintRows;
 
@@ -62,16 +62,17 @@ where
     T: Real,
     M: Kinematics<T, NQ, NV, NC>,
 {
-    let WorkArrays { jacobian: d, constraint_square: a, .. } = &mut **ws;
-    let (mut phi, mut trial_phi) = ([T::ZERO; NC], [T::ZERO; NC]);
-    let mut step = [T::ZERO; NV];
-    m.position_eval(q, t, &mut phi, d);
-    let mut cost = squared(&phi);
+    let WorkArrays { jacobian: d, jacobian_scratch, constraint_square: a, velocity_square, vectors, .. } = &mut **ws;
+    let mut vectors = Vectors::new(vectors.flat());
+    let [phi, trial_phi, x] = vectors.rows::<NC, 3>();
+    let (step, trial) = (vectors.take::<NV>(), vectors.take::<NQ>());
+    m.position_eval(q, t, phi, d);
+    let mut cost = squared(phi);
     // μ starts at a thousandth of D Dᵀ's largest diagonal entry, and is never below ε of it.
     let scale = d.iter().map(|row| squared(row)).fold(T::ZERO, T::max).max(T::from_f64(f64::MIN_POSITIVE));
     let (mut mu, floor, ceiling) = (T::from_f64(1e-3) * scale, T::EPSILON * scale, T::from_f64(1e12) * scale);
     let mut steps: u32 = 0;
-    while steps < MAX_STEPS && max_abs(&phi) > tolerance && mu < ceiling && cost.is_finite() {
+    while steps < MAX_STEPS && max_abs(phi) > tolerance && mu < ceiling && cost.is_finite() {
         steps += 1;
         for (i, row_i) in d.iter().enumerate() {
             for (j, row_j) in d.iter().enumerate() {
@@ -84,20 +85,20 @@ where
             mu *= T::from_f64(4.0);
             continue;
         };
-        let mut x = phi;
-        linalg::lu_solve_in_place(a, &permutation, &mut x);
+        x.copy_from_slice(phi);
+        linalg::lu_solve_in_place(a, &permutation, x);
         for (k, s) in step.iter_mut().enumerate() {
-            *s = T::ZERO - d.iter().zip(&x).fold(T::ZERO, |sum, (row, &xi)| sum + row[k] * xi);
+            *s = T::ZERO - d.iter().zip(x.iter()).fold(T::ZERO, |sum, (row, &xi)| sum + row[k] * xi);
         }
-        let mut trial = *q;
-        m.integrate_positions(&mut trial, &step, T::ONE);
-        m.constraints(&trial, t, &mut trial_phi);
-        let trial_cost = squared(&trial_phi);
+        trial.copy_from_slice(q);
+        m.integrate_positions(trial, step, T::ONE);
+        m.constraints(trial, t, trial_phi);
+        let trial_cost = squared(trial_phi);
         if trial_cost.is_finite() && trial_cost < cost {
             let lowered = cost - trial_cost;
-            *q = trial;
-            m.position_eval(q, t, &mut phi, d);
-            cost = squared(&phi);
+            q.copy_from_slice(trial);
+            m.position_eval(q, t, phi, d);
+            cost = squared(phi);
             mu = (mu / T::from_f64(3.0)).max(floor);
             if lowered <= T::from_f64(STALL) * (cost + lowered) {
                 break;
@@ -106,19 +107,33 @@ where
             mu *= T::from_f64(4.0);
         }
     }
-    if max_abs(&phi) > tolerance && cost.is_finite() && NV <= MAX_NEWTON_VELOCITIES {
-        steps += minimize(m, q, t, tolerance, ws);
-        m.constraints(q, t, &mut phi);
+    if max_abs(phi) > tolerance && cost.is_finite() && NV <= MAX_NEWTON_VELOCITIES {
+        steps += minimize(m, q, t, tolerance, [d, jacobian_scratch], velocity_square, vectors.reborrow());
+        m.constraints(q, t, phi);
     }
-    let residual = max_abs(&phi);
+    let residual = max_abs(phi);
     if residual <= tolerance {
         return Closest { residual: residual.to_f64(), steps, rows: None };
     }
-    let mut violated: [(T, usize); NC] = core::array::from_fn(|i| (phi[i].abs(), i));
-    violated.sort_unstable_by(|x, y| y.0.partial_cmp(&x.0).unwrap_or(core::cmp::Ordering::Equal));
-    let threshold = T::from_f64(VIOLATED) * residual;
-    let rows = ConstraintRows::new(M::CONSTRAINT_NAMES, violated.iter().take_while(|(size, _)| *size >= threshold).map(|&(_, i)| i));
-    Closest { residual: residual.to_f64(), steps, rows: Some(rows) }
+    let rows = violated_rows(phi, T::from_f64(VIOLATED) * residual);
+    Closest { residual: residual.to_f64(), steps, rows: Some(ConstraintRows::new(M::CONSTRAINT_NAMES, rows)) }
+}
+
+/// The rows with |Φ| ≥ `threshold`: the largest ones first (as many as [`ConstraintRows`] names,
+/// by selection rather than a sorted copy of Φ, which would grow the stack with NC), then the
+/// others.
+fn violated_rows<T: Real, const NC: usize>(phi: &[T; NC], threshold: T) -> impl Iterator<Item = usize> + '_ {
+    let violated = move |i: usize| phi[i].abs() >= threshold;
+    let mut largest = [usize::MAX; ConstraintRows::CAPACITY];
+    for k in 0..largest.len() {
+        let next = (0..NC).filter(|&i| violated(i) && !largest[..k].contains(&i)).fold(None, |best: Option<usize>, i| match best {
+            Some(b) if phi[b].abs() >= phi[i].abs() => Some(b),
+            _ => Some(i),
+        });
+        largest[k] = next.unwrap_or(usize::MAX);
+    }
+    let named = largest.into_iter().take_while(|&i| i != usize::MAX);
+    named.chain((0..NC).filter(move |&i| violated(i) && !largest.contains(&i)))
 }
 
 /// Newton's method on f = ½‖Φ‖² in velocity space from `q` (moved to where it ends): gradient
@@ -127,36 +142,38 @@ where
 /// refusal. Ends at ‖Φ‖∞ ≤ `tolerance`, where a step lowers f by less than [`STALL`] of it, or
 /// after [`MAX_NEWTON_STEPS`]. Returns the steps tried. Uses `ws.jacobian`,
 /// `ws.jacobian_scratch` and `ws.velocity_square` (H).
-fn minimize<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+fn minimize<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
     q: &mut [T; NQ],
     t: T,
     tolerance: T,
-    ws: &mut Workspace<T, NV, NC, N, NS>,
+    [d, moved_d]: [&mut [[T; NV]; NC]; 2],
+    hessian: &mut [[T; NV]; NV],
+    mut vectors: Vectors<'_, T>,
 ) -> u32
 where
     T: Real,
     M: Kinematics<T, NQ, NV, NC>,
 {
-    let WorkArrays { jacobian: d, jacobian_scratch: moved_d, velocity_square: hessian, .. } = &mut **ws;
-    let (mut phi, mut moved_phi) = ([T::ZERO; NC], [T::ZERO; NC]);
-    let (mut g, mut moved_g, mut step) = ([T::ZERO; NV], [T::ZERO; NV], [T::ZERO; NV]);
-    m.position_eval(q, t, &mut phi, d);
-    gradient(d, &phi, &mut g);
-    let mut cost = squared(&phi);
+    let [phi, moved_phi] = vectors.rows::<NC, 2>();
+    let [g, moved_g, step, unit] = vectors.rows::<NV, 4>();
+    let [moved, trial] = vectors.rows::<NQ, 2>();
+    m.position_eval(q, t, phi, d);
+    gradient(d, phi, g);
+    let mut cost = squared(phi);
     let mut mu = T::ZERO;
     let mut steps = 0;
-    while steps < MAX_NEWTON_STEPS && max_abs(&phi) > tolerance {
+    while steps < MAX_NEWTON_STEPS && max_abs(phi) > tolerance {
         steps += 1;
         let h = T::EPSILON.sqrt() * max_abs(q).max(T::ONE);
         for k in 0..NV {
-            let mut moved = *q;
-            let mut unit = [T::ZERO; NV];
+            moved.copy_from_slice(q);
+            unit.fill(T::ZERO);
             unit[k] = T::ONE;
-            m.integrate_positions(&mut moved, &unit, h);
-            m.position_eval(&moved, t, &mut moved_phi, moved_d);
-            gradient(moved_d, &moved_phi, &mut moved_g);
-            for (row, (&after, &before)) in hessian.iter_mut().zip(moved_g.iter().zip(&g)) {
+            m.integrate_positions(moved, unit, h);
+            m.position_eval(moved, t, moved_phi, moved_d);
+            gradient(moved_d, moved_phi, moved_g);
+            for (row, (&after, &before)) in hessian.iter_mut().zip(moved_g.iter().zip(g.iter())) {
                 row[k] = (after - before) / h;
             }
         }
@@ -165,24 +182,25 @@ where
         for (i, row) in hessian.iter_mut().enumerate() {
             row[i] += mu;
         }
-        let negative_g: [T; NV] = core::array::from_fn(|k| T::ZERO - g[k]);
         let solved = linalg::lu_factor(hessian, T::ZERO).is_ok_and(|permutation| {
-            step = negative_g;
-            linalg::lu_solve_in_place(hessian, &permutation, &mut step);
+            for (s, &gk) in step.iter_mut().zip(g.iter()) {
+                *s = T::ZERO - gk;
+            }
+            linalg::lu_solve_in_place(hessian, &permutation, step);
             step.iter().all(|x| x.is_finite())
         });
-        let mut trial = *q;
+        trial.copy_from_slice(q);
         if solved {
-            m.integrate_positions(&mut trial, &step, T::ONE);
-            m.constraints(&trial, t, &mut moved_phi);
+            m.integrate_positions(trial, step, T::ONE);
+            m.constraints(trial, t, moved_phi);
         }
-        let trial_cost = squared(&moved_phi);
+        let trial_cost = squared(moved_phi);
         if solved && trial_cost.is_finite() && trial_cost < cost {
             let lowered = cost - trial_cost;
-            *q = trial;
-            m.position_eval(q, t, &mut phi, d);
-            gradient(d, &phi, &mut g);
-            cost = squared(&phi);
+            q.copy_from_slice(trial);
+            m.position_eval(q, t, phi, d);
+            gradient(d, phi, g);
+            cost = squared(phi);
             mu /= T::from_f64(10.0);
             if lowered <= T::from_f64(STALL) * (cost + lowered) {
                 break;
