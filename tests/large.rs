@@ -333,20 +333,21 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
 }
 
 /// The ladder's statics and the integrators that used the most stack (Radau5, `Auto`, DOPRI5
-/// with partitioning) on a quarter of that, 512 KB, in a debug build (issue 37, item 4):
-/// the integrators' stage, residual and Newton vectors, statics' iterate and a simulation's
-/// points are in the work space. Measured by painting the stack (2026-12-06, debug): Radau5
-/// 1 059 → 387 KB, `Auto` 960 → 389 KB, statics 383 → 38 KB. What is left grows with the
-/// model: the generated forward dynamics' and projections' planned arrays (O(non-zeros of D)),
-/// the sample handed to the callback, and an integrator's own arrays where the integrator is on
-/// the stack (boxed here: DOP853 holds 216 KB of them for this ladder).
+/// with partitioning) on an eighth of that, 256 KB, in a debug build (issue 37, item 4): the
+/// integrators' stage, residual and Newton vectors, statics' iterate, a simulation's points
+/// and, past 2 048 scalars, the generated forward dynamics' arrays are in the work space.
+/// Measured by painting the stack (debug): Radau5 1 059 KB → 387 (2026-12-06) → 152
+/// (2026-12-07), `Auto` 960 → 389 → 135, DOPRI5 with partitioning 136, statics 383 → 38. What
+/// is left grows with the model by a few scalars a velocity: the sample handed to the callback,
+/// partitioning's and the dense LU's row indices, and an integrator's own arrays where the
+/// integrator is on the stack (boxed here: DOP853 holds 216 KB of them for this ladder).
 #[test]
-fn a_201_body_ladder_runs_statics_and_its_largest_integrators_on_half_a_megabyte() {
+fn a_201_body_ladder_runs_statics_and_its_largest_integrators_on_a_quarter_of_a_megabyte() {
     // Made on this thread: `Box::new` of a value builds it on the stack first in a debug build
     // (`Auto` is 141 KB here).
     let (mut radau5, mut auto, mut dopri5) = (Box::new(Radau5::default()), Box::new(Auto::default()), Box::new(Dopri5::default()));
     std::thread::Builder::new()
-        .stack_size(512 << 10)
+        .stack_size(256 << 10)
         .spawn(move || {
             // From the ladder as written, not assembled (7 s of the 2 MB test's 11 in a debug
             // build): each run's correction puts its start on the constraints, and statics
@@ -381,6 +382,71 @@ fn a_201_body_ladder_runs_statics_and_its_largest_integrators_on_half_a_megabyte
         .expect("spawn")
         .join()
         .expect("the runs panicked");
+}
+
+mechanism! {
+    /// A hanging chain of 80 links with Coulomb friction in every pin: its forward dynamics'
+    /// arrays are past the 2 048 scalars a generated method keeps on the stack, and each solve
+    /// iterates friction's fixed point on the normal loads.
+    pub FrictionChain80 {
+        gravity [0.0, -9.81];
+        revolute ground[0.0, 0.0] ~ l[0][-0.05, 0.0] { coulomb: 0.2, radius: 0.01, slip_velocity: 1.0e-3 };
+        for k in 0..80 {
+            body l[k] { mass: 0.1, inertia: 8.333333e-05, at: [(0.05 + 0.1 * k) * sin(0.3), -(0.05 + 0.1 * k) * cos(0.3), 0.3 - PI / 2.0] }
+        }
+        for k in 1..80 {
+            revolute l[k - 1][0.05, 0.0] ~ l[k][-0.05, 0.0] { coulomb: 0.2, radius: 0.01, slip_velocity: 1.0e-3 };
+        }
+    }
+}
+
+/// A mechanism whose forward-dynamics arrays (D's non-zeros, S's factor, Φ, ν, γ, h, M, M⁻¹,
+/// …) are past 2 048 scalars borrows them from the work space when it is called through one
+/// (`accelerations_in` and the projections' `_in`, what every solver calls) and keeps them on
+/// the stack when called without: the same numbers either way, bit for bit, from a work space
+/// that holds another call's values, with Coulomb friction's fixed point (the chain of 80) and
+/// without (the ladder of 201 bodies). Measured by painting the stack (2026-12-07, release):
+/// a simulation of the ladder took 141 KB before, 33–46 KB now.
+#[test]
+fn forward_dynamics_through_the_work_space_is_that_on_the_stack() {
+    on_default_stack(|| {
+        let ladder = Ladder201::default();
+        same_either_way(&ladder, &mut Ladder201::workspace(), ladder.initial_positions());
+        let chain = FrictionChain80::default();
+        same_either_way(&chain, &mut FrictionChain80::workspace(), chain.initial_positions());
+    });
+}
+
+/// [`forward_dynamics_through_the_work_space_is_that_on_the_stack`] for one mechanism from
+/// `q` moved off its constraints.
+fn same_either_way<M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    m: &M,
+    ws: &mut Workspace<f64, NV, NC, N, NS>,
+    mut q: [f64; NQ],
+) where
+    M: ForwardDynamics<f64, NQ, NV, NC>,
+{
+    q[0] += 1e-3;
+    let v: [f64; NV] = core::array::from_fn(|i| 0.3 * ((i * 7 % 11) as f64 / 10.0 - 0.5));
+    let options = DynamicsOptions::default();
+    let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
+    m.accelerations_in(ws.dense(), &q, &[1.0; NV], 0.5, &options, &mut vd, &mut lambda).expect("another call first");
+    let mut from_ws = ([0.0; NV], [0.0; NC]);
+    m.accelerations_in(ws.dense(), &q, &v, 0.0, &options, &mut from_ws.0, &mut from_ws.1).expect("through the work space");
+    let mut on_stack = ([0.0; NV], [0.0; NC]);
+    m.accelerations(&q, &v, 0.0, &options, &mut on_stack.0, &mut on_stack.1).expect("on the stack");
+    assert!(from_ws == on_stack, "v̇ and λ differ");
+    assert!(on_stack.0.iter().any(|&x| x != 0.0) && on_stack.1.iter().any(|&x| x != 0.0), "a solve with loads");
+    let (mut q_ws, mut q_stack) = (q, q);
+    let moved_ws = m.project_positions_step_in(ws.dense(), &mut q_ws, 0.0, &options).expect("through the work space");
+    let moved_stack = m.project_positions_step(&mut q_stack, 0.0, &options).expect("on the stack");
+    assert!((moved_ws, q_ws) == (moved_stack, q_stack), "the position steps differ");
+    assert!(moved_stack > 0.0 && q_stack != q, "a step that moves q");
+    let (mut v_ws, mut v_stack) = (v, v);
+    let moved_ws = m.project_velocities_in(ws.dense(), &q, &mut v_ws, 0.0, &options).expect("through the work space");
+    let moved_stack = m.project_velocities(&q, &mut v_stack, 0.0, &options).expect("on the stack");
+    assert!((moved_ws, v_ws) == (moved_stack, v_stack), "the velocity projections differ");
+    assert!(moved_stack > 0.0 && v_stack != v, "a projection that moves v");
 }
 
 ladder! {

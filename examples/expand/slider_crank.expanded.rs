@@ -1529,6 +1529,9 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut gamma = [0f64; 9];
         let mut h = [0f64; 9];
         let mut m = [0f64; 9];
+        let mut minv = [0f64; 9];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
         let (
             v5,
             s_crank,
@@ -1696,7 +1699,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__m_6) = 0.5f64;
         (*__m_7) = 0.5f64;
         (*__m_8) = 0.001f64;
-        let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -1706,8 +1708,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -1728,7 +1728,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
+                >(t, row, &m[..], &MASS_BODIES, &jv[..], finite, options.allow_redundant),
             );
         }
         let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
@@ -1848,6 +1848,10 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut phi = [0f64; 9];
         let mut m = [0f64; 9];
+        let mut minv = [0f64; 9];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        let mut b = [0f64; 9];
         {
             let q: &[f64; 9] = q;
             let (
@@ -1952,9 +1956,8 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__m_7) = 0.5f64;
             (*__m_8) = 0.001f64;
         }
-        let mut b = phi;
-        let (worst, _) = ::mbd::__private::max_abs_finite(&b);
-        let mut minv = [0f64; 9];
+        b.copy_from_slice(&phi[..]);
+        let (worst, _) = ::mbd::__private::max_abs_finite(&b[..]);
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -1964,8 +1967,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -1986,7 +1987,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
+                >(t, row, &m[..], &MASS_BODIES, &jv[..], finite, options.allow_redundant),
             );
         }
         Self::schur_solve(&l, &dinv, &mut b);
@@ -2028,6 +2029,10 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut nu = [0f64; 9];
         let mut m = [0f64; 9];
+        let mut minv = [0f64; 9];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
+        let mut b = [0f64; 9];
         let (
             v5,
             s_crank,
@@ -2107,7 +2112,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__m_6) = 0.5f64;
         (*__m_7) = 0.5f64;
         (*__m_8) = 0.001f64;
-        let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -2117,8 +2121,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -2139,10 +2141,9 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 ::mbd::DynamicsError::from_pivot::<
                     Self,
                     f64,
-                >(t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant),
+                >(t, row, &m[..], &MASS_BODIES, &jv[..], finite, options.allow_redundant),
             );
         }
-        let mut b = [0f64; 9];
         {
             let v: &[f64; 9] = v;
             use ::mbd::__private::Elements as _;
@@ -2170,7 +2171,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__b_7) = ((*__jv_21) * (*__v_8)) - (*__nu_7);
             (*__b_8) = ((*__jv_22) * (*__v_2)) - (*__nu_8);
         }
-        let (worst, _) = ::mbd::__private::max_abs_finite(&b);
+        let (worst, _) = ::mbd::__private::max_abs_finite(&b[..]);
         Self::schur_solve(&l, &dinv, &mut b);
         use ::mbd::__private::Elements as _;
         let [__b_0, __b_1, __b_2, __b_3, __b_4, __b_5, __b_6, __b_7, __b_8] = b

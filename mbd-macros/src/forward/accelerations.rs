@@ -92,7 +92,7 @@ impl Plan<'_> {
     /// friction one solve; with it, fixed-point iteration on the normal loads λ (the
     /// factorization of S does not depend on them, so each iteration is one more solve).
     fn solve_for_lambda(&self) -> TokenStream {
-        let Plan { f, e, real, zero, nv_l, nc_l, rows, cols, .. } = self;
+        let Plan { f, e, real, nc_l, rows, cols, .. } = self;
         let (d_vd, d_v) = (self.row_times(&quote!(vd)), self.row_times(&quote!(v)));
         let lambda_vd = self.add_transpose(&quote!(vd), &quote!(lambda), quote!(+=));
         let minv_h = if self.coupled() {
@@ -129,10 +129,10 @@ impl Plan<'_> {
         let (friction_body, _) = e.body(&friction);
         // Coulomb friction's loads by the runtime's fixed point (`mbd::settle_loads`): each
         // step the friction forces of the λ it is given, then the solve with them
+        // `hf` starts zeroed, and each iteration writes the same non-zeros.
         quote! {
-            let applied = h;
+            applied.copy_from_slice(&h[..]);
             ::mbd::settle_loads(options.friction_tolerance, options.friction_iterations, lambda, |lambda: &mut [#real; #nc_l]| {
-                let mut hf = [#zero; #nv_l];
                 {
                     let lambda: &[#real; #nc_l] = lambda;
                     #friction_body
@@ -151,29 +151,21 @@ impl Plan<'_> {
     /// M⁻¹ from the evaluated mass and the LDLᵀ of S into `l` and `dinv`; on a failed pivot, the
     /// error naming a body without a positive mass, a value that is not finite, or the row.
     fn factor_call(&self) -> TokenStream {
-        let Plan { real, zero, nv, nv_l, nc_l, nl_l, .. } = self;
+        let Plan { real, nv, nv_l, .. } = self;
         let (minv, minv_off) = self.inverse_mass();
         let coordinates = crate::coordinates::Coordinates::of(self.m);
         let mass_bodies = (0..*nv).map(|i| coordinates.body_of_velocity(self.m, i) as u16);
-        let (minv_off_decl, minv_off_arg) = if self.coupled() {
-            let n_off = usize_lit(self.coupling.len());
-            (quote!(let mut minv_off = [#zero; #n_off]; #(#minv_off)*), quote!(&minv_off,))
-        } else {
-            (quote!(), quote!())
-        };
+        let minv_off_arg = if self.coupled() { quote!(&minv_off,) } else { quote!() };
         quote! {
-            let mut minv = [#zero; #nv_l];
             #(#minv)*
-            #minv_off_decl
-            let mut l = [#zero; #nl_l];
-            let mut dinv = [#zero; #nc_l];
+            #(#minv_off)*
             if let ::core::result::Result::Err(row) =
                 Self::schur_factor(&jv, &minv, #minv_off_arg options.pivot_tolerance, options.allow_redundant, &mut l, &mut dinv)
             {
                 let finite = q.iter().chain(jv.iter()).chain(m.iter()).all(|x| x.is_finite());
                 const MASS_BODIES: [u16; #nv_l] = [#(#mass_bodies),*];
                 return ::core::result::Result::Err(::mbd::DynamicsError::from_pivot::<Self, #real>(
-                    t, row, &m, &MASS_BODIES, &jv, finite, options.allow_redundant,
+                    t, row, &m[..], &MASS_BODIES, &jv[..], finite, options.allow_redundant,
                 ));
             }
         }
@@ -182,124 +174,241 @@ impl Plan<'_> {
     /// The projections' steps: q ← q ⊕ (−M⁻¹ Dᵀ b) — directly in q where v = q̇, through the
     /// velocity map otherwise — the velocity residual b = D v − ν, and v ← v − M⁻¹ Dᵀ b.
     fn projection_steps(&self) -> (TokenStream, TokenStream, TokenStream) {
-        let Plan { real, zero, one, nv_l, rows, .. } = self;
+        let Plan { real, one, rows, .. } = self;
         let q_step = if self.nq == self.nv {
-            self.add_transpose(&quote!(q), &quote!(b), quote!(-=))
+            in_functions(&self.add_transpose(&quote!(q), &quote!(b), quote!(-=)), "q_step", &[], real)
         } else {
-            let mut step = vec![quote!(let mut dv = [#zero; #nv_l];)];
-            step.extend(self.add_transpose(&quote!(dv), &quote!(b), quote!(-=)));
-            step.push(quote!(::mbd::Kinematics::integrate_positions(self, q, &dv, #one);));
-            step
+            let dv = in_functions(&self.add_transpose(&quote!(dv), &quote!(b), quote!(-=)), "q_step", &[], real);
+            quote! {
+                #dv
+                ::mbd::Kinematics::integrate_positions(self, q, &dv, #one);
+            }
         };
         let v_step = self.add_transpose(&quote!(v), &quote!(b), quote!(-=));
         let d_v = self.row_times(&quote!(v));
         let velocity_rows: Vec<TokenStream> = rows.iter().zip(&d_v).map(|(r, d_v)| quote!(b[#r] = #d_v - nu[#r];)).collect();
-        (
-            in_functions(&q_step, "q_step", &[], real),
-            in_functions(&v_step, "v_step", &[], real),
-            in_functions(&velocity_rows, "velocity_rows", &[], real),
-        )
+        (q_step, in_functions(&v_step, "v_step", &[], real), in_functions(&velocity_rows, "velocity_rows", &[], real))
+    }
+
+    /// The arrays a `ForwardDynamics` method of this mechanism writes, by name: D's non-zeros
+    /// `jv`, S's factor `l` and `dinv`, Φ, ν, γ, h, the mass `m`, M⁻¹ (`minv`, and where M⁻¹ is
+    /// coupled its blocks `mi` and off-diagonal `minv_off`), a residual `b` of NC, a velocity
+    /// step `dv`, friction's `hf` and the applied forces without it.
+    fn locals(&self, names: &[&'static str]) -> Vec<Local> {
+        let (nnz, nl) = (self.f.jacobian.len(), self.schur.nl());
+        let coupled = |name: &str| matches!(name, "mi" | "minv_off") && !self.coupled();
+        names
+            .iter()
+            .filter(|name| !coupled(name))
+            .map(|&name| {
+                let (len, from) = match name {
+                    "jv" => (nnz, Source::Jacobian),
+                    "l" => (nl, Source::Factor),
+                    "phi" | "nu" | "gamma" | "dinv" | "b" => (self.nc, Source::Vectors),
+                    "h" | "m" | "minv" | "dv" | "hf" | "applied" => (self.nv, Source::Vectors),
+                    "mi" => (self.f.mass_inverse.len(), Source::Vectors),
+                    "minv_off" => (self.coupling.len(), Source::Vectors),
+                    _ => unreachable!("a forward-dynamics array: {name}"),
+                };
+                Local { name: syn::Ident::new(name, proc_macro2::Span::call_site()), len, from }
+            })
+            .collect()
+    }
+
+    /// Whether this mechanism's forward-dynamics arrays are past [`STACK_SCALARS`].
+    fn arrays_in_work_space(&self) -> bool {
+        let all = ["jv", "phi", "nu", "gamma", "h", "m", "mi", "minv", "minv_off", "l", "dinv", "b", "dv", "hf", "applied"];
+        self.locals(&all).iter().map(|local| local.len).sum::<usize>() > STACK_SCALARS
+    }
+
+    /// A `ForwardDynamics` method `name(&self, params) -> ret` whose `body` writes `locals`,
+    /// and the `_in` method that borrows them from a work space where they are past
+    /// [`STACK_SCALARS`]: then both call one inherent `__mbd_name` that takes them as
+    /// parameters (the method's own locals, or the work space's). Returns the trait methods and
+    /// the inherent function.
+    fn method(
+        &self,
+        name: &str,
+        locals: &[Local],
+        params: TokenStream,
+        args: TokenStream,
+        ret: TokenStream,
+        body: TokenStream,
+    ) -> (TokenStream, TokenStream) {
+        let Plan { real, zero, nv_l, nc_l, .. } = self;
+        let method = syn::Ident::new(name, proc_macro2::Span::call_site());
+        let names: Vec<&syn::Ident> = locals.iter().map(|local| &local.name).collect();
+        let lengths: Vec<Literal> = locals.iter().map(|local| usize_lit(local.len)).collect();
+        let declarations = quote!(#(let mut #names = [#zero; #lengths];)*);
+        if !self.arrays_in_work_space() {
+            let inline = crate::emit::inline_hint(self.nc);
+            let method = quote! {
+                #inline
+                fn #method(&self, #params) -> #ret {
+                    #declarations
+                    #body
+                }
+            };
+            return (method, quote!());
+        }
+        let inner = quote::format_ident!("__mbd_{}", name);
+        let method_in = quote::format_ident!("{}_in", name);
+        let nnz = usize_lit(self.f.jacobian.len());
+        let nl = usize_lit(self.schur.nl());
+        let borrowed = locals.iter().map(|local| match local.from {
+            Source::Jacobian => quote!(jv),
+            Source::Factor => quote!(l),
+            Source::Vectors => quote!(vectors.take()),
+        });
+        let methods = quote! {
+            fn #method(&self, #params) -> #ret {
+                #declarations
+                self.#inner(#(&mut #names,)* #args)
+            }
+
+            fn #method_in(&self, scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>, #params) -> #ret {
+                let (jv, l, mut vectors) = scratch.__sparse_storage::<#nnz, #nl>();
+                self.#inner(#(#borrowed,)* #args)
+            }
+        };
+        let inner = quote! {
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments)]
+            fn #inner(&self, #(mut #names: &mut [#real; #lengths],)* #params) -> #ret {
+                #body
+            }
+        };
+        (methods, inner)
     }
 
     /// `impl ForwardDynamics` and the operation count of its evaluation.
     pub(super) fn forward_impl(&self) -> (TokenStream, Ops) {
-        let Plan { real, zero, nq_l, nv_l, nc_l, nnz_l, .. } = self;
+        let Plan { real, nq_l, nv_l, nc_l, .. } = self;
         let name = &self.m.name;
         let Evaluations { accelerations: eval_body, ops, positions: positions_body, velocities: velocities_body } = self.evaluations();
         let solve_for_lambda = self.solve_for_lambda();
         let factor_call = self.factor_call();
         let (q_step, v_step, velocity_rows) = self.projection_steps();
-        let mi_decl = if self.coupled() {
-            let n_mi = usize_lit(self.f.mass_inverse.len());
-            quote!(let mut mi = [#zero; #n_mi];)
-        } else {
-            quote!()
-        };
+        let friction = if friction_outputs(self.f).is_empty() { &[][..] } else { &["hf", "applied"][..] };
+        let solved = ["minv", "minv_off", "l", "dinv"];
         // ‖b‖∞, NaN entries ignored (the callers check the result for finiteness).
         let max_abs = quote! {
-            let (worst, _) = ::mbd::__private::max_abs_finite(&b);
+            let (worst, _) = ::mbd::__private::max_abs_finite(&b[..]);
         };
-        let inline = crate::emit::inline_hint(self.nc);
+        let result = quote!(::core::result::Result<#real, ::mbd::DynamicsError>);
+
+        let accelerations = self.method(
+            "accelerations",
+            &self.locals(&[&["jv", "phi", "nu", "gamma", "h", "m", "mi"][..], &solved, friction].concat()),
+            quote! {
+                q: &[#real; #nq_l],
+                v: &[#real; #nv_l],
+                t: #real,
+                options: &::mbd::DynamicsOptions<#real>,
+                vd: &mut [#real; #nv_l],
+                lambda: &mut [#real; #nc_l],
+            },
+            quote!(q, v, t, options, vd, lambda),
+            quote!(::core::result::Result<(), ::mbd::DynamicsError>),
+            quote! {
+                #eval_body
+                #factor_call
+                let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
+                let beta2 = options.baumgarte_beta * options.baumgarte_beta;
+                #solve_for_lambda
+            },
+        );
+        let step = if self.nq == self.nv { &[][..] } else { &["dv"][..] };
+        let positions = self.method(
+            "project_positions_step",
+            &self.locals(&[&["jv", "phi", "m", "mi"][..], &solved, &["b"], step].concat()),
+            quote!(q: &mut [#real; #nq_l], t: #real, options: &::mbd::DynamicsOptions<#real>,),
+            quote!(q, t, options),
+            result.clone(),
+            quote! {
+                {
+                    let q: &[#real; #nq_l] = q;
+                    #positions_body
+                }
+                // Φ copied and its norm taken before the factorization's call, not after: Φ's
+                // values kept live across the call took LLVM's instruction selection 24 s of a
+                // 240-body chain's 74 s build (1.8 s this way).
+                b.copy_from_slice(&phi[..]);
+                #max_abs
+                #factor_call
+                Self::schur_solve(&l, &dinv, &mut b);
+                #q_step
+                ::core::result::Result::Ok(worst)
+            },
+        );
+        let velocities = self.method(
+            "project_velocities",
+            &self.locals(&[&["jv", "nu", "m", "mi"][..], &solved, &["b"]].concat()),
+            quote!(q: &[#real; #nq_l], v: &mut [#real; #nv_l], t: #real, options: &::mbd::DynamicsOptions<#real>,),
+            quote!(q, v, t, options),
+            result,
+            quote! {
+                #velocities_body
+                #factor_call
+                {
+                    let v: &[#real; #nv_l] = v;
+                    #velocity_rows
+                }
+                #max_abs
+                Self::schur_solve(&l, &dinv, &mut b);
+                #v_step
+                ::core::result::Result::Ok(worst)
+            },
+        );
+        let [(accelerations, accelerations_inner), (positions, positions_inner), (velocities, velocities_inner)] =
+            [accelerations, positions, velocities];
+        let inner = if !self.arrays_in_work_space() {
+            quote!()
+        } else {
+            quote! {
+                #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
+                impl #name {
+                    #accelerations_inner
+                    #positions_inner
+                    #velocities_inner
+                }
+            }
+        };
         let impl_block = quote! {
             // Constants are the user's expressions evaluated (`PI / 2.0` → 1.5707963267948966).
             #[allow(unused_variables, unused_parens, unused_mut, clippy::approx_constant)]
             impl ::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l> for #name {
-                #inline
-                fn accelerations(
-                    &self,
-                    q: &[#real; #nq_l],
-                    v: &[#real; #nv_l],
-                    t: #real,
-                    options: &::mbd::DynamicsOptions<#real>,
-                    vd: &mut [#real; #nv_l],
-                    lambda: &mut [#real; #nc_l],
-                ) -> ::core::result::Result<(), ::mbd::DynamicsError> {
-                    let mut jv = [#zero; #nnz_l];
-                    let mut phi = [#zero; #nc_l];
-                    let mut nu = [#zero; #nc_l];
-                    let mut gamma = [#zero; #nc_l];
-                    let mut h = [#zero; #nv_l];
-                    let mut m = [#zero; #nv_l];
-                    #mi_decl
-                    #eval_body
-                    #factor_call
-                    let two_alpha = options.baumgarte_alpha + options.baumgarte_alpha;
-                    let beta2 = options.baumgarte_beta * options.baumgarte_beta;
-                    #solve_for_lambda
-                }
-
-                #inline
-                fn project_positions_step(
-                    &self,
-                    q: &mut [#real; #nq_l],
-                    t: #real,
-                    options: &::mbd::DynamicsOptions<#real>,
-                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
-                    let mut jv = [#zero; #nnz_l];
-                    let mut phi = [#zero; #nc_l];
-                    let mut m = [#zero; #nv_l];
-                    #mi_decl
-                    {
-                        let q: &[#real; #nq_l] = q;
-                        #positions_body
-                    }
-                    // Φ copied and its norm taken before the factorization's call, not after: Φ's
-                    // values kept live across the call took LLVM's instruction selection 24 s of a
-                    // 240-body chain's 74 s build (1.8 s this way).
-                    let mut b = phi;
-                    #max_abs
-                    #factor_call
-                    Self::schur_solve(&l, &dinv, &mut b);
-                    #q_step
-                    ::core::result::Result::Ok(worst)
-                }
-
-                #inline
-                fn project_velocities(
-                    &self,
-                    q: &[#real; #nq_l],
-                    v: &mut [#real; #nv_l],
-                    t: #real,
-                    options: &::mbd::DynamicsOptions<#real>,
-                ) -> ::core::result::Result<#real, ::mbd::DynamicsError> {
-                    let mut jv = [#zero; #nnz_l];
-                    let mut nu = [#zero; #nc_l];
-                    let mut m = [#zero; #nv_l];
-                    #mi_decl
-                    #velocities_body
-                    #factor_call
-                    let mut b = [#zero; #nc_l];
-                    {
-                        let v: &[#real; #nv_l] = v;
-                        #velocity_rows
-                    }
-                    #max_abs
-                    Self::schur_solve(&l, &dinv, &mut b);
-                    #v_step
-                    ::core::result::Result::Ok(worst)
-                }
+                #accelerations
+                #positions
+                #velocities
             }
+
+            #inner
         };
         (impl_block, ops)
     }
+}
+
+/// Scalars of forward-dynamics arrays (16 KiB of f64) up to which a mechanism's generated
+/// `ForwardDynamics` methods keep them on the stack, where LLVM may keep small ones in
+/// registers; past it, a call through a work space (`accelerations_in`, the projections'
+/// `_in`, as every solver and integrator makes) borrows them from its heap instead, so that the
+/// stack a solve takes does not grow with the mechanism.
+const STACK_SCALARS: usize = 2048;
+
+/// Where a large mechanism's array is borrowed from in the work space: D's non-zeros fit in the
+/// NC × NV dense array, S's factor in the NC × NC one (body coordinates, whose forward dynamics
+/// is this sparse solve, do not use them otherwise), vectors from the solvers' rows.
+#[derive(Clone, Copy)]
+enum Source {
+    Jacobian,
+    Factor,
+    Vectors,
+}
+
+/// An array of [`Plan::locals`].
+struct Local {
+    name: syn::Ident,
+    len: usize,
+    from: Source,
 }

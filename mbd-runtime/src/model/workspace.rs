@@ -3,15 +3,18 @@
 //! analysis (as Pinocchio's `Data` sits beside its `Model`).
 //!
 //! The solvers' O(NV + NC) vectors are here too (rows of N scalars: the integrators' stages and
-//! Newton corrections, statics' iterate, and the three points a simulation steps between), so
-//! that a solver's frame does not grow with the mechanism. What stays on the stack: the generated
-//! forward dynamics' and projections' planned arrays (O(non-zeros of D)), the sample handed to a
-//! simulation's callback, and a few O(NV + NC) leaves. Measured by painting the stack
-//! (2026-12-06), a simulation of a 201-body ladder (NV = 603) takes 141 KiB in a release build
-//! and 318–389 KiB in a debug one (0.23 and 0.53–0.65 KiB per velocity; 0.46–0.71 and
-//! 1.2–1.7 before), statics 16 and 38 KiB. Where they are needed at
-//! all, the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.6 MB of
-//! work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
+//! Newton corrections, statics' iterate, and the three points a simulation steps between), and
+//! so are the generated forward dynamics' arrays where they are more than 2 048 scalars (D's
+//! non-zeros in the second NC × NV array, the factor of S = D M⁻¹ Dᵀ in the NC × NC one, which
+//! body coordinates do not use otherwise, and Φ, ν, γ, h and M⁻¹ in the rows), so that a solver's
+//! frame does not grow with the mechanism. What stays on the stack grows by a few scalars a
+//! velocity: the sample handed to a simulation's callback (a value the callback may keep),
+//! coordinate partitioning's and the dense LU's row indices, and cold error paths. Measured by
+//! painting the stack (2026-12-07), a simulation of a 201-body ladder (NV = 603) takes 33–46 KiB
+//! in a release build and 87–147 KiB in a debug one; in release, 20–30 KiB more than a 51-body
+//! one (NV = 153). It took 141 and 318–389 KiB on 2026-12-06, 283–434 and 769–1 059 before;
+//! statics takes 16 and 38 KiB. Where they are needed at all, the O(N²) arrays are here: a
+//! 120-link chain (NV = 360, NC = 240) needs 3.6 MB of work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
 //! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
 //!
@@ -22,7 +25,7 @@
 //! | constraint square | NC × NC | minimum-norm assembly steps (D Dᵀ), coordinate partitioning |
 //! | a velocity square | NV × NV | inverse dynamics (the LU of Dᵀ) |
 //! | a second constraint square | NC × NC | minimum-norm reactions of redundant rows (their coupling to the kept rows) |
-//! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled) |
+//! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled); in body coordinates, past 2 048 scalars, the generated forward dynamics' D non-zeros (in the second NC × NV) and factor of S (in the constraint square) |
 //! | the solvers' vectors | 48 × (NV + NC) | the integrators' stages, residuals and Newton corrections; statics' iterate |
 //! | a simulation's points | 12 × (NV + NC) | the step's start, its end, and the end the integrator left (three `Point`s) |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
@@ -194,7 +197,8 @@ pub(crate) const VECTOR_ROWS: usize = 48;
 /// solver's frame does not grow with the mechanism. A callee gets the rest
 /// ([`Vectors::reborrow`]); what it takes is free again when it returns, as a stack frame's
 /// locals are.
-pub(crate) struct Vectors<'a, T> {
+#[doc(hidden)]
+pub struct Vectors<'a, T> {
     free: &'a mut [T],
 }
 
@@ -211,7 +215,7 @@ impl<'a, T: Real> Vectors<'a, T> {
     /// # Panics
     /// If fewer than L scalars are left: the work space's [`VECTOR_ROWS`] do not cover the call
     /// chain, a defect of this crate (the chains are bounded, and their depth is tested).
-    pub(crate) fn take<const L: usize>(&mut self) -> &'a mut [T; L] {
+    pub fn take<const L: usize>(&mut self) -> &'a mut [T; L] {
         let free = core::mem::take(&mut self.free);
         assert!(free.len() >= L, "mbd: the work space's vectors do not cover this solver's calls (a defect: VECTOR_ROWS)");
         let (head, rest) = free.split_at_mut(L);
@@ -256,8 +260,9 @@ impl<'a, T: Real> Vectors<'a, T> {
 /// borrowed from a [`Workspace`] ([`WorkArrays::dense`]) so that they live on its heap, not on
 /// the stack (a 201-body ladder in joint coordinates needs 0.7 MB of them per call, which a
 /// debug build copied three times past a 2 MB thread). Body coordinates, whose forward dynamics
-/// is the generated sparse solve, do not touch them. With them, the work space's rows for the
-/// solvers' O(N) vectors.
+/// is the generated sparse solve, hold that solve's D non-zeros and factor of S in `d` and `s`
+/// where its arrays are past 2 048 scalars. With them, the work space's rows for the solvers'
+/// O(N) vectors.
 pub struct DenseScratch<'a, T, const NV: usize, const NC: usize> {
     pub(crate) d: &'a mut [[T; NV]; NC],
     pub(crate) y: &'a mut [[T; NV]; NC],
@@ -266,10 +271,28 @@ pub struct DenseScratch<'a, T, const NV: usize, const NC: usize> {
     pub(crate) vectors: Vectors<'a, T>,
 }
 
-impl<T, const NV: usize, const NC: usize> DenseScratch<'_, T, NV, NC> {
+impl<'a, T, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
     /// The same arrays, borrowed again for one more call.
     pub fn reborrow(&mut self) -> DenseScratch<'_, T, NV, NC> {
         DenseScratch { d: self.d, y: self.y, s: self.s, l: self.l, vectors: Vectors { free: &mut *self.vectors.free } }
+    }
+}
+
+impl<'a, T: Real, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
+    /// The arrays of a large mechanism's generated sparse forward dynamics (body coordinates,
+    /// which do not use the dense arrays otherwise), zeroed: D's NNZ non-zeros in the NC × NV
+    /// array, the NL entries of the factor of S = D M⁻¹ Dᵀ in the NC × NC one, and the vectors.
+    ///
+    /// # Panics
+    /// Where NNZ > NC NV or NL > NC², which a mechanism's pattern cannot be.
+    #[doc(hidden)]
+    pub fn __sparse_storage<const NNZ: usize, const NL: usize>(self) -> (&'a mut [T; NNZ], &'a mut [T; NL], Vectors<'a, T>) {
+        let Self { d, s, vectors, .. } = self;
+        let jv: &mut [T; NNZ] = (&mut d.as_flattened_mut()[..NNZ]).try_into().expect("D's non-zeros fit in NC × NV");
+        let l: &mut [T; NL] = (&mut s.as_flattened_mut()[..NL]).try_into().expect("S's factor fits in NC × NC");
+        jv.fill(T::ZERO);
+        l.fill(T::ZERO);
+        (jv, l, vectors)
     }
 }
 
