@@ -8,6 +8,7 @@
 //! The mechanism: a chain of 120 uniform links, 0.1 m and 0.1 kg each, pinned end to end and to
 //! ground, straight and 0.3 rad from hanging (`for`).
 use mbd::prelude::*;
+use mbd::{DenseArrays, System};
 
 mechanism! {
     /// A hanging chain of 120 links, straight and 0.3 rad from hanging.
@@ -409,12 +410,19 @@ mechanism! {
 /// a simulation of the ladder took 141 KB before, 33–46 KB now.
 #[test]
 fn forward_dynamics_through_the_work_space_is_that_on_the_stack() {
-    on_default_stack(|| {
-        let ladder = Ladder201::default();
-        same_either_way(&ladder, &mut Ladder201::workspace(), ladder.initial_positions());
-        let chain = FrictionChain80::default();
-        same_either_way(&chain, &mut FrictionChain80::workspace(), chain.initial_positions());
-    });
+    // 64 MB: the calls through `DenseArrays` put its dense arrays on the stack (the ladder's
+    // 10 MB), as a caller without a work space asks.
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(|| {
+            let ladder = Ladder201::default();
+            same_either_way(&ladder, &mut Ladder201::workspace(), ladder.initial_positions());
+            let chain = FrictionChain80::default();
+            same_either_way(&chain, &mut FrictionChain80::workspace(), chain.initial_positions());
+        })
+        .expect("spawn")
+        .join()
+        .expect("the calls panicked");
 }
 
 /// [`forward_dynamics_through_the_work_space_is_that_on_the_stack`] for one mechanism from
@@ -437,6 +445,14 @@ fn same_either_way<M, const NQ: usize, const NV: usize, const NC: usize, const N
     m.accelerations(&q, &v, 0.0, &options, &mut on_stack.0, &mut on_stack.1).expect("on the stack");
     assert!(from_ws == on_stack, "v̇ and λ differ");
     assert!(on_stack.0.iter().any(|&x| x != 0.0) && on_stack.1.iter().any(|&x| x != 0.0), "a solve with loads");
+    // Through a scratch with too few rows for them (`DenseArrays`, which `System::point` and
+    // `project` use without a work space), the stack's arrays.
+    let mut without = ([0.0; NV], [0.0; NC]);
+    m.accelerations_in(DenseArrays::new().scratch(), &q, &v, 0.0, &options, &mut without.0, &mut without.1).expect("DenseArrays");
+    assert!(without == on_stack, "v̇ and λ through DenseArrays differ");
+    let system = System { mechanism: m, dynamics: options, track_work: true };
+    let point = system.point(0.0, q, v, [0.0; 2]).expect("a point with its powers, without a work space");
+    assert!((point.vd, point.lambda) == on_stack, "System::point's v̇ and λ differ");
     let (mut q_ws, mut q_stack) = (q, q);
     let moved_ws = m.project_positions_step_in(ws.dense(), &mut q_ws, 0.0, &options).expect("through the work space");
     let moved_stack = m.project_positions_step(&mut q_stack, 0.0, &options).expect("on the stack");

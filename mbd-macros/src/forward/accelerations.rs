@@ -224,7 +224,8 @@ impl Plan<'_> {
     /// A `ForwardDynamics` method `name(&self, params) -> ret` whose `body` writes `locals`,
     /// and the `_in` method that borrows them from a work space where they are past
     /// [`STACK_SCALARS`]: then both call one inherent `__mbd_name` that takes them as
-    /// parameters (the method's own locals, or the work space's). Returns the trait methods and
+    /// parameters (the method's own locals, or the work space's; the method's own where the
+    /// scratch has too few rows, as a `DenseArrays` on the stack). Returns the trait methods and
     /// the inherent function.
     fn method(
         &self,
@@ -260,6 +261,10 @@ impl Plan<'_> {
             Source::Factor => quote!(l),
             Source::Vectors => quote!(vectors.take()),
         });
+        let vector_scalars = usize_lit(locals.iter().filter(|local| matches!(local.from, Source::Vectors)).map(|local| local.len).sum());
+        let nq_l = &self.nq_l;
+        let trait_path = quote!(::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l>);
+        // A scratch without the rows (`DenseArrays`, on the stack) gets the stack's arrays.
         let methods = quote! {
             fn #method(&self, #params) -> #ret {
                 #declarations
@@ -267,8 +272,10 @@ impl Plan<'_> {
             }
 
             fn #method_in(&self, scratch: ::mbd::DenseScratch<'_, #real, #nv_l, #nc_l>, #params) -> #ret {
-                let (jv, l, mut vectors) = scratch.__sparse_storage::<#nnz, #nl>();
-                self.#inner(#(#borrowed,)* #args)
+                match scratch.__sparse_storage::<#nnz, #nl, #vector_scalars>() {
+                    ::core::option::Option::Some((jv, l, mut vectors)) => self.#inner(#(#borrowed,)* #args),
+                    ::core::option::Option::None => <Self as #trait_path>::#method(self, #args),
+                }
             }
         };
         let inner = quote! {

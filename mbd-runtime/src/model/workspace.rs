@@ -281,32 +281,39 @@ impl<'a, T, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
 impl<'a, T: Real, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
     /// The arrays of a large mechanism's generated sparse forward dynamics (body coordinates,
     /// which do not use the dense arrays otherwise), zeroed: D's NNZ non-zeros in the NC × NV
-    /// array, the NL entries of the factor of S = D M⁻¹ Dᵀ in the NC × NC one, and the vectors.
+    /// array, the NL entries of the factor of S = D M⁻¹ Dᵀ in the NC × NC one, and vectors of V
+    /// scalars in all. `None` where the rows left are fewer than V (a [`DenseArrays`] on the
+    /// stack, whose caller asked for the stack): the generated code then keeps its arrays there.
     ///
     /// # Panics
     /// Where NNZ > NC NV or NL > NC², which a mechanism's pattern cannot be.
     #[doc(hidden)]
-    pub fn __sparse_storage<const NNZ: usize, const NL: usize>(self) -> (&'a mut [T; NNZ], &'a mut [T; NL], Vectors<'a, T>) {
+    pub fn __sparse_storage<const NNZ: usize, const NL: usize, const V: usize>(
+        self,
+    ) -> Option<(&'a mut [T; NNZ], &'a mut [T; NL], Vectors<'a, T>)> {
         let Self { d, s, vectors, .. } = self;
+        if vectors.free.len() < V {
+            return None;
+        }
         let jv: &mut [T; NNZ] = (&mut d.as_flattened_mut()[..NNZ]).try_into().expect("D's non-zeros fit in NC × NV");
         let l: &mut [T; NL] = (&mut s.as_flattened_mut()[..NL]).try_into().expect("S's factor fits in NC × NC");
         jv.fill(T::ZERO);
         l.fill(T::ZERO);
-        (jv, l, vectors)
+        Some((jv, l, vectors))
     }
 }
 
 /// Owned [`DenseScratch`] arrays, for a call without a work space
 /// ([`crate::ForwardDynamics::accelerations`] and the projections): on the stack of that call,
-/// as they were before the work space held them, with one row of NV and one of NC for the
-/// solvers' vectors (what [`crate::project`] takes where it runs out of steps: Φ to name the
-/// worst row).
+/// as they were before the work space held them, with three rows of NV and three of NC for the
+/// solvers' vectors (what [`crate::project`] takes where it runs out of steps, Φ to name the
+/// worst row, and [`crate::System::derivatives`] its work tracking's three velocity vectors).
 pub struct DenseArrays<T, const NV: usize, const NC: usize> {
     d: [[T; NV]; NC],
     y: [[T; NV]; NC],
     s: [[T; NC]; NC],
     l: [[T; NV]; NV],
-    vectors: Rows<T, NV, NC, 1>,
+    vectors: Rows<T, NV, NC, 3>,
 }
 
 impl<T: Real, const NV: usize, const NC: usize> DenseArrays<T, NV, NC> {
