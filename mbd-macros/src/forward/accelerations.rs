@@ -210,7 +210,11 @@ impl Plan<'_> {
                     "minv_off" => (self.coupling.len(), Source::Vectors),
                     _ => unreachable!("a forward-dynamics array: {name}"),
                 };
-                Local { name: syn::Ident::new(name, proc_macro2::Span::call_site()), len, from }
+                // Read before (or without) being written whole: velocity steps accumulated into,
+                // friction's forces where it acts, ν where Φ does not depend on t (then not
+                // evaluated). The others are written whole first, and taken as they are.
+                let zeroed = matches!(name, "dv" | "hf") || (name == "nu" && self.f.phi_t_is_zero());
+                Local { name: syn::Ident::new(name, proc_macro2::Span::call_site()), len, from, zeroed }
             })
             .collect()
     }
@@ -259,7 +263,8 @@ impl Plan<'_> {
         let borrowed = locals.iter().map(|local| match local.from {
             Source::Jacobian => quote!(jv),
             Source::Factor => quote!(l),
-            Source::Vectors => quote!(vectors.take()),
+            Source::Vectors if local.zeroed => quote!(vectors.take()),
+            Source::Vectors => quote!(vectors.take_written()),
         });
         let vector_scalars = usize_lit(locals.iter().filter(|local| matches!(local.from, Source::Vectors)).map(|local| local.len).sum());
         let nq_l = &self.nq_l;
@@ -413,9 +418,11 @@ enum Source {
     Vectors,
 }
 
-/// An array of [`Plan::locals`].
+/// An array of [`Plan::locals`]: its name, length, where a large mechanism borrows it from, and
+/// whether it must start zeroed there.
 struct Local {
     name: syn::Ident,
     len: usize,
     from: Source,
+    zeroed: bool,
 }

@@ -224,6 +224,16 @@ impl<'a, T: Real> Vectors<'a, T> {
         head.try_into().expect("split at L")
     }
 
+    /// A vector of L scalars holding what the last caller left in it, for one the caller writes
+    /// whole before it reads it (as [`rows_written`](Self::rows_written)).
+    ///
+    /// # Panics
+    /// As [`take`](Self::take).
+    pub fn take_written<const L: usize>(&mut self) -> &'a mut [T; L] {
+        let [vector] = self.rows_written::<L, 1>();
+        vector
+    }
+
     /// K zeroed vectors of L scalars, as [`take`](Self::take).
     pub(crate) fn rows<const L: usize, const K: usize>(&mut self) -> &'a mut [[T; L]; K] {
         let rows = self.rows_written::<L, K>();
@@ -280,9 +290,10 @@ impl<'a, T, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
 
 impl<'a, T: Real, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> {
     /// The arrays of a large mechanism's generated sparse forward dynamics (body coordinates,
-    /// which do not use the dense arrays otherwise), zeroed: D's NNZ non-zeros in the NC × NV
-    /// array, the NL entries of the factor of S = D M⁻¹ Dᵀ in the NC × NC one, and vectors of V
-    /// scalars in all. `None` where the rows left are fewer than V (a [`DenseArrays`] on the
+    /// which do not use the dense arrays otherwise), as the last caller left them (the generated
+    /// code writes them whole before it reads them): D's NNZ non-zeros in the NC × NV array, the
+    /// NL entries of the factor of S = D M⁻¹ Dᵀ in the NC × NC one, and vectors of V scalars in
+    /// all. `None` where the rows left are fewer than V (a [`DenseArrays`] on the
     /// stack, whose caller asked for the stack): the generated code then keeps its arrays there.
     ///
     /// # Panics
@@ -297,8 +308,6 @@ impl<'a, T: Real, const NV: usize, const NC: usize> DenseScratch<'a, T, NV, NC> 
         }
         let jv: &mut [T; NNZ] = (&mut d.as_flattened_mut()[..NNZ]).try_into().expect("D's non-zeros fit in NC × NV");
         let l: &mut [T; NL] = (&mut s.as_flattened_mut()[..NL]).try_into().expect("S's factor fits in NC × NC");
-        jv.fill(T::ZERO);
-        l.fill(T::ZERO);
         Some((jv, l, vectors))
     }
 }
