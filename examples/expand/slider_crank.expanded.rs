@@ -1529,9 +1529,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut gamma = [0f64; 9];
         let mut h = [0f64; 9];
         let mut m = [0f64; 9];
-        let mut minv = [0f64; 9];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
         let (
             v5,
             s_crank,
@@ -1699,6 +1696,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__m_6) = 0.5f64;
         (*__m_7) = 0.5f64;
         (*__m_8) = 0.001f64;
+        let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -1708,6 +1706,8 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -1848,10 +1848,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut phi = [0f64; 9];
         let mut m = [0f64; 9];
-        let mut minv = [0f64; 9];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
-        let mut b = [0f64; 9];
         {
             let q: &[f64; 9] = q;
             let (
@@ -1956,8 +1952,9 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
             (*__m_7) = 0.5f64;
             (*__m_8) = 0.001f64;
         }
-        b.copy_from_slice(&phi[..]);
+        let mut b = phi;
         let (worst, _) = ::mbd::__private::max_abs_finite(&b[..]);
+        let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -1967,6 +1964,8 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -2029,10 +2028,6 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         let mut jv = [0f64; 23];
         let mut nu = [0f64; 9];
         let mut m = [0f64; 9];
-        let mut minv = [0f64; 9];
-        let mut l = [0f64; 18];
-        let mut dinv = [0f64; 9];
-        let mut b = [0f64; 9];
         let (
             v5,
             s_crank,
@@ -2112,6 +2107,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         (*__m_6) = 0.5f64;
         (*__m_7) = 0.5f64;
         (*__m_8) = 0.001f64;
+        let mut minv = [0f64; 9];
         minv[0] = 1f64 / m[0];
         minv[1] = minv[0];
         minv[2] = 1f64 / m[2];
@@ -2121,6 +2117,8 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
         minv[6] = 1f64 / m[6];
         minv[7] = minv[6];
         minv[8] = 1f64 / m[8];
+        let mut l = [0f64; 18];
+        let mut dinv = [0f64; 9];
         if let ::core::result::Result::Err(row) = Self::schur_factor(
             &jv,
             &minv,
@@ -2144,6 +2142,7 @@ impl ::mbd::ForwardDynamics<f64, 9, 9, 9> for SliderCrank {
                 >(t, row, &m[..], &MASS_BODIES, &jv[..], finite, options.allow_redundant),
             );
         }
+        let mut b = [0f64; 9];
         {
             let v: &[f64; 9] = v;
             use ::mbd::__private::Elements as _;
