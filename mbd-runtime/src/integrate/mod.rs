@@ -374,7 +374,10 @@ impl<'m, M, T: Real> System<'m, M, T> {
     where
         M: ForwardDynamics<T, NQ, NV, NC>,
     {
-        self.mechanism.accelerations_in(scratch.reborrow(), q, v, t, &self.dynamics, vd, lambda)?;
+        // Work tracking's vectors (friction's forces, h and M v̇), taken before forward dynamics
+        // gets the rest of the rows.
+        let work = if self.track_work { Some(scratch.vectors.rows::<NV, 3>()) } else { None };
+        self.mechanism.accelerations_in(scratch, q, v, t, &self.dynamics, vd, lambda)?;
         // No NaN leaves a solve silently: a non-finite v̇ or λ is traced to its source (the cold
         // path names the force element). One independent comparison per velocity: v̇ =
         // M⁻¹(h + Dᵀλ) multiplies every λ_r into the velocities of its row, so a non-finite λ
@@ -382,11 +385,10 @@ impl<'m, M, T: Real> System<'m, M, T> {
         if !vd.iter().all(|x| x.is_finite()) {
             return Err(crate::model::dynamics::non_finite(self.mechanism, q, v, t, lambda));
         }
-        if !self.track_work {
+        let Some([friction, h, inertia]) = work else {
             return Ok([T::ZERO; 2]);
-        }
+        };
         let mut nonconservative = self.mechanism.nonconservative_power(q, v, t);
-        let [friction, h, inertia] = scratch.vectors.rows::<NV, 3>();
         // Coulomb friction (absent from the generated power, which is λ-free).
         self.mechanism.friction_forces(q, v, t, lambda, friction);
         for i in 0..NV {
