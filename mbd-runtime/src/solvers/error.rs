@@ -178,7 +178,7 @@ impl core::error::Error for KinematicError {}
 /// Constraint rows named by a [`KinematicError::CannotAssemble`]: the first
 /// [`ConstraintRows::CAPACITY`] by name, and how many more. `Copy` and without allocation, so
 /// that errors stay `no_std` (the names are the mechanism's `CONSTRAINT_NAMES`, by index).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, PartialEq, Eq)]
 pub struct ConstraintRows {
     all: &'static [&'static str],
     indices: [u16; ConstraintRows::CAPACITY],
@@ -219,6 +219,20 @@ impl ConstraintRows {
     }
 }
 
+/// The named rows and how many there are, not the mechanism's whole table of row names (a
+/// 110-link bridge's error printed 222 of them).
+impl fmt::Debug for ConstraintRows {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        struct Names<'a>(&'a ConstraintRows);
+        impl fmt::Debug for Names<'_> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.debug_list().entries(self.0.names()).finish()
+            }
+        }
+        f.debug_struct("ConstraintRows").field("names", &Names(self)).field("total", &self.total).finish()
+    }
+}
+
 impl fmt::Display for ConstraintRows {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(if self.total == 1 { "the row " } else { "the rows " })?;
@@ -232,5 +246,20 @@ impl fmt::Display for ConstraintRows {
             write!(f, " and {} more", self.total - self.count)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `CannotAssemble`'s rows print as the rows it names and their count, in `{:?}` as in
+    /// `{}`: not the mechanism's whole table of row names.
+    #[test]
+    fn constraint_rows_print_only_their_rows() {
+        const NAMES: &[&str] = &["pin: x", "pin: y", "slot: n", "rod: length", "drive: phi"];
+        let rows = ConstraintRows::new(NAMES, [3, 0].into_iter());
+        assert_eq!(format!("{rows:?}"), r#"ConstraintRows { names: ["rod: length", "pin: x"], total: 2 }"#);
+        assert_eq!(rows.to_string(), "the rows 'rod: length', 'pin: x'");
     }
 }
