@@ -9,35 +9,16 @@
 //! dis.txt && python3 frames.py dis.txt 4000`).
 use mbd::prelude::*;
 
-macro_rules! ladder {
-    ($name:ident, $n:tt) => {
-        mechanism! {
-            /// A hanging ladder of $n four-bar loops.
-            pub $name {
-                gravity [0.0, -9.81];
-                body r[0] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2, 0.0, 1e-4] }
-                for k in 1..=$n {
-                    body r[k] { mass: 1.0, inertia: 0.013333333333333334, at: [0.2 + 0.3 * k * sin(0.2), -0.3 * k * cos(0.2), 0.0] }
-                }
-                for k in 0..$n {
-                    body a[k] {
-                        mass: 0.5,
-                        inertia: 0.00375,
-                        at: [(0.3 * k + 0.15) * sin(0.2), -(0.3 * k + 0.15) * cos(0.2), 0.2 - PI / 2.0]
-                    }
-                    revolute r[k][-0.2, 0.0] ~ a[k][-0.15, 0.0];
-                    revolute a[k][0.15, 0.0] ~ r[k + 1][-0.2, 0.0];
-                    revolute_revolute r[k][0.2, 0.0] ~ r[k + 1][0.2, 0.0] { length: 0.3 };
-                }
-                revolute ground[0.0, 0.0] ~ r[0][-0.2, 0.0];
-                revolute_revolute ground[0.4, 0.3] ~ r[0][0.2, 0.0] { length: 0.3 };
-            }
-        }
-    };
-}
+include!("../../../tests/common/ladder.rs");
 
-ladder! { Ladder51, 25 }
-ladder! { Ladder201, 100 }
+ladder! {
+    /// The ladder with 25 loops.
+    Ladder51, 25
+}
+ladder! {
+    /// `tests/large.rs`' ladder of 100 loops.
+    Ladder201, 100
+}
 
 /// Bytes painted below the caller's frame: more than any solve here takes.
 const PAINT: usize = 48 << 20;

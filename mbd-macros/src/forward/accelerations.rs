@@ -128,8 +128,8 @@ impl Plan<'_> {
         }
         let (friction_body, _) = e.body(&friction);
         // Coulomb friction's loads by the runtime's fixed point (`mbd::settle_loads`): each
-        // step the friction forces of the λ it is given, then the solve with them
-        // `hf` starts zeroed, and each iteration writes the same non-zeros.
+        // step the friction forces of the λ it is given, then the solve with them. `hf` starts
+        // zeroed, and each iteration writes the same non-zeros.
         let applied = self.in_place(quote!(let applied = h;), quote!(applied.copy_from_slice(&h[..]);));
         let declare_hf = self.declare(&["hf"]);
         quote! {
@@ -276,9 +276,6 @@ impl Plan<'_> {
     ) -> (TokenStream, TokenStream) {
         let Plan { real, zero, nv_l, nc_l, .. } = self;
         let method = syn::Ident::new(name, proc_macro2::Span::call_site());
-        let names: Vec<&syn::Ident> = locals.iter().map(|local| &local.name).collect();
-        let lengths: Vec<Literal> = locals.iter().map(|local| usize_lit(local.len)).collect();
-        let declarations = quote!(#(let mut #names = [#zero; #lengths];)*);
         if !self.arrays_in_work_space() {
             let inline = crate::emit::inline_hint(self.nc);
             let evaluated = locals.iter().filter(|local| EVALUATED.contains(&local.name.to_string().as_str()));
@@ -292,6 +289,9 @@ impl Plan<'_> {
             };
             return (method, quote!());
         }
+        let names: Vec<&syn::Ident> = locals.iter().map(|local| &local.name).collect();
+        let lengths: Vec<Literal> = locals.iter().map(|local| usize_lit(local.len)).collect();
+        let declarations = quote!(#(let mut #names = [#zero; #lengths];)*);
         let inner = quote::format_ident!("__mbd_{}", name);
         let method_in = quote::format_ident!("{}_in", name);
         let nnz = usize_lit(self.f.jacobian.len());
@@ -305,8 +305,10 @@ impl Plan<'_> {
         let vector_scalars = usize_lit(locals.iter().filter(|local| matches!(local.from, Source::Vectors)).map(|local| local.len).sum());
         let nq_l = &self.nq_l;
         let trait_path = quote!(::mbd::ForwardDynamics<#real, #nq_l, #nv_l, #nc_l>);
-        // A scratch without the rows (`DenseArrays`, on the stack) gets the stack's arrays.
+        // A scratch without the rows (`DenseArrays`, on the stack) gets the stack's arrays: the
+        // method with them is never inlined, or its frame would be the `_in` method's too.
         let methods = quote! {
+            #[inline(never)]
             fn #method(&self, #params) -> #ret {
                 #declarations
                 self.#inner(#(&mut #names,)* #args)
