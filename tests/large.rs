@@ -41,8 +41,8 @@ fn statics_and_kinematics_of_120_bodies_on_a_2_mb_stack() {
         let mut ws = Chain120::workspace();
         assert_eq!(
             Workspace::<f64, 360, 240, 600>::BYTES,
-            3_628_800,
-            "D twice, D Dᵀ, one NV², two NC², 48 rows of N for the solvers' vectors, 12 for a simulation's points"
+            3_642_240,
+            "D twice, D Dᵀ, one NV², two NC², 48 rows of N for the solvers' vectors, 12 for a simulation's points, 4 NC + 2 NV indices"
         );
         let mut q = m.initial_positions();
         KinematicSolver::default().assemble(&m, &mut ws, &mut q, 0.0).expect("the chain assembles");
@@ -306,10 +306,10 @@ fn a_201_body_ladder_runs_statics_assembly_and_every_integrator_on_a_2_mb_stack(
 /// with partitioning) on an eighth of that, 256 KB, in a debug build (issue 37, item 4): the
 /// integrators' stage, residual and Newton vectors, statics' iterate, a simulation's points
 /// and, past 2 048 scalars, the generated forward dynamics' arrays are in the work space.
-/// Measured by painting the stack (debug): Radau5 1 059 KB → 387 (2026-12-06) → 152
-/// (2026-12-07), `Auto` 960 → 389 → 135, DOPRI5 with partitioning 136, statics 383 → 38. What
-/// is left grows with the model by a few scalars a velocity: the sample handed to the callback,
-/// partitioning's and the dense LU's row indices, and an integrator's own arrays where the
+/// Measured by painting the stack (debug): Radau5 1 059 KB → 387 (2026-12-06) → 130
+/// (2026-12-07), `Auto` 960 → 389 → 113, DOPRI5 with partitioning 136 → 112, statics 383 → 38.
+/// What is left grows with the model by a few scalars a velocity: the sample handed to the
+/// callback, the generated functions' temporaries, and an integrator's own arrays where the
 /// integrator is on the stack (boxed here: DOP853 holds 216 KB of them for this ladder).
 #[test]
 fn a_201_body_ladder_runs_statics_and_its_largest_integrators_on_a_quarter_of_a_megabyte() {

@@ -16,7 +16,7 @@
 //! adds the driver sin(φ − Ωt) = s cos Ωt − c sin Ωt (NC = 3), whose D row is
 //! (0, 0, c cos Ωt + s sin Ωt), ν = Ω (c cos Ωt + s sin Ωt) and γ = (ω − Ω)² (s cos Ωt − c sin Ωt).
 
-use crate::linalg::{lu_factor, lu_solve_in_place};
+use crate::linalg::{lu_factor, lu_solve_in_place, LuWork};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::{ConstraintForces, Dynamics, Kinematics, KinematicsHooks, Mechanism, OpCount};
 use crate::model::mechanism::{CoordinateInfo, CoordinateKind, VelocityInfo, VelocityKind};
@@ -241,8 +241,9 @@ impl ForwardDynamics<f64, 4, 3, 2> for UnitPendulum {
             let dv: f64 = (0..3).map(|i| d[r][i] * v[i]).sum();
             b[3 + r] = gamma[r] - 2.0 * options.baumgarte_alpha * dv - options.baumgarte_beta * options.baumgarte_beta * phi[r];
         }
-        let permutation = lu_factor(&mut a, 1e-14).map_err(|_| dependent(t))?;
-        lu_solve_in_place(&a, &permutation, &mut b);
+        let (mut pivots, mut columns, mut scale) = ([0; 5], [0; 5], [0.0; 5]);
+        lu_factor(&mut a, 1e-14, LuWork { pivots: &mut pivots, columns: &mut columns, scale: &mut scale }).map_err(|_| dependent(t))?;
+        lu_solve_in_place(&a, &pivots, &mut b);
         *vd = [b[0], b[1], b[2]];
         *lambda = [b[3], b[4]];
         Ok(())

@@ -28,10 +28,10 @@
 //! them at every rtol (`mbd-long/tests/singular.rs`).
 
 use crate::integrate::SimulationError;
-use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
+use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError, LuWork};
 use crate::model::dynamics::{DynamicsError, DynamicsOptions};
 use crate::model::mechanism::{Kinematics, Mechanism};
-use crate::model::workspace::{Vectors, WorkArrays};
+use crate::model::workspace::{Indices, Vectors, WorkArrays};
 use crate::real::Real;
 use crate::solvers::kinematics::name;
 
@@ -42,12 +42,13 @@ const SINGULAR_PIVOT: f64 = 1e-12;
 
 /// A choice of dependent velocities (planar: coordinates), and of the constraint rows that
 /// decide them: with dependent rows (a redundant joint, a singular position) fewer rows than NC.
+///
+/// The choice's indices are in the work space it corrects with (so that they do not put two
+/// arrays of NC indices on the stack): the dependent velocities, of which the first `rank` are
+/// decided by the rows `rows[..rank]`, and the constraint rows in the order of their pivots,
+/// the rows past `rank` dropped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Partition<const NV: usize, const NC: usize> {
-    /// The dependent velocities: the first `rank` are decided by the rows `rows[..rank]`.
-    dependent: [usize; NC],
-    /// The constraint rows in the order of their pivots; the rows past `rank` are dropped.
-    rows: [usize; NC],
     rank: usize,
     chosen: bool,
     /// The conditioning measure (module docs) of D_d when it was chosen.
@@ -65,33 +66,48 @@ impl<const NV: usize, const NC: usize> Default for Partition<NV, NC> {
 impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     /// No partition yet: the first correction chooses one.
     pub fn new() -> Self {
-        Self { dependent: [0; NC], rows: [0; NC], rank: 0, chosen: false, chosen_measure: 0.0, choices: 0 }
+        Self { rank: 0, chosen: false, chosen_measure: 0.0, choices: 0 }
     }
 
     /// The dependent velocities (indices into v; planar: into q), once chosen: one per kept
-    /// constraint row.
-    pub fn dependent(&self) -> Option<&[usize]> {
-        self.chosen.then_some(&self.dependent[..self.rank])
+    /// constraint row. `ws` is the work space the partition corrects with.
+    pub fn dependent<'w, T, const N: usize, const NS: usize>(&self, ws: &'w WorkArrays<T, NV, NC, N, NS>) -> Option<&'w [usize]> {
+        self.chosen.then_some(&ws.indices.dependent[..self.rank])
     }
 
     /// The constraint rows dropped as dependent on the others (indices into Φ), once chosen.
-    pub fn dropped(&self) -> Option<&[usize]> {
-        self.chosen.then_some(&self.rows[self.rank..])
+    /// `ws` is the work space the partition corrects with.
+    pub fn dropped<'w, T, const N: usize, const NS: usize>(&self, ws: &'w WorkArrays<T, NV, NC, N, NS>) -> Option<&'w [usize]> {
+        self.chosen.then_some(&ws.indices.rows[self.rank..])
     }
 
-    /// Chooses the dependent coordinates by full pivoting on `d`. A row whose remaining entries
-    /// are all at most `drop_below` times its largest entry in D (about the sine of its angle to
-    /// the span of the rows already taken) depends on those rows: it is dropped when
-    /// `allow_redundant`, and `Err(row)` names it otherwise.
+    /// Chooses the dependent coordinates by full pivoting on `d`, into `indices.dependent` and
+    /// `indices.rows`. A row whose remaining entries are all at most `drop_below` times its
+    /// largest entry in D (about the sine of its angle to the span of the rows already taken)
+    /// depends on those rows: it is dropped when `allow_redundant`, and `Err(row)` names it
+    /// otherwise. `a` and `scale` are scratch.
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    fn choose<T: Real>(&mut self, d: &[[T; NV]; NC], a: &mut [[T; NV]; NC], drop_below: T, allow_redundant: bool) -> Result<(), usize> {
+    fn choose<T: Real>(
+        &mut self,
+        d: &[[T; NV]; NC],
+        (a, scale): (&mut [[T; NV]; NC], &mut [T; NC]),
+        indices: &mut Indices<NV, NC>,
+        drop_below: T,
+        allow_redundant: bool,
+    ) -> Result<(), usize> {
+        let Indices { rows, dependent, .. } = indices;
         // Row by row: `*a = *d` builds the NC × NV copy on the stack first in a debug build
         // (2.4 MB for a 201-body ladder, past a 2 MB thread).
         a.copy_from_slice(d);
-        let scale: [T; NC] = core::array::from_fn(|r| d[r].iter().fold(T::ZERO, |m, v| m.max(v.abs())));
+        for (s, row) in scale.iter_mut().zip(d) {
+            *s = row.iter().fold(T::ZERO, |m, v| m.max(v.abs()));
+        }
         let largest = scale.iter().fold(T::ZERO, |m, &v| m.max(v));
-        self.rows = core::array::from_fn(|i| i);
+        for (i, row) in rows.iter_mut().enumerate() {
+            *row = i;
+        }
+        // A byte a velocity: whether it is dependent already.
         let mut used = [false; NV];
         let mut rank = NC;
         let mut k = 0;
@@ -100,7 +116,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
             let mut i = k;
             while i < rank {
                 let remaining = a[i].iter().zip(&used).fold(T::ZERO, |m, (v, &u)| if u { m } else { m.max(v.abs()) });
-                let row = self.rows[i];
+                let row = rows[i];
                 if remaining > drop_below * scale[row] && remaining > T::from_f64(SINGULAR_PIVOT) * largest {
                     i += 1;
                     continue;
@@ -110,7 +126,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                 }
                 rank -= 1;
                 a.swap(i, rank);
-                self.rows.swap(i, rank);
+                rows.swap(i, rank);
             }
             if k == rank {
                 break;
@@ -125,14 +141,15 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
             }
             let (value, i, j) = best;
             if !(value > T::ZERO) {
-                return Err(self.rows[i]);
+                return Err(rows[i]);
             }
             a.swap(k, i);
-            self.rows.swap(k, i);
+            rows.swap(k, i);
             used[j] = true;
-            self.dependent[k] = j;
-            let pivot_row = a[k];
-            for row in a.iter_mut().take(rank).skip(k + 1) {
+            dependent[k] = j;
+            let (done, remaining) = a.split_at_mut(k + 1);
+            let pivot_row = &done[k];
+            for row in remaining.iter_mut().take(rank - k - 1) {
                 let factor = row[j] / pivot_row[j];
                 for (entry, &p) in row.iter_mut().zip(pivot_row.iter()) {
                     *entry -= factor * p;
@@ -147,59 +164,69 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
     }
 
     /// LU of D_d (the kept rows against the dependent velocities, the identity past `rank`),
-    /// choosing the partition anew when it is missing or ill-conditioned.
+    /// choosing the partition anew when it is missing or ill-conditioned: the factors in
+    /// `block`, their interchanges in `indices.pivots_c`. `scratch` and `vectors` are scratch.
     fn factor<T: Real, M: Mechanism>(
         &mut self,
         t: T,
         d: &[[T; NV]; NC],
         options: &DynamicsOptions<T>,
-        scratch: &mut [[T; NV]; NC],
-        block: &mut [[T; NC]; NC],
-    ) -> Result<crate::linalg::Permutation<NC>, SimulationError> {
+        (scratch, block): (&mut [[T; NV]; NC], &mut [[T; NC]; NC]),
+        indices: &mut Indices<NV, NC>,
+        mut vectors: Vectors<'_, T>,
+    ) -> Result<(), SimulationError> {
         if let Some(row) = d.iter().position(|row| row.iter().any(|x| !x.is_finite())) {
             return Err(DynamicsError::NonFinite { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, row) }.into());
         }
         // Only with `allow_redundant` off (with it on, such a row is dropped).
         let dependent_row = |row| DynamicsError::DependentConstraint { t: t.to_f64(), row: name(M::CONSTRAINT_NAMES, row) }.into();
+        let [scale, pivot_scale] = vectors.rows_written::<NC, 2>();
         loop {
             let fresh = !self.chosen;
             if fresh {
-                self.choose(d, scratch, options.pivot_tolerance, options.allow_redundant).map_err(dependent_row)?;
+                self.choose(d, (scratch, scale), indices, options.pivot_tolerance, options.allow_redundant).map_err(dependent_row)?;
             }
+            let Indices { rows, dependent, pivots_c, columns_c, .. } = &mut *indices;
             for (r, row) in block.iter_mut().enumerate() {
                 for (k, entry) in row.iter_mut().enumerate() {
                     *entry = match (r < self.rank, k < self.rank) {
-                        (true, true) => d[self.rows[r]][self.dependent[k]],
+                        (true, true) => d[rows[r]][dependent[k]],
                         (false, false) if r == k => T::ONE,
                         _ => T::ZERO,
                     };
                 }
             }
+            // The largest entry of each kept row of D, in the block's order.
+            for (s, &row) in pivot_scale.iter_mut().zip(rows.iter()).take(self.rank) {
+                *s = d[row].iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+            }
             // A fresh block's elimination pivots are at least √τ of their rows' largest entries
             // (`choose`): it is regular, and its LU takes any non-zero pivot.
             let tolerance = if fresh { T::ZERO } else { T::from_f64(SINGULAR_PIVOT) };
-            let kept = match lu_factor(block, tolerance) {
-                Ok(p) => {
-                    // The smallest pivot against the largest entry of its row of D.
-                    let measure = (0..self.rank).fold(f64::INFINITY, |m, k| {
-                        let row = self.rows[p.original_rows()[k]];
-                        let scale = d[row].iter().fold(T::ZERO, |s, x| s.max(x.abs()));
-                        m.min((block[k][k].abs() / scale).to_f64())
-                    });
+            let work = LuWork { pivots: &mut *pivots_c, columns: columns_c, scale: &mut *scale };
+            let kept = match lu_factor(block, tolerance, work) {
+                Ok(()) => {
+                    // The smallest pivot against the largest entry of its row of D: the
+                    // scales interchanged as the LU interchanged the rows (the rows past `rank`,
+                    // the identity's, stay in place below them).
+                    for (k, &swapped) in pivots_c.iter().enumerate().take(self.rank) {
+                        pivot_scale.swap(k, swapped);
+                    }
+                    let measure = (0..self.rank).fold(f64::INFINITY, |m, k| m.min((block[k][k].abs() / pivot_scale[k]).to_f64()));
                     if fresh {
                         self.chosen_measure = measure;
                     }
-                    (fresh || measure >= REPARTITION_RATIO * self.chosen_measure).then_some(p)
+                    fresh || measure >= REPARTITION_RATIO * self.chosen_measure
                 }
                 Err(LinalgError::Singular { candidate_row, .. }) if fresh => {
-                    return Err(dependent_row(self.rows[candidate_row]));
+                    return Err(dependent_row(rows[candidate_row]));
                 }
-                Err(_) => None,
+                Err(_) => false,
             };
-            match kept {
-                Some(p) => return Ok(p),
-                None => self.chosen = false,
+            if kept {
+                return Ok(());
             }
+            self.chosen = false;
         }
     }
 
@@ -222,7 +249,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
         max_iterations: u32,
     ) -> Result<(), SimulationError> {
         let tolerance = tolerance.max(crate::solvers::kinematics::resolution(q));
-        let WorkArrays { jacobian: d, jacobian_scratch: scratch, constraint_square: block, vectors, .. } = ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: scratch, constraint_square: block, vectors, indices, .. } = ws;
         // Φ, then ν; the kept rows' right-hand side; a step of the positions.
         let mut vectors = Vectors::new(vectors.flat());
         let [phi, b] = vectors.rows::<NC, 2>();
@@ -242,22 +269,22 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                     residual: worst.1.to_f64(),
                 });
             }
-            let permutation = self.factor::<T, M>(t, d, options, scratch, block)?;
-            self.kept(phi, b);
-            lu_solve_in_place(block, &permutation, b);
+            self.factor::<T, M>(t, d, options, (scratch, block), indices, vectors.reborrow())?;
+            self.kept(&indices.rows, phi, b);
+            lu_solve_in_place(block, &indices.pivots_c, b);
             // The partition may have been chosen anew: only this one's entries move.
             step.fill(T::ZERO);
-            for (&c, &bk) in self.dependent[..self.rank].iter().zip(b.iter()) {
+            for (&c, &bk) in indices.dependent[..self.rank].iter().zip(b.iter()) {
                 step[c] = -bk;
             }
             mechanism.integrate_positions(q, step, T::ONE);
             iterations += 1;
         }
         // Velocities: D_d v_d = ν − D_i v_i, with D at the corrected q.
-        let permutation = self.factor::<T, M>(t, d, options, scratch, block)?;
+        self.factor::<T, M>(t, d, options, (scratch, block), indices, vectors.reborrow())?;
         let nu = phi;
         mechanism.velocity_rhs(q, t, nu);
-        for &c in &self.dependent[..self.rank] {
+        for &c in &indices.dependent[..self.rank] {
             v[c] = T::ZERO;
         }
         for (r, row) in d.iter().enumerate() {
@@ -265,19 +292,19 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
                 nu[r] -= *entry * vc;
             }
         }
-        self.kept(nu, b);
-        lu_solve_in_place(block, &permutation, b);
-        for (&c, &bk) in self.dependent[..self.rank].iter().zip(b.iter()) {
+        self.kept(&indices.rows, nu, b);
+        lu_solve_in_place(block, &indices.pivots_c, b);
+        for (&c, &bk) in indices.dependent[..self.rank].iter().zip(b.iter()) {
             v[c] = bk;
         }
         Ok(())
     }
 
-    /// The kept rows of `x` (one entry per constraint row) in the block's order, zeros past
-    /// `rank` (the identity rows of the dropped ones).
-    fn kept<T: Real>(&self, x: &[T; NC], into: &mut [T; NC]) {
+    /// The kept rows of `x` (one entry per constraint row) in the block's order (`rows`, the
+    /// work space's), zeros past `rank` (the identity rows of the dropped ones).
+    fn kept<T: Real>(&self, rows: &[usize; NC], x: &[T; NC], into: &mut [T; NC]) {
         for (i, y) in into.iter_mut().enumerate() {
-            *y = if i < self.rank { x[self.rows[i]] } else { T::ZERO };
+            *y = if i < self.rank { x[rows[i]] } else { T::ZERO };
         }
     }
 }
@@ -285,7 +312,23 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::workspace::Workspace;
     use crate::test_support::UnitPendulum;
+
+    /// The partition is chosen again when its block's smallest pivot, against its row of D,
+    /// falls below 1e-2 of its value at the choice — also when that pivot is alone in its
+    /// column (a bead on a circle at x → 0: D_d = 2x, 1 against its own column at any x).
+    /// `Partition::factor` on a work space's arrays.
+    fn factor(
+        partition: &mut Partition<3, 2>,
+        ws: &mut Workspace<f64, 3, 2, 5>,
+        t: f64,
+        d: &[[f64; 3]; 2],
+        options: &DynamicsOptions<f64>,
+    ) -> Result<(), SimulationError> {
+        let WorkArrays { jacobian_scratch, constraint_square, vectors, indices, .. } = &mut **ws;
+        partition.factor::<f64, UnitPendulum>(t, d, options, (jacobian_scratch, constraint_square), indices, Vectors::new(vectors.flat()))
+    }
 
     /// The partition is chosen again when its block's smallest pivot, against its row of D,
     /// falls below 1e-2 of its value at the choice — also when that pivot is alone in its
@@ -293,39 +336,62 @@ mod tests {
     #[test]
     fn an_ill_conditioned_block_is_chosen_again() {
         let mut partition = Partition::<3, 2>::new();
-        let (mut scratch, mut block) = ([[0.0; 3]; 2], [[0.0; 2]; 2]);
+        let mut ws = Workspace::<f64, 3, 2, 5>::new();
+        let options = DynamicsOptions::default();
         // D of the bead at (1, 0): rows (2x, 2y, 0) and the held turn (0, 0, 1).
         let at_side = [[2.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
-        partition.factor::<f64, UnitPendulum>(0.0, &at_side, &DynamicsOptions::default(), &mut scratch, &mut block).unwrap();
-        assert_eq!((partition.dependent(), partition.choices), (Some(&[0, 2][..]), 1));
+        factor(&mut partition, &mut ws, 0.0, &at_side, &options).unwrap();
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[0, 2][..]), 1));
         // Still well conditioned at x = 0.1 (measure 0.1 of 1 at the choice: kept).
         let near = [[0.2, 1.99, 0.0], [0.0, 0.0, 1.0]];
-        partition.factor::<f64, UnitPendulum>(0.1, &near, &DynamicsOptions::default(), &mut scratch, &mut block).unwrap();
-        assert_eq!((partition.dependent(), partition.choices), (Some(&[0, 2][..]), 1));
+        factor(&mut partition, &mut ws, 0.1, &near, &options).unwrap();
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[0, 2][..]), 1));
         // At x = 0.005 (measure 2.5e-3): y becomes dependent.
         let bottom = [[0.01, -2.0, 0.0], [0.0, 0.0, 1.0]];
-        partition.factor::<f64, UnitPendulum>(0.2, &bottom, &DynamicsOptions::default(), &mut scratch, &mut block).unwrap();
-        assert_eq!((partition.dependent(), partition.choices), (Some(&[1, 2][..]), 2));
+        factor(&mut partition, &mut ws, 0.2, &bottom, &options).unwrap();
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[1, 2][..]), 2));
+    }
+
+    /// The measure follows the block's row interchanges. The bead's row with a second one
+    /// coupling x and the turn: at the side D_d = [[2, 0], [1, 1]], measure 1. Near the bottom
+    /// its LU exchanges the rows, and the bead's pivot is measured against the bead's row of D:
+    /// at x = 0.1, 0.2/1.99, kept; at x = 0.008, 0.016/2 = 0.008 < 1e-2, chosen again (measured
+    /// against the other row, it would read 0.016 and be kept).
+    #[test]
+    fn the_measure_follows_the_interchanges() {
+        let mut partition = Partition::<3, 2>::new();
+        let mut ws = Workspace::<f64, 3, 2, 5>::new();
+        let options = DynamicsOptions::default();
+        let at_side = [[2.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
+        factor(&mut partition, &mut ws, 0.0, &at_side, &options).unwrap();
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[0, 2][..]), 1));
+        let near = [[0.2, 1.99, 0.0], [1.0, 0.0, 1.0]];
+        factor(&mut partition, &mut ws, 0.1, &near, &options).unwrap();
+        assert_eq!(ws.indices.pivots_c[0], 1, "the LU exchanged D_d's rows");
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[0, 2][..]), 1));
+        let bottom = [[0.016, -2.0, 0.0], [1.0, 0.0, 1.0]];
+        factor(&mut partition, &mut ws, 0.2, &bottom, &options).unwrap();
+        assert_eq!((partition.dependent(&ws), partition.choices), (Some(&[1, 0][..]), 2));
     }
 
     /// Rows that depend on each other: with `allow_redundant` (the default) one of them is
     /// dropped and the other decides the dependent velocity; without, the error names it.
     #[test]
     fn dependent_rows_are_dropped_or_named() {
-        let (mut scratch, mut block) = ([[0.0; 3]; 2], [[0.0; 2]; 2]);
+        let mut ws = Workspace::<f64, 3, 2, 5>::new();
         // The bead's circle stated twice, the second row scaled by 2 (and off by a rounding).
         let twice = [[2.0, 0.0, 0.0], [4.0, 1e-15, 0.0]];
         let mut partition = Partition::<3, 2>::new();
-        let p = partition.factor::<f64, UnitPendulum>(0.3, &twice, &DynamicsOptions::default(), &mut scratch, &mut block).unwrap();
+        factor(&mut partition, &mut ws, 0.3, &twice, &DynamicsOptions::default()).unwrap();
         // Full pivoting takes the larger row first: the first one is dropped.
-        assert_eq!((partition.dependent(), partition.dropped()), (Some(&[0][..]), Some(&[0][..])));
+        assert_eq!((partition.dependent(&ws), partition.dropped(&ws)), (Some(&[0][..]), Some(&[0][..])));
         let mut b = [7.0; 2];
-        partition.kept(&[-0.5, -1.0], &mut b);
-        lu_solve_in_place(&block, &p, &mut b);
+        partition.kept(&ws.indices.rows, &[-0.5, -1.0], &mut b);
+        lu_solve_in_place(&ws.constraint_square, &ws.indices.pivots_c, &mut b);
         assert_eq!(b[0], -0.25, "4 Δx = −1 from the kept row; the identity row stays 0");
         assert_eq!(b[1], 0.0);
         let strict = DynamicsOptions::default().with_allow_redundant(false);
-        let err = Partition::<3, 2>::new().factor::<f64, UnitPendulum>(0.3, &twice, &strict, &mut scratch, &mut block).unwrap_err();
+        let err = factor(&mut Partition::<3, 2>::new(), &mut ws, 0.3, &twice, &strict).unwrap_err();
         assert!(matches!(err, SimulationError::Dynamics(DynamicsError::DependentConstraint { t, .. }) if t == 0.3), "{err:?}");
     }
 }

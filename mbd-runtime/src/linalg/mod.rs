@@ -86,36 +86,31 @@ impl fmt::Display for LinalgError {
 
 impl core::error::Error for LinalgError {}
 
-/// The row permutation P of a factorization P A = L U: position `i` of the factors holds
-/// original row `original_rows()[i]`.
-///
-/// Only [`lu_factor`] and [`Permutation::identity`] make one, so every index in it is a valid
-/// row index (`< N`) and each row appears once.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Permutation<const N: usize> {
-    original_rows: [usize; N],
+/// The arrays an LU factorization of an R × C matrix works in besides the matrix: the row
+/// interchanges it records, which the solves read, and two columns' worth of scratch. They come
+/// from the caller (a [`crate::Workspace`]'s index rows and vectors), so that a large matrix's
+/// factorization does not put O(N) arrays on the stack.
+pub(crate) struct LuWork<'a, T, const R: usize, const C: usize> {
+    /// Written: step k exchanged rows k and `pivots[k]` ≥ k (LAPACK's `ipiv`), P their product.
+    pub(crate) pivots: &'a mut [usize; R],
+    /// Scratch: the pivot row's non-zero columns.
+    pub(crate) columns: &'a mut [usize; C],
+    /// Scratch: the largest magnitude of each column of the original matrix.
+    pub(crate) scale: &'a mut [T; C],
 }
 
-impl<const N: usize> Permutation<N> {
-    /// The identity: position `i` holds row `i`.
-    pub fn identity() -> Self {
-        let mut original_rows = [0; N];
-        for (position, row) in original_rows.iter_mut().enumerate() {
-            *row = position;
+/// The original row at `position` of the factors after the first `steps` interchanges of
+/// `pivots`: the interchanges undone in reverse (O(steps), for error reports).
+pub(crate) fn original_row<const R: usize>(pivots: &[usize; R], steps: usize, position: usize) -> usize {
+    pivots[..steps].iter().enumerate().rev().fold(position, |p, (k, &swapped)| {
+        if p == k {
+            swapped
+        } else if p == swapped {
+            k
+        } else {
+            p
         }
-        Self { original_rows }
-    }
-
-    /// Original row index at each position of the factors.
-    pub fn original_rows(&self) -> &[usize; N] {
-        &self.original_rows
-    }
-}
-
-impl<const N: usize> Default for Permutation<N> {
-    fn default() -> Self {
-        Self::identity()
-    }
+    })
 }
 
 /// The first non-finite entry of a matrix in row-major order, as (row, column).
@@ -128,7 +123,7 @@ fn first_non_finite<T: Real, const R: usize, const C: usize>(a: &[[T; C]; R]) ->
 /// factored where it lies when NQ = NC).
 ///
 /// On success `a` holds U on and above the diagonal and the multipliers of the unit
-/// lower-triangular L below it, and the returned [`Permutation`] is P. `relative_tolerance` is
+/// lower-triangular L below it, and `work.pivots` the interchanges that make P. `relative_tolerance` is
 /// τ of the module's pivot test (|pivot| > τ · max |original column|); a negative or NaN τ is
 /// taken as 0, so only exactly-zero pivots are rejected.
 ///
@@ -136,25 +131,26 @@ fn first_non_finite<T: Real, const R: usize, const C: usize>(a: &[[T; C]; R]) ->
 /// [`LinalgError::NotSquare`] if `R ≠ C`; [`LinalgError::NonFinite`] if `a` holds a NaN or an
 /// infinity (checked before anything is modified); [`LinalgError::Singular`] at the first step
 /// without an acceptable pivot, leaving `a` partly eliminated.
-pub fn lu_factor<T: Real, const R: usize, const C: usize>(
+pub(crate) fn lu_factor<T: Real, const R: usize, const C: usize>(
     a: &mut [[T; C]; R],
     relative_tolerance: T,
-) -> Result<Permutation<R>, LinalgError> {
+    work: LuWork<'_, T, R, C>,
+) -> Result<(), LinalgError> {
     if R != C {
         return Err(LinalgError::NotSquare { rows: R, columns: C });
     }
     if let Some((row, column)) = first_non_finite(a) {
         return Err(LinalgError::NonFinite { row, column });
     }
+    let LuWork { pivots, columns, scale: column_scale } = work;
     let tolerance = if relative_tolerance > T::ZERO { relative_tolerance } else { T::ZERO };
     // Largest magnitude of each column of the original matrix: the pivot test's reference.
-    let mut column_scale = [T::ZERO; C];
+    column_scale.fill(T::ZERO);
     for row in a.iter() {
         for (scale, value) in column_scale.iter_mut().zip(row.iter()) {
             *scale = scale.max(value.abs());
         }
     }
-    let mut permutation = Permutation::identity();
     // R == C from here on, so every a[i][k] and column_scale[k] below is in bounds.
     for k in 0..R {
         let mut best_row = k;
@@ -168,15 +164,15 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
         }
         let acceptable = best > tolerance * column_scale[k];
         if !acceptable {
-            return Err(LinalgError::Singular { column: k, candidate_row: permutation.original_rows[best_row] });
+            return Err(LinalgError::Singular { column: k, candidate_row: original_row(pivots, k, best_row) });
         }
+        pivots[k] = best_row;
         if best_row != k {
             // `swap_with_slice`, not `a.swap`: the latter moved whole rows through three `memcpy`
             // calls even for k = best_row, a tenth of a small generalized-α step (17 × 17 saddle
             // matrix, a swap per λ column).
             let (upper, lower) = a.split_at_mut(best_row);
             upper[k].swap_with_slice(&mut lower[0]);
-            permutation.original_rows.swap(k, best_row);
         }
         let (done, remaining) = a.split_at_mut(k + 1);
         let pivot_row = &done[k];
@@ -184,7 +180,6 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
         // Mechanism matrices are sparse (Jacobians, KKT matrices): update only where the pivot
         // row has non-zeros, and only the rows with a non-zero in the pivot column. Exact zeros
         // skipped change no result; the cost falls from O(n³) towards O(n · fill).
-        let mut columns = [0usize; C];
         let mut n_columns = 0;
         for (j, &value) in pivot_row.iter().enumerate().skip(k + 1) {
             if value != T::ZERO {
@@ -203,15 +198,19 @@ pub fn lu_factor<T: Real, const R: usize, const C: usize>(
             }
         }
     }
-    Ok(permutation)
+    Ok(())
 }
 
-/// Forward then back substitution with factors from [`lu_factor`]. Callers guarantee `R == C`
-/// (every index below is then in bounds).
-fn substitute<T: Real, const R: usize, const C: usize>(lu: &[[T; C]; R], permutation: &Permutation<R>, rhs: &[T; R], x: &mut [T; C]) {
+/// Forward then back substitution in place (`x` holds b, becomes the solution) with factors
+/// from [`lu_factor`]: P applied as its interchanges, then L y = P b, then U x = y. Callers
+/// guarantee `R == C` (every index below is then in bounds).
+fn substitute<T: Real, const R: usize, const C: usize>(lu: &[[T; C]; R], pivots: &[usize; R], x: &mut [T; C]) {
+    for (k, &swapped) in pivots.iter().enumerate() {
+        x.swap(k, swapped);
+    }
     // L y = P b (L unit lower-triangular); y is stored in x.
     for i in 0..R {
-        let mut sum = rhs[permutation.original_rows[i]];
+        let mut sum = x[i];
         for (l, &y) in lu[i].iter().zip(x.iter()).take(i) {
             sum -= *l * y;
         }
@@ -234,23 +233,23 @@ fn substitute<T: Real, const R: usize, const C: usize>(lu: &[[T; C]; R], permuta
 ///
 /// # Errors
 /// [`LinalgError::NotSquare`] if `R ≠ C` (such factors cannot come from [`lu_factor`]).
-pub fn lu_solve<T: Real, const R: usize, const C: usize>(
+pub(crate) fn lu_solve<T: Real, const R: usize, const C: usize>(
     lu: &[[T; C]; R],
-    permutation: &Permutation<R>,
+    pivots: &[usize; R],
     rhs: &[T; R],
     x: &mut [T; C],
 ) -> Result<(), LinalgError> {
     if R != C {
         return Err(LinalgError::NotSquare { rows: R, columns: C });
     }
-    substitute(lu, permutation, rhs, x);
+    x.copy_from_slice(rhs.as_slice());
+    substitute(lu, pivots, x);
     Ok(())
 }
 
 /// Solves A x = b in place (`b` becomes x) given the factors of a square A from [`lu_factor`].
-pub fn lu_solve_in_place<T: Real, const N: usize>(lu: &[[T; N]; N], permutation: &Permutation<N>, b: &mut [T; N]) {
-    let rhs = *b;
-    substitute(lu, permutation, &rhs, b);
+pub(crate) fn lu_solve_in_place<T: Real, const N: usize>(lu: &[[T; N]; N], pivots: &[usize; N], b: &mut [T; N]) {
+    substitute(lu, pivots, b);
 }
 
 /// aᵀ b
@@ -264,6 +263,39 @@ mod tests {
 
     /// Relative pivot tolerance used by the tests: the solver's default.
     const PIVOT_TOLERANCE: f64 = 1e-12;
+
+    /// Factors from [`super::lu_factor`] with their interchanges, for the tests.
+    #[derive(Debug)]
+    struct Factored<const N: usize> {
+        pivots: [usize; N],
+    }
+
+    impl<const N: usize> Factored<N> {
+        /// Original row index at each position of the factors.
+        fn original_rows(&self) -> [usize; N] {
+            core::array::from_fn(|position| original_row(&self.pivots, N, position))
+        }
+    }
+
+    /// [`super::lu_factor`] with its work arrays on the stack.
+    fn lu_factor<T: Real, const R: usize, const C: usize>(a: &mut [[T; C]; R], tolerance: T) -> Result<Factored<R>, LinalgError> {
+        let (mut pivots, mut columns, mut scale) = ([0; R], [0; C], [T::ZERO; C]);
+        super::lu_factor(a, tolerance, LuWork { pivots: &mut pivots, columns: &mut columns, scale: &mut scale })?;
+        Ok(Factored { pivots })
+    }
+
+    fn lu_solve_in_place<T: Real, const N: usize>(lu: &[[T; N]; N], factored: &Factored<N>, b: &mut [T; N]) {
+        super::lu_solve_in_place(lu, &factored.pivots, b);
+    }
+
+    fn lu_solve<T: Real, const N: usize>(
+        lu: &[[T; N]; N],
+        factored: &Factored<N>,
+        rhs: &[T; N],
+        x: &mut [T; N],
+    ) -> Result<(), LinalgError> {
+        super::lu_solve(lu, &factored.pivots, rhs, x)
+    }
 
     /// Deterministic xorshift64* generator: uniform values in [−1, 1), no external crate.
     struct Prng(u64);
@@ -376,7 +408,7 @@ mod tests {
             let mut lu = a;
             let p = lu_factor(&mut lu, PIVOT_TOLERANCE).expect("random matrices are regular");
             let mut seen = [false; N];
-            for &row in p.original_rows() {
+            for &row in &p.original_rows() {
                 assert!(!seen[row], "row {row} appears twice in {p:?}");
                 seen[row] = true;
             }
@@ -412,7 +444,7 @@ mod tests {
         // The smallest case that needs a swap.
         let mut swap = [[0.0, 2.0], [3.0, 0.0]];
         let p = lu_factor(&mut swap, PIVOT_TOLERANCE).expect("regular");
-        assert_eq!(p.original_rows(), &[1, 0]);
+        assert_eq!(p.original_rows(), [1, 0]);
         let mut b = [4.0, 9.0];
         lu_solve_in_place(&swap, &p, &mut b);
         assert_eq!(b, [3.0, 2.0]);
@@ -423,7 +455,7 @@ mod tests {
     #[test]
     fn detects_a_singular_matrix() {
         let mut a = [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [5.0, 7.0, 9.0]];
-        match lu_factor(&mut a, PIVOT_TOLERANCE) {
+        match lu_factor(&mut a, PIVOT_TOLERANCE).map(|_| ()) {
             Err(LinalgError::Singular { column, candidate_row }) => {
                 assert_eq!(column, 2);
                 assert!(candidate_row < 3);
@@ -437,7 +469,7 @@ mod tests {
     #[test]
     fn detects_a_zero_column() {
         let mut a = [[2.0, 0.0, 1.0], [0.0, 0.0, 3.0], [1.0, 0.0, 5.0]];
-        assert_eq!(lu_factor(&mut a, PIVOT_TOLERANCE), Err(LinalgError::Singular { column: 1, candidate_row: 1 }));
+        assert_eq!(lu_factor(&mut a, PIVOT_TOLERANCE).map(|_| ()), Err(LinalgError::Singular { column: 1, candidate_row: 1 }));
     }
 
     /// The test is relative to each column: scaling an unknown by 10⁻⁹ (another unit) changes
@@ -456,9 +488,9 @@ mod tests {
     #[test]
     fn reports_non_finite_entries_and_shapes() {
         let mut a = [[1.0, 0.0], [f64::NAN, 1.0]];
-        assert_eq!(lu_factor(&mut a, PIVOT_TOLERANCE), Err(LinalgError::NonFinite { row: 1, column: 0 }));
+        assert_eq!(lu_factor(&mut a, PIVOT_TOLERANCE).map(|_| ()), Err(LinalgError::NonFinite { row: 1, column: 0 }));
         let mut rectangular = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        assert_eq!(lu_factor(&mut rectangular, PIVOT_TOLERANCE), Err(LinalgError::NotSquare { rows: 2, columns: 3 }));
+        assert_eq!(lu_factor(&mut rectangular, PIVOT_TOLERANCE).map(|_| ()), Err(LinalgError::NotSquare { rows: 2, columns: 3 }));
     }
 
     /// The same code in f32.

@@ -7,15 +7,18 @@
 //! so are the generated forward dynamics' arrays where they are more than 2 048 scalars (D's
 //! non-zeros in the second NC × NV array, the factor of S = D M⁻¹ Dᵀ in the NC × NC one, which
 //! body coordinates do not use otherwise, and Φ, ν, γ, h and M⁻¹ in the rows), so that a solver's
-//! frame does not grow with the mechanism. What stays on the stack grows by a few scalars a
-//! velocity: the sample handed to a simulation's callback (a value the callback may keep),
-//! coordinate partitioning's and the dense LU's row indices, and cold error paths. Measured by
-//! painting the stack (2026-12-07), a simulation of a 201-body ladder (NV = 603) takes 33–46 KiB
-//! in a release build and 87–147 KiB in a debug one; in release, 20–30 KiB more than a 51-body
-//! one (NV = 153). It took 141 and 318–389 KiB on 2026-12-06, 283–434 and 769–1 059 before;
-//! statics takes 16 and 38 KiB. Where they are needed at all, the O(N²) arrays are here: a
-//! 120-link chain (NV = 360, NC = 240) needs 3.6 MB of work space, which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the
-//! heap once. Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
+//! frame does not grow with the mechanism; so are the dense LUs' row indices and coordinate
+//! partitioning's choice. What stays on the stack grows by a few scalars a velocity: the sample
+//! handed to a simulation's callback (a value the callback may keep), the generated functions'
+//! temporaries, an interpolation's two rates of q, flags of a byte a row, and cold error paths.
+//! Measured by painting the stack (2026-12-07), a simulation of a 201-body ladder (NV = 603)
+//! takes 25–38 KiB in a release build (29 KiB with partitioning) and 79–139 KiB in a debug one;
+//! in release, 14–24 KiB more than a 51-body one (NV = 153), 14 KiB of which is the sample. It
+//! took 33–67 KiB earlier that day, 141 and 318–389 KiB on 2026-12-06, 283–434 and 769–1 059
+//! before; assembly takes 15 and 27 KiB, statics 16 and 38 KiB. Where they are needed at all,
+//! the O(N²) arrays are here: a 120-link chain (NV = 360, NC = 240) needs 3.6 MB of work space,
+//! which [`Workspace::boxed`] (or the generated `Name::workspace()`) puts on the heap once.
+//! Without `std`, a [`Workspace::new`] in a `static` serves the same purpose; it is
 //! `const`.
 //!
 //! | field | size | used by |
@@ -28,6 +31,7 @@
 //! | (the four above, as [`DenseScratch`]) | | where M depends on q (joint coordinates): forward dynamics and projections with constraint rows, and the Newton matrices of statics, generalized-α and BDF (A and D here, the second NV × NV in the Newton slot being filled); in body coordinates, past 2 048 scalars, the generated forward dynamics' D non-zeros (in the second NC × NV) and factor of S (in the constraint square) |
 //! | the solvers' vectors | 48 × (NV + NC) | the integrators' stages, residuals and Newton corrections; statics' iterate |
 //! | a simulation's points | 12 × (NV + NC) | the step's start, its end, and the end the integrator left (three `Point`s) |
+//! | the solvers' indices | 4 NC + 2 NV (`usize`) | the dense LUs' row interchanges and scratch; coordinate partitioning's dependent velocities and rows, kept from step to step |
 //! | three planned Newton matrices | 3 × NS | statics (the mass matrix [[M, −Dᵀ], [D, 0]], the stiffness matrix [[M − H, −Dᵀ], [D, 0]], and factors), generalized-α (its iteration matrix) |
 //!
 //! Statics and generalized-α factor over the sparse pattern `mechanism!` plans; each matrix is
@@ -57,8 +61,8 @@ pub type Boxed<T, const NV: usize, const NC: usize, const N: usize, const NS: us
 /// the integrator left it). An [`Integrator`](crate::Integrator) gets the arrays alone, beside
 /// the points.
 ///
-/// `repr(C)` and made only of arrays of `T`, so it is exactly `size_of::<Self>() /
-/// size_of::<T>()` consecutive scalars, which [`Workspace::boxed`] relies on.
+/// `repr(C)`, made of arrays of `T` and of `usize` (the solvers' indices), which
+/// [`Workspace::boxed`] writes field by field.
 #[repr(C)]
 #[derive(Clone, Debug)]
 pub struct Workspace<T, const NV: usize, const NC: usize, const N: usize, const NS: usize = 0> {
@@ -78,6 +82,34 @@ pub struct WorkArrays<T, const NV: usize, const NC: usize, const N: usize, const
     pub(crate) coupling: [[T; NC]; NC],
     pub(crate) newton: [[T; NS]; 3],
     pub(crate) vectors: Rows<T, NV, NC, VECTOR_ROWS>,
+    pub(crate) indices: Indices<NV, NC>,
+}
+
+/// The solvers' row and column indices: the dense LUs' interchanges and scratch
+/// ([`crate::linalg::LuWork`]), and coordinate partitioning's choice, which a simulation keeps
+/// from one step to the next.
+#[repr(C)]
+#[derive(Clone, Debug)]
+pub(crate) struct Indices<const NV: usize, const NC: usize> {
+    /// The interchanges of an LU with NC rows: D where it is square (kinematics), D Dᵀ + μ I
+    /// (a failed assembly's descent), partitioning's D_d.
+    pub(crate) pivots_c: [usize; NC],
+    /// The interchanges of an LU with NV rows: Dᵀ (inverse dynamics), the Hessian of a failed
+    /// assembly's descent.
+    pub(crate) pivots_v: [usize; NV],
+    /// An LU's scratch (the pivot row's non-zero columns), NC columns and NV columns.
+    pub(crate) columns_c: [usize; NC],
+    pub(crate) columns_v: [usize; NV],
+    /// Partitioning's dependent velocities, and its constraint rows in pivot order
+    /// ([`crate::Partition`]).
+    pub(crate) dependent: [usize; NC],
+    pub(crate) rows: [usize; NC],
+}
+
+impl<const NV: usize, const NC: usize> Indices<NV, NC> {
+    const fn new() -> Self {
+        Self { pivots_c: [0; NC], pivots_v: [0; NV], columns_c: [0; NC], columns_v: [0; NV], dependent: [0; NC], rows: [0; NC] }
+    }
 }
 
 /// K rows of NV scalars and K of NC: K (NV + NC) consecutive scalars, whatever the work space's
@@ -126,6 +158,7 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
                 coupling: [[T::ZERO; NC]; NC],
                 newton: [[T::ZERO; NS]; 3],
                 vectors: Rows::new(),
+                indices: Indices::new(),
             },
             points: Rows::new(),
         }
@@ -140,16 +173,22 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
     #[cfg(feature = "std")]
     pub fn boxed() -> std::boxed::Box<Self> {
         let mut uninit = std::boxed::Box::<Self>::new_uninit();
-        let first = uninit.as_mut_ptr().cast::<T>();
-        let scalars = if core::mem::size_of::<T>() == 0 { 0 } else { Self::BYTES / core::mem::size_of::<T>() };
-        // SAFETY: `Self` is `repr(C)` and consists only of arrays of `T` (its arrays are a
-        // `repr(C)` struct of them), all with T's alignment, so it is `scalars` consecutive,
-        // properly aligned `T`s with no padding; writing each one initializes every field (T is
-        // `Copy`, so nothing is dropped).
+        let this = uninit.as_mut_ptr();
+        // SAFETY: every field of `Self` is written in place (through raw pointers to the
+        // fields, no reference to uninitialized memory): its arrays of `T` scalar by scalar
+        // with `T::ZERO` (T is `Copy`: nothing is dropped) and its indices with zero bytes,
+        // which are the `usize` value 0. Then it is initialized.
         unsafe {
-            for k in 0..scalars {
-                first.add(k).write(T::ZERO);
-            }
+            let arrays = &raw mut (*this).arrays;
+            fill_zero::<T, _>(&raw mut (*arrays).jacobian);
+            fill_zero::<T, _>(&raw mut (*arrays).jacobian_scratch);
+            fill_zero::<T, _>(&raw mut (*arrays).constraint_square);
+            fill_zero::<T, _>(&raw mut (*arrays).velocity_square);
+            fill_zero::<T, _>(&raw mut (*arrays).coupling);
+            fill_zero::<T, _>(&raw mut (*arrays).newton);
+            fill_zero::<T, _>(&raw mut (*arrays).vectors);
+            (&raw mut (*arrays).indices).write_bytes(0, 1);
+            fill_zero::<T, _>(&raw mut (*this).points);
             uninit.assume_init()
         }
     }
@@ -159,6 +198,22 @@ impl<T: Real, const NV: usize, const NC: usize, const N: usize, const NS: usize>
     pub(crate) fn arrays_and_points(&mut self) -> (&mut WorkArrays<T, NV, NC, N, NS>, &mut [T]) {
         let Self { arrays, points } = self;
         (arrays, points.flat())
+    }
+}
+
+/// Writes `T::ZERO` over every scalar of `*place`.
+///
+/// # Safety
+/// `place` is valid for writes and `A` consists only of `T`s: an array of `T`, of arrays of
+/// them, or a `repr(C)` struct of such arrays (so it is `size_of::<A>() / size_of::<T>()`
+/// consecutive, aligned `T`s with no padding).
+#[cfg(feature = "std")]
+unsafe fn fill_zero<T: Real, A>(place: *mut A) {
+    let first = place.cast::<T>();
+    let scalars = if core::mem::size_of::<T>() == 0 { 0 } else { core::mem::size_of::<A>() / core::mem::size_of::<T>() };
+    for k in 0..scalars {
+        // SAFETY: k < scalars, within `*place` (the caller's guarantee).
+        unsafe { first.add(k).write(T::ZERO) }
     }
 }
 
@@ -400,7 +455,15 @@ mod tests {
         let boxed = Workspace::<f64, 3, 2, 5>::boxed();
         let value = Workspace::<f64, 3, 2, 5>::new();
         assert_eq!(format!("{boxed:?}"), format!("{value:?}"));
-        assert_eq!(Workspace::<f64, 3, 2, 5>::BYTES, 8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3 + (super::VECTOR_ROWS + super::POINT_ROWS) * 5));
+        // The O(N²) arrays, the rows, and six index arrays (four of NC, two of NV).
+        assert_eq!(
+            Workspace::<f64, 3, 2, 5>::BYTES,
+            8 * (2 * 2 * 3 + 2 * 2 * 2 + 3 * 3 + (super::VECTOR_ROWS + super::POINT_ROWS) * 5)
+                + core::mem::size_of::<usize>() * (4 * 2 + 2 * 3)
+        );
+        // In f32 the indices follow the scalars at usize's alignment.
+        let boxed = Workspace::<f32, 3, 2, 5>::boxed();
+        assert_eq!(format!("{boxed:?}"), format!("{:?}", Workspace::<f32, 3, 2, 5>::new()));
     }
 
     /// The Newton slots are views of exactly NS scalars, and only for storage of that size.

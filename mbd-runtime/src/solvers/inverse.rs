@@ -8,11 +8,11 @@
 //! body's centre of mass with which the joint acts on the body ([`joint_reaction`]). A driver's
 //! reaction is the force or torque the actuator must supply.
 
-use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError};
+use crate::linalg::{lu_factor, lu_solve_in_place, LinalgError, LuWork};
 use crate::model::body::{transpose_times, BodyFrames, BodyWrench, JointLoads};
 use crate::model::dynamics::DynamicsError;
 use crate::model::mechanism::Dynamics;
-use crate::model::workspace::{WorkArrays, Workspace};
+use crate::model::workspace::{Vectors, WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::kinematics::independent_rows;
@@ -285,7 +285,8 @@ impl<T: Real> InverseDynamics<T> {
                 return Err(InverseDynamicsError::NonFinite { t: time, quantity, row: name(M::VELOCITY_NAMES, i) });
             }
         }
-        let WorkArrays { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, .. } = &mut **ws;
+        let WorkArrays { jacobian: d, jacobian_scratch: basis, constraint_square: r, velocity_square: dt, vectors, indices, .. } =
+            &mut **ws;
         m.jacobian(q, t, d);
         let mut base = [T::ZERO; NV];
         m.inverse_forces(q, v, vd, t, &mut base);
@@ -312,7 +313,12 @@ impl<T: Real> InverseDynamics<T> {
                     dt[c][r] = value;
                 }
             }
-            let permutation = lu_factor(dt, pivot_tolerance).map_err(|e| match e {
+            let work = LuWork {
+                pivots: &mut indices.pivots_v,
+                columns: &mut indices.columns_v,
+                scale: Vectors::new(vectors.flat()).take_written(),
+            };
+            lu_factor(dt, pivot_tolerance, work).map_err(|e| match e {
                 // Column r of Dᵀ is constraint r; the candidate row is a velocity.
                 LinalgError::Singular { column, candidate_row } => InverseDynamicsError::SingularJacobian {
                     t: time,
@@ -328,7 +334,7 @@ impl<T: Real> InverseDynamics<T> {
                     InverseDynamicsError::NotDriven { dof: NV as i32 - NC as i32 }
                 }
             })?;
-            Solver::Lu(permutation)
+            Solver::Lu(&indices.pivots_v)
         } else {
             if let Some(i) = d.iter().position(|row| first_non_finite(row).is_some()) {
                 return Err(InverseDynamicsError::NonFinite {
@@ -347,10 +353,10 @@ impl<T: Real> InverseDynamics<T> {
                     *lambda = [T::from_f64(f64::NAN); NC];
                 }
             }
-            Solver::Lu(permutation) => {
+            Solver::Lu(pivots) => {
                 let mut x = [T::ZERO; NV];
                 x.copy_from_slice(b);
-                lu_solve_in_place(dt, permutation, &mut x);
+                lu_solve_in_place(dt, pivots, &mut x);
                 lambda.copy_from_slice(&x[..NC]);
             }
             Solver::Orthogonal(redundant) => {
@@ -424,9 +430,10 @@ impl<T: Real> InverseDynamics<T> {
 
 /// How [`InverseDynamics::solve`] solves Dᵀ λ = b: over the planned LDLᵀ of D Dᵀ, by the LU of the
 /// square Dᵀ, or over D's independent rows (the flags mark the rows left out).
-enum Solver<const N: usize, const NC: usize> {
+enum Solver<'a, const N: usize, const NC: usize> {
     Sparse,
-    Lu(crate::linalg::Permutation<N>),
+    /// The LU's interchanges (the factors are in the work space's velocity square).
+    Lu(&'a [usize; N]),
     Orthogonal([bool; NC]),
 }
 

@@ -18,9 +18,9 @@
 //! an ordinary thread's stack.
 
 use crate::linalg::orthogonal::{least_determined, orthogonalize, rank_revealing_step, solve_orthogonalized};
-use crate::linalg::{self, LinalgError, Permutation};
+use crate::linalg::{self, LinalgError, LuWork};
 use crate::model::mechanism::{Kinematics, Mechanism, PositionStep};
-use crate::model::workspace::{WorkArrays, Workspace};
+use crate::model::workspace::{Vectors, WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::{KinematicError, NonFiniteQuantity};
 use crate::solvers::flow::Flow;
@@ -238,11 +238,12 @@ pub(crate) fn require_driven<const NV: usize, const NC: usize>() -> Result<(), K
     }
 }
 
-/// A factored Jacobian of a driven mechanism: LU in place (NV = NC), or, with redundant rows
-/// (NC > NV), the orthogonalization of its rows in the work space's `jacobian_scratch` (Q) and
-/// `constraint_square` (R) with the rows left out.
+/// A factored Jacobian of a driven mechanism: LU in place (NV = NC, its interchanges in the work
+/// space's `indices.pivots_c`), or, with redundant rows (NC > NV), the orthogonalization of its
+/// rows in the work space's `jacobian_scratch` (Q) and `constraint_square` (R) with the rows
+/// left out.
 enum Factors<const NC: usize> {
-    Lu(Permutation<NC>),
+    Lu,
     Orthogonal { redundant: [bool; NC] },
 }
 
@@ -750,8 +751,14 @@ impl<T: Real> KinematicSolver<T> {
         M: Mechanism,
     {
         if NV == NC {
-            return linalg::lu_factor(&mut ws.jacobian, self.pivot_tolerance())
-                .map(Factors::Lu)
+            let WorkArrays { jacobian, vectors, indices, .. } = &mut **ws;
+            let work = LuWork {
+                pivots: &mut indices.pivots_c,
+                columns: &mut indices.columns_v,
+                scale: Vectors::new(vectors.flat()).take_written(),
+            };
+            return linalg::lu_factor(jacobian, self.pivot_tolerance(), work)
+                .map(|()| Factors::Lu)
                 .map_err(|e| jacobian_error::<M>(e, t.to_f64()));
         }
         let WorkArrays { jacobian, jacobian_scratch: basis, constraint_square: r, .. } = &mut **ws;
@@ -782,11 +789,12 @@ impl<T: Real> KinematicSolver<T> {
         let tolerance = self.position_tolerance(q);
         let pivot_tolerance = self.pivot_tolerance();
         let (max_iterations, max_step) = (self.options.max_iterations, self.options.max_step);
-        let mut residual = [T::ZERO; NC];
-        let mut negative_residual = [T::ZERO; NC];
-        let mut step = [T::ZERO; NV];
         let mut previous_norm = T::from_f64(f64::INFINITY);
-        let WorkArrays { jacobian, jacobian_scratch, constraint_square, .. } = &mut **ws;
+        let WorkArrays { jacobian, jacobian_scratch, constraint_square, vectors, indices, .. } = &mut **ws;
+        let mut vectors = Vectors::new(vectors.flat());
+        let [residual, negative_residual] = vectors.rows::<NC, 2>();
+        let step = vectors.take::<NV>();
+        let scale = vectors.take_written::<NV>();
         // A square D: the iteration over the sparse factorization planned at compile time; the
         // dense LU where none is generated or from where that stopped (a pivot not found: the LU
         // names the coordinate without one, or finds one, D Dᵀ's pivots being D's squared; a
@@ -794,21 +802,20 @@ impl<T: Real> KinematicSolver<T> {
         let mut newton = Newton::new(tolerance, max_iterations, T::from_f64(f64::INFINITY), max_step);
         if rule == StepRule::Square {
             let reuse = self.options.reuse_safety;
-            let sparse =
-                m.sparse_position_solve(q, t, tolerance, pivot_tolerance, max_iterations, reuse, max_step, &mut residual, &mut step);
+            let sparse = m.sparse_position_solve(q, t, tolerance, pivot_tolerance, max_iterations, reuse, max_step, residual, step);
             if let Some((end, taken, factored)) = sparse {
                 if end == PositionStep::Converged {
-                    return Ok(Convergence { iterations: taken, factorizations: factored, residual: max_abs(&residual).0.to_f64() });
+                    return Ok(Convergence { iterations: taken, factorizations: factored, residual: max_abs(residual).0.to_f64() });
                 }
                 newton = newton.resumed(taken, factored);
             }
         }
         // The same rules as the sparse loop's, D evaluated and factored at every step.
         loop {
-            m.position_eval(q, t, &mut residual, jacobian);
-            check_finite(&residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
-            let (norm, worst) = max_abs(&residual);
-            if let NewtonNext::Stop(end) = newton.after_residual(&residual) {
+            m.position_eval(q, t, residual, jacobian);
+            check_finite(residual, t, NonFiniteQuantity::Constraint, M::CONSTRAINT_NAMES)?;
+            let (norm, worst) = max_abs(residual);
+            if let NewtonNext::Stop(end) = newton.after_residual(residual) {
                 let (end, iterations, factorizations) = newton.end(end);
                 return match end {
                     PositionStep::Converged => Ok(Convergence { iterations, factorizations, residual: norm.to_f64() }),
@@ -824,9 +831,12 @@ impl<T: Real> KinematicSolver<T> {
                 *negated = -value;
             }
             match rule {
-                StepRule::Square => linalg::lu_factor(jacobian, pivot_tolerance)
-                    .and_then(|permutation| linalg::lu_solve(jacobian, &permutation, &negative_residual, &mut step))
-                    .map_err(|e| jacobian_error::<M>(e, time)),
+                StepRule::Square => {
+                    let work = LuWork { pivots: &mut indices.pivots_c, columns: &mut indices.columns_v, scale: &mut *scale };
+                    linalg::lu_factor(jacobian, pivot_tolerance, work)
+                        .and_then(|()| linalg::lu_solve(jacobian, &indices.pivots_c, negative_residual, step))
+                        .map_err(|e| jacobian_error::<M>(e, time))
+                }
                 StepRule::RankRevealing => {
                     check_rows_finite::<T, M, NV, NC>(jacobian, t)?;
                     // A row whose independent part is small against the residual is near-
@@ -844,15 +854,15 @@ impl<T: Real> KinematicSolver<T> {
                         rank_tolerance
                     };
                     previous_norm = norm;
-                    rank_revealing_step(jacobian, &negative_residual, threshold, jacobian_scratch, constraint_square, &mut step);
+                    rank_revealing_step(jacobian, negative_residual, threshold, jacobian_scratch, constraint_square, step);
                     Ok(())
                 }
             }?;
             newton.factored();
-            check_finite(&step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
-            let accepted = newton.accept_step(&mut step);
+            check_finite(step, t, NonFiniteQuantity::Step, M::VELOCITY_NAMES)?;
+            let accepted = newton.accept_step(step);
             debug_assert!(accepted, "a finite step");
-            m.integrate_positions(q, &step, T::ONE);
+            m.integrate_positions(q, step, T::ONE);
         }
     }
 }
@@ -870,7 +880,7 @@ where
     M: Mechanism,
 {
     match factors {
-        Factors::Lu(permutation) => linalg::lu_solve(&ws.jacobian, permutation, b, x).map_err(|e| jacobian_error::<M>(e, t.to_f64())),
+        Factors::Lu => linalg::lu_solve(&ws.jacobian, &ws.indices.pivots_c, b, x).map_err(|e| jacobian_error::<M>(e, t.to_f64())),
         Factors::Orthogonal { redundant } => {
             solve_orthogonalized(&ws.jacobian_scratch, &ws.constraint_square, redundant, NV, b, x);
             Ok(())

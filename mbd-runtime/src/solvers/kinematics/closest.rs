@@ -10,9 +10,9 @@
 //! method on ½‖Φ‖² itself, whose Hessian includes Φ's curvature, to reach a minimum with a
 //! residual.
 
-use crate::linalg;
+use crate::linalg::{self, LuWork};
 use crate::model::mechanism::Kinematics;
-use crate::model::workspace::{Vectors, WorkArrays, Workspace};
+use crate::model::workspace::{Indices, Vectors, WorkArrays, Workspace};
 use crate::real::Real;
 use crate::solvers::error::ConstraintRows;
 
@@ -62,9 +62,9 @@ where
     T: Real,
     M: Kinematics<T, NQ, NV, NC>,
 {
-    let WorkArrays { jacobian: d, jacobian_scratch, constraint_square: a, velocity_square, vectors, .. } = &mut **ws;
+    let WorkArrays { jacobian: d, jacobian_scratch, constraint_square: a, velocity_square, vectors, indices, .. } = &mut **ws;
     let mut vectors = Vectors::new(vectors.flat());
-    let [phi, trial_phi, x] = vectors.rows::<NC, 3>();
+    let [phi, trial_phi, x, lu_scale] = vectors.rows::<NC, 4>();
     let (step, trial) = (vectors.take::<NV>(), vectors.take::<NQ>());
     m.position_eval(q, t, phi, d);
     let mut cost = squared(phi);
@@ -81,12 +81,13 @@ where
             a[i][i] += mu;
         }
         // D Dᵀ + μ I is symmetric positive definite: its LU needs no pivot test.
-        let Ok(permutation) = linalg::lu_factor(a, T::ZERO) else {
+        let work = LuWork { pivots: &mut indices.pivots_c, columns: &mut indices.columns_c, scale: &mut *lu_scale };
+        if linalg::lu_factor(a, T::ZERO, work).is_err() {
             mu *= T::from_f64(4.0);
             continue;
-        };
+        }
         x.copy_from_slice(phi);
-        linalg::lu_solve_in_place(a, &permutation, x);
+        linalg::lu_solve_in_place(a, &indices.pivots_c, x);
         for (k, s) in step.iter_mut().enumerate() {
             *s = T::ZERO - d.iter().zip(x.iter()).fold(T::ZERO, |sum, (row, &xi)| sum + row[k] * xi);
         }
@@ -108,7 +109,7 @@ where
         }
     }
     if max_abs(phi) > tolerance && cost.is_finite() && NV <= MAX_NEWTON_VELOCITIES {
-        steps += minimize(m, q, t, tolerance, [d, jacobian_scratch], velocity_square, vectors.reborrow());
+        steps += minimize(m, q, t, tolerance, [d, jacobian_scratch], (velocity_square, indices), vectors.reborrow());
         m.constraints(q, t, phi);
     }
     let residual = max_abs(phi);
@@ -141,14 +142,14 @@ fn violated_rows<T: Real, const NC: usize>(phi: &[T; NC], threshold: T) -> impl 
 /// symmetrized), the step −(H + μ I)⁻¹ g accepted where f falls, μ (from 0) raised after a
 /// refusal. Ends at ‖Φ‖∞ ≤ `tolerance`, where a step lowers f by less than [`STALL`] of it, or
 /// after [`MAX_NEWTON_STEPS`]. Returns the steps tried. Uses `ws.jacobian`,
-/// `ws.jacobian_scratch` and `ws.velocity_square` (H).
+/// `ws.jacobian_scratch`, and `ws.velocity_square` (H) with the index rows of its LU.
 fn minimize<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     m: &M,
     q: &mut [T; NQ],
     t: T,
     tolerance: T,
     [d, moved_d]: [&mut [[T; NV]; NC]; 2],
-    hessian: &mut [[T; NV]; NV],
+    (hessian, indices): (&mut [[T; NV]; NV], &mut Indices<NV, NC>),
     mut vectors: Vectors<'_, T>,
 ) -> u32
 where
@@ -156,7 +157,7 @@ where
     M: Kinematics<T, NQ, NV, NC>,
 {
     let [phi, moved_phi] = vectors.rows::<NC, 2>();
-    let [g, moved_g, step, unit] = vectors.rows::<NV, 4>();
+    let [g, moved_g, step, unit, lu_scale] = vectors.rows::<NV, 5>();
     let [moved, trial] = vectors.rows::<NQ, 2>();
     m.position_eval(q, t, phi, d);
     gradient(d, phi, g);
@@ -182,11 +183,12 @@ where
         for (i, row) in hessian.iter_mut().enumerate() {
             row[i] += mu;
         }
-        let solved = linalg::lu_factor(hessian, T::ZERO).is_ok_and(|permutation| {
+        let work = LuWork { pivots: &mut indices.pivots_v, columns: &mut indices.columns_v, scale: &mut *lu_scale };
+        let solved = linalg::lu_factor(hessian, T::ZERO, work).is_ok_and(|()| {
             for (s, &gk) in step.iter_mut().zip(g.iter()) {
                 *s = T::ZERO - gk;
             }
-            linalg::lu_solve_in_place(hessian, &permutation, step);
+            linalg::lu_solve_in_place(hessian, &indices.pivots_v, step);
             step.iter().all(|x| x.is_finite())
         });
         trial.copy_from_slice(q);

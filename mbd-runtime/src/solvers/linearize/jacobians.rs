@@ -51,7 +51,7 @@ where
 {
     let (inputs, chart) = prepare(m, q, v, t, options)?;
     let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
-    m.accelerations(q, v, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
+    m.accelerations_in(HeapArrays::new().scratch(), q, v, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
 
     // The derivatives, dense.
     let (mut a1, mut a2) = (boxed::<NV, NV>(), boxed::<NV, NV>());
@@ -244,7 +244,8 @@ where
         })
         .collect();
     // ẋ and the outputs at (x, u).
-    let evaluate = |x: &[f64], u: &[f64]| -> Result<(Vec<f64>, Vec<f64>), LinearizeError> {
+    let mut arrays = HeapArrays::<NV, NC>::new();
+    let mut evaluate = |x: &[f64], u: &[f64]| -> Result<(Vec<f64>, Vec<f64>), LinearizeError> {
         let mut model = m.clone();
         let mut offsets = [0.0; NC];
         for (&input, &value) in inputs.iter().zip(u) {
@@ -256,7 +257,7 @@ where
         let (qx, delta) = chart.position::<M, NQ, NV, NC>(m, q, t, &x[..f])?;
         let vx = chart.velocity::<M, NQ, NV, NC>(m, &qx, t, &x[f..])?;
         let (mut vd, mut lambda) = ([0.0; NV], [0.0; NC]);
-        model.accelerations(&qx, &vx, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
+        model.accelerations_in(arrays.scratch(), &qx, &vx, t, &DynamicsOptions::without_stabilization(), &mut vd, &mut lambda)?;
         if offsets.iter().any(|&o| o != 0.0) {
             // A driver's acceleration offset: the saddle-point system at this state with γ_r + u
             // (and the joints' friction at the loads just found), solved densely.

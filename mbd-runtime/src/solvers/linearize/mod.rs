@@ -92,6 +92,7 @@ use nalgebra::{Cholesky, Complex, ComplexField, DMatrix, DVector, SymmetricEigen
 use crate::model::dynamics::{DynamicsError, DynamicsOptions, ForwardDynamics};
 use crate::model::mechanism::velocities_are_rates;
 use crate::model::mechanism::{Linearize, Mechanism, VelocityKind};
+use crate::model::workspace::{DenseScratch, Vectors, VECTOR_ROWS};
 
 mod chart;
 mod jacobians;
@@ -427,6 +428,28 @@ fn dense<const R: usize, const C: usize>(a: &[[f64; C]; R]) -> DMatrix<f64> {
 /// 300 kB).
 fn boxed<const R: usize, const C: usize>() -> Box<[[f64; C]; R]> {
     vec![[0.0; C]; R].into_boxed_slice().try_into().unwrap_or_else(|_| unreachable!("R rows"))
+}
+
+/// The arrays forward dynamics works in, on the heap (a [`DenseScratch`]): a linearization
+/// takes no work space, and without one a large mechanism's forward dynamics keeps its arrays
+/// on the stack, where they grow with it.
+struct HeapArrays<const NV: usize, const NC: usize> {
+    d: Box<[[f64; NV]; NC]>,
+    y: Box<[[f64; NV]; NC]>,
+    s: Box<[[f64; NC]; NC]>,
+    l: Box<[[f64; NV]; NV]>,
+    vectors: Vec<f64>,
+}
+
+impl<const NV: usize, const NC: usize> HeapArrays<NV, NC> {
+    fn new() -> Self {
+        let vectors = vec![0.0; VECTOR_ROWS * (NV + NC)];
+        Self { d: boxed(), y: boxed(), s: boxed(), l: boxed(), vectors }
+    }
+
+    fn scratch(&mut self) -> DenseScratch<'_, f64, NV, NC> {
+        DenseScratch { d: &mut self.d, y: &mut self.y, s: &mut self.s, l: &mut self.l, vectors: Vectors::new(&mut self.vectors) }
+    }
 }
 
 fn find(what: &'static str, name: &str, choices: &'static [&'static str]) -> Result<usize, LinearizeError> {
