@@ -9,6 +9,7 @@
 //! ground, straight and 0.3 rad from hanging (`for`).
 use mbd::prelude::*;
 use mbd::{DenseArrays, System};
+use mbd_examples::stewart_platform::StewartPlatform;
 
 mechanism! {
     /// A hanging chain of 120 links, straight and 0.3 rad from hanging.
@@ -370,31 +371,16 @@ mechanism! {
     }
 }
 
-mechanism! {
-    /// A spatial chain of 18 links with products of inertia (M⁻¹ coupled within each body), a
-    /// ball joint at the top and hinges below: past 2 048 scalars of forward-dynamics arrays,
-    /// with quaternions (a position step goes through the velocity map).
-    pub SpatialChain18 {
-        spatial;
-        gravity [0.0, 0.0, -9.81];
-        for k in 0..18 {
-            body l[k] { mass: 0.5, inertia: [0.002, 0.003, 0.001, 0.0001, -0.0002, 0.0003], at: [0.0, 0.1 * k + 0.05, 0.0] }
-        }
-        spherical ground[0.0, 0.0, 0.0] ~ l[0][0.0, -0.05, 0.0];
-        for k in 1..18 {
-            revolute l[k - 1][0.0, 0.05, 0.0] along [1.0, 0.0, 0.0] ~ l[k][0.0, -0.05, 0.0] along [1.0, 0.0, 0.0];
-        }
-    }
-}
-
 /// A mechanism whose forward-dynamics arrays (D's non-zeros, S's factor, Φ, ν, γ, h, M, M⁻¹,
 /// …) are past 2 048 scalars borrows them from the work space when it is called through one
 /// (`accelerations_in` and the projections' `_in`, what every solver calls) and keeps them on
 /// the stack when called without: the same numbers either way, bit for bit, from a work space
 /// that holds another call's values, with Coulomb friction's fixed point (the chain of 80),
-/// without (the ladder of 201 bodies), and spatial with coupled inertia and quaternions (the
-/// chain of 18). Measured by painting the stack (2026-12-07, release):
-/// a simulation of the ladder took 141 KB before, 33–46 KB now.
+/// without (the ladder of 201 bodies), and spatial with coupled inertia, quaternions and
+/// drivers (ν ≠ 0): the Stewart platform of `examples/stewart_platform.rs`, 2 127 scalars, which
+/// the tests have compiled already (a spatial chain of 18 links written here for it was a fifth
+/// of this file's build). Measured by painting the stack (2026-12-07, release): a simulation of
+/// the ladder took 141 KB before, 25–38 KB now.
 #[test]
 fn forward_dynamics_through_the_work_space_is_that_on_the_stack() {
     // 64 MB: the calls through `DenseArrays` put its dense arrays on the stack (the ladder's
@@ -406,8 +392,8 @@ fn forward_dynamics_through_the_work_space_is_that_on_the_stack() {
             same_either_way(&ladder, &mut Ladder201::workspace(), ladder.initial_positions());
             let chain = FrictionChain80::default();
             same_either_way(&chain, &mut FrictionChain80::workspace(), chain.initial_positions());
-            let spatial = SpatialChain18::default();
-            same_either_way(&spatial, &mut SpatialChain18::workspace(), spatial.initial_positions());
+            let spatial = StewartPlatform::default();
+            same_either_way(&spatial, &mut StewartPlatform::workspace(), spatial.initial_positions());
         })
         .expect("spawn")
         .join()
