@@ -459,8 +459,8 @@ both_ways! {
 }
 
 /// Coulomb friction in a cut joint: the same accelerations both ways (the fixed point over
-/// the multipliers included), and its generated derivatives (a column at a time) against
-/// central differences at fixed λ (tolerance as for the frames: O(h²) and rounding, 1e-7
+/// the multipliers included), and its generated derivatives (a column at a time; in λ, the
+/// loads' slope) against central differences at fixed λ (tolerance as for the frames: O(h²) and rounding, 1e-7
 /// relative to the forces' scale).
 #[test]
 fn friction_in_a_cut_joint_agrees_and_differentiates() {
@@ -492,6 +492,23 @@ fn friction_in_a_cut_joint_agrees_and_differentiates() {
             }
         }
         assert!(d_v.iter().flatten().any(|x| x.abs() > 1e-6), "friction depends on the slip velocity");
+        // Its slope in the slide's loads (the implicit methods' Newton matrix), against
+        // central differences in λ: linear in the normal load, so exact to rounding.
+        let mut d_lambda = [[0.0; 3]; 2];
+        j.friction_multiplier_derivatives(&q, &v, t, &lambda, &mut d_lambda);
+        for (r, row) in d_lambda.iter().enumerate() {
+            let (mut plus, mut minus) = ([0.0; 3], [0.0; 3]);
+            let (mut lp, mut lm) = (lambda, lambda);
+            lp[r] += e;
+            lm[r] -= e;
+            j.friction_forces(&q, &v, t, &lp, &mut plus);
+            j.friction_forces(&q, &v, t, &lm, &mut minus);
+            for c in 0..3 {
+                let fd = (plus[c] - minus[c]) / (2.0 * e);
+                assert!((fd - row[c]).abs() < 1e-7 * scale.max(fd.abs()), "∂f_{c}/∂λ_{r}: {} vs {fd}", row[c]);
+            }
+        }
+        assert!(d_lambda.iter().flatten().any(|x| x.abs() > 1e-3), "friction depends on the normal load");
     }
 }
 

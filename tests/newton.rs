@@ -36,13 +36,15 @@ mechanism! {
 }
 
 mechanism! {
-    /// A rod on a pin with Coulomb friction: the friction's derivatives in the matrix.
+    /// A rod on a pin with Coulomb friction, and a wheel on a rubbing axle through its centre
+    /// at the rod's end: the friction's derivatives in the matrix, and its slope in the loads
+    /// beside −Dᵀ — for the axle on entries D lacks (its rows leave the wheel's angle out).
     pub PinFriction {
         gravity [0.0, -9.81];
         body rod { mass: 1.5, inertia: 0.125, at: [0.5, 0.0, 0.0] }
-        body bob { mass: 0.5, inertia: 0.01, at: [1.2, 0.0, 0.0] }
+        body bob { mass: 0.5, inertia: 0.01, at: [1.0, 0.0, 0.0] }
         revolute ground[0.0, 0.0] ~ rod[-0.5, 0.0] { coulomb: 0.2, radius: 0.01, slip_velocity: 1.0e-3 };
-        revolute rod[0.5, 0.0] ~ bob[-0.2, 0.0];
+        revolute rod[0.5, 0.0] ~ bob[0.0, 0.0] { coulomb: 0.3, radius: 0.005, slip_velocity: 1.0e-3 };
         rotational_spring rod ~ bob { k: 30.0, c: 0.4 };
     }
 }
@@ -107,13 +109,15 @@ where
     m.add_mass_matrix(q, 1.0, &mut a);
     let mut d = [[0.0; NV]; NC];
     m.jacobian(q, t, &mut d);
+    let mut d_lambda = [[0.0; NV]; NC];
+    m.friction_multiplier_derivatives(q, v, t, lambda, &mut d_lambda);
     let mut full = [[0.0; N]; N];
     for i in 0..NV {
         for j in 0..NV {
             full[i][j] = a[i][j] - c_v * hv[i][j] - c_q * (hq[i][j] + k[i][j]);
         }
         for r in 0..NC {
-            full[i][NV + r] = -d[r][i];
+            full[i][NV + r] = -d[r][i] - d_lambda[r][i];
             full[NV + r][i] = d[r][i];
         }
     }

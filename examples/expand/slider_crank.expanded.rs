@@ -1063,6 +1063,15 @@ impl ::mbd::Dynamics<f64, 9, 9, 9> for SliderCrank {
         d_v: &mut [[f64; 9]; 9],
     ) {}
     #[inline]
+    fn friction_multiplier_derivatives(
+        &self,
+        q: &[f64; 9],
+        v: &[f64; 9],
+        t: f64,
+        lambda: &[f64; 9],
+        d_lambda: &mut [[f64; 9]; 9],
+    ) {}
+    #[inline]
     fn nonconservative_power(&self, q: &[f64; 9], v: &[f64; 9], t: f64) -> f64 {
         let mut power = [0f64; 1];
         use ::mbd::__private::Elements as _;

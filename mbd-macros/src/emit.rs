@@ -931,6 +931,36 @@ pub fn jacobian_values_outputs(f: &Formulation, name: &str) -> Vec<Output> {
         .collect()
 }
 
+/// The code that computes the friction forces' slopes in the multipliers (`f.friction_lambda`,
+/// in its order) into a local array, and that array's name. A slope that is not finite — a
+/// revolute joint's load |(λ_x, λ_y)| at exactly zero, whose derivative is 0/0 there — is
+/// taken as 0: it only enters an iteration matrix, where any bounded slope keeps the iteration
+/// converging, and a NaN there would stop it.
+pub fn multiplier_slopes(f: &Formulation, e: &Emitter) -> (TokenStream, Ident) {
+    let name = format_ident!("friction_slopes");
+    let outputs: Vec<Output> = f
+        .friction_lambda
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, _, node))| {
+            let k = usize_lit(k);
+            Output { target: quote!(#name[#k]), node }
+        })
+        .collect();
+    let (body, _) = e.body(&outputs);
+    let (zero, n) = (e.literal(0.0), usize_lit(f.friction_lambda.len()));
+    let fill = quote! {
+        let mut #name = [#zero; #n];
+        #body
+        for x in #name.iter_mut() {
+            if !x.is_finite() {
+                *x = #zero;
+            }
+        }
+    };
+    (fill, name)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

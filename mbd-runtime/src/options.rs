@@ -139,13 +139,39 @@ mod api {
     }
 
     /// The public items of one source file: each line that starts with `pub ` (a `pub fn`'s
-    /// whole signature, to its `{` or `;`), and the variants of a `pub enum`; up to the file's
-    /// `#[cfg(test)]`.
+    /// whole signature, to its `{` or `;`), the variants of a `pub enum`, and the items of a
+    /// `pub trait` (each `fn`'s whole signature, its `const`s and `type`s: what an implementor
+    /// writes); up to the file's `#[cfg(test)]`.
     fn public_items(source: &str) -> Vec<String> {
         let mut items = Vec::new();
         let mut lines = source.lines().map(str::trim).take_while(|line| *line != "#[cfg(test)]");
         let mut enum_depth: Option<i32> = None;
+        // Inside a `pub trait`: its brace depth (1 in its body), once its `{` was seen.
+        let mut trait_depth: Option<i32> = None;
+        let braces = |line: &str| line.matches('{').count() as i32 - line.matches('}').count() as i32;
         while let Some(line) = lines.next() {
+            if let Some(depth) = trait_depth.as_mut() {
+                if *depth == 1 && ["fn ", "const ", "type ", "unsafe fn "].iter().any(|p| line.starts_with(p)) {
+                    let mut item = String::from(line);
+                    while !(item.contains('{') || item.ends_with(';')) {
+                        match lines.next() {
+                            Some(next) => item = format!("{item} {next}"),
+                            None => break,
+                        }
+                    }
+                    *depth += braces(&item);
+                    if let Some(brace) = item.find('{') {
+                        item.truncate(brace + 1);
+                    }
+                    items.push(format!("    {item}"));
+                } else {
+                    *depth += braces(line);
+                }
+                if *depth <= 0 {
+                    trait_depth = None;
+                }
+                continue;
+            }
             if let Some(depth) = enum_depth.as_mut() {
                 if line.starts_with("//") || line.starts_with("#[") {
                     continue;
@@ -176,6 +202,17 @@ mod api {
             }
             if line.starts_with("pub enum") && line.ends_with('{') {
                 enum_depth = Some(1);
+            }
+            if line.starts_with("pub trait") || line.starts_with("pub unsafe trait") {
+                // The header may go on over lines (bounds, `where`) to its `{`.
+                let mut header = String::from(line);
+                while !header.contains('{') {
+                    match lines.next() {
+                        Some(next) => header = format!("{header} {next}"),
+                        None => break,
+                    }
+                }
+                trait_depth = Some(braces(&header)).filter(|&d| d > 0);
             }
             items.push(item);
         }

@@ -182,6 +182,7 @@ impl Dynamics<f64, 4, 3, 2> for UnitPendulum {
         _d_v: &mut [[f64; 3]; 3],
     ) {
     }
+    fn friction_multiplier_derivatives(&self, _q: &[f64; 4], _v: &[f64; 3], _t: f64, _lambda: &[f64; 2], _d_lambda: &mut [[f64; 3]; 2]) {}
     /// Gravity is conservative: vᵀh + dV/dt = −m g v_y + m g ẏ = 0.
     fn nonconservative_power(&self, _q: &[f64; 4], _v: &[f64; 3], _t: f64) -> f64 {
         0.0

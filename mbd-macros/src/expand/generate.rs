@@ -218,6 +218,7 @@ struct DynamicsFunctions {
     power: TokenStream,
     friction: TokenStream,
     friction_derivatives: TokenStream,
+    friction_multiplier_derivatives: TokenStream,
     /// `Dynamics::check_inertia`: each body's mass and inertia from the parameters, checked.
     inertia_check: TokenStream,
     ops: Vec<(&'static str, Ops)>,
@@ -399,6 +400,7 @@ impl<'a> Gen<'a> {
             power,
             friction: self.friction(),
             friction_derivatives: self.friction_derivatives(),
+            friction_multiplier_derivatives: self.friction_multiplier_derivatives(),
             inertia_check: self.inertia_check(),
             ops,
             force_ops: force_ops(f, e),
@@ -468,6 +470,24 @@ impl<'a> Gen<'a> {
             let mut hf = [#zero; #nv_l];
             #body
             #( h[#indices] += hf[#indices]; )*
+        }
+    }
+
+    /// ∂/∂λ of the friction forces, row r's into row r of the caller's NC × NV matrix: the
+    /// entries of `friction_lambda` ([`emit::multiplier_slopes`]).
+    fn friction_multiplier_derivatives(&self) -> TokenStream {
+        let Gen { f, e, .. } = self;
+        if f.friction_lambda.is_empty() {
+            return quote!();
+        }
+        let (fill, slopes) = emit::multiplier_slopes(f, e);
+        let adds = f.friction_lambda.iter().enumerate().map(|(k, &(c, r, _))| {
+            let (k, r, c) = (usize_lit(k), usize_lit(r), usize_lit(c));
+            quote!(d_lambda[#r][#c] += #slopes[#k];)
+        });
+        quote! {
+            #fill
+            #(#adds)*
         }
     }
 

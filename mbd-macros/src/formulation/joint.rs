@@ -175,6 +175,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let power = super::power(&mut b, potential, &h);
 
     let (jacobian, nu, gamma) = constraint_derivatives(&mut b, &phi);
+    let friction_lambda = super::multiplier_slope(&mut b.g, &friction);
     let zero = b.g.num(0.0);
     let super::Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass_x, &friction], &Vec::new());
     let (points, joint_coordinates) = accessors(&mut b);
@@ -214,6 +215,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         friction,
         friction_q: Vec::new(),
         friction_qd: Vec::new(),
+        friction_lambda,
         constraint_force_q: Vec::new(),
         // generalized-α's Newton matrix is filled densely at run time (`NewtonMatrix`'s provided
         // `newton_matrix`) from the functions above

@@ -96,6 +96,10 @@ pub struct Formulation {
     /// integration; empty without Coulomb friction).
     pub friction_q: Vec<(usize, usize, Id)>,
     pub friction_qd: Vec<(usize, usize, Id)>,
+    /// Structural non-zeros of the friction forces' ∂/∂λ as (velocity, row, node): their slope
+    /// in the joints' normal loads, for the implicit methods' Newton matrix, where it stands
+    /// beside −Dᵀ (empty without Coulomb friction).
+    pub friction_lambda: Vec<(usize, usize, Id)>,
     /// Power of the non-conservative forces, q̇ᵀh + dV/dt: what dampers, actuators, applied
     /// forces and friction put in (J/s). Then d(T + V)/dt = this + λᵀ Φ_q q̇.
     pub power: Id,
@@ -166,6 +170,7 @@ pub fn formulate(model: &Model) -> Formulation {
     let h_qd = sparse_derivative(&mut b.g, &h, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
     let friction_q = tangent(&mut b, &friction);
     let friction_qd = sparse_derivative(&mut b.g, &friction, |v| if let Var::Qd(i) = v { Some(i) } else { None }, Var::Qd);
+    let friction_lambda = multiplier_slope(&mut b.g, &friction);
     let (jacobian, nu, gamma) = constraint_derivatives(&mut b, &phi);
     let (constraint_force_q, stiffness, damping) = newton_terms(&mut b, &jacobian, [&h_q, &h_qd], [&friction_q, &friction_qd]);
     let Linear { gamma_q, gamma_v, inputs, h_u } = linear_terms(&mut b, &gamma, &h, [&phi, &mass, &friction], &mass_coupling);
@@ -218,6 +223,7 @@ pub fn formulate(model: &Model) -> Formulation {
         friction,
         friction_q,
         friction_qd,
+        friction_lambda,
         constraint_force_q,
         stiffness,
         damping,
@@ -749,6 +755,11 @@ fn sparse_derivative(
         }
     }
     out
+}
+
+/// The structural non-zeros of the friction forces' ∂/∂λ, (velocity, row, node).
+fn multiplier_slope(g: &mut Graph, friction: &[Id]) -> Vec<(usize, usize, Id)> {
+    sparse_derivative(g, friction, |v| if let Var::Lambda(i) = v { Some(i) } else { None }, Var::Lambda)
 }
 
 #[cfg(test)]

@@ -34,10 +34,23 @@
 //! order k) — and the next step takes the longest (k + 1 only where 1.2× longer). As DASSL,
 //! the step grows only where it can double (a variable-coefficient BDF is stablest at constant
 //! steps) and shrinks at most to half; a rejected step is retried at the estimate's factor
-//! (0.25 to 0.9), a second time at a quarter, from the third at order 1. The first step is of
+//! (0.25 to 0.9), a second time at a quarter, from the third at order 2. The first step is of
 //! order 1 with the predictor y₀ + h y₀' (error ½ (y₊ − y_pred)), and the order rises by one
 //! per step while the points allow it. A step whose Newton iteration fails is retried at a
 //! quarter of its size. Output between steps is the same polynomial, evaluated at t.
+//!
+//! Order 1 is the first step's only: on the index-3 equations its multipliers are O(1) off
+//! wherever the mechanism moves. With exact points before, order k's v̇₊ is exact to
+//! O(h^(k+1))/c² = O(h^(k−1)) in the constraints' directions, so order 1 meets Φ(q₊) = 0 with
+//! D v̇₊ = γ/2 — half the constraints' centripetal part — at any step size. Positions and
+//! velocities keep their order, but a force that reads λ does not: Coulomb friction in a
+//! joint then rubs with the wrong load, and no step is small enough for the error test (a
+//! plank bridge held by two rubbing pins stopped BDF 11 ms into its swing when the order
+//! choice fell to 1, issue 39). So the order choice goes no lower than 2, and the third
+//! rejection in a row falls back to 2, not 1. The first step after a (re)start in motion is
+//! still of order 1: where friction reads the loads there, its error test can ask for steps
+//! below rounding ([`Auto`](crate::Auto)'s switch to BDF on that bridge, 9 ms in, still does;
+//! issue 39).
 //!
 //! The kept points are the steps' ends as [`Simulation`](crate::Simulation) corrects them, the
 //! velocities projected onto D v = ν (`project_velocities`): without the projection the
@@ -62,6 +75,8 @@ use crate::real::Real;
 pub const BDF_MAX_ORDER: usize = 5;
 /// Accepted points kept: the k + 1 a predictor of order k + 1 reads, plus the new one.
 const KEPT: usize = BDF_MAX_ORDER + 2;
+/// The lowest order after a (re)start's first step (module docs: order 1's multipliers).
+const MIN_ORDER: usize = 2;
 
 crate::options::options! {
     /// Options of [`Bdf`], in the scalar type `T` of the mechanism (default `f64`). Build from
@@ -425,10 +440,11 @@ where
                         return Ok(());
                     }
                     // DASSL's rule: the estimate's factor on a first failure, a quarter after that
-                    // (and from the third on, order 1: the points before may be what fails).
+                    // (and from the third on, the lowest order: the points before may be what
+                    // fails).
                     failures += 1;
                     if failures >= 3 {
-                        self.order = 1;
+                        self.order = self.order.min(MIN_ORDER);
                     }
                     if failures == 1 {
                         (T::from_f64(0.9) * error.powf(-T::ONE / T::from_f64((k + 1) as f64))).max(T::from_f64(0.25)).min(T::from_f64(0.9))
@@ -515,7 +531,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         let settled = self.at_order > k;
         if predicted && settled {
             // Order k − 1: its predictor through k points.
-            if k > 1 {
+            if k > MIN_ORDER {
                 let mut w = [T::ZERO; KEPT];
                 lagrange(&self.times[..k], t1, &mut w[..k]);
                 self.combine(&w[..k], q, v);
@@ -560,7 +576,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         if order != k {
             self.at_order = 0;
         }
-        self.order = order.max(1);
+        self.order = order.max(MIN_ORDER);
         // DASSL's rule: a step grows only where it can double (a variable-coefficient BDF is
         // stablest at constant steps), shrinks by the estimate's factor, at most to half.
         let factor = if factor >= T::from_f64(2.0) {

@@ -164,8 +164,8 @@ impl<T: Real> ErrorControl<T> {
 /// (v̇₊, λ₊) by Newton with the exact iteration matrix
 /// [[M − γ'h ∂h/∂v − β'h² ((∂h/∂q)B + ∂(Dᵀλ)/∂q·B), −Dᵀ], [D, 0]] (β' = β(1−α_f)/(1−α_m),
 /// γ' = γ(1−α_f)/(1−α_m); the constraint rows scaled by 1/(β'h²)). h includes Coulomb friction
-/// at the iterate's λ, and its derivatives its exact ones at fixed λ
-/// ([`Dynamics::friction_derivatives`]; friction's slope in λ, at most μ, is left out). Where a
+/// at the iterate's λ, with its exact derivatives in q and v ([`Dynamics::friction_derivatives`])
+/// and its slope in the loads beside −Dᵀ ([`Dynamics::friction_multiplier_derivatives`]). Where a
 /// full Newton step makes the residual ‖r‖₂ grow — a saturating law such as regularized friction
 /// near sticking makes Newton overshoot and cycle — the step is halved, up to six times.
 /// The iteration matrix is built and factored in the sparse storage whose order and fill
@@ -176,6 +176,7 @@ impl<T: Real> ErrorControl<T> {
 /// [`Kinematics::integrate_positions`]: crate::Kinematics::integrate_positions
 ///
 /// [`Dynamics::friction_derivatives`]: crate::Dynamics::friction_derivatives
+/// [`Dynamics::friction_multiplier_derivatives`]: crate::Dynamics::friction_multiplier_derivatives
 #[derive(Clone, Copy, Debug)]
 pub struct GeneralizedAlpha<T, const NV: usize> {
     /// Step size, damping and Newton options.

@@ -4,9 +4,12 @@
 //! iterates on (v̇₊, λ₊) with the iteration matrix [[M − c_v ∂h/∂v − c_q ((∂h/∂q)B +
 //! ∂(Dᵀλ)/∂q·B), −Dᵀ], [D, 0]] (the constraint rows scaled by 1/c_q), built and factored over the
 //! sparse pattern `mechanism!` planned ([`NewtonMatrix`]). h includes Coulomb friction at the
-//! iterate's λ, and its derivatives its exact ones at fixed λ
-//! ([`Dynamics::friction_derivatives`](crate::Dynamics::friction_derivatives); friction's slope
-//! in λ, at most μ, is left out). Where a full Newton step makes the residual ‖r‖₂ grow — a
+//! iterate's λ, its derivatives in q and v enter the matrix with the others
+//! ([`Dynamics::friction_derivatives`](crate::Dynamics::friction_derivatives)), and its slope in
+//! the loads beside −Dᵀ in the λ columns, −Dᵀ − ∂f/∂λ
+//! ([`Dynamics::friction_multiplier_derivatives`](crate::Dynamics::friction_multiplier_derivatives)):
+//! without it a bridge whose anchor pins rub converged too slowly for Radau5's simplified
+//! Newton (issue 39). Where a full Newton step makes the residual ‖r‖₂ grow — a
 //! saturating law such as regularized friction near sticking makes Newton overshoot and cycle —
 //! the step is halved, up to six times.
 
@@ -132,9 +135,8 @@ where
             mech.newton_jacobian(q, t1, phi, s, scratch.reborrow());
         }
         mech.forces(q, v, t1, force);
-        // Coulomb friction with the iterate's loads (its exact derivatives enter the
-        // iteration matrix below; its dependence on λ is left out, a quasi-Newton step of
-        // slope ≤ μ).
+        // Coulomb friction with the iterate's loads (its exact derivatives, in q, v and λ,
+        // are in the iteration matrix).
         mech.friction_forces(q, v, t1, lambda, force);
         mech.mass_times(q, vd, inertia);
         let worst = residual::<T, M, NQ, NV, NC, N>(s, force, inertia, lambda, phi, c_q, rhs);

@@ -527,6 +527,15 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// matrix.
     #[allow(clippy::too_many_arguments)]
     fn friction_derivatives(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], d_q: &mut [[T; NV]; NV], d_v: &mut [[T; NV]; NV]);
+    /// Adds the slope of [`Dynamics::friction_forces`] in the multipliers at fixed (q, v), row by
+    /// row: row r of `d_lambda` gets ∂f/∂λ_r (N or N·m per unit of λ_r, dimensionless for a
+    /// force row), the layout of D, beside which it stands in the implicit methods' iteration
+    /// matrix (−Dᵀ − ∂f/∂λ in the momentum rows' λ columns). A joint's friction grows with its
+    /// load — μ R |(λ_x, λ_y)| in a revolute pin — so at most μ (times the pin radius) per unit
+    /// of load; without it, Newton converges only linearly where loads carry much friction.
+    /// Where a load is exactly zero, the slope of |λ| is taken as zero. Nothing without Coulomb
+    /// friction.
+    fn friction_multiplier_derivatives(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], d_lambda: &mut [[T; NV]; NC]);
     /// Power of the non-conservative forces, vᵀh + dV/dt (W): what dampers, actuators, applied
     /// forces and friction put into the mechanism. The energy balance reads
     /// d(T + V)/dt = this + λᵀ D v (the second term is the power of drivers).
@@ -646,13 +655,15 @@ pub trait NewtonMatrix<T: Real, const NQ: usize, const NV: usize, const NC: usiz
         for (&value, &(r, c)) in s.as_ref().iter().zip(Self::JACOBIAN_PATTERN) {
             d[r as usize][c as usize] = value;
         }
-        // D T for the rows of D in the matrix (D itself for −Dᵀ), where there is a T.
         let turned = displacement.is_some() && Self::VELOCITIES.iter().any(|v| matches!(v.kind, VelocityKind::Angular { .. }));
+        // The constraint rows' D T (D where there is no T) apart, so that `d` can take
+        // friction's slope in λ for the λ columns: −Dᵀ − ∂f/∂λ.
+        d_tangent.copy_from_slice(&d[..]);
         if turned {
-            d_tangent.copy_from_slice(&d[..]);
             tangent(d_tangent);
         }
-        let d_rows: &[[T; NV]; NC] = if turned { &*d_tangent } else { &*d };
+        self.friction_multiplier_derivatives(q, v, t, lambda, d);
+        let d_rows: &[[T; NV]; NC] = d_tangent;
         // The derivatives by the positions, ∂(h − M v̇)/∂q·B (∂(M v̇)/∂q through q₊'s dependence
         // on v̇: nothing where M is constant) and K, each times T before they are summed.
         self.forces_q(q, v, t, a);

@@ -267,6 +267,20 @@ impl<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, cons
             }
         }
     }
+    fn friction_multiplier_derivatives(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], d_lambda: &mut [[T; NV]; NC]) {
+        let epsilon = steps::<T>().0 * scale(lambda);
+        for (r, row) in d_lambda.iter_mut().enumerate() {
+            let (mut lp, mut lm) = (*lambda, *lambda);
+            lp[r] += epsilon;
+            lm[r] -= epsilon;
+            let (mut plus, mut minus) = ([T::ZERO; NV], [T::ZERO; NV]);
+            self.mechanism.friction_forces(q, v, t, &lp, &mut plus);
+            self.mechanism.friction_forces(q, v, t, &lm, &mut minus);
+            for (x, (p, n)) in row.iter_mut().zip(plus.iter().zip(&minus)) {
+                *x += (*p - *n) / (epsilon + epsilon);
+            }
+        }
+    }
     fn nonconservative_power(&self, q: &[T; NQ], v: &[T; NV], t: T) -> T {
         self.mechanism.nonconservative_power(q, v, t)
     }

@@ -361,7 +361,16 @@ impl Gen<'_> {
     /// friction (its derivatives' body given: entries or columns) and the non-conservative power.
     pub(super) fn common_dynamics_items(&self, d: &DynamicsFunctions, friction_derivatives: &TokenStream) -> TokenStream {
         let Gen { real, zero, inline, nq_l, nv_l, nc_l, .. } = self;
-        let DynamicsFunctions { h: h_body, potential: v_body, switching, power: power_body, friction: friction_fn, inertia_check, .. } = d;
+        let DynamicsFunctions {
+            h: h_body,
+            potential: v_body,
+            switching,
+            power: power_body,
+            friction: friction_fn,
+            friction_multiplier_derivatives,
+            inertia_check,
+            ..
+        } = d;
         quote! {
             #inertia_check
             #inline
@@ -390,6 +399,17 @@ impl Gen<'_> {
                 d_v: &mut [[#real; #nv_l]; #nv_l],
             ) {
                 #friction_derivatives
+            }
+            #inline
+            fn friction_multiplier_derivatives(
+                &self,
+                q: &[#real; #nq_l],
+                v: &[#real; #nv_l],
+                t: #real,
+                lambda: &[#real; #nc_l],
+                d_lambda: &mut [[#real; #nv_l]; #nc_l],
+            ) {
+                #friction_multiplier_derivatives
             }
             #inline
             fn nonconservative_power(&self, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
