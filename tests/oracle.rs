@@ -220,6 +220,11 @@ where
         fields.insert("friction".into(), json!(friction.to_vec()));
         fields.insert("friction_q".into(), json!(dense(&friction_q)));
         fields.insert("friction_qd".into(), json!(dense(&friction_v)));
+        // ∂f/∂λ, NV × NC (row r: ∂f_r/∂λ; mbd's array holds row k = ∂f/∂λ_k, D's layout).
+        let mut slope = [[0.0; NQ]; NC];
+        m.friction_multiplier_derivatives(&q, &v, t, &friction_lambda, &mut slope);
+        let slope: Vec<Vec<f64>> = (0..NQ).map(|c| slope.iter().map(|row| row[c]).collect()).collect();
+        fields.insert("friction_slope".into(), json!(slope));
         // Forward dynamics through the generated sparse Schur-complement solve, with random
         // Baumgarte gains; a random state can sit at a singular configuration, where the solve
         // rightly fails — those samples carry no q̈. With Coulomb friction, the fixed point on λ

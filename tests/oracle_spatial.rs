@@ -209,6 +209,11 @@ where
         fields.insert("friction".into(), json!(friction.to_vec()));
         fields.insert("friction_q".into(), json!(dense(&friction_q)));
         fields.insert("friction_v".into(), json!(dense(&friction_v)));
+        // ∂f/∂λ, NV × NC (row r: ∂f_r/∂λ; mbd's array holds row k = ∂f/∂λ_k, D's layout).
+        let mut slope = [[0.0; NV]; NC];
+        m.friction_multiplier_derivatives(&q, &v, t, &friction_lambda, &mut slope);
+        let slope: Vec<Vec<f64>> = (0..NV).map(|c| slope.iter().map(|row| row[c]).collect()).collect();
+        fields.insert("friction_slope".into(), json!(slope));
         // Forward dynamics through the generated sparse Schur-complement solve, random Baumgarte
         // gains; a random state at a singular configuration rightly fails and carries no v̇.
         let (alpha, beta) = (rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));

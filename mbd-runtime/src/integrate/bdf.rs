@@ -39,18 +39,20 @@
 //! per step while the points allow it. A step whose Newton iteration fails is retried at a
 //! quarter of its size. Output between steps is the same polynomial, evaluated at t.
 //!
-//! Order 1 is the first step's only: on the index-3 equations its multipliers are O(1) off
-//! wherever the mechanism moves. With exact points before, order k's v̇₊ is exact to
-//! O(h^(k+1))/c² = O(h^(k−1)) in the constraints' directions, so order 1 meets Φ(q₊) = 0 with
-//! D v̇₊ = γ/2 — half the constraints' centripetal part — at any step size. Positions and
-//! velocities keep their order, but a force that reads λ does not: Coulomb friction in a
-//! joint then rubs with the wrong load, and no step is small enough for the error test (a
-//! plank bridge held by two rubbing pins stopped BDF 11 ms into its swing when the order
-//! choice fell to 1, issue 39). So the order choice goes no lower than 2, and the third
-//! rejection in a row falls back to 2, not 1. The first step after a (re)start in motion is
-//! still of order 1: where friction reads the loads there, its error test can ask for steps
-//! below rounding ([`Auto`](crate::Auto)'s switch to BDF on that bridge, 9 ms in, still does;
-//! issue 39).
+//! Order 1 is the start's only (its first two steps, until three points give order 2 its
+//! predictor): on the index-3 equations its multipliers are O(1) off wherever the mechanism
+//! moves. With exact points before, order k's v̇₊ is exact to O(h^(k+1))/c² = O(h^(k−1)) in the
+//! constraints' directions, so order 1 meets Φ(q₊) = 0 with D v̇₊ = γ/2 — half the
+//! constraints' centripetal part — at any step size. Positions and velocities keep their
+//! order, but a force that reads λ does not: Coulomb friction in a joint then rubs with the
+//! wrong load, and no step is small enough for the error test (a plank bridge held by two
+//! rubbing pins stopped BDF 11 ms into its swing when the order choice fell to 1, issue 39).
+//! So the order choice goes no lower than 2 after the start, and the third rejection in a row
+//! falls back to 2, not 1. (Order 2 from the second step on, with only two points and the
+//! first step's estimate ½ (y₊ − y₀ − h y₀'), stopped the heavy top, which starts spinning, at
+//! rtol 1e-10.) The start in motion is still of order 1: where friction reads the loads
+//! there, its error test can ask for steps below rounding ([`Auto`](crate::Auto)'s switch to
+//! BDF on that bridge, 9 ms in, still does; issue 39).
 //!
 //! The kept points are the steps' ends as [`Simulation`](crate::Simulation) corrects them, the
 //! velocities projected onto D v = ν (`project_velocities`): without the projection the
@@ -75,7 +77,8 @@ use crate::real::Real;
 pub const BDF_MAX_ORDER: usize = 5;
 /// Accepted points kept: the k + 1 a predictor of order k + 1 reads, plus the new one.
 const KEPT: usize = BDF_MAX_ORDER + 2;
-/// The lowest order after a (re)start's first step (module docs: order 1's multipliers).
+/// The lowest order once a (re)start's points give it a predictor (module docs: order 1's
+/// multipliers).
 const MIN_ORDER: usize = 2;
 
 crate::options::options! {
@@ -576,7 +579,8 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         if order != k {
             self.at_order = 0;
         }
-        self.order = order.max(MIN_ORDER);
+        // Order 1 only while the points do not yet give order 2 its predictor (module docs).
+        self.order = order.max(MIN_ORDER.min(self.len - 1));
         // DASSL's rule: a step grows only where it can double (a variable-coefficient BDF is
         // stablest at constant steps), shrinks by the estimate's factor, at most to half.
         let factor = if factor >= T::from_f64(2.0) {

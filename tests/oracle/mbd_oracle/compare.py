@@ -67,9 +67,10 @@ KKT_MAX_COND = 1e10
 FRICTION_SCALE = 1e-11
 
 # Coulomb friction at given λ ("friction", and its exact "friction_q", "friction_qd" at fixed λ,
-# dense NQ×NQ), with the λ it was evaluated at ("friction_lambda"): compared like the dynamics,
-# the floor relative to max(1, ||f||_inf, ||sum_e |f_e| ||_inf) over the friction joints e.
-FRICTION = ("friction_lambda", "friction", "friction_q", "friction_qd")
+# dense NQ×NQ, and its slope in the loads "friction_slope", ∂f/∂λ, NQ×NC), with the λ it was
+# evaluated at ("friction_lambda"): compared like the dynamics, the floor relative to
+# max(1, ||f||_inf, ||sum_e |f_e| ||_inf) over the friction joints e.
+FRICTION = ("friction_lambda", "friction", "friction_q", "friction_qd", "friction_slope")
 
 
 class Failure(Exception):
@@ -149,7 +150,7 @@ class SpatialLayout:
     spatial = True
     velocity = "v"
     dynamics = ("mass", "h", "h_q", "h_v", "potential")
-    friction = ("friction_lambda", "friction", "friction_q", "friction_v")
+    friction = ("friction_lambda", "friction", "friction_q", "friction_v", "friction_slope")
 
     def __init__(self, model_json):
         self.model = Spatial(model_json)
@@ -281,6 +282,8 @@ def compare_dynamics(data, lay, out, failures, worst):
             return lambda i: "potential"
         if len(shape) == 1:
             return lambda i: f"{function}[{cols[i[0]]}]"
+        if function == "friction_slope":
+            return lambda i: f"{function}[{cols[i[0]]}][{rows[i[1]]}]"
         return lambda i: f"{function}[{cols[i[0]]}][{cols[i[1]]}]"
 
     skipped = []
@@ -302,7 +305,7 @@ def compare_dynamics(data, lay, out, failures, worst):
             want = [np.array(v) for v in dyn.f_friction(*args, lam)]
             mags = [np.array(v) for v in dyn.f_friction_magnitudes(*args, lam)]
             for function, w, mag in zip(friction[1:], want, mags):
-                w = w.reshape(-1) if function == "friction" else w.reshape(n, n)
+                w = w.reshape(-1) if function == "friction" else w.reshape(n, -1)
                 got = np.array(s[function], dtype=float).reshape(w.shape)
                 check_values(failures, worst, name, function, got, w, dynamics_floor(w, mag), where_of(function, w.shape), k)
         elif any(key in s for key in friction):

@@ -130,15 +130,18 @@ class Dynamics:
         self.friction_qd = ca.jacobian(self.friction, m.qd)
         friction_mag = [sum((ca.fabs(q) for _, q in friction), zero),
                         sum((ca.fabs(ca.jacobian(q, m.q)) for _, q in friction), ca.SX.zeros(nq, nq)),
-                        sum((ca.fabs(ca.jacobian(q, m.qd)) for _, q in friction), ca.SX.zeros(nq, nq))]
+                        sum((ca.fabs(ca.jacobian(q, m.qd)) for _, q in friction), ca.SX.zeros(nq, nq)),
+                        sum((ca.fabs(ca.jacobian(q, self.lam)) for _, q in friction), ca.SX.zeros(nq, m.nc))]
         fargs = args + [self.lam]
         fnames = names + ["lambda"]
-        self.f_friction = ca.Function("friction", fargs, [self.friction, self.friction_q, self.friction_qd], fnames,
-                                      ["friction", "friction_q", "friction_qd"])
+        # ... and ∂/∂λ, the slope in the loads (Dynamics::friction_multiplier_derivatives), NQ × NC.
+        self.f_friction = ca.Function("friction", fargs,
+                                      [self.friction, self.friction_q, self.friction_qd, ca.jacobian(self.friction, self.lam)], fnames,
+                                      ["friction", "friction_q", "friction_qd", "friction_slope"])
         self.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(self.friction, self.lam)], fnames,
                                              ["friction_lambda"])
         self.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, friction_mag, fnames,
-                                                 ["friction", "friction_q", "friction_qd"])
+                                                 ["friction", "friction_q", "friction_qd", "friction_slope"])
 
     # --- derivatives and rates --------------------------------------------------------------
     def grad(self, s):

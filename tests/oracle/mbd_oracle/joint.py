@@ -105,7 +105,8 @@ class _Tree:
         self.friction = jac.T @ friction_b
         self.friction_q = ca.jacobian(self.friction, self.q) @ self.B
         self.friction_v = ca.jacobian(self.friction, self.v)
-        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v)]
+        fmags = [ca.fabs(self.friction), ca.fabs(self.friction_q), ca.fabs(self.friction_v),
+                 ca.fabs(ca.jacobian(self.friction, self.lam))]
         define_functions(self, mags, fmags)
 
     def cut_multipliers(self, nc_body):

@@ -225,7 +225,8 @@ def spatial_samples(model_json, n=16, seed=5):
         lam = rng.uniform(-50, 50, s.nc)
         fr = [np.array(x) for x in s.f_friction(*args, lam)]
         sample.update({"friction_lambda": lam.tolist(), "friction": fr[0].reshape(-1).tolist(),
-                       "friction_q": fr[1].reshape(nv, nv).tolist(), "friction_v": fr[2].reshape(nv, nv).tolist()})
+                       "friction_q": fr[1].reshape(nv, nv).tolist(), "friction_v": fr[2].reshape(nv, nv).tolist(),
+                       "friction_slope": fr[3].reshape(nv, s.nc).tolist()})
         alpha, beta = float(rng.uniform(0, 10)), float(rng.uniform(0, 10))
         try:
             vdot, lam, _ = s.forward(*args, alpha, beta)

@@ -99,12 +99,12 @@ def define_functions(m, mags, fmags):
     m.f_contributions = F("contributions", [c[1] for c in contributions] + [c[2] for c in contributions],
                           [f"Q{k}" for k in range(len(contributions))] + [f"V{k}" for k in range(len(contributions))])
     fargs, fnames = args + [m.lam], names + ["lambda"]
-    m.f_friction = ca.Function("friction", fargs, [m.friction, m.friction_q, m.friction_v], fnames,
-                               ["friction", "friction_q", "friction_v"])
+    m.f_friction = ca.Function("friction", fargs, [m.friction, m.friction_q, m.friction_v, ca.jacobian(m.friction, m.lam)], fnames,
+                               ["friction", "friction_q", "friction_v", "friction_slope"])
     m.f_friction_lambda = ca.Function("friction_lambda", fargs, [ca.jacobian(m.friction, m.lam)], fnames,
                                       ["friction_lambda"])
     m.f_friction_magnitudes = ca.Function("friction_magnitudes", fargs, fmags, fnames,
-                                          ["friction", "friction_q", "friction_v"])
+                                          ["friction", "friction_q", "friction_v", "friction_slope"])
 
 
 class Spatial:
@@ -205,7 +205,8 @@ class Spatial:
         self.friction_v = ca.jacobian(self.friction, self.v)
         fmags = [sum((ca.fabs(q) for _, q in friction), zero),
                  sum((ca.fabs(ca.jacobian(q, self.q) @ self.B) for _, q in friction), ca.SX(nv, nv)),
-                 sum((ca.fabs(ca.jacobian(q, self.v)) for _, q in friction), ca.SX(nv, nv))]
+                 sum((ca.fabs(ca.jacobian(q, self.v)) for _, q in friction), ca.SX(nv, nv)),
+                 sum((ca.fabs(ca.jacobian(q, self.lam)) for _, q in friction), ca.SX(nv, self.nc))]
 
         define_functions(self, mags, fmags)
 
