@@ -13,6 +13,13 @@
 //!   element that let go (a contact, a cable gone slack) gives back the explicit method's
 //!   steps; a stiff mode still there keeps BDF, even where BDF's steps are short for accuracy
 //!   (its error constants are larger than DOPRI5's).
+//! * **back to DOPRI5 where BDF cannot go on**: a BDF step whose size falls below `min_step`
+//!   is taken by DOPRI5 instead ([`Auto::fallbacks`] counts them), and the next switch waits
+//!   for twice as many stiffness detections as the last. BDF's first step after a switch is of
+//!   order 1, whose multipliers are O(1) off in motion ([`Bdf`]'s docs); where Coulomb friction
+//!   reads them — a plank bridge on two rubbing pins, 9 ms into its swing — no step size meets
+//!   its error test, and the run stopped there before (issue 39). A collapse of BDF's step no
+//!   longer stops `Auto`; on such a model it is no faster than DOPRI5.
 //!
 //! Both methods take the same rtol and atol. Where nothing is stiff, a run is DOPRI5's, step for
 //! step (the stiffness test is free); a stiff run pays DOPRI5's first 15 steps at the stability
@@ -75,10 +82,15 @@ pub struct Auto<T, const NQ: usize, const NV: usize, const NC: usize> {
     pub switches: u32,
     /// The first switch to BDF: where DOPRI5 saw the model stiff.
     pub first_stiff: Option<StiffnessDetected>,
+    /// Steps BDF could not take (its step size fell below `min_step`), which DOPRI5 took
+    /// instead (module docs).
+    pub fallbacks: u32,
     /// The method that took the last step (its dense output and correction are the step's).
     last: AutoPhase,
-    /// DOPRI5's detections acted on.
+    /// DOPRI5's detections acted on, and how many more it takes to switch again (doubled by
+    /// each fallback).
     seen: u32,
+    patience: u32,
     /// The fastest mode's rate (1/s), from the last estimate.
     rate: T,
     /// BDF steps since its start or the last probe, and probes in a row that allowed DOPRI5.
@@ -106,8 +118,10 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Auto<T, NQ, NV,
             phase: AutoPhase::Explicit,
             switches: 0,
             first_stiff: None,
+            fallbacks: 0,
             last: AutoPhase::Explicit,
             seen: 0,
+            patience: 1,
             rate: T::ZERO,
             since_probe: 0,
             calm: 0,
@@ -120,6 +134,25 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Auto<T, NQ, NV,
     /// Steps accepted by both methods.
     pub fn accepted(&self) -> u64 {
         self.explicit.accepted + self.stiff.accepted
+    }
+}
+
+impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Auto<T, NQ, NV, NC> {
+    /// BDF could not take the step from `from`: DOPRI5 takes it and goes on, and DOPRI5's
+    /// stiffness test must fire twice as often as before for the next switch.
+    fn fall_back<M: NewtonMatrix<T, NQ, NV, NC>, const N: usize, const NS: usize>(
+        &mut self,
+        system: &System<'_, M, T>,
+        ws: &mut WorkArrays<T, NV, NC, N, NS>,
+        from: &Point<T, NQ, NV, NC>,
+        t_max: T,
+        to: &mut Point<T, NQ, NV, NC>,
+    ) -> Result<(), SimulationError> {
+        self.fallbacks += 1;
+        self.patience = self.patience.saturating_mul(2);
+        (self.phase, self.last, self.fresh) = (AutoPhase::Explicit, AutoPhase::Explicit, false);
+        self.explicit.watch_again();
+        Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.explicit, system, ws, from, t_max, to)
     }
 }
 
@@ -152,7 +185,7 @@ where
             AutoPhase::Explicit => {
                 Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.explicit, system, ws, from, t_max, to)?;
                 let found = Integrator::<T, M, NQ, NV, NC, N, NS>::stiffness(&self.explicit);
-                if let Some(found) = found.filter(|f| f.times > self.seen) {
+                if let Some(found) = found.filter(|f| f.times >= self.seen + self.patience) {
                     self.seen = found.times;
                     self.first_stiff.get_or_insert(found);
                     self.switches += 1;
@@ -181,9 +214,11 @@ where
                         10,
                     )?;
                     system.complete_in(ws.dense(), start)?;
-                    Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, &self.start, t_max, to)?;
-                } else {
-                    Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, from, t_max, to)?;
+                }
+                let start = if self.fresh { &self.start } else { from };
+                match Integrator::<T, M, NQ, NV, NC, N, NS>::step(&mut self.stiff, system, ws, start, t_max, to) {
+                    Err(SimulationError::StepSizeTooSmall { .. }) => return self.fall_back(system, ws, from, t_max, to),
+                    result => result?,
                 }
                 self.fresh = false;
                 self.since_probe += 1;

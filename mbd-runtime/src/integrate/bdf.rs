@@ -52,7 +52,7 @@
 //! first step's estimate ½ (y₊ − y₀ − h y₀'), stopped the heavy top, which starts spinning, at
 //! rtol 1e-10.) The start in motion is still of order 1: where friction reads the loads
 //! there, its error test can ask for steps below rounding ([`Auto`](crate::Auto)'s switch to
-//! BDF on that bridge, 9 ms in, still does; issue 39).
+//! BDF on that bridge, 9 ms in, does, and DOPRI5 goes on instead; issue 39).
 //!
 //! The kept points are the steps' ends as [`Simulation`](crate::Simulation) corrects them, the
 //! velocities projected onto D v = ν (`project_velocities`): without the projection the
