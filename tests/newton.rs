@@ -60,6 +60,21 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// A spatial arm on a rubbing hinge and a disc on a rubbing axle through its centre: the
+    /// spatial friction's slope in the hinges' loads beside −Dᵀ.
+    pub SpatialHingeFriction {
+        spatial;
+        gravity [0.0, 0.0, -9.81];
+        body arm { mass: 1.0, inertia: [0.01, 0.05, 0.05, 0.0, 0.001, 0.0], at: [0.5, 0.0, 0.0] }
+        body disc { mass: 0.5, inertia: [0.002, 0.004, 0.002], at: [1.0, 0.0, 0.0] }
+        revolute ground[0.0, 0.0, 0.0] along [0.0, 1.0, 0.0] ~ arm[-0.5, 0.0, 0.0] along [0.0, 1.0, 0.0]
+            { coulomb: 0.2, radius: 0.01, slip_velocity: 1.0e-3 };
+        revolute arm[0.5, 0.0, 0.0] along [1.0, 0.0, 0.0] ~ disc[0.0, 0.0, 0.0] along [1.0, 0.0, 0.0]
+            { coulomb: 0.3, radius: 0.005, slip_velocity: 1.0e-3 };
+    }
+}
+
 joint::both_ways! {
     /// Two spatial bodies, a ball joint and a hinge, a spring across them and products of
     /// inertia: rows of D and of the stiffness in some of a body's rotational columns only. In
@@ -213,6 +228,7 @@ fn the_planned_matrix_is_the_dense_one_and_both_factorizations_solve_it() {
     assert_eq!(check::<_, 9, 9, 8, 17>(&SpringCrank::default(), 1), 0);
     assert_eq!(check::<_, 6, 6, 4, 10>(&PinFriction::default(), 2), 0);
     assert_eq!(check::<_, 7, 6, 3, 9>(&Top::default(), 3), 0);
+    assert_eq!(check::<_, 14, 12, 10, 22>(&SpatialHingeFriction::default(), 8), 0);
 }
 
 /// The repeated pin's two rows have no pivot of their own: both factorizations drop them (Δλ = 0
