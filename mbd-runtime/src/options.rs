@@ -152,18 +152,9 @@ mod api {
         while let Some(line) = lines.next() {
             if let Some(depth) = trait_depth.as_mut() {
                 if *depth == 1 && ["fn ", "const ", "type ", "unsafe fn "].iter().any(|p| line.starts_with(p)) {
-                    let mut item = String::from(line);
-                    while !(item.contains('{') || item.ends_with(';')) {
-                        match lines.next() {
-                            Some(next) => item = format!("{item} {next}"),
-                            None => break,
-                        }
-                    }
+                    let item = joined(line, &mut lines);
                     *depth += braces(&item);
-                    if let Some(brace) = item.find('{') {
-                        item.truncate(brace + 1);
-                    }
-                    items.push(format!("    {item}"));
+                    items.push(format!("    {}", to_brace(item)));
                 } else {
                     *depth += braces(line);
                 }
@@ -190,33 +181,38 @@ mod api {
             }
             let mut item = String::from(line);
             if line.starts_with("pub fn") || line.starts_with("pub const fn") {
-                while !(item.contains('{') || item.ends_with(';')) {
-                    match lines.next() {
-                        Some(next) => item = format!("{item} {next}"),
-                        None => break,
-                    }
-                }
-                if let Some(brace) = item.find('{') {
-                    item.truncate(brace + 1);
-                }
+                item = to_brace(joined(line, &mut lines));
             }
             if line.starts_with("pub enum") && line.ends_with('{') {
                 enum_depth = Some(1);
             }
             if line.starts_with("pub trait") || line.starts_with("pub unsafe trait") {
                 // The header may go on over lines (bounds, `where`) to its `{`.
-                let mut header = String::from(line);
-                while !header.contains('{') {
-                    match lines.next() {
-                        Some(next) => header = format!("{header} {next}"),
-                        None => break,
-                    }
-                }
-                trait_depth = Some(braces(&header)).filter(|&d| d > 0);
+                trait_depth = Some(braces(&joined(line, &mut lines))).filter(|&d| d > 0);
             }
             items.push(item);
         }
         items
+    }
+
+    /// `first` and the lines after it, up to the one that holds its `{` or ends with `;`, joined.
+    fn joined<'a>(first: &str, lines: &mut impl Iterator<Item = &'a str>) -> String {
+        let mut item = String::from(first);
+        while !(item.contains('{') || item.ends_with(';')) {
+            match lines.next() {
+                Some(next) => item = format!("{item} {next}"),
+                None => break,
+            }
+        }
+        item
+    }
+
+    /// `item` up to its first `{`, inclusive.
+    fn to_brace(mut item: String) -> String {
+        if let Some(brace) = item.find('{') {
+            item.truncate(brace + 1);
+        }
+        item
     }
 
     /// Every source file's public items, by path, then the defaults.
