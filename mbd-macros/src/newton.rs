@@ -403,8 +403,9 @@ fn a_terms(
 /// Coulomb friction's slopes in the multipliers subtracted from their slots of the λ columns,
 /// after D's copy there: the momentum rows' −∂r/∂λ is −Dᵀ − ∂f/∂λ. Without them Newton
 /// converges only linearly where the loads carry much friction (issue 39: a plank bridge held
-/// by two rubbing pins stopped BDF and Radau5 at 14 ms and 17 ms). Computed apart from the
-/// matrix's body: only mechanisms with Coulomb friction have them.
+/// by two rubbing pins stopped Radau5, whose simplified Newton keeps the matrix of the step's
+/// start, 17 ms into its swing). Computed apart from the matrix's body: only mechanisms with
+/// Coulomb friction have them.
 fn friction_slope_entries(f: &Formulation, e: &Emitter, at: &dyn Fn(usize, usize) -> Literal) -> TokenStream {
     if f.friction_lambda.is_empty() {
         return quote!();

@@ -528,8 +528,8 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     #[allow(clippy::too_many_arguments)]
     fn friction_derivatives(&self, q: &[T; NQ], v: &[T; NV], t: T, lambda: &[T; NC], d_q: &mut [[T; NV]; NV], d_v: &mut [[T; NV]; NV]);
     /// Adds the slope of [`Dynamics::friction_forces`] in the multipliers at fixed (q, v), row by
-    /// row: row r of `d_lambda` gets ∂f/∂λ_r (N or N·m per unit of λ_r, dimensionless for a
-    /// force row), the layout of D, beside which it stands in the implicit methods' iteration
+    /// row: row r of `d_lambda` gets ∂f/∂λ_r (force or torque per unit of λ_r), the layout of
+    /// D, beside which it stands in the implicit methods' iteration
     /// matrix (−Dᵀ − ∂f/∂λ in the momentum rows' λ columns). A joint's friction grows with its
     /// load — μ R |(λ_x, λ_y)| in a revolute pin — so at most μ (times the pin radius) per unit
     /// of load; without it, Newton converges only linearly where loads carry much friction.
