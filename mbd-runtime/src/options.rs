@@ -145,34 +145,16 @@ mod api {
     fn public_items(source: &str) -> Vec<String> {
         let mut items = Vec::new();
         let mut lines = source.lines().map(str::trim).take_while(|line| *line != "#[cfg(test)]");
-        let mut enum_depth: Option<i32> = None;
-        // Inside a `pub trait`: its brace depth (1 in its body), once its `{` was seen.
-        let mut trait_depth: Option<i32> = None;
-        let braces = |line: &str| line.matches('{').count() as i32 - line.matches('}').count() as i32;
+        // Inside a `pub enum` or `pub trait` body: its depth (1 directly in it).
+        let mut inside: Option<(Body, i32)> = None;
         while let Some(line) = lines.next() {
-            if let Some(depth) = trait_depth.as_mut() {
-                if *depth == 1 && ["fn ", "const ", "type ", "unsafe fn "].iter().any(|p| line.starts_with(p)) {
-                    let item = joined(line, &mut lines);
-                    *depth += braces(&item);
-                    items.push(format!("    {}", to_brace(item)));
-                } else {
-                    *depth += braces(line);
-                }
+            if let Some((body, depth)) = inside.as_mut() {
+                *depth += match body {
+                    Body::Enum => enum_line(line, *depth, &mut items),
+                    Body::Trait => trait_line(line, *depth, &mut lines, &mut items),
+                };
                 if *depth <= 0 {
-                    trait_depth = None;
-                }
-                continue;
-            }
-            if let Some(depth) = enum_depth.as_mut() {
-                if line.starts_with("//") || line.starts_with("#[") {
-                    continue;
-                }
-                if *depth == 1 && line.starts_with(|c: char| c.is_ascii_uppercase()) {
-                    items.push(format!("    {}", line.split([' ', '{', '(', ',']).next().unwrap_or(line)));
-                }
-                *depth += line.matches(['{', '(']).count() as i32 - line.matches(['}', ')']).count() as i32;
-                if *depth <= 0 {
-                    enum_depth = None;
+                    inside = None;
                 }
                 continue;
             }
@@ -184,15 +166,51 @@ mod api {
                 item = to_brace(joined(line, &mut lines));
             }
             if line.starts_with("pub enum") && line.ends_with('{') {
-                enum_depth = Some(1);
+                inside = Some((Body::Enum, 1));
             }
             if line.starts_with("pub trait") || line.starts_with("pub unsafe trait") {
                 // The header may go on over lines (bounds, `where`) to its `{`.
-                trait_depth = Some(braces(&joined(line, &mut lines))).filter(|&d| d > 0);
+                inside = Some((Body::Trait, braces(&joined(line, &mut lines)))).filter(|&(_, d)| d > 0);
             }
             items.push(item);
         }
         items
+    }
+
+    /// The body whose lines [`public_items`] reads.
+    enum Body {
+        Enum,
+        Trait,
+    }
+
+    /// A line of a `pub enum`'s body at `depth`: a variant's name where it starts one. Returns
+    /// the change of depth (braces and parentheses).
+    fn enum_line(line: &str, depth: i32, items: &mut Vec<String>) -> i32 {
+        if line.starts_with("//") || line.starts_with("#[") {
+            return 0;
+        }
+        if depth == 1 && line.starts_with(|c: char| c.is_ascii_uppercase()) {
+            items.push(format!("    {}", line.split([' ', '{', '(', ',']).next().unwrap_or(line)));
+        }
+        line.matches(['{', '(']).count() as i32 - line.matches(['}', ')']).count() as i32
+    }
+
+    /// A line of a `pub trait`'s body at `depth`: an item's whole signature where it starts one
+    /// (reading on through `lines`). Returns the change of depth.
+    fn trait_line<'a>(line: &str, depth: i32, lines: &mut impl Iterator<Item = &'a str>, items: &mut Vec<String>) -> i32 {
+        if depth == 1 && ["fn ", "const ", "type ", "unsafe fn "].iter().any(|p| line.starts_with(p)) {
+            let item = joined(line, lines);
+            let change = braces(&item);
+            items.push(format!("    {}", to_brace(item)));
+            change
+        } else {
+            braces(line)
+        }
+    }
+
+    /// Opening less closing braces.
+    fn braces(line: &str) -> i32 {
+        line.matches('{').count() as i32 - line.matches('}').count() as i32
     }
 
     /// `first` and the lines after it, up to the one that holds its `{` or ends with `;`, joined.
