@@ -29,6 +29,9 @@ pub struct Row {
     pub horizon: f64,
     /// The reference's resolution, relative like the errors.
     pub resolution: f64,
+    /// Why the reference was not cross-checked against CasADi, where it was not (its
+    /// resolution is then DOPRI5's difference alone).
+    pub unchecked: Option<String>,
     /// Per method, per tolerance: the relative error and the run's wall time (ms), or why it
     /// failed.
     pub errors: Vec<(&'static str, Vec<Run>)>,
@@ -67,7 +70,8 @@ where
             .collect();
         errors.push((method, runs));
     }
-    Row { case: case.name, horizon, resolution: reference.uncertainty / scale, errors }
+    let unchecked = reference.casadi.as_ref().err().cloned();
+    Row { case: case.name, horizon, resolution: reference.uncertainty / scale, unchecked, errors }
 }
 
 /// The run's error as the issue defines it, or its error message.
@@ -133,6 +137,16 @@ pub fn markdown(rows: &[Row], today: &str, machine: &str) -> String {
                 write!(out, " {cell} |").unwrap();
             }
             writeln!(out, " {} |", largest.map_or("—".to_string(), |l| format!("**{}**", factor(l)))).unwrap();
+        }
+    }
+    for row in rows {
+        if let Some(why) = &row.unchecked {
+            writeln!(
+                out,
+                "\n{}: the reference is **not cross-checked against CasADi** ({why}); its resolution is DOPRI5's difference alone.",
+                row.case
+            )
+            .unwrap();
         }
     }
     out

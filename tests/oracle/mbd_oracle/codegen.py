@@ -173,6 +173,9 @@ def spatial_forward_dynamics(s, prefix, pattern):
     fd_qr = ca.Function(f"{prefix}_fd_qr", mx, [x], CSE)
     print(f"{s.name}: S has {schur.nnz()} non-zeros ({nc}×{nc}), KKT {kkt.nnz()} ({nv + nc}×{nv + nc}); "
           f"Schur form {fd_schur.n_instructions()} instructions")
+    if pattern is None:
+        # Forward dynamics alone (the study's CVODES reference, integrate.py).
+        return [fd_schur, fd_qr]
     x = ca.SX.sym("x", nv)
     k = ca.jacobian(ca.mtimes(d.T, s.lam), q) @ s.B
     forces = forces_and_newton(prefix, "v", q, v, t, p, s.lam, x, ca.mtimes(s.mass, x), s.h, s.h_q, s.h_v, s.mass, s.phi,

@@ -31,7 +31,7 @@ def motion(model_json):
     """(y, y', p, p values, nq) of the ODE, as CasADi SX."""
     if is_spatial(model_json):
         s = Spatial(model_json)
-        fd = spatial_forward_dynamics(s, "reference")[0]
+        fd = spatial_forward_dynamics(s, "reference", None)[0]
         q, v, t, p = s.q, s.v, s.t, s.p
         qdot = s.qdot
         nq, nv = s.q.shape[0], s.v.shape[0]
