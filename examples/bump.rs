@@ -1,7 +1,8 @@
 //! A quarter car over a bump (Nikravesh's suspension models, reduced to a chassis and a wheel on
 //! vertical slides): at 20 m/s a 10 cm bump throws the wheel into its bump stop and off the road.
 //! The tyre and the bump stop are unilateral elements; `simulate` lands a step on each instant
-//! one of them starts or stops pushing, and the example lists those instants.
+//! one of them starts or stops pushing, and on each instant the road's profile changes law (its
+//! `clamp` of t: the bump's start and end, "time events"), and the example lists those instants.
 //!
 //! Run with `cargo run --release --example bump`.
 
@@ -34,8 +35,11 @@ mbd::mechanism! {
 pub struct Report {
     /// The tyre's static compression and the closed form (m + M) g / k (m).
     pub static_compression: (f64, f64),
-    /// Each located switch: time (s), element, and whether its force starts (true) or stops.
+    /// Each located switch of the tyre and the bump stop: time (s), element, and whether its
+    /// force starts (true) or stops.
     pub events: Vec<(f64, &'static str, bool)>,
+    /// The instants the road's profile changes law: the bump's start and end (s).
+    pub road_changes: Vec<f64>,
     /// The time the wheel spends in the air (s).
     pub airborne: f64,
 }
@@ -52,11 +56,16 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
 
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (1..=300).map(|k| 0.005 * k as f64).collect();
-    let mut events = Vec::new();
+    let (mut events, mut road_changes) = (Vec::new(), Vec::new());
     Simulation::new(&m, &mut dopri).start(0.0, &q, &[0.0; 6]).times(&times).run(&mut ws, |s| {
         if let Some(EventHit::Switch(k)) = s.event {
-            let pushing = m.switching_function(k, &s.point.q, &s.point.v, s.point.t) > 0.0;
-            events.push((s.point.t, QuarterCar::SWITCH_NAMES[k], pushing));
+            let name = QuarterCar::SWITCH_NAMES[k];
+            if name.starts_with("road: time event") {
+                road_changes.push(s.point.t);
+            } else {
+                let pushing = m.switching_function(k, &s.point.q, &s.point.v, s.point.t) > 0.0;
+                events.push((s.point.t, name, pushing));
+            }
         }
     })?;
     // From each time the tyre lets go to the next time it pushes again.
@@ -66,12 +75,16 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         println!("Quarter car at {} m/s over a {} cm bump at x = 20 m (t = 1 s)", m.speed, 100.0 * m.height);
         println!("static tyre compression {:.6} m (closed form (m + M) g / k = {expected:.6} m)", compression);
         println!("{:>12}  {:<10}", "t (s)", "element");
-        for (t, name, pushing) in &events {
-            println!("{t:>12.6}  {name:<10} {}", if *pushing { "starts pushing" } else { "lets go" });
+        let changes = road_changes.iter().map(|&t| (t, "road", "profile changes law"));
+        let switches = events.iter().map(|&(t, name, pushing)| (t, name, if pushing { "starts pushing" } else { "lets go" }));
+        let mut all: Vec<(f64, &str, &str)> = changes.chain(switches).collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (t, name, what) in all {
+            println!("{t:>12.6}  {name:<10} {what}");
         }
         println!("the wheel is in the air for {:.1} ms", 1e3 * airborne);
     }
-    Ok(Report { static_compression: (compression, expected), events, airborne })
+    Ok(Report { static_compression: (compression, expected), events, road_changes, airborne })
 }
 
 /// The ride over the bump, from rest on the road, for the showcase's pictures: 0.9–1.5 s every

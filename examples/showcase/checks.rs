@@ -472,7 +472,8 @@ fn excavator_scenes_agree_on_the_cylinder_forces() {
 /// 1e-10 residual: 1e-9 m). Over the bump, events come in the physical order: the road falls away
 /// after the bump's crest (x = 20.25 m, t = 1.0125 s) faster than the wheel follows, so the tyre
 /// lets go before the bump ends (t = 1.025 s); the wheel, thrown up, hits its bump stop, leaves
-/// it, and lands again. Nothing switches on the flat road before.
+/// it, and lands again. Nothing switches on the flat road before. The road's profile changes law
+/// where the bump starts and ends (its time events).
 #[test]
 fn the_quarter_car_leaves_the_road_and_hits_its_bump_stop() {
     let r = bump::run(false).expect("the quarter car runs");
@@ -481,6 +482,8 @@ fn the_quarter_car_leaves_the_road_and_hits_its_bump_stop() {
     let order: Vec<(&str, bool)> = r.events.iter().map(|e| (e.1, e.2)).collect();
     assert_eq!(order, [("road", false), ("bump_stop", true), ("bump_stop", false), ("road", true)], "{r:?}");
     assert!(r.events[0].0 > 1.0125 && r.events[0].0 < 1.025, "the tyre lets go at {} s", r.events[0].0);
+    // The bump's start and end, located as time events to within the event search's resolution.
+    assert!(r.road_changes.len() == 2 && (r.road_changes[0] - 1.0).abs() < 1e-12 && (r.road_changes[1] - 1.025).abs() < 1e-12, "{r:?}");
     assert!(r.airborne > 0.02 && r.airborne < 0.2, "{r:?}");
     bounds("bump", "off by ≤ 1e-9 m", (compression - expected).abs());
     quotes("bump", "lets go at 1.0194 s", r.events[0].0);

@@ -30,8 +30,8 @@
 use std::collections::{BTreeSet, HashMap};
 
 use super::{
-    accessors, constraint_derivatives, constraint_forces, constraint_rows, forces, linear_terms, ForceTerms, Forces, Formulation,
-    FrameNodes,
+    accessors, constraint_derivatives, constraint_forces, constraint_rows, forces, linear_terms, time_switches, ForceTerms, Forces,
+    Formulation, FrameNodes, Rows,
 };
 use crate::frames::Builder;
 use crate::model::{BodyRef, Model};
@@ -83,10 +83,12 @@ pub struct TreeTerms {
 pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     // The body level: rows, forces and energies as in body coordinates.
     let mut body = Builder::body_level(model);
-    let (phi_body, row_names, row_units) = constraint_rows(&mut body);
+    let Rows { phi: phi_body, names: row_names, units: row_units, owners: joints } = constraint_rows(&mut body);
     let zero_body = body.g.num(0.0);
     let (np, nt) = (model.space.coordinates().len(), model.space.velocities().len());
-    let body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
+    let mut body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
+    let events = time_switches(&mut body.g, body_forces.owners.iter().chain(&joints));
+    body_forces.switches.extend(events);
     let body_jacobian = super::tangent(&mut body, &phi_body);
     let body_constraint = super::constraint_wrenches(&mut body, &body_jacobian);
     let first_rows = std::mem::take(&mut body.first_rows);

@@ -8,12 +8,12 @@
 
 mod joint;
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeSet, HashMap, HashSet};
 
 use crate::forces::{gravity, Generalized};
 use crate::frames::{collect_vars, velocity_partials, Builder, Coordinates, RowUnit};
 use crate::model::{Inertia, Model};
-use crate::sym::{Graph, Id, Var};
+use crate::sym::{Graph, Id, Node, Var};
 
 pub use joint::TreeTerms;
 
@@ -154,7 +154,7 @@ pub fn formulate(model: &Model) -> Formulation {
     }
     let mut b = Builder::new(model);
     let (nq, nv) = (b.nq(), b.nv());
-    let (phi, row_names, row_units) = constraint_rows(&mut b);
+    let Rows { phi, names: row_names, units: row_units, owners: joints } = constraint_rows(&mut b);
     let (MassAndStart { q0, qd0, mass, mass_coupling, mass_inverse }, inertia_forces) = mass_and_start(&mut b);
     let mass_blocks = {
         let mut reads = BTreeSet::new();
@@ -163,7 +163,9 @@ pub fn formulate(model: &Model) -> Formulation {
         }
         reads.is_empty() && mass_coupling.iter().all(|&(r, c, _)| mass_inverse.iter().any(|&(ri, ci, _)| (ri, ci) == (r, c)))
     };
-    let Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces } = forces(&mut b, inertia_forces);
+    let Forces { h, friction, potential, mut switches, force_velocities, base_forces, alone_forces, owners } =
+        forces(&mut b, inertia_forces);
+    switches.extend(time_switches(&mut b.g, owners.iter().chain(&joints)));
     let power = power(&mut b, potential, &h);
     let first_rows = std::mem::take(&mut b.first_rows);
     let h_q = tangent(&mut b, &h);
@@ -305,22 +307,82 @@ fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
 /// Φ's rows, joint by joint in declaration order (each joint's first row recorded in
 /// `b.first_rows`), with their names and units; in joint coordinates the cut joints', drivers'
 /// and user constraints' only.
-fn constraint_rows(b: &mut Builder) -> (Vec<Id>, Vec<String>, Vec<RowUnit>) {
-    let mut phi = Vec::new();
-    let (mut row_names, mut row_units) = (Vec::new(), Vec::new());
+struct Rows {
+    phi: Vec<Id>,
+    names: Vec<String>,
+    units: Vec<RowUnit>,
+    /// Each joint's name with its rows, for [`time_switches`].
+    owners: Vec<(String, Vec<Id>)>,
+}
+
+fn constraint_rows(b: &mut Builder) -> Rows {
+    let mut rows = Rows { phi: Vec::new(), names: Vec::new(), units: Vec::new(), owners: Vec::new() };
     for (index, c) in b.model.constraints.iter().enumerate() {
-        b.first_rows.push(phi.len());
+        b.first_rows.push(rows.phi.len());
         // A joint the tree carries holds by the coordinates themselves: it has no rows.
         if b.model.tree.as_ref().is_some_and(|tree| tree.joints.contains(&index)) {
             continue;
         }
+        let mut own = Vec::new();
         for row in c.kind.rows(b) {
-            row_names.push(format!("{}: {}", c.name, row.name));
-            row_units.push(row.unit);
-            phi.push(row.value);
+            rows.names.push(format!("{}: {}", c.name, row.name));
+            rows.units.push(row.unit);
+            rows.phi.push(row.value);
+            own.push(row.value);
+        }
+        rows.owners.push((c.name.clone(), own));
+    }
+    rows
+}
+
+/// The instants where an expression of time alone changes branch — a `clamp`, `min`, `max`,
+/// `abs`, `sign` or `if` of t in a road profile, a driver or a force law — as switching
+/// functions: each comparison a > b of a `Select` reached from an owner's nodes (an element's
+/// forces, a joint's rows) whose two sides read t and parameters but no state, as a − b, once
+/// for the whole mechanism, named after its first owner (`"road: time event"`, numbered where
+/// an owner has several).
+///
+/// Why: a law that changes between two steps' ends is invisible to the step's error estimate
+/// when it depends on time alone — a stiff method's step of 0.1 s can step over a 25 ms bump in
+/// the road and see a flat road at both ends. Located as switches, such instants end a step,
+/// and the integrator restarts there (guide/dsl.md, "Switches and events"). A kink that reads
+/// the state changes the dynamics the step integrates, so the estimate sees it; the unilateral
+/// elements locate their own.
+fn time_switches<'a>(g: &mut Graph, owners: impl IntoIterator<Item = &'a (String, Vec<Id>)>) -> Vec<(String, Id)> {
+    const TIME: u8 = 1;
+    const STATE: u8 = 2;
+    // What each node reads; a node's children precede it in the graph.
+    let mut reads = vec![0u8; g.node_count()];
+    for id in 0..reads.len() {
+        reads[id] = match g.node(id as Id) {
+            Node::Var(Var::T) => TIME,
+            Node::Var(Var::Param(_)) | Node::Const(_) => 0,
+            Node::Var(_) => STATE,
+            _ => g.children(id as Id).into_iter().flatten().fold(0, |r, c| r | reads[c as usize]),
+        };
+    }
+    let (mut visited, mut compared) = (HashSet::new(), HashSet::new());
+    let mut switches = Vec::new();
+    for (owner, roots) in owners {
+        let mut own = Vec::new();
+        let mut stack: Vec<Id> = roots.iter().copied().filter(|&r| reads[r as usize] & TIME != 0).collect();
+        while let Some(id) = stack.pop() {
+            if !visited.insert(id) {
+                continue;
+            }
+            if let Node::Select(_, a, b, _, _) = g.node(id) {
+                if reads[a as usize] | reads[b as usize] == TIME && compared.insert((a.min(b), a.max(b))) {
+                    own.push((a, b));
+                }
+            }
+            stack.extend(g.children(id).into_iter().flatten().filter(|&c| reads[c as usize] & TIME != 0));
+        }
+        for (k, &(a, b)) in own.iter().enumerate() {
+            let name = if own.len() == 1 { format!("{owner}: time event") } else { format!("{owner}: time event {}", k + 1) };
+            switches.push((name, g.sub(a, b)));
         }
     }
-    (phi, row_names, row_units)
+    switches
 }
 
 /// The initial guesses of q and v, and M: its diagonal, its products of inertia and the blocks
@@ -484,6 +546,9 @@ struct Forces {
     force_velocities: Vec<(String, Vec<usize>)>,
     base_forces: ForceTerms,
     alone_forces: Vec<ForceTerms>,
+    /// Each element's name with its own terms of h and of the friction forces, for
+    /// [`time_switches`].
+    owners: Vec<(String, Vec<Id>)>,
 }
 
 /// h by virtual power: the inertia forces (`inertia`: in body coordinates the gyroscopic terms
@@ -515,12 +580,14 @@ fn forces(b: &mut Builder, inertia_forces: Vec<Id>) -> Forces {
     let base_forces = terms(b, base_h.clone());
     let mut force_velocities = Vec::new();
     let mut alone_forces = Vec::new();
+    let mut owners = Vec::new();
     let mut reach = |b: &mut Builder, name: &str, apply: &dyn Fn(&mut Builder, &mut Generalized)| {
         // On the base (zero, or the gyroscopic terms), an entry the element reaches is a new
         // node: adding a non-zero term never gives back what it was added to.
         let mut alone = Generalized { h: base_h.clone(), friction: vec![zero; nv], potential: zero, switches: Vec::new() };
         apply(b, &mut alone);
         let velocities: Vec<usize> = (0..nv).filter(|&i| alone.h[i] != base_h[i] || !b.g.is_zero(alone.friction[i])).collect();
+        owners.push((name.to_string(), velocities.iter().flat_map(|&i| [alone.h[i], alone.friction[i]]).collect()));
         force_velocities.push((name.to_string(), velocities));
         alone_forces.push(terms(b, alone.h));
     };
@@ -532,7 +599,7 @@ fn forces(b: &mut Builder, inertia_forces: Vec<Id>) -> Forces {
     }
     let Generalized { h, friction, potential, switches } = out;
     let switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
-    Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces }
+    Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces, owners }
 }
 
 /// Sparse matrix entries (row, column, node).
@@ -784,6 +851,29 @@ pub(crate) mod tests {
 
     const PENDULUM: &str = "P { gravity [0.0, -9.81]; body a { mass: 2.0, inertia: 0.5 }
         revolute pin: ground[0.0, 0.0] ~ a[-1.0, 0.0]; drive a.phi = 2.0 * t; }";
+
+    /// A kink of t alone is a time event, each comparison once, named after its element or
+    /// joint (in that order); a kink of the state (`abs(b.x)`: the dynamics see it) or of
+    /// parameters alone (constant in a run) is not. Each event's function vanishes at its
+    /// instant: t = 2 for the force's `if`, t = 0 and 1 for the driver's `clamp`.
+    #[test]
+    fn kinks_of_time_alone_are_time_events() {
+        let (_, f) = formulated(
+            "P { params { lo: 0.5 } gravity [0.0, -9.81];
+            body a { mass: 2.0, inertia: 0.5 }
+            body b { mass: 1.0, inertia: 0.1, at: [2.0, 0.0, 0.0] }
+            revolute pin: ground[0.0, 0.0] ~ a[-1.0, 0.0];
+            drive a.phi = clamp(t, 0.0, 1.0);
+            force push: b[0.0, 0.0] = [if t > 2.0 { 1.0 } else { 0.0 } + abs(b.x) + max(lo, 1.0), 0.0]; }",
+        );
+        let names: Vec<&str> = f.switches.iter().map(|(name, _)| name.as_str()).collect();
+        assert_eq!(names, ["push: time event", "drive a.phi: time event 1", "drive a.phi: time event 2"]);
+        let zero_at = |node: Id| [0.0, 1.0, 2.0].into_iter().find(|&t| eval(&f, node, &[0.3; 6], &[0.1; 6], t) == 0.0);
+        let mut instants: Vec<Option<f64>> = f.switches.iter().map(|&(_, node)| zero_at(node)).collect();
+        assert_eq!(instants.remove(0), Some(2.0));
+        instants.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(instants, [Some(0.0), Some(1.0)]);
+    }
 
     /// Rows and their names come from one place; first rows follow the row counts.
     #[test]
