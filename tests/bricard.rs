@@ -225,8 +225,12 @@ fn bricard_partitioning_drops_its_redundant_row() {
     assert!(err.to_string().contains("allow_redundant"), "{err}");
 }
 
-/// Advice that is true where it is given (issue 39, item 6). Of the runtime's errors, only
-/// `DependentConstraint` names an option — `DynamicsOptions::allow_redundant` drops such a row.
+/// Advice that is true where it is given (issue 39, item 6). The runtime's errors that name an
+/// option: `DependentConstraint` (`DynamicsOptions::allow_redundant`, here),
+/// `ToleranceBelowResolution` (`ErrorControl::with_per_unit_time(false)`, given only where it
+/// is on: `tests/integrators.rs`) and generalized-α's fixed-step `NotConverged`
+/// (`with_max_iterations`, a shorter step, `with_error_control`, each run where it is given:
+/// `tests/friction.rs`). `allow_redundant` drops a dependent row.
 /// Under the default options no path meets it on this loop with its one redundant row: the
 /// generated factorization in body coordinates, the dense one in joint coordinates, the
 /// projection, generalized-α's Newton matrix and partitioning (above) all drop the row. With

@@ -588,3 +588,33 @@ fn the_stiff_methods_carry_a_bridge_on_rubbing_pins() {
         assert!(deviation < bound, "{what}: {deviation:e} from DOPRI5's reference, above {bound:e}");
     }
 }
+
+/// Advice that is true where it is given (issue 39, item 6). Generalized-α at its defaults (a
+/// fixed 1 ms step, 12 Newton iterations) stops on the rubbing bridge: the saturating friction
+/// law makes its first iterations cycle. Its `NotConverged` says which iteration failed and
+/// names three changes; each is run here and carries the bridge through 50 ms.
+#[test]
+fn generalized_alpha_on_rubbing_pins_says_what_carries_it_through() {
+    let bridge = RubbingBridge::default();
+    let mut ws = RubbingBridge::workspace();
+    let mut q = bridge.initial_positions();
+    KinematicSolver::default().assemble(&bridge, &mut ws, &mut q, 0.0).expect("assembles");
+    let times: Vec<f64> = (1..=10).map(|k| k as f64 * 0.005).collect();
+    let mut run = |options: GeneralizedAlphaOptions<f64>| {
+        Simulation::new(&bridge, &mut RubbingBridge::generalized_alpha(options))
+            .start(0.0, &q, &[0.0; 30])
+            .times(&times)
+            .run(&mut ws, |_| {})
+    };
+    let defaults = GeneralizedAlphaOptions::default();
+    let err = run(defaults).unwrap_err();
+    assert!(matches!(err, SimulationError::NotConverged { newton: mbd::NewtonIteration::Step, iterations: 12, .. }), "{err:?}");
+    let message = err.to_string();
+    eprintln!("{message}");
+    for advice in ["GeneralizedAlphaOptions::with_max_iterations, 12 in this run", "shorten the step", "with_error_control"] {
+        assert!(message.contains(advice), "{message}");
+    }
+    run(defaults.with_max_iterations(30)).expect("30 iterations");
+    run(defaults.with_step(2.5e-4)).expect("a quarter of the step");
+    run(defaults.with_error_control(Some(ErrorControl::default()))).expect("error control");
+}

@@ -36,8 +36,9 @@ pub use solvers::{redundancy, statics};
 pub use integrate::partition::Partition;
 pub use integrate::{
     project, Auto, AutoOptions, AutoPhase, Bdf, BdfOptions, Correction, Dop853, Dop853Options, Dopri5, Dopri5Options, Energy, ErrorControl,
-    Event, EventHit, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, Point, Radau5, Radau5Options, Rk4, Rk4Options, Sample,
-    Simulation, SimulationError, SimulationOptions, SingularPassage, Statistics, StiffnessDetected, System, BDF_MAX_ORDER, SINGULAR_SINE,
+    Event, EventHit, GeneralizedAlpha, GeneralizedAlphaOptions, Integrator, NewtonIteration, Point, Radau5, Radau5Options, Rk4, Rk4Options,
+    Sample, Simulation, SimulationError, SimulationOptions, SingularPassage, Statistics, StiffnessDetected, System, BDF_MAX_ORDER,
+    SINGULAR_SINE,
 };
 pub use linalg::sparse::SparsePattern;
 pub use linalg::LinalgError;

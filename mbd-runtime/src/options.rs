@@ -141,13 +141,20 @@ mod api {
     /// The public items of one source file: each line that starts with `pub ` (a `pub fn`'s
     /// whole signature, to its `{` or `;`), the variants of a `pub enum`, and the items of a
     /// `pub trait` (each `fn`'s whole signature, its `const`s and `type`s: what an implementor
-    /// writes); up to the file's `#[cfg(test)]`.
+    /// writes); up to the file's `#[cfg(test)]` module (a `#[cfg(test)] mod tests;` line is
+    /// skipped: `integrate/mod.rs` and `lib.rs` have theirs at the top).
     fn public_items(source: &str) -> Vec<String> {
         let mut items = Vec::new();
-        let mut lines = source.lines().map(str::trim).take_while(|line| *line != "#[cfg(test)]");
+        let mut lines = source.lines().map(str::trim);
         // Inside a `pub enum` or `pub trait` body: its depth (1 directly in it).
         let mut inside: Option<(Body, i32)> = None;
         while let Some(line) = lines.next() {
+            if line == "#[cfg(test)]" {
+                match lines.next() {
+                    Some(item) if item.ends_with(';') => continue,
+                    _ => break,
+                }
+            }
             if let Some((body, depth)) = inside.as_mut() {
                 *depth += match body {
                     Body::Enum => enum_line(line, *depth, &mut items),
@@ -308,7 +315,7 @@ mod api {
 
     #[test]
     fn public_items_reads_signatures_and_variants() {
-        let source = "pub fn f<T>(\n    a: T,\n) -> T {\n    a\n}\npub fn g(&self) -> u32 { 1 }\nfn private() {}\npub enum E {\n    /// in (−π, π]\n    A { x: f64 },\n    B,\n}\npub const C: u32 = 1;\n#[cfg(test)]\npub fn hidden() {}\n";
+        let source = "#[cfg(test)]\nmod tests;\npub fn f<T>(\n    a: T,\n) -> T {\n    a\n}\npub fn g(&self) -> u32 { 1 }\nfn private() {}\npub enum E {\n    /// in (−π, π]\n    A { x: f64 },\n    B,\n}\npub const C: u32 = 1;\n#[cfg(test)]\nmod tests {\npub fn hidden() {}\n}\n";
         assert_eq!(
             public_items(source),
             ["pub fn f<T>( a: T, ) -> T {", "pub fn g(&self) -> u32 {", "pub enum E {", "    A", "    B", "pub const C: u32 = 1;"]

@@ -393,7 +393,13 @@ fn not_converged<T: Real, M: Mechanism, const NV: usize, const NC: usize, const 
         let r = (0..NC).fold(0, |r, j| if step[NV + j].abs() > step[NV + r].abs() { j } else { r });
         (name(M::CONSTRAINT_NAMES, r), step[NV + r].abs())
     };
-    SimulationError::NotConverged { t: t1.to_f64(), iterations, worst_row, residual: residual.to_f64() }
+    SimulationError::NotConverged {
+        t: t1.to_f64(),
+        newton: super::NewtonIteration::Step,
+        iterations,
+        worst_row,
+        residual: residual.to_f64(),
+    }
 }
 
 /// Name of row `i` of the iteration matrix: a velocity (the momentum rows) or a constraint.

@@ -164,6 +164,21 @@ pub struct Sample<T, const NQ: usize, const NV: usize, const NC: usize> {
     pub event: Option<EventHit>,
 }
 
+/// The Newton iteration behind a [`SimulationError::NotConverged`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NewtonIteration {
+    /// The correction after a step, projecting the positions onto Φ = 0
+    /// ([`Correction::projection`]).
+    Projection,
+    /// Coordinate partitioning's solve for the dependent positions
+    /// ([`Correction::partitioning`]).
+    Partitioning,
+    /// An implicit method's step. Only generalized-α at a fixed step reports it: BDF, Radau5
+    /// and generalized-α with error control retry a shorter step instead.
+    Step,
+}
+
 /// Why a simulation stopped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -210,6 +225,8 @@ pub enum SimulationError {
     NotConverged {
         /// Time (s).
         t: f64,
+        /// Which iteration: its message says what to change.
+        newton: NewtonIteration,
         /// Iterations made.
         iterations: u32,
         /// The constraint with the largest residual; or, when every constraint is met and the
@@ -288,8 +305,17 @@ impl fmt::Display for SimulationError {
                  (ErrorControl::with_per_unit_time(false), which does not deliver the tolerance), or use DOP853"
             ),
             SimulationError::TooManySteps { t, steps } => write!(f, "{steps} steps taken, stopped at t = {t} s"),
-            SimulationError::NotConverged { t, iterations, worst_row, residual } => {
-                write!(f, "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}")
+            SimulationError::NotConverged { t, newton, iterations, worst_row, residual } => {
+                write!(f, "at t = {t} s Newton did not converge in {iterations} iterations: `{worst_row}` has residual {residual}")?;
+                match newton {
+                    NewtonIteration::Step => write!(
+                        f,
+                        "; generalized-α at a fixed step has no shorter step to retry: allow more iterations \
+                         (GeneralizedAlphaOptions::with_max_iterations, {iterations} in this run), shorten the step, or give it \
+                         error control (with_error_control), which shortens the step where Newton fails"
+                    ),
+                    NewtonIteration::Projection | NewtonIteration::Partitioning => Ok(()),
+                }
             }
             SimulationError::InvalidOptions { what } => write!(f, "invalid option: {what}"),
             SimulationError::Incomplete { missing } => write!(f, "the simulation was run without {missing}"),

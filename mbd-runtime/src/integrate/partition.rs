@@ -264,6 +264,7 @@ impl<const NV: usize, const NC: usize> Partition<NV, NC> {
             if iterations >= max_iterations || !worst.1.is_finite() {
                 return Err(SimulationError::NotConverged {
                     t: t.to_f64(),
+                    newton: super::NewtonIteration::Partitioning,
                     iterations,
                     worst_row: name(M::CONSTRAINT_NAMES, worst.0),
                     residual: worst.1.to_f64(),

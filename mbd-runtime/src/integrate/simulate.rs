@@ -130,6 +130,7 @@ pub(crate) fn project_in<T: Real, M: ForwardDynamics<T, NQ, NV, NC>, const NQ: u
             }
             return Err(SimulationError::NotConverged {
                 t: t.to_f64(),
+                newton: super::NewtonIteration::Projection,
                 iterations,
                 worst_row: name(M::CONSTRAINT_NAMES, worst.0),
                 residual: worst.1.to_f64(),
