@@ -17,9 +17,10 @@
 //!   is taken by DOPRI5 instead ([`Auto::fallbacks`] counts them), and the next switch waits
 //!   for twice as many stiffness detections as the last. BDF's first step after a switch is of
 //!   order 1, whose multipliers are O(1) off in motion ([`Bdf`]'s docs); where Coulomb friction
-//!   reads them — a plank bridge on two rubbing pins, 9 ms into its swing — no step size meets
-//!   its error test, and the run stopped there before (issue 39). A collapse of BDF's step no
-//!   longer stops `Auto`; on such a model it is no faster than DOPRI5.
+//!   reads them — a plank bridge on two rubbing pins, 9 ms into its swing — that step must be
+//!   short (about 1e-8 s there), and before BDF's velocities had a rounding allowance no step
+//!   size met its error test (issue 39). A collapse of BDF's step does not stop `Auto`; where
+//!   it recurs, the run is no faster than DOPRI5.
 //!
 //! Both methods take the same rtol and atol. Where nothing is stiff, a run is DOPRI5's, step for
 //! step (the stiffness test is free); a stiff run pays DOPRI5's first 15 steps at the stability

@@ -508,3 +508,8 @@ pub(super) fn accumulate_work<T: Real, const NQ: usize, const NV: usize, const N
         to.work[k] = from.work[k] + T::from_f64(0.5) * h * (from.power[k] + to.power[k]);
     }
 }
+
+/// `ulps` units in the last place of the largest coordinate (m, rad; 1 for Euler parameters).
+pub(super) fn position_ulps<T: Real, const NQ: usize>(q: &[T; NQ], ulps: f64) -> T {
+    T::from_f64(ulps) * T::EPSILON * q.iter().fold(T::ONE, |m, x| m.max(x.abs()))
+}

@@ -88,6 +88,7 @@
 // by the compiler; a stage index i and a coordinate index k index several arrays alike.
 #![allow(clippy::excessive_precision, clippy::needless_range_loop)]
 
+use super::implicit::position_ulps;
 use super::{check_step, fixed_step, hermite_state, Integrator, Point, SimulationError, System};
 use crate::linalg::sparse::{factor_complex, solve_complex};
 use crate::model::mechanism::NewtonMatrix;
@@ -348,11 +349,6 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             }
         }
     }
-}
-
-/// `ulps` units in the last place of the largest coordinate (m, rad; 1 for Euler parameters).
-fn position_ulps<T: Real, const NQ: usize>(q: &[T; NQ], ulps: f64) -> T {
-    T::from_f64(ulps) * T::EPSILON * q.iter().fold(T::ONE, |m, x| m.max(x.abs()))
 }
 
 // The two rounding constants were chosen on a probe of the study's ten mechanisms at rtol 1e-3
