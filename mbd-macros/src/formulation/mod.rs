@@ -304,9 +304,8 @@ fn frame_nodes(b: &mut Builder) -> Vec<FrameNodes> {
         .collect()
 }
 
-/// Φ's rows, joint by joint in declaration order (each joint's first row recorded in
-/// `b.first_rows`), with their names and units; in joint coordinates the cut joints', drivers'
-/// and user constraints' only.
+/// Φ's rows, joint by joint in declaration order, with their names and units; in joint
+/// coordinates the cut joints', drivers' and user constraints' only.
 struct Rows {
     phi: Vec<Id>,
     names: Vec<String>,
@@ -315,6 +314,7 @@ struct Rows {
     owners: Vec<(String, Vec<Id>)>,
 }
 
+/// Φ's [`Rows`], each joint's first row recorded in `b.first_rows`.
 fn constraint_rows(b: &mut Builder) -> Rows {
     let mut rows = Rows { phi: Vec::new(), names: Vec::new(), units: Vec::new(), owners: Vec::new() };
     for (index, c) in b.model.constraints.iter().enumerate() {

@@ -225,7 +225,7 @@ pub enum SimulationError {
     NotConverged {
         /// Time (s).
         t: f64,
-        /// Which iteration: its message says what to change.
+        /// Which Newton iteration failed (generalized-α's step: the message says what to change).
         newton: NewtonIteration,
         /// Iterations made.
         iterations: u32,
