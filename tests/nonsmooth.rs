@@ -310,6 +310,25 @@ fn a_rope_on_a_floor_runs_through_its_many_switches() {
 
 include!("../mbd-bench/mechanisms/bump_stop_quarter_car.rs");
 
+/// Case B from rest with `integrator` over `times`: q at the output times, and each located
+/// switch's instant and index.
+fn case_b<I: Integrator<f64, BumpStopQuarterCar, 6, 6, 4, 10, { BumpStopQuarterCar::NEWTON_STORAGE }>>(
+    m: &BumpStopQuarterCar,
+    integrator: &mut I,
+    times: &[f64],
+) -> (Vec<[f64; 6]>, Vec<(f64, usize)>) {
+    let (mut out, mut switches) = (Vec::new(), Vec::new());
+    Simulation::new(m, integrator)
+        .start(0.0, &m.initial_positions(), &[0.0; 6])
+        .times(times)
+        .run(&mut BumpStopQuarterCar::workspace(), |s| match s.event {
+            Some(EventHit::Switch(k)) => switches.push((s.point.t, k)),
+            _ => out.push(s.point.q),
+        })
+        .unwrap();
+    (out, switches)
+}
+
 /// Issue 39's case B, the quarter car into a 1e6 N/m bump stop, with BDF, `Auto` and Radau5 (the
 /// stiff methods through located switches): the same switches in the same order as DOP853 at
 /// rtol 1e-12, each within 1e-5 s, and the chassis and wheel heights within 1e-5 m at every
@@ -319,23 +338,7 @@ include!("../mbd-bench/mechanisms/bump_stop_quarter_car.rs");
 fn the_stiff_methods_land_on_the_bump_stops_switches() {
     let m = BumpStopQuarterCar::default();
     let times: Vec<f64> = (1..=100).map(|k| 0.02 * k as f64).collect();
-    fn run<I: Integrator<f64, BumpStopQuarterCar, 6, 6, 4, 10, { BumpStopQuarterCar::NEWTON_STORAGE }>>(
-        m: &BumpStopQuarterCar,
-        integrator: &mut I,
-        times: &[f64],
-    ) -> (Vec<[f64; 6]>, Vec<(f64, usize)>) {
-        let (mut out, mut switches) = (Vec::new(), Vec::new());
-        Simulation::new(m, integrator)
-            .start(0.0, &m.initial_positions(), &[0.0; 6])
-            .times(times)
-            .run(&mut BumpStopQuarterCar::workspace(), |s| match s.event {
-                Some(EventHit::Switch(k)) => switches.push((s.point.t, k)),
-                _ => out.push(s.point.q),
-            })
-            .unwrap();
-        (out, switches)
-    }
-    let (reference, switches) = run(&m, &mut Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-12)), &times);
+    let (reference, switches) = case_b(&m, &mut Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-12)), &times);
     let names: Vec<&str> = switches.iter().map(|&(_, k)| BumpStopQuarterCar::SWITCH_NAMES[k]).collect();
     eprintln!("case B: switches {switches:?} ({names:?})");
     assert!(names.contains(&"bump_stop") && names.contains(&"road"), "{names:?}");
@@ -347,7 +350,7 @@ fn the_stiff_methods_land_on_the_bump_stops_switches() {
     let mut auto = Auto::new(AutoOptions::default().with_rtol(tight.0).with_atol(tight.1));
     let mut bdf = Bdf::new(BdfOptions::default().with_rtol(tight.0).with_atol(tight.1));
     let mut radau = Radau5::new(Radau5Options::default().with_rtol(tight.0).with_atol(tight.1));
-    let runs = [("BDF", run(&m, &mut bdf, &times)), ("Auto", run(&m, &mut auto, &times)), ("Radau5", run(&m, &mut radau, &times))];
+    let runs = [("BDF", case_b(&m, &mut bdf, &times)), ("Auto", case_b(&m, &mut auto, &times)), ("Radau5", case_b(&m, &mut radau, &times))];
     for (label, (out, found)) in runs {
         assert_eq!(found.len(), switches.len(), "{label}: {found:?} against {switches:?}");
         for (&(t, k), &(t_ref, k_ref)) in found.iter().zip(&switches) {
@@ -371,22 +374,13 @@ fn the_stiff_methods_land_on_the_bump_stops_switches() {
 fn loose_tolerances_do_not_step_over_the_bump() {
     let m = BumpStopQuarterCar::default();
     let times: Vec<f64> = (1..=100).map(|k| 0.02 * k as f64).collect();
+    // The chassis's and the wheel's heights at the output times.
     fn heights<I: Integrator<f64, BumpStopQuarterCar, 6, 6, 4, 10, { BumpStopQuarterCar::NEWTON_STORAGE }>>(
         m: &BumpStopQuarterCar,
         integrator: &mut I,
         times: &[f64],
     ) -> Vec<[f64; 2]> {
-        let mut out = Vec::new();
-        Simulation::new(m, integrator)
-            .start(0.0, &m.initial_positions(), &[0.0; 6])
-            .times(times)
-            .run(&mut BumpStopQuarterCar::workspace(), |s| {
-                if s.event.is_none() {
-                    out.push([s.point.q[1], s.point.q[4]]);
-                }
-            })
-            .unwrap();
-        out
+        case_b(m, integrator, times).0.iter().map(|q| [q[1], q[4]]).collect()
     }
     let reference = heights(&m, &mut Dop853::new(Dop853Options::default().with_rtol(1e-12).with_atol(1e-12)), &times);
     for tol in [1e-4, 1e-6] {

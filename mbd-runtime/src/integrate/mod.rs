@@ -310,9 +310,11 @@ impl fmt::Display for SimulationError {
                 match newton {
                     NewtonIteration::Step => write!(
                         f,
-                        "; generalized-α at a fixed step has no shorter step to retry: allow more iterations \
-                         (GeneralizedAlphaOptions::with_max_iterations, {iterations} in this run), shorten the step, or give it \
-                         error control (with_error_control), which shortens the step where Newton fails"
+                        "; generalized-α at a fixed step has no shorter step to retry: give it error control \
+                         (with_error_control), which shortens the step where Newton fails and where the motion asks for it; \
+                         or shorten the step, or allow more iterations (GeneralizedAlphaOptions::with_max_iterations, \
+                         {iterations} in this run) — these two run on at a fixed step, which can step over a contact or \
+                         an input shorter than it"
                     ),
                     NewtonIteration::Projection | NewtonIteration::Partitioning => Ok(()),
                 }

@@ -181,7 +181,9 @@ pub struct Statistics {
 /// index.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EventHit {
-    /// Switching function `k` of the mechanism (a contact, cable or tyre touching or letting go).
+    /// Switching function `k` of the mechanism: a contact, cable or tyre touching or letting
+    /// go, or a time event (an expression of t alone changing branch). Two changes at one
+    /// instant are delivered once, as the lower index.
     Switch(usize),
     /// The user's event `k` of [`Simulation::events`].
     User(usize),
