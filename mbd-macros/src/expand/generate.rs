@@ -444,8 +444,10 @@ impl<'a> Gen<'a> {
                 g[0]
             })
         });
+        let time = usize_lit(f.time_switches);
         quote! {
             const SWITCH_NAMES: &'static [&'static str] = &[#(#names),*];
+            const TIME_SWITCHES: usize = #time;
             #inline
             fn switching_function(&self, k: usize, q: &[#real; #nq_l], v: &[#real; #nv_l], t: #real) -> #real {
                 match k {

@@ -88,6 +88,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let (np, nt) = (model.space.coordinates().len(), model.space.velocities().len());
     let mut body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
     let events = time_switches(&mut body.g, body_forces.owners.iter().chain(&joints));
+    let n_time = events.len();
     body_forces.switches.extend(events);
     let body_jacobian = super::tangent(&mut body, &phi_body);
     let body_constraint = super::constraint_wrenches(&mut body, &body_jacobian);
@@ -213,6 +214,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         gamma_v,
         potential,
         switches,
+        time_switches: n_time,
         power,
         friction,
         friction_q: Vec::new(),

@@ -87,8 +87,11 @@ pub struct Formulation {
     pub gamma_v: Vec<(usize, usize, Id)>,
     /// Potential energy of gravity and springs, V(q).
     pub potential: Id,
-    /// The unilateral elements' switching functions of (q, v, t), by element name.
+    /// The switching functions of (q, v, t), by name: the unilateral elements', then the time
+    /// events ([`time_switches`]).
     pub switches: Vec<(String, Id)>,
+    /// How many of `switches`, the last ones, are time events (functions of t alone).
+    pub time_switches: usize,
     /// Coulomb friction forces, one node per coordinate, functions of q, q̇ and the multipliers λ
     /// (the joints' normal loads); kept out of h, which does not depend on λ.
     pub friction: Vec<Id>,
@@ -165,7 +168,9 @@ pub fn formulate(model: &Model) -> Formulation {
     };
     let Forces { h, friction, potential, mut switches, force_velocities, base_forces, alone_forces, owners } =
         forces(&mut b, inertia_forces);
-    switches.extend(time_switches(&mut b.g, owners.iter().chain(&joints)));
+    let events = time_switches(&mut b.g, owners.iter().chain(&joints));
+    let time_switches = events.len();
+    switches.extend(events);
     let power = power(&mut b, potential, &h);
     let first_rows = std::mem::take(&mut b.first_rows);
     let h_q = tangent(&mut b, &h);
@@ -221,6 +226,7 @@ pub fn formulate(model: &Model) -> Formulation {
         gamma_v,
         potential,
         switches,
+        time_switches,
         power,
         friction,
         friction_q,

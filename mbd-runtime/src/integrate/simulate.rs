@@ -445,11 +445,41 @@ where
         next += 1;
         deliver!(from, None);
     }
+    // The next time event ahead: the last instant on its old side, the first on its new side,
+    // and which (`None` inside: none ahead). Found ahead rather than within a step: an input
+    // that jumps may leave no step across it that the error test accepts. A step ends on the
+    // old side; the run crosses to the new side there, corrects the state to the new law (a
+    // driver's rate that jumps moves the velocities at once) and restarts the integrator. The
+    // piece of an input between two events is taken in at least `PIECE_STEPS` steps: a bump in
+    // the road that is flat at both its ends is invisible to one step from end to end.
+    let mut time_event: Option<Option<(T, T, usize)>> = (!options.locate_switches || M::TIME_SWITCHES == 0).then_some(None);
+    let mut piece_steps = 0;
     while next < times.len() {
         if stats.steps >= options.max_steps {
             return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
         }
-        integrator.step(&system, ws, from, t_end, to)?;
+        if time_event.is_none() {
+            time_event = Some(next_time_event(mechanism, from, &times[next..]));
+        }
+        let mut limit = t_end;
+        if let Some(Some((before, after, k))) = time_event {
+            if from.t >= before {
+                from.t = after;
+                correct(mechanism, ws, &mut partition, options, after, &mut from.q, &mut from.v)?;
+                system.complete_in(ws.dense(), from)?;
+                integrator.restart();
+                stats.events += 1;
+                deliver!(from, Some(EventHit::Switch(k)));
+                (at_event, time_event, piece_steps) = (true, None, 0);
+                continue;
+            }
+            limit = before.min(t_end);
+            if piece_steps < PIECE_STEPS {
+                limit = from.t + (limit - from.t) / T::from_f64((PIECE_STEPS - piece_steps) as f64);
+            }
+            piece_steps += 1;
+        }
+        integrator.step(&system, ws, from, limit, to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
         let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, from, to, switches, events, at_event)?;
         if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
@@ -535,6 +565,62 @@ fn check_times<T: Real>(t0: T, times: &[T]) -> Result<(), SimulationError> {
         }
     }
     Ok(())
+}
+
+/// The fewest steps a simulation takes between two time events (or from its start to the
+/// first): each piece of an input's law is sampled inside, not only at its ends.
+const PIECE_STEPS: u32 = 4;
+
+/// The first time event after `from.t`: the last instant on its old side and the first on its
+/// new side (within a few ulps), and its index among the switching functions. Found on the grid
+/// of the output times ahead: each function of t alone is sampled there and its first change of
+/// side bisected. It does not depend on the state, so the instant holds until the run reaches
+/// it. `None` where none changes side between two points of the grid (the step's own search
+/// still finds a change within a step).
+fn next_time_event<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    from: &Point<T, NQ, NV, NC>,
+    times: &[T],
+) -> Option<(T, T, usize)>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+{
+    let n = M::SWITCH_NAMES.len();
+    let side = |k: usize, t: T| mechanism.switching_function(k, &from.q, &from.v, t) > T::ZERO;
+    let mut first: Option<(T, T, usize)> = None;
+    for k in n.saturating_sub(M::TIME_SWITCHES)..n {
+        // [a, b]: the first two points of the grid on either side.
+        let start = side(k, from.t);
+        let (mut a, mut found) = (from.t, None);
+        for &t in times.iter().filter(|&&t| t > from.t) {
+            if side(k, t) != start {
+                found = Some(t);
+                break;
+            }
+            a = t;
+        }
+        let Some(mut b) = found else { continue };
+        loop {
+            let mid = a + (b - a) * T::from_f64(0.5);
+            if mid <= a || mid >= b {
+                break;
+            }
+            if side(k, mid) == start {
+                a = mid;
+            } else {
+                b = mid;
+            }
+        }
+        // At a tie (g = 0) a `>=` already takes its new branch: end the old side one ulp before.
+        if mechanism.switching_function(k, &from.q, &from.v, a) == T::ZERO {
+            a = a - (b - a);
+        }
+        if first.is_none_or(|(_, f, _)| b < f) {
+            first = Some((a, b, k));
+        }
+    }
+    first
 }
 
 /// The value of event `which` at (t, q, v).

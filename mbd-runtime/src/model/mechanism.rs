@@ -540,9 +540,14 @@ pub trait Dynamics<T: Real, const NQ: usize, const NV: usize, const NC: usize>: 
     /// forces and friction put into the mechanism. The energy balance reads
     /// d(T + V)/dt = this + λᵀ D v (the second term is the power of drivers).
     fn nonconservative_power(&self, q: &[T; NQ], v: &[T; NV], t: T) -> T;
-    /// The names of the switching functions, one per unilateral force element (`contact`,
-    /// `cable`, `tyre`): the element's name. Empty for a mechanism without them.
+    /// The names of the switching functions: one per unilateral force element (`contact`,
+    /// `cable`, `tyre`), the element's name; then the time events, one per comparison of an
+    /// expression of t alone (`"road: time event 1"`). Empty for a mechanism without them.
     const SWITCH_NAMES: &'static [&'static str] = &[];
+    /// How many of the switching functions, the last ones, are time events: functions of t
+    /// alone, whose instants [`Simulation`](crate::Simulation) finds before a step and ends the
+    /// step on, where the others are found within a step it has taken. 0 by default.
+    const TIME_SWITCHES: usize = 0;
     /// Switching function `k` of [`Dynamics::SWITCH_NAMES`] at (q, v, t), positive exactly while
     /// the element's force acts: its overlap δ (penetration, stretch, tyre compression; m) out of
     /// contact, its unclamped force law (N) in contact. Where it changes sign within a step,

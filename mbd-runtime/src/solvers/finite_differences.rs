@@ -241,6 +241,7 @@ impl<T: Real, M: Dynamics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, cons
         self.mechanism.potential_energy(q, t)
     }
     const SWITCH_NAMES: &'static [&'static str] = M::SWITCH_NAMES;
+    const TIME_SWITCHES: usize = M::TIME_SWITCHES;
     fn switching_function(&self, k: usize, q: &[T; NQ], v: &[T; NV], t: T) -> T {
         self.mechanism.switching_function(k, q, v, t)
     }
