@@ -445,40 +445,26 @@ where
         next += 1;
         deliver!(from, None);
     }
-    // The next time event ahead: the last instant on its old side, the first on its new side,
-    // and which (`None` inside: none ahead). Found ahead rather than within a step: an input
-    // that jumps may leave no step across it that the error test accepts. A step ends on the
-    // old side; the run crosses to the new side there, corrects the state to the new law (a
-    // driver's rate that jumps moves the velocities at once) and restarts the integrator. The
-    // piece of an input between two events is taken in at least `PIECE_STEPS` steps: a bump in
-    // the road that is flat at both its ends is invisible to one step from end to end.
-    let mut time_event: Option<Option<(T, T, usize)>> = (!options.locate_switches || M::TIME_SWITCHES == 0).then_some(None);
-    let mut piece_steps = 0;
+    let mut time_events = TimeEvents::new(options.locate_switches && M::TIME_SWITCHES > 0);
     while next < times.len() {
         if stats.steps >= options.max_steps {
             return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
         }
-        if time_event.is_none() {
-            time_event = Some(next_time_event(mechanism, from, &times[next..]));
-        }
-        let mut limit = t_end;
-        if let Some(Some((before, after, k))) = time_event {
-            if from.t >= before {
-                from.t = after;
-                correct(mechanism, ws, &mut partition, options, after, &mut from.q, &mut from.v)?;
+        let limit = match time_events.ahead(mechanism, from, &times[next..], t_end) {
+            Ahead::StepTo(limit) => limit,
+            // On a time event's old side: cross to its new side, the state corrected to the new
+            // law (a driver whose rate jumps moves the velocities at once).
+            Ahead::Cross { at, which } => {
+                from.t = at;
+                correct(mechanism, ws, &mut partition, options, at, &mut from.q, &mut from.v)?;
                 system.complete_in(ws.dense(), from)?;
                 integrator.restart();
                 stats.events += 1;
-                deliver!(from, Some(EventHit::Switch(k)));
-                (at_event, time_event, piece_steps) = (true, None, 0);
+                deliver!(from, Some(EventHit::Switch(which)));
+                at_event = true;
                 continue;
             }
-            limit = before.min(t_end);
-            if piece_steps < PIECE_STEPS {
-                limit = from.t + (limit - from.t) / T::from_f64((PIECE_STEPS - piece_steps) as f64);
-            }
-            piece_steps += 1;
-        }
+        };
         integrator.step(&system, ws, from, limit, to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
         let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, from, to, switches, events, at_event)?;
@@ -568,8 +554,62 @@ fn check_times<T: Real>(t0: T, times: &[T]) -> Result<(), SimulationError> {
 }
 
 /// The fewest steps a simulation takes between two time events (or from its start to the
-/// first): each piece of an input's law is sampled inside, not only at its ends.
+/// first): each piece of an input's law is sampled inside, not only at its ends — a bump in the
+/// road that is flat at both its ends is invisible to one step from end to end.
 const PIECE_STEPS: u32 = 4;
+
+/// The time events ahead of a run. Found ahead rather than within a step: an input that jumps
+/// may leave no step across it that the error test accepts. A step ends on the old side of the
+/// next one; the run then crosses to its new side and restarts the integrator.
+struct TimeEvents<T> {
+    /// The next one ([`next_time_event`]); `None` until sought, `Some(None)` where there is none
+    /// ahead (or no time events are located).
+    next: Option<Option<(T, T, usize)>>,
+    /// Steps taken since the last one.
+    piece_steps: u32,
+}
+
+/// Where a run's next step may go.
+enum Ahead<T> {
+    /// Up to this time.
+    StepTo(T),
+    /// Nowhere yet: first across time event `which`, to its new side at `at`.
+    Cross { at: T, which: usize },
+}
+
+impl<T: Real> TimeEvents<T> {
+    fn new(locate: bool) -> Self {
+        Self { next: (!locate).then_some(None), piece_steps: 0 }
+    }
+
+    /// From `from`, with the output times `times` ahead: up to `t_end`; or to just before the
+    /// next time event, in [`PIECE_STEPS`] steps at least; or across the event it has reached.
+    fn ahead<M, const NQ: usize, const NV: usize, const NC: usize>(
+        &mut self,
+        mechanism: &M,
+        from: &Point<T, NQ, NV, NC>,
+        times: &[T],
+        t_end: T,
+    ) -> Ahead<T>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+    {
+        if self.next.is_none() {
+            self.next = Some(next_time_event(mechanism, from, times));
+        }
+        let Some(Some((before, after, which))) = self.next else { return Ahead::StepTo(t_end) };
+        if from.t >= before {
+            (self.next, self.piece_steps) = (None, 0);
+            return Ahead::Cross { at: after, which };
+        }
+        let mut limit = before.min(t_end);
+        if self.piece_steps < PIECE_STEPS {
+            limit = from.t + (limit - from.t) / T::from_f64(f64::from(PIECE_STEPS - self.piece_steps));
+        }
+        self.piece_steps += 1;
+        Ahead::StepTo(limit)
+    }
+}
 
 /// The first time event after `from.t`: the last instant on its old side and the first on its
 /// new side (within a few ulps), and its index among the switching functions. Found on the grid
