@@ -30,8 +30,8 @@
 use std::collections::{BTreeSet, HashMap};
 
 use super::{
-    accessors, constraint_derivatives, constraint_forces, constraint_rows, forces, linear_terms, time_switches, ForceTerms, Forces,
-    Formulation, FrameNodes, Rows,
+    accessors, constraint_derivatives, constraint_forces, constraint_rows, forces, linear_terms, ForceTerms, Forces, Formulation,
+    FrameNodes, Rows,
 };
 use crate::frames::Builder;
 use crate::model::{BodyRef, Model};
@@ -86,10 +86,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let Rows { phi: phi_body, names: row_names, units: row_units, owners: joints } = constraint_rows(&mut body);
     let zero_body = body.g.num(0.0);
     let (np, nt) = (model.space.coordinates().len(), model.space.velocities().len());
-    let mut body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()]);
-    let events = time_switches(&mut body.g, body_forces.owners.iter().chain(&joints));
-    let n_time = events.len();
-    body_forces.switches.extend(events);
+    let body_forces = forces(&mut body, vec![zero_body; nt * model.bodies.len()], &joints);
     let body_jacobian = super::tangent(&mut body, &phi_body);
     let body_constraint = super::constraint_wrenches(&mut body, &body_jacobian);
     let first_rows = std::mem::take(&mut body.first_rows);
@@ -128,7 +125,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
             })
             .collect()
     };
-    let Forces { h: h_body, friction: friction_body, potential, switches, force_velocities, alone_forces, .. } = body_forces;
+    let Forces { h: h_body, friction: friction_body, potential, switches, time_switches, force_velocities, alone_forces, .. } = body_forces;
     let wrenches = wrenches_of(&mut b, &mut import, &h_body);
     let h = kinematics.backward(&mut b, wrenches.clone());
     // Each body's wrench of body-level components (F global, n′ in its frame), global.
@@ -214,7 +211,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         gamma_v,
         potential,
         switches,
-        time_switches: n_time,
+        time_switches,
         power,
         friction,
         friction_q: Vec::new(),

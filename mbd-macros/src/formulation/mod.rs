@@ -166,11 +166,8 @@ pub fn formulate(model: &Model) -> Formulation {
         }
         reads.is_empty() && mass_coupling.iter().all(|&(r, c, _)| mass_inverse.iter().any(|&(ri, ci, _)| (ri, ci) == (r, c)))
     };
-    let Forces { h, friction, potential, mut switches, force_velocities, base_forces, alone_forces, owners } =
-        forces(&mut b, inertia_forces);
-    let events = time_switches(&mut b.g, owners.iter().chain(&joints));
-    let time_switches = events.len();
-    switches.extend(events);
+    let Forces { h, friction, potential, switches, time_switches, force_velocities, base_forces, alone_forces } =
+        forces(&mut b, inertia_forces, &joints);
     let power = power(&mut b, potential, &h);
     let first_rows = std::mem::take(&mut b.first_rows);
     let h_q = tangent(&mut b, &h);
@@ -552,14 +549,15 @@ struct Forces {
     force_velocities: Vec<(String, Vec<usize>)>,
     base_forces: ForceTerms,
     alone_forces: Vec<ForceTerms>,
-    /// Each element's name with its own terms of h and of the friction forces, for
-    /// [`time_switches`].
-    owners: Vec<(String, Vec<Id>)>,
+    /// How many of `switches`, the last ones, are time events.
+    time_switches: usize,
 }
 
 /// h by virtual power: the inertia forces (`inertia`: in body coordinates the gyroscopic terms
 /// of spatial bodies), gravity and each force element.
-fn forces(b: &mut Builder, inertia_forces: Vec<Id>) -> Forces {
+/// Also the time events ([`time_switches`]) of the elements' and the joints' (`joints`: each
+/// joint's name and rows) expressions, after the unilateral elements' switches.
+fn forces(b: &mut Builder, inertia_forces: Vec<Id>, joints: &[(String, Vec<Id>)]) -> Forces {
     let model = b.model;
     let nv = b.nv();
     let zero = b.g.num(0.0);
@@ -604,8 +602,11 @@ fn forces(b: &mut Builder, inertia_forces: Vec<Id>) -> Forces {
         reach(b, &element.name, &|b, out| element.kind.apply(b, out));
     }
     let Generalized { h, friction, potential, switches } = out;
-    let switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
-    Forces { h, friction, potential, switches, force_velocities, base_forces, alone_forces, owners }
+    let mut switches: Vec<(String, Id)> = switch_names.into_iter().zip(switches).collect();
+    let events = time_switches(&mut b.g, owners.iter().chain(joints));
+    let time_switches = events.len();
+    switches.extend(events);
+    Forces { h, friction, potential, switches, time_switches, force_velocities, base_forces, alone_forces }
 }
 
 /// Sparse matrix entries (row, column, node).

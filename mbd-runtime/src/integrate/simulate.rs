@@ -452,13 +452,8 @@ where
         }
         let limit = match time_events.ahead(mechanism, from, &times[next..], t_end) {
             Ahead::StepTo(limit) => limit,
-            // On a time event's old side: cross to its new side, the state corrected to the new
-            // law (a driver whose rate jumps moves the velocities at once).
             Ahead::Cross { at, which } => {
-                from.t = at;
-                correct(mechanism, ws, &mut partition, options, at, &mut from.q, &mut from.v)?;
-                system.complete_in(ws.dense(), from)?;
-                integrator.restart();
+                cross(&system, integrator, ws, &mut partition, options, at, from)?;
                 stats.events += 1;
                 deliver!(from, Some(EventHit::Switch(which)));
                 at_event = true;
@@ -514,15 +509,7 @@ where
                 deliver!(to, None);
             } else {
                 // The interpolated point, written in the sample's place.
-                let (t, p) = (times[next - 1], &mut out.point);
-                integrator.interpolate(mechanism, from, end, t, &mut p.q, &mut p.v);
-                mechanism.normalize_positions(&mut p.q);
-                (p.t, p.work) = (t, interpolate_work(from, end, t));
-                // λ from zero, as forward dynamics at any other point (Coulomb friction's first
-                // guess of its loads).
-                p.vd.fill(T::ZERO);
-                p.lambda.fill(T::ZERO);
-                p.power = system.derivatives_in(ws.dense(), t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+                interpolated(&system, integrator, ws, (from, end), times[next - 1], &mut out.point)?;
                 deliver!(None);
             }
         }
@@ -550,6 +537,55 @@ fn check_times<T: Real>(t0: T, times: &[T]) -> Result<(), SimulationError> {
             return Err(SimulationError::TimesNotIncreasing { index: i });
         }
     }
+    Ok(())
+}
+
+/// The point at `t` within the step from `from` to `end`, from the integrator's dense output;
+/// v̇ and λ by forward dynamics there, λ from zero as at any other point (Coulomb friction's
+/// first guess of its loads).
+fn interpolated<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    system: &System<'_, M, T>,
+    integrator: &mut I,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    (from, end): (&Point<T, NQ, NV, NC>, &Point<T, NQ, NV, NC>),
+    t: T,
+    p: &mut Point<T, NQ, NV, NC>,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+{
+    integrator.interpolate(system.mechanism, from, end, t, &mut p.q, &mut p.v);
+    system.mechanism.normalize_positions(&mut p.q);
+    (p.t, p.work) = (t, interpolate_work(from, end, t));
+    p.vd.fill(T::ZERO);
+    p.lambda.fill(T::ZERO);
+    p.power = system.derivatives_in(ws.dense(), t, &p.q, &p.v, &mut p.vd, &mut p.lambda)?;
+    Ok(())
+}
+
+/// Crosses a time event the run has reached the old side of, to its new side at `at`: the
+/// state corrected to the new law there (a driver whose rate jumps moves the velocities at
+/// once), its v̇ and λ, and the integrator restarted.
+fn cross<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    system: &System<'_, M, T>,
+    integrator: &mut I,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    partition: &mut Partition<NV, NC>,
+    options: &SimulationOptions<T>,
+    at: T,
+    from: &mut Point<T, NQ, NV, NC>,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+{
+    from.t = at;
+    correct(system.mechanism, ws, partition, options, at, &mut from.q, &mut from.v)?;
+    system.complete_in(ws.dense(), from)?;
+    integrator.restart();
     Ok(())
 }
 
