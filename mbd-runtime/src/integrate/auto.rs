@@ -173,6 +173,11 @@ where
         self.phase == AutoPhase::Stiff
     }
 
+    /// Where BDF took the last step, as BDF's.
+    fn velocities_projected(&self) -> bool {
+        self.last == AutoPhase::Stiff && self.stiff.options.project_velocities
+    }
+
     fn step(
         &mut self,
         system: &System<'_, M, T>,

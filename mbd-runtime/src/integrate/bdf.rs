@@ -318,25 +318,37 @@ impl<T: Real, M: Kinematics<T, NQ, NV, NC>, const NQ: usize, const NV: usize, co
 /// loosens ordinary steps' tests.
 const VELOCITY_ROUNDING_ULPS: f64 = 64.0;
 
-/// The RMS of (q, v) errors `e` in the mixed tolerance against the two states, each velocity's
-/// with the rounding allowance of a step of `h` ([`VELOCITY_ROUNDING_ULPS`]).
-fn weighted_rms<T: Real, const NQ: usize, const NV: usize>(
+/// The reciprocals of the error test's weights into `w`: the mixed tolerance atol + rtol·|y|
+/// against the step's two states, each velocity's with the rounding allowance of a step of `h`
+/// ([`VELOCITY_ROUNDING_ULPS`]). Made once a step for the error and the order's two estimates.
+fn error_weights<T: Real, const NQ: usize, const NV: usize>(
     o: &BdfOptions<T>,
     h: T,
-    e: (&[T; NQ], &[T; NV]),
     y0: (&[T; NQ], &[T; NV]),
     y1: (&[T; NQ], &[T; NV]),
-) -> T {
+    w: (&mut [T; NQ], &mut [T; NV]),
+) {
     let floor = T::from_f64(16.0) * T::EPSILON;
     let (rtol, atol) = (o.rtol.max(floor), o.atol.max(floor));
     let rounding = position_ulps(y1.0, VELOCITY_ROUNDING_ULPS) / h;
+    for i in 0..NQ {
+        w.0[i] = T::ONE / (atol + rtol * y0.0[i].abs().max(y1.0[i].abs()));
+    }
+    for i in 0..NV {
+        w.1[i] = T::ONE / (atol + rtol * y0.1[i].abs().max(y1.1[i].abs()) + rounding);
+    }
+}
+
+/// The RMS of (q, v) errors `e` over the error test's weights (their reciprocals `w`,
+/// [`error_weights`]).
+fn weighted_rms<T: Real, const NQ: usize, const NV: usize>(e: (&[T; NQ], &[T; NV]), w: (&[T; NQ], &[T; NV])) -> T {
     let mut sum = T::ZERO;
     for i in 0..NQ {
-        let r = e.0[i] / (atol + rtol * y0.0[i].abs().max(y1.0[i].abs()));
+        let r = e.0[i] * w.0[i];
         sum += r * r;
     }
     for i in 0..NV {
-        let r = e.1[i] / (atol + rtol * y0.1[i].abs().max(y1.1[i].abs()) + rounding);
+        let r = e.1[i] * w.1[i];
         sum += r * r;
     }
     (sum / T::from_f64((NQ + NV).max(1) as f64)).sqrt()
@@ -350,6 +362,10 @@ where
     /// Its Newton solves Φ(q₊, t₊) = 0 at every step.
     fn holds_constraints(&self) -> bool {
         true
+    }
+
+    fn velocities_projected(&self) -> bool {
+        self.options.project_velocities
     }
 
     // `!(x > y)` on purpose: it is also true when either side is NaN.
@@ -388,6 +404,7 @@ where
             reuse_factors: o.reuse_factors,
             pivot_tolerance: o.pivot_tolerance,
             project_velocities: o.project_velocities,
+            end_position_step: o.project_velocities,
         };
         if !(self.next_step > T::ZERO) {
             let floor = T::from_f64(16.0) * T::EPSILON;
@@ -396,8 +413,8 @@ where
         let mut h = self.next_step.min(o.max_step);
         let mut failures = 0;
         // The corrector's history ŷ, the predictor and the first guess of v̇₊, the error vector.
-        let [q_hat, q_pred, e_q] = dense.vectors.rows::<NQ, 3>();
-        let [v_hat, v_pred, vd0, e_v] = dense.vectors.rows::<NV, 4>();
+        let [q_hat, q_pred, e_q, w_q] = dense.vectors.rows::<NQ, 4>();
+        let [v_hat, v_pred, vd0, e_v, w_v] = dense.vectors.rows::<NV, 5>();
         loop {
             let (h_try, t1) = fixed_step(from.t, h, t_max);
             // Order k from the k newest points (the first step: order 1 from `from`).
@@ -450,11 +467,12 @@ where
                     for i in 0..NV {
                         e_v[i] = scale * (to.v[i] - v_pred[i]);
                     }
-                    let error = weighted_rms(&o, h_try, (e_q, e_v), (&from.q, &from.v), (&to.q, &to.v));
+                    error_weights(&o, h_try, (&from.q, &from.v), (&to.q, &to.v), (&mut *w_q, &mut *w_v));
+                    let error = weighted_rms((e_q, e_v), (w_q, w_v));
                     if error <= T::ONE {
                         // The predictor's vectors are free now: the order's choice takes them.
                         let spare = ((&mut *q_pred, &mut *v_pred), (&mut *q_hat, &mut *v_hat));
-                        self.accept(&o, k, (h_try, t1), error, (e_q, e_v), predicted, (&from.q, &from.v), to, spare);
+                        self.accept(&o, k, (h_try, t1), error, (e_q, e_v), predicted, (w_q, w_v), to, spare);
                         finish(system, dense.reborrow(), from, to, h_try)?;
                         return Ok(());
                     }
@@ -530,7 +548,8 @@ where
 impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
     /// Takes an accepted step of order k and size h to `to`, and chooses the next step's order
     /// and size (module docs).
-    /// `spare`: two pairs of q and v vectors to work in.
+    /// `w`: the reciprocals of the error test's weights ([`error_weights`]); `spare`: two pairs
+    /// of q and v vectors to work in.
     #[allow(clippy::too_many_arguments, clippy::type_complexity)]
     fn accept<const NC: usize>(
         &mut self,
@@ -540,20 +559,19 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
         error: T,
         e: (&[T; NQ], &[T; NV]),
         predicted: bool,
-        y0: (&[T; NQ], &[T; NV]),
+        w: (&[T; NQ], &[T; NV]),
         to: &Point<T, NQ, NV, NC>,
         ((q, v), (dq, dv)): ((&mut [T; NQ], &mut [T; NV]), (&mut [T; NQ], &mut [T; NV])),
     ) {
-        let y1 = (&to.q, &to.v);
         let growth = |err: T, order: usize| T::from_f64(0.9) * err.max(T::from_f64(1e-10)).powf(-T::ONE / T::from_f64((order + 1) as f64));
         let mut best = (growth(error, k), k);
         let settled = self.at_order > k;
         if predicted && settled {
             // Order k − 1: its predictor through k points.
             if k > MIN_ORDER {
-                let mut w = [T::ZERO; KEPT];
-                lagrange(&self.times[..k], t1, &mut w[..k]);
-                self.combine(&w[..k], q, v);
+                let mut l = [T::ZERO; KEPT];
+                lagrange(&self.times[..k], t1, &mut l[..k]);
+                self.combine(&l[..k], q, v);
                 let scale = (t1 - self.times[0]) / (t1 - self.times[k - 1]);
                 for ((d, &y), &p) in dq.iter_mut().zip(&to.q).zip(q.iter()) {
                     *d = scale * (y - p);
@@ -561,7 +579,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
                 for ((d, &y), &p) in dv.iter_mut().zip(&to.v).zip(v.iter()) {
                     *d = scale * (y - p);
                 }
-                let g = growth(weighted_rms(o, h, (dq, dv), y0, y1), k - 1);
+                let g = growth(weighted_rms((dq, dv), w), k - 1);
                 if g > best.0 {
                     best = (g, k - 1);
                 }
@@ -576,7 +594,7 @@ impl<T: Real, const NQ: usize, const NV: usize> Bdf<T, NQ, NV> {
                     *d = ratio * (now - before);
                 }
                 // Raised only where it promises clearly longer steps.
-                let g = growth(weighted_rms(o, h, (dq, dv), y0, y1), k + 1);
+                let g = growth(weighted_rms((dq, dv), w), k + 1);
                 if g > T::from_f64(1.2) * best.0 {
                     best = (g, k + 1);
                 }

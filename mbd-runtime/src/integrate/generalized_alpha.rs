@@ -134,6 +134,7 @@ impl<T: Real> GeneralizedAlphaOptions<T> {
             reuse_factors: self.reuse_factors,
             pivot_tolerance: self.pivot_tolerance,
             project_velocities: self.project_velocities,
+            end_position_step: false,
         }
     }
 }
@@ -248,6 +249,10 @@ where
     /// branch to 3e-12 rad through 50 flat positions at h = 1 ms without a correction).
     fn holds_constraints(&self) -> bool {
         true
+    }
+
+    fn velocities_projected(&self) -> bool {
+        self.options.project_velocities
     }
 
     // `!(x > y)` on purpose: it is also true when either side is NaN.

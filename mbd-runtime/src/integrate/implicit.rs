@@ -59,6 +59,12 @@ pub(super) struct NewtonSettings<T> {
     pub reuse_factors: bool,
     pub pivot_tolerance: T,
     pub project_velocities: bool,
+    /// Take one mass-weighted position step onto Φ = 0 from the converged iterate before the
+    /// velocity projection (BDF): Newton stops within its tolerance, or earlier by the rate
+    /// test, and one step from there (quadratic) reaches rounding, as the simulation's
+    /// projection would — whose own then finds nothing to do
+    /// ([`Integrator::velocities_projected`](super::Integrator::velocities_projected)).
+    pub end_position_step: bool,
 }
 
 /// One implicit step from `from` to t1: Newton on (v̇₊, λ₊) with the planned Newton matrix
@@ -206,6 +212,9 @@ where
     // The state of the converged iterate (its last correction below tolerance, or passing the
     // rate test).
     map.state(mech, vd, q, v, work);
+    if o.end_position_step {
+        mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)?;
+    }
     if o.project_velocities {
         mech.project_velocities_in(scratch, q, v, t1, &system.dynamics)?;
     }

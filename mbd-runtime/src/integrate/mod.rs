@@ -557,6 +557,9 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn holds_constraints(&self) -> bool {
 ///         self.inner.holds_constraints()
 ///     }
+///     fn velocities_projected(&self) -> bool {
+///         self.inner.velocities_projected()
+///     }
 ///     fn stiffness(&self) -> Option<mbd_runtime::StiffnessDetected> {
 ///         self.inner.stiffness()
 ///     }
@@ -569,6 +572,17 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
     /// be watched for one ([`Statistics::singular`]). Default `false`: watched (a wrapper that
     /// does not forward it has its runs watched, which changes no result).
     fn holds_constraints(&self) -> bool {
+        false
+    }
+
+    /// Whether the last step's end has its velocities projected onto D v = ν at its positions,
+    /// as [`Simulation`]'s correction would (an implicit method with `project_velocities`,
+    /// whose Newton iteration also met Φ). The run then evaluates Φ there first and, where it
+    /// meets the correction's tolerance, leaves the point as it is: a second projection of the
+    /// same state changes it by rounding only, and costs about a tenth of a BDF step. Default
+    /// `false`: corrected every step (a wrapper that does not forward it costs that projection,
+    /// and changes no result).
+    fn velocities_projected(&self) -> bool {
         false
     }
 

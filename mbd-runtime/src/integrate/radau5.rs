@@ -392,6 +392,10 @@ where
         true
     }
 
+    fn velocities_projected(&self) -> bool {
+        self.options.project_velocities
+    }
+
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(

@@ -493,7 +493,9 @@ where
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         end.copy_from(to);
         if !matches!(options.correction, Correction::None) {
-            correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
+            if !(integrator.velocities_projected() && corrected(mechanism, ws, options, to)) {
+                correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
+            }
             integrator.after_correction(&system, ws, to)?;
         }
         if watching {
@@ -849,6 +851,28 @@ fn energy<
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.
+/// Whether the point `p`, its velocities projected by the integrator, needs no projection: Φ
+/// meets the projection's tolerance there ([`Integrator::velocities_projected`]). Partitioning
+/// corrects it all the same: it keeps the independent velocities, where the integrator's
+/// projection moved them all (in the metric of M).
+fn corrected<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    mechanism: &M,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    options: &SimulationOptions<T>,
+    p: &Point<T, NQ, NV, NC>,
+) -> bool
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+{
+    let Correction::Projection { tolerance, .. } = options.correction else { return false };
+    let tolerance = tolerance.max(crate::solvers::kinematics::resolution(&p.q));
+    let mut scratch = ws.dense();
+    let phi = scratch.vectors.take::<NC>();
+    mechanism.constraints(&p.q, p.t, phi);
+    phi.iter().all(|r| r.abs() <= tolerance)
+}
+
 fn correct<
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,

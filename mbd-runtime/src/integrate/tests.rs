@@ -223,3 +223,82 @@ fn project_out_of_steps_names_the_row_without_a_work_space() {
         crate::integrate::project(&m, 0.0, &mut q, &mut v, &crate::model::dynamics::DynamicsOptions::default(), 1e-10, 0).unwrap_err();
     assert!(matches!(err, SimulationError::NotConverged { iterations: 0, .. }), "{err:?}");
 }
+
+/// BDF ends each step on Φ = 0 with its velocities projected, and the simulation then leaves
+/// the point as it is (`Integrator::velocities_projected`). A wrapper that hides that, so that
+/// the simulation projects every step again, gives the same samples within rounding: the second
+/// projection of a projected state moves it by a few ulps (1e-13 allows ten thousand steps of
+/// them; both runs take the same steps).
+#[test]
+fn a_projected_step_end_is_not_projected_again() {
+    use crate::integrate::{Bdf, BdfOptions};
+    /// BDF, all but `velocities_projected` forwarded (its default, `false`).
+    struct Hidden(Bdf<f64, 4, 3>);
+    impl Integrator<f64, UnitPendulum, 4, 3, 2, 5, 29> for Hidden {
+        fn holds_constraints(&self) -> bool {
+            Integrator::<f64, UnitPendulum, 4, 3, 2, 5, 29>::holds_constraints(&self.0)
+        }
+        fn step(
+            &mut self,
+            system: &System<'_, UnitPendulum, f64>,
+            ws: &mut WorkArrays<f64, 3, 2, 5, 29>,
+            from: &Point<f64, 4, 3, 2>,
+            t_max: f64,
+            to: &mut Point<f64, 4, 3, 2>,
+        ) -> Result<(), SimulationError> {
+            self.0.step(system, ws, from, t_max, to)
+        }
+        fn prepare_interpolation(
+            &mut self,
+            system: &System<'_, UnitPendulum, f64>,
+            ws: &mut WorkArrays<f64, 3, 2, 5, 29>,
+            from: &Point<f64, 4, 3, 2>,
+            to: &Point<f64, 4, 3, 2>,
+        ) -> Result<(), SimulationError> {
+            self.0.prepare_interpolation(system, ws, from, to)
+        }
+        fn interpolate(
+            &self,
+            m: &UnitPendulum,
+            from: &Point<f64, 4, 3, 2>,
+            to: &Point<f64, 4, 3, 2>,
+            t: f64,
+            q: &mut [f64; 4],
+            v: &mut [f64; 3],
+        ) {
+            Integrator::<f64, UnitPendulum, 4, 3, 2, 5, 29>::interpolate(&self.0, m, from, to, t, q, v);
+        }
+        fn restart(&mut self) {
+            self.0.restart();
+        }
+        fn after_correction(
+            &mut self,
+            system: &System<'_, UnitPendulum, f64>,
+            ws: &mut WorkArrays<f64, 3, 2, 5, 29>,
+            to: &mut Point<f64, 4, 3, 2>,
+        ) -> Result<(), SimulationError> {
+            self.0.after_correction(system, ws, to)
+        }
+    }
+    /// The samples' positions of BDF at rtol 1e-8, its step ends' projection skipped or not.
+    fn samples(skipped: bool) -> Vec<[f64; 4]> {
+        let (m, mut out) = (UnitPendulum, Vec::new());
+        let q0 = m.initial_positions();
+        let mut ws = Workspace::<f64, 3, 2, 5, 29>::new();
+        let bdf = Bdf::<f64, 4, 3>::new(BdfOptions::default().with_rtol(1e-8).with_atol(1e-10));
+        let record = |s: &crate::integrate::Sample<f64, 4, 3, 2>| out.push(s.point.q);
+        if skipped {
+            let mut integrator = bdf;
+            assert!(Integrator::<f64, UnitPendulum, 4, 3, 2, 5, 29>::velocities_projected(&integrator));
+            Simulation::new(&m, &mut integrator).start(0.0, &q0, &[0.0; 3]).times(&TIMES).run(&mut ws, record).unwrap();
+        } else {
+            let mut integrator = Hidden(bdf);
+            Simulation::new(&m, &mut integrator).start(0.0, &q0, &[0.0; 3]).times(&TIMES).run(&mut ws, record).unwrap();
+        }
+        out
+    }
+    let (skipped, projected) = (samples(true), samples(false));
+    assert_eq!(skipped.len(), TIMES.len());
+    let worst = skipped.iter().zip(&projected).flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs())).fold(0.0, f64::max);
+    assert!(worst < 1e-13, "the projection BDF's ends skip moved a sample by {worst:e}");
+}
