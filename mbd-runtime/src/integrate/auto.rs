@@ -5,10 +5,12 @@
 //! * **to BDF** when DOPRI5's own stiffness test fires ([`StiffnessDetected`]: h|λ| at its
 //!   stability bound, 3.25, for 15 accepted steps; Hairer & Wanner, *Solving ODEs II*, IV.2).
 //!   The fast mode's rate ρ = |λ| is kept, and BDF starts at order 1 from DOPRI5's last step.
-//! * **back to DOPRI5** when the fast mode has gone: every 8 BDF steps, ρ is estimated again at
-//!   the step's end by three power iterations on the ODE's Jacobian J = ∂(q̇, v̇)/∂(q, v) by
-//!   differences of forward dynamics (four evaluations, from the direction of BDF's last error
-//!   estimate), and where it is below a tenth of ρ at the switch, with DOPRI5's stable step
+//! * **back to DOPRI5** when the fast mode has gone: 8 BDF steps after the switch, ρ is
+//!   estimated again at the step's end by three power iterations on the ODE's Jacobian
+//!   J = ∂(q̇, v̇)/∂(q, v) by differences of forward dynamics (four evaluations, from the
+//!   direction of BDF's last error estimate) — and again after twice as many steps each time it
+//!   held (up to 64), after 8 where it fell by half — and where it is below a tenth of ρ at the
+//!   switch, with DOPRI5's stable step
 //!   3.25/ρ above BDF's step, at two probes in a row, DOPRI5 goes on at BDF's step. A stiff
 //!   element that let go (a contact, a cable gone slack) gives back the explicit method's
 //!   steps; a stiff mode still there keeps BDF, even where BDF's steps are short for accuracy
@@ -33,8 +35,13 @@ use crate::model::mechanism::NewtonMatrix;
 use crate::model::workspace::{DenseScratch, WorkArrays};
 use crate::real::Real;
 
-/// BDF steps between two estimates of the fastest mode's rate.
+/// BDF steps between two estimates of the fastest mode's rate after a switch, and where the
+/// rate fell by half since the last; each estimate that finds it held doubles the interval, up
+/// to [`PROBE_AT_MOST_EVERY`]. A probe costs about four BDF steps' evaluations: every 8 steps
+/// it was 5 % of the stiff flywheel's run, whose stiff mode stays.
 const PROBE_EVERY: u32 = 8;
+/// The longest interval between two estimates (BDF steps).
+const PROBE_AT_MOST_EVERY: u32 = 64;
 /// DOPRI5's stability bound on the negative real axis (h|λ|).
 const DOPRI5_BOUND: f64 = 3.25;
 
@@ -94,8 +101,10 @@ pub struct Auto<T, const NQ: usize, const NV: usize, const NC: usize> {
     patience: u32,
     /// The fastest mode's rate (1/s), from the last estimate.
     rate: T,
-    /// BDF steps since its start or the last probe, and probes in a row that allowed DOPRI5.
+    /// BDF steps since its start or the last probe, the steps until the next, and probes in a
+    /// row that allowed DOPRI5.
     since_probe: u32,
+    probe_every: u32,
     calm: u32,
     /// The fastest mode's rate (1/s) when DOPRI5 saw the model stiff.
     switch_rate: T,
@@ -125,6 +134,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Auto<T, NQ, NV,
             patience: 1,
             rate: T::ZERO,
             since_probe: 0,
+            probe_every: PROBE_EVERY,
             calm: 0,
             switch_rate: T::ZERO,
             fresh: false,
@@ -173,9 +183,9 @@ where
         self.phase == AutoPhase::Stiff
     }
 
-    /// Where BDF took the last step, as BDF's.
-    fn velocities_projected(&self) -> bool {
-        self.last == AutoPhase::Stiff && self.stiff.options.project_velocities
+    /// Where BDF took the last step, BDF's.
+    fn projected_end(&self) -> Option<T> {
+        (self.last == AutoPhase::Stiff).then(|| Integrator::<T, M, NQ, NV, NC, N, NS>::projected_end(&self.stiff)).flatten()
     }
 
     fn step(
@@ -200,7 +210,7 @@ where
                     self.switch_rate = self.rate;
                     self.stiff.next_step = to.t - from.t;
                     self.stiff.restart();
-                    (self.since_probe, self.calm, self.fresh) = (0, 0, true);
+                    (self.since_probe, self.probe_every, self.calm, self.fresh) = (0, PROBE_EVERY, 0, true);
                 }
             }
             AutoPhase::Stiff => {
@@ -228,9 +238,11 @@ where
                 }
                 self.fresh = false;
                 self.since_probe += 1;
-                if self.options.switch_back && self.since_probe >= PROBE_EVERY {
+                if self.options.switch_back && self.since_probe >= self.probe_every {
                     self.since_probe = 0;
                     if let Some(rate) = fastest_rate(system, ws.dense(), to, self.stiff.last_error()) {
+                        let falling = rate < T::from_f64(0.5) * self.rate;
+                        self.probe_every = if falling { PROBE_EVERY } else { (2 * self.probe_every).min(PROBE_AT_MOST_EVERY) };
                         self.rate = rate;
                     }
                     let h = to.t - from.t;

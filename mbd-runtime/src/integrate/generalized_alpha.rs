@@ -251,10 +251,6 @@ where
         true
     }
 
-    fn velocities_projected(&self) -> bool {
-        self.options.project_velocities
-    }
-
     // `!(x > y)` on purpose: it is also true when either side is NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn step(
@@ -334,7 +330,7 @@ where
                 s,
                 dense.reborrow(),
             )
-            .map(|()| map.pseudo_acceleration(&to.vd, a1));
+            .map(|_| map.pseudo_acceleration(&to.vd, a1));
             self.total_iterations += u64::from(self.iterations);
             let Some(control) = o.error_control else {
                 result?;

@@ -62,14 +62,15 @@ pub(super) struct NewtonSettings<T> {
     /// Take one mass-weighted position step onto Φ = 0 from the converged iterate before the
     /// velocity projection (BDF): Newton stops within its tolerance, or earlier by the rate
     /// test, and one step from there (quadratic) reaches rounding, as the simulation's
-    /// projection would — whose own then finds nothing to do
-    /// ([`Integrator::velocities_projected`](super::Integrator::velocities_projected)).
+    /// projection would — which then has nothing left to do
+    /// ([`Integrator::projected_end`](super::Integrator::projected_end)).
     pub end_position_step: bool,
 }
 
 /// One implicit step from `from` to t1: Newton on (v̇₊, λ₊) with the planned Newton matrix
 /// [[M + c_v C + c_q K, −Dᵀ], [D, 0]] (the constraint rows scaled by 1/c_q), q₊ and v₊ given by
-/// `map`, then the velocity projection. Writes q₊, v₊, v̇₊ and λ₊ to `to`; counts the Newton
+/// `map`, then the velocity projection (and with `end_position_step`, a position step before it,
+/// whose starting ‖Φ‖∞ it returns). Writes q₊, v₊, v̇₊ and λ₊ to `to`; counts the Newton
 /// iterations in `iterations`. `vd0` is the first guess of v̇₊ (λ₊ starts from `from`'s).
 /// Where `map` has an error norm, `rate` carries the convergence rate from step to step and
 /// the iterate is also accepted by the rate test ([`RATE_TEST`]).
@@ -88,7 +89,7 @@ pub(super) fn solve<T, M, S, const NQ: usize, const NV: usize, const NC: usize, 
     rate: &mut Option<T>,
     s: &mut M::NewtonStorage,
     mut scratch: DenseScratch<'_, T, NV, NC>,
-) -> Result<(), SimulationError>
+) -> Result<Option<T>, SimulationError>
 where
     T: Real,
     M: NewtonMatrix<T, NQ, NV, NC>,
@@ -212,9 +213,8 @@ where
     // The state of the converged iterate (its last correction below tolerance, or passing the
     // rate test).
     map.state(mech, vd, q, v, work);
-    if o.end_position_step {
-        mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)?;
-    }
+    let end_residual =
+        if o.end_position_step { Some(mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)?) } else { None };
     if o.project_velocities {
         mech.project_velocities_in(scratch, q, v, t1, &system.dynamics)?;
     }
@@ -223,7 +223,8 @@ where
     to.v = *v;
     to.vd = *vd;
     to.lambda = *lambda;
-    check_step::<T, M, NQ, NV, NC>(from, to)
+    check_step::<T, M, NQ, NV, NC>(from, to)?;
+    Ok(end_residual)
 }
 
 /// Adds the Newton correction `rhs` (Δv̇, then Δλ) to the iterate; returns the size of the

@@ -557,8 +557,8 @@ impl<'m, M, T: Real> System<'m, M, T> {
 ///     fn holds_constraints(&self) -> bool {
 ///         self.inner.holds_constraints()
 ///     }
-///     fn velocities_projected(&self) -> bool {
-///         self.inner.velocities_projected()
+///     fn projected_end(&self) -> Option<T> {
+///         self.inner.projected_end()
 ///     }
 ///     fn stiffness(&self) -> Option<mbd_runtime::StiffnessDetected> {
 ///         self.inner.stiffness()
@@ -575,15 +575,16 @@ pub trait Integrator<T: Real, M, const NQ: usize, const NV: usize, const NC: usi
         false
     }
 
-    /// Whether the last step's end has its velocities projected onto D v = ν at its positions,
-    /// as [`Simulation`]'s correction would (an implicit method with `project_velocities`,
-    /// whose Newton iteration also met Φ). The run then evaluates Φ there first and, where it
-    /// meets the correction's tolerance, leaves the point as it is: a second projection of the
-    /// same state changes it by rounding only, and costs about a tenth of a BDF step. Default
-    /// `false`: corrected every step (a wrapper that does not forward it costs that projection,
-    /// and changes no result).
-    fn velocities_projected(&self) -> bool {
-        false
+    /// `Some(r)` where the method projected the last step's end itself, as [`Simulation`]'s
+    /// projection ([`Correction::Projection`]) does: a mass-weighted position step onto Φ = 0
+    /// from ‖Φ‖∞ = `r` (the last, if several), then the velocities onto D v = ν (BDF and Radau5
+    /// with `project_velocities`). Where `r` meets the projection's tolerance — where its own
+    /// Newton loop would stop after that step — the run leaves the point as it is: a second
+    /// projection of the same state changes it by rounding only, and cost a tenth of a BDF step.
+    /// Default `None`: corrected every step (a wrapper that does not forward it costs that
+    /// projection, and changes no result).
+    fn projected_end(&self) -> Option<T> {
+        None
     }
 
     /// Stiffness this integrator has seen since it was made (an explicit method whose steps

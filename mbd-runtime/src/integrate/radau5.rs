@@ -200,6 +200,8 @@ pub struct Radau5<T, const NQ: usize, const NV: usize, const NC: usize> {
     contraction: T,
     // The convergence rate θ last measured (an iteration that converges at once measures none).
     rate: T,
+    // ‖Φ‖∞ the last step's end was projected from (`Integrator::projected_end`).
+    end_residual: Option<T>,
 }
 
 impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, NV, NC> {
@@ -221,6 +223,7 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
             just_rejected: false,
             contraction: T::ONE,
             rate: T::ZERO,
+            end_residual: None,
         }
     }
 }
@@ -392,8 +395,8 @@ where
         true
     }
 
-    fn velocities_projected(&self) -> bool {
-        self.options.project_velocities
+    fn projected_end(&self) -> Option<T> {
+        self.end_residual
     }
 
     // `!(x > y)` on purpose: it is also true when either side is NaN.
@@ -508,6 +511,7 @@ where
         self.last = None;
         self.accepted_step = T::ZERO;
         self.just_rejected = false;
+        self.end_residual = None;
     }
 
     /// v̇ and λ are unknowns of the method: the corrected point keeps them.
@@ -834,13 +838,17 @@ impl<T: Real, const NQ: usize, const NV: usize, const NC: usize> Radau5<T, NQ, N
         // Onto Φ = 0 to what the scalar resolves (module docs, "The step's end"): Newton left Φ
         // within its stopping tolerance, a few mass-weighted steps (quadratic) take it to rounding.
         let resolution = crate::solvers::kinematics::resolution(q);
+        let mut residual = T::ZERO;
         for _ in 0..END_PROJECTION_STEPS {
-            if mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)? <= resolution {
+            residual = mech.project_positions_step_in(scratch.reborrow(), q, t1, &system.dynamics)?;
+            if residual <= resolution {
                 break;
             }
         }
+        self.end_residual = None;
         if self.options.project_velocities {
             mech.project_velocities_in(scratch.reborrow(), q, v, t1, &system.dynamics)?;
+            self.end_residual = Some(residual);
         }
         // v̇ and λ of the end point by forward dynamics there, not the last stage's A₃ and Λ₃
         // (module docs).

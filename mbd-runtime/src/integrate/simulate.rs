@@ -493,7 +493,7 @@ where
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         end.copy_from(to);
         if !matches!(options.correction, Correction::None) {
-            if !(integrator.velocities_projected() && corrected(mechanism, ws, options, to)) {
+            if !projected(integrator.projected_end(), options, &to.q) {
                 correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
             }
             integrator.after_correction(&system, ws, to)?;
@@ -851,26 +851,16 @@ fn energy<
 }
 
 /// Applies the drift correction of `options` to (q, v) at t.
-/// Whether the point `p`, its velocities projected by the integrator, needs no projection: Φ
-/// meets the projection's tolerance there ([`Integrator::velocities_projected`]). Partitioning
-/// corrects it all the same: it keeps the independent velocities, where the integrator's
-/// projection moved them all (in the metric of M).
-fn corrected<T, M, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
-    mechanism: &M,
-    ws: &mut WorkArrays<T, NV, NC, N, NS>,
-    options: &SimulationOptions<T>,
-    p: &Point<T, NQ, NV, NC>,
-) -> bool
-where
-    T: Real,
-    M: ForwardDynamics<T, NQ, NV, NC>,
-{
-    let Correction::Projection { tolerance, .. } = options.correction else { return false };
-    let tolerance = tolerance.max(crate::solvers::kinematics::resolution(&p.q));
-    let mut scratch = ws.dense();
-    let phi = scratch.vectors.take::<NC>();
-    mechanism.constraints(&p.q, p.t, phi);
-    phi.iter().all(|r| r.abs() <= tolerance)
+/// Whether a step's end the integrator projected from ‖Φ‖∞ = `residual` (`None`: not
+/// projected) needs no projection of the run's: `residual` meets the projection's tolerance, as
+/// its own loop would stop ([`Integrator::projected_end`]). Partitioning corrects it all the
+/// same: it keeps the independent velocities, where the integrator's projection moved them all
+/// (in the metric of M).
+fn projected<T: Real, const NQ: usize>(residual: Option<T>, options: &SimulationOptions<T>, q: &[T; NQ]) -> bool {
+    match (residual, options.correction) {
+        (Some(r), Correction::Projection { tolerance, .. }) => r <= tolerance.max(crate::solvers::kinematics::resolution(q)),
+        _ => false,
+    }
 }
 
 fn correct<
