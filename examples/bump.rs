@@ -57,17 +57,15 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-9).with_atol(1e-11));
     let times: Vec<f64> = (1..=300).map(|k| 0.005 * k as f64).collect();
     let (mut events, mut road_changes) = (Vec::new(), Vec::new());
-    // Whether each element pushes: as at the start, then turned at each of its switches (an
-    // event's sample lies within rounding of the instant, on either side of it).
-    let mut pushing: Vec<bool> = (0..QuarterCar::SWITCH_NAMES.len()).map(|k| m.switching_function(k, &q, &[0.0; 6], 0.0) > 0.0).collect();
     Simulation::new(&m, &mut dopri).start(0.0, &q, &[0.0; 6]).times(&times).run(&mut ws, |s| {
         if let Some(EventHit::Switch(k)) = s.event {
             let name = QuarterCar::SWITCH_NAMES[k];
             if name.starts_with("road: time event") {
                 road_changes.push(s.point.t);
             } else {
-                pushing[k] = !pushing[k];
-                events.push((s.point.t, name, pushing[k]));
+                // An event's sample is on its new side: the element pushes there if it began to.
+                let p = &s.point;
+                events.push((p.t, name, m.switching_function(k, &p.q, &p.v, p.t) > 0.0));
             }
         }
     })?;

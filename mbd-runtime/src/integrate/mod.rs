@@ -160,7 +160,9 @@ pub struct Sample<T, const NQ: usize, const NV: usize, const NC: usize> {
     /// Its energies.
     pub energy: Energy<T>,
     /// `Some` for the extra sample [`Simulation`] delivers at a located event, at its
-    /// instant; `None` at the output times.
+    /// instant, on its new side: the switching function (or the user's event function) there
+    /// has the sign it changed to (within rounding of the instant it is close to zero, so the
+    /// sample is taken just past it). `None` at the output times.
     pub event: Option<EventHit>,
 }
 

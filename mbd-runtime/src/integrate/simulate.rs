@@ -463,9 +463,12 @@ where
         integrator.step(&system, ws, from, limit, to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
         let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, from, to, switches, events, at_event)?;
-        if let Some((_, which)) = hit.filter(|&(t, _)| t <= from.t) {
+        if let Some((_, which, located)) = hit.filter(|&(t, _, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
-            // so `from` is its instant. Deliver it there and take the step again.
+            // so `from` is its instant. The run goes on from just past it, on its new side, and
+            // delivers that point; the step is taken again from there.
+            let limit = times[next].min(to.t);
+            onto_new_side(&system, integrator, ws, events, which, (from, to), located, limit, &mut out.point)?;
             stats.events += 1;
             deliver!(from, Some(which));
             at_event = true;
@@ -476,7 +479,7 @@ where
             }
             continue;
         }
-        if let Some((t, _)) = hit {
+        if let Some((t, _, _)) = hit {
             // The step straddles a switch, where the forces (or the user's event) change law:
             // its dense output does not hold across it. Step again from the same start to land on
             // the instant (an adaptive method may land short; the next step finds it again).
@@ -485,7 +488,7 @@ where
             // Landed short, or the interpolant (poor across the switch) put the instant early and
             // the function has not changed sign yet: not the event; the next step finds it from
             // nearer.
-            if to.t < t || hit.is_some_and(|(_, which)| !changed(mechanism, events, which, from, to)) {
+            if to.t < t || hit.is_some_and(|(_, which, _)| !changed(mechanism, events, which, from, to)) {
                 hit = None;
             }
         }
@@ -495,6 +498,12 @@ where
         if !matches!(options.correction, Correction::None) {
             if !projected(integrator.projected_end(), options, &to.q) {
                 correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
+                // A landing on an event stays on its new side: where the correction moved it
+                // back across (it is within rounding of the switch), the run goes on from the
+                // step's own end — else the next step found the same change again, an ulp on.
+                if hit.is_some_and(|(_, which, _)| !changed(mechanism, events, which, from, to)) {
+                    to.copy_from(end);
+                }
             }
             integrator.after_correction(&system, ws, to)?;
         }
@@ -516,7 +525,7 @@ where
             }
         }
         at_event = hit.is_some();
-        if let Some((_, which)) = hit {
+        if let Some((_, which, _)) = hit {
             stats.events += 1;
             deliver!(to, Some(which));
             if matches!(which, EventHit::User(k) if events[k].stop) {
@@ -739,7 +748,8 @@ where
 
 /// The earliest sign change within the step from `from` to `end` of the mechanism's first
 /// `switches` switching functions and of the user's `events`, located on the step's dense
-/// output: its instant (the first on the new side, to within a few ulps of t) and which. A
+/// output: its instant (the first on the new side, to within a few ulps of t), which, and the
+/// instant as located (the instant itself but where it is at the start). A
 /// change within those ulps of the step's start is at `from.t`, unless `from` is an event's
 /// instant already (`at_event`): rounding may undo and redo that event, and a second event
 /// within rounding of it is taken as simultaneous (delivered once, so that two chattering
@@ -755,7 +765,7 @@ fn first_event<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const
     switches: usize,
     events: &mut [Event<'_, T, NQ, NV>],
     at_event: bool,
-) -> Result<Option<(T, EventHit)>, SimulationError>
+) -> Result<Option<(T, EventHit, T)>, SimulationError>
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
@@ -763,7 +773,7 @@ where
 {
     let h = end.t - from.t;
     let resolution = T::EPSILON * T::from_f64(16.0) * end.t.abs().max(h);
-    let mut first: Option<(T, EventHit)> = None;
+    let mut first: Option<(T, EventHit, T)> = None;
     let mut prepared = false;
     let candidates = (0..switches).map(EventHit::Switch).chain((0..events.len()).map(EventHit::User));
     for which in candidates {
@@ -805,17 +815,56 @@ where
                 }
             }
         }
+        let located = b;
         if b - from.t <= resolution {
             if at_event {
                 continue;
             }
             b = from.t;
         }
-        if first.is_none_or(|(t, _)| b < t) {
-            first = Some((b, which));
+        if first.is_none_or(|(t, _, _)| b < t) {
+            first = Some((b, which, located));
         }
     }
     Ok(first)
+}
+
+/// Moves `from` — on the old side of event `which`, whose change the step to `end` located
+/// within rounding after it, at `t` — onto its new side: to the step's dense output at `t`, or
+/// failing that at twice, four times … as far from `from.t`, the first point there on the new
+/// side before `limit` (`p` to work in), or the step's end. The point is the dense output's (the
+/// integrator's), not corrected (as at an output time); `from` stays where none is found.
+#[allow(clippy::too_many_arguments)]
+fn onto_new_side<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    system: &System<'_, M, T>,
+    integrator: &mut I,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    events: &mut [Event<'_, T, NQ, NV>],
+    which: EventHit,
+    (from, end): (&mut Point<T, NQ, NV, NC>, &Point<T, NQ, NV, NC>),
+    t: T,
+    limit: T,
+    p: &mut Point<T, NQ, NV, NC>,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+{
+    let mut offset = (t - from.t).max(T::EPSILON * from.t.abs().max(end.t - from.t));
+    while from.t + offset < limit {
+        interpolated(system, integrator, ws, (from, end), from.t + offset, p)?;
+        if changed(system.mechanism, events, which, from, p) {
+            from.copy_from(p);
+            return Ok(());
+        }
+        offset = offset + offset;
+    }
+    // A step within rounding of its start (the change located at its end): the end itself.
+    if end.t <= limit && changed(system.mechanism, events, which, from, end) {
+        from.copy_from(end);
+    }
+    Ok(())
 }
 
 fn interpolate_work<T: Real, const NQ: usize, const NV: usize, const NC: usize>(
