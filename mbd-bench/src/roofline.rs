@@ -147,10 +147,12 @@ macro_rules! with_lanes {
     }};
 }
 
+/// `Real::sin_cos`, the one the generated kernels call (the libm crate's in f64 since
+/// 2026-12-07; the platform's before).
 #[inline(never)]
 fn sin_coses(angles: &[f64; LANES], out: &mut [(f64, f64); LANES]) {
     for (x, out) in angles.iter().zip(out) {
-        *out = x.sin_cos();
+        *out = mbd::Real::sin_cos(*x);
     }
 }
 
