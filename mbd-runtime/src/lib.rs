@@ -1,6 +1,7 @@
 //! Runtime of **mbd**: the traits generated mechanisms implement and the solvers that use them.
 //!
-//! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`.
+//! `#![no_std]` without the default `std` feature; elementary functions then come from `libm`
+//! (f64 `sin` and `cos` always do: [`Real`]).
 //! Feature `alloc` (part of `std`) adds [`Linearizer`], which needs a heap but not `std`.
 //! No solver allocates: O(N²) work space and the solvers' O(N) vectors are the caller's
 //! [`Workspace`] (made once, on the heap with [`Workspace::boxed`] or in a `static`), the rest
