@@ -899,7 +899,6 @@ fn energy<
     }
 }
 
-/// Applies the drift correction of `options` to (q, v) at t.
 /// Whether a step's end the integrator projected from ‖Φ‖∞ = `residual` (`None`: not
 /// projected) needs no projection of the run's: `residual` meets the projection's tolerance, as
 /// its own loop would stop ([`Integrator::projected_end`]). Partitioning corrects it all the
@@ -912,6 +911,7 @@ fn projected<T: Real, const NQ: usize>(residual: Option<T>, options: &Simulation
     }
 }
 
+/// Applies the drift correction of `options` to (q, v) at t.
 fn correct<
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
