@@ -92,9 +92,9 @@ pub trait Real:
 /// platform's `f64::sin_cos` (glibc's `sincos` here) took 13 ns a call against 8.4 in a loop of
 /// independent calls, and the generated planar kernels spend most of their time in it (issue
 /// 41). All three from the one library, so that a function that needs only a cosine and a fused
-/// evaluation that shares a `sin_cos` agree bitwise. Within 1 ulp of glibc's over 1.5e7 angles
+/// evaluation that shares a `sin_cos` agree bitwise. Within 1 ulp of glibc's over 2.8e6 angles
 /// up to 1e7 rad, multiples of π/2 among them (`trig_is_within_an_ulp_of_the_platforms` below);
-/// the same numbers with and without `std`. In f32, the platform's with `std`.
+/// the same sines and cosines with and without `std`. In f32, the platform's with `std`.
 macro_rules! trig {
     (f64, $x:expr, $method:ident, $libm:ident) => {
         libm::$libm($x)
