@@ -570,3 +570,39 @@ fn every_event_sample_is_on_the_new_side() {
     assert!(events > 200, "{events}");
     assert!(wrong.is_empty(), "{wrong:#?}");
 }
+
+mbd::mechanism! {
+    /// A 1 kg sled on a frictionless rail, pushed by 100 N for 20 ms around t = 1 s: a pulse
+    /// written as one comparison whose sides change order twice.
+    pub KickedSled {
+        body sled { mass: 1.0, inertia: 0.1, at: [0.0, 0.0, 0.0] }
+        translational rail: sled[0.0, 0.0] along [1.0, 0.0] ~ ground[0.0, 0.0] along [1.0, 0.0];
+        force sled[0.0, 0.0] = [if (t - 1.0) * (t - 1.0) < 1.0e-4 { 100.0 } else { 0.0 }, 0.0];
+    }
+}
+
+/// A time event that changes side twice between two output times is found ahead: the pulse's
+/// switching function (t − 1)² − 1e-4 is the same sign at the run's start and at its only output
+/// time, 2 s, so on the output times alone it showed nothing, and DOPRI5's steps from rest,
+/// with no force to resolve, grew past the 20 ms pulse (the sled stayed at rest). On the finer
+/// grid the run sees both edges. Closed form: a 2 N·s impulse, v = 2 m/s after it and
+/// x(2 s) = ½·100·0.02² + 2·0.99 = 2.0 m; bound 1e-9 (the edges to ulps, DOPRI5 at 1e-10 on
+/// a motion that is polynomial between them).
+#[test]
+fn a_pulse_between_two_output_times_is_not_stepped_over() {
+    let m = KickedSled::default();
+    let mut end = ([0.0; 3], [0.0; 3]);
+    let mut edges = Vec::new();
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
+    let stats = Simulation::new(&m, &mut dopri)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[2.0])
+        .run(&mut KickedSled::workspace(), |s| match s.event {
+            Some(EventHit::Switch(_)) => edges.push(s.point.t),
+            _ => end = (s.point.q, s.point.v),
+        })
+        .unwrap();
+    eprintln!("kicked sled: edges {edges:?}, x {} m, v {} m/s, {stats:?}", end.0[0], end.1[0]);
+    assert!(edges.len() == 2 && (edges[0] - 0.99).abs() < 1e-12 && (edges[1] - 1.01).abs() < 1e-12, "{edges:?}");
+    assert!((end.1[0] - 2.0).abs() < 1e-9 && (end.0[0] - 2.0).abs() < 1e-9, "x {} m, v {} m/s", end.0[0], end.1[0]);
+}

@@ -658,12 +658,19 @@ impl<T: Real> TimeEvents<T> {
     }
 }
 
+/// Points of the grid a time event is sought on between two output times
+/// ([`next_time_event`]): a function of t that changes side twice between them — a pulse
+/// written `abs(t - 1.0) < 0.01`, a square wave — shows it on this finer grid, where the output
+/// times alone showed nothing (and a step across the whole pulse missed it). t alone, so cheap:
+/// a run with N output times evaluates each time event at most 32 N times.
+const TIME_GRID_POINTS: u32 = 32;
+
 /// The first time event after `from.t`: the last instant on its old side and the first on its
 /// new side (within a few ulps), and its index among the switching functions. Found on the grid
-/// of the output times ahead: each function of t alone is sampled there and its first change of
-/// side bisected. It does not depend on the state, so the instant holds until the run reaches
-/// it. `None` where none changes side between two points of the grid (the step's own search
-/// still finds a change within a step).
+/// of the output times ahead, each interval cut in [`TIME_GRID_POINTS`]: each function of t
+/// alone is sampled there and its first change of side bisected. It does not depend on the
+/// state, so the instant holds until the run reaches it. `None` where none changes side between
+/// two points of the grid (the step's own search still finds a change within a step).
 fn next_time_event<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
     from: &Point<T, NQ, NV, NC>,
@@ -680,12 +687,17 @@ where
         // [a, b]: the first two points of the grid on either side.
         let start = side(k, from.t);
         let (mut a, mut found) = (from.t, None);
-        for &t in times.iter().filter(|&&t| t > from.t) {
-            if side(k, t) != start {
-                found = Some(t);
-                break;
+        'grid: for &t in times.iter().filter(|&&t| t > from.t) {
+            let before = a;
+            for j in 1..=TIME_GRID_POINTS {
+                let point =
+                    if j == TIME_GRID_POINTS { t } else { before + (t - before) * T::from_f64(f64::from(j) / f64::from(TIME_GRID_POINTS)) };
+                if side(k, point) != start {
+                    found = Some(point);
+                    break 'grid;
+                }
+                a = point;
             }
-            a = t;
         }
         let Some(mut b) = found else { continue };
         loop {
