@@ -156,20 +156,9 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
     let switches: Vec<(String, Id)> = switches.into_iter().map(|(name, s)| (name, import(&mut b, s))).collect();
     let mass_x = kinematics.mass_times(&mut b, &frames, &inertia);
 
-    // Each element alone (its op counts; the velocities its force reaches, for naming it
-    // behind a NaN): the inertia terms and its wrenches through the same pass.
-    let base_h = {
-        let zeros = vec![zero_body; nt * model.bodies.len()];
-        let wrenches = wrenches_of(&mut b, &mut import, &zeros);
-        kinematics.backward(&mut b, wrenches)
-    };
-    let alone_forces: Vec<ForceTerms> = alone_forces
-        .iter()
-        .map(|alone| {
-            let wrenches = wrenches_of(&mut b, &mut import, &alone.h);
-            ForceTerms { h: kinematics.backward(&mut b, wrenches), h_q: Vec::new(), h_qd: Vec::new() }
-        })
-        .collect();
+    let zeros = vec![zero_body; nt * model.bodies.len()];
+    let (base_forces, alone_forces) =
+        forces_alone(&mut b, &kinematics, |b, generalized| wrenches_of(b, &mut import, generalized), &zeros, &alone_forces);
     let force_velocities = force_velocities.into_iter().map(|(name, reached)| (name, kinematics.reached(&reached, nt))).collect();
 
     let power = super::power(&mut b, potential, &h);
@@ -201,7 +190,7 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         mass_blocks: false,
         h,
         force_velocities,
-        base_forces: ForceTerms { h: base_h, h_q: Vec::new(), h_qd: Vec::new() },
+        base_forces,
         alone_forces,
         h_q: Vec::new(),
         h_qd: Vec::new(),
@@ -230,6 +219,24 @@ pub fn formulate(model: &Model, tree: &Tree) -> Formulation {
         tree: Some(terms),
         graph: b.g,
     }
+}
+
+/// Each element alone (its op counts; the velocities its force reaches, for naming it behind a
+/// NaN): the inertia terms alone (`zeros`: no force) and each element's forces, their wrenches
+/// (`wrenches`, of body-level generalized forces) through the same backward pass.
+fn forces_alone(
+    b: &mut Builder,
+    kinematics: &Kinematics,
+    mut wrenches: impl FnMut(&mut Builder, &[Id]) -> Vec<Vec<Id>>,
+    zeros: &[Id],
+    alone: &[ForceTerms],
+) -> (ForceTerms, Vec<ForceTerms>) {
+    let mut through = |b: &mut Builder, generalized: &[Id]| {
+        let w = wrenches(b, generalized);
+        ForceTerms { h: kinematics.backward(b, w), h_q: Vec::new(), h_qd: Vec::new() }
+    };
+    let base = through(b, zeros);
+    (base, alone.iter().map(|a| through(b, &a.h)).collect())
 }
 
 /// Each body's inertia terms at constant v, M_b J̇_b v plus (in space) the gyroscopic moment

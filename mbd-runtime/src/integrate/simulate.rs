@@ -436,6 +436,15 @@ where
             }
         };
     }
+    // Ends the run where event `which` is a user's event that stops it.
+    macro_rules! stop_at {
+        ($which:expr) => {
+            if matches!($which, EventHit::User(k) if events[k].stop) {
+                stats.stopped_by = Some($which);
+                finish!();
+            }
+        };
+    }
     let Some(&t_end) = times.last() else { return Ok(stats) };
     let mut next = 0;
     // Whether `from` is an event's instant: a change within rounding of it is then that event's
@@ -473,39 +482,17 @@ where
             deliver!(from, Some(which));
             at_event = true;
             integrator.restart();
-            if matches!(which, EventHit::User(k) if events[k].stop) {
-                stats.stopped_by = Some(which);
-                finish!();
-            }
+            stop_at!(which);
             continue;
         }
-        if let Some((t, _, _)) = hit {
-            // The step straddles a switch, where the forces (or the user's event) change law:
-            // its dense output does not hold across it. Step again from the same start to land on
-            // the instant (an adaptive method may land short; the next step finds it again).
-            integrator.restart();
-            integrator.step(&system, ws, from, t, to)?;
-            // Landed short, or the interpolant (poor across the switch) put the instant early and
-            // the function has not changed sign yet: not the event; the next step finds it from
-            // nearer.
-            if to.t < t || hit.is_some_and(|(_, which, _)| !changed(mechanism, events, which, from, to)) {
-                hit = None;
-            }
+        if let Some((t, which, _)) = hit {
+            hit = land(&system, integrator, ws, events, (t, which), from, to)?.then_some((t, which, t));
         }
         stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         end.copy_from(to);
         if !matches!(options.correction, Correction::None) {
-            if !projected(integrator.projected_end(), options, &to.q) {
-                correct(mechanism, ws, &mut partition, options, to.t, &mut to.q, &mut to.v)?;
-                // A landing on an event stays on its new side: where the correction moved it
-                // back across (it is within rounding of the switch), the run goes on from the
-                // step's own end — else the next step found the same change again, an ulp on.
-                if hit.is_some_and(|(_, which, _)| !changed(mechanism, events, which, from, to)) {
-                    to.copy_from(end);
-                }
-            }
-            integrator.after_correction(&system, ws, to)?;
+            correct_end(&system, integrator, (ws, &mut partition), options, events, hit.map(|h| h.1), (from, end), to)?;
         }
         if watching {
             watch.observe(mechanism, ws.dense(), to.t, &to.q, &to.v, &options.dynamics);
@@ -528,14 +515,65 @@ where
         if let Some((_, which, _)) = hit {
             stats.events += 1;
             deliver!(to, Some(which));
-            if matches!(which, EventHit::User(k) if events[k].stop) {
-                stats.stopped_by = Some(which);
-                finish!();
-            }
+            stop_at!(which);
         }
         from.copy_from(to);
     }
     finish!()
+}
+
+/// The step from `from` straddles event `which` at `t`, where the forces (or the user's event)
+/// change law: its dense output does not hold across it. Steps again from the same start to
+/// land on the instant; whether it did (an adaptive method may land short, or the interpolant,
+/// poor across the switch, put the instant early where the function has not changed sign yet:
+/// the next step finds it from nearer).
+fn land<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    system: &System<'_, M, T>,
+    integrator: &mut I,
+    ws: &mut WorkArrays<T, NV, NC, N, NS>,
+    events: &mut [Event<'_, T, NQ, NV>],
+    (t, which): (T, EventHit),
+    from: &Point<T, NQ, NV, NC>,
+    to: &mut Point<T, NQ, NV, NC>,
+) -> Result<bool, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+{
+    integrator.restart();
+    integrator.step(system, ws, from, t, to)?;
+    Ok(to.t >= t && changed(system.mechanism, events, which, from, to))
+}
+
+/// Corrects the step's end `to` (the integrator's own is `end`) as `options` say, unless the
+/// integrator projected it itself ([`projected`]), and readies the integrator to go on from it.
+/// A landing on event `landed` stays on its new side: where the correction moved it back across
+/// (it is within rounding of the switch), the run goes on from the step's own end — else the
+/// next step found the same change again, an ulp on.
+#[allow(clippy::too_many_arguments)]
+fn correct_end<T, M, I, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    system: &System<'_, M, T>,
+    integrator: &mut I,
+    (ws, partition): (&mut WorkArrays<T, NV, NC, N, NS>, &mut Partition<NV, NC>),
+    options: &SimulationOptions<T>,
+    events: &mut [Event<'_, T, NQ, NV>],
+    landed: Option<EventHit>,
+    (from, end): (&Point<T, NQ, NV, NC>, &Point<T, NQ, NV, NC>),
+    to: &mut Point<T, NQ, NV, NC>,
+) -> Result<(), SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+{
+    if !projected(integrator.projected_end(), options, &to.q) {
+        correct(system.mechanism, ws, partition, options, to.t, &mut to.q, &mut to.v)?;
+        if landed.is_some_and(|which| !changed(system.mechanism, events, which, from, to)) {
+            to.copy_from(end);
+        }
+    }
+    integrator.after_correction(system, ws, to)
 }
 
 /// The output times after t0, none before the one before it (NaN fails).
