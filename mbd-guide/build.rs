@@ -1,9 +1,9 @@
-//! Writes every Rust snippet of the README and the user's guide (`guide/*.md`) as a module of the
-//! `snippets` test (`tests/snippets.rs`): each snippet is a whole program, its `fn main` run by a
-//! `#[test]` named after the page and the snippet's place on it. The snippets are compiled with
-//! the other tests — in the build, beside the other crates, and once until a page changes — where
-//! rustdoc compiled them anew, alone, on every run of the tests (about 70 s of one core,
-//! 2026-12-06).
+//! Writes every Rust snippet of the README and the user's guide (`guide/*.md` and
+//! `guide/projects/*.md`) as a module of the `snippets` test (`tests/snippets.rs`): each snippet
+//! is a whole program, its `fn main` run by a `#[test]` named after the page and the snippet's
+//! place on it. The snippets are compiled with the other tests — in the build, beside the other
+//! crates, and once until a page changes — where rustdoc compiled them anew, alone, on every run
+//! of the tests (about 70 s of one core, 2026-12-06).
 //!
 //! A code block is Rust when it is tagged ```` ```rust ````; a block tagged otherwise (```` ```toml ````,
 //! ```` ```text ````, …) is left alone, and an untagged block, a Rust block with rustdoc's
@@ -19,15 +19,19 @@ fn main() {
     let out = PathBuf::from(env::var("OUT_DIR").expect("cargo sets it")).join("snippets");
     fs::create_dir_all(&out).expect("OUT_DIR is writable");
     let mut pages = vec![PathBuf::from("README.md")];
-    let mut guide: Vec<PathBuf> = fs::read_dir(root.join("guide"))
-        .expect("the guide exists")
-        .map(|e| e.expect("a directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .map(|p| p.strip_prefix(&root).expect("inside the workspace").to_path_buf())
-        .collect();
+    let mut guide: Vec<PathBuf> = Vec::new();
+    for dir in ["guide", "guide/projects"] {
+        guide.extend(
+            fs::read_dir(root.join(dir))
+                .expect("the guide exists")
+                .map(|e| e.expect("a directory entry").path())
+                .filter(|p| p.extension().is_some_and(|e| e == "md"))
+                .map(|p| p.strip_prefix(&root).expect("inside the workspace").to_path_buf()),
+        );
+        println!("cargo:rerun-if-changed={}", root.join(dir).display());
+    }
     guide.sort();
     pages.extend(guide);
-    println!("cargo:rerun-if-changed={}", root.join("guide").display());
     let mut modules = String::new();
     for page in &pages {
         let path = root.join(page);

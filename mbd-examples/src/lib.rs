@@ -52,6 +52,9 @@ pub mod stewart_platform;
 #[path = "../../examples/suspension_dynamics.rs"]
 pub mod suspension_dynamics;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/swing.rs"]
+pub mod swing;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/variable_pendulum.rs"]
 pub mod variable_pendulum;
 #[allow(dead_code)] // `main`, and what only `main` uses

@@ -15,7 +15,7 @@ fn root() -> PathBuf {
 fn pages() -> Vec<PathBuf> {
     let root = root();
     let mut pages: Vec<PathBuf> = ["README.md", "CHANGELOG.md", "ARCHITECTURE.md"].iter().map(|p| root.join(p)).collect();
-    for dir in ["guide", "docs"] {
+    for dir in ["guide", "guide/projects", "docs"] {
         for entry in fs::read_dir(root.join(dir)).expect("the folder exists") {
             let path = entry.expect("a directory entry").path();
             if path.extension().is_some_and(|e| e == "md") {
