@@ -8,7 +8,7 @@
 use mbd_examples::{
     bump, double_a_arm, double_wishbone_3d, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope, linear_models,
     macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank, stewart_platform, suspension_dynamics,
-    swing, variable_pendulum, web_cutter,
+    swing, variable_pendulum, web_cutter, windshield_wiper,
 };
 
 #[cfg(test)]
@@ -19,7 +19,7 @@ mod checks;
 type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
 
 /// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
-const ANIMATIONS: [(&str, Animate); 21] = [
+const ANIMATIONS: [(&str, Animate); 22] = [
     ("slider_crank", slider_crank::animation),
     ("four_bar", four_bar::animation),
     ("variable_pendulum", variable_pendulum::animation),
@@ -41,11 +41,12 @@ const ANIMATIONS: [(&str, Animate); 21] = [
     ("bump", bump::animation),
     ("linear_models", linear_models::animation),
     ("swing", swing::animation),
+    ("windshield_wiper", windshield_wiper::animation),
 ];
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 21] = [
+    let runs: [(&str, Run); 22] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -67,6 +68,7 @@ fn main() {
         ("bump", || bump::run(true).map(drop)),
         ("linear_models", || linear_models::run(true).map(drop)),
         ("swing", || swing::run(true).map(drop)),
+        ("windshield_wiper", || windshield_wiper::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

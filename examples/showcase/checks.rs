@@ -59,11 +59,12 @@ fn quotes(example: &str, text: &str, value: f64) {
 }
 
 /// The guide's other chapters that quote an example's figure, each held here like the table's.
-const PAGES: [(&str, &str); 4] = [
+const PAGES: [(&str, &str); 5] = [
     ("guide/linearization.md", include_str!("../../guide/linearization.md")),
     ("guide/dsl.md", include_str!("../../guide/dsl.md")),
     ("guide/performance.md", include_str!("../../guide/performance.md")),
     ("guide/projects/swing.md", include_str!("../../guide/projects/swing.md")),
+    ("guide/projects/windshield-wiper.md", include_str!("../../guide/projects/windshield-wiper.md")),
 ];
 
 /// The text of `page`, one of [`PAGES`].
@@ -275,6 +276,46 @@ fn swing_grows_at_the_averaged_models_rate() {
     page_quotes(page, "within 1.8e-6 J", r.balance_error, false);
     page_quotes(page, "ω = 2.4946 rad/s", r.omega, false);
     bounds("swing", "(≤ 2e-6 J)", r.balance_error);
+}
+
+/// Nikravesh's project 15.1 (guide/projects/windshield-wiper.md): over one turn of the motor
+/// both blades follow the four-bars' closed forms (within 1e-7 rad: the kinematic solver's
+/// tolerance, measured 3.9e-9), their sweeps the limit positions' law of cosines (within 1e-3
+/// rad: the samples are 1° of crank apart, and near a reversal a blade's angle is within
+/// (½°)² × its curvature of the extreme), the transmission angles their closed form; both blades
+/// reverse at the closed-form limit positions (within 1° of crank, the samples' spacing); the
+/// motor's torque meets virtual power at every sample (1e-9 of the peak power: rounding of the
+/// inverse dynamics) and its mean power the friction the blades' sweeps take by hand, 2 (T_f1
+/// Δψ₁ + T_f2 Δψ₂)/T (within 1 %: the friction's regularization below 0.01 rad/s, and the
+/// midpoint rule's error on a smooth periodic power, are far smaller; measured 3e-5).
+#[test]
+fn windshield_wiper_follows_its_closed_forms() {
+    let r = windshield_wiper::run(false).expect("the wiper runs");
+    assert_eq!(r.samples, 360);
+    assert!(r.angle_error < 1e-7 && r.transmission_error < 1e-7, "{r:?}");
+    assert!((r.sweep1 - r.sweep1_closed_form).abs() < 1e-3 && (r.sweep2 - r.sweep2_closed_form).abs() < 1e-3, "{r:?}");
+    for k in 0..2 {
+        use std::f64::consts::{PI, TAU};
+        let apart = |a: f64, b: f64| ((a - b + PI).rem_euclid(TAU) - PI).abs();
+        assert!(apart(r.reversals1[k], r.limit_positions[k]) <= 1f64.to_radians(), "{r:?}");
+        assert!(apart(r.reversals2[k], r.limit_positions[k]) <= 1f64.to_radians(), "{r:?}");
+    }
+    assert!(r.power_error < 1e-9 * r.peak_power, "{r:?}");
+    assert!((r.mean_power - r.mean_power_closed_form).abs() < 1e-2 * r.mean_power_closed_form, "{r:?}");
+    quotes("windshield_wiper", "driver's blade 90.44°", r.sweep1_closed_form.to_degrees());
+    quotes("windshield_wiper", "passenger's 75.93°", r.sweep2_closed_form.to_degrees());
+    quotes("windshield_wiper", "at least 33.3°", r.transmission1.to_degrees());
+    quotes("windshield_wiper", "and 50.9°", r.transmission2.to_degrees());
+    quotes("windshield_wiper", "mean power 3.420 W both", r.mean_power);
+    quotes("windshield_wiper", "mean power 3.420 W both", r.mean_power_closed_form);
+    bounds("windshield_wiper", "(≤ 1e-8 rad)", r.angle_error);
+    let page = "guide/projects/windshield-wiper.md";
+    page_quotes(page, "up to 1.478 N·m", r.torque_max, false);
+    page_quotes(page, "3.420 W", r.mean_power, false);
+    page_quotes(page, "angles 2.6° and 178.8°", r.limit_positions[0].to_degrees(), false);
+    page_quotes(page, "and 178.8°", r.limit_positions[1].to_degrees(), false);
+    page_quotes(page, "by 14.5°", (r.relative_max - r.relative_min).to_degrees(), false);
+    page_quotes(page, "least 33.3°", r.transmission1.to_degrees(), false);
 }
 
 /// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the

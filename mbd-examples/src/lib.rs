@@ -60,6 +60,9 @@ pub mod variable_pendulum;
 #[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/web_cutter.rs"]
 pub mod web_cutter;
+#[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/windshield_wiper.rs"]
+pub mod windshield_wiper;
 pub use flywheel_engine::slider_crank_inverse;
 pub use linear_models::bump;
 
