@@ -17,9 +17,9 @@
 //! I(t) = J_swing + J_child + m d² the inertia about the crossbar and K(t) = (m_s l_s + m d) g
 //! its gravity stiffness, d/dt(I θ̇) + K θ = 0. With I = I₀(1 + α sin 2ωt),
 //! K = K₀(1 + β sin 2ωt), ω² = K₀/I₀, averaging over a period (θ = a cos(ωt + φ)) gives
-//! ȧ/a = (ω/4)(α + β) sin 2φ: the swing released from rest (φ = 0 against the sin 2ωt of the
-//! pumping) grows as e^(γt), γ = (ω/4)(α + β), α = 2 m d_mid d_amp / I₀, β = m g d_amp / K₀
-//! (for a point mass on a massless rope, γ = ¾ ε ω, the textbook value). It holds to first order
+//! ȧ/a = (ω/4)(α + β) cos 2φ: the swing released from rest (φ = 0) grows fastest, as e^(γt),
+//! γ = (ω/4)(α + β), α = 2 m d_mid d_amp / I₀, β = m g d_amp / K₀
+//! (for a point mass on a massless rope, γ = ¾ ε ω with ε = ΔL/L). It holds to first order
 //! in d_amp/d_mid and in the amplitude: the check runs at 0.02 rad with a tenth of the
 //! child's stroke. A second check is an energy balance: over each period, the driver's work
 //! equals the change of T + V written by hand from θ, θ̇, d and ḋ.
