@@ -15,13 +15,13 @@
 //!
 //! **The check** (a small-amplitude model by hand, independent of the simulation): with
 //! I(t) = J_s + m_s l_s² + J_c + m d² the inertia about the crossbar (J_s, J_c about the swing
-//! body's and the child's centres of mass) and K(t) = (m_s l_s + m d) g its gravity stiffness, d/dt(I θ̇) + K θ = 0. With I = I₀(1 + α sin 2ωt),
-//! K = K₀(1 + β sin 2ωt), ω² = K₀/I₀, averaging over a period (θ = a cos(ωt + φ)) gives
-//! ȧ/a = (ω/4)(α + β) cos 2φ: the swing released from rest (φ = 0) grows fastest, as e^(γt),
-//! γ = (ω/4)(α + β), α = 2 m d_mid d_amp / I₀, β = m g d_amp / K₀
-//! (for a point mass on a massless rope, γ = ¾ ε ω with ε = d_amp/d_mid). It holds to first order
-//! in d_amp/d_mid and in the amplitude: the check runs at 0.02 rad with a tenth of the
-//! child's stroke. A second check is an energy balance: over each period, the driver's work
+//! body's and the child's centres of mass) and K(t) = (m_s l_s + m d) g its gravity stiffness,
+//! d/dt(I θ̇) + K θ = 0. With I = I₀(1 + α sin 2ωt), K = K₀(1 + β sin 2ωt), ω² = K₀/I₀,
+//! averaging over a period (θ = a cos(ωt + φ)) gives ȧ/a = (ω/4)(α + β) cos 2φ: the swing
+//! released from rest (φ = 0) grows fastest, as e^(γt), γ = (ω/4)(α + β),
+//! α = 2 m d_mid d_amp / I₀, β = m g d_amp / K₀ (for a point mass on a massless rope,
+//! γ = ¾ ε ω with ε = d_amp/d_mid). It holds to first order in d_amp/d_mid and in the
+//! amplitude: the check runs at 0.02 rad with a tenth of the child's stroke. A second check is an energy balance: over each period, the driver's work
 //! equals the change of T + V written by hand from θ, θ̇, d and ḋ.
 //!
 //! What the DSL could not say: the posture as a law of the swing's own motion (stand while
@@ -106,7 +106,7 @@ pub struct Report {
 }
 
 /// The model's inertia about the crossbar and its gravity stiffness at the child's distance d:
-/// I(d) = J_swing + m_s l_s² + J_child + m d² (kg·m²), K(d) = (m_s l_s + m d) g (N·m).
+/// I(d) = J_s + m_s l_s² + J_c + m d² (kg·m²), K(d) = (m_s l_s + m d) g (N·m).
 fn inertia_and_stiffness(d: f64) -> (f64, f64) {
     let (m_s, l_s, j_s, m_c, j_c, g) = (5.7, 1.4386, 2.470, 25.0, 2.4, 9.81);
     (j_s + m_s * l_s * l_s + j_c + m_c * d * d, (m_s * l_s + m_c * d) * g)
