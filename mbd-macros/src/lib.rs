@@ -1,7 +1,8 @@
 //! The `mechanism!` macro of mbd.
 //!
 //! Data flows one way through plain-Rust stages, each unit-tested without a compiler in the loop:
-//! `part` (sub-assemblies instantiated) and `repeat` (`for` loops and indexed names unrolled
+//! `bind` (each `let`'s name replaced by its expression on the tokens) → `part` (sub-assemblies
+//! instantiated) and `repeat` (`for` loops and indexed names unrolled
 //! on the tokens; `names` keeps each made identifier's written form for every text) →
 //! `scene` (the base mechanism and each scene's statements, expanded one by one) → `parse`
 //! (tokens → syntax tree with spans) → `model` (names resolved, rules checked, every
@@ -15,6 +16,7 @@
 // No function over 150 lines (`clippy.toml`).
 #![warn(clippy::too_many_lines)]
 
+mod bind;
 mod coordinates;
 mod docs;
 mod elements;

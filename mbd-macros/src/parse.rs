@@ -278,6 +278,7 @@ pub const AXIS_FORCE_KINDS: &[&str] =
 /// Every statement keyword, for "did you mean" hints (a test checks that every registered joint
 /// kind is here).
 pub const STATEMENTS: &[&str] = &[
+    "let",
     "scalar",
     "spatial",
     "joint_coordinates",

@@ -17,8 +17,9 @@
 //! and an instance may be indexed and made in a loop (`corner c[i](...)`, then `c[2].upper_arm`).
 //! Parts may use other parts; a part's statements may loop over its parameters.
 //!
-//! Expanded on the tokens before anything else, loops with them ([`crate::repeat`]), so an
-//! instance generates exactly what its statements written out by hand generate.
+//! Expanded on the tokens before anything else but the `let`s ([`crate::bind`]), loops with
+//! them ([`crate::repeat`]), so an instance generates exactly what its statements written out
+//! by hand generate.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -58,8 +59,9 @@ fn expand_with(input: TokenStream, names: &mut Names, lenient: bool) -> syn::Res
             // The mechanism's body: the first brace group (attributes are `#[...]`, brackets).
             TokenTree::Group(g) if g.delimiter() == Delimiter::Brace && !done => {
                 done = true;
+                let body = crate::bind::substitute(g.stream(), lenient)?;
                 let (definitions, rest): (Vec<_>, Vec<_>) =
-                    statements(g.stream()).into_iter().partition(|s| matches!(s.first(), Some(TokenTree::Ident(k)) if k == "part"));
+                    statements(body).into_iter().partition(|s| matches!(s.first(), Some(TokenTree::Ident(k)) if k == "part"));
                 let mut parts: Vec<Part> = Vec::new();
                 for d in &definitions {
                     let part = definition(d)?;
