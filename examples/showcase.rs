@@ -6,9 +6,9 @@
 // Every example, compiled once in the library mbd-examples (which the tests share); each is also
 // a program of its own (`cargo run --example four_bar`).
 use mbd_examples::{
-    bump, double_a_arm, double_wishbone_3d, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope, linear_models,
-    macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank, stewart_platform, suspension_dynamics,
-    swing, variable_pendulum, web_cutter, windshield_wiper,
+    bump, double_a_arm, double_wishbone_3d, engine, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope,
+    linear_models, macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank, stewart_platform,
+    suspension_dynamics, swing, variable_pendulum, web_cutter, windshield_wiper,
 };
 
 #[cfg(test)]
@@ -19,7 +19,7 @@ mod checks;
 type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
 
 /// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
-const ANIMATIONS: [(&str, Animate); 22] = [
+const ANIMATIONS: [(&str, Animate); 23] = [
     ("slider_crank", slider_crank::animation),
     ("four_bar", four_bar::animation),
     ("variable_pendulum", variable_pendulum::animation),
@@ -42,11 +42,12 @@ const ANIMATIONS: [(&str, Animate); 22] = [
     ("linear_models", linear_models::animation),
     ("swing", swing::animation),
     ("windshield_wiper", windshield_wiper::animation),
+    ("engine", engine::animation),
 ];
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 22] = [
+    let runs: [(&str, Run); 23] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -69,6 +70,7 @@ fn main() {
         ("linear_models", || linear_models::run(true).map(drop)),
         ("swing", || swing::run(true).map(drop)),
         ("windshield_wiper", || windshield_wiper::run(true).map(drop)),
+        ("engine", || engine::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

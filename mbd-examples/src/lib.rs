@@ -10,6 +10,9 @@ pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
 pub mod double_wishbone_3d;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/engine.rs"]
+pub mod engine;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/excavator.rs"]
 pub mod excavator;
 #[allow(dead_code)] // `main`, and what only `main` uses
