@@ -15,7 +15,8 @@
 //!
 //! A name after `.` (a coordinate, `crank.x`) or before a single `:` (an option, a label, a
 //! parameter) is never replaced. A `let` may not take the name of a parameter, of a function or
-//! of a body (a name used with `.` or `[`), nor refer to itself, directly or through others.
+//! of a body (a name used with `.` or `[`), nor refer to itself, directly or through others, and
+//! must be used: an unused one would never be read, nor a mistake in it reported.
 //! The replacement keeps the spans of the `let`'s expression, so a mistake in it is reported
 //! there.
 
@@ -162,7 +163,7 @@ fn without_lets(tokens: &[TokenTree]) -> Vec<TokenTree> {
 }
 
 /// Each `let`'s expression with the `let`s it uses replaced, after checking that none takes a
-/// parameter's or a body's name and that none refers to itself.
+/// parameter's or a body's name, that each is used, and that none refers to itself.
 fn resolve(bindings: &[Binding], rest: &[TokenTree]) -> syn::Result<BTreeMap<String, Vec<TokenTree>>> {
     for b in bindings {
         if let Some(kind) = other_use(rest, &b.name.to_string()) {
@@ -171,6 +172,15 @@ fn resolve(bindings: &[Binding], rest: &[TokenTree]) -> syn::Result<BTreeMap<Str
                 format!("expected a name of its own after `let`, found `{}`, which is also {kind}", b.name),
             ));
         }
+    }
+    // An unused `let` would never be read, nor its mistakes reported.
+    let mut used = uses(rest);
+    used.extend(bindings.iter().flat_map(|b| uses(&b.value)));
+    if let Some(unused) = bindings.iter().find(|b| !used.contains(&b.name.to_string())) {
+        return Err(syn::Error::new(
+            unused.name.span(),
+            format!("expected a use of `let {0}`, found none: use `{0}` or remove it", unused.name),
+        ));
     }
     let by_name: BTreeMap<String, &Binding> = bindings.iter().map(|b| (b.name.to_string(), b)).collect();
     let mut resolved = BTreeMap::new();
@@ -350,7 +360,8 @@ mod tests {
         assert!(refused("let a = 1.0; let a = 2.0;").contains("`let a` is written twice"));
         assert!(refused("params { k: 1.0 } let k = 2.0;").contains("found `k`, which is also a parameter"));
         assert!(refused("let crank = 2.0; torque m: crank = crank.phi;").contains("found `crank`, which is also a body"));
-        assert!(refused("let a = b + 1.0; let b = 2.0 * a;").contains("referring to itself (a → b → a)"));
+        assert!(refused("let a = b + 1.0; let b = 2.0 * a; torque m: c = a;").contains("referring to itself (a → b → a)"));
+        assert!(refused("let a = 1.0; let b = a < 2.0; torque m: c = a;").contains("expected a use of `let b`, found none"));
         assert!(refused("for i in 0..2 { let a = 1.0; }").contains("expected a `let` at the mechanism's level"));
         assert!(refused("part p(x) { body b { mass: 1.0 } let a = x; }").contains("expected a `let` at the mechanism's level"));
     }
