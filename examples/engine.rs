@@ -189,6 +189,7 @@ fn by_hand(m: &SingleCylinder, theta: f64, omega: f64, gas: f64) -> Loads {
     let (sb, cb) = k.beta[0].sin_cos();
     let inertial = [ROD_MASS * (k.rod_acc[0] - g[0]), ROD_MASS * (k.rod_acc[1] - g[1])];
     let lever = [k.pin[0] - k.rod[0], k.pin[1] - k.rod[1]];
+    // The rod's angle in the model is φ = −β, so its angular acceleration is −β̈.
     let rhs = ROD_INERTIA * -k.beta[2] - cross(lever, inertial);
     let wx = (rhs / m.l + sb * wy) / cb;
     let piston_pin = [wx, wy];
@@ -217,9 +218,10 @@ pub struct Loads {
     pub shaking: [f64; 2],
 }
 
-/// The crank's centre of mass below its axis (m) for a counterweight that balances the rotating
-/// masses (the crank's own and the rod's big-end share, m_rod (l − a)/l) and the fraction
-/// `balance` of the reciprocating ones (the piston and the rod's small-end share, m_rod a/l).
+/// The crank's centre of mass below its axis (m) for a counterweight that balances the rod's
+/// big-end share m_rod (l − a)/l, which turns with the crank pin, and the fraction `balance` of
+/// the reciprocating mass (the piston and the rod's small-end share, m_rod a/l): m_c e =
+/// (m_rod (l − a)/l + b m_rec) r, the crank with its pin and counterweight as one body.
 fn counterweight(m: &SingleCylinder, balance: f64) -> f64 {
     let rotating = ROD_MASS * (m.l - m.a_rod) / m.l;
     let reciprocating = PISTON_MASS + ROD_MASS * m.a_rod / m.l;
@@ -252,7 +254,7 @@ fn cycle_work(m: &SingleCylinder, rp: f64) -> f64 {
                 2.0
             };
             // dV/dψ = −A dy/dψ.
-            weight * (pressure(&m, psi.min(PI - 1e-12), volume(&m, k_.piston[1])) - m.p_atm) * -area * k_.piston_rate
+            weight * (pressure(&m, psi, volume(&m, k_.piston[1])) - m.p_atm) * -area * k_.piston_rate
         })
         .sum::<f64>()
         * h
@@ -309,6 +311,7 @@ fn cycle(m: &SingleCylinder) -> Result<Cycle, Box<dyn std::error::Error>> {
         let theta = SingleCylinder::CRANK.phi(q);
         let psi = cycle_angle(theta);
         let y = SingleCylinder::PISTON.position(q).y;
+        // The gas force the solver applied, at its piston position.
         let gas = -(pressure(m, psi, volume(m, y)) - m.p_atm) * PI * m.bore * m.bore / 4.0;
         let xy = |f: [f64; 3]| [f[0], f[1]];
         // The frame takes −B from the main bearing, −N from the wall and −F_gas on the head:
@@ -322,7 +325,9 @@ fn cycle(m: &SingleCylinder) -> Result<Cycle, Box<dyn std::error::Error>> {
             torque: drive.moment[2],
             shaking,
         };
-        let hand = by_hand(m, theta, m.omega, gas);
+        // The hand analysis takes the gas force at the closed form's piston position.
+        let gas_by_hand = -(pressure(m, psi, volume(m, kinematics(m, theta, m.omega).piston[1])) - m.p_atm) * PI * m.bore * m.bore / 4.0;
+        let hand = by_hand(m, theta, m.omega, gas_by_hand);
         out.torque_error = out.torque_error.max((loads.torque - hand.torque).abs());
         for (a, b) in
             [(loads.piston_pin, hand.piston_pin), (loads.crank_pin, hand.crank_pin), (loads.main, hand.main), (loads.shaking, hand.shaking)]
@@ -339,6 +344,9 @@ fn cycle(m: &SingleCylinder) -> Result<Cycle, Box<dyn std::error::Error>> {
     })?;
     if let Some(e) = failure {
         return Err(e.into());
+    }
+    if out.samples.len() != SAMPLES {
+        return Err(format!("{} of the {SAMPLES} samples have every joint's reaction", out.samples.len()).into());
     }
     Ok(out)
 }
@@ -361,21 +369,25 @@ pub struct Report {
     pub torque_max: f64,
     pub torque_max_at: f64,
     pub torque_min: f64,
+    pub torque_min_at: f64,
     /// Largest load over the cycle, at the design balance, and where: main bearing, crank pin,
     /// piston pin; the largest side thrust on the cylinder wall.
     pub main_max: (f64, f64),
     pub crank_pin_max: (f64, f64),
     pub piston_pin_max: (f64, f64),
     pub side_max: f64,
+    /// The largest of the three bearing loads while the valves are open (|ψ| ≥ 180°, the
+    /// exhaust and intake strokes: the parts' inertia and weight alone).
+    pub open_valves_max: f64,
     /// Largest |solver − hand| over the samples of every balance: torque, and loads.
     pub torque_error: f64,
     pub load_error: f64,
     /// The shaking force's largest components along and across the cylinder's axis, for each
     /// balance (0, ½, 1 of the reciprocating mass).
     pub shaking: [(f64, f64, f64); 3],
-    /// The flywheel: the energy swing ΔE (J), the inertia about the crank's axis that the
-    /// target asks (kg·m²), of which the crank's own (with the rod's and piston's mean share
-    /// added to it in the target), the generator's constant (N·m·s).
+    /// The flywheel: the energy swing ΔE (J); the crank's own inertia about its axis
+    /// (kg·m²) and the rod's and piston's mean reduced inertia (kg·m²), which together are
+    /// the J = ΔE/(δ ω²) the target asks; the generator's constant (N·m·s).
     pub energy_swing: f64,
     pub crank_inertia: f64,
     pub reduced: f64,
@@ -429,11 +441,12 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let torque = |l: &Loads| -l.torque;
     let torque_mean = samples.iter().map(|(_, l)| torque(l)).sum::<f64>() / SAMPLES as f64;
     let dtheta = 4.0 * PI / SAMPLES as f64;
-    let (mut excess, mut low, mut high) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let (mut excess, mut low, mut high, mut excess_mean) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
     for (_, l) in samples {
         excess += (torque(l) - torque_mean) * dtheta;
         low = low.min(excess);
         high = high.max(excess);
+        excess_mean += excess / SAMPLES as f64;
     }
     let energy_swing = high - low;
     // The flywheel: J ω² δ = ΔE, J the crank's inertia about its axis plus the rod's and
@@ -442,7 +455,13 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let crank_inertia = total - design.reduced;
     let c_load = torque_mean / m.omega;
     let e_cw = m.e_cw;
-    let (rpm_mean, delta, cycles, steps) = run_free(&SingleCylinder { j_crank: crank_inertia - CRANK_MASS * e_cw * e_cw, c_load, ..m })?;
+    // The run starts at the firing TDC at the speed the steady engine has there: the kinetic
+    // energy ½ J ω² differs from its cycle mean by the excess work done since, E(0) − Ē = −Ē,
+    // so ω(0) ≈ ω₀ (1 − Ē/(J ω₀²)); from ω₀ itself the mean speed would start ~60 rpm high and
+    // take several J/c = 1.3 s to settle.
+    let start = 1.0 - excess_mean / (total * m.omega * m.omega);
+    let (rpm_mean, delta, cycles, steps) =
+        run_free(&SingleCylinder { j_crank: crank_inertia - CRANK_MASS * e_cw * e_cw, c_load, ..m }, start)?;
     let r = Report {
         rp,
         peak_pressure,
@@ -453,10 +472,16 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
         torque_max: largest(samples, torque).0,
         torque_max_at: largest(samples, torque).1,
         torque_min: -largest(samples, |l| -torque(l)).0,
+        torque_min_at: largest(samples, |l| -torque(l)).1,
         main_max: largest(samples, |l| l.main[0].hypot(l.main[1])),
         crank_pin_max: largest(samples, |l| l.crank_pin[0].hypot(l.crank_pin[1])),
         piston_pin_max: largest(samples, |l| l.piston_pin[0].hypot(l.piston_pin[1])),
         side_max: largest(samples, |l| l.side.abs()).0,
+        open_valves_max: samples
+            .iter()
+            .filter(|(psi, _)| psi.abs() >= PI)
+            .map(|(_, l)| [l.main, l.crank_pin, l.piston_pin].iter().map(|f| f[0].hypot(f[1])).fold(0.0, f64::max))
+            .fold(0.0, f64::max),
         torque_error,
         load_error,
         shaking,
@@ -510,10 +535,10 @@ fn plot(m: &SingleCylinder, samples: &[(f64, Loads)], loci: &[(f64, Vec<(f64, f6
     Ok(())
 }
 
-/// The free engine braked by its generator, from the driven state at the firing TDC, for
-/// `CYCLES` cycles: the mean speed (rpm) and the coefficient of speed fluctuation over the last,
-/// the cycles and the steps.
-fn run_free(driven: &SingleCylinder) -> Result<(f64, f64, usize, usize), Box<dyn std::error::Error>> {
+/// The free engine braked by its generator, from the driven state at the firing TDC with its
+/// velocities scaled by `start`, for `CYCLES` cycles: the mean speed (rpm) and the coefficient
+/// of speed fluctuation over the last, the cycles and the steps.
+fn run_free(driven: &SingleCylinder, start: f64) -> Result<(f64, f64, usize, usize), Box<dyn std::error::Error>> {
     const CYCLES: usize = 60;
     let d = driven;
     let m = Running {
@@ -539,6 +564,8 @@ fn run_free(driven: &SingleCylinder) -> Result<(f64, f64, usize, usize), Box<dyn
     KinematicSolver::default().assemble(driven, &mut ws, &mut q, 0.0)?;
     let mut v = [0.0; SingleCylinder::NV];
     KinematicSolver::default().solve_velocity(driven, &mut ws, &q, 0.0, &mut v)?;
+    // One degree of freedom: every velocity is the crank speed's multiple.
+    v.iter_mut().for_each(|x| *x *= start);
     let period = 4.0 * PI / m.omega;
     let per_cycle = 1440;
     let times: Vec<f64> = (0..=CYCLES * per_cycle).map(|k| period * k as f64 / per_cycle as f64).collect();
@@ -566,12 +593,12 @@ fn print_report(m: &SingleCylinder, r: &Report) {
         r.work
     );
     println!(
-        "crank torque: mean {:.4} N·m (by hand ∮ p dV / 4π = {:.4} N·m), largest {:.1} N·m at {:.0}°, least {:.1} N·m; within {:.1e} N·m of the hand analysis at every sample",
-        r.torque_mean, r.torque_by_hand, r.torque_max, r.torque_max_at, r.torque_min, r.torque_error
+        "crank torque: mean {:.4} N·m (by hand ∮ p dV / 4π = {:.4} N·m), largest {:.1} N·m at {:.1}°, least {:.1} N·m at {:.1}°; within {:.1e} N·m of the hand analysis at every sample",
+        r.torque_mean, r.torque_by_hand, r.torque_max, r.torque_max_at, r.torque_min, r.torque_min_at, r.torque_error
     );
     println!(
-        "loads at the design balance: main bearing up to {:.0} N (at {:.0}°), crank pin {:.0} N (at {:.0}°), piston pin {:.0} N (at {:.0}°), side thrust {:.0} N; within {:.1e} N of the hand analysis",
-        r.main_max.0, r.main_max.1, r.crank_pin_max.0, r.crank_pin_max.1, r.piston_pin_max.0, r.piston_pin_max.1, r.side_max, r.load_error
+        "loads at the design balance: main bearing up to {:.0} N (at {:.1}°), crank pin {:.0} N (at {:.1}°), piston pin {:.0} N (at {:.1}°), side thrust {:.0} N; at most {:.0} N with the valves open; within {:.1e} N of the hand analysis",
+        r.main_max.0, r.main_max.1, r.crank_pin_max.0, r.crank_pin_max.1, r.piston_pin_max.0, r.piston_pin_max.1, r.side_max, r.open_valves_max, r.load_error
     );
     for (balance, along, across) in r.shaking {
         println!(

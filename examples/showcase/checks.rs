@@ -339,30 +339,34 @@ fn windshield_wiper_follows_its_closed_forms() {
 
 /// Nikravesh's project 15.2 (guide/projects/engine.md): at constant speed the crank torque and
 /// the main-bearing, crank-pin and piston-pin loads, the side thrust and the shaking force agree
-/// at every sample with a force analysis by hand from the slider-crank's closed-form kinematics
-/// (within 1e-9 of the peak torque and of the peak load: the position solve's 1e-10 m moves a
-/// 14 kN gas force's lever by ~1e-10 of the crank; measured 7e-11 and 6e-11); the mean torque is
-/// the cycle's work by quadrature over 4π (within 1e-6 relative: Simpson's rule on 7200 intervals
-/// against the midpoint rule on 720 samples of a torque with kinks where burning starts and the
-/// valve opens; measured 1e-8); the shaking force along the cylinder is the reciprocating mass's
-/// at TDC, m_rec r ω² (1 + λ − b) (at b = 1, λ/√(1 − λ²) at 90°), and across it b m_rec r ω²,
-/// for each balance b (within 1 N: the samples are ½° from TDC and from 90°, where each is
-/// largest; 1 − cos ½° ≈ 4e-5); and the free engine with the flywheel sized for δ = 0.04
-/// fluctuates by that δ (within 5 %: the sizing is first order in δ; measured 0.1 %), near the
-/// design speed (within 1 %: the start's offset decays as e^(−c t / J) over the run).
+/// at every sample with a force analysis by hand from the slider-crank's closed-form kinematics,
+/// the gas force taken at the closed form's piston position (within 1e-7 of the peak torque and
+/// of the peak load: the position solve stops at |Φ| ≤ 1e-10 m, and the gas force changes by
+/// ~2e6 N/m near TDC, so a 1e-10 m difference in the piston's position is ~2e-4 N, ~1.5e-8 of the
+/// 14 kN peak; measured 3e-9 and 2e-9); the mean torque is the cycle's work by quadrature over
+/// 4π (within 1e-6 relative: Simpson's rule on 7200 intervals against the midpoint rule on 720
+/// samples of a torque that is C¹ where the valve opens; measured 3e-9), and that work is the
+/// datasheet's 11.0 N·m × 4π by the calibration of r_p (a check of the calibration, not of the
+/// model); the shaking force along the cylinder is the reciprocating mass's at TDC, m_rec r ω²
+/// (1 + λ − b), and, with full balance, λ/√(1 − λ²) of it at 90°, and across it b m_rec r ω², for
+/// each balance b (within 1 N: the samples are ½° from TDC and from 90°, where each is largest;
+/// 1 − cos ½° ≈ 4e-5); and the free engine, started at the steady speed for the firing TDC with
+/// the flywheel sized for δ = 0.04, fluctuates by that δ (within 5 %: the sizing is first order
+/// in δ; measured 0.5 %) about the design speed (within 5 rpm: the mean speed is the design's to
+/// second order in δ, δ² ≈ 0.2 %; measured 0.2 rpm).
 #[test]
 fn engine_meets_its_hand_analysis() {
     let r = engine::run(false).expect("the engine runs");
-    assert!(r.torque_error < 1e-9 * r.torque_max, "{r:?}");
+    assert!(r.torque_error < 1e-7 * r.torque_max, "{r:?}");
     let peak_load = r.main_max.0.max(r.crank_pin_max.0).max(r.piston_pin_max.0);
-    assert!(r.load_error < 1e-9 * peak_load, "{r:?}");
+    assert!(r.load_error < 1e-7 * peak_load, "{r:?}");
     assert!((r.torque_mean - r.torque_by_hand).abs() < 1e-6 * r.torque_by_hand, "{r:?}");
-    assert!((r.torque_by_hand - 11.0).abs() < 1e-9, "{r:?}");
+    assert!((r.torque_by_hand - 11.0).abs() < 1e-9, "the calibration of r_p: {r:?}");
     // The reciprocating mass (piston and the rod's small-end share) and λ = r/l, as in the model.
     let (m_rec, lambda, r_omega2) = (0.18 + 0.12 * 0.025 / 0.080, 0.0225 / 0.080, 0.0225 * (2500.0 * std::f64::consts::PI / 30.0).powi(2));
     for (b, along, across) in r.shaking {
-        // Along the cylinder: largest at TDC, (1 + λ − b) m_rec r ω², while b < 1; at b = 1 only
-        // the rod's angularity is left, largest at 90°, where the piston's acceleration is
+        // Along the cylinder: largest at TDC, (1 + λ − b) m_rec r ω², at these balances; at b = 1
+        // only the rod's angularity is left, largest at 90°, where the piston's acceleration is
         // r ω² λ/√(1 − λ²) exactly.
         let along_closed_form =
             if b < 1.0 { m_rec * r_omega2 * (1.0 + lambda - b) } else { m_rec * r_omega2 * lambda / (1.0 - lambda * lambda).sqrt() };
@@ -370,13 +374,14 @@ fn engine_meets_its_hand_analysis() {
         assert!((across - b * m_rec * r_omega2).abs() < 1.0, "balance {b}: {across} N across");
     }
     assert!((r.delta - 0.04).abs() < 0.05 * 0.04, "{r:?}");
-    assert!((r.rpm_mean - 2500.0).abs() < 25.0, "{r:?}");
+    assert!((r.rpm_mean - 2500.0).abs() < 5.0, "{r:?}");
+    assert_eq!(r.cycles, 60);
     quotes("engine", "mean torque 11.0000 N·m", r.torque_mean);
-    quotes("engine", "δ = 0.0400", r.delta);
+    quotes("engine", "δ = 0.0402", r.delta);
     quotes("engine", "cylinder 430 N", r.shaking[0].1);
     quotes("engine", "262 N (half)", r.shaking[1].1);
     quotes("engine", "98 N (all)", r.shaking[2].1);
-    bounds("engine", "(≤ 1e-9 of the peak)", (r.torque_error / r.torque_max).max(r.load_error / peak_load));
+    bounds("engine", "(≤ 1e-7 of the peak)", (r.torque_error / r.torque_max).max(r.load_error / peak_load));
     let page = "guide/projects/engine.md";
     page_quotes(page, "ratio of 3.664", r.rp, false);
     page_quotes(page, "pressure of 39.8 bar", r.peak_pressure / 1e5, false);
@@ -384,24 +389,26 @@ fn engine_meets_its_hand_analysis() {
     page_quotes(page, "work of 138.23 J", r.work, false);
     page_quotes(page, "mean of 11.0000 N·m", r.torque_mean, false);
     page_quotes(page, "largest 149.5 N·m", r.torque_max, false);
-    page_quotes(page, "at 29° after", r.torque_max_at, false);
+    page_quotes(page, "at 28.5° after", r.torque_max_at, false);
     page_quotes(page, "least −35.2 N·m", -r.torque_min, false);
+    page_quotes(page, "at 24.5° before", -r.torque_min_at, false);
     page_quotes(page, "13.6 times the mean", r.torque_max / r.torque_mean, false);
     page_quotes(page, "up to 13 911 N", r.main_max.0, false);
     page_quotes(page, "up to 13 612 N", r.crank_pin_max.0, false);
     page_quotes(page, "up to 13 798 N", r.piston_pin_max.0, false);
     for at in [r.main_max.1, r.crank_pin_max.1, r.piston_pin_max.1] {
-        page_quotes(page, "at 16° after the firing TDC, where", at, false);
+        page_quotes(page, "at 16.5° after the firing TDC", at, false);
     }
     page_quotes(page, "up to 1 508 N", r.side_max, false);
+    page_quotes(page, "at most 554 N", r.open_valves_max, false);
     page_quotes(page, "by 148.6 J", r.energy_swing, false);
     page_quotes(page, "J = 0.0542 kg·m²", r.crank_inertia + r.reduced, false);
     page_quotes(page, "add 9.61e-5 kg·m²", r.reduced, false);
     page_quotes(page, "c = 0.04202 N·m·s", r.c_load, false);
-    page_quotes(page, "2506.3 rpm over its 60th cycle", r.rpm_mean, false);
-    page_quotes(page, "δ = 0.0400.", r.delta, false);
-    page_quotes(page, "Within 1.0e-8 N·m of torque", r.torque_error, false);
-    page_quotes(page, "and 8.3e-7 N of load", r.load_error, false);
+    page_quotes(page, "2499.8 rpm over its 60th cycle", r.rpm_mean, false);
+    page_quotes(page, "δ = 0.0402.", r.delta, false);
+    page_quotes(page, "within 1e-6 N·m of torque", r.torque_error, true);
+    page_quotes(page, "and 1e-4 N of load", r.load_error, true);
     page_quotes(page, "11.0000 N·m both", r.torque_by_hand, false);
     for (k, text) in ["| none | 430 N | 0 N |", "| half (the design) | 262 N | 168 N |", "| all | 98 N | 335 N |"].into_iter().enumerate() {
         let (_, along, across) = r.shaking[k];
