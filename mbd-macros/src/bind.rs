@@ -14,9 +14,11 @@
 //! expression once, as it shares every common subexpression.
 //!
 //! A name after `.` (a coordinate, `crank.x`) or before a single `:` (an option, a label, a
-//! parameter) is never replaced. A `let` may not take the name of a parameter, of a function or
-//! of a body (a name used with `.` or `[`), nor refer to itself, directly or through others, and
-//! must be used: an unused one would never be read, nor a mistake in it reported.
+//! parameter) is never replaced. A `let` may not take the name of a parameter, a body (a name
+//! used with `.` or `[`), a label, a loop variable, a part's parameter, a part or an instance, a
+//! mirror's axis, a function or a word of the DSL; nor refer to itself, directly or through
+//! others; and it must be used: an unused one would never be read, nor a mistake in it
+//! reported. A statement's keyword inside its value is a `;` left out.
 //! The replacement keeps the spans of the `let`'s expression, so a mistake in it is reported
 //! there.
 
@@ -26,8 +28,37 @@ use proc_macro2::{Delimiter, Group, Ident, Spacing, TokenStream, TokenTree};
 
 /// Names a `let` may not take: the expressions' own words.
 const RESERVED: &[&str] = &[
-    "t", "PI", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "ln", "pow", "abs", "sign", "min", "max", "clamp",
-    "deg", "if", "else", "ground",
+    "t",
+    "PI",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sqrt",
+    "exp",
+    "ln",
+    "pow",
+    "abs",
+    "sign",
+    "min",
+    "max",
+    "clamp",
+    "deg",
+    "if",
+    "else",
+    "ground",
+    "angle",
+    "along",
+    "friction",
+    "without",
+    "actuating",
+    "mirrored",
+    "for",
+    "in",
+    "part",
 ];
 
 /// A `let` as written: its name and its expression's tokens.
@@ -87,6 +118,18 @@ fn take_bindings(tokens: &[TokenTree]) -> syn::Result<(Vec<Binding>, Vec<TokenTr
             let end = (i + 3..tokens.len()).find(|&k| is_punct(&tokens[k], ';')).ok_or_else(|| {
                 syn::Error::new(name.span(), format!("expected `;` after the expression of `let {name}`, found the mechanism's end"))
             })?;
+            // A statement's keyword in the value: the `;` was left out, and the next statement
+            // would be swallowed.
+            let keyword = (i + 3..end).find(|&k| {
+                matches!(&tokens[k], TokenTree::Ident(w) if crate::parse::STATEMENTS.contains(&w.to_string().as_str()))
+                    && !after_dot(tokens, k)
+            });
+            if let Some(k) = keyword {
+                return Err(syn::Error::new(
+                    tokens[k].span(),
+                    format!("expected `;` after the expression of `let {name}`, found `{}`, a statement's keyword", tokens[k]),
+                ));
+            }
             if end == i + 3 {
                 return Err(syn::Error::new(tokens[end].span(), format!("expected an expression after `let {name} =`, found `;`")));
             }
@@ -233,11 +276,32 @@ fn uses(tokens: &[TokenTree]) -> Vec<String> {
     out
 }
 
-/// What else `name` is in `tokens`, if anything: a parameter (`name:` inside `params { }`) or a
-/// body (`name.` or `name[`).
+/// What else `name` is in `tokens`, if anything: a parameter (`name:` inside `params { }`), a
+/// body (`name.` or `name[`), a label (`keyword name:`), a loop variable (`for name in`), a
+/// part's parameter (`part p(name, …)`), a part or an instance (`name(`) or a mirror's axis
+/// (`mirrored name`).
 fn other_use(tokens: &[TokenTree], name: &str) -> Option<&'static str> {
     for (i, tt) in tokens.iter().enumerate() {
+        let previous = |word: &str| i > 0 && matches!(&tokens[i - 1], TokenTree::Ident(w) if w == word);
         match tt {
+            TokenTree::Ident(id) if id == name && previous("for") => return Some("a loop variable"),
+            TokenTree::Ident(id) if id == name && previous("mirrored") => return Some("a mirror's axis"),
+            TokenTree::Ident(id) if id == name && i > 0 && matches!(&tokens[i - 1], TokenTree::Ident(_)) && before_colon(tokens, i) => {
+                return Some("a label")
+            }
+            TokenTree::Ident(id)
+                if id == name && matches!(tokens.get(i + 1), Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis) =>
+            {
+                return Some("a part or an instance")
+            }
+            TokenTree::Ident(id) if id == "part" => {
+                if let Some(TokenTree::Group(g)) = tokens.get(i + 2) {
+                    let declared = g.stream().into_iter().any(|p| matches!(&p, TokenTree::Ident(p) if p == name));
+                    if declared && g.delimiter() == Delimiter::Parenthesis {
+                        return Some("a part's parameter");
+                    }
+                }
+            }
             TokenTree::Ident(id) if id == "params" => {
                 if let Some(TokenTree::Group(g)) = tokens.get(i + 1) {
                     let inner: Vec<TokenTree> = g.stream().into_iter().collect();
@@ -250,7 +314,8 @@ fn other_use(tokens: &[TokenTree], name: &str) -> Option<&'static str> {
             }
             TokenTree::Ident(id) if id == name && !after_dot(tokens, i) => {
                 let next = tokens.get(i + 1);
-                if next.is_some_and(|n| is_punct(n, '.'))
+                let range = tokens.get(i + 2).is_some_and(|n| is_punct(n, '.'));
+                if next.is_some_and(|n| is_punct(n, '.')) && !range
                     || matches!(next, Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Bracket)
                 {
                     return Some("a body");
@@ -298,8 +363,9 @@ fn is_value(tokens: &[TokenTree], i: usize) -> bool {
     !after_dot(tokens, i) && !before_colon(tokens, i)
 }
 
+/// After a single `.` (a coordinate or a point, `crank.x`), not after a range's `..`.
 fn after_dot(tokens: &[TokenTree], i: usize) -> bool {
-    i > 0 && is_punct(&tokens[i - 1], '.')
+    i > 0 && is_punct(&tokens[i - 1], '.') && !(i > 1 && is_punct(&tokens[i - 2], '.'))
 }
 
 /// `name:` but not `name::`.
@@ -338,15 +404,22 @@ mod tests {
     }
 
     #[test]
+    fn a_let_in_a_loop_bound_is_replaced() {
+        let out = substituted("let n = 3; for i in 0..n { torque m: c = 1.0; } for i in n..=n { torque k: c = 1.0; }");
+        let want = "for i in 0..(3) { torque m: c = 1.0; } for i in (3)..=(3) { torque k: c = 1.0; }";
+        assert_eq!(out, TokenStream::from_str(want).unwrap().to_string());
+    }
+
+    #[test]
     fn an_if_in_a_let_ends_at_its_semicolon() {
         let out = substituted("let p = if b.y > 0.0 { 1.0 } else { 2.0 }; torque m: b = p;");
         assert_eq!(out, TokenStream::from_str("torque m: b = (if b.y > 0.0 { 1.0 } else { 2.0 });").unwrap().to_string());
     }
 
     #[test]
-    fn options_labels_and_coordinates_of_the_same_name_are_left_alone() {
-        let out = substituted("let k = 2.0; spring k: a.P ~ b.Q { k: k, length: 1.0 }; torque m: b = c.k;");
-        assert_eq!(out, TokenStream::from_str("spring k: a.P ~ b.Q { k: (2.0), length: 1.0 }; torque m: b = c.k;").unwrap().to_string());
+    fn options_and_coordinates_of_the_same_name_are_left_alone() {
+        let out = substituted("let k = 2.0; spring coil: a.P ~ b.Q { k: k, length: 1.0 }; torque m: b = c.k;");
+        assert_eq!(out, TokenStream::from_str("spring coil: a.P ~ b.Q { k: (2.0), length: 1.0 }; torque m: b = c.k;").unwrap().to_string());
     }
 
     #[test]
@@ -363,6 +436,13 @@ mod tests {
         assert!(refused("let a = b + 1.0; let b = 2.0 * a; torque m: c = a;").contains("referring to itself (a → b → a)"));
         assert!(refused("let a = 1.0; let b = a < 2.0; torque m: c = a;").contains("expected a use of `let b`, found none"));
         assert!(refused("for i in 0..2 { let a = 1.0; }").contains("expected a `let` at the mechanism's level"));
+        assert!(refused("let a = 1.0 gravity [0.0, -9.81]; torque m: c = a;").contains("found `gravity`, a statement's keyword"));
+        assert!(refused("let gas = 1.0; force gas: b[0.0, 0.0] = [0.0, gas];").contains("found `gas`, which is also a label"));
+        assert!(refused("let i = 1.0; for i in 0..2 { torque m: c = i; }").contains("found `i`, which is also a loop variable"));
+        assert!(refused("let x0 = 1.0; part p(x0) { torque m: c = x0; }").contains("found `x0`, which is also a part's parameter"));
+        assert!(refused("let front = 1.0; corner front(x0: front);").contains("found `front`, which is also a part or an instance"));
+        assert!(refused("let y = 1.0; corner c(x0: y) mirrored y;").contains("found `y`, which is also a mirror's axis"));
+        assert!(refused("let angle = 1.0; torque m: c = angle;").contains("found `angle`, a word of the DSL"));
         assert!(refused("part p(x) { body b { mass: 1.0 } let a = x; }").contains("expected a `let` at the mechanism's level"));
     }
 
