@@ -6,7 +6,7 @@
 // Every example, compiled once in the library mbd-examples (which the tests share); each is also
 // a program of its own (`cargo run --example four_bar`).
 use mbd_examples::{
-    bump, double_a_arm, double_wishbone_3d, engine, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope,
+    bump, double_a_arm, double_wishbone_3d, elliptical, engine, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope,
     linear_models, macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank, stewart_platform,
     suspension_dynamics, swing, variable_pendulum, web_cutter, windshield_wiper,
 };
@@ -19,7 +19,7 @@ mod checks;
 type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
 
 /// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
-const ANIMATIONS: [(&str, Animate); 23] = [
+const ANIMATIONS: [(&str, Animate); 24] = [
     ("slider_crank", slider_crank::animation),
     ("four_bar", four_bar::animation),
     ("variable_pendulum", variable_pendulum::animation),
@@ -43,11 +43,12 @@ const ANIMATIONS: [(&str, Animate); 23] = [
     ("swing", swing::animation),
     ("windshield_wiper", windshield_wiper::animation),
     ("engine", engine::animation),
+    ("elliptical", elliptical::animation),
 ];
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 23] = [
+    let runs: [(&str, Run); 24] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -71,6 +72,7 @@ fn main() {
         ("swing", || swing::run(true).map(drop)),
         ("windshield_wiper", || windshield_wiper::run(true).map(drop)),
         ("engine", || engine::run(true).map(drop)),
+        ("elliptical", || elliptical::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

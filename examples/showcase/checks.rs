@@ -59,10 +59,11 @@ fn quotes(example: &str, text: &str, value: f64) {
 }
 
 /// The guide's other chapters that quote an example's figure, each held here like the table's.
-const PAGES: [(&str, &str); 6] = [
+const PAGES: [(&str, &str); 7] = [
     ("guide/linearization.md", include_str!("../../guide/linearization.md")),
     ("guide/dsl.md", include_str!("../../guide/dsl.md")),
     ("guide/performance.md", include_str!("../../guide/performance.md")),
+    ("guide/projects/elliptical.md", include_str!("../../guide/projects/elliptical.md")),
     ("guide/projects/engine.md", include_str!("../../guide/projects/engine.md")),
     ("guide/projects/swing.md", include_str!("../../guide/projects/swing.md")),
     ("guide/projects/windshield-wiper.md", include_str!("../../guide/projects/windshield-wiper.md")),
@@ -416,6 +417,51 @@ fn engine_meets_its_hand_analysis() {
         assert!(self::page(page).contains(text), "{page} should hold the row {text:?}");
         assert!(written_as(row[2], along) && written_as(row[3], across), "{page}: {text:?} against {along} N and {across} N");
     }
+}
+
+/// Nikravesh's project 15.7 (guide/projects/elliptical.md): over one stride the left pedal
+/// follows the four-bar's closed form (within 1e-8 m: the kinematic solver's tolerance; measured
+/// 3.5e-11), its stride and lift the closed form's extent on a 0.01° grid (within 1e-3 m: the
+/// samples are 1° of crank apart, and near an extreme the path is within ½ (½°)² × its
+/// curvature of it), the transmission angle its closed form at every sample (1e-8 rad) and its
+/// least the closed form's at the extremes of the pin's distance from the arm's pivot (within
+/// 1e-3 rad, the samples' spacing as above); the crank torque meets virtual power at every sample
+/// (1e-9 of the peak power: rounding of the inverse dynamics) and its mean power the brake's
+/// c ω² by hand (1e-6 relative: the kinetic and potential energies return over the stride, and
+/// the midpoint rule's mean of their smooth periodic rates is exact to rounding).
+#[test]
+fn elliptical_follows_its_closed_forms() {
+    let r = elliptical::run(false).expect("the elliptical runs");
+    assert_eq!(r.samples, 360);
+    assert!(r.path_error < 1e-8 && r.transmission_error < 1e-8, "{r:?}");
+    assert!((r.stride - r.stride_closed_form).abs() < 1e-3 && (r.lift - r.lift_closed_form).abs() < 1e-3, "{r:?}");
+    assert!((r.transmission - r.transmission_closed_form).abs() < 1e-3, "{r:?}");
+    assert!(r.power_error < 1e-9 * r.peak_power, "{r:?}");
+    assert!((r.mean_power - r.brake_power).abs() < 1e-6 * r.brake_power, "{r:?}");
+    assert!(r.torque_min > 0.0 && r.push_force > 0.0, "{r:?}");
+    quotes("elliptical", "stride 0.4682 m", r.stride);
+    quotes("elliptical", "lift 0.1254 m", r.lift);
+    quotes("elliptical", "at least 47.5°", r.transmission.to_degrees());
+    quotes("elliptical", "mean power 150.000 W", r.mean_power);
+    bounds("elliptical", "(≤ 1e-8 m)", r.path_error);
+    let page = "guide/projects/elliptical.md";
+    page_quotes(page, "stride of 0.4682 m", r.stride, false);
+    page_quotes(page, "0.4682 m by the closed form", r.stride_closed_form, false);
+    page_quotes(page, "lift of 0.1254 m", r.lift, false);
+    page_quotes(page, "0.1254 m by the closed form", r.lift_closed_form, false);
+    page_quotes(page, "through 24.8°", r.tilt.to_degrees(), false);
+    page_quotes(page, "at least 47.5°", r.transmission.to_degrees(), false);
+    page_quotes(page, "47.45° by the closed form", r.transmission_closed_form.to_degrees(), false);
+    page_quotes(page, "from 18.71 N·m", r.torque_min, false);
+    page_quotes(page, "to 29.95 N·m", r.torque_max, false);
+    page_quotes(page, "up to 188.2 W", r.peak_power, false);
+    page_quotes(page, "150.000 W both", r.mean_power, false);
+    page_quotes(page, "150.000 W both", r.brake_power, false);
+    page_quotes(page, "up to 420 N", r.push_force, false);
+    page_quotes(page, "at least 0.38 m/s", r.push_speed_min, false);
+    page_quotes(page, "within 1e-8 m", r.path_error, true);
+    page_quotes(page, "within 1e-8 rad", r.transmission_error, true);
+    page_quotes(page, "within 1e-9 of the peak power", r.power_error / r.peak_power, true);
 }
 
 /// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the

@@ -10,6 +10,9 @@ pub mod double_a_arm;
 #[path = "../../examples/double_wishbone_3d.rs"]
 pub mod double_wishbone_3d;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/elliptical.rs"]
+pub mod elliptical;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/engine.rs"]
 pub mod engine;
 #[allow(dead_code)] // `main`, and what only `main` uses
