@@ -180,8 +180,8 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     let mut mass = [[0.0; Elliptical::NV]; Elliptical::NV];
     m.add_mass_matrix(&q, 1.0, &mut mass);
     let mut failure = None;
-    // (crank angle in degrees, left pedal, right pedal, crank torque) at each sample, for the plots.
-    let mut trace: Vec<(f64, [f64; 2], [f64; 2], f64)> = Vec::with_capacity(n);
+    // Each sample's angle, pedals and torque, for the plots.
+    let mut trace: Vec<Trace> = Vec::with_capacity(n);
     // Samples at the midpoints of n equal intervals: the mean over them is the stride's.
     let times = (0..n).map(|k| period * (k as f64 + 0.5) / n as f64);
     solver.sweep(&m, &mut ws, &mut q, times, |t, q, v, vd| {
@@ -246,47 +246,57 @@ pub fn run(print: bool) -> Result<Report, Box<dyn std::error::Error>> {
     }
     (r.stride, r.lift, r.tilt) = (xs.1 - xs.0, ys.1 - ys.0, tilts.1 - tilts.0);
     if print {
-        println!(
-            "Elliptical trainer (Nikravesh's project 15.7): {:.0} strides a minute against a {:.0} W brake, {} samples of a stride",
-            m.omega / (2.0 * PI) * 60.0,
-            r.brake_power,
-            r.samples
-        );
-        println!(
-            "pedal path: stride {:.4} m (closed form {:.4} m), lift {:.4} m (closed form {:.4} m), the pedal tilting through {:.1}°; within {:.1e} m of the closed form",
-            r.stride, r.stride_closed_form, r.lift, r.lift_closed_form, r.tilt.to_degrees(), r.path_error
-        );
-        println!(
-            "transmission angle at least {:.1}° (closed form {:.2}°), within {:.1e} rad of the closed form at every sample",
-            r.transmission.to_degrees(),
-            r.transmission_closed_form.to_degrees(),
-            r.transmission_error
-        );
-        println!(
-            "crank torque {:.2} … {:.2} N·m; mean power {:.3} W (the brake's c ω² = {:.3} W), up to {:.1} W; virtual power within {:.1e} W",
-            r.torque_min, r.torque_max, r.mean_power, r.brake_power, r.peak_power, r.power_error
-        );
-        println!(
-            "the left foot pushing alone, along its pedal's path: up to {:.0} N (the pedal at least {:.2} m/s then)",
-            r.push_force, r.push_speed_min
-        );
-        for (what, source) in SOURCES {
-            println!("  {what}: {source}");
-        }
-        let dir = std::path::Path::new("target/showcase");
-        std::fs::create_dir_all(dir)?;
-        mbd::Plot::new("Elliptical trainer: the pedals' paths over a stride")
-            .labels("x (m), forward from the flywheel's axle", "y (m)")
-            .series("left pedal", trace.iter().map(|p| (p.1[0], p.1[1])))
-            .series("right pedal", trace.iter().map(|p| (p.2[0], p.2[1])))
-            .write_svg(dir.join("elliptical_path.svg"))?;
-        mbd::Plot::new("Elliptical trainer at 60 strides a minute: the crank torque the user supplies against a 150 W brake")
-            .labels("crank angle (deg)", "torque (N·m)")
-            .series("crank torque", trace.iter().map(|p| (p.0, p.3)))
-            .write_svg(dir.join("elliptical_torque.svg"))?;
-        println!("plots → target/showcase/elliptical_path.svg, elliptical_torque.svg");
+        print_report(&m, &r, &trace)?;
     }
     Ok(r)
+}
+
+/// (crank angle in degrees, left pedal, right pedal, crank torque) at one sample.
+type Trace = (f64, [f64; 2], [f64; 2], f64);
+
+/// The answers, the checks and the sources, and the designer's plots in target/showcase: the
+/// pedals' paths and the crank torque over the stride.
+fn print_report(m: &Elliptical, r: &Report, trace: &[Trace]) -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "Elliptical trainer (Nikravesh's project 15.7): {:.0} strides a minute against a {:.0} W brake, {} samples of a stride",
+        m.omega / (2.0 * PI) * 60.0,
+        r.brake_power,
+        r.samples
+    );
+    println!(
+        "pedal path: stride {:.4} m (closed form {:.4} m), lift {:.4} m (closed form {:.4} m), the pedal tilting through {:.1}°; within {:.1e} m of the closed form",
+        r.stride, r.stride_closed_form, r.lift, r.lift_closed_form, r.tilt.to_degrees(), r.path_error
+    );
+    println!(
+        "transmission angle at least {:.1}° (closed form {:.2}°), within {:.1e} rad of the closed form at every sample",
+        r.transmission.to_degrees(),
+        r.transmission_closed_form.to_degrees(),
+        r.transmission_error
+    );
+    println!(
+        "crank torque {:.2} … {:.2} N·m; mean power {:.3} W (the brake's c ω² = {:.3} W), up to {:.1} W; virtual power within {:.1e} W",
+        r.torque_min, r.torque_max, r.mean_power, r.brake_power, r.peak_power, r.power_error
+    );
+    println!(
+        "the left foot pushing alone, along its pedal's path: up to {:.0} N (the pedal at least {:.2} m/s then)",
+        r.push_force, r.push_speed_min
+    );
+    for (what, source) in SOURCES {
+        println!("  {what}: {source}");
+    }
+    let dir = std::path::Path::new("target/showcase");
+    std::fs::create_dir_all(dir)?;
+    mbd::Plot::new("Elliptical trainer: the pedals' paths over a stride")
+        .labels("x (m), forward from the flywheel's axle", "y (m)")
+        .series("left pedal", trace.iter().map(|p| (p.1[0], p.1[1])))
+        .series("right pedal", trace.iter().map(|p| (p.2[0], p.2[1])))
+        .write_svg(dir.join("elliptical_path.svg"))?;
+    mbd::Plot::new("Elliptical trainer at 60 strides a minute: the crank torque the user supplies against a 150 W brake")
+        .labels("crank angle (deg)", "torque (N·m)")
+        .series("crank torque", trace.iter().map(|p| (p.0, p.3)))
+        .write_svg(dir.join("elliptical_torque.svg"))?;
+    println!("plots → target/showcase/elliptical_path.svg, elliptical_torque.svg");
+    Ok(())
 }
 
 /// One stride, for the showcase's animation: 72 frames.
