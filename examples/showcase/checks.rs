@@ -59,12 +59,13 @@ fn quotes(example: &str, text: &str, value: f64) {
 }
 
 /// The guide's other chapters that quote an example's figure, each held here like the table's.
-const PAGES: [(&str, &str); 7] = [
+const PAGES: [(&str, &str); 8] = [
     ("guide/linearization.md", include_str!("../../guide/linearization.md")),
     ("guide/dsl.md", include_str!("../../guide/dsl.md")),
     ("guide/performance.md", include_str!("../../guide/performance.md")),
     ("guide/projects/elliptical.md", include_str!("../../guide/projects/elliptical.md")),
     ("guide/projects/engine.md", include_str!("../../guide/projects/engine.md")),
+    ("guide/projects/head-and-neck.md", include_str!("../../guide/projects/head-and-neck.md")),
     ("guide/projects/swing.md", include_str!("../../guide/projects/swing.md")),
     ("guide/projects/windshield-wiper.md", include_str!("../../guide/projects/windshield-wiper.md")),
 ];
@@ -462,6 +463,55 @@ fn elliptical_follows_its_closed_forms() {
     page_quotes(page, "within 1e-8 m", r.path_error, true);
     page_quotes(page, "within 1e-8 rad", r.transmission_error, true);
     page_quotes(page, "within 1e-9 of the peak power", r.power_error / r.peak_power, true);
+}
+
+/// Nikravesh's project 15.4 (guide/projects/head-and-neck.md): the seated posture is the hand
+/// statics' (1e-10 rad: the static solver's tolerance; measured 1.8e-14); a pulse 1e-4 as strong
+/// without gravity moves every body as the small-angle model by hand (1e-3 of the head's
+/// rotation: the neglected terms are of the order of the amplitude, 2.2e-4 rad, relative, and both
+/// integrations are far tighter; measured 1.6e-5); the upper neck's force and moment are
+/// Newton–Euler of the head by hand at every sample (1e-8 N and N·m, rounding of loads of up to
+/// 1 400 N; measured 1.3e-12). A closer restraint touches the head sooner and holds its rotation
+/// lower.
+#[test]
+fn head_neck_meets_its_hand_models() {
+    let r = head_neck::run(false).expect("the head and neck run");
+    assert!(r.posture_error < 1e-10 && r.small_error < 1e-3, "{r:?}");
+    let [none, far, mid, near] = [r.cases[0], r.cases[1], r.cases[2], r.cases[3]];
+    for c in &r.cases {
+        assert!(c.force_error < 1e-8 && c.moment_error < 1e-8, "{c:?}");
+    }
+    assert!(none.contact_at.is_none() && none.contact_force == 0.0, "{none:?}");
+    assert!(none.rotation > far.rotation && far.rotation > mid.rotation && mid.rotation > near.rotation, "{r:?}");
+    let touch = |c: head_neck::Case| c.contact_at.expect("the head touches its restraint");
+    assert!(touch(near) < touch(mid) && touch(mid) < touch(far), "{r:?}");
+    quotes("head_neck", "flexed 7.14°", -r.posture);
+    quotes("head_neck", "31.9° at 40 mm", near.rotation);
+    quotes("head_neck", "110.2° without one", none.rotation);
+    bounds("head_neck", "(≤ 1e-3 of its rotation)", r.small_error);
+    let page = "guide/projects/head-and-neck.md";
+    page_quotes(page, "flexed 7.14°", -r.posture, false);
+    page_quotes(page, "within 1e-10 rad", r.posture_error, true);
+    page_quotes(page, "within 1e-3 of", r.small_error, true);
+    page_quotes(page, "turns 2.22e-4 rad", r.small_rotation, false);
+    page_quotes(page, "within 1e-8 N", none.force_error.max(far.force_error).max(mid.force_error).max(near.force_error), true);
+    for (c, cells) in [
+        (none, ["| 110.2° |", "| 124.5 ms |", "| 24.9 |", "| 955 N |", "| 837 N |", "| 95.1 N·m |"]),
+        (far, ["| 81.0° |", "| 102.5 ms |", "| 39.5 |", "| 756 N |", "| 1 362 N |", "| 75.7 N·m |"]),
+        (mid, ["| 53.5° |", "| 95.5 ms |", "| 23.3 |", "| 250 N |", "| 460 N |", "| 27.7 N·m |"]),
+        (near, ["| 31.9° |", "| 90.5 ms |", "| 12.7 |", "| 152 N |", "| 283 N |", "| 13.2 N·m |"]),
+    ] {
+        let values = [c.rotation, 1e3 * c.rotation_at, c.nic, c.shear, c.axial, c.moment];
+        for (cell, value) in cells.iter().zip(values) {
+            page_quotes(page, cell, value, false);
+        }
+    }
+    for (c, contact, force) in
+        [(far, "| 74.6 ms |", "| 1 188 N |"), (mid, "| 63.4 ms |", "| 1 520 N |"), (near, "| 48.5 ms |", "| 1 336 N |")]
+    {
+        page_quotes(page, contact, 1e3 * touch(c), false);
+        page_quotes(page, force, c.contact_force, false);
+    }
 }
 
 /// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the

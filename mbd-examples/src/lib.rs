@@ -34,6 +34,9 @@ pub mod free_four_bar;
 #[path = "../../examples/gyroscope.rs"]
 pub mod gyroscope;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/head_neck.rs"]
+pub mod head_neck;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/linear_models.rs"]
 pub mod linear_models;
 #[allow(dead_code)] // `main`, and what only `main` uses
