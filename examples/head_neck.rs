@@ -89,12 +89,13 @@ mechanism! {
 }
 
 /// Where the numbers come from (assumptions are marked so).
-pub const SOURCES: [(&str, &str); 9] = [
+pub const SOURCES: [(&str, &str); 10] = [
     (
         "the sled's pulse: a half-sine, 16 km/h, peak 8 g (89.0 ms)",
         "the GDV/ETH/Autoliv seat test's Δv of 16 km/h and its representative pulse of 6–8 g (Langwieder and Hell, Traffic Injury Prevention 3(2), 2002); the half-sine's shape an assumption",
     ),
     ("the torso at T1 moving with the sled", "assumption: a rigid seat back, the torso held to it (no ramping, no seat-back rotation)"),
+    ("the torso 20 kg, 0.5 kg·m²", "assumption: driven, it changes only the seat's force on it"),
     ("each level's stiffness 1.5 N·m/deg (85.9 N·m/rad)", "Voo, Pintar, Yoganandan and Liu, J. Biomech. Eng. 120(6), 1998: the dynamic bending stiffness of cervical joints, 1.50 N·m/deg mean"),
     ("each level's damping 0.3 N·m·s/rad", "assumption"),
     (
