@@ -469,8 +469,21 @@ where
                 continue;
             }
         };
-        integrator.step(&system, ws, from, limit, to)?;
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
+        if let Err(failed) = integrator.step(&system, ws, from, limit, to) {
+            // A force that jumps where a switch flips (a damped cable's c l̇ as it goes taut)
+            // may leave no step across it that the error test accepts: the steps close in on
+            // the switch until they fail. A switch just ahead is crossed as a time event is.
+            let SimulationError::StepSizeTooSmall { step, .. } = failed else { return Err(failed) };
+            let Some(which) = switch_just_ahead(mechanism, from, T::from_f64(step), switches, &mut out.point) else { return Err(failed) };
+            from.q.copy_from_slice(&out.point.q);
+            from.v.copy_from_slice(&out.point.v);
+            cross(&system, integrator, ws, &mut partition, options, out.point.t, from)?;
+            stats.events += 1;
+            deliver!(from, Some(EventHit::Switch(which)));
+            at_event = true;
+            continue;
+        }
         let mut hit = first_event::<T, M, I, NQ, NV, NC, N, NS>(mechanism, integrator, &system, ws, from, to, switches, events, at_event)?;
         if let Some((_, which, located)) = hit.filter(|&(t, _, _)| t <= from.t) {
             // The change is at the step's start: an earlier landing stopped a hair short of it,
@@ -542,8 +555,19 @@ where
     I: Integrator<T, M, NQ, NV, NC, N, NS>,
 {
     integrator.restart();
-    integrator.step(system, ws, from, t, to)?;
-    Ok(to.t >= t && changed(system.mechanism, events, which, from, to))
+    match integrator.step(system, ws, from, t, to) {
+        Ok(()) => Ok(to.t >= t && changed(system.mechanism, events, which, from, to)),
+        // The landing's last step straddles the switch (located on the first step's dense
+        // output, it may lie a hair before t on the landing's path), and the force jumps there
+        // more than any step error control accepts: land halfway instead, on the old side. The
+        // steps that follow close in on the switch and cross it (`switch_just_ahead`).
+        Err(SimulationError::StepSizeTooSmall { .. }) => {
+            integrator.restart();
+            integrator.step(system, ws, from, from.t + (t - from.t) * T::from_f64(0.5), to)?;
+            Ok(false)
+        }
+        Err(failed) => Err(failed),
+    }
 }
 
 /// Corrects the step's end `to` (the integrator's own is `end`) as `options` say, unless the
@@ -636,6 +660,38 @@ where
     system.complete_in(ws.dense(), from)?;
     integrator.restart();
     Ok(())
+}
+
+/// The first of the mechanism's first `switches` switching functions that changes sign within a
+/// few steps of `step` ahead of `from`, where error control failed: `p` holds the point just past
+/// it, by a Taylor step (q ⊕ h (v + h v̇ / 2), v + h v̇), whose error over those few minimum
+/// steps is below any tolerance error control can meet.
+fn switch_just_ahead<T, M, const NQ: usize, const NV: usize, const NC: usize>(
+    mechanism: &M,
+    from: &Point<T, NQ, NV, NC>,
+    step: T,
+    switches: usize,
+    p: &mut Point<T, NQ, NV, NC>,
+) -> Option<usize>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+{
+    let mut h = step.max(T::EPSILON * from.t.abs());
+    // Up to 2¹⁰ failed steps ahead: the steps stopped within about one of the switch.
+    for _ in 0..=10 {
+        p.copy_from(from);
+        p.t = from.t + h;
+        let rate: [T; NV] = core::array::from_fn(|k| from.v[k] + h * T::from_f64(0.5) * from.vd[k]);
+        mechanism.integrate_positions(&mut p.q, &rate, h);
+        p.v = core::array::from_fn(|k| from.v[k] + h * from.vd[k]);
+        let side = |k: usize, q: &[T; NQ], v: &[T; NV], t: T| mechanism.switching_function(k, q, v, t) > T::ZERO;
+        if let Some(k) = (0..switches).find(|&k| side(k, &from.q, &from.v, from.t) != side(k, &p.q, &p.v, p.t)) {
+            return Some(k);
+        }
+        h = h + h;
+    }
+    None
 }
 
 /// The fewest steps a simulation takes between two time events (or from its start to the
