@@ -7,7 +7,7 @@
 // a program of its own (`cargo run --example four_bar`).
 use mbd_examples::{
     bump, double_a_arm, double_wishbone_3d, elliptical, engine, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope,
-    head_neck, linear_models, macpherson, pumped_pendulum, rssr, slider_crank, slider_crank_inverse, spatial_slider_crank,
+    head_neck, linear_models, macpherson, pumped_pendulum, rssr, sled_test, slider_crank, slider_crank_inverse, spatial_slider_crank,
     stewart_platform, suspension_dynamics, swing, variable_pendulum, web_cutter, windshield_wiper,
 };
 
@@ -19,7 +19,7 @@ mod checks;
 type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
 
 /// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
-const ANIMATIONS: [(&str, Animate); 25] = [
+const ANIMATIONS: [(&str, Animate); 26] = [
     ("slider_crank", slider_crank::animation),
     ("four_bar", four_bar::animation),
     ("variable_pendulum", variable_pendulum::animation),
@@ -45,11 +45,12 @@ const ANIMATIONS: [(&str, Animate); 25] = [
     ("engine", engine::animation),
     ("elliptical", elliptical::animation),
     ("head_neck", head_neck::animation),
+    ("sled_test", sled_test::animation),
 ];
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 25] = [
+    let runs: [(&str, Run); 26] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -75,6 +76,7 @@ fn main() {
         ("engine", || engine::run(true).map(drop)),
         ("elliptical", || elliptical::run(true).map(drop)),
         ("head_neck", || head_neck::run(true).map(drop)),
+        ("sled_test", || sled_test::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

@@ -49,6 +49,9 @@ pub mod pumped_pendulum;
 #[path = "../../examples/rssr.rs"]
 pub mod rssr;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/sled_test.rs"]
+pub mod sled_test;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/slider_crank.rs"]
 pub mod slider_crank;
 #[allow(dead_code)] // `main`, and what only `main` uses
