@@ -479,6 +479,11 @@ where
             from.q.copy_from_slice(&out.point.q);
             from.v.copy_from_slice(&out.point.v);
             cross(&system, integrator, ws, &mut partition, options, out.point.t, from)?;
+            // An output time within the few minimum steps crossed is given the point past them.
+            while next < times.len() && times[next] <= from.t {
+                next += 1;
+                deliver!(from, None);
+            }
             stats.events += 1;
             deliver!(from, Some(EventHit::Switch(which)));
             at_event = true;
