@@ -648,3 +648,25 @@ fn a_damped_cable_going_taut_is_crossed_at_a_tight_tolerance() {
         }
     }
 }
+
+/// A user's event at the same instant as the jump (the bob reaching the cable's length, 0.5 m
+/// below its anchor) is delivered where the run crosses it, and its `stop` ends the run there,
+/// at the free fall's end (1e-9 s, as above): at c = 1000 and rtol 1e-12 the steps fail before
+/// any crosses the jump.
+#[test]
+fn a_users_event_at_a_crossed_jump_stops_the_run() {
+    let m = TautCable { c: 1000.0 };
+    let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-12).with_atol(1e-14));
+    let mut events = [Event { function: &mut |_t: f64, q: &[f64; 3], _v: &[f64; 3]| -0.5 - q[1], stop: true }];
+    let mut last = (0.0, None);
+    let stats = Simulation::new(&m, &mut dopri)
+        .start(0.0, &m.initial_positions(), &[0.0; 3])
+        .times(&[0.1, 0.3, 0.5])
+        .events(&mut events)
+        .run(&mut TautCable::workspace(), |s| last = (s.point.t, s.event))
+        .expect("the bob falls onto its cable");
+    assert_eq!(stats.stopped_by, Some(EventHit::User(0)), "{stats:?}");
+    assert_eq!(last.1, Some(EventHit::User(0)), "the last sample is the event's");
+    let free_fall = (2.0 * 0.2 / 9.81_f64).sqrt();
+    assert!((last.0 - free_fall).abs() < 1e-9, "stopped at {} s, the free fall ends at {free_fall} s", last.0);
+}

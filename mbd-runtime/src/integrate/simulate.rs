@@ -473,19 +473,33 @@ where
         if let Err(failed) = integrator.step(&system, ws, from, limit, to) {
             // A force that jumps where a switch flips (a damped cable's c l̇ as it goes taut)
             // may leave no step across it that the error test accepts: the steps close in on
-            // the switch until they fail. A switch just ahead is crossed as a time event is.
+            // the switch until they fail. A switch or user's event just ahead (short of `limit`,
+            // so never past a time event) is crossed as a time event is, and counts as a step.
             let SimulationError::StepSizeTooSmall { step, .. } = failed else { return Err(failed) };
-            let Some(which) = switch_just_ahead(mechanism, from, T::from_f64(step), switches, &mut out.point) else { return Err(failed) };
+            let ahead = (&*from, T::from_f64(step), limit);
+            if !switch_just_ahead(mechanism, events, ahead, switches, &mut out.point) {
+                return Err(failed);
+            }
+            // `to` keeps the point before the crossing, to tell which functions changed.
+            to.copy_from(from);
             from.q.copy_from_slice(&out.point.q);
             from.v.copy_from_slice(&out.point.v);
             cross(&system, integrator, ws, &mut partition, options, out.point.t, from)?;
-            // An output time within the few minimum steps crossed is given the point past them.
+            stats.steps += 1;
+            // An output time within the few minimum steps crossed is given the point past them
+            // (its t is that point's, a few minimum steps after the output time).
             while next < times.len() && times[next] <= from.t {
                 next += 1;
                 deliver!(from, None);
             }
-            stats.events += 1;
-            deliver!(from, Some(EventHit::Switch(which)));
+            let users = events.len();
+            for which in (0..switches).map(EventHit::Switch).chain((0..users).map(EventHit::User)) {
+                if changed(mechanism, events, which, to, from) {
+                    stats.events += 1;
+                    deliver!(from, Some(which));
+                    stop_at!(which);
+                }
+            }
             at_event = true;
             continue;
         }
@@ -564,7 +578,8 @@ where
         Ok(()) => Ok(to.t >= t && changed(system.mechanism, events, which, from, to)),
         // The landing's last step straddles the switch (located on the first step's dense
         // output, it may lie a hair before t on the landing's path), and the force jumps there
-        // more than any step error control accepts: land halfway instead, on the old side. The
+        // more than any step error control accepts: step again from the start towards halfway,
+        // on the old side (a method that restarts with its last step size goes a short way). The
         // steps that follow close in on the switch and cross it (`switch_just_ahead`).
         Err(SimulationError::StepSizeTooSmall { .. }) => {
             integrator.restart();
@@ -667,36 +682,41 @@ where
     Ok(())
 }
 
-/// The first of the mechanism's first `switches` switching functions that changes sign within a
-/// few steps of `step` ahead of `from`, where error control failed: `p` holds the point just past
-/// it, by a Taylor step (q ⊕ h (v + h v̇ / 2), v + h v̇), whose error over those few minimum
-/// steps is below any tolerance error control can meet.
+/// Whether one of the mechanism's first `switches` switching functions, or of the user's
+/// `events`, changes sign within a few steps of `step` ahead of `from` (and before `limit`),
+/// where error control failed: `p` then holds the point just past it, by a Taylor step
+/// (q ⊕ h (v + h v̇ / 2), v + h v̇), whose error over those few minimum steps is below any
+/// tolerance error control can meet.
 fn switch_just_ahead<T, M, const NQ: usize, const NV: usize, const NC: usize>(
     mechanism: &M,
-    from: &Point<T, NQ, NV, NC>,
-    step: T,
+    events: &mut [Event<'_, T, NQ, NV>],
+    (from, step, limit): (&Point<T, NQ, NV, NC>, T, T),
     switches: usize,
     p: &mut Point<T, NQ, NV, NC>,
-) -> Option<usize>
+) -> bool
 where
     T: Real,
     M: ForwardDynamics<T, NQ, NV, NC>,
 {
     let mut h = step.max(T::EPSILON * from.t.abs());
+    let users = events.len();
     // Up to 2¹⁰ failed steps ahead: the steps stopped within about one of the switch.
     for _ in 0..=10 {
+        if from.t + h > limit {
+            return false;
+        }
         p.copy_from(from);
         p.t = from.t + h;
         let rate: [T; NV] = core::array::from_fn(|k| from.v[k] + h * T::from_f64(0.5) * from.vd[k]);
         mechanism.integrate_positions(&mut p.q, &rate, h);
         p.v = core::array::from_fn(|k| from.v[k] + h * from.vd[k]);
-        let side = |k: usize, q: &[T; NQ], v: &[T; NV], t: T| mechanism.switching_function(k, q, v, t) > T::ZERO;
-        if let Some(k) = (0..switches).find(|&k| side(k, &from.q, &from.v, from.t) != side(k, &p.q, &p.v, p.t)) {
-            return Some(k);
+        if (0..switches).map(EventHit::Switch).chain((0..users).map(EventHit::User)).any(|which| changed(mechanism, events, which, from, p))
+        {
+            return true;
         }
         h = h + h;
     }
-    None
+    false
 }
 
 /// The fewest steps a simulation takes between two time events (or from its start to the
