@@ -11,7 +11,8 @@
 //! restraint is a contact on the seat, a plane `backset` behind the back of the head. The
 //! occupant sits at rest in the passive neck's static posture before the pulse.
 //!
-//! **The checks** (each independent of the simulation's equations):
+//! **The checks** (each written by hand from the model's data, not from the generated equations;
+//! the last takes the simulated accelerations and checks the loads against them):
 //!
 //! - the static posture against the chain's moment balance written by hand (at each level, the
 //!   spring's torque equals the moment of the weight above it), solved by Newton's method on the
@@ -41,13 +42,15 @@ mechanism! {
             rest_x: -0.15, k_rest: 3.0e4, c_rest: 1.5e4
         }
         gravity [0.0, -9.81];
-        // The half-sine pulse: its duration, and the time into it.
+        // The half-sine pulse: its duration, and the time into it. Both kinks at its end take,
+        // at the instant itself, the branch before it (a tie takes the first argument's), so the
+        // driver's velocity there is the pulse's, not the sum of both sides'.
         let pulse = PI * dv / (2.0 * peak);
         let into = min(t, pulse);
         // The torso with T1 at its origin, on the seat: it slides with the sled.
         body t1 { mass: 20.0, inertia: 0.5, at: [0.0, 0.0, 0.0] }
         translational seat: ground[0.0, 0.0] along [1.0, 0.0] ~ t1[0.0, 0.0] along [1.0, 0.0];
-        drive sled: t1.x = peak * pulse / PI * (into - pulse / PI * sin(PI * into / pulse)) + dv * max(t - pulse, 0.0);
+        drive sled: t1.x = peak * pulse / PI * (into - pulse / PI * sin(PI * into / pulse)) + dv * max(0.0, t - pulse);
         // C7 … C1, 18 mm a level, each with its centre of mass midway between its joints.
         for n in 1..=7 {
             body c[n] { mass: 0.15, inertia: 2.4e-4, at: [0.0, 0.018 * (7 - n) + 0.009, 0.0] }

@@ -13,7 +13,8 @@
 //! to the buckle. The dummy sits at rest in its seat (statics) with the belts snug before the
 //! pulse.
 //!
-//! **The checks** (each independent of the simulation's equations):
+//! **The checks** (each written by hand from the model's data, not from the generated equations;
+//! the last takes the simulated accelerations and checks the loads against them):
 //!
 //! - the seated posture against the dummy's force balance by hand: its weight equals the seat's
 //!   contact forces, each written by hand from its law;
@@ -37,13 +38,15 @@ mechanism! {
             lap_length: 0.3, upper_length: 0.26, lower_length: 0.46, k_belt: 4.0e4, c_belt: 800.0
         }
         gravity [0.0, -9.81];
-        // The half-sine pulse: its duration, and the time into it.
+        // The half-sine pulse: its duration, and the time into it. Both kinks at its end take,
+        // at the instant itself, the branch before it (a tie takes the first argument's), so the
+        // driver's velocity there is the pulse's, not the sum of both sides'.
         let pulse = PI * dv / (2.0 * peak);
         let into = min(t, pulse);
         // The sled on its rail, pushed backwards by the pulse.
         body sled { mass: 200.0, inertia: 20.0, at: [0.0, 0.0, 0.0] }
         translational rail: ground[0.0, 0.0] along [1.0, 0.0] ~ sled[0.0, 0.0] along [1.0, 0.0];
-        drive crash: sled.x = -(peak * pulse / PI * (into - pulse / PI * sin(PI * into / pulse)) + dv * max(t - pulse, 0.0));
+        drive crash: sled.x = -(peak * pulse / PI * (into - pulse / PI * sin(PI * into / pulse)) + dv * max(0.0, t - pulse));
         // The dummy, from the H-point at the sled's origin: the pelvis with the thighs and the
         // lower legs, the torso with the arms reclined 25°, the head with the neck.
         body pelvis { mass: 45.9, inertia: 1.6, at: [0.12, 0.0, 0.0] }

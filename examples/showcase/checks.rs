@@ -519,14 +519,16 @@ fn head_neck_meets_its_hand_models() {
 /// seat's contact forces by hand, force and moment (1e-8 N and N·m: the static solver balances to
 /// 1e-9; measured 1e-12); in the crash Σ m a is the external forces by hand and Σ (r × m a + J α)
 /// their moment at every sample (1e-9 of the peak force, and of it times 2.5 m, the reach of the
-/// moment arms as the sled moves 2 m: rounding; measured 2e-15 and 4e-13 relative). The cushion
-/// never lets go during the pulse; the lap belt carries the most.
+/// moment arms as the sled moves 2 m: rounding; measured 5e-15 and 6e-13 relative). The cushion
+/// never unloads below its seated force during the pulse (to 0.1 %); the lap belt carries the
+/// most.
 #[test]
 fn sled_test_balances_by_hand() {
     let r = sled_test::run(false).expect("the sled test runs");
     assert!(r.seated_force_error < 1e-8 && r.seated_moment_error < 1e-8, "{r:?}");
     assert!(r.force_error < 1e-9 * r.force_peak && r.moment_error < 1e-9 * r.force_peak * 2.5, "{r:?}");
-    assert!(r.cushion_least > 0.0 && r.lap.0 > r.shoulder_upper.0 && r.shoulder_upper.0 > r.shoulder_lower.0, "{r:?}");
+    assert!(r.cushion_least > 0.999 * r.seated_cushion, "the cushion unloads: {r:?}");
+    assert!(r.lap.0 > r.shoulder_upper.0 && r.shoulder_upper.0 > r.shoulder_lower.0, "{r:?}");
     assert!(r.chest_clip <= r.chest_peak.0 && r.hic15 > 0.0, "{r:?}");
     quotes("sled_test", "chest 28.0 g", r.chest_peak.0);
     quotes("sled_test", "HIC₁₅ 117", r.hic15);
@@ -552,7 +554,7 @@ fn sled_test_balances_by_hand() {
         page_quotes(page, time, 1e3 * at, false);
     }
     page_quotes(page, "within 1e-9 of the peak force", r.force_error / r.force_peak, true);
-    page_quotes(page, "peak force (46 kN)", r.force_peak / 1e3, false);
+    page_quotes(page, "peak force (22 kN)", r.force_peak / 1e3, false);
 }
 
 /// Both suspensions come to rest on their tyres, ride the 30 mm bump with a travel of the
