@@ -12,6 +12,8 @@
 //! step is taken again from its start to land on that instant, so that no step straddles a
 //! switch and the force's kink is not smeared over a step ([`Simulation::events`]).
 
+use core::ops::ControlFlow;
+
 use super::{hermite, Energy, Integrator, Point, Sample, SimulationError, System};
 use crate::integrate::branch::{BranchWatch, SingularPassage};
 use crate::integrate::partition::Partition;
@@ -380,7 +382,7 @@ fn integrate<T, M, I, R, const NQ: usize, const NV: usize, const NC: usize, cons
     (t0, q0, v0): (T, &[T; NQ], &[T; NV]),
     ws: &mut WorkArrays<T, NV, NC, N, NS>,
     [from, to, end]: [&mut Point<T, NQ, NV, NC>; 3],
-    mut output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
+    output: impl FnMut(&Sample<T, NQ, NV, NC>) -> R,
 ) -> Result<Statistics, SimulationError>
 where
     T: Real,
@@ -401,104 +403,60 @@ where
     system.complete_in(ws.dense(), from)?;
     to.copy_from(from);
     integrator.restart();
-    let mut stats = Statistics::default();
     let watching = NC > 0 && options.watch_singular && !integrator.holds_constraints() && matches!(options.correction, Correction::None);
     let mut watch = BranchWatch::new(t0.to_f64());
     if watching {
         watch.observe(mechanism, ws.dense(), t0, &from.q, &from.v, &options.dynamics);
     }
+    let out = Sample { point: Point::zero(), energy: energy(mechanism, ws, from), event: None };
+    let mut outlet = Outlet { out, stats: Statistics::default(), output };
+    outlet.out.point.copy_from(from);
     // Ends the run with what it saw.
     macro_rules! finish {
         () => {{
-            stats.singular = watch.finish();
-            stats.stiffness = integrator.stiffness();
-            return Ok(stats);
+            outlet.stats.singular = watch.finish();
+            outlet.stats.stiffness = integrator.stiffness();
+            return Ok(outlet.stats);
         }};
     }
-    // The one sample handed to the callback, rewritten for each output (a sample is a point:
-    // O(NQ + NV + NC) scalars, made once rather than once per place that delivers one).
-    let mut out = Sample { point: Point::zero(), energy: energy(mechanism, ws, from), event: None };
-    out.point.copy_from(from);
-    // Hands the point `$p` (at `$event`, if any) to the callback as a sample; ends the run if
-    // it says so.
+    // Hands a point to the callback (`Outlet::deliver`); ends the run where that ends it.
     macro_rules! deliver {
         ($p:expr, $event:expr) => {
-            out.point.copy_from($p);
-            deliver!($event);
-        };
-        ($event:expr) => {
-            out.energy = energy(mechanism, ws, &out.point);
-            out.event = $event;
-            stats.samples += 1;
-            if output(&out).stops() {
-                stats.stopped_by_output = true;
+            if outlet.deliver((mechanism, ws), events, $p, $event).is_break() {
                 finish!();
             }
         };
     }
-    // Ends the run where event `which` is a user's event that stops it.
-    macro_rules! stop_at {
-        ($which:expr) => {
-            if matches!($which, EventHit::User(k) if events[k].stop) {
-                stats.stopped_by = Some($which);
-                finish!();
-            }
-        };
-    }
-    let Some(&t_end) = times.last() else { return Ok(stats) };
+    let Some(&t_end) = times.last() else { return Ok(outlet.stats) };
     let mut next = 0;
     // Whether `from` is an event's instant: a change within rounding of it is then that event's
     // (or one simultaneous with it), not a new one.
     let mut at_event = false;
     while next < times.len() && times[next] <= from.t {
         next += 1;
-        deliver!(from, None);
+        deliver!(Some(&*from), None);
     }
     let mut time_events = TimeEvents::new(options.locate_switches && M::TIME_SWITCHES > 0);
     while next < times.len() {
-        if stats.steps >= options.max_steps {
-            return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: stats.steps });
+        if outlet.stats.steps >= options.max_steps {
+            return Err(SimulationError::TooManySteps { t: from.t.to_f64(), steps: outlet.stats.steps });
         }
         let limit = match time_events.ahead(mechanism, from, &times[next..], t_end) {
             Ahead::StepTo(limit) => limit,
             Ahead::Cross { at, which } => {
                 cross(&system, integrator, ws, &mut partition, options, at, from)?;
-                stats.events += 1;
-                deliver!(from, Some(EventHit::Switch(which)));
+                outlet.stats.events += 1;
+                deliver!(Some(&*from), Some(EventHit::Switch(which)));
                 at_event = true;
                 continue;
             }
         };
         let switches = if options.locate_switches { M::SWITCH_NAMES.len() } else { 0 };
         if let Err(failed) = integrator.step(&system, ws, from, limit, to) {
-            // A force that jumps where a switch flips (a damped cable's c l̇ as it goes taut)
-            // may leave no step across it that the error test accepts: the steps close in on
-            // the switch until they fail. A switch or user's event just ahead (short of `limit`,
-            // so never past a time event) is crossed as a time event is, and counts as a step.
-            let SimulationError::StepSizeTooSmall { step, .. } = failed else { return Err(failed) };
-            let ahead = (&*from, T::from_f64(step), limit);
-            if !switch_just_ahead(mechanism, events, ahead, switches, &mut out.point) {
-                return Err(failed);
-            }
-            // `to` keeps the point before the crossing, to tell which functions changed.
-            to.copy_from(from);
-            from.q.copy_from_slice(&out.point.q);
-            from.v.copy_from_slice(&out.point.v);
-            cross(&system, integrator, ws, &mut partition, options, out.point.t, from)?;
-            stats.steps += 1;
-            // An output time within the few minimum steps crossed is given the point past them
-            // (its t is that point's, a few minimum steps after the output time).
-            while next < times.len() && times[next] <= from.t {
-                next += 1;
-                deliver!(from, None);
-            }
-            let users = events.len();
-            for which in (0..switches).map(EventHit::Switch).chain((0..users).map(EventHit::User)) {
-                if changed(mechanism, events, which, to, from) {
-                    stats.events += 1;
-                    deliver!(from, Some(which));
-                    stop_at!(which);
-                }
+            let stepping = (&system, &mut *integrator, &mut *ws, &mut partition, options);
+            let crossed = cross_jump(stepping, events, (failed, limit, switches), (&mut *from, &mut *to), (times, &mut next), &mut outlet)?;
+            if crossed.is_break() {
+                finish!();
             }
             at_event = true;
             continue;
@@ -509,18 +467,17 @@ where
             // so `from` is its instant. The run goes on from just past it, on its new side, and
             // delivers that point; the step is taken again from there.
             let limit = times[next].min(to.t);
-            onto_new_side(&system, integrator, ws, events, which, (from, to), located, limit, &mut out.point)?;
-            stats.events += 1;
-            deliver!(from, Some(which));
-            at_event = true;
+            onto_new_side(&system, integrator, ws, events, which, (from, to), located, limit, &mut outlet.out.point)?;
+            outlet.stats.events += 1;
             integrator.restart();
-            stop_at!(which);
+            deliver!(Some(&*from), Some(which));
+            at_event = true;
             continue;
         }
         if let Some((t, which, _)) = hit {
             hit = land(&system, integrator, ws, events, (t, which), from, to)?.then_some((t, which, t));
         }
-        stats.steps += 1;
+        outlet.stats.steps += 1;
         // The integrator's own end point, for its dense output; `to` becomes the corrected one.
         end.copy_from(to);
         if !matches!(options.correction, Correction::None) {
@@ -536,22 +493,125 @@ where
         while next < times.len() && times[next] <= step_end {
             next += 1;
             if times[next - 1] == step_end {
-                deliver!(to, None);
+                deliver!(Some(&*to), None);
             } else {
                 // The interpolated point, written in the sample's place.
-                interpolated(&system, integrator, ws, (from, end), times[next - 1], &mut out.point)?;
-                deliver!(None);
+                interpolated(&system, integrator, ws, (from, end), times[next - 1], &mut outlet.out.point)?;
+                deliver!(None, None);
             }
         }
         at_event = hit.is_some();
         if let Some((_, which, _)) = hit {
-            stats.events += 1;
-            deliver!(to, Some(which));
-            stop_at!(which);
+            outlet.stats.events += 1;
+            deliver!(Some(&*to), Some(which));
         }
         from.copy_from(to);
     }
     finish!()
+}
+
+/// What a run hands its callback: one sample, rewritten for each output (a sample is a point,
+/// O(NQ + NV + NC) scalars, made once rather than once per place that delivers one), and the
+/// statistics that count them.
+struct Outlet<T, F, const NQ: usize, const NV: usize, const NC: usize> {
+    out: Sample<T, NQ, NV, NC>,
+    stats: Statistics,
+    output: F,
+}
+
+impl<T: Real, F, const NQ: usize, const NV: usize, const NC: usize> Outlet<T, F, NQ, NV, NC> {
+    /// Hands `p` (`None`: the point already in the sample), at `event` if any, to the callback:
+    /// `Break` where the run ends there, the callback saying so or `event` a user's event that
+    /// stops the run.
+    fn deliver<M, R, const N: usize, const NS: usize>(
+        &mut self,
+        (mechanism, ws): (&M, &mut WorkArrays<T, NV, NC, N, NS>),
+        events: &[Event<'_, T, NQ, NV>],
+        p: Option<&Point<T, NQ, NV, NC>>,
+        event: Option<EventHit>,
+    ) -> ControlFlow<()>
+    where
+        M: ForwardDynamics<T, NQ, NV, NC>,
+        R: Flow,
+        F: FnMut(&Sample<T, NQ, NV, NC>) -> R,
+    {
+        if let Some(p) = p {
+            self.out.point.copy_from(p);
+        }
+        self.out.energy = energy(mechanism, ws, &self.out.point);
+        self.out.event = event;
+        self.stats.samples += 1;
+        if (self.output)(&self.out).stops() {
+            self.stats.stopped_by_output = true;
+            return ControlFlow::Break(());
+        }
+        match event {
+            Some(which @ EventHit::User(k)) if events[k].stop => {
+                self.stats.stopped_by = Some(which);
+                ControlFlow::Break(())
+            }
+            _ => ControlFlow::Continue(()),
+        }
+    }
+}
+
+/// After a step from `from` failed (`failed`): a force that jumps where a switch flips (a damped
+/// cable's c l̇ as it goes taut) may leave no step across it that the error test accepts, the
+/// steps closing in on the switch until they fail. A switch or user's event just ahead (short
+/// of `limit`, so never past a time event) is crossed as a time event is, and counts as a step:
+/// `from` becomes the point past it, the output times within the sliver crossed and every
+/// function that changed are delivered (`Break` where that ends the run). `Err(failed)` where
+/// none is just ahead.
+fn cross_jump<T, M, I, F, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
+    (system, integrator, ws, partition, options): (
+        &System<'_, M, T>,
+        &mut I,
+        &mut WorkArrays<T, NV, NC, N, NS>,
+        &mut Partition<NV, NC>,
+        &SimulationOptions<T>,
+    ),
+    events: &mut [Event<'_, T, NQ, NV>],
+    (failed, limit, switches): (SimulationError, T, usize),
+    (from, to): (&mut Point<T, NQ, NV, NC>, &mut Point<T, NQ, NV, NC>),
+    (times, next): (&[T], &mut usize),
+    outlet: &mut Outlet<T, F, NQ, NV, NC>,
+) -> Result<ControlFlow<()>, SimulationError>
+where
+    T: Real,
+    M: ForwardDynamics<T, NQ, NV, NC>,
+    I: Integrator<T, M, NQ, NV, NC, N, NS>,
+    R: Flow,
+    F: FnMut(&Sample<T, NQ, NV, NC>) -> R,
+{
+    let SimulationError::StepSizeTooSmall { step, .. } = failed else { return Err(failed) };
+    let mechanism = system.mechanism;
+    if !switch_just_ahead(mechanism, events, (&*from, T::from_f64(step), limit), switches, &mut outlet.out.point) {
+        return Err(failed);
+    }
+    // `to` keeps the point before the crossing, to tell which functions changed.
+    to.copy_from(from);
+    from.q.copy_from_slice(&outlet.out.point.q);
+    from.v.copy_from_slice(&outlet.out.point.v);
+    cross(system, integrator, ws, partition, options, outlet.out.point.t, from)?;
+    outlet.stats.steps += 1;
+    // An output time within the few minimum steps crossed is given the point past them (its t
+    // is that point's, a few minimum steps after the output time).
+    while *next < times.len() && times[*next] <= from.t {
+        *next += 1;
+        if outlet.deliver((mechanism, &mut *ws), events, Some(from), None).is_break() {
+            return Ok(ControlFlow::Break(()));
+        }
+    }
+    let users = events.len();
+    for which in (0..switches).map(EventHit::Switch).chain((0..users).map(EventHit::User)) {
+        if changed(mechanism, events, which, to, from) {
+            outlet.stats.events += 1;
+            if outlet.deliver((mechanism, &mut *ws), events, Some(from), Some(which)).is_break() {
+                return Ok(ControlFlow::Break(()));
+            }
+        }
+    }
+    Ok(ControlFlow::Continue(()))
 }
 
 /// The step from `from` straddles event `which` at `t`, where the forces (or the user's event)
