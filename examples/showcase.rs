@@ -7,8 +7,8 @@
 // a program of its own (`cargo run --example four_bar`).
 use mbd_examples::{
     bump, double_a_arm, double_wishbone_3d, elliptical, engine, excavator, filmstrip, flywheel_engine, four_bar, free_four_bar, gyroscope,
-    head_neck, linear_models, macpherson, pumped_pendulum, rssr, sled_test, slider_crank, slider_crank_inverse, spatial_slider_crank,
-    stewart_platform, suspension_dynamics, swing, variable_pendulum, web_cutter, windshield_wiper,
+    head_neck, linear_models, macpherson, mountain_bike, pumped_pendulum, rssr, sled_test, slider_crank, slider_crank_inverse,
+    spatial_slider_crank, stewart_platform, suspension_dynamics, swing, variable_pendulum, web_cutter, windshield_wiper,
 };
 
 #[cfg(test)]
@@ -19,7 +19,7 @@ mod checks;
 type Animate = fn() -> Result<mbd::Animation, Box<dyn std::error::Error>>;
 
 /// The animation of each example's main mechanism (checked by `checks::every_example_animates`).
-const ANIMATIONS: [(&str, Animate); 26] = [
+const ANIMATIONS: [(&str, Animate); 27] = [
     ("slider_crank", slider_crank::animation),
     ("four_bar", four_bar::animation),
     ("variable_pendulum", variable_pendulum::animation),
@@ -46,11 +46,12 @@ const ANIMATIONS: [(&str, Animate); 26] = [
     ("elliptical", elliptical::animation),
     ("head_neck", head_neck::animation),
     ("sled_test", sled_test::animation),
+    ("mountain_bike", mountain_bike::animation),
 ];
 
 fn main() {
     type Run = fn() -> Result<(), Box<dyn std::error::Error>>;
-    let runs: [(&str, Run); 26] = [
+    let runs: [(&str, Run); 27] = [
         ("slider_crank", || Ok(slider_crank::run(true).map(drop)?)),
         ("four_bar", || Ok(four_bar::run(true).map(drop)?)),
         ("variable_pendulum", || Ok(variable_pendulum::run(true).map(drop)?)),
@@ -77,6 +78,7 @@ fn main() {
         ("elliptical", || elliptical::run(true).map(drop)),
         ("head_neck", || head_neck::run(true).map(drop)),
         ("sled_test", || sled_test::run(true).map(drop)),
+        ("mountain_bike", || mountain_bike::run(true).map(drop)),
     ];
     let mut failed = 0;
     for (name, run) in runs {

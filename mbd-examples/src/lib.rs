@@ -43,6 +43,9 @@ pub mod linear_models;
 #[path = "../../examples/macpherson.rs"]
 pub mod macpherson;
 #[allow(dead_code)] // `main`, and what only `main` uses
+#[path = "../../examples/mountain_bike.rs"]
+pub mod mountain_bike;
+#[allow(dead_code)] // `main`, and what only `main` uses
 #[path = "../../examples/pumped_pendulum.rs"]
 pub mod pumped_pendulum;
 #[allow(dead_code)] // `main`, and what only `main` uses
