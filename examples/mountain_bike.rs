@@ -16,10 +16,12 @@
 //!
 //! **The checks** (each written by hand from the model's data, not from the generated equations):
 //!
-//! - the rest state's shock force, with the rider sitting and with the rider pedalling at the
+//! - the rest states' shock force, with the rider sitting and with the rider pedalling at the
 //!   climb's mean torque, against the free bodies by hand: the whole bike's moment balance gives
 //!   the rear tyre's load, the swingarm's moment balance about the main pivot the shock's force;
-//! - the bob's mean against the static squat by hand at the mean torque;
+//! - the bike's speed (its centre of mass's) pedalling, against its closed form: along the trail
+//!   only the drive and the weight act;
+//! - the bob's mean against the rest state pedalling at the mean torque (the first check's);
 //! - the bump against the energy balance by hand: the kinetic and potential energy (gravity,
 //!   shock and fork springs) change by the tyres' work less the dampers' dissipation, each
 //!   integrated over the samples from its element's law written by hand.
@@ -78,9 +80,10 @@ mechanism! {
             road: bump_height * sin(PI * clamp(front.x - bump_x, 0.0, bump_length) / bump_length)^2
         };
         // Pedalling: the chain's tension from the crank torque; its top run from the cog's top
-        // (above the rear axle) to the chainring's (above the bottom bracket). On the swingarm at
-        // the axle: the chain's pull and the drive at the ground, T r_cog / radius; on the frame
-        // at the chainring's top: the chain's pull back.
+        // (above the rear axle) to the chainring's (above the bottom bracket: within a mm of the
+        // true tangent, the run sloping 6.6°). On the swingarm at the axle: the chain's pull and
+        // the drive at the ground, T r_cog / radius; on the frame at the chainring's top: the
+        // chain's pull back.
         let tension = tau_mean * (1.0 - ripple * cos(2.0 * cadence * t)) / r_ring;
         let run_x = frame.x - 0.166 * cos(frame.phi) + (0.259 - r_ring) * sin(frame.phi) - rear.x;
         let run_y = frame.y - 0.166 * sin(frame.phi) - (0.259 - r_ring) * cos(frame.phi) - rear.y - r_cog;
@@ -127,7 +130,7 @@ pub const SOURCES: [(&str, &str); 12] = [
         "ISO 606: a bicycle chain's pitch of 12.7 mm; r = p / (2 sin(π/N)); the gear an assumption (a low gear for a climb)",
     ),
     (
-        "pedalling at 80 rpm, the crank torque τ (1 − cos 2ωt): two peaks a revolution, none at the dead centres",
+        "pedalling at 80 rpm, the crank torque τ (1 − cos 2ωt): two peaks a revolution, zero at the dead centres",
         "assumption: the torque's shape; its mean drives the bike up the grade at the gear's speed",
     ),
     ("the climb: a 10 % grade", "assumption"),
@@ -248,18 +251,22 @@ pub struct Pivot {
     pub leverage: f64,
     pub anti_squat: f64,
     /// The shock's sag (mm): seated at rest on the flat, and pedalling up the climb at its mean
-    /// torque (what the bob oscillates about).
+    /// torque (what the bob oscillates about); the squat (mm of shock stroke), the latter less
+    /// the sag at rest on the flat under the climb's normal weight.
     pub sag: f64,
     pub sag_pedalling: f64,
+    pub squat: f64,
     /// The largest difference (N) of the shock's force and the rear tyre's load, each by its
-    /// element's law, from the free bodies by hand, over both rest states.
+    /// element's law, from the free bodies by hand, over the three rest states.
     pub rest_error: f64,
     /// Pedalling: the shock stroke's bob, peak to peak, over the last 1.5 s of 4 s (mm), and its
-    /// mean (mm of sag), against the static squat by hand.
+    /// mean (mm of sag), against the rest state pedalling at the mean torque.
     pub bob: f64,
     pub bob_mean: f64,
-    /// The speed's swing over a pedal stroke, peak to peak (m/s).
+    /// The bike's speed (its centre of mass's) swing over a pedal stroke, peak to peak, g sin α / ω
+    /// (m/s), and the largest difference of the simulated speed from that closed form (m/s).
     pub speed_swing: f64,
+    pub speed_error: f64,
 }
 
 /// What the run measured.
@@ -346,14 +353,16 @@ type Stroke = Vec<(f64, f64)>;
 fn climb(height: f64, trace: bool) -> Result<(Pivot, Stroke), Box<dyn std::error::Error>> {
     // A smooth climb: no bump.
     let mut m = MountainBike { bump_height: 0.0, ..bike(height) };
-    let flat = rest(&m)?.0;
+    let (flat, flat_error) = rest(&m)?;
     let sag = 1e3 * (EYE_TO_EYE - shock_length(&m, &flat));
     let (leverage, anti_squat) = leverage_and_anti_squat(&m, &flat);
-    let (_, flat_error) = rest(&m)?;
     // Up the climb at the mean torque, the drive balancing the weight's pull down the slope: the
-    // hold carries nothing. (As the weight's pull acts at the centre of mass, this is also the
-    // bike accelerating at g sin α on the flat, with its cos α less weight.)
-    m.slope = GRADE.atan();
+    // hold carries nothing. The weight's pull acts at the centre of mass, as the inertial force
+    // of an acceleration at g sin α on the flat would: the squat is this state's sag less the
+    // sag at rest on the flat under the climb's normal weight, g cos α.
+    let slope = GRADE.atan();
+    let (unloaded, unloaded_error) = rest(&MountainBike { g: m.g * slope.cos(), ..m })?;
+    m.slope = slope;
     m.tau_mean = climbing_torque(&m, GRADE);
     let (pedalling, pedalling_error) = rest(&m)?;
     let sag_pedalling = 1e3 * (EYE_TO_EYE - shock_length(&m, &pedalling));
@@ -363,29 +372,34 @@ fn climb(height: f64, trace: bool) -> Result<(Pivot, Stroke), Box<dyn std::error
     let riding = Riding::from_params(m.params());
     let times: Vec<f64> = (1..=800).map(|k| 0.005 * k as f64).collect();
     let mut strokes = Vec::new();
-    let mut speeds = Vec::new();
+    // Along the trail only the drive F̄ (1 − cos 2ωt) and the weight's pull M g sin α = F̄ act on
+    // the whole bike: its centre of mass moves at v₀ − g sin α / (2ω) sin 2ωt.
+    let swing = m.g * slope.sin() / m.cadence;
+    let mut speed_error = 0.0f64;
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-8).with_atol(1e-11));
     Simulation::new(&riding, &mut dopri).start(0.0, &pedalling, &rolling(speed)).times(&times).run(&mut Riding::workspace(), |s| {
         let (t, q) = (s.point.t, &s.point.q);
         strokes.push((t, 1e3 * (EYE_TO_EYE - shock_length(&m, q))));
-        if t >= 2.5 {
-            speeds.push(MountainBike::FRAME.velocity(&s.point.v).x);
-        }
+        let momentum: f64 = BODIES.iter().map(|(b, mass, _)| mass * b.velocity(&s.point.v).x).sum();
+        let closed_form = speed - swing / 2.0 * (2.0 * m.cadence * t).sin();
+        speed_error = speed_error.max((momentum / total_mass() - closed_form).abs());
     })?;
-    let late: Vec<f64> = strokes.iter().filter(|p| p.0 >= 2.5).map(|p| p.1).collect();
+    // The last 1.5 s: four pedal strokes, each phase once.
+    let late: Vec<f64> = strokes.iter().filter(|p| p.0 > 2.5).map(|p| p.1).collect();
     let (low, high) = late.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
-    let (slow, fast) = speeds.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
     let p = Pivot {
         height,
         k_shock: m.k_shock,
         leverage,
         anti_squat,
         sag,
+        squat: 1e3 * (shock_length(&m, &unloaded) - shock_length(&m, &pedalling)),
         sag_pedalling,
-        rest_error: flat_error.max(pedalling_error),
+        rest_error: flat_error.max(unloaded_error).max(pedalling_error),
         bob: high - low,
         bob_mean: late.iter().sum::<f64>() / late.len() as f64,
-        speed_swing: fast - slow,
+        speed_swing: swing,
+        speed_error,
     };
     Ok((p, if trace { strokes } else { Vec::new() }))
 }
@@ -394,9 +408,10 @@ fn climb(height: f64, trace: bool) -> Result<(Pivot, Stroke), Box<dyn std::error
 /// fork stroke in mm).
 type Trace = Vec<(f64, f64, f64)>;
 
-/// The energy by hand at a sample: kinetic, gravity's and the two springs' (J); and the power
-/// the tyres put in less what the dampers dissipate (W), each from its element's law.
-fn energy_by_hand(m: &MountainBike, q: &Q, v: &Q) -> (f64, f64) {
+/// The energy by hand at a sample: kinetic, gravity's and the two springs' (J); the power the
+/// tyres put in less what the dampers dissipate (W), and each tyre's power apart (rear, front),
+/// each from its element's law. Coasting: the chain, with no torque, does no work.
+fn energy_by_hand(m: &MountainBike, q: &Q, v: &Q) -> (f64, f64, [f64; 2]) {
     let gravity = [-m.g * m.slope.sin(), -m.g * m.slope.cos()];
     let mut energy = 0.0;
     for (body, mass, inertia) in BODIES {
@@ -435,38 +450,47 @@ fn energy_by_hand(m: &MountainBike, q: &Q, v: &Q) -> (f64, f64) {
             0.0
         }
     };
-    let mut power = -shock.1 - fork.1;
-    for body in [MountainBike::REAR, MountainBike::FRONT] {
+    let tyres = [MountainBike::REAR, MountainBike::FRONT].map(|body| {
         let (x, y, u) = (body.x(q), body.y(q), body.velocity(v));
         let (delta, rate) = (m.radius + trail(m, x) - y, slope(x) * u.x - u.y);
+        // The force −f ∂δ/∂q (along the profile's normal), its power −f δ̇.
         if delta > 0.0 {
-            // The force −f ∂δ/∂q (tilted back where the trail climbs), its power −f δ̇.
-            power -= (m.k_tyre * delta + m.c_tyre * rate).max(0.0) * rate;
+            -(m.k_tyre * delta + m.c_tyre * rate).max(0.0) * rate
+        } else {
+            0.0
         }
-    }
-    (energy, power)
+    });
+    (energy, tyres[0] + tyres[1] - shock.1 - fork.1, tyres)
 }
 
-/// Over the bump at 5 m/s on the flat (the middle pivot): (shock stroke, its least, its force, fork stroke,
-/// the rear and front wheels' times off the ground, the energy balance's error over the kinetic
-/// energy), and the trace.
+/// Over the bump at 5 m/s on the flat (the middle pivot), coasting: (the shock's largest and
+/// least stroke and its largest force, the fork's largest stroke, the rear and front wheels'
+/// times off the ground, the energy balance's error over the kinetic energy), and the trace.
 fn bump() -> Result<([f64; 7], Trace), Box<dyn std::error::Error>> {
     let m = bike(PIVOTS[1]);
+    assert!(m.tau_mean == 0.0, "coasting: the energy balance leaves the chain out");
     let (q0, _) = rest(&m)?;
     let riding = Riding::from_params(m.params());
     let times: Vec<f64> = (1..=1000).map(|k| 0.001 * k as f64).collect();
     let mut trace = Trace::new();
     let (mut stroke, mut force, mut fork, mut extension) = (0.0f64, 0.0f64, 0.0f64, f64::MAX);
     let (mut airborne, mut last) = ([0.0; 2], 0.0);
-    let (e0, p0) = energy_by_hand(&m, &q0, &rolling(BUMP_SPEED));
+    let (e0, p0, _) = energy_by_hand(&m, &q0, &rolling(BUMP_SPEED));
     let kinetic = 0.5 * total_mass() * BUMP_SPEED * BUMP_SPEED;
     let (mut work, mut power_before, mut error) = (0.0, p0, 0.0f64);
     let mut dopri = Dopri5::new(Dopri5Options::default().with_rtol(1e-10).with_atol(1e-12));
     Simulation::new(&riding, &mut dopri).start(0.0, &q0, &rolling(BUMP_SPEED)).times(&times).run(&mut Riding::workspace(), |s| {
         let (t, q, v) = (s.point.t, &s.point.q, &s.point.v);
-        let (energy, power) = energy_by_hand(&m, q, v);
-        // Every sample, the located switches' too, in time order: the trapezoid over each.
-        work += 0.5 * (power + power_before) * (t - last);
+        let (energy, power, tyres) = energy_by_hand(&m, q, v);
+        // Every sample, the located switches' too, in time order: the trapezoid over each. A
+        // tyre's switch is delivered on its new side, where a touching tyre's force jumps to
+        // c δ̇: the interval before it ends on the old side, without it.
+        let switched = match s.event {
+            Some(mbd::EventHit::Switch(k)) => ["rear_tyre", "front_tyre"].iter().position(|&name| name == Riding::SWITCH_NAMES[k]),
+            _ => None,
+        };
+        let before_switch = switched.map_or(power, |k| power - tyres[k]);
+        work += 0.5 * (before_switch + power_before) * (t - last);
         power_before = power;
         error = error.max((energy - e0 - work).abs() / kinetic);
         for (k, body) in [MountainBike::REAR, MountainBike::FRONT].into_iter().enumerate() {
@@ -535,24 +559,27 @@ fn print_report(r: &Report, traces: &[Stroke], bump: &Trace) -> Result<(), Box<d
         r.speed
     );
     println!(
-        "{:<10} {:>9} {:>9} {:>11} {:>9} {:>13} {:>9} {:>9} {:>10} {:>11}",
-        "pivot", "k N/mm", "leverage", "anti-squat", "sag mm", "pedalling mm", "squat mm", "bob mm", "bob mean", "speed m/s"
+        "{:<10} {:>9} {:>9} {:>11} {:>9} {:>13} {:>9} {:>9} {:>10}",
+        "pivot", "k N/mm", "leverage", "anti-squat", "sag mm", "pedalling mm", "squat mm", "bob mm", "bob mean"
     );
     for p in &r.pivots {
         println!(
-            "{:<10} {:>9.1} {:>9.2} {:>10.0}% {:>9.2} {:>13.2} {:>9.2} {:>9.2} {:>10.2} {:>11.3}",
+            "{:<10} {:>9.1} {:>9.2} {:>10.0}% {:>9.2} {:>13.2} {:>9.2} {:>9.2} {:>10.2}",
             format!("{:.0} mm", 1e3 * p.height),
             1e-3 * p.k_shock,
             p.leverage,
             p.anti_squat,
             p.sag,
             p.sag_pedalling,
-            p.sag_pedalling - p.sag,
+            p.squat,
             p.bob,
-            p.bob_mean,
-            p.speed_swing
+            p.bob_mean
         );
     }
+    let (swing, speed_error) = (r.pivots[0].speed_swing, r.pivots.iter().map(|p| p.speed_error).fold(0.0, f64::max));
+    println!(
+        "the bike's speed swings {swing:.3} m/s peak to peak with each pedal stroke, for every pivot: within {speed_error:.1e} m/s of the closed form"
+    );
     let rest = r.pivots.iter().map(|p| p.rest_error).fold(0.0, f64::max);
     println!("the rest states' shock forces and rear tyre loads within {rest:.1e} N of the free bodies by hand");
     println!(

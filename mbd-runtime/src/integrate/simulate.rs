@@ -561,7 +561,7 @@ impl<T: Real, F, const NQ: usize, const NV: usize, const NC: usize> Outlet<T, F,
 /// of `limit`, so never past a time event) is crossed as a time event is, and counts as a step:
 /// `from` becomes the point past it, the output times within the sliver crossed and every
 /// function that changed are delivered (`Break` where that ends the run). `Err(failed)` where
-/// none is just ahead.
+/// none is just ahead, or where the step failed otherwise than by its size.
 fn cross_jump<T, M, I, F, R, const NQ: usize, const NV: usize, const NC: usize, const N: usize, const NS: usize>(
     (system, integrator, ws, partition, options): (
         &System<'_, M, T>,
